@@ -14,6 +14,9 @@ struct SurfaceHit {
   double v = 0.0;
   Vec3 geometric_normal{0.0, 0.0, 1.0};
   Vec3 shading_normal{0.0, 0.0, 1.0};  ///< interpolated normal where the primitive has one
+  /// Bound on the distance of the reported point from the true surface: 0 for exact kernels,
+  /// the final subpatch size for Wang's subdivision. Spawned rays are lifted at least this far.
+  double position_error = 0.0;
 };
 
 /// The closest hit of a ray against a whole scene.

@@ -1,0 +1,17 @@
+#pragma once
+// Image outputs through OpenImageIO: image.png (8-bit), image.exr and the AOVs (32-bit float).
+#include <filesystem>
+#include <vector>
+
+namespace rtsim::app {
+
+/// Linear RGB floats to an 8-bit PNG: each channel clamped to [0,1] and rounded (no transfer
+/// curve: the machines' frame buffers held linear intensities).
+void write_png(const std::filesystem::path& path, int width, int height,
+               const std::vector<float>& rgb);
+
+/// Float EXR with `channels` channels (3: R,G,B; 1: named `channel_name`).
+void write_exr(const std::filesystem::path& path, int width, int height, int channels,
+               const std::vector<float>& data, const char* channel_name = "Y");
+
+}  // namespace rtsim::app

@@ -1,0 +1,33 @@
+#pragma once
+// A set of output files that appears all at once or not at all (DESIGN.md "Outputs": files are
+// written to a temporary name and renamed, so a failed run leaves no half-written output).
+// Files are staged in DIR/.rtsim-partial-PID/ and renamed into DIR by commit(); without a
+// commit the destructor removes the staging folder, and DIR itself if this set created it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rtsim::app {
+
+class OutputSet {
+ public:
+  explicit OutputSet(std::filesystem::path dir);
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Where to write the file `name` now; it becomes DIR/name on commit().
+  std::filesystem::path stage(const std::string& name);
+  /// Move every staged file into place. Throws std::runtime_error on failure.
+  void commit();
+  const std::filesystem::path& dir() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+  std::filesystem::path staging_;
+  std::vector<std::string> names_;
+  bool created_dir_ = false;
+  bool committed_ = false;
+};
+
+}  // namespace rtsim::app

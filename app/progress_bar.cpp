@@ -1,0 +1,37 @@
+#include "app/progress_bar.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace rtsim::app {
+
+ProgressBar::ProgressBar(std::string label)
+    : label_(std::move(label)),
+      enabled_(::isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+ProgressBar::~ProgressBar() {
+  if (drawn_) std::fputc('\n', stderr);
+}
+
+void ProgressBar::update(long done, long total) {
+  if (!enabled_ || total <= 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (done < total && drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  drawn_ = true;
+  constexpr int kWidth = 30;
+  const double frac = static_cast<double>(done) / static_cast<double>(total);
+  const int filled = static_cast<int>(frac * kWidth);
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double eta = done > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
+  std::string bar(static_cast<std::size_t>(filled), '=');
+  bar.resize(kWidth, ' ');
+  std::fprintf(stderr, "\r%s [%s] %3d%%  %ld/%ld  elapsed %.1fs  ETA %.1fs ", label_.c_str(),
+               bar.c_str(), static_cast<int>(frac * 100.0), done, total, elapsed, eta);
+  std::fflush(stderr);
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,46 @@
+#pragma once
+// The functional renderer: the firmware (camera, shading, kernels, acceleration) run with no
+// timing at all. It is the golden image every machine must reproduce and the speed floor that
+// machine wall times are reported against.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "firmware/shading/shade_params.hpp"
+#include "firmware/trace_counters.hpp"
+#include "firmware/tracer.hpp"
+#include "scenes/scene.hpp"
+
+namespace rtsim::functional {
+
+struct RenderOptions {
+  int width = 0;   ///< 0: the scene's resolution
+  int height = 0;
+  int spp = 1;     ///< samples per pixel
+  int threads = 1;
+  bool aov_id = false;
+  bool aov_depth = false;
+  shading::ShadeParams shade;
+  /// Called after each row the calling thread finishes with (rows done, rows total).
+  std::function<void(int, int)> progress;
+};
+
+struct RenderResult {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;    ///< width*height*3, linear
+  std::vector<float> id;     ///< width*height, primitive index of the primary hit or -1
+  std::vector<float> depth;  ///< width*height, primary hit distance or +inf
+  TraceCounters counters;
+  double wall_time_s = 0.0;
+};
+
+/// Image position of sample `s` of a pixel, as an offset in [0,1)^2 from its top-left corner.
+/// Sample 0 is the pixel centre; later samples follow the R2 low-discrepancy sequence, so the
+/// pattern is deterministic and independent of threads.
+void sample_offset(int s, double& dx, double& dy);
+
+RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts);
+
+}  // namespace rtsim::functional
