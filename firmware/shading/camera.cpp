@@ -1,5 +1,6 @@
 #include "firmware/shading/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rtsim::shading {
@@ -16,7 +17,8 @@ PinholeCamera::PinholeCamera(const scenes::Camera& view, int width, int height)
   right = glm::normalize(right);
   const Vec3 up = glm::cross(right, forward_);
   const double tan_half = std::tan(0.5 * view.angle_deg * kPi / 180.0);
-  const double pixel = 2.0 * tan_half / height;  // image plane at distance 1
+  // image plane at distance 1; height-1 pixel steps between the top and bottom row centres
+  const double pixel = 2.0 * tan_half / std::max(1, height - 1);
   right_ = right * pixel;
   down_ = -up * pixel;
 }

@@ -7,8 +7,10 @@ namespace rtsim::shading {
 
 class PinholeCamera {
  public:
-  /// `angle_deg` of the NFF view is taken as the full vertical field of view across the image
-  /// height; the horizontal extent follows from the aspect ratio (square pixels).
+  /// NFF defines `angle` "from the center of top pixel row to bottom pixel row and left column
+  /// to right column" (square images); we apply it to the rows, so the vertical angle between
+  /// the top and bottom pixel centres is `angle_deg` and the horizontal extent follows from the
+  /// aspect ratio (square pixels).
   PinholeCamera(const scenes::Camera& view, int width, int height);
 
   /// Ray through image position (x, y) in pixel units: (0,0) is the top-left corner of the

@@ -1,0 +1,106 @@
+#include "app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "scenes/input_error.hpp"
+
+namespace rtsim::app {
+namespace {
+
+constexpr const char* kDescription =
+    "rtsim: a SystemC/TLM-2.0 transaction-level model of the parallel ray-tracing machines of\n"
+    "the early 1980s (Ullner's peripheral, pipeline and array; Gaudet's multi-PERT machine;\n"
+    "Wang's Bezier pipeline) that renders real images while it measures.";
+
+constexpr const char* kFooter =
+    "\nExit status: 0 success, 1 internal failure, 2 bad input (scene, config, parameter, usage).\n"
+    "Scenes: an .nff or .bpt file, or builtin:NAME (see `rtsim list scenes`).\n"
+    "Parameters: `rtsim list params` prints every name with its value, unit, default and source.";
+
+void add_config_options(CLI::App* cmd, ConfigArgs& cfg) {
+  cmd->add_option("--config", cfg.config_files,
+                  "TOML file(s) layered on the preset, in order (later files win)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-p,--param", cfg.overrides,
+                  "Set a parameter, NAME=VALUE (e.g. -p shade.max_depth=3, -p \"x.time=400 ns\"); "
+                  "repeatable, applied after --config");
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app(kDescription, "rtsim");
+  app.footer(kFooter);
+  app.set_version_flag("--version", std::string("rtsim ") + RTSIM_VERSION);
+  app.require_subcommand(1);
+
+  RenderArgs render;
+  render.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  auto* r = app.add_subcommand(
+      "render", "Render a scene with the functional renderer: the firmware kernels and shading\n"
+                "with no timing. Its image is the golden reference for every machine.");
+  r->add_option("--scene", render.scene, "Scene file (.nff, .bpt) or builtin:NAME")
+      ->capture_default_str();
+  r->add_option("--out", render.out_dir,
+                "Output folder: image.png, image.exr, stats.json (+ id.exr, depth.exr)")
+      ->capture_default_str();
+  r->add_option("--width", render.width, "Image width in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  r->add_option("--height", render.height, "Image height in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  r->add_option("--spp", render.spp, "Samples per pixel (default: render.spp, 1)")
+      ->check(CLI::Range(1, 4096));
+  r->add_option("--aov", render.aovs,
+                "Extra outputs, comma-separated: id (primitive index of the primary hit, -1 for a "
+                "miss) and depth (primary hit distance, inf for a miss)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"id", "depth"}));
+  r->add_option("--threads", render.threads, "Worker threads (the image does not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
+  r->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+  add_config_options(r, render.config);
+
+  auto* run = app.add_subcommand("run", "Run a machine model (SystemC, timed). Not yet built.");
+  run->allow_extras();
+  auto* sweep = app.add_subcommand("sweep", "Run a parameter sweep from a file. Not yet built.");
+  sweep->allow_extras();
+  auto* validate =
+      app.add_subcommand("validate", "Reproduce the seeds' figures and compare. Not yet built.");
+  validate->allow_extras();
+
+  ListArgs list;
+  auto* l = app.add_subcommand("list", "List built-in scenes, machines, or parameters");
+  l->add_option("what", list.what, "scenes | machines | params")
+      ->required()
+      ->check(CLI::IsMember({"scenes", "machines", "params"}));
+  l->add_option("--machine", list.machine, "With params: the machine whose parameters to list");
+  add_config_options(l, list.config);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+
+  try {
+    if (r->parsed()) return run_render(render);
+    if (l->parsed()) return run_list(list);
+    const char* which = run->parsed() ? "run" : sweep->parsed() ? "sweep" : "validate";
+    std::cerr << "rtsim " << which << ": not yet built in this version.\n";
+    return kExitFailure;
+  } catch (const InputError& e) {
+    std::cerr << "rtsim: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "rtsim: internal error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,34 @@
+#pragma once
+// Arguments and entry points of the subcommands.
+#include <string>
+#include <vector>
+
+namespace rtsim::app {
+
+struct ConfigArgs {
+  std::vector<std::string> config_files;
+  std::vector<std::string> overrides;  ///< NAME=VALUE from -p
+};
+
+struct RenderArgs {
+  std::string scene = "builtin:default";
+  std::string out_dir = "out/render";
+  int width = 0;
+  int height = 0;
+  int spp = 0;  ///< 0: take render.spp from the configuration
+  int threads = 1;
+  std::vector<std::string> aovs;
+  bool quiet = false;
+  ConfigArgs config;
+};
+
+struct ListArgs {
+  std::string what;
+  std::string machine;
+  ConfigArgs config;
+};
+
+int run_render(const RenderArgs& args);
+int run_list(const ListArgs& args);
+
+}  // namespace rtsim::app
