@@ -60,6 +60,15 @@ const Unit* find_unit(UnitClass c, std::string_view symbol) {
   return nullptr;
 }
 
+// Sub-unit scales (1e-9) are not exact doubles but their reciprocals (1e9) are: dividing by the
+// reciprocal rounds once, so "400 ns" gives the same double as the literal 400e-9.
+double to_base(double number, const Unit& u) {
+  return u.scale < 1.0 ? number / std::round(1.0 / u.scale) : number * u.scale;
+}
+double from_base(double value, const Unit& u) {
+  return u.scale < 1.0 ? value * std::round(1.0 / u.scale) : value / u.scale;
+}
+
 std::string_view trim(std::string_view s) {
   const auto is_space = [](char ch) { return ch == ' ' || ch == '\t'; };
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
@@ -165,7 +174,7 @@ Quantity parse_quantity(std::string_view text, UnitClass expected) {
   if (expected == UnitClass::kDimensionless && symbol.empty()) return {number, expected};
   if (symbol.empty()) fail(quoted(s) + " has no unit");
   if (const Unit* u = find_unit(expected, symbol)) {
-    const double value = number * u->scale;
+    const double value = to_base(number, *u);
     if (!std::isfinite(value)) fail(quoted(s) + " is out of range");
     return {value, expected};
   }
@@ -214,7 +223,7 @@ std::string format_quantity(const Quantity& q) {
       chosen = &u;
     }
   }
-  return format_number(q.value / chosen->scale) + " " + std::string(chosen->symbol);
+  return format_number(from_base(q.value, *chosen)) + " " + std::string(chosen->symbol);
 }
 
 }  // namespace rtsim::params
