@@ -55,6 +55,15 @@ TEST(Units, EverySpellingParsesToItsSiValue) {
   }
 }
 
+TEST(Units, WholeNumbersGiveTheSameDoubleAsTheLiteral) {
+  // One rounding, not two: 400 * 1e-9 would be 4.0000000000000003e-7.
+  EXPECT_EQ(parse_quantity("400 ns", UnitClass::kTime).value, 400e-9);
+  EXPECT_EQ(parse_quantity("3 us", UnitClass::kTime).value, 3e-6);
+  EXPECT_EQ(parse_quantity("1 ps", UnitClass::kTime).value, 1e-12);
+  EXPECT_EQ(parse_quantity("7 ms", UnitClass::kTime).value, 7e-3);
+  EXPECT_EQ(parse_quantity("5 MHz", UnitClass::kFrequency).value, 5e6);
+}
+
 TEST(Units, EveryTabledSpellingIsAccepted) {
   for (UnitClass c :
        {UnitClass::kTime, UnitClass::kFrequency, UnitClass::kBitRate, UnitClass::kDataSize}) {
