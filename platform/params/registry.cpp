@@ -333,14 +333,10 @@ void ParamRegistry::load_toml_file(const std::string& path) {
   if (!in) throw InputError(path, 0, "cannot open config file");
   std::ostringstream text;
   text << in.rdbuf();
-  load_toml(text.str(), path);
+  load_toml_string(text.str(), path);
 }
 
 void ParamRegistry::load_toml_string(std::string_view text, const std::string& origin) {
-  load_toml(text, origin);
-}
-
-void ParamRegistry::load_toml(std::string_view text, const std::string& origin) {
   toml::table root;
   try {
     root = toml::parse(text, origin);

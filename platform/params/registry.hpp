@@ -88,6 +88,7 @@ class ParamRegistry {
   /// Layers a TOML config on top. Nested tables and dotted keys are the same name:
   /// `[peripheral.grid] divisions = 11` sets "peripheral.grid.divisions". Numbers for int and
   /// double kinds, true/false for bool, strings for string kinds and for values with units.
+  /// Everything is checked before anything is set, so a bad file changes nothing.
   void load_toml_file(const std::string& path);
   /// The same for text in memory; `origin` names it in errors and where_set ("preset x" -> "preset
   /// x:12").
@@ -114,7 +115,6 @@ class ParamRegistry {
  private:
   const detail::Param& find(std::string_view name, ParamKind kind) const;
   detail::Param& find_for_input(std::string_view name, const std::string& file, std::size_t line);
-  void load_toml(std::string_view text, const std::string& origin);
 
   std::map<std::string, detail::Param, std::less<>> params_;
 };
