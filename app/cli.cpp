@@ -79,6 +79,9 @@ int run_cli(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember({"scenes", "machines", "params"}));
   l->add_option("--machine", list.machine, "With params: the machine whose parameters to list");
+  l->add_option("--format", list.format, "With params: text, or markdown (docs/parameters.md)")
+      ->check(CLI::IsMember({"text", "markdown"}))
+      ->capture_default_str();
   add_config_options(l, list.config);
 
   try {

@@ -25,6 +25,7 @@ struct RenderArgs {
 struct ListArgs {
   std::string what;
   std::string machine;
+  std::string format = "text";  ///< text | markdown
   ConfigArgs config;
 };
 

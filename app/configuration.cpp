@@ -1,0 +1,23 @@
+#include "app/configuration.hpp"
+
+#include "platform/functional/render_params.hpp"
+#include "scenes/input_error.hpp"
+
+namespace rtsim::app {
+
+params::ParamRegistry build_registry(const ConfigArgs& args) {
+  params::ParamRegistry registry;
+  functional::declare_render_params(registry);
+  for (const auto& file : args.config_files) registry.load_toml_file(file);
+  for (const auto& assignment : args.overrides) {
+    try {
+      registry.apply_override(assignment);
+    } catch (const InputError& e) {
+      // Name the command-line argument, the -p "file" of this error.
+      throw InputError("-p " + assignment, 0, e.message());
+    }
+  }
+  return registry;
+}
+
+}  // namespace rtsim::app
