@@ -59,10 +59,36 @@ std::string read_scene_file(const std::string& path) {
 
 LineCursor::LineCursor(std::string_view text, std::string file)
     : text_(text), file_(std::move(file)) {
-  std::size_t newlines = 0;
-  for (char c : text_) newlines += (c == '\n') ? 1 : 0;
+  // One pass over the whole text first: count the lines (the budget lines_left() reports) and
+  // reject binary bytes wherever they are, before any declared count is looked at.
+  std::size_t line = 1;
+  std::size_t column = 0;
+  bool comment = false;       // the current line's first non-blank character is '#'
+  bool seen_content = false;  // the current line has a non-blank character
+  for (char ch : text_) {
+    const auto c = static_cast<unsigned char>(ch);
+    ++column;
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      comment = seen_content = false;
+      continue;
+    }
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7F) {
+      fail(line, cat("non-printable byte ", hex_byte(c), " at column ", column,
+                     "; scene files are plain text"));
+    }
+    if (!seen_content && !is_separator(ch)) {
+      seen_content = true;
+      comment = (ch == '#');
+    }
+    if (c >= 0x80 && !comment) {
+      fail(line, cat("non-ASCII byte ", hex_byte(c), " at column ", column,
+                     " outside a comment; scene files are plain ASCII text"));
+    }
+  }
   // A final line without '\n' still counts.
-  total_lines_ = newlines + ((!text_.empty() && text_.back() != '\n') ? 1 : 0);
+  total_lines_ = (line - 1) + ((!text_.empty() && text_.back() != '\n') ? 1 : 0);
 }
 
 void LineCursor::fail(std::size_t line, const std::string& message) const {
@@ -84,17 +110,6 @@ bool LineCursor::next(SceneLine& out) {
     std::size_t first = 0;
     while (first < raw.size() && is_separator(raw[first])) ++first;
     const bool comment = first < raw.size() && raw[first] == '#';
-    for (std::size_t i = 0; i < raw.size(); ++i) {
-      const auto c = static_cast<unsigned char>(raw[i]);
-      if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7F) {
-        fail(line_no_, cat("non-printable byte ", hex_byte(c), " at column ", i + 1,
-                           "; scene files are plain text"));
-      }
-      if (c >= 0x80 && !comment) {
-        fail(line_no_, cat("non-ASCII byte ", hex_byte(c), " at column ", i + 1,
-                           " outside a comment; scene files are plain ASCII text"));
-      }
-    }
     if (comment || first == raw.size()) continue;
 
     std::size_t text_end = raw.size();

@@ -36,9 +36,10 @@ struct SceneLine {
 };
 
 /// Walks the lines of a scene text. Blank lines and comment lines (first non-blank character
-/// '#') are skipped. Separators are space, tab and carriage return (so CRLF files read). Any other
-/// control byte anywhere, or a non-ASCII byte outside a comment, is an InputError: scene files are
-/// plain text, and this is what catches binary garbage.
+/// '#') are skipped. Separators are space, tab and carriage return (so CRLF files read). The
+/// constructor scans the whole text once: any other control byte anywhere, or a non-ASCII byte
+/// outside a comment, is an InputError at its line and column (scene files are plain text; this
+/// catches binary garbage before any declared count is looked at).
 class LineCursor {
  public:
   LineCursor(std::string_view text, std::string file);
