@@ -89,7 +89,9 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   std::string msg = cat("unknown builtin scene ", quote_token(name), "; did you mean ");
+  // The closest names: at most kMaxSuggestions, and none more than one edit worse than the best.
   for (std::size_t i = 0; i < kMaxSuggestions && i < ranked.size(); ++i) {
+    if (ranked[i].first > ranked[0].first + 1) break;
     msg += cat(i == 0 ? "" : ", ", kBuiltinPrefix, ranked[i].second);
   }
   msg += "? (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99)";
@@ -99,6 +101,17 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
 Scene load_scene(const std::string& spec, const GeneratorSeeds& seeds) {
   if (spec.rfind(kBuiltinPrefix, 0) == 0) {
     return make_builtin_scene(std::string_view(spec).substr(kBuiltinPrefix.size()), seeds);
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(spec, ec)) {
+    std::string hint;
+    for (const auto& s : builtin_scenes()) {
+      if (s.name == spec) hint = cat(" (did you mean ", kBuiltinPrefix, spec, "?)");
+    }
+    throw InputError(spec, 0, cat("cannot open scene file: no such file", hint));
+  }
+  if (!std::filesystem::is_regular_file(spec, ec)) {
+    throw InputError(spec, 0, "cannot open scene file: not a regular file");
   }
   const std::string ext = lower(std::filesystem::path(spec).extension().string());
   if (ext == ".nff") return read_nff(spec);
