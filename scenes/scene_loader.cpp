@@ -85,7 +85,13 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);
 
   std::vector<std::pair<std::size_t, std::string>> ranked;
-  for (const auto& s : builtin_scenes()) ranked.emplace_back(edit_distance(name, s.name), s.name);
+  for (const auto& s : builtin_scenes()) {
+    // A name the user typed part of ("ullner") counts as one edit away.
+    const bool part = !name.empty() && s.name.find(name) != std::string::npos;
+    ranked.emplace_back(
+        part ? std::min<std::size_t>(1, edit_distance(name, s.name)) : edit_distance(name, s.name),
+        s.name);
+  }
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   std::string msg = cat("unknown builtin scene ", quote_token(name), "; did you mean ");

@@ -23,20 +23,20 @@ struct Ball {
   MaterialId material;
 };
 
-/// Spheres resting on the floor (z = radius): mirror centre back, glass in front of it so the
-/// floor and the mirror are seen refracted through it, coloured balls around.
+/// Spheres resting on the floor (z = radius): the mirror left-back (it shows the others and the
+/// checkerboard), the glass right-front (the floor seen refracted through it), coloured balls.
 constexpr std::array<Ball, 5> kBalls = {{
-    {Vec3{0.0, 0.8, 1.0}, 1.0, kMirrorId},
-    {Vec3{0.6, -1.0, 0.7}, 0.7, kGlassId},
-    {Vec3{-1.9, -0.2, 0.6}, 0.6, kRed},
-    {Vec3{1.9, 0.6, 0.5}, 0.5, kBlue},
-    {Vec3{-0.9, -1.9, 0.35}, 0.35, kGoldId},
+    {Vec3{-0.9, 0.9, 1.0}, 1.0, kMirrorId},
+    {Vec3{1.1, -0.9, 0.75}, 0.75, kGlassId},
+    {Vec3{-2.1, -0.7, 0.6}, 0.6, kRed},
+    {Vec3{1.9, 1.5, 0.5}, 0.5, kBlue},
+    {Vec3{-0.7, -1.9, 0.35}, 0.35, kGoldId},
 }};
 
-constexpr Vec3 kEye{1.2, -7.5, 3.2};
-constexpr Vec3 kLookAt{0.0, 0.0, 0.6};
+constexpr Vec3 kEye{1.5, -7.8, 4.2};
+constexpr Vec3 kLookAt{0.0, -0.2, 0.5};
 constexpr Vec3 kUp{0.0, 0.0, 1.0};
-constexpr double kFieldOfViewDeg = 45.0;
+constexpr double kFieldOfViewDeg = 40.0;
 constexpr Color kBackground{0.35, 0.55, 0.85};  // sky blue, seen in the mirror
 constexpr std::array<Light, 2> kLights = {
     Light{Vec3{-4.0, -5.0, 8.0}, Color{0.9, 0.9, 0.85}},

@@ -10,30 +10,39 @@ namespace rtsim::scenes {
 
 namespace {
 
-// --- Sphere sizes (assumption: the thesis shows only lost pictures, Figs 6-2..6-6) ----------
-// Largest radius for pp spheres per cell: kNppRadiusScale / sqrt(pp) cell units, so the
-// silhouette area of a cluster (pp r^2) is about the same for every pp and the pictures of
+// --- Cluster shape and sphere sizes (assumption: the thesis shows only lost pictures, Figs
+// 6-2..6-6, and says "64 clusters of randomly placed primitives", L970) -----------------------
+// A cluster is a ball of radius kNppClusterRadius (cell units) centred at a random point of its
+// cell, placed so the ball stays inside the cell shrunk by kNppCellMargin. Its spheres lie
+// wholly inside the ball. Clusters are therefore visibly separate, with void between them, which
+// is what makes a box-shell hierarchy over them worthwhile.
+constexpr double kNppClusterRadius = 0.38;
+// Largest sphere radius for pp spheres per cluster: kNppRadiusScale / sqrt(pp) cell units, so
+// the silhouette area of a cluster (pp r^2) is about the same for every pp and the pictures of
 // 204..820 look alike in coverage. A radius is drawn uniformly in [kNppMinRadiusFraction, 1] of
 // that maximum.
-constexpr double kNppRadiusScale = 0.42;
+constexpr double kNppRadiusScale = 0.3;
 constexpr double kNppMinRadiusFraction = 0.55;
 /// Smallest gap between two spheres of one cluster (cell units): no touching or overlapping.
 constexpr double kNppMinGap = 0.01;
 /// Rejection sampling: attempts to place one sphere before its radius is shrunk by
-/// kNppShrinkFactor, and the number of shrinks before giving up (never reached for pp <= 99:
-/// the largest volume fraction asked for is ~11 %, far below random-packing limits).
+/// kNppShrinkFactor, and the number of shrinks before giving up. The spheres fill at most ~25 %
+/// of the cluster ball (pp = 4 with every radius at its maximum; ~15 % on average), below
+/// random-packing limits, so shrinking is rare: only pp = 2, whose two largest spheres cannot
+/// both fit, needs it. Giving up is unreachable for pp <= 99. A draw outside the ball counts as
+/// a failed attempt, so every loop is bounded.
 constexpr int kNppPlacementAttempts = 1000;
 constexpr double kNppShrinkFactor = 0.9;
 constexpr int kNppMaxShrinks = 60;
 
 // --- Look (assumption) -----------------------------------------------------------------------
 // The grid spans [-2, 2]^3. The eye looks at its centre from above and to the front-right; a
-// 34 degree field of view holds the grid's bounding sphere (radius 2 sqrt 3 = 3.46 at distance
+// 32 degree field of view holds the grid's bounding sphere (radius 2 sqrt 3 = 3.46 at distance
 // 13.0 needs 30.8 degrees) with a small border.
 constexpr Vec3 kNppEye{7.0, -9.5, 5.5};
 constexpr Vec3 kNppLookAt{0.0, 0.0, 0.0};
 constexpr Vec3 kNppUp{0.0, 0.0, 1.0};
-constexpr double kNppFieldOfViewDeg = 34.0;
+constexpr double kNppFieldOfViewDeg = 32.0;
 constexpr int kNppImageSize = 512;
 constexpr Color kNppBackground{0.05, 0.07, 0.12};
 /// Key light high behind the eye, and a dimmer bluish fill from the left: two lights, so
@@ -114,6 +123,12 @@ Scene make_npp_scene(int branching, int spheres_per_cluster, std::uint64_t seed)
 
   for (int k = 0; k < kNppClusterCount; ++k) {
     const Bounds cell = npp_cluster_cell(k);
+    const double ball_radius = kNppClusterRadius * kNppCellSize;
+    Vec3 ball_centre;
+    for (int a = 0; a < 3; ++a) {
+      ball_centre[a] =
+          rng.uniform(cell.lo[a] + margin + ball_radius, cell.hi[a] - margin - ball_radius);
+    }
     const std::size_t first = scene.spheres.size();
     for (int s = 0; s < pp; ++s) {
       double r = r_max * rng.uniform(kNppMinRadiusFraction, 1.0);
@@ -121,9 +136,10 @@ Scene make_npp_scene(int branching, int spheres_per_cluster, std::uint64_t seed)
       bool placed = false;
       for (int shrink = 0; shrink <= kNppMaxShrinks && !placed; ++shrink) {
         for (int attempt = 0; attempt < kNppPlacementAttempts && !placed; ++attempt) {
-          Vec3 c;
-          for (int a = 0; a < 3; ++a)
-            c[a] = rng.uniform(cell.lo[a] + margin + r, cell.hi[a] - margin - r);
+          // A point uniform in the ball of radius (ball_radius - r): rejection from its cube.
+          const Vec3 u{rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)};
+          if (glm::dot(u, u) > 1.0) continue;
+          const Vec3 c = ball_centre + (ball_radius - r) * u;
           bool clear = true;
           for (std::size_t j = first; j < scene.spheres.size() && clear; ++j) {
             const double need = r + scene.spheres[j].radius + kNppMinGap * kNppCellSize;

@@ -14,8 +14,9 @@
 //   x = bits 0,3 of k; y = bits 1,4; z = bits 2,5. So every run of 2, 4, 8, 16, 32 consecutive
 //   clusters aligned to its size is a compact block of cells (2x1x1, 2x2x1, 2x2x2, 4x2x2, 4x4x2)
 //   and grouping consecutive clusters b at a time gives spatially sensible parents for b = 2, 4, 8;
-// - the spheres of a cluster lie inside their cell shrunk by kNppCellMargin on every side, so
-//   leaf shells of different clusters never overlap;
+// - the spheres of a cluster lie in a ball at a random place in their cell (npp_scene.cpp), inside
+//   the cell shrunk by kNppCellMargin on every side, so leaf shells of different clusters never
+//   overlap and there is void between clusters;
 // - spheres never overlap each other (rejection sampling, bounded; see npp_scene.cpp);
 // - primitives of cluster k are contiguous, clusters in order 0..63; cluster_of_primitive is set.
 #include <cstdint>

@@ -11,13 +11,14 @@ namespace rtsim::scenes {
 namespace {
 
 // --- Look (assumption; the thesis gives no view, note 000 §7.5 S3) ---------------------------
-// Eye outside the modelling cube, above and to the front-right, looking at its centre. The
-// cube's bounding sphere (radius 0.866 at distance 2.76) needs a 36.6 degree field; 40 leaves a
-// border.
+// Eye outside the modelling cube, above and to the front-right, looking at its centre. The cube
+// centres keep a half-diagonal margin, so the cubes fill the inner ~0.83 of the modelling cube;
+// 32 degrees frames that cloud (a 36.6 degree field would hold the whole modelling cube's
+// bounding sphere, radius 0.866 at distance 2.76, and leave the cubes small).
 constexpr Vec3 kUllnerEye{2.1, -1.35, 1.7};
 constexpr Vec3 kUllnerLookAt{0.5, 0.5, 0.5};
 constexpr Vec3 kUllnerUp{0.0, 0.0, 1.0};
-constexpr double kUllnerFieldOfViewDeg = 40.0;
+constexpr double kUllnerFieldOfViewDeg = 32.0;
 constexpr int kUllnerImageSize = 512;  ///< Ullner's working resolution, seed 000 L590
 constexpr Color kUllnerBackground{0.08, 0.08, 0.1};
 constexpr std::array<Light, 2> kUllnerLights = {
