@@ -38,6 +38,7 @@
 // duplicates share one entry), in order of first use. Primitives before any `f` get
 // kDefaultNffMaterial.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
