@@ -25,7 +25,12 @@ class InputError : public std::runtime_error {
     std::string out;
     if (!file.empty()) {
       out += file;
-      if (line > 0) out += ":" + std::to_string(line);
+      if (line > 0) {
+        // Two appends, not `":" + std::to_string(line)`: GCC 12 -O2 reports a false
+        // -Wrestrict on `literal + std::string&&` (GCC bug 105651), fatal under -Werror.
+        out += ':';
+        out += std::to_string(line);
+      }
       out += ": ";
     }
     return out + msg;

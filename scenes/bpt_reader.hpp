@@ -1,0 +1,32 @@
+#pragma once
+// Reader for the .bpt Bezier patch layout used by SPD's teapot generator:
+//
+//   32                  number of patches (1 .. kMaxBptPatches)
+//   3 3                 per patch: its degrees in u and v; only bicubic "3 3" is supported
+//   x y z               then 16 control points, one per line, row by row (P00 P01 ... P33)
+//
+// Blank lines and '#' comment lines are allowed anywhere. Same error rules as the NFF reader
+// (see nff_reader.hpp): one rtsim::InputError naming file, line and what was expected; counts are
+// checked against kMaxBptPatches and the lines left in the file before anything is allocated;
+// content after the last declared patch is an error.
+//
+// The format has no camera, lights or materials: has_camera stays false (the renderer frames
+// the scene itself), there are no lights, and every patch uses one material, kDefaultBptMaterial.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "scenes/scene.hpp"
+
+namespace rtsim::scenes {
+
+/// Most patches a .bpt file may declare (the teapot has 32).
+inline constexpr std::int64_t kMaxBptPatches = 1'000'000;
+
+/// The one material of a .bpt scene: white, mostly diffuse with a little Phong highlight.
+inline const Material kDefaultBptMaterial{Color{1.0}, 0.8, 0.2, 20.0, 0.0, 1.0};
+
+Scene read_bpt(const std::string& path);
+Scene parse_bpt(std::string_view text, const std::string& name);
+
+}  // namespace rtsim::scenes

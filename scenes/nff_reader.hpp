@@ -1,0 +1,65 @@
+#pragma once
+// Reader for Eric Haines' Neutral File Format (NFF), the format of the Standard Procedural
+// Databases (SPD). One entity per line:
+//
+//   v                       view block; the six lines below follow, in any order
+//   from x y z              eye
+//   at x y z                look-at point
+//   up x y z                up direction
+//   angle deg               full field of view (0 < deg < 180)
+//   hither d                near distance (d >= 0)
+//   resolution w h          image size in pixels (1 .. kMaxNffResolution each)
+//   b r g b                 background colour
+//   l x y z [r g b]         point light, white when no colour is given
+//   f r g b Kd Ks Shine T ior   material for the primitives that follow
+//   s x y z r               sphere (r > 0)
+//   c                       cone/cylinder; next two lines "x y z r" for base and apex.
+//                           A negative radius (NFF: seen from inside) is kept as read;
+//                           geometry uses |r|.
+//   p n                     polygon, then n lines "x y z" (3 <= n <= kMaxPolygonVertices)
+//   pp n                    polygon with normals, then n lines "x y z nx ny nz"
+//   # ...                   comment (whole line); blank lines are ignored
+//
+// Rules (each violation is one rtsim::InputError naming file, line and what was expected):
+// - numbers are parsed with std::from_chars (locale-independent); NaN, infinity, values outside
+//   the double range and trailing characters are errors; so are extra fields on a line.
+// - colours, Kd, Ks, Shine and T must be >= 0; ior must be > 0 when T > 0 (SPD writes ior 0 for
+//   opaque materials, which is kept as read).
+// - a sphere radius must be > 0 (NFF has no inside-out spheres; a zero sphere is a typo).
+// - the camera must be usable: up not zero and not parallel to at - from, from != at.
+// - vertex counts are checked against kMaxPolygonVertices and against the lines left in the file
+//   before anything is allocated.
+// - a file with no primitive is an error (it is almost certainly not the intended file).
+// - at most one 'v' and one 'b' per file.
+// Degenerate but well-formed geometry (zero-area polygons, repeated vertices, coincident cone
+// ends, zero normals) is kept: conversion for a machine repairs or rejects it with a count.
+//
+// Materials: each distinct `f` used by a primitive becomes one Scene::materials entry (exact
+// duplicates share one entry), in order of first use. Primitives before any `f` get
+// kDefaultNffMaterial.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "scenes/scene.hpp"
+
+namespace rtsim::scenes {
+
+/// Most vertices one `p`/`pp` polygon may declare. Far above any real polygon (SPD's largest
+/// are a few hundred); a bound so an absurd count fails before allocation.
+inline constexpr std::int64_t kMaxPolygonVertices = 1'000'000;
+
+/// Largest image width or height a `resolution` line may ask for.
+inline constexpr std::int64_t kMaxNffResolution = 16384;
+
+/// Material of primitives that come before any `f`: white, fully diffuse, no specular, opaque.
+inline const Material kDefaultNffMaterial{Color{1.0}, 1.0, 0.0, 0.0, 0.0, 1.0};
+
+/// Reads an NFF file (see read_scene_file for the file checks). Scene::name = path.
+Scene read_nff(const std::string& path);
+
+/// Parses NFF text; `name` is used as the file name in errors and as Scene::name.
+Scene parse_nff(std::string_view text, const std::string& name);
+
+}  // namespace rtsim::scenes

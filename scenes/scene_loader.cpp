@@ -1,0 +1,132 @@
+#include "scenes/scene_loader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+
+#include "scenes/bpt_reader.hpp"
+#include "scenes/generators/default_scene.hpp"
+#include "scenes/generators/npp_scene.hpp"
+#include "scenes/generators/ullner_cubes.hpp"
+#include "scenes/input_error.hpp"
+#include "scenes/nff_reader.hpp"
+#include "scenes/scene_text.hpp"
+
+namespace rtsim::scenes {
+
+namespace {
+
+/// How many names an "unknown builtin scene" message suggests.
+constexpr std::size_t kMaxSuggestions = 3;
+
+/// The npp scenes listed by name: Gaudet's Fig 6-1 and Figs 6-9..6-11 use pp in this set.
+constexpr std::array<int, 3> kListedNppBranching = {2, 4, 8};
+constexpr std::array<int, 5> kListedNppSpheres = {4, 8, 12, 16, 20};
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return out;
+}
+
+}  // namespace
+
+GeneratorSeeds default_generator_seeds() { return {kNppDefaultSeed, kUllnerDefaultSeed}; }
+
+const std::vector<BuiltinScene>& builtin_scenes() {
+  static const std::vector<BuiltinScene> scenes = [] {
+    std::vector<BuiltinScene> list;
+    list.push_back(
+        {"default", "checkerboard floor, mirror, glass and plastic spheres, 2 lights (69 prims)"});
+    list.push_back({"ullner-cubes",
+                    "Ullner Fig 2-19: 83 randomly oriented cubes as 498 quads in the unit cube"});
+    for (int n : kListedNppBranching) {
+      for (int pp : kListedNppSpheres) {
+        const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
+        const char* tree = n == 2 ? "binary" : n == 4 ? "quad" : "oct";
+        list.push_back({"npp-" + digits,
+                        "Gaudet scene " + digits + ": 64 clusters x " + std::to_string(pp) +
+                            " spheres (" + std::to_string(64 * pp) + "), " + tree + " shell tree"});
+      }
+    }
+    return list;
+  }();
+  return scenes;
+}
+
+std::vector<std::string> builtin_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& s : builtin_scenes()) names.push_back(s.name);
+  return names;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
+  if (name == "default") return make_default_scene();
+  if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
+  int n = 0;
+  int pp = 0;
+  if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);
+
+  std::vector<std::pair<std::size_t, std::string>> ranked;
+  for (const auto& s : builtin_scenes()) {
+    // A name the user typed part of ("ullner") counts as one edit away.
+    const bool part = !name.empty() && s.name.find(name) != std::string::npos;
+    ranked.emplace_back(
+        part ? std::min<std::size_t>(1, edit_distance(name, s.name)) : edit_distance(name, s.name),
+        s.name);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::string msg = cat("unknown builtin scene ", quote_token(name), "; did you mean ");
+  // The closest names: at most kMaxSuggestions, and none more than one edit worse than the best.
+  for (std::size_t i = 0; i < kMaxSuggestions && i < ranked.size(); ++i) {
+    if (ranked[i].first > ranked[0].first + 1) break;
+    msg += cat(i == 0 ? "" : ", ", kBuiltinPrefix, ranked[i].second);
+  }
+  msg += "? (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99)";
+  throw InputError("", 0, msg);
+}
+
+Scene load_scene(const std::string& spec, const GeneratorSeeds& seeds) {
+  if (spec.rfind(kBuiltinPrefix, 0) == 0) {
+    return make_builtin_scene(std::string_view(spec).substr(kBuiltinPrefix.size()), seeds);
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(spec, ec)) {
+    std::string hint;
+    for (const auto& s : builtin_scenes()) {
+      if (s.name == spec) hint = cat(" (did you mean ", kBuiltinPrefix, spec, "?)");
+    }
+    throw InputError(spec, 0, cat("cannot open scene file: no such file", hint));
+  }
+  if (!std::filesystem::is_regular_file(spec, ec)) {
+    throw InputError(spec, 0, "cannot open scene file: not a regular file");
+  }
+  const std::string ext = lower(std::filesystem::path(spec).extension().string());
+  if (ext == ".nff") return read_nff(spec);
+  if (ext == ".bpt") return read_bpt(spec);
+  throw InputError(
+      spec, 0,
+      cat("unsupported scene file extension ", quote_token(ext.empty() ? "(none)" : ext),
+          "; supported: .nff (Neutral File Format), .bpt (Bezier patches), or "
+          "builtin:NAME"));
+}
+
+}  // namespace rtsim::scenes
