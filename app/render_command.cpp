@@ -1,7 +1,6 @@
 // `rtsim render`: the functional renderer from the command line.
 #include <cmath>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <fstream>
 
 #include "app/cli.hpp"
@@ -25,12 +24,14 @@ int run_render(const RenderArgs& args) {
   const auto registry = build_registry(args.config);
   auto settings = functional::read_render_settings(registry);
   if (args.spp > 0) settings.spp = args.spp;
-  scenes::Scene scene = scenes::load_scene(args.scene, settings.scene_seed);
+  scenes::GeneratorSeeds seeds = scenes::default_generator_seeds();
+  if (settings.scene_seed != 0) seeds.npp = seeds.ullner_cubes = settings.scene_seed;
+  scenes::Scene scene = scenes::load_scene(args.scene, seeds);
 
-  const auto geometry = functional::convert_scene(scene, settings);
+  auto geometry = functional::convert_scene(scene, settings);
   if (!scene.has_camera) functional::frame_automatically(scene, geometry.scene_bounds);
   settings.shade.scene_extent = functional::scene_extent(geometry.scene_bounds);
-  const auto tracer = functional::make_tracer(geometry, settings);
+  const auto tracer = functional::make_tracer(geometry, scene, settings);
 
   functional::RenderOptions opts;
   opts.width = args.width;

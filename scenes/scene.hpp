@@ -94,6 +94,9 @@ struct Scene {
   /// Optional grouping of primitives into clusters (Gaudet's npp scenes: one cluster per leaf
   /// shell). Empty, or one entry per primitive giving its cluster number.
   std::vector<std::uint32_t> cluster_of_primitive;
+  /// Branching factor of the shell hierarchy the clusters are meant for (Gaudet's npp scenes:
+  /// the n of npp); 0 when the scene does not say.
+  int cluster_branching = 0;
 
   std::size_t primitive_count() const { return primitives.size(); }
 };

@@ -120,6 +120,7 @@ Scene make_npp_scene(int branching, int spheres_per_cluster, std::uint64_t seed)
   scene.spheres.reserve(count);
   scene.primitives.reserve(count);
   scene.cluster_of_primitive.reserve(count);
+  scene.cluster_branching = branching;
 
   for (int k = 0; k < kNppClusterCount; ++k) {
     const Bounds cell = npp_cluster_cell(k);

@@ -1,0 +1,30 @@
+#include "platform/functional/auto_view.hpp"
+
+#include <cmath>
+
+namespace rtsim::functional {
+
+void frame_automatically(scenes::Scene& scene, const Bounds& bounds) {
+  const Vec3 centre = bounds.empty() ? Vec3(0.0) : bounds.center();
+  double radius = bounds.empty() ? 1.0 : 0.5 * glm::length(bounds.extent());
+  if (!(radius > 0.0) || !std::isfinite(radius)) radius = 1.0;
+  const Vec3 dir = glm::normalize(Vec3(kAutoViewDir[0], kAutoViewDir[1], kAutoViewDir[2]));
+  const double half = 0.5 * kAutoViewAngleDeg * kPi / 180.0;
+  const double distance = 1.05 * radius / std::sin(half);
+  scene.camera.from = centre + distance * dir;
+  scene.camera.at = centre;
+  scene.camera.up = Vec3(0.0, 0.0, 1.0);
+  scene.camera.angle_deg = kAutoViewAngleDeg;
+  scene.camera.hither = 1e-3 * radius;
+  scene.camera.width = kAutoViewResolution;
+  scene.camera.height = kAutoViewResolution;
+  scene.has_camera = true;
+  if (scene.lights.empty()) {
+    // Key light above and to the left of the eye, fill light from the other side.
+    const Vec3 right = glm::normalize(glm::cross(-dir, Vec3(0.0, 0.0, 1.0)));
+    scene.lights.push_back({centre + distance * (dir - 0.6 * right + Vec3(0, 0, 0.8)), Color(1.0)});
+    scene.lights.push_back({centre + distance * (dir + 1.2 * right), Color(0.5)});
+  }
+}
+
+}  // namespace rtsim::functional

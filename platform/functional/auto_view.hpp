@@ -1,0 +1,21 @@
+#pragma once
+// A view and lights for scenes whose files have none (.bpt patch files).
+#include "firmware/bounds.hpp"
+#include "scenes/scene.hpp"
+
+namespace rtsim::functional {
+
+/// Field of view of the automatic camera, degrees (assumption: a moderate telephoto that
+/// frames the bounding sphere without strong perspective).
+inline constexpr double kAutoViewAngleDeg = 40.0;
+/// Direction from the scene centre to the eye (z up): from the front-left and above, so a
+/// teapot in the SPD orientation shows its spout on the right.
+inline constexpr double kAutoViewDir[3] = {0.35, -1.0, 0.55};
+/// Resolution of the automatic camera.
+inline constexpr int kAutoViewResolution = 512;
+
+/// Sets scene.camera to look at the centre of `bounds` from kAutoViewDir, far enough that the
+/// bounding sphere fills the view; adds two white lights (key and fill) if the scene has none.
+void frame_automatically(scenes::Scene& scene, const Bounds& bounds);
+
+}  // namespace rtsim::functional

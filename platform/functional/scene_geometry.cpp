@@ -1,0 +1,92 @@
+#include "platform/functional/scene_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "firmware/geometry/triangulate.hpp"
+
+namespace rtsim::functional {
+
+double scene_extent(const Bounds& b) {
+  if (b.empty()) return 1.0;
+  const Vec3 e = b.extent();
+  const double m = std::max(e.x, std::max(e.y, e.z));
+  return m > 0.0 && std::isfinite(m) ? m : 1.0;
+}
+
+SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& settings) {
+  SceneGeometry g;
+  ConversionReport& report = g.report;
+  auto add = [&g](Shape shape, std::size_t prim_id, std::uint32_t material) {
+    const Bounds b = std::visit([](const auto& s) { return s.bounds(); }, shape);
+    g.shapes.push_back(ShapeRecord{std::move(shape), static_cast<std::int32_t>(prim_id), material});
+    g.bounds.push_back(b);
+    g.scene_bounds.extend(b);
+  };
+  auto note = [&report](std::size_t prim_id, const scenes::Primitive& p, const std::string& what) {
+    ++report.rejected;
+    if (report.messages.size() < kMaxConversionMessages) {
+      std::string msg = "primitive " + std::to_string(prim_id);
+      if (p.source_line > 0) msg += " (line " + std::to_string(p.source_line) + ")";
+      report.messages.push_back(msg + ": " + what);
+    }
+  };
+
+  for (std::size_t id = 0; id < scene.primitives.size(); ++id) {
+    const scenes::Primitive& p = scene.primitives[id];
+    switch (p.kind) {
+      case scenes::PrimitiveKind::Sphere: {
+        std::string why;
+        if (auto k = kernels::SphereKernel::from(scene.spheres[p.index], &why)) {
+          add(*k, id, p.material);
+          ++report.spheres;
+        } else {
+          note(id, p, "sphere skipped: " + why);
+        }
+        break;
+      }
+      case scenes::PrimitiveKind::Cone: {
+        std::string why;
+        if (auto k = kernels::ConeKernel::from(scene.cones[p.index], &why)) {
+          add(*k, id, p.material);
+          ++report.cones;
+        } else {
+          note(id, p, "cone skipped: " + why);
+        }
+        break;
+      }
+      case scenes::PrimitiveKind::Polygon: {
+        const scenes::Polygon& poly = scene.polygons[p.index];
+        const auto tri = geometry::triangulate_polygon(poly.vertices);
+        if (tri.rejected) {
+          note(id, p, "polygon skipped: " + tri.reason);
+          break;
+        }
+        const bool has_normals = poly.normals.size() == poly.vertices.size();
+        std::size_t made = 0;
+        for (const auto& t : tri.triangles) {
+          Vec3 n[3];
+          if (has_normals)
+            for (int c = 0; c < 3; ++c) n[c] = poly.normals[t[static_cast<std::size_t>(c)]];
+          if (auto k = kernels::TriangleKernel::from(poly.vertices[t[0]], poly.vertices[t[1]],
+                                                     poly.vertices[t[2]],
+                                                     has_normals ? n : nullptr)) {
+            add(*k, id, p.material);
+            ++made;
+          }
+        }
+        report.triangles += made;
+        if (made == 0) note(id, p, "polygon skipped: no non-degenerate triangle");
+        break;
+      }
+      case scenes::PrimitiveKind::Patch:
+        add(kernels::BezierPatchKernel::from(scene.patches[p.index], settings.bezier_iterations),
+            id, p.material);
+        ++report.patches;
+        break;
+    }
+  }
+  return g;
+}
+
+}  // namespace rtsim::functional

@@ -1,0 +1,211 @@
+#include "platform/functional/scene_tracer.hpp"
+
+#include <sstream>
+
+#include "firmware/accel/dda.hpp"
+#include "firmware/accel/grid_divisions.hpp"
+#include "firmware/accel/grid_traversal.hpp"
+#include "firmware/accel/shell_traversal.hpp"
+#include "firmware/accel/shell_tree.hpp"
+#include "firmware/accel/uniform_grid.hpp"
+
+namespace rtsim::functional {
+namespace {
+
+/// Runs the kernel of one shape and counts the test.
+class ShapeTester {
+ public:
+  explicit ShapeTester(const SceneGeometry& g) : g_(&g) {}
+
+  bool test(std::uint32_t slot, const Ray& ray, double t_min, double t_max, SurfaceHit& out,
+            TraceCounters& c) const {
+    ++c.intersection_tests;
+    return std::visit(
+        [&](const auto& s) {
+          c.cost += std::decay_t<decltype(s)>::kTestCost;
+          return s.intersect(ray, t_min, t_max, out);
+        },
+        g_->shapes[slot].shape);
+  }
+
+  void fill(Hit& hit, std::uint32_t slot, const SurfaceHit& s) const {
+    hit.surface = s;
+    hit.prim_id = g_->shapes[slot].prim_id;
+    hit.material = g_->shapes[slot].material;
+  }
+
+  std::size_t size() const { return g_->shapes.size(); }
+
+ private:
+  const SceneGeometry* g_;
+};
+
+/// Every ray tests every shape.
+class BruteForceTracer final : public Tracer {
+ public:
+  explicit BruteForceTracer(const SceneGeometry& g) : tester_(g) {}
+
+  bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
+                   TraceCounters& c) const override {
+    SurfaceHit s;
+    bool found = false;
+    for (std::uint32_t i = 0; i < tester_.size(); ++i) {
+      if (tester_.test(i, ray, t_min, t_max, s, c)) {
+        t_max = s.t;
+        tester_.fill(hit, i, s);
+        found = true;
+      }
+    }
+    if (found) ++c.hits;
+    return found;
+  }
+
+  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
+    SurfaceHit s;
+    for (std::uint32_t i = 0; i < tester_.size(); ++i)
+      if (tester_.test(i, ray, t_min, t_max, s, c)) return true;
+    return false;
+  }
+
+ private:
+  ShapeTester tester_;
+};
+
+/// Ullner's subvolumes walked by the corrected Appendix B DDA.
+class GridTracer final : public Tracer {
+ public:
+  GridTracer(const SceneGeometry& g, accel::GridDivisions n)
+      : tester_(g), grid_(g.bounds, g.scene_bounds, n), dda_(grid_) {}
+
+  const accel::UniformGrid& grid() const { return grid_; }
+
+  bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
+                   TraceCounters& c) const override {
+    SurfaceHit s, best;
+    accel::GridTraversalStats st;
+    const auto h = accel::grid_closest_hit(
+        dda_, ray, t_min, t_max,
+        [&](std::uint32_t slot, double lo, double hi) {
+          if (!tester_.test(slot, ray, lo, hi, s, c)) return kInfinity;
+          best = s;
+          return s.t;
+        },
+        st);
+    add(st, c);
+    if (!h.valid()) return false;
+    // The callback kept the details of the last accepted hit, which is the closest.
+    tester_.fill(hit, static_cast<std::uint32_t>(h.prim), best);
+    ++c.hits;
+    return true;
+  }
+
+  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
+    SurfaceHit s;
+    accel::GridTraversalStats st;
+    const auto h = accel::grid_any_hit(
+        dda_, ray, t_min, t_max,
+        [&](std::uint32_t slot, double lo, double hi) {
+          return tester_.test(slot, ray, lo, hi, s, c) ? s.t : kInfinity;
+        },
+        st);
+    add(st, c);
+    return h.valid();
+  }
+
+ private:
+  static void add(const accel::GridTraversalStats& st, TraceCounters& c) {
+    c.dda_steps += st.steps;
+    c.cells_visited += st.cells_visited;
+  }
+  ShapeTester tester_;
+  accel::UniformGrid grid_;
+  accel::Dda dda_;
+};
+
+/// Gaudet's box-shell hierarchy searched as the Shell and Prim tasks do.
+class ShellTracer final : public Tracer {
+ public:
+  ShellTracer(const SceneGeometry& g, accel::ShellTree tree) : tester_(g), tree_(std::move(tree)) {}
+
+  const accel::ShellTree& tree() const { return tree_; }
+
+  bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
+                   TraceCounters& c) const override {
+    SurfaceHit s, best;
+    accel::ShellTraversalStats st;
+    accel::ShellTraverser traverser(tree_);
+    const auto h = traverser.closest_hit(
+        ray, t_min, t_max,
+        [&](std::uint32_t slot, double lo, double hi) {
+          if (!tester_.test(slot, ray, lo, hi, s, c)) return kInfinity;
+          best = s;
+          return s.t;
+        },
+        st);
+    c.box_tests += st.box_tests;
+    if (!h.valid()) return false;
+    tester_.fill(hit, static_cast<std::uint32_t>(h.prim), best);
+    ++c.hits;
+    return true;
+  }
+
+  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
+    SurfaceHit s;
+    accel::ShellTraversalStats st;
+    accel::ShellTraverser traverser(tree_);
+    const auto h = traverser.any_hit(
+        ray, t_min, t_max,
+        [&](std::uint32_t slot, double lo, double hi) {
+          return tester_.test(slot, ray, lo, hi, s, c) ? s.t : kInfinity;
+        },
+        st);
+    c.box_tests += st.box_tests;
+    return h.valid();
+  }
+
+ private:
+  ShapeTester tester_;
+  accel::ShellTree tree_;
+};
+
+}  // namespace
+
+std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene,
+                                    const RenderSettings& settings) {
+  std::ostringstream desc;
+  if (g.shapes.empty() || settings.accel == AccelKind::None) {
+    desc << "none: every ray tests all " << g.shapes.size() << " shapes";
+    g.accel_description = desc.str();
+    return std::make_unique<BruteForceTracer>(g);
+  }
+  if (settings.accel == AccelKind::Grid) {
+    accel::GridDivisions n{settings.grid_divisions, settings.grid_divisions,
+                           settings.grid_divisions};
+    if (settings.grid_divisions == 0) n = accel::choose_divisions(g.scene_bounds, g.shapes.size());
+    auto tracer = std::make_unique<GridTracer>(g, n);
+    const auto& grid = tracer->grid();
+    desc << "grid " << n.x << "x" << n.y << "x" << n.z << ", " << grid.occupied_cell_count()
+         << " occupied subvolumes, " << grid.reference_count() << " polygon addresses";
+    g.accel_description = desc.str();
+    return tracer;
+  }
+  // Shells: the scene's clusters when it has them (Gaudet's npp scenes), else a generic build.
+  accel::ShellTree tree;
+  if (!scene.cluster_of_primitive.empty()) {
+    std::vector<std::uint32_t> cluster_of_shape(g.shapes.size());
+    for (std::size_t i = 0; i < g.shapes.size(); ++i)
+      cluster_of_shape[i] = scene.cluster_of_primitive[static_cast<std::size_t>(g.shapes[i].prim_id)];
+    const int b = scene.cluster_branching > 0 ? scene.cluster_branching : settings.shell_branching;
+    tree = accel::ShellTree::from_clusters(g.bounds, cluster_of_shape, b);
+  } else {
+    tree = accel::ShellTree::build(g.bounds, settings.shell_branching, settings.shell_leaf_size);
+  }
+  const auto counts = tree.counts();
+  desc << "shells: " << counts.shells << " shells in " << counts.shell_packets
+       << " shell packets, " << counts.prims << " primitives in " << counts.prim_packets
+       << " primitive packets";
+  g.accel_description = desc.str();
+  return std::make_unique<ShellTracer>(g, std::move(tree));
+}
+
+}  // namespace rtsim::functional
