@@ -250,6 +250,18 @@ TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices) {
   EarClipper clipper(std::move(pts), std::move(ids), diameter);
   clipper.run(out);
   if (out.triangles.empty()) return reject("polygon has zero area after removing collinear runs");
+
+  // Self-check: for a simple polygon the triangles tile it exactly. A mismatch means the input
+  // crosses itself (its Newell area counts overlaps twice) or ear clipping had to force ears.
+  double covered = 0.0;
+  for (const auto& t : out.triangles) {
+    const Vec3 a = vertices[t[0]], b = vertices[t[1]], c = vertices[t[2]];
+    covered += 0.5 * glm::dot(glm::cross(b - a, c - a), out.normal);
+  }
+  if (std::fabs(covered - out.area) > kAreaMismatchRelative * out.area) {
+    out.warnings.push_back("triangles cover " + format_relative(covered / out.area) +
+                           " of the polygon's area (self-intersecting polygon?)");
+  }
   return out;
 }
 

@@ -44,6 +44,10 @@ inline constexpr double kCollinearRelativeSine = 1e-10;
 /// the diameter of the ear's interior. Inclusive tests block borderline ears, which is safe.
 inline constexpr double kEarContainmentRelative = 1e-10;
 
+/// The triangles' total area must match the Newell area to this relative tolerance, or a warning
+/// is issued. Rounding alone gives ~1e-15; 1e-6 only fires for self-crossing polygons.
+inline constexpr double kAreaMismatchRelative = 1e-6;
+
 struct TriangulationResult {
   /// Index triples into the input vertex array, counter-clockwise about `normal`.
   std::vector<std::array<std::uint32_t, 3>> triangles;
