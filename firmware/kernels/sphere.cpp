@@ -14,8 +14,7 @@ std::optional<SphereKernel> SphereKernel::from(const scenes::Sphere& sphere, std
   k.center_ = sphere.center;
   k.radius_ = sphere.radius;
   k.r2_ = sphere.radius * sphere.radius;
-  k.inv_r_ = 1.0 / sphere.radius;
-  if (!std::isfinite(k.r2_) || !(k.r2_ > 0.0) || !std::isfinite(k.inv_r_)) {
+  if (!std::isfinite(k.r2_) || !(k.r2_ > 0.0)) {
     return reject("sphere radius squared overflows or underflows double");
   }
   return k;

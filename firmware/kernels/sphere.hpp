@@ -12,7 +12,7 @@
 //   catastrophically (both terms ~|o - c|^2).
 // * Roots without cancellation: q = -b' - sgn(b') sqrt(disc), t = q and t = c'/q.
 // * Normal without cancellation: at a root, p - c = f + (t + b') d = f -+ sqrt(disc) d (minus for
-//   the near root, plus for the far one), all of size r, then divided by r.
+//   the near root, plus for the far one), all of size r, then normalised.
 #include <cmath>
 #include <optional>
 #include <string>
@@ -33,8 +33,8 @@ class SphereKernel {
   /// finite positive number.
   static std::optional<SphereKernel> from(const scenes::Sphere& sphere, std::string* why = nullptr);
 
-  /// Nearest root in (t_min, t_max). Fills t and the unit normal (p - c)/r, outward, as both the
-  /// geometric and the shading normal. u and v are left 0 (NFF has no texture coordinates).
+  /// Nearest root in (t_min, t_max). Fills t and the unit normal (p - c)/|p - c|, outward, as both
+  /// the geometric and the shading normal. u and v are left 0 (NFF has no texture coordinates).
   bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {
     const Vec3& d = ray.direction;
     const Vec3 oc = ray.origin - center_;      // 3 adds
@@ -60,7 +60,13 @@ class SphereKernel {
       return false;
     }
     if (!std::isfinite(t)) return false;
-    const Vec3 n = (f + (side * sq) * d) * inv_r_;  // 3 mul, 3 add, 3 mul
+    // p - c, of length r up to rounding; normalised rather than divided by r because from far
+    // away f carries an absolute error of ~ulp(|o - c|), which near tangency would leave |n|
+    // off 1 by more than rounding.
+    const Vec3 pc = f + (side * sq) * d;   // 1 mul, 3 mul, 3 add
+    const double len2 = glm::dot(pc, pc);  // 3 mul, 2 add
+    if (!(len2 > 0.0)) return false;
+    const Vec3 n = pc * (1.0 / std::sqrt(len2));  // 1 sqrt, 1 divide, 3 mul
     if (!is_finite(n)) return false;
     hit.t = t;
     hit.u = 0.0;
@@ -82,14 +88,14 @@ class SphereKernel {
 
   /// Cost of a test that hits, counted line by line from intersect above (a = add/compare,
   /// m = multiply): oc 3a; b 3m 2a; f 3m 3a; disc 3m 3a; disc >= 0 1a; c 3m 3a; sqrt; q 2a;
-  /// c/q 1 divide; order 1a; range 2a; normal 1m + 3m + 3a + 3m. A ray that misses on the
-  /// discriminant stops after 12 adds and 9 multiplies.
-  /// mem_words: centre (3), r^2 and 1/r, as doubles: 5 * 2.
-  static constexpr Cost kTestCost{.fp_add = 3 + 2 + 3 + 3 + 1 + 3 + 2 + 1 + 2 + 3,
-                                  .fp_mul = 3 + 3 + 3 + 3 + 1 + 3 + 3,
-                                  .fp_div = 1,
-                                  .fp_sqrt = 1,
-                                  .mem_words = 10,
+  /// c/q 1 divide; order 1a; range 2a; normal: p - c 4m 3a, |p - c|^2 3m 2a 1a (> 0), sqrt,
+  /// divide, 3m. A ray that misses on the discriminant stops after 12 adds and 9 multiplies.
+  /// mem_words: centre (3) and r^2, as doubles: 4 * 2.
+  static constexpr Cost kTestCost{.fp_add = 3 + 2 + 3 + 3 + 1 + 3 + 2 + 1 + 2 + 3 + 3,
+                                  .fp_mul = 3 + 3 + 3 + 3 + 4 + 3 + 3,
+                                  .fp_div = 2,
+                                  .fp_sqrt = 2,
+                                  .mem_words = 8,
                                   .instructions = 8};
 
  private:
@@ -98,7 +104,6 @@ class SphereKernel {
   Vec3 center_{0.0};
   double radius_ = 1.0;
   double r2_ = 1.0;
-  double inv_r_ = 1.0;
 };
 
 }  // namespace rtsim::kernels
