@@ -151,7 +151,10 @@ class TriangleKernelT {
     const int su = edge_sign(cx, by, cy, bx, u);
     const int sv = edge_sign(ax, cy, ay, cx, v);
     const int sw = edge_sign(bx, ay, by, ax, w);
-    if ((su < 0 || sv < 0 || sw < 0) && (su > 0 || sv > 0 || sw > 0)) return false;
+    // Mixed signs: the ray passes outside (bitwise ops: one well-predicted branch, not six).
+    const bool any_neg = (su < 0) | (sv < 0) | (sw < 0);
+    const bool any_pos = (su > 0) | (sv > 0) | (sw > 0);
+    if (any_neg & any_pos) return false;
     // Orientation of the triangle in ray space: the common sign of the non-zero edge functions.
     const int s = (su != 0) ? su : (sv != 0 ? sv : sw);
     if (s == 0) return false;  // all three zero: the triangle is edge-on to the ray
@@ -234,8 +237,9 @@ class TriangleKernelT {
     const T p = a * b;
     const T q = c * d;
     value = p - q;
-    if (p > q) return 1;
-    if (p < q) return -1;
+    const int sign = int(p > q) - int(p < q);  // branch-free: the sign is data-dependent
+    if (sign != 0) [[likely]]
+      return sign;
     // Tie: fl(a*b) == fl(c*d). Settle the sign of a*b - c*d exactly.
     double exact;
     if constexpr (std::is_same_v<T, float>) {
