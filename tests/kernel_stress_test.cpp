@@ -222,6 +222,63 @@ TEST(KernelStress, TriangulatedPolygonHasNoCracksAtSharedEdges) {
   }
 }
 
+/// A fan of triangles around an interior vertex (a 12-gon with its centre), rays exactly through
+/// the centre vertex and through points of the spokes, from random origins on both sides (and
+/// along the normal when `axis_rays`: then the centre's ray-space coordinates are exactly 0 and
+/// two edge functions of every fan triangle vanish at once).
+template <typename Kernel>
+ClaimStats fan_vertex_rays(const Frame& frame, bool axis_rays, RandomGeometry& g) {
+  std::vector<Vec3> v{frame(Vec3(0, 0, 0))};
+  std::vector<Tri> tris;
+  const std::uint32_t n = 12;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * kPi * i / n + 0.1;
+    v.push_back(frame(Vec3(std::cos(a), std::sin(a), 0)));
+    tris.push_back({0, 1 + i, 1 + (i + 1) % n});
+  }
+  const Mesh<Kernel> mesh(v, tris);
+  ClaimStats s;
+  const double t_tol = std::is_same_v<typename Kernel::Scalar, float> ? 1e-4 : 1e-9;
+  std::vector<Vec3> targets{mesh.verts[0]};
+  for (std::uint32_t i = 1; i <= n; ++i) {
+    for (int k = 1; k < 16; ++k)
+      targets.push_back(mesh.verts[0] + (k / 16.0) * (mesh.verts[i] - mesh.verts[0]));
+  }
+  for (const Vec3& p : targets) {
+    if (axis_rays) {
+      for (double dz : {-1.0, 1.0})
+        cast(mesh, Ray{p - 3.0 * dz * frame.z, dz * frame.z}, 3.0, t_tol, s);
+      continue;
+    }
+    for (int o = 0; o < 40; ++o) {
+      Vec3 u = g.unit();
+      while (std::fabs(glm::dot(u, frame.z)) < 0.2) u = g.unit();
+      const Vec3 origin = p + g.uniform(1, 4) * u;
+      cast(mesh, RandomGeometry::through(origin, p), glm::length(p - origin), t_tol, s);
+    }
+  }
+  return s;
+}
+
+TEST(KernelStress, FanHasNoCracksAtItsInteriorVertex) {
+  RandomGeometry g(58);
+  const Frame f = random_frame(g, 2.0);
+  const auto d = fan_vertex_rays<TriangleKernel>(f, false, g);
+  const auto fl = fan_vertex_rays<TriangleKernelFloat>(f, false, g);
+  const auto ed = fan_vertex_rays<TriangleKernel>(Frame{}, true, g);
+  const auto ef = fan_vertex_rays<TriangleKernelFloat>(Frame{}, true, g);
+  d.print("fan double, oblique rays (vertex + spokes)");
+  fl.print("fan float, oblique rays (vertex + spokes)");
+  ed.print("fan z=0 double, axis rays (exact ties)");
+  ef.print("fan z=0 float, axis rays (exact ties)");
+  for (const ClaimStats* s : {&d, &fl, &ed, &ef}) {
+    EXPECT_EQ(s->cracks, 0);
+    EXPECT_EQ(s->multiple, 0);
+    EXPECT_EQ(s->insane, 0);
+    EXPECT_EQ(s->t_off, 0);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // 2. A closed mesh: a star prism (top cap by the triangulator, bottom cap a fan around a centre
 //    vertex, sides two triangles per quad). Seen from points near its axis it is star-shaped,

@@ -201,6 +201,20 @@ TEST(TriangleKernel, FloatAgreesWithReferenceAwayFromEdges) {
   EXPECT_LT(s.max_uv_err, 1e-3);
 }
 
+TEST(TriangleKernel, PublishedCost) {
+  // The counts are documented line by line next to the kernel; this pins them and prints them.
+  constexpr Cost c = TriangleKernel::kTestCost;
+  constexpr Cost p = TriangleKernel::kPreparedTestCost;
+  std::printf(
+      "triangle test cost: %llu add, %llu mul, %llu div (ray setup per test included); "
+      "%llu add, %llu mul, %llu div with a prepared ray\n",
+      (unsigned long long)c.fp_add, (unsigned long long)c.fp_mul, (unsigned long long)c.fp_div,
+      (unsigned long long)p.fp_add, (unsigned long long)p.fp_mul, (unsigned long long)p.fp_div);
+  static_assert(c.fp_div == 2 && p.fp_div == 1 && c.fp_sqrt == 0);
+  static_assert(TriangleKernel::kTestCost.mem_words ==
+                2 * TriangleKernelFloat::kTestCost.mem_words);
+}
+
 TEST(TriangleKernel, ExactTiesAreSettledByTheTieRule) {
   // Two triangles sharing the edge (0,0,0)-(1,1,0); axis-aligned rays exactly through points of
   // the edge give edge functions that are exactly zero. Exactly one triangle must claim each.

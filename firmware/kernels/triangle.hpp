@@ -30,10 +30,11 @@
 //    moving the query point by the symbolic offset (eps, eps^2), so across any set of triangles
 //    that tile a neighbourhood of the ray in ray space -- both sides of an interior edge, the
 //    whole fan around an interior vertex -- exactly one triangle claims the ray.
-// Caveat: the argument needs the products and shears evaluated in plain IEEE arithmetic, the same
-// way for every triangle. GCC contracts a*b-c into an FMA in C++ when FMA code generation is
-// enabled (-mfma / -march=native); the sign comparison above is immune, but the shear
-// (a.x - Sx*a.z) would still be computed identically only if every call site is compiled alike.
+// Compiler note: GCC contracts a*b - c into an FMA in C++ when FMA code generation is enabled
+// (-mfma, -march=native). The edge signs are immune (they come from comparing two separately
+// rounded products, which cannot be fused); the shear a.x - Sx*a.z may be fused, which changes
+// its rounding but not the fact that every triangle computes the same value for a shared vertex,
+// as long as all triangles run the same compiled code.
 //
 // The kernel is templated on the scalar type so the same formulation can be run in 32-bit float
 // (the precision of the era's hardware) and compared against double.
@@ -212,13 +213,14 @@ class TriangleKernelT {
 
   /// Cost of one test that reaches the distance computation, excluding the ray setup and the
   /// rare exact tie-break (counted from intersect(const ShearedRay&) above):
-  ///   fp_add: 9 translate + 6 shear + 3 edge subtractions + 3 edge compares + 2 det
-  ///           + 2 t sum + 2 range compares = 27
+  ///   fp_add: 9 translate + 6 shear + 3 edge subtractions + 6 edge compares (p > q, p < q)
+  ///           + 2 det + 1 det == 0 + 2 t sum + 2 range compares = 31
   ///   fp_mul: 6 shear + 6 edge products + 3 z scale + 3 t sum + 1 t + 2 barycentric = 21
   ///   fp_div: 1 (1/det)
-  ///   mem_words: the 9 vertex coordinates (T words of 32 bits each) + 3 normal words on a hit
-  ///   instructions: sign logic and branches, ~12
-  static constexpr Cost kPreparedTestCost{.fp_add = 27,
+  ///   mem_words: the 9 vertex coordinates + the 3 normal components copied on a hit, in
+  ///   32-bit words of T
+  ///   instructions: sign logic, index arithmetic and branches, ~12
+  static constexpr Cost kPreparedTestCost{.fp_add = 31,
                                           .fp_mul = 21,
                                           .fp_div = 1,
                                           .fp_sqrt = 0,
