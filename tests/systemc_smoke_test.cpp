@@ -1,6 +1,5 @@
 // SystemC links and runs: a module with one thread advances simulated time as annotated.
 #include <gtest/gtest.h>
-
 #include <systemc>
 
 namespace {
