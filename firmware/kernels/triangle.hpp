@@ -18,7 +18,7 @@
 //    triangles that share an edge compute bit-identical edge endpoints, and the edge function of
 //    the shared edge is evaluated as exactly the same two rounded products (in the other
 //    triangle's cyclic order the two products swap, so its value is the exact negation).
-//  * Rounding is monotone, so fl(a*b) > fl(c*d) implies a*b >= c*d: comparing the two rounded
+//  * Rounding is monotone, so fl(a*b) > fl(c*d) implies a*b > c*d: comparing the two rounded
 //    products gives the sign of the exact edge function or a tie, never the wrong sign. The sign
 //    is taken from that comparison (a comparison cannot be contracted into an FMA).
 //  * A tie is resolved exactly: in float by recomputing the products in double (exact for 24-bit
@@ -234,7 +234,7 @@ class TriangleKernelT {
 
   /// Sign of the edge function p - q with p = a*b, q = c*d; `value` receives fl(p - q) (or the
   /// tie-break estimate). Never returns the wrong sign: monotone rounding makes fl(a*b) > fl(c*d)
-  /// imply a*b >= c*d, and a tie is settled exactly.
+  /// imply a*b > c*d, and a tie is settled exactly.
   static int edge_sign(T a, T b, T c, T d, T& value) {
     const T p = a * b;
     const T q = c * d;
