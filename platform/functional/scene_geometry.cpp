@@ -66,8 +66,17 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
         std::size_t made = 0;
         for (const auto& t : tri.triangles) {
           Vec3 n[3];
-          if (has_normals)
-            for (int c = 0; c < 3; ++c) n[c] = poly.normals[t[static_cast<std::size_t>(c)]];
+          if (has_normals) {
+            // Repair: vertex normals are put on the side of the triangle's own normal, so the
+            // interpolation never blends opposite orientations (SPD's teapot writes some rim
+            // normals inward and some outward); the shader then faces the result to the ray.
+            const Vec3 ng = glm::cross(poly.vertices[t[1]] - poly.vertices[t[0]],
+                                       poly.vertices[t[2]] - poly.vertices[t[0]]);
+            for (int c = 0; c < 3; ++c) {
+              n[c] = poly.normals[t[static_cast<std::size_t>(c)]];
+              if (glm::dot(n[c], ng) < 0.0) n[c] = -n[c];
+            }
+          }
           if (auto k = kernels::TriangleKernel::from(poly.vertices[t[0]], poly.vertices[t[1]],
                                                      poly.vertices[t[2]],
                                                      has_normals ? n : nullptr)) {
