@@ -43,23 +43,26 @@ inline Bounds patches_bounds(const std::vector<scenes::BezierPatch>& patches) {
   return b;
 }
 
-/// A pinhole camera looking at the centre of `box` from direction `from_dir`, the whole box in
-/// view: ray(i, j) for pixel (i, j) of an n x n image.
+/// A pinhole camera looking at the centre of `box` from direction `from_dir` and
+/// `distance_in_radii` times the box's half-diagonal away; zoom 1 has the box's bounding sphere
+/// just in view, larger zooms crop. ray(i, j) for pixel (i, j) of an n x n image (j upward).
 struct FramingCamera {
   Vec3 eye, forward, right, up;
   double half_extent = 1.0;  ///< image-plane half size at distance 1
   int n = 1;
 
-  FramingCamera(const Bounds& box, Vec3 from_dir, int pixels) : n(pixels) {
+  FramingCamera(const Bounds& box, Vec3 from_dir, int pixels, double distance_in_radii = 2.0,
+                double zoom = 1.0)
+      : n(pixels) {
     const Vec3 center = box.center();
     const double radius = 0.5 * glm::length(box.extent());
     from_dir = glm::normalize(from_dir);
-    const double distance = 3.0 * radius;
+    const double distance = distance_in_radii * radius;
     eye = center + distance * from_dir;
     forward = -from_dir;
     right = glm::normalize(glm::cross(forward, Vec3(0, 0, 1)));
     up = glm::cross(right, forward);
-    half_extent = radius / std::sqrt(distance * distance - radius * radius);
+    half_extent = radius / std::sqrt(distance * distance - radius * radius) / zoom;
   }
   Ray ray(int i, int j) const {
     const double x = ((i + 0.5) / n * 2.0 - 1.0) * half_extent;

@@ -6,10 +6,13 @@
 // (every subpatch whose control-point box, projected on the plane perpendicular to the ray,
 // contains the ray, and whose control points' ray-parameter range overlaps [t_min, best t]), ALL
 // such regions explored, nearer first. At kReferenceLeafDepth each surviving region starts a
-// Newton iteration on F(u, v, t) = Q(u, v) - (O + t D) = 0 on the ORIGINAL patch. A region whose
-// Newton start does not land on a root inside (a margin around) the region is subdivided further,
-// down to kReferenceMaxDepth, so a root is not lost to a Newton start that wandered off. Roots
-// with u, v in [0, 1] and t in [t_min, t_max] are kept; the nearest wins.
+// Newton iteration on F(u, v, t) = Q(u, v) - (O + t D) = 0 on the ORIGINAL patch, projected onto
+// the square [0, 1]^2 and slightly damped (Levenberg) so that it stays finite where Q_u or Q_v
+// vanishes (the teapot's collapsed edges). A region is settled when its Newton start lands on a
+// root whose parameters lie in the region, or whose point lies in the region's control box (at a
+// pole one point has a whole segment of parameters); otherwise it is subdivided further, down to
+// kReferenceMaxDepth, so a root is not lost to a Newton start that wandered off. Roots with
+// t in [t_min, t_max] are kept; the nearest wins.
 #include <cstdint>
 
 #include "firmware/bounds.hpp"

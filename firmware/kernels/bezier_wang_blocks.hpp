@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "firmware/cost.hpp"
 #include "firmware/kernels/bezier_patch_math.hpp"
