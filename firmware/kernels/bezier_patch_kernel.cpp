@@ -1,0 +1,62 @@
+#include "firmware/kernels/bezier_patch_kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace rtsim::kernels {
+
+template <typename T>
+BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& patch,
+                                                  int iterations) {
+  if (iterations < kWangMinIterations || iterations > kWangMaxIterations)
+    throw std::invalid_argument(
+        "Bezier pipeline iterations must be in [" + std::to_string(kWangMinIterations) + ", " +
+        std::to_string(kWangMaxIterations) + "], got " + std::to_string(iterations));
+  BezierPatchKernelT k;
+  k.original_ = control_net_from(patch);
+  k.net_ = convert_net<T>(k.original_);
+  k.iterations_ = iterations;
+  // A net that is finite in double but overflows in float is as unusable as a NaN one.
+  k.valid_ = is_finite_net(k.original_) && is_finite_net(k.net_);
+  if (k.valid_) k.bounds_ = control_bounds(k.original_);
+  return k;
+}
+
+template <typename T>
+bool BezierPatchKernelT<T>::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit,
+                                      WangCounters* counters) const {
+  if (!valid_ || !(t_min <= t_max) || !is_finite(ray.origin) || !is_finite(ray.direction))
+    return false;
+  if (!(glm::dot(ray.direction, ray.direction) > 0.0)) return false;
+  // Enter the pipeline at O + t_min D, so its "not behind" test (eq. 21) enforces t >= t_min.
+  const double t_enter = std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0;
+  const Vec3 entry = ray.at(t_enter);
+  const WangResult<T> r =
+      wang_intersect<T>(net_, Vec3T<T>(entry), Vec3T<T>(ray.direction), iterations_, counters);
+  if (!r.hit) return false;
+  const Vec3 c(r.point);
+  if (!is_finite(c)) return false;
+  // t = (C - O).D with D unit (seed 002 L100). The pipeline tested (C - entry).D >= 0 in its own
+  // precision; recomputed in double it can fall a rounding error short of t_enter: clamp.
+  const double t = std::max(glm::dot(c - ray.origin, ray.direction), t_enter);
+  if (!(t >= t_min && t <= t_max)) return false;
+  // Normal from the ORIGINAL patch's partial derivatives at the tracked (u, v), in double, rather
+  // than from the final subpatch: the final net's control points lie ~2^-11 of the patch apart,
+  // so differences of them lose ~11 bits (in float, a normal good to only ~1e-3), while the
+  // original net gives the exact normal at that parameter, and it also lets patch_normal step
+  // off a degenerate edge (teapot lid and bottom poles) inside the original patch.
+  Vec3 n;
+  if (!patch_normal(original_, r.u, r.v, n)) return false;
+  hit.t = t;
+  hit.u = r.u;
+  hit.v = r.v;
+  hit.geometric_normal = n;
+  hit.shading_normal = n;
+  return true;
+}
+
+template class BezierPatchKernelT<float>;
+template class BezierPatchKernelT<double>;
+
+}  // namespace rtsim::kernels

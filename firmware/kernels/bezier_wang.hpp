@@ -1,0 +1,159 @@
+#pragma once
+// Wang, Lewis & Hung's ray/bicubic-Bezier-patch intersection by subdivision: the implemented loop
+// of §2.9 (seed 002 L251-L262) built from the functional blocks of bezier_wang_blocks.hpp.
+//
+//   Step 1: subdivide the input patch into 4 -> buffer1 (capacity 4); generate planes U and V.
+//   Step 2: if the iteration count is reached go to step 5; else subdivide each buffer1 patch
+//           into 4 -> buffer2 (capacity 16).
+//   Step 3: HullClassification, PatchCenter and PatchDistance for every buffer2 patch.
+//   Step 4: Culler: the (at most) 4 nearest that pass and are not behind -> buffer1; go to step 2.
+//   Step 5: output the centre of the closest of the four.
+//
+// Termination is a fixed iteration count, not a flatness test (L256); the hardware unrolls it into
+// 10 identical loop stages after stage 0 (L284). Resolution: stage 0 splits once and each loop
+// stage once more, so after n iterations a surviving subpatch spans 2^-(n+1) of the original
+// parameter range in u and in v; the default n = 10 gives 1/2048 (about 1/2048 of the patch's
+// linear size). The paper's "after n iterations ... 1/2^n" (L262) counts the loop stages only.
+#include <array>
+#include <cstdint>
+
+#include "firmware/cost.hpp"
+#include "firmware/kernels/bezier_patch_math.hpp"
+#include "firmware/kernels/bezier_wang_blocks.hpp"
+#include "firmware/math.hpp"
+
+namespace rtsim::kernels {
+
+/// Loop stages of the hardware pipeline (stages 1-10 after stage 0, seed 002 L284). The paper
+/// chose the number "based on observations of the algorithm's convergence rate" (L286) and gives
+/// no data; tests/bezier_wang_test.cpp measures it.
+inline constexpr int kWangLoopStages = 10;
+/// At least one loop stage: with none, the four stage-0 subpatches are never hull-tested and
+/// every ray would "hit".
+inline constexpr int kWangMinIterations = 1;
+/// Subpatch parameter indices are 32-bit: level = iterations + 1 <= 31.
+inline constexpr int kWangMaxIterations = 30;
+
+/// What one call did (accumulated, so one object can count many calls).
+struct WangCounters {
+  std::uint64_t calls = 0;         ///< wang_intersect calls (= PlaneGenerator runs)
+  std::uint64_t iterations = 0;    ///< loop stages executed (step 2-4 passes)
+  std::uint64_t subdivisions = 0;  ///< PatchSubdivider runs (one patch into four)
+  std::uint64_t hull_tests = 0;    ///< subpatches classified (against both planes); each also
+                                   ///< gets PatchCenter and PatchDistance
+  std::uint64_t culls = 0;         ///< Culler runs
+  std::uint64_t hits = 0;
+
+  WangCounters& operator+=(const WangCounters& o) {
+    calls += o.calls;
+    iterations += o.iterations;
+    subdivisions += o.subdivisions;
+    hull_tests += o.hull_tests;
+    culls += o.culls;
+    hits += o.hits;
+    return *this;
+  }
+};
+
+/// Cost of the work the counters record (the software loop stops early once buffer1 is empty).
+constexpr Cost wang_cost(const WangCounters& c) {
+  return PlaneGenerator::kCost * c.calls + PatchSubdivider::kCost * c.subdivisions +
+         (HullClassification::kCost + PatchCenter::kCost + PatchDistance::kCost) * c.hull_tests +
+         Culler::kCost * c.culls;
+}
+
+/// Stage 0 of the pipeline (L284): PlaneGenerator and the first four-way split.
+inline constexpr Cost kWangStage0Cost = PlaneGenerator::kCost + PatchSubdivider::kCost;
+/// One full loop stage (Table 4's substages, L437-L441): 4 PatchSubdivider, 16 x
+/// (HullClassification + PatchCenter + PatchDistance), 1 Culler.
+inline constexpr Cost kWangLoopStageCost =
+    PatchSubdivider::kCost * 4 +
+    (HullClassification::kCost + PatchCenter::kCost + PatchDistance::kCost) * 16 + Culler::kCost;
+
+/// Data-independent cost of one job through a pipeline of `iterations` loop stages: what the
+/// hardware spends whether or not the ray hits (every stage runs on full buffers).
+constexpr Cost wang_pipeline_cost(int iterations) {
+  return kWangStage0Cost + kWangLoopStageCost * static_cast<std::uint64_t>(iterations);
+}
+
+/// Result of the pipeline: the centre of the closest surviving subpatch (step 5), or no hit.
+template <typename T>
+struct WangResult {
+  bool hit = false;
+  Vec3T<T> point{T(0)};  ///< centre Q(1/2,1/2) of the closest final subpatch
+  double u = 0.0;        ///< that centre in the ORIGINAL patch's parameters
+  double v = 0.0;
+  std::uint32_t level = 0;  ///< subdivision depth of the final subpatch (iterations + 1)
+  int survivors = 0;        ///< final buffer1 occupancy (1..4 on a hit)
+};
+
+/// The loop of §2.9 on one (ray, patch) job. `o`, `d` are the ray in the pipeline's precision;
+/// d should be unit length (L100) but only its direction matters here. `iterations` must be in
+/// [kWangMinIterations, kWangMaxIterations] (not checked here; the kernel adapter checks it).
+template <typename T>
+WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
+                             int iterations, WangCounters* counters = nullptr) {
+  WangCounters local;
+  local.calls = 1;
+  // Step 1: planes U and V; the input patch into four -> buffer1.
+  const RayPlanes<T> planes = PlaneGenerator::generate(o, d);
+  Subpatch<T> root;
+  root.net = net;
+  std::array<Subpatch<T>, Culler::kSurvivors> buffer1;
+  std::array<Vec3T<T>, Culler::kSurvivors> centers1;
+  PatchSubdivider::subdivide(root, buffer1.data());
+  ++local.subdivisions;
+  int n1 = Culler::kSurvivors;
+
+  WangResult<T> result;
+  for (int it = 0; it < iterations && n1 > 0; ++it) {
+    ++local.iterations;
+    // Step 2: every buffer1 patch into four -> buffer2.
+    std::array<Subpatch<T>, Culler::kCandidates> buffer2;
+    int n2 = 0;
+    for (int i = 0; i < n1; ++i, n2 += 4) PatchSubdivider::subdivide(buffer1[i], &buffer2[n2]);
+    local.subdivisions += static_cast<std::uint64_t>(n1);
+    // Step 3: hull classification, centre, distance -> sort keys. Empty slots and hull failures
+    // get the "behind" flag (see Culler::select).
+    std::array<T, Culler::kCandidates> keys;
+    std::array<Vec3T<T>, Culler::kCandidates> centers;
+    keys.fill(T(PatchDistance::kBehind));
+    for (int i = 0; i < n2; ++i) {
+      const HullClass hull = HullClassification::classify(planes, buffer2[i].net);
+      centers[i] = PatchCenter::center(buffer2[i].net);
+      const T dist = PatchDistance::distance(o, d, centers[i]);
+      keys[i] = hull.may_hit ? dist : T(PatchDistance::kBehind);
+    }
+    local.hull_tests += static_cast<std::uint64_t>(n2);
+    // Step 4: the four nearest -> buffer1.
+    std::array<int, Culler::kSurvivors> keep;
+    n1 = Culler::select(keys, keep);
+    ++local.culls;
+    for (int k = 0; k < n1; ++k) {
+      buffer1[k] = buffer2[keep[k]];
+      centers1[k] = centers[keep[k]];
+    }
+  }
+  // Step 5: the centre of the closest (the Culler put it first). An empty buffer1 is the null
+  // result of the outline's step 3 (L92).
+  if (n1 > 0 && iterations >= kWangMinIterations) {
+    result.hit = true;
+    result.point = centers1[0];
+    result.u = buffer1[0].u_center();
+    result.v = buffer1[0].v_center();
+    result.level = buffer1[0].level;
+    result.survivors = n1;
+    ++local.hits;
+  }
+  if (counters) *counters += local;
+  return result;
+}
+
+extern template WangResult<float> wang_intersect<float>(const ControlNet<float>&,
+                                                        const Vec3T<float>&, const Vec3T<float>&,
+                                                        int, WangCounters*);
+extern template WangResult<double> wang_intersect<double>(const ControlNet<double>&,
+                                                          const Vec3T<double>&,
+                                                          const Vec3T<double>&, int, WangCounters*);
+
+}  // namespace rtsim::kernels
