@@ -53,6 +53,11 @@ bool BezierPatchKernelT<T>::intersect(const Ray& ray, double t_min, double t_max
   hit.v = r.v;
   hit.geometric_normal = n;
   hit.shading_normal = n;
+  // The reported point is the centre of the final subpatch, which spans 2^-level of the
+  // parameter range: its distance from the true surface point is bounded by the subpatch's
+  // extent, at most the control box's diagonal scaled by 2^-level. Spawned rays are lifted
+  // off the surface by at least this (see SurfaceHit::position_error).
+  hit.position_error = glm::length(bounds_.extent()) * std::ldexp(1.0, -static_cast<int>(r.level));
   return true;
 }
 

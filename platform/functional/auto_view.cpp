@@ -10,7 +10,8 @@ void frame_automatically(scenes::Scene& scene, const Bounds& bounds) {
   if (!(radius > 0.0) || !std::isfinite(radius)) radius = 1.0;
   const Vec3 dir = glm::normalize(Vec3(kAutoViewDir[0], kAutoViewDir[1], kAutoViewDir[2]));
   const double half = 0.5 * kAutoViewAngleDeg * kPi / 180.0;
-  const double distance = 1.05 * radius / std::sin(half);
+  // 0.85: the bounding sphere of a box is loose; this frames typical objects snugly.
+  const double distance = 0.85 * radius / std::sin(half);
   scene.camera.from = centre + distance * dir;
   scene.camera.at = centre;
   scene.camera.up = Vec3(0.0, 0.0, 1.0);

@@ -22,8 +22,18 @@ class ShapeTester {
     ++c.intersection_tests;
     return std::visit(
         [&](const auto& s) {
-          c.cost += std::decay_t<decltype(s)>::kTestCost;
-          return s.intersect(ray, t_min, t_max, out);
+          using Kernel = std::decay_t<decltype(s)>;
+          if constexpr (std::is_same_v<Kernel, kernels::BezierPatchKernel>) {
+            // Wang's loop stops early when no subpatch survives: count the work it did.
+            kernels::WangCounters wc;
+            const bool hit = s.intersect(ray, t_min, t_max, out, &wc);
+            c.patch_subdivisions += wc.subdivisions;
+            c.cost += kernels::wang_cost(wc);
+            return hit;
+          } else {
+            c.cost += Kernel::kTestCost;
+            return s.intersect(ray, t_min, t_max, out);
+          }
         },
         g_->shapes[slot].shape);
   }
