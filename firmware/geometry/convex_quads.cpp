@@ -258,6 +258,22 @@ bool ear_clip(const std::vector<Vec3>& vertices, const Vec3& normal, std::vector
     const Vec3 d = vertices[i] - vertices[0];
     p[i] = glm::dvec2(glm::dot(d, t1), glm::dot(d, t2));
   }
+  // Not simple when two non-adjacent edges cross properly (ear clipping alone would happily
+  // triangulate a self-intersecting polygon into overlapping triangles). Touching edges are let
+  // through: the ear test below refuses ears with a vertex on them.
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec2 a = p[i], b = p[(i + 1) % n];
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the wrap-around
+      const glm::dvec2 c = p[j], d = p[(j + 1) % n];
+      const double s1 = cross2(b - a, c - a), s2 = cross2(b - a, d - a);
+      const double s3 = cross2(d - c, a - c), s4 = cross2(d - c, b - c);
+      if (((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) &&
+          ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0))) {
+        return false;
+      }
+    }
+  }
   std::vector<std::uint32_t> idx(n);
   for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
 
