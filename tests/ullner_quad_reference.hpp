@@ -191,11 +191,14 @@ struct Tally {
 
 /// One ray against one quad in arithmetic T (ray rounded to T), compared with the reference.
 /// Returns the kernel's result.
-template <typename T>
+/// Unexplained disagreements printed so far (the first few per test binary are shown).
+inline int g_unexplained_printed = 0;
+
+template <typename T, kernels::UllnerRootChoice kChoice = kernels::UllnerRootChoice::HostBranch>
 kernels::UllnerQuadResult<T> tally_ray(const kernels::UllnerQuadParams<T>& P, const Quad& q,
                                        const Vec3& o, const Vec3& d, Tally& tally,
                                        bool print_unexplained = true) {
-  const auto r = kernels::intersect<T>(P, Vec3T<T>(o), Vec3T<T>(d));
+  const auto r = kernels::intersect<T, kChoice>(P, Vec3T<T>(o), Vec3T<T>(d));
   const RefHit ref = reference_intersect(q, o, d);
   const bool ref_hit = ref.plane && ref.inside;
   ++tally.rays;
@@ -212,7 +215,7 @@ kernels::UllnerQuadResult<T> tally_ray(const kernels::UllnerQuadParams<T>& P, co
     if (!ref.plane || std::fabs(ref.edge_distance) > band) {
       ++tally.unexplained;
       tally.worst_unexplained = std::max(tally.worst_unexplained, std::fabs(ref.edge_distance));
-      if (print_unexplained && tally.unexplained <= 5) {
+      if (print_unexplained && g_unexplained_printed++ < 10) {
         std::printf(
             "  unexplained: kernel %d ref %d (plane %d) edge_distance %.3g band %.3g "
             "bits t%d u%d v%d u=%.9g v=%.9g\n",

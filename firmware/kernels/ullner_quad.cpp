@@ -38,22 +38,24 @@ std::string_view to_string(QuadFamily f) {
 namespace {
 
 /// One coordinate's family, in double, before rounding to T: the "B" vector/scalar and the "C"
-/// vector/scalar of solve_coordinate, the family kind and, for the parallel forms, the magnitude
-/// of B over the quad (the pole threshold's reference).
+/// vector/scalar of solve_coordinate, the family kind, the branch bit of the quadratic and, for
+/// the parallel forms, the references of the pole thresholds.
 struct FamilyCoefficients {
   Vec3 a{0.0};
   double a0 = 0.0;
   Vec3 c{0.0};
   double c0 = 0.0;
   QuadFamily family = QuadFamily::Quadratic;
-  double b_ref = 0.0;
+  double pole_b = 0.0;    ///< |a| * size: B at distance `size` from the line B = 0
+  double pole_c = 0.0;    ///< |c| * size
+  bool plus_root = true;  ///< quadratic: the real root is -B + sqrt(B^2 - C)
 };
 
 /// Quadratic or parallel form from the thesis coefficients d2 x^2 + (n_lin.q + d1) x +
 /// (n_const.q + d0) = 0. `parallel` is the host's decision.
 FamilyCoefficients thesis_family(const Vec3& n_lin, double d2, double d1, const Vec3& n_const,
                                  double d0, bool parallel, QuadFamily parallel_kind,
-                                 const std::array<Vec3, 4>& corners) {
+                                 const std::array<Vec3, 4>& corners, double size) {
   FamilyCoefficients f;
   if (parallel) {
     // L380 / L408: x = -(n_const.p_r + d0) / (n_lin.p_r + d1); stored unscaled (L538-L542).
@@ -62,7 +64,10 @@ FamilyCoefficients thesis_family(const Vec3& n_lin, double d2, double d1, const 
     f.c = n_const;
     f.c0 = d0;
     f.family = parallel_kind;
-    for (const Vec3& p : corners) f.b_ref = std::max(f.b_ref, std::fabs(glm::dot(n_lin, p) + d1));
+    // B = n_lin.q + d1 and C = n_const.q + d0 vanish on two lines through the pencil's centre;
+    // |B| / |n_lin| and |C| / |n_const| are the distances to them.
+    f.pole_b = glm::length(n_lin) * size;
+    f.pole_c = glm::length(n_const) * size;
   } else {
     // L370 / L404: prescaled by 1/(2 d2) and 1/d2 (L538-L542, with the 2d_u1 -> 2d_u2 erratum).
     f.a = n_lin / (2.0 * d2);
@@ -70,6 +75,17 @@ FamilyCoefficients thesis_family(const Vec3& n_lin, double d2, double d1, const 
     f.c = n_const / d2;
     f.c0 = d0 / d2;
     f.family = QuadFamily::Quadratic;
+    // Branch bit: at the quad's centre p(1/2, 1/2) (the mean of the corners) the real root is
+    // 1/2; the other root is elsewhere (the discriminant vanishes nowhere inside a convex quad).
+    // Roots in the stable form: q = -B - sgn(B) s is the "+" root -B + s exactly when B < 0.
+    const Vec3 centre = 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
+    const double B = glm::dot(f.a, centre) + f.a0;
+    const double C = glm::dot(f.c, centre) + f.c0;
+    const double s = std::sqrt(std::max(B * B - C, 0.0));
+    const double q = B >= 0.0 ? -B - s : -B + s;
+    const double other = q != 0.0 ? C / q : 0.0;
+    const bool q_is_real = std::fabs(q - 0.5) <= std::fabs(other - 0.5);
+    f.plus_root = q_is_real == (B < 0.0);
   }
   return f;
 }
@@ -90,7 +106,7 @@ FamilyCoefficients deflated_family(const Vec3& e, const Vec3& n_p, const Vec3& p
   f.c = -m / den;
   f.c0 = glm::dot(m, p00) / den;
   f.family = QuadFamily::Deflated;
-  f.b_ref = 1.0;  // B is identically 1: the pole test never fires
+  // B is identically 1 and a = 0, so pole_b = 0: the pole test never fires.
   return f;
 }
 
@@ -132,7 +148,7 @@ UllnerQuadPrecompute<T> UllnerQuadParams<T>::precompute_checked(const Vec3& p00_
   int collapsed = -1;
   for (int k = 0; k < 4; ++k) {
     const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % 4);
-    if (glm::length(c[j] - c[i]) <= kUllnerCollapsedEdge * scale) {
+    if (glm::length(c[j] - c[i]) <= UllnerArithmetic<T>::kRangeTolerance * scale) {
       if (collapsed >= 0) {  // two collapsed edges: a segment or a point
         out.rejection = QuadRejection::ZeroArea;
         return out;
@@ -216,16 +232,16 @@ UllnerQuadPrecompute<T> UllnerQuadParams<T>::precompute_checked(const Vec3& p00_
   if (collapsed == 0 || collapsed == 2) {
     // A v-edge collapsed: the constant-u lines all pass through that vertex (a pencil: the
     // parallel case of L374-L382 with d_u2 = 0 exactly), and the v family is deflated.
-    fu = thesis_family(n_a, 0.0, d_u1, n_c, d_u0, true, QuadFamily::Pencil, c);
+    fu = thesis_family(n_a, 0.0, d_u1, n_c, d_u0, true, QuadFamily::Pencil, c, scale);
     fv = deflated_family(collapsed == 0 ? p11 - p01 : p10 - p00, n_p, p00, p_c);
   } else if (collapsed == 1 || collapsed == 3) {
-    fv = thesis_family(n_a, 0.0, d_v1, n_b, d_v0, true, QuadFamily::Pencil, c);
+    fv = thesis_family(n_a, 0.0, d_v1, n_b, d_v0, true, QuadFamily::Pencil, c, scale);
     fu = deflated_family(collapsed == 3 ? p11 - p10 : p01 - p00, n_p, p00, p_b);
   } else {
     const bool u_par = std::fabs(d_u2) <= kUllnerParallelEdgeSine * l_v0 * l_v1;
     const bool v_par = std::fabs(d_v2) <= kUllnerParallelEdgeSine * l_u0 * l_u1;
-    fu = thesis_family(n_a, d_u2, d_u1, n_c, d_u0, u_par, QuadFamily::Parallel, c);
-    fv = thesis_family(n_a, d_v2, d_v1, n_b, d_v0, v_par, QuadFamily::Parallel, c);
+    fu = thesis_family(n_a, d_u2, d_u1, n_c, d_u0, u_par, QuadFamily::Parallel, c, scale);
+    fv = thesis_family(n_a, d_v2, d_v1, n_b, d_v0, v_par, QuadFamily::Parallel, c, scale);
   }
 
   UllnerQuadParams<T> P;
@@ -243,10 +259,15 @@ UllnerQuadPrecompute<T> UllnerQuadParams<T>::precompute_checked(const Vec3& p00_
   P.v_family = fv.family;
   P.u_parallel = fu.family != QuadFamily::Quadratic;
   P.v_parallel = fv.family != QuadFamily::Quadratic;
-  // Pole threshold: |B| and |C| within the range tolerance of their size over the quad, i.e.
-  // p_r within ~tol * L of the pencil's centre.
-  P.u_pole = static_cast<T>(UllnerArithmetic<T>::kRangeTolerance * fu.b_ref);
-  P.v_pole = static_cast<T>(UllnerArithmetic<T>::kRangeTolerance * fv.b_ref);
+  P.u_plus_root = fu.plus_root;
+  P.v_plus_root = fv.plus_root;
+  // Pole thresholds: p_r within the range tolerance times the quad's size of the pencil's
+  // centre, the same band the range test gives the edges.
+  constexpr double tol = UllnerArithmetic<T>::kRangeTolerance;
+  P.u_pole_b = static_cast<T>(tol * fu.pole_b);
+  P.u_pole_c = static_cast<T>(tol * fu.pole_c);
+  P.v_pole_b = static_cast<T>(tol * fv.pole_b);
+  P.v_pole_c = static_cast<T>(tol * fv.pole_c);
   for (const T w : P.word) {
     if (!std::isfinite(w)) {  // only reachable for absurd inputs (overflow of a rounded value)
       out.rejection = QuadRejection::ZeroArea;

@@ -28,12 +28,15 @@
 //    division per coordinate serves both cases (the host's parallel flag selects q).
 //  * The host's parallel decision uses the sine of the angle between the two opposite edges
 //    (a relative, scale-invariant test) instead of d_u2 == 0 exactly.
+//  * The root is chosen by a host-supplied branch bit (-B + s or -B - s): over a convex quad the
+//    real root stays on one branch, and the literal rule "the root in [0,1]" (L372) fails for
+//    quads with a nearly collapsed edge, whose spurious root lies at ~0 or ~1 (UllnerRootChoice).
 //  * Range tests on u, v accept a small tolerance, so a ray exactly through an edge or vertex of
 //    two quads that share it hits at least one of them (no cracks), and the discriminant may be
 //    slightly negative by rounding.
 //  * A triangle given as a quad with two equal vertices works: the family of lines whose edge
 //    collapsed to a point is a pencil through that vertex (stored as the parallel case; the host
-//    supplies a pole threshold so a point at the apex is accepted), and the other family has a
+//    supplies pole thresholds so a point at the apex is accepted), and the other family has a
 //    spurious root at the collapsed edge (n_v(v) has the factor (1 - v) or v), which the host
 //    divides out, storing the remaining linear equation in the parallel-case slots.
 //
@@ -85,10 +88,11 @@ inline constexpr double kUllnerPlanarityTolerance = 1e-5;
 /// cross product of the diagonals is then rounding noise and n_p has no direction.
 inline constexpr double kUllnerMinRelativeArea = 1e-12;
 
-/// An edge shorter than this times the longer diagonal is collapsed: the quad is a triangle given
-/// as a quad with two equal vertices, and the two vertices are snapped to their midpoint.
-inline constexpr double kUllnerCollapsedEdge = 1e-12;
-
+/// Edges shorter than UllnerArithmetic<T>::kRangeTolerance times the quad's size are collapsed
+/// (the two vertices snapped to their midpoint), making the quad an exact triangle: near such an
+/// edge u (or v) is conditioned like 1/(edge/size), so rays exactly through its corners would
+/// miss, while the snap moves the boundary by less than the range tolerance band that every
+/// neighbour already accepts. (The threshold is per arithmetic type, see precompute_checked.)
 /// A corner whose turn has sine < -this (relative to its two edges) makes the quad non-convex
 /// (seed 000 L320-L326: concave quads are excluded). Straight corners (sine ~ 0) are accepted:
 /// the bilinear map stays injective; only its Jacobian vanishes at that corner.
@@ -188,15 +192,20 @@ struct UllnerQuadPrecompute {
 
 /// One polygon as the peripheral stores it: twenty T-valued parameters (fetched "640 bits at
 /// once" from twenty memories, L891), the host-supplied parallel flags for u and v (the initial
-/// validity bits that select the applicable branch, L530), and -- not in the thesis -- a pole
-/// threshold per coordinate used only in the parallel branch (see intersect()).
+/// validity bits that select the applicable branch, L530), and -- not in the thesis -- the
+/// branch bits of the quadratic and the pole thresholds of the parallel form (see intersect()).
 template <typename T>
 struct UllnerQuadParams {
   std::array<T, kUllnerParamCount> word{};  ///< indexed by QuadParam
   bool u_parallel = false;  ///< host flag: u uses the L380 form (Parallel, Pencil, Deflated)
   bool v_parallel = false;  ///< host flag: v uses the L408 form
-  T u_pole = T(0);          ///< |B| <= u_pole and |C| <= u_pole: p_r is the pencil's centre
-  T v_pole = T(0);
+  bool u_plus_root = true;  ///< host flag: the real u root is -B + sqrt(B^2 - C) (quadratic only)
+  bool v_plus_root = true;
+  /// Parallel form: |B| <= u_pole_b and |C| <= u_pole_c means p_r lies within the range
+  /// tolerance times the quad's size of the pencil's centre (B/|n_a| and C/|n_c| are the
+  /// distances to two lines through it). 0 where there is no pencil centre to accept.
+  T u_pole_b = T(0), u_pole_c = T(0);
+  T v_pole_b = T(0), v_pole_c = T(0);
   QuadFamily u_family = QuadFamily::Quadratic;  ///< host bookkeeping; the kernel reads the flags
   QuadFamily v_family = QuadFamily::Quadratic;
 
@@ -266,6 +275,19 @@ struct UllnerQuadResult {
   bool hit() const { return t_valid && u_valid && v_valid; }
 };
 
+/// How the non-parallel branch picks its root.
+enum class UllnerRootChoice : std::uint8_t {
+  /// The host's branch bit (u_plus_root / v_plus_root) selects -B + s or -B - s (default). Over a
+  /// convex quad the discriminant does not vanish, so the real root stays on one branch; the
+  /// host finds it at the quad's centre. In the spirit of L530 ("initial values for validity
+  /// bits ... extinguish the inapplicable branch of the computation").
+  HostBranch,
+  /// The thesis as printed (L372): the root that lies in [0,1]. Fails for quads with a nearly
+  /// collapsed edge, whose spurious root then lies within the range tolerance of 0 or 1 (the
+  /// stress test measures it); kept for comparison.
+  InRange,
+};
+
 namespace ullner_detail {
 
 template <typename T>
@@ -282,47 +304,45 @@ inline bool in_unit_range(T x) {
 
 /// One coordinate (u or v) from p_r: the seven-stage pipeline of Fig. 2-16 (L536).
 /// a, a0: the "B" coefficients (n_a/(2d_u2), d_u1/(2d_u2), or n_a, d_u1 in the parallel case);
-/// c, c0: the "C" coefficients (n_c/d_u2, d_u0/d_u2, or n_c, d_u0). Returns validity; writes the
-/// chosen root (clamped to [0,1]) to out.
-template <typename T>
+/// c, c0: the "C" coefficients (n_c/d_u2, d_u0/d_u2, or n_c, d_u0). `plus`: the host's branch
+/// bit (the real root is -B + sqrt(B^2 - C) when set). Returns validity; writes the chosen root
+/// (clamped to [0,1]) to out.
+template <typename T, UllnerRootChoice kChoice>
 inline bool solve_coordinate(const Vec3T<T>& a, T a0, const Vec3T<T>& c, T c0, bool parallel,
-                             T pole, const Vec3T<T>& p_r, T& out) {
+                             bool plus, T pole_b, T pole_c, const Vec3T<T>& p_r, T& out) {
   const T B = dot3(a, p_r) + a0;  // L370 first bracket; L380 denominator (parallel)
   const T C = dot3(c, p_r) + c0;  // L370 second bracket; L380 numerator (parallel)
-  T q;
-  T root1 = std::numeric_limits<T>::quiet_NaN();  // only the quadratic has a second root
+  T r;
   if (parallel) {
     // L380: u = -C / B. At the pencil's centre (B = C = 0) every constant-u line passes through
     // p_r and u is undetermined; the host's pole threshold accepts p_r there (any u gives the
     // same point when the centre is a collapsed vertex; elsewhere the other coordinate is out of
     // range). Not in the thesis, where the division would mark u invalid.
-    if (std::fabs(B) <= pole && std::fabs(C) <= pole) {
+    if (std::fabs(B) <= pole_b && std::fabs(C) <= pole_c) {
       out = T(0.5);
       return true;
     }
-    q = -B;  // the same divider as the quadratic branch: u = C / q
+    r = C / -B;  // the divider of the quadratic branch, fed q = -B
   } else {
     // L370: u = -B +- sqrt(B^2 - C), stable form: q = -B - sgn(B) sqrt(B^2 - C), roots q, C/q.
     T disc = B * B - C;
     if (!(disc >= -UllnerArithmetic<T>::kDiscriminantTolerance)) return false;  // complex, NaN
     if (disc < T(0)) disc = T(0);
     const T s = std::sqrt(disc);
-    q = (B >= T(0)) ? -B - s : -B + s;
+    const T q = (B >= T(0)) ? -B - s : -B + s;
     if (!std::isfinite(q)) return false;  // overflow: the divider's input is invalid
-    root1 = q;
+    // q = 0 only for B = 0 and B^2 - C = 0: a double root at 0.
+    const T other = q != T(0) ? C / q : T(0);
+    if constexpr (kChoice == UllnerRootChoice::HostBranch) {
+      // q is the "+" root -B + s exactly when B < 0.
+      r = (plus == (B < T(0))) ? q : other;
+    } else {
+      // L372 as printed: whichever root lies in [0,1]; if both do, the one nearer the middle.
+      const bool ok1 = in_unit_range(q), ok2 = in_unit_range(other);
+      r = (ok1 && (!ok2 || std::fabs(q - T(0.5)) <= std::fabs(other - T(0.5)))) ? q : other;
+    }
   }
-  const T root2 = C / q;  // q = 0 only for B = C = 0: root2 is NaN and root1 = 0 is used
-  const bool ok1 = in_unit_range(root1);
-  const bool ok2 = in_unit_range(root2);
-  if (!ok1 && !ok2) return false;  // L372: both roots out of range
-  T r;
-  if (ok1 && ok2) {
-    // Both in range happens only for nearly degenerate quads, where the spurious root lies at a
-    // nearly collapsed edge; take the root nearer the middle of the range.
-    r = (std::fabs(root1 - T(0.5)) <= std::fabs(root2 - T(0.5))) ? root1 : root2;
-  } else {
-    r = ok1 ? root1 : root2;
-  }
+  if (!in_unit_range(r)) return false;  // L372, L382: out of range (or NaN)
   out = std::fmin(std::fmax(r, T(0)), T(1));
   return true;
 }
@@ -330,7 +350,7 @@ inline bool solve_coordinate(const Vec3T<T>& a, T a0, const Vec3T<T>& c, T c0, b
 }  // namespace ullner_detail
 
 /// The intersection computation of Fig. 2-12 with validity bits (L522-L530).
-template <typename T>
+template <typename T, UllnerRootChoice kChoice = UllnerRootChoice::HostBranch>
 inline UllnerQuadResult<T> intersect(const UllnerQuadParams<T>& P, const UllnerRay<T>& ray,
                                      T t_min = T(0), T t_max = std::numeric_limits<T>::infinity()) {
   using ullner_detail::dot3;
@@ -346,19 +366,21 @@ inline UllnerQuadResult<T> intersect(const UllnerQuadParams<T>& P, const UllnerR
   // Stage p_r (Fig. 2-15): p_r = (r1 - r0) t + r0 (L507).
   res.p_r = ray.r1_minus_r0 * res.t + ray.r0;
   // Stage u and v (Fig. 2-16), in parallel.
-  res.u_valid = ullner_detail::solve_coordinate(P.u_a(), P.u_a0(), P.u_c(), P.u_c0(), P.u_parallel,
-                                                P.u_pole, res.p_r, res.u);
-  res.v_valid = ullner_detail::solve_coordinate(P.v_a(), P.v_a0(), P.v_b(), P.v_b0(), P.v_parallel,
-                                                P.v_pole, res.p_r, res.v);
+  res.u_valid = ullner_detail::solve_coordinate<T, kChoice>(P.u_a(), P.u_a0(), P.u_c(), P.u_c0(),
+                                                            P.u_parallel, P.u_plus_root, P.u_pole_b,
+                                                            P.u_pole_c, res.p_r, res.u);
+  res.v_valid = ullner_detail::solve_coordinate<T, kChoice>(P.v_a(), P.v_a0(), P.v_b(), P.v_b0(),
+                                                            P.v_parallel, P.v_plus_root, P.v_pole_b,
+                                                            P.v_pole_c, res.p_r, res.v);
   return res;
 }
 
 /// Convenience: r0 and the direction r1 - r0 (any length; t is in units of its length, L275).
-template <typename T>
+template <typename T, UllnerRootChoice kChoice = UllnerRootChoice::HostBranch>
 inline UllnerQuadResult<T> intersect(const UllnerQuadParams<T>& P, const Vec3T<T>& r0,
                                      const Vec3T<T>& r1_minus_r0, T t_min = T(0),
                                      T t_max = std::numeric_limits<T>::infinity()) {
-  return intersect(P, UllnerRay<T>::make(r0, r1_minus_r0), t_min, t_max);
+  return intersect<T, kChoice>(P, UllnerRay<T>::make(r0, r1_minus_r0), t_min, t_max);
 }
 
 /// Per-test cost of the hardware formulation above (one ray against one polygon, non-parallel
@@ -367,16 +389,17 @@ inline UllnerQuadResult<T> intersect(const UllnerQuadParams<T>& P, const Vec3T<T
 ///   p_r (Fig. 2-15): 3 mul, 3 add.
 ///   u   (Fig. 2-16): B = a.p_r + a0 and C = c.p_r + c0: 6 mul, 6 add; B^2: 1 mul; B^2 - C: 1 add;
 ///        discriminant test and clamp: 2 compares; sqrt: 1; q = -B - sgn(B) s: 1 add (sgn is a
-///        sign-bit select); C/q: 1 div; two range tests on two roots: 4 compares;
-///        => 7 mul, 8 add + 6 compares, 1 div, 1 sqrt.
+///        sign-bit select); C/q: 1 div; branch select (sign of B against the host bit): 1 compare;
+///        range test of the chosen root: 2 compares
+///        => 7 mul, 8 add + 5 compares, 1 div, 1 sqrt.
 ///   v: the same.
 /// Arithmetic alone: 23 mul, 24 add, 3 div, 2 sqrt = 52 ops; the thesis counts 23 mul, 26 add,
 /// 3 div, 2 sqrt = 54 (L588): the stable form needs one "-B +- s" add instead of two and shares
 /// one divider between the parallel (-C/B) and non-parallel (C/q) branches.
-/// Memory: the twenty 32-bit polygon parameters (L538-L544, L891) plus the two pole thresholds.
-/// The root choice when both roots are in range (rare) is not counted.
+/// Memory: the twenty 32-bit polygon parameters (L538-L544, L891) plus the four pole
+/// thresholds (the parallel form's two compares replace the quadratic's, so are not added).
 inline constexpr Cost kUllnerQuadPreparedTestCost{
-    .fp_add = 24 + 3 + 6 + 6, .fp_mul = 23, .fp_div = 3, .fp_sqrt = 2, .mem_words = 22};
+    .fp_add = 24 + 3 + 5 + 5, .fp_mul = 23, .fp_div = 3, .fp_sqrt = 2, .mem_words = 24};
 
 /// Adapter with the interface shared by all kernels: double arithmetic internally, unit-length
 /// ray direction (so t is a distance), u/v, unit geometric normal n_p and the Phong-interpolated
