@@ -38,14 +38,22 @@
 //    collapsed to a point is a pencil through that vertex (stored as the parallel case; the host
 //    supplies pole thresholds so a point at the apex is accepted), and the other family has a
 //    spurious root at the collapsed edge (n_v(v) has the factor (1 - v) or v), which the host
-//    divides out, storing the remaining linear equation in the parallel-case slots.
+//    divides out, storing the remaining linear equation in the parallel-case slots. An edge
+//    shorter than the range tolerance is collapsed this way by the host.
 //
 // Validity bits (L522-L530): every stage produces a value and a bit. t is valid when the ray is
 // not parallel to the plane, the division is finite and t_min < t < t_max (t > 0 in the thesis,
-// L275). p_r inherits t's bit. u is valid when its bit from p_r is set and a real root lies in
-// [0,1] (within the tolerance); v likewise. The hit is t & u & v, as the closest-hit stage sees
-// it (L528). Non-finite intermediates (overflow in float) clear the bit, so no NaN/inf is ever
-// reported with a set bit.
+// L275). p_r inherits t's bit. u is valid when its bit from p_r is set, the root is real and the
+// root on the host's branch lies in [0,1] (within the tolerance); v likewise. The hit is
+// t & u & v, as the closest-hit stage sees it (L528). Non-finite intermediates (overflow in
+// float) clear the bit, so no NaN/inf is ever reported with a set bit.
+//
+// Accuracy limits (measured in tests/ullner_quad_stress_test.cpp): the thesis computes t first
+// and p_r from t, and t's numerator n_p.r0 + d_p loses ~eps |r0| absolutely, so p_r moves along
+// the plane by ~eps |r0| / cos(angle to the normal); u, v are relative coordinates, so near a
+// short edge (length e) or in a thin quad (height h) their error grows like 1/e, 1/h. In float
+// (the thesis's 24-bit fraction) this decides rays within ~1e-5 of an edge or vertex; in double
+// it is invisible except for grazing rays and edges shorter than ~1e-7 of the quad.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -88,11 +96,13 @@ inline constexpr double kUllnerPlanarityTolerance = 1e-5;
 /// cross product of the diagonals is then rounding noise and n_p has no direction.
 inline constexpr double kUllnerMinRelativeArea = 1e-12;
 
-/// Edges shorter than UllnerArithmetic<T>::kRangeTolerance times the quad's size are collapsed
-/// (the two vertices snapped to their midpoint), making the quad an exact triangle: near such an
-/// edge u (or v) is conditioned like 1/(edge/size), so rays exactly through its corners would
-/// miss, while the snap moves the boundary by less than the range tolerance band that every
-/// neighbour already accepts. (The threshold is per arithmetic type, see precompute_checked.)
+// Collapsed edges: edges shorter than UllnerArithmetic<T>::kRangeTolerance times the quad's
+// size are collapsed by precompute_checked (the two vertices snapped to their midpoint), making
+// the quad an exact triangle. Near such an edge u (or v) is conditioned like 1/(edge/size), so
+// rays exactly through its corners would miss half the time; the snap moves the boundary by at
+// most tolerance x size / 2, the order of the band the range test and the pole test accept
+// (narrower only across a thin triangle, where that band is tolerance x its height).
+
 /// A corner whose turn has sine < -this (relative to its two edges) makes the quad non-convex
 /// (seed 000 L320-L326: concave quads are excluded). Straight corners (sine ~ 0) are accepted:
 /// the bilinear map stays injective; only its Jacobian vanishes at that corner.
@@ -242,7 +252,7 @@ extern template struct UllnerQuadParams<float>;
 extern template struct UllnerQuadParams<double>;
 
 /// The ray as the peripheral receives it: r0 and the per-ray difference r1 - r0, plus the
-/// per-ray threshold of the "parallel to the plane" test. Formed once per ray (kRaySetupCost).
+/// per-ray threshold of the "parallel to the plane" test. Formed once per ray (kSetupCost).
 template <typename T>
 struct UllnerRay {
   Vec3T<T> r0{T(0)};
