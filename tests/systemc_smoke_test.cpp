@@ -1,5 +1,6 @@
 // SystemC links and runs: a module with one thread advances simulated time as annotated.
 #include <gtest/gtest.h>
+
 #include <systemc>
 
 namespace {
