@@ -36,6 +36,9 @@ void write_exr(const std::filesystem::path& path, int width, int height, int cha
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
   if (channels == 1) spec.channelnames = {channel_name};
   spec.attribute("compression", "zip");
+  // OpenImageIO's EXR writer stamps the current time into DateTime unless one is given; an
+  // empty stamp keeps the file a function of the pixels only (same inputs, same bytes).
+  spec.attribute("DateTime", "");
   write_image(path, spec, OIIO::TypeDesc::FLOAT, data.data());
 }
 

@@ -36,6 +36,8 @@ std::vector<GoldenCase> cases() {
   };
 }
 
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
+
 constexpr int kSize = 128;
 constexpr float kPixelTolerance = 2.0f / 255.0f;
 constexpr double kMaxFailFraction = 0.002;

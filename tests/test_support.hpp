@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -45,8 +46,10 @@ inline std::string shared_path(const std::string& rel) {
 }
 
 /// A fresh, empty folder under the build tree for one test's outputs.
+/// The process id keeps tests that CTest runs in parallel out of each other's way.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("rtsim-test-" + name);
+  auto dir = std::filesystem::temp_directory_path() /
+             ("rtsim-test-" + std::to_string(::getpid()) + "-" + name);
   std::filesystem::remove_all(dir);
   return dir;
 }
