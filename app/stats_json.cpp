@@ -84,6 +84,7 @@ ordered_json render_stats_json(const scenes::Scene& scene,
                                   {"lights", scene.lights.size()},
                                   {"materials", scene.materials.size()}};
   j["geometry"] = ordered_json{{"triangles", geometry.report.triangles},
+                               {"ullner_quads", geometry.report.quads},
                                {"spheres", geometry.report.spheres},
                                {"cones", geometry.report.cones},
                                {"patches", geometry.report.patches},

@@ -21,6 +21,14 @@ void declare_render_params(params::ParamRegistry& r) {
                             "grid with the corrected 3-D DDA, Gaudet's box-shell hierarchy, or "
                             "none (every ray tests every primitive)",
              .source = "assumption: the grid is the cheapest of the machines' own structures"});
+  r.declare({.name = "render.polygon_kernel",
+             .kind = ParamKind::kString,
+             .default_value = "triangle",
+             .allowed = {"triangle", "ullner-quad"},
+             .description = "How polygons are intersected: ear-clipped triangles with a "
+                            "watertight test, or Ullner's convex quadrilaterals (20 parameters, "
+                            "seed 000 §2.2)",
+             .source = "assumption: triangles are the cheaper exact test in software"});
   r.declare({.name = "render.grid.divisions",
              .kind = ParamKind::kInt,
              .default_value = "0",
@@ -96,6 +104,9 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
   const std::string& accel = r.get_string("render.accel");
   s.accel = accel == "shells" ? AccelKind::Shells : accel == "none" ? AccelKind::None
                                                                     : AccelKind::Grid;
+  s.polygon_kernel = r.get_string("render.polygon_kernel") == "ullner-quad"
+                         ? PolygonKernel::UllnerQuad
+                         : PolygonKernel::Triangle;
   s.grid_divisions = static_cast<int>(r.get_int("render.grid.divisions"));
   s.shell_branching = static_cast<int>(r.get_int("render.shells.branching"));
   s.shell_leaf_size = static_cast<int>(r.get_int("render.shells.leaf_size"));

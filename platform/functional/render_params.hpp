@@ -11,9 +11,13 @@ namespace rtsim::functional {
 /// Acceleration structure used by the functional renderer.
 enum class AccelKind { Grid, Shells, None };
 
+/// Kernel the functional renderer uses for NFF polygons.
+enum class PolygonKernel { Triangle, UllnerQuad };
+
 struct RenderSettings {
   int spp = 1;
   AccelKind accel = AccelKind::Grid;
+  PolygonKernel polygon_kernel = PolygonKernel::Triangle;
   int grid_divisions = 0;      ///< per axis; 0 = chosen from the primitive count
   int shell_branching = 4;
   int shell_leaf_size = 8;

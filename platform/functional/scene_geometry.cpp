@@ -3,9 +3,40 @@
 #include <algorithm>
 #include <cmath>
 
+#include "firmware/geometry/convex_quads.hpp"
 #include "firmware/geometry/triangulate.hpp"
 
 namespace rtsim::functional {
+
+namespace {
+
+/// Ullner's machines store convex quadrilaterals: split the polygon into convex quads (and
+/// triangles given as quads with two equal vertices) and precompute each one's 20 parameters.
+template <class Add, class Note>
+void add_ullner_quads(const scenes::Polygon& poly, std::size_t id, const scenes::Primitive& p,
+                      Add&& add, Note&& note, ConversionReport& report) {
+  geometry::ConvexQuadReport quad_report;
+  const auto quads = geometry::convert_polygon(poly.vertices, poly.normals, quad_report);
+  std::size_t made = 0;
+  for (const auto& q : quads) {
+    // Same repair as for triangles: corner normals on the side of the quad's own normal.
+    std::array<Vec3, 4> normals = q.normals;
+    const Vec3 ng = glm::cross(q.corners[1] - q.corners[0], q.corners[3] - q.corners[0]);
+    for (auto& n : normals)
+      if (glm::dot(n, ng) < 0.0) n = -n;
+    kernels::QuadRejection why{};
+    if (auto k = kernels::UllnerQuadKernel::from(q.corners[0], q.corners[1], q.corners[2],
+                                                 q.corners[3],
+                                                 q.has_normals ? normals.data() : nullptr, why)) {
+      add(*k, id, p.material);
+      ++made;
+    }
+  }
+  report.quads += made;
+  if (made == 0) note(id, p, "polygon skipped: " + quad_report.summary());
+}
+
+}  // namespace
 
 double scene_extent(const Bounds& b) {
   if (b.empty()) return 1.0;
@@ -57,6 +88,10 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
       }
       case scenes::PrimitiveKind::Polygon: {
         const scenes::Polygon& poly = scene.polygons[p.index];
+        if (settings.polygon_kernel == PolygonKernel::UllnerQuad) {
+          add_ullner_quads(poly, id, p, add, note, report);
+          break;
+        }
         const auto tri = geometry::triangulate_polygon(poly.vertices);
         if (tri.rejected) {
           note(id, p, "polygon skipped: " + tri.reason);

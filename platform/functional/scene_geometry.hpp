@@ -13,13 +13,14 @@
 #include "firmware/kernels/cone.hpp"
 #include "firmware/kernels/sphere.hpp"
 #include "firmware/kernels/triangle.hpp"
+#include "firmware/kernels/ullner_quad.hpp"
 #include "platform/functional/render_params.hpp"
 #include "scenes/scene.hpp"
 
 namespace rtsim::functional {
 
-using Shape = std::variant<kernels::TriangleKernel, kernels::SphereKernel, kernels::ConeKernel,
-                           kernels::BezierPatchKernel>;
+using Shape = std::variant<kernels::TriangleKernel, kernels::UllnerQuadKernel, kernels::SphereKernel,
+                           kernels::ConeKernel, kernels::BezierPatchKernel>;
 
 struct ShapeRecord {
   Shape shape;
@@ -29,6 +30,7 @@ struct ShapeRecord {
 
 struct ConversionReport {
   std::size_t triangles = 0;
+  std::size_t quads = 0;  ///< Ullner quads (triangles among them given as quads)
   std::size_t spheres = 0;
   std::size_t cones = 0;
   std::size_t patches = 0;
