@@ -1,6 +1,6 @@
 // Whole-render throughput of the functional renderer, single thread: rays per second for the
 // shared SPD scenes and the built-in scenes, with each acceleration structure.
-// Run: build/bench/render_bench --benchmark_min_time=1s   (figures in docs/benchmarks.md)
+// Run: build/bench/render_bench --benchmark_min_time=1   (figures in docs/benchmarks.md)
 #include <benchmark/benchmark.h>
 
 #include "platform/functional/auto_view.hpp"
@@ -51,9 +51,14 @@ RTSIM_RENDER_BENCH(balls_s2_shells, kShared + "/scenes/balls-s2.nff", Shells);
 RTSIM_RENDER_BENCH(balls_s3_grid, kShared + "/scenes/balls-s3.nff", Grid);
 RTSIM_RENDER_BENCH(balls_s3_shells, kShared + "/scenes/balls-s3.nff", Shells);
 RTSIM_RENDER_BENCH(tetra_s3_grid, kShared + "/scenes/tetra-s3.nff", Grid);
+RTSIM_RENDER_BENCH(tetra_s3_shells, kShared + "/scenes/tetra-s3.nff", Shells);
 RTSIM_RENDER_BENCH(teapot_s2_grid, kShared + "/scenes/teapot-s2.nff", Grid);
+RTSIM_RENDER_BENCH(teapot_s2_shells, kShared + "/scenes/teapot-s2.nff", Shells);
 RTSIM_RENDER_BENCH(teapot_bpt_grid, kShared + "/scenes/teapot.bpt", Grid);
+RTSIM_RENDER_BENCH(teapot_bpt_shells, kShared + "/scenes/teapot.bpt", Shells);
 RTSIM_RENDER_BENCH(default_grid, "builtin:default", Grid);
+RTSIM_RENDER_BENCH(default_shells, "builtin:default", Shells);
 RTSIM_RENDER_BENCH(npp412_shells, "builtin:npp-412", Shells);
 RTSIM_RENDER_BENCH(npp412_grid, "builtin:npp-412", Grid);
 RTSIM_RENDER_BENCH(ullner_cubes_grid, "builtin:ullner-cubes", Grid);
+RTSIM_RENDER_BENCH(ullner_cubes_shells, "builtin:ullner-cubes", Shells);

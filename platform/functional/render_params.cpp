@@ -15,12 +15,13 @@ void declare_render_params(params::ParamRegistry& r) {
              .source = "seed 000 L590: the machines' figures assume one vision ray per pixel"});
   r.declare({.name = "render.accel",
              .kind = ParamKind::kString,
-             .default_value = "grid",
+             .default_value = "shells",
              .allowed = {"grid", "shells", "none"},
              .description = "Acceleration structure of the functional renderer: Ullner's uniform "
                             "grid with the corrected 3-D DDA, Gaudet's box-shell hierarchy, or "
                             "none (every ray tests every primitive)",
-             .source = "assumption: the grid is the cheapest of the machines' own structures"});
+             .source = "assumption: measured fastest on most shared scenes (docs/benchmarks.md); "
+                       "a uniform grid suffers from the SPD floors' large extent"});
   r.declare({.name = "render.polygon_kernel",
              .kind = ParamKind::kString,
              .default_value = "triangle",
@@ -36,7 +37,7 @@ void declare_render_params(params::ParamRegistry& r) {
              .max = "1024",
              .unit = "per axis",
              .description = "Subvolumes per axis of the grid; 0 chooses from the primitive count",
-             .source = "assumption: automatic choice documented in docs/parameters.md"});
+             .source = "seed 000 L648-L654: Ullner's time model gives n_s = 1.10 cbrt(n_p) (docs/parameters.md)"});
   r.declare({.name = "render.shells.branching",
              .kind = ParamKind::kInt,
              .default_value = "4",

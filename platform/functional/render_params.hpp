@@ -16,7 +16,7 @@ enum class PolygonKernel { Triangle, UllnerQuad };
 
 struct RenderSettings {
   int spp = 1;
-  AccelKind accel = AccelKind::Grid;
+  AccelKind accel = AccelKind::Shells;
   PolygonKernel polygon_kernel = PolygonKernel::Triangle;
   int grid_divisions = 0;      ///< per axis; 0 = chosen from the primitive count
   int shell_branching = 4;
