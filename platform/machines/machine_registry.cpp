@@ -16,11 +16,12 @@ const std::vector<const Machine*>& machines() {
 }
 
 const Machine& find_machine(const std::string& name) {
-  std::vector<std::string_view> names;
+  std::vector<std::string> owned;
   for (const Machine* m : machines()) {
     if (m->name() == name) return *m;
-    names.emplace_back(m->name());
+    owned.push_back(m->name());
   }
+  const std::vector<std::string_view> names(owned.begin(), owned.end());
   std::string msg = "unknown machine '" + name + "'";
   const auto close = params::closest_names(name, names);
   if (!close.empty()) {

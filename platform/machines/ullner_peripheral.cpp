@@ -180,6 +180,10 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
                      "000 L267); this scene has " + std::to_string(other) +
                          " sphere/cone/patch primitive(s). Use a polygon scene or another "
                          "machine (`rtsim list machines`)");
+  if (const auto a = r.get_int("peripheral.adder_stages"); a != 1 && a != 3)
+    throw InputError(r.where_set("peripheral.adder_stages"), 0,
+                     "peripheral.adder_stages must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), "
+                     "got " + std::to_string(a));
   auto settings = functional::read_render_settings(r);
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
   const int n = static_cast<int>(r.get_int("peripheral.grid.divisions"));
