@@ -1,6 +1,8 @@
 #pragma once
-// Time-weighted occupancy of a queue, computed after the run from the timestamps of its +1/-1
-// changes (threads may record them out of time order when temporally decoupled).
+// Time-weighted occupancy of a queue from the timestamps of its puts and gets. One producer
+// puts in non-decreasing time order and one consumer gets in non-decreasing time order, so the
+// two lists are each sorted and are merged at the end in linear time (the threads themselves
+// may record them out of global time order when temporally decoupled).
 #include <algorithm>
 #include <cstdint>
 #include <systemc>
@@ -10,9 +12,8 @@ namespace rtsim::modules {
 
 class Occupancy {
  public:
-  void record(const sc_core::sc_time& t, int delta) {
-    changes_.push_back({t.value(), delta});
-  }
+  void put(const sc_core::sc_time& t) { puts_.push_back(t.value()); }
+  void got(const sc_core::sc_time& t) { gets_.push_back(t.value()); }
 
   struct Summary {
     double mean = 0.0;  ///< time-weighted over [0, end]
@@ -21,23 +22,26 @@ class Occupancy {
 
   /// Occupancy over [0, end].
   Summary summarize(const sc_core::sc_time& end) const {
-    std::vector<Change> c = changes_;
-    // Same time: removals first, so a slot handed over at one instant is not counted twice.
-    std::stable_sort(c.begin(), c.end(), [](const Change& a, const Change& b) {
-      return a.t != b.t ? a.t < b.t : a.delta < b.delta;
-    });
     Summary s;
     const std::uint64_t e = end.value();
     if (e == 0) return s;
     long level = 0;
     std::uint64_t last = 0;
     long double area = 0;
-    for (const Change& ch : c) {
-      const std::uint64_t t = std::min(ch.t, e);
+    auto step = [&](std::uint64_t t, int delta) {
+      t = std::min(t, e);
       area += static_cast<long double>(level) * static_cast<long double>(t - last);
       last = t;
-      level += ch.delta;
+      level += delta;
       s.max = std::max(s.max, static_cast<int>(level));
+    };
+    // At equal times gets go first, so a slot handed over at one instant is not counted twice.
+    std::size_t p = 0, g = 0;
+    while (p < puts_.size() || g < gets_.size()) {
+      if (g < gets_.size() && (p == puts_.size() || gets_[g] <= puts_[p]))
+        step(gets_[g++], -1);
+      else
+        step(puts_[p++], +1);
     }
     area += static_cast<long double>(level) * static_cast<long double>(e - last);
     s.mean = static_cast<double>(area / static_cast<long double>(e));
@@ -45,11 +49,8 @@ class Occupancy {
   }
 
  private:
-  struct Change {
-    std::uint64_t t;
-    int delta;
-  };
-  std::vector<Change> changes_;
+  std::vector<std::uint64_t> puts_;
+  std::vector<std::uint64_t> gets_;
 };
 
 }  // namespace rtsim::modules

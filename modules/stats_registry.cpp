@@ -30,21 +30,27 @@ nlohmann::ordered_json LatencyRecorder::to_json() const {
     return j;
   }
   std::vector<double> s = samples_;
-  std::sort(s.begin(), s.end());
   long double sum = 0;
-  for (double v : s) sum += v;
-  // Nearest-rank percentiles.
+  double lo = s.front(), hi = s.front();
+  for (double v : s) {
+    sum += v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  // Nearest-rank percentiles by selection (no full sort: runs record millions of rays).
   auto pct = [&](double p) {
     const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(s.size())));
-    return s[std::min(s.size() - 1, rank == 0 ? 0 : rank - 1)];
+    const std::size_t k = std::min(s.size() - 1, rank == 0 ? 0 : rank - 1);
+    std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(k), s.end());
+    return s[k];
   };
   j["mean"] = static_cast<double>(sum / static_cast<long double>(s.size()));
   j["p50"] = pct(0.50);
   j["p99"] = pct(0.99);
-  j["max"] = s.back();
+  j["max"] = hi;
   // Histogram: 4 buckets per octave from the smallest positive sample.
-  const double lo = std::max(s.front(), 1e-12);
-  const double hi = std::max(s.back(), lo);
+  lo = std::max(lo, 1e-12);
+  hi = std::max(hi, lo);
   const int buckets = std::max(1, static_cast<int>(std::ceil(4.0 * std::log2(hi / lo))) + 1);
   std::vector<double> edges(static_cast<std::size_t>(buckets) + 1);
   for (int b = 0; b <= buckets; ++b) edges[static_cast<std::size_t>(b)] = lo * std::exp2(b / 4.0);

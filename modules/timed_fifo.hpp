@@ -56,7 +56,7 @@ class TimedFifo {
     const sc_core::sc_time stamp = std::max(t, slot_free_[put_count_ % capacity_]);
     items_.push_back(Entry{std::move(item), stamp});
     ++put_count_;
-    occupancy_.record(stamp, +1);
+    occupancy_.put(stamp);
     put_.notify(sc_core::SC_ZERO_TIME);
     return stamp;
   }
@@ -70,7 +70,7 @@ class TimedFifo {
     stamp = std::max(t, e.stamp);
     slot_free_[get_count_ % capacity_] = stamp;
     ++get_count_;
-    occupancy_.record(stamp, -1);
+    occupancy_.got(stamp);
     got_.notify(sc_core::SC_ZERO_TIME);
     return std::move(e.item);
   }
