@@ -1,7 +1,7 @@
 // `rtsim render`: the functional renderer from the command line.
 #include <cmath>
-#include <iostream>
 #include <fstream>
+#include <iostream>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
@@ -25,7 +25,9 @@ int run_render(const RenderArgs& args) {
   auto settings = functional::read_render_settings(registry);
   if (args.spp > 0) settings.spp = args.spp;
   scenes::GeneratorSeeds seeds = scenes::default_generator_seeds();
-  if (settings.scene_seed != 0) seeds.npp = seeds.ullner_cubes = settings.scene_seed;
+  if (settings.scene_seed != 0) {
+    seeds.npp = seeds.ullner_cubes = seeds.ullner_random = settings.scene_seed;
+  }
   scenes::Scene scene = scenes::load_scene(args.scene, seeds);
 
   auto geometry = functional::convert_scene(scene, settings);
