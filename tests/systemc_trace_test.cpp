@@ -283,6 +283,7 @@ TEST(PerfettoTrace, EventsAreStreamedToDisk) {
   EXPECT_GT(on_disk, 20'000u * 80u - 65'536u);
   trace.close();
   EXPECT_EQ(parse_trace(dir / "trace.json")["traceEvents"].size(), 20'000u + 4u);  // + metadata
+  std::filesystem::remove_all(dir);                                                // 2 MB
 }
 
 TEST(PerfettoTrace, MisuseIsReported) {
