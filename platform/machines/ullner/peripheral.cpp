@@ -69,16 +69,19 @@ void Peripheral::run() {
                    batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", n}});
       clock_.catch_up(batch.next_free - times(stage, config_.fetch_stages));
     } else {
-      // Auxiliary processor: n_d subvolumes visited at t_d each (L648, L654), their polygon
-      // addresses through the indirection stage into the pipe.
+      // Auxiliary processor (L594-L596): it walks the n_d subvolumes along the ray at t_d each
+      // (L654) and feeds the polygon addresses of each, through the indirection stage, into
+      // the pipe at one per interval; it starts the next ray when it has fed the last address.
+      // Its occupancy per ray is n_d t_d + n_i t_i, and the answer leaves the pipe t_l later:
+      // Ullner's t_r (L648).
       start = std::max(start, aux_free_);
       const sc_core::sc_time walk = times(config_.step_time, cells);
-      aux_free_ = start + walk;
-      aux_busy_ += walk;
       const sc_core::sc_time feed =
           times(stage, config_.indirection_stages + config_.fetch_stages);
-      const auto batch = pipe_.issue(tests, aux_free_ + feed);
+      const auto batch = pipe_.issue(tests, start + walk + feed);
       done = batch.done + times(stage, config_.select_stages);
+      aux_free_ = std::max(start + walk, batch.next_free - feed);
+      aux_busy_ += aux_free_ - start;
       if (walk > sc_core::SC_ZERO_TIME)
         trace_.slice("peripheral.aux", "walk", start, walk,
                      {{"ray", req.id}, {"subvolumes", cells}});
