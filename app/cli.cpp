@@ -1,7 +1,6 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 #include <thread>
 
@@ -41,8 +40,9 @@ int run_cli(int argc, char** argv) {
   RenderArgs render;
   render.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   auto* r = app.add_subcommand(
-      "render", "Render a scene with the functional renderer: the firmware kernels and shading\n"
-                "with no timing. Its image is the golden reference for every machine.");
+      "render",
+      "Render a scene with the functional renderer: the firmware kernels and shading\n"
+      "with no timing. Its image is the golden reference for every machine.");
   r->add_option("--scene", render.scene, "Scene file (.nff, .bpt) or builtin:NAME")
       ->capture_default_str();
   r->add_option("--out", render.out_dir,
@@ -69,9 +69,30 @@ int run_cli(int argc, char** argv) {
   run->allow_extras();
   auto* sweep = app.add_subcommand("sweep", "Run a parameter sweep from a file. Not yet built.");
   sweep->allow_extras();
-  auto* validate =
-      app.add_subcommand("validate", "Reproduce the seeds' figures and compare. Not yet built.");
-  validate->allow_extras();
+  ValidateArgs va;
+  va.jobs = render.threads;
+  auto* validate = app.add_subcommand(
+      "validate",
+      "Reproduce the seeds' figures: run `rtsim run` (one process per simulation) and\n"
+      "`rtsim render`, compare each figure with the seed's value within a stated tolerance,\n"
+      "print a table, write validation.json and validation.csv. Exit 0 only if all pass.\n"
+      "docs/validation.md describes every figure.");
+  validate->add_flag("--quick", va.quick,
+                     "Smaller images and fewer grid sizes (CI); each row says how it scales");
+  validate->add_option("--jobs", va.jobs, "Runs at once (each is its own process)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
+  validate
+      ->add_option("--only", va.only,
+                   "Comma-separated figure ids, or groups (V2 = V2a..V2d); see --list")
+      ->delimiter(',');
+  validate->add_option("--out", va.out_dir,
+                       "Folder for validation.json, validation.csv, fig2-18.csv (default: a "
+                       "temporary folder, removed unless --keep)");
+  validate->add_flag("--keep", va.keep, "Keep every run's folder (stats.json, images, logs)");
+  validate->add_flag("--list", va.list, "List the figures, their tolerances and why; run nothing");
+  validate->add_option("--rtsim", va.rtsim, "The rtsim binary to run (default: this one)")
+      ->check(CLI::ExistingFile);
 
   ListArgs list;
   auto* l = app.add_subcommand("list", "List built-in scenes, machines, or parameters");
@@ -94,7 +115,8 @@ int run_cli(int argc, char** argv) {
   try {
     if (r->parsed()) return run_render(render);
     if (l->parsed()) return run_list(list);
-    const char* which = run->parsed() ? "run" : sweep->parsed() ? "sweep" : "validate";
+    if (validate->parsed()) return run_validate(va);
+    const char* which = run->parsed() ? "run" : "sweep";
     std::cerr << "rtsim " << which << ": not yet built in this version.\n";
     return kExitFailure;
   } catch (const InputError& e) {
