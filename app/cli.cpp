@@ -1,6 +1,7 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
+
 #include <iostream>
 #include <thread>
 
@@ -40,9 +41,8 @@ int run_cli(int argc, char** argv) {
   RenderArgs render;
   render.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   auto* r = app.add_subcommand(
-      "render",
-      "Render a scene with the functional renderer: the firmware kernels and shading\n"
-      "with no timing. Its image is the golden reference for every machine.");
+      "render", "Render a scene with the functional renderer: the firmware kernels and shading\n"
+                "with no timing. Its image is the golden reference for every machine.");
   r->add_option("--scene", render.scene, "Scene file (.nff, .bpt) or builtin:NAME")
       ->capture_default_str();
   r->add_option("--out", render.out_dir,
