@@ -16,7 +16,7 @@ struct RunQueueOptions {
   std::filesystem::path work_dir;    ///< parent of the run folders; created if missing
   int jobs = 1;                      ///< processes at once (at least 1)
   /// Called after each run ends, from the thread that waited for it, one call at a time.
-  std::function<void(const RunOutcome&, int done, int total)> on_finished;
+  std::function<void(const RunOutcome&, int done, int total)> on_finished{};
 };
 
 /// Execute every request; never throws for a failed run (the outcome says what failed).
