@@ -45,6 +45,9 @@ int run_cli(int argc, char** argv) {
                 "with no timing. Its image is the golden reference for every machine.");
   r->add_option("--scene", render.scene, "Scene file (.nff, .bpt) or builtin:NAME")
       ->capture_default_str();
+  r->add_option("--machine", render.machine,
+                "Render with that machine's own geometry conversion and search (its functional "
+                "twin: the image `rtsim run` must reproduce), still with no timing");
   r->add_option("--out", render.out_dir,
                 "Output folder: image.png, image.exr, stats.json (+ id.exr, depth.exr)")
       ->capture_default_str();
@@ -65,8 +68,37 @@ int run_cli(int argc, char** argv) {
   r->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
   add_config_options(r, render.config);
 
-  auto* run = app.add_subcommand("run", "Run a machine model (SystemC, timed). Not yet built.");
-  run->allow_extras();
+  RunArgs runa;
+  auto* run = app.add_subcommand(
+      "run", "Run a machine model: SystemC/TLM-2.0 modules with annotated timing render one\n"
+             "frame; writes the image, stats.json (frame time, utilisation, latency) and traces.");
+  run->add_option("--machine", runa.machine, "Machine (`rtsim list machines`)")
+      ->capture_default_str();
+  run->add_option("--scene", runa.scene, "Scene file (.nff, .bpt) or builtin:NAME")
+      ->capture_default_str();
+  run->add_option("--out", runa.out_dir,
+                  "Output folder: image.png, image.exr, stats.json (+ AOVs, traces)")
+      ->capture_default_str();
+  run->add_option("--width", runa.width, "Image width in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  run->add_option("--height", runa.height, "Image height in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  run->add_option("--aov", runa.aovs, "Extra outputs, comma-separated: id, depth")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"id", "depth"}));
+  run->add_option("--trace", runa.traces,
+                  "Traces, comma-separated: vcd (signals for GTKWave: busy flags, queue depths) "
+                  "and perfetto (transactions as Chrome trace events, ui.perfetto.dev)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"vcd", "perfetto"}));
+  run->add_option("--quantum", runa.quantum,
+                  "Global TLM quantum, e.g. \"10 us\" (parameter `quantum`; 0 is the reference)");
+  run->add_flag("--overhead", runa.overhead,
+                "Also render the same frame with no timing in this process and report "
+                "functional_wall_time_s and overhead_ratio");
+  run->add_flag("-q,--quiet", runa.quiet, "Print nothing but errors");
+  add_config_options(run, runa.config);
+
   auto* sweep = app.add_subcommand("sweep", "Run a parameter sweep from a file. Not yet built.");
   sweep->allow_extras();
   ValidateArgs va;
@@ -115,9 +147,9 @@ int run_cli(int argc, char** argv) {
   try {
     if (r->parsed()) return run_render(render);
     if (l->parsed()) return run_list(list);
+    if (run->parsed()) return run_run(runa);
     if (validate->parsed()) return run_validate(va);
-    const char* which = run->parsed() ? "run" : "sweep";
-    std::cerr << "rtsim " << which << ": not yet built in this version.\n";
+    std::cerr << "rtsim sweep: not yet built in this version.\n";
     return kExitFailure;
   } catch (const InputError& e) {
     std::cerr << "rtsim: error: " << e.what() << "\n";

@@ -12,12 +12,27 @@ struct ConfigArgs {
 
 struct RenderArgs {
   std::string scene = "builtin:default";
+  std::string machine;  ///< "": the functional renderer's own geometry
   std::string out_dir = "out/render";
   int width = 0;
   int height = 0;
   int spp = 0;  ///< 0: take render.spp from the configuration
   int threads = 1;
   std::vector<std::string> aovs;
+  bool quiet = false;
+  ConfigArgs config;
+};
+
+struct RunArgs {
+  std::string machine = "ullner-peripheral";
+  std::string scene = "builtin:ullner-cubes";
+  std::string out_dir = "out/run";
+  int width = 0;
+  int height = 0;
+  std::vector<std::string> aovs;
+  std::vector<std::string> traces;  ///< vcd, perfetto
+  std::string quantum;              ///< "" keeps the parameter `quantum`
+  bool overhead = false;
   bool quiet = false;
   ConfigArgs config;
 };
@@ -42,5 +57,6 @@ struct ValidateArgs {
 int run_render(const RenderArgs& args);
 int run_validate(const ValidateArgs& args);
 int run_list(const ListArgs& args);
+int run_run(const RunArgs& args);
 
 }  // namespace rtsim::app

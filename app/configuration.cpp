@@ -1,13 +1,13 @@
 #include "app/configuration.hpp"
 
-#include "platform/functional/render_params.hpp"
 #include "scenes/input_error.hpp"
 
 namespace rtsim::app {
 
-params::ParamRegistry build_registry(const ConfigArgs& args) {
+params::ParamRegistry build_registry(const ConfigArgs& args, const platform::Machine* machine) {
   params::ParamRegistry registry;
-  functional::declare_render_params(registry);
+  platform::declare_common_params(registry);
+  if (machine) machine->declare_params(registry);
   for (const auto& file : args.config_files) registry.load_toml_file(file);
   for (const auto& assignment : args.overrides) {
     try {

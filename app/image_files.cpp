@@ -42,4 +42,11 @@ void write_exr(const std::filesystem::path& path, int width, int height, int cha
   write_image(path, spec, OIIO::TypeDesc::FLOAT, data.data());
 }
 
+void stage_images(OutputSet& out, const functional::RenderResult& r) {
+  write_png(out.stage("image.png"), r.width, r.height, r.rgb);
+  write_exr(out.stage("image.exr"), r.width, r.height, 3, r.rgb);
+  if (!r.id.empty()) write_exr(out.stage("id.exr"), r.width, r.height, 1, r.id, "id");
+  if (!r.depth.empty()) write_exr(out.stage("depth.exr"), r.width, r.height, 1, r.depth, "Z");
+}
+
 }  // namespace rtsim::app

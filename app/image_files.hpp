@@ -3,6 +3,9 @@
 #include <filesystem>
 #include <vector>
 
+#include "app/output_set.hpp"
+#include "platform/functional/functional_renderer.hpp"
+
 namespace rtsim::app {
 
 /// Linear RGB floats to an 8-bit PNG: each channel clamped to [0,1] and rounded (no transfer
@@ -13,5 +16,8 @@ void write_png(const std::filesystem::path& path, int width, int height,
 /// Float EXR with `channels` channels (3: R,G,B; 1: named `channel_name`).
 void write_exr(const std::filesystem::path& path, int width, int height, int channels,
                const std::vector<float>& data, const char* channel_name = "Y");
+
+/// Stages image.png, image.exr and the AOVs the result carries (id.exr, depth.exr) in `out`.
+void stage_images(OutputSet& out, const functional::RenderResult& r);
 
 }  // namespace rtsim::app

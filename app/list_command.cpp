@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
 #include "scenes/input_error.hpp"
+#include "platform/machine.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::app {
@@ -20,18 +21,17 @@ void list_scenes() {
 }
 
 void list_machines() {
-  std::cout << "Machines:\n"
-            << "  " << std::left << std::setw(22) << "functional"
-            << "the functional renderer (`rtsim render`): firmware with no timing\n"
-            << "The timed machine models (vax-750, ullner-peripheral, gaudet-pert, ...) are not "
-               "built yet in this version.\n";
+  std::cout << "Machines (rtsim run --machine NAME; rtsim list params --machine NAME):\n";
+  for (const platform::Machine* m : platform::machines())
+    std::cout << "  " << std::left << std::setw(20) << m->name() << m->description() << "\n";
+  std::cout << "  " << std::left << std::setw(20) << "(none)"
+            << "rtsim render: the functional renderer, firmware with no timing\n";
 }
 
 void list_params(const ListArgs& args) {
-  if (!args.machine.empty() && args.machine != "functional")
-    throw InputError("--machine", 0,
-                     "unknown machine '" + args.machine + "'; `rtsim list machines` lists them");
-  const auto registry = build_registry(args.config);
+  const platform::Machine* machine =
+      args.machine.empty() ? nullptr : &platform::find_machine(args.machine);
+  const auto registry = build_registry(args.config, machine);
   const auto entries = registry.list();
   if (args.format == "markdown") {
     std::cout << "| name | default | unit | description | source |\n|---|---|---|---|---|\n";

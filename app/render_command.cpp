@@ -10,28 +10,27 @@
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/stats_json.hpp"
-#include "platform/functional/auto_view.hpp"
+#include "app/scene_input.hpp"
 #include "platform/functional/functional_renderer.hpp"
-#include "platform/functional/render_params.hpp"
-#include "platform/functional/scene_geometry.hpp"
-#include "platform/functional/scene_tracer.hpp"
-#include "scenes/scene_loader.hpp"
+#include "platform/machine.hpp"
+#include "platform/machines/machine_support.hpp"
 
 namespace rtsim::app {
 
 int run_render(const RenderArgs& args) {
   // Everything that can be wrong with the input is checked before any output exists.
-  const auto registry = build_registry(args.config);
-  auto settings = functional::read_render_settings(registry);
-  if (args.spp > 0) settings.spp = args.spp;
-  scenes::GeneratorSeeds seeds = scenes::default_generator_seeds();
-  if (settings.scene_seed != 0) seeds.npp = seeds.ullner_cubes = settings.scene_seed;
-  scenes::Scene scene = scenes::load_scene(args.scene, seeds);
-
-  auto geometry = functional::convert_scene(scene, settings);
-  if (!scene.has_camera) functional::frame_automatically(scene, geometry.scene_bounds);
-  settings.shade.scene_extent = functional::scene_extent(geometry.scene_bounds);
-  const auto tracer = functional::make_tracer(geometry, scene, settings);
+  const platform::Machine* machine =
+      args.machine.empty() ? nullptr : &platform::find_machine(args.machine);
+  auto registry = build_registry(args.config, machine);
+  if (args.spp > 0) registry.apply_override("render.spp=" + std::to_string(args.spp));
+  scenes::Scene scene = load_scene_with_seed(args.scene, registry);
+  // With --machine: that machine's own geometry conversion and search, with no timing.
+  platform::FunctionalTwin twin =
+      machine ? machine->make_twin(scene, registry)
+              : platform::make_functional_twin(scene, functional::read_render_settings(registry));
+  const auto& settings = twin.settings;
+  const auto& geometry = *twin.geometry;
+  const auto& tracer = twin.tracer;
 
   functional::RenderOptions opts;
   opts.width = args.width;
@@ -48,14 +47,13 @@ int run_render(const RenderArgs& args) {
   const auto result = functional::render(scene, *tracer, opts);
 
   OutputSet out(args.out_dir);
-  write_png(out.stage("image.png"), result.width, result.height, result.rgb);
-  write_exr(out.stage("image.exr"), result.width, result.height, 3, result.rgb);
-  if (opts.aov_id) write_exr(out.stage("id.exr"), result.width, result.height, 1, result.id, "id");
-  if (opts.aov_depth)
-    write_exr(out.stage("depth.exr"), result.width, result.height, 1, result.depth, "Z");
+  stage_images(out, result);
   {
     std::ofstream stats(out.stage("stats.json"));
-    stats << render_stats_json(scene, geometry, registry, settings, opts, result).dump(2) << "\n";
+    stats << frame_stats_json("render", machine ? machine->name() : "functional", scene, geometry,
+                              registry, settings, result, opts.threads, -1.0)
+                 .dump(2)
+          << "\n";
     if (!stats) throw std::runtime_error("cannot write stats.json");
   }
   out.commit();

@@ -39,12 +39,13 @@ const char* accel_name(functional::AccelKind k) {
 
 }  // namespace
 
-ordered_json render_stats_json(const scenes::Scene& scene,
-                               const functional::SceneGeometry& geometry,
-                               const params::ParamRegistry& registry,
-                               const functional::RenderSettings& settings,
-                               const functional::RenderOptions& options,
-                               const functional::RenderResult& result) {
+ordered_json frame_stats_json(const std::string& command, const std::string& machine,
+                              const scenes::Scene& scene,
+                              const functional::SceneGeometry& geometry,
+                              const params::ParamRegistry& registry,
+                              const functional::RenderSettings& settings,
+                              const functional::RenderResult& result, int threads,
+                              double simulated_time_s) {
   const TraceCounters& c = result.counters;
   std::size_t nonfinite = 0;
   double sum[3] = {0, 0, 0};
@@ -56,14 +57,15 @@ ordered_json render_stats_json(const scenes::Scene& scene,
   ordered_json j;
   j["tool"] = "rtsim";
   j["version"] = RTSIM_VERSION;
-  j["command"] = "render";
-  j["machine"] = "functional";
+  j["command"] = command;
+  j["machine"] = machine;
   j["scene"] = scene.name;
   j["width"] = result.width;
   j["height"] = result.height;
-  j["spp"] = options.spp;
+  j["spp"] = settings.spp;
+  if (simulated_time_s >= 0) j["simulated_time_s"] = simulated_time_s;
   j["wall_time_s"] = result.wall_time_s;
-  j["threads"] = options.threads;
+  j["threads"] = threads;
   j["rays"] = rays_json(c);
   j["rays_per_second"] =
       result.wall_time_s > 0 ? static_cast<double>(c.total_rays()) / result.wall_time_s : 0.0;

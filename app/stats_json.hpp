@@ -10,11 +10,13 @@
 
 namespace rtsim::app {
 
-nlohmann::ordered_json render_stats_json(const scenes::Scene& scene,
-                                         const functional::SceneGeometry& geometry,
-                                         const params::ParamRegistry& registry,
-                                         const functional::RenderSettings& settings,
-                                         const functional::RenderOptions& options,
-                                         const functional::RenderResult& result);
+/// The keys every run shares. `simulated_time_s` < 0 leaves that key out (functional render).
+nlohmann::ordered_json frame_stats_json(const std::string& command, const std::string& machine,
+                                        const scenes::Scene& scene,
+                                        const functional::SceneGeometry& geometry,
+                                        const params::ParamRegistry& registry,
+                                        const functional::RenderSettings& settings,
+                                        const functional::RenderResult& result, int threads,
+                                        double simulated_time_s);
 
 }  // namespace rtsim::app

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build and run rtsim on a Debian 12 machine.
-#   scripts/quickstart.sh run   install what is missing, build (Release), render the default
+#   scripts/quickstart.sh run   install what is missing, build (Release), run the default machine
+#                               (Ullner's peripheral) on the default built-in scene
 #   scripts/quickstart.sh test  install what is missing, build (Release), run the test suite
 # Installs only Debian packages (needs root, or sudo). Nothing is downloaded from elsewhere.
 set -euo pipefail
@@ -38,7 +39,7 @@ cmake --build "$build_dir" -j "$jobs"
 case "$mode" in
   run)
     shift || true
-    "$build_dir/rtsim" render --out out/default "$@"
+    "$build_dir/rtsim" run --width 256 --height 256 --out out/default "$@"
     ;;
   test)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"

@@ -5,19 +5,22 @@
 #include <thread>
 
 #include "firmware/shading/camera.hpp"
+#include "platform/functional/frame_state.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/shading/whitted_shader.hpp"
+#include "firmware/tasks/shade_task.hpp"
+#include "firmware/tasks/vision_ray_task.hpp"
 
 namespace rtsim::functional {
 namespace {
 
-using shading::ShadeOutput;
 using shading::TracedRay;
 
-/// Trace one ray tree depth-first. Contributions go into `fb` (order-independent).
-void trace_tree(const TracedRay& primary, const scenes::Scene& scene, const Tracer& tracer,
-                const shading::ShadeParams& params, shading::PixelAccumulator& fb,
-                TraceCounters& counters, std::vector<TracedRay>& stack, ShadeOutput& scratch,
+/// Trace one ray tree depth-first with the shade task. Contributions go into `fb`
+/// (order-independent).
+void trace_tree(const TracedRay& primary, const Tracer& tracer, tasks::ShadeTask& shade,
+                shading::PixelAccumulator& fb, TraceCounters& counters,
+                std::vector<TracedRay>& stack, std::vector<TracedRay>& spawned,
                 Hit* primary_hit) {
   stack.clear();
   stack.push_back(primary);
@@ -26,79 +29,49 @@ void trace_tree(const TracedRay& primary, const scenes::Scene& scene, const Trac
     const TracedRay r = stack.back();
     stack.pop_back();
     counters.count_ray(r.kind);
-    if (r.kind == RayKind::Shadow) {
-      if (!tracer.any_hit(r.ray, 0.0, r.t_max, counters))
-        fb.add(r.pixel, shading::miss_contribution(r, scene.background));
-      continue;
-    }
     Hit hit;
-    const double t_min = r.kind == RayKind::Primary ? scene.camera.hither : 0.0;
-    const bool found = tracer.closest_hit(r.ray, t_min, kInfinity, hit, counters);
+    const bool found =
+        r.kind == RayKind::Shadow
+            ? tracer.any_hit(r.ray, shade.t_min(r), r.t_max, counters)
+            : tracer.closest_hit(r.ray, shade.t_min(r), r.t_max, hit, counters);
     if (first && primary_hit) *primary_hit = found ? hit : Hit{};
     first = false;
-    if (!found) {
-      fb.add(r.pixel, shading::miss_contribution(r, scene.background));
-      continue;
-    }
-    counters.cost += shading::shade_hit(r, hit, scene.materials[hit.material], scene.lights,
-                                        params, scratch);
-    fb.add(r.pixel, scratch.local);
+    counters.cost += shade.on_result(r, found, hit, fb, spawned);
     // Push in reverse so rays are traced in the order they were spawned.
-    for (auto it = scratch.spawned.rbegin(); it != scratch.spawned.rend(); ++it)
-      stack.push_back(*it);
+    for (auto it = spawned.rbegin(); it != spawned.rend(); ++it) stack.push_back(*it);
   }
 }
 
 }  // namespace
 
-void sample_offset(int s, double& dx, double& dy) {
-  // R2 sequence (generalised golden ratio in 2-D): alpha = (1/g, 1/g^2), g^3 = g + 1.
-  constexpr double a1 = 0.7548776662466927;
-  constexpr double a2 = 0.5698402909980532;
-  dx = std::fmod(0.5 + a1 * s, 1.0);
-  dy = std::fmod(0.5 + a2 * s, 1.0);
-}
-
 RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts) {
   const auto start = std::chrono::steady_clock::now();
-  RenderResult res;
-  res.width = opts.width > 0 ? opts.width : scene.camera.width;
-  res.height = opts.height > 0 ? opts.height : scene.camera.height;
-  const int w = res.width;
-  const int h = res.height;
+  const int w = opts.width > 0 ? opts.width : scene.camera.width;
+  const int h = opts.height > 0 ? opts.height : scene.camera.height;
   const int spp = std::max(1, opts.spp);
-  const std::size_t n = static_cast<std::size_t>(w) * h;
   shading::PinholeCamera camera(scene.camera, w, h);
-  shading::PixelAccumulator fb(w, h);
-  if (opts.aov_id) res.id.assign(n, -1.0f);
-  if (opts.aov_depth) res.depth.assign(n, std::numeric_limits<float>::infinity());
+  FrameState frame(w, h, spp, opts.aov_id, opts.aov_depth);
 
   const int thread_count = std::max(1, opts.threads);
   std::atomic<int> next_row{0};
   std::atomic<int> rows_done{0};
   std::vector<TraceCounters> per_thread(static_cast<std::size_t>(thread_count));
 
+  // Rows are handed out dynamically; a pixel is only ever touched by the thread of its row.
   auto worker = [&](int t) {
     TraceCounters& counters = per_thread[static_cast<std::size_t>(t)];
-    std::vector<TracedRay> stack;
-    ShadeOutput scratch;
+    std::vector<TracedRay> stack, spawned;
+    tasks::ShadeTask shade(scene, opts.shade);
     for (int y = next_row.fetch_add(1); y < h; y = next_row.fetch_add(1)) {
-      for (int x = 0; x < w; ++x) {
-        const auto pixel = static_cast<std::uint32_t>(y * w + x);
-        for (int s = 0; s < spp; ++s) {
-          double dx = 0.5, dy = 0.5;
-          sample_offset(s, dx, dy);
-          TracedRay r;
-          r.ray = camera.primary(x + dx, y + dy);
-          r.pixel = pixel;
-          Hit primary_hit;
-          trace_tree(r, scene, tracer, opts.shade, fb, counters, stack, scratch,
-                     s == 0 ? &primary_hit : nullptr);
-          if (s == 0 && primary_hit.valid()) {
-            if (opts.aov_id) res.id[pixel] = static_cast<float>(primary_hit.prim_id);
-            if (opts.aov_depth) res.depth[pixel] = static_cast<float>(primary_hit.surface.t);
-          }
-        }
+      tasks::VisionRayTask vision(camera, w, h, spp, static_cast<std::uint32_t>(y * w),
+                                  static_cast<std::uint32_t>((y + 1) * w));
+      while (!vision.done()) {
+        int sample = 0;
+        const TracedRay r = vision.next(sample);
+        Hit primary_hit;
+        trace_tree(r, tracer, shade, frame.fb(), counters, stack, spawned,
+                   sample == 0 ? &primary_hit : nullptr);
+        if (sample == 0) frame.record_primary(r.pixel, primary_hit.valid(), primary_hit);
       }
       const int done = rows_done.fetch_add(1) + 1;
       if (t == 0 && opts.progress) opts.progress(done, h);
@@ -111,17 +84,9 @@ RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const Rend
   for (auto& th : pool) th.join();
   if (opts.progress) opts.progress(h, h);
 
-  for (const auto& c : per_thread) res.counters += c;
-  res.rgb.resize(n * 3);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Color c = fb.value(static_cast<std::uint32_t>(i), spp);
-    res.rgb[3 * i + 0] = static_cast<float>(c.r);
-    res.rgb[3 * i + 1] = static_cast<float>(c.g);
-    res.rgb[3 * i + 2] = static_cast<float>(c.b);
-  }
-  res.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return res;
+  for (const auto& c : per_thread) frame.counters() += c;
+  return frame.finish(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace rtsim::functional

@@ -36,11 +36,6 @@ struct RenderResult {
   double wall_time_s = 0.0;
 };
 
-/// Image position of sample `s` of a pixel, as an offset in [0,1)^2 from its top-left corner.
-/// Sample 0 is the pixel centre; later samples follow the R2 low-discrepancy sequence, so the
-/// pattern is deterministic and independent of threads.
-void sample_offset(int s, double& dx, double& dy);
-
 RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts);
 
 }  // namespace rtsim::functional

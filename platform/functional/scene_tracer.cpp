@@ -84,8 +84,8 @@ class BruteForceTracer final : public Tracer {
 /// Ullner's subvolumes walked by the corrected Appendix B DDA.
 class GridTracer final : public Tracer {
  public:
-  GridTracer(const SceneGeometry& g, accel::GridDivisions n)
-      : tester_(g), grid_(g.bounds, g.scene_bounds, n), dda_(grid_) {}
+  GridTracer(const SceneGeometry& g, accel::GridDivisions n, accel::DdaVariant variant)
+      : tester_(g), grid_(g.bounds, g.scene_bounds, n), dda_(grid_, variant) {}
 
   const accel::UniformGrid& grid() const { return grid_; }
 
@@ -192,9 +192,11 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
     accel::GridDivisions n{settings.grid_divisions, settings.grid_divisions,
                            settings.grid_divisions};
     if (settings.grid_divisions == 0) n = accel::choose_divisions(g.scene_bounds, g.shapes.size());
-    auto tracer = std::make_unique<GridTracer>(g, n);
+    auto tracer = std::make_unique<GridTracer>(
+        g, n, settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
     const auto& grid = tracer->grid();
-    desc << "grid " << n.x << "x" << n.y << "x" << n.z << ", " << grid.occupied_cell_count()
+ desc << "grid " << n.x << "x" << n.y << "x" << n.z
+         << (settings.dda_as_printed ? " (DDA as printed)" : "") << ", " << grid.occupied_cell_count()
          << " occupied subvolumes, " << grid.reference_count() << " polygon addresses";
     g.accel_description = desc.str();
     return tracer;

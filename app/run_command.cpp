@@ -1,0 +1,89 @@
+// `rtsim run`: a timed machine model (SystemC) renders one frame.
+#include <fstream>
+#include <iostream>
+
+#include "app/cli.hpp"
+#include "app/commands.hpp"
+#include "app/configuration.hpp"
+#include "app/image_files.hpp"
+#include "app/output_set.hpp"
+#include "app/progress_bar.hpp"
+#include "app/scene_input.hpp"
+#include "app/stats_json.hpp"
+#include "platform/machine.hpp"
+#include "scenes/input_error.hpp"
+
+namespace rtsim::app {
+
+int run_run(const RunArgs& args) {
+  // Everything that can be wrong with the input is checked before any output exists.
+  const platform::Machine& machine = platform::find_machine(args.machine);
+  auto registry = build_registry(args.config, &machine);
+  if (!args.quantum.empty()) {
+    try {
+      // A bare 0 needs no unit.
+      registry.apply_override("quantum=" + (args.quantum == "0" ? std::string("0 s") : args.quantum));
+    } catch (const InputError& e) {
+      throw InputError("--quantum " + args.quantum, 0, e.message());
+    }
+  }
+  scenes::Scene scene = load_scene_with_seed(args.scene, registry);
+  platform::FunctionalTwin twin = machine.make_twin(scene, registry);
+
+  OutputSet out(args.out_dir);
+  platform::RunOptions opts;
+  opts.width = args.width;
+  opts.height = args.height;
+  for (const auto& a : args.aovs) {
+    if (a == "id") opts.aov_id = true;
+    if (a == "depth") opts.aov_depth = true;
+  }
+  for (const auto& t : args.traces) {
+    if (t == "vcd") opts.vcd_path = out.stage("trace.vcd");
+    if (t == "perfetto") opts.perfetto_path = out.stage("trace.json");
+  }
+  ProgressBar bar(args.quiet ? std::string() : "run " + machine.name());
+  if (!args.quiet) opts.progress = [&bar](long done, long total) { bar.update(done, total); };
+  platform::RunResult result = machine.run(scene, twin, registry, opts);
+
+  auto stats = frame_stats_json("run", machine.name(), scene, *twin.geometry, registry,
+                                twin.settings, result.image, 1, result.simulated_time_s);
+  if (args.overhead) {
+    // The same scene, the same geometry conversion, with no timing, in this process.
+    functional::RenderOptions fo;
+    fo.width = result.image.width;
+    fo.height = result.image.height;
+    fo.spp = twin.settings.spp;
+    fo.threads = 1;
+    fo.shade = twin.settings.shade;
+    const auto functional_result = functional::render(scene, *twin.tracer, fo);
+    stats["functional_wall_time_s"] = functional_result.wall_time_s;
+    stats["overhead_ratio"] = result.image.wall_time_s / functional_result.wall_time_s;
+    stats["functional_image_identical"] = functional_result.rgb == result.image.rgb;
+  }
+  for (auto& [key, value] : result.stats.items()) stats[key] = value;
+
+  stage_images(out, result.image);
+  {
+    std::ofstream f(out.stage("stats.json"));
+    f << stats.dump(2) << "\n";
+    if (!f) throw std::runtime_error("cannot write stats.json");
+  }
+  out.commit();
+
+  if (!args.quiet) {
+    std::cout << "rtsim run: " << machine.name() << " on " << scene.name << " at "
+              << result.image.width << "x" << result.image.height << ": frame time "
+              << result.simulated_time_s << " s simulated, " << result.image.wall_time_s
+              << " s wall\n"
+              << "  image  " << (out.dir() / "image.png").string() << "  "
+              << (out.dir() / "image.exr").string() << "\n"
+              << "  stats  " << (out.dir() / "stats.json").string() << "\n";
+    if (!opts.vcd_path.empty()) std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
+    if (!opts.perfetto_path.empty())
+      std::cout << "  trace  " << (out.dir() / "trace.json").string() << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace rtsim::app

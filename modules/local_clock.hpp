@@ -1,0 +1,43 @@
+#pragma once
+// Temporal decoupling for one SystemC thread (loosely-timed coding style, TLM-2.0 §"quantum").
+// The thread keeps its own absolute local time, which may run ahead of sc_time_stamp() by at
+// most the global quantum (tlm::tlm_global_quantum). Quantum 0 is the reference setting: the
+// thread synchronises at every advance and every interaction happens in global time order.
+// Unlike tlm_utils::tlm_quantumkeeper this clock is absolute, so timestamps carried by messages
+// (see TimedFifo) compare directly with it.
+#include <algorithm>
+#include <systemc>
+#include <tlm>
+
+namespace rtsim::modules {
+
+class LocalClock {
+ public:
+  /// Current local time (absolute).
+  sc_core::sc_time now() const { return local_; }
+
+  /// Spend `d` of local time; synchronise if the thread is a quantum ahead.
+  void advance(const sc_core::sc_time& d) {
+    local_ += d;
+    if (local_ - sc_core::sc_time_stamp() >= tlm::tlm_global_quantum::instance().get()) sync();
+  }
+
+  /// Move local time forward to `t` if it is later (a message that arrives at t).
+  void catch_up(const sc_core::sc_time& t) {
+    if (t > local_) advance(t - local_);
+  }
+
+  /// Wait in global time until local time (no-op if already there).
+  void sync() {
+    const sc_core::sc_time g = sc_core::sc_time_stamp();
+    if (local_ > g) sc_core::wait(local_ - g);
+  }
+
+  /// After a wait() on an event: local time is at least the global time.
+  void resync() { local_ = std::max(local_, sc_core::sc_time_stamp()); }
+
+ private:
+  sc_core::sc_time local_ = sc_core::SC_ZERO_TIME;
+};
+
+}  // namespace rtsim::modules

@@ -1,0 +1,58 @@
+#pragma once
+// A pipelined arithmetic unit (Ullner's intersection pipeline, an inner-product unit): items
+// enter one per issue interval and leave `stages` stage times later. Time advances by
+// arithmetic, never by one event per item (DESIGN.md "Timing rules").
+#include <algorithm>
+#include <cstdint>
+#include <systemc>
+
+#include "modules/sim_time.hpp"
+
+namespace rtsim::modules {
+
+class PipelinedUnit {
+ public:
+  PipelinedUnit() = default;
+  /// `interval`: time between successive issues (also the stage time); `stages`: depth.
+  PipelinedUnit(sc_core::sc_time interval, unsigned stages)
+      : interval_(interval), stages_(stages) {}
+
+  struct Batch {
+    sc_core::sc_time first_issue;  ///< when the first item entered
+    sc_core::sc_time next_free;    ///< when the unit can accept the next item
+    sc_core::sc_time done;         ///< when the last item's result leaves the pipe
+  };
+
+  /// Issue `n` items back to back, the first no earlier than `earliest`. An empty batch still
+  /// costs nothing but reports `done` = the time it would have started.
+  Batch issue(std::uint64_t n, const sc_core::sc_time& earliest) {
+    Batch b;
+    b.first_issue = std::max(earliest, next_free_);
+    if (n == 0) {
+      b.next_free = b.first_issue;
+      b.done = b.first_issue;
+      return b;
+    }
+    b.next_free = b.first_issue + times(interval_, n);
+    b.done = b.next_free - interval_ + latency();
+    next_free_ = b.next_free;
+    issued_ += n;
+    return b;
+  }
+
+  /// Time from an item's issue to its result: stages x stage time.
+  sc_core::sc_time latency() const { return times(interval_, stages_); }
+  sc_core::sc_time interval() const { return interval_; }
+  unsigned stages() const { return stages_; }
+  std::uint64_t issued() const { return issued_; }
+  /// Busy time: one issue interval per item.
+  sc_core::sc_time busy() const { return times(interval_, issued_); }
+
+ private:
+  sc_core::sc_time interval_ = sc_core::SC_ZERO_TIME;
+  unsigned stages_ = 1;
+  sc_core::sc_time next_free_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t issued_ = 0;
+};
+
+}  // namespace rtsim::modules

@@ -1,0 +1,101 @@
+#pragma once
+// A bounded FIFO between two temporally decoupled threads, exact at any quantum for the FIFO's
+// own timing: every item carries the absolute time it was put, every slot the absolute time it
+// was freed. Item n can be put no earlier than the time item n - capacity was taken out (its
+// slot), and taken no earlier than the time it was put. Only decisions that look at the FIFO's
+// state "now" (has_item_by, has_room_by) depend on how far threads run ahead: that is the error
+// a larger quantum buys speed with.
+//
+// Blocking calls wait() on an event, so they must be called from an SC_THREAD.
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/occupancy.hpp"
+
+namespace rtsim::modules {
+
+template <class T>
+class TimedFifo {
+ public:
+  TimedFifo(std::string name, std::size_t capacity)
+      : name_(std::move(name)), capacity_(capacity ? capacity : 1), slot_free_(capacity_) {}
+
+  const std::string& name() const { return name_; }
+  std::size_t capacity() const { return capacity_; }
+  std::size_t size() const { return items_.size(); }
+
+  /// True if an item put at or before `t` is waiting.
+  bool has_item_by(const sc_core::sc_time& t) const {
+    return !items_.empty() && items_.front().stamp <= t;
+  }
+  /// True if a slot is free at or before `t`.
+  bool has_room_by(const sc_core::sc_time& t) const {
+    return items_.size() < capacity_ && slot_free_[put_count_ % capacity_] <= t;
+  }
+  bool full() const { return items_.size() >= capacity_; }
+  /// When the oldest waiting item was (or will be) put; nothing if the FIFO is empty.
+  std::optional<sc_core::sc_time> next_item_time() const {
+    if (items_.empty()) return std::nullopt;
+    return items_.front().stamp;
+  }
+  /// When the next put can enter; nothing while the FIFO is full (it depends on a get).
+  std::optional<sc_core::sc_time> next_room_time() const {
+    if (items_.size() >= capacity_) return std::nullopt;
+    return slot_free_[put_count_ % capacity_];
+  }
+  bool empty() const { return items_.empty(); }
+
+  /// Put `item` at local time `t`; blocks while the FIFO is full. Returns the time the item
+  /// actually entered (>= t: later if it had to wait for a slot).
+  sc_core::sc_time put(T item, sc_core::sc_time t) {
+    while (items_.size() >= capacity_) sc_core::wait(got_);
+    const sc_core::sc_time stamp = std::max(t, slot_free_[put_count_ % capacity_]);
+    items_.push_back(Entry{std::move(item), stamp});
+    ++put_count_;
+    occupancy_.put(stamp);
+    put_.notify(sc_core::SC_ZERO_TIME);
+    return stamp;
+  }
+
+  /// Take the oldest item at local time `t`; blocks while the FIFO is empty. `stamp` receives
+  /// the time it was taken (>= t and >= the time it was put).
+  T get(sc_core::sc_time t, sc_core::sc_time& stamp) {
+    while (items_.empty()) sc_core::wait(put_);
+    Entry e = std::move(items_.front());
+    items_.pop_front();
+    stamp = std::max(t, e.stamp);
+    slot_free_[get_count_ % capacity_] = stamp;
+    ++get_count_;
+    occupancy_.got(stamp);
+    got_.notify(sc_core::SC_ZERO_TIME);
+    return std::move(e.item);
+  }
+
+  /// Notified (next delta) when an item is put / taken.
+  const sc_core::sc_event& put_event() const { return put_; }
+  const sc_core::sc_event& get_event() const { return got_; }
+
+  std::uint64_t puts() const { return put_count_; }
+  const Occupancy& occupancy() const { return occupancy_; }
+
+ private:
+  struct Entry {
+    T item;
+    sc_core::sc_time stamp;
+  };
+  std::string name_;
+  std::size_t capacity_;
+  std::deque<Entry> items_;
+  std::vector<sc_core::sc_time> slot_free_;  ///< per slot: when its last item was taken
+  std::uint64_t put_count_ = 0;
+  std::uint64_t get_count_ = 0;
+  sc_core::sc_event put_;
+  sc_core::sc_event got_;
+  Occupancy occupancy_;
+};
+
+}  // namespace rtsim::modules

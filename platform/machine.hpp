@@ -1,0 +1,72 @@
+#pragma once
+// A machine: the modules it is wired from, the firmware that runs where, its preset parameters,
+// and its functional twin (its own geometry conversion with no timing, whose image the timed
+// model must reproduce bit for bit).
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "firmware/tracer.hpp"
+#include "platform/functional/functional_renderer.hpp"
+#include "platform/functional/render_params.hpp"
+#include "platform/functional/scene_geometry.hpp"
+#include "platform/params/registry.hpp"
+#include "scenes/scene.hpp"
+
+namespace rtsim::platform {
+
+/// The geometry a machine stores and the tracer its firmware uses, without timing.
+struct FunctionalTwin {
+  /// Held by pointer: the tracer refers to it, and twins are moved around.
+  std::unique_ptr<functional::SceneGeometry> geometry;
+  std::unique_ptr<Tracer> tracer;
+  functional::RenderSettings settings;
+};
+
+struct RunOptions {
+  int width = 0;  ///< 0: the scene's
+  int height = 0;
+  bool aov_id = false;
+  bool aov_depth = false;
+  std::filesystem::path vcd_path;       ///< empty: no VCD trace
+  std::filesystem::path perfetto_path;  ///< empty: no Perfetto trace
+  std::size_t perfetto_max_events = 2'000'000;
+  bool latency_probe = false;
+  std::function<void(long, long)> progress;  ///< (rays finished, rays expected so far)
+};
+
+struct RunResult {
+  functional::RenderResult image;  ///< rgb, AOVs and counters (wall_time_s: the simulation)
+  double simulated_time_s = 0.0;   ///< the frame time on the modelled machine
+  nlohmann::ordered_json stats;    ///< machine-specific keys merged into stats.json
+};
+
+class Machine {
+ public:
+  virtual ~Machine() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  /// Declares the machine's parameters (with defaults citing the seed) in `registry`.
+  virtual void declare_params(params::ParamRegistry& registry) const = 0;
+  /// Converts the scene as the machine would store it; throws InputError for scenes the
+  /// machine cannot hold (with what and why).
+  virtual FunctionalTwin make_twin(scenes::Scene& scene,
+                                   const params::ParamRegistry& registry) const = 0;
+  /// Builds the SystemC model, simulates one frame and returns the image and statistics.
+  /// SystemC allows one simulation per process: call at most once.
+  virtual RunResult run(scenes::Scene& scene, FunctionalTwin& twin,
+                        const params::ParamRegistry& registry, const RunOptions& opts) const = 0;
+};
+
+/// All machines, by name.
+const std::vector<const Machine*>& machines();
+/// The machine called `name`, or InputError naming the closest ones.
+const Machine& find_machine(const std::string& name);
+
+/// Declares `quantum` (global TLM quantum) and the render/shade parameters every machine uses.
+void declare_common_params(params::ParamRegistry& registry);
+
+}  // namespace rtsim::platform

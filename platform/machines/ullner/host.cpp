@@ -1,0 +1,149 @@
+#include "platform/machines/ullner/host.hpp"
+
+#include "firmware/shading/camera.hpp"
+#include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/sim_time.hpp"
+
+namespace rtsim::platform::ullner {
+
+using modules::times;
+
+namespace {
+/// Formatting one ray request into the queue: 7 words written, a few instructions.
+constexpr Cost kSendCost{.mem_words = RayRequest::kWireBytes / 4, .instructions = 4};
+}  // namespace
+
+Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
+           const shading::ShadeParams& shade, functional::FrameState& frame,
+           const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
+           const PeripheralConfig& peripheral, const RunOptions& opts)
+    : sc_core::sc_module(name),
+      ray_out("ray_out"),
+      results("result_queue", peripheral.result_queue_depth),
+      scene_(scene),
+      shade_params_(shade),
+      frame_(frame),
+      ray_queue_(ray_queue),
+      host_(host),
+      peripheral_(peripheral),
+      opts_(opts),
+      // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
+      // at the peripheral's arithmetic rate (L584).
+      lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
+  SC_THREAD(run);
+}
+
+sc_core::sc_time Host::result_time(const Cost& c) {
+  if (!peripheral_.lighting) return host_.timing.time_for(c);
+  // With the lighting extension the host only controls and moves data (L566); the vector
+  // arithmetic runs on the inner-product device, 3 multiplies per inner product (L564), and
+  // each normalisation through the reciprocal-square-root device.
+  Cost control = c;
+  control.fp_add = control.fp_mul = control.fp_div = control.fp_sqrt = 0;
+  const sc_core::sc_time host_part = host_.timing.time_for(control);
+  const std::uint64_t inner_products = (c.fp_mul + 2) / 3;
+  const sc_core::sc_time start = clock_.now() + host_part;
+  auto batch = lighting_.issue(inner_products, start);
+  const sc_core::sc_time done =
+      batch.done + times(peripheral_.intersect_interval, peripheral_.rsqrt_stages * c.fp_sqrt);
+  return done - clock_.now();
+}
+
+void Host::send(RayRequest req) {
+  const sc_core::sc_time cost = host_.timing.time_for(kSendCost);
+  clock_.advance(cost);
+  busy_ += cost;
+  req.id = next_id_++;
+  // The host only sends when the queue has room, so the ray enters it now.
+  req.sent = clock_.now();
+  modules::send_message(ray_out, req, clock_.now(), RayRequest::kWireBytes);
+  ++outstanding_;
+}
+
+void Host::run() {
+  shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
+  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+  tasks::ShadeTask shade(scene_, shade_params_);
+  std::vector<shading::TracedRay> spawned;
+  const std::uint64_t total_vision = vision.remaining();
+
+  for (;;) {
+    const sc_core::sc_time now = clock_.now();
+    // Task 2: a result is waiting.
+    if (results.fifo.has_item_by(now)) {
+      sc_core::sc_time taken;
+      RayResult res = results.fifo.get(now, taken);
+      clock_.catch_up(taken);
+      --outstanding_;
+      ++results_processed_;
+      latency_.add(taken - res.request.sent);
+      const shading::TracedRay& r = res.request.ray;
+      frame_.counters().count_ray(r.kind);
+      if (res.request.first_sample) frame_.record_primary(r.pixel, res.found, res.hit);
+      const Cost c = shade.on_result(r, res.found, res.hit, frame_.fb(), spawned);
+      frame_.counters().cost += c;
+      const sc_core::sc_time t = result_time(c);
+      clock_.advance(t);
+      busy_ += t;
+      for (const auto& s : spawned) backlog_.push_back(RayRequest{s, 0, {}, false});
+      backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
+      if (opts_.progress && (results_processed_ & 1023) == 0)
+        opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
+      continue;
+    }
+    const bool room = ray_queue_.has_room_by(now);
+    // Rays spawned by task 2 go first: they finish pixels.
+    if (!backlog_.empty() && room) {
+      RayRequest req = backlog_.front();
+      backlog_.pop_front();
+      send(req);
+      continue;
+    }
+    // Task 1: generate a vision ray while otherwise idle.
+    if (!vision.done() && room) {
+      int sample = 0;
+      RayRequest req{vision.next(sample), 0, {}, false};
+      req.first_sample = sample == 0;
+      const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
+      clock_.advance(t);
+      busy_ += t;
+      ++vision_rays_;
+      send(req);
+      continue;
+    }
+    if (outstanding_ == 0 && backlog_.empty() && vision.done()) break;
+    // Idle: move to the next event already known (a result stamped ahead of us, a slot the
+    // peripheral frees ahead of us), else wait in global time for the peripheral.
+    const bool want_send = !backlog_.empty() || !vision.done();
+    std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
+    if (want_send) {
+      const auto room_at = ray_queue_.next_room_time();
+      if (room_at && (!next || *room_at < *next)) next = room_at;
+    }
+    if (next && *next > now) {
+      if (want_send && !ray_queue_.next_room_time()) {
+        // The ray queue may free a slot before then: wake at whichever comes first.
+        clock_.sync();
+        sc_core::wait(*next - sc_core::sc_time_stamp(),
+                      results.fifo.put_event() | ray_queue_.get_event());
+        clock_.resync();
+      } else {
+        clock_.catch_up(*next);
+      }
+      continue;
+    }
+    clock_.sync();
+    if (!results.fifo.empty() || (want_send && ray_queue_.next_room_time())) continue;
+    if (want_send)
+      sc_core::wait(results.fifo.put_event() | ray_queue_.get_event());
+    else
+      sc_core::wait(results.fifo.put_event());
+    clock_.resync();
+  }
+  frame_time_ = clock_.now();
+  clock_.sync();
+  if (opts_.progress)
+    opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
+}
+
+}  // namespace rtsim::platform::ullner

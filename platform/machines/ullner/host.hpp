@@ -1,0 +1,68 @@
+#pragma once
+// Ullner's host (seed 000 L474-L476): one processor running two tasks. Task 2 processes
+// results (shading, spawning secondary rays) whenever one is waiting; task 1 generates vision
+// rays "whenever the host would otherwise be idle". Rays go to the peripheral's ray queue; rays
+// that find it full wait in host memory (so the host never blocks on the peripheral and the
+// two queues cannot deadlock).
+#include <deque>
+#include <systemc>
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include "firmware/tasks/shade_task.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/pipelined_unit.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/machine.hpp"
+#include "platform/machines/ullner/config.hpp"
+#include "platform/machines/ullner/messages.hpp"
+
+namespace rtsim::platform::ullner {
+
+class Host : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_initiator_socket<Host> ray_out;  ///< to the peripheral's ray queue
+  modules::MessageQueue<RayResult> results;           ///< the result queue
+
+  SC_HAS_PROCESS(Host);
+  Host(sc_core::sc_module_name name, const scenes::Scene& scene,
+       const shading::ShadeParams& shade, functional::FrameState& frame,
+       const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
+       const PeripheralConfig& peripheral, const RunOptions& opts);
+
+  sc_core::sc_time frame_time() const { return frame_time_; }
+  sc_core::sc_time busy() const { return busy_; }
+  const modules::LatencyRecorder& latency() const { return latency_; }
+  const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
+  std::uint64_t vision_rays() const { return vision_rays_; }
+  std::uint64_t results_processed() const { return results_processed_; }
+  std::uint64_t backlog_peak() const { return backlog_peak_; }
+
+ private:
+  void run();
+  void send(RayRequest req);
+  sc_core::sc_time result_time(const Cost& shade_cost);
+
+  const scenes::Scene& scene_;
+  shading::ShadeParams shade_params_;
+  functional::FrameState& frame_;
+  const modules::TimedFifo<RayRequest>& ray_queue_;
+  HostConfig host_;
+  PeripheralConfig peripheral_;
+  const RunOptions& opts_;
+
+  modules::LocalClock clock_;
+  modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension
+  std::deque<RayRequest> backlog_;
+  std::uint64_t next_id_ = 0;
+  std::uint64_t outstanding_ = 0;
+  std::uint64_t vision_rays_ = 0;
+  std::uint64_t results_processed_ = 0;
+  std::uint64_t backlog_peak_ = 0;
+  sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  modules::LatencyRecorder latency_;
+};
+
+}  // namespace rtsim::platform::ullner

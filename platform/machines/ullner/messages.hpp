@@ -1,0 +1,32 @@
+#pragma once
+// The two messages between Ullner's host and peripheral (seed 000 L468-L472).
+#include <cstdint>
+#include <systemc>
+
+#include "firmware/hit.hpp"
+#include "firmware/shading/traced_ray.hpp"
+
+namespace rtsim::platform::ullner {
+
+/// TraceRay: r0, r1 and the shadow mark (L468, L472); the host keeps the rest of the ray's
+/// state with it here for convenience (it never reaches the peripheral's arithmetic).
+struct RayRequest {
+  shading::TracedRay ray;
+  std::uint64_t id = 0;
+  sc_core::sc_time sent;  ///< when it entered the ray queue (for the latency probe)
+  bool first_sample = false;  ///< sample 0 of a primary ray: its answer fills the AOVs
+  /// On the wire: r0 (3 words), r1 (3 words), shadow flag (1 word).
+  static constexpr unsigned kWireBytes = 7 * 4;
+};
+
+/// RayResult: hit flag, closest polygon id, p_r, (u, v), t (L468-L470).
+struct RayResult {
+  RayRequest request;
+  bool found = false;
+  Hit hit;
+  sc_core::sc_time service_start;  ///< when the peripheral began on this ray
+  /// On the wire: flag, id, p_r (3), u, v, t.
+  static constexpr unsigned kWireBytes = 8 * 4;
+};
+
+}  // namespace rtsim::platform::ullner

@@ -1,0 +1,84 @@
+#include "platform/machines/ullner/peripheral.hpp"
+
+#include "modules/sim_time.hpp"
+#include "platform/machines/machine_support.hpp"
+
+namespace rtsim::platform::ullner {
+
+using modules::times;
+
+Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
+                       const tasks::ShadeTask& shade, std::uint64_t polygons,
+                       const PeripheralConfig& config, TraceCounters& counters)
+    : sc_core::sc_module(name),
+      rays("ray_queue", config.ray_queue_depth),
+      result_out("result_out"),
+      tracer_(tracer),
+      shade_(shade),
+      polygons_(polygons),
+      config_(config),
+      counters_(counters),
+      pipe_(config.intersect_interval, config.pipeline_stages) {
+  SC_THREAD(run);
+}
+
+void Peripheral::run() {
+  const sc_core::sc_time stage = config_.intersect_interval;
+  const bool grid = config_.grid_divisions > 0;
+  for (;;) {
+    if (rays.fifo.empty()) {
+      clock_.sync();
+      while (rays.fifo.empty()) sc_core::wait(rays.fifo.put_event());
+      clock_.resync();
+    }
+    sc_core::sc_time taken;
+    RayRequest req = rays.fifo.get(clock_.now(), taken);
+    clock_.catch_up(taken);
+    ++rays_;
+
+    // The answer (firmware), and what it took.
+    TraceCounters before = counters_;
+    RayResult res;
+    res.request = req;
+    res.found = trace_one(tracer_, shade_, req.ray, res.hit, counters_);
+    const std::uint64_t tests = counters_.intersection_tests - before.intersection_tests;
+    const std::uint64_t cells = counters_.cells_visited - before.cells_visited;
+    const std::uint64_t steps = counters_.dda_steps - before.dda_steps;
+    if (req.ray.kind == RayKind::Primary && res.found) {
+      travel_sum_ += res.hit.surface.t;
+      ++primary_hits_;
+    }
+
+    // The time.
+    sc_core::sc_time start = clock_.now();
+    sc_core::sc_time done;
+    if (!grid) {
+      // Every polygon streams through, fetched from the parameter memories (L544).
+      const bool early = config_.shadow_early_exit && req.ray.kind == RayKind::Shadow;
+      const std::uint64_t n = early ? tests : polygons_;
+      const auto batch = pipe_.issue(n, start + times(stage, config_.fetch_stages));
+      start = batch.first_issue - times(stage, config_.fetch_stages);
+      done = batch.done + times(stage, config_.select_stages);
+      clock_.catch_up(batch.next_free - times(stage, config_.fetch_stages));
+    } else {
+      // Auxiliary processor: n_d subvolumes visited at t_d each (L648, L654), their polygon
+      // addresses through the indirection stage into the pipe.
+      start = std::max(start, aux_free_);
+      const sc_core::sc_time walk = times(config_.step_time, cells);
+      aux_free_ = start + walk;
+      aux_busy_ += walk;
+      const sc_core::sc_time feed =
+          times(stage, config_.indirection_stages + config_.fetch_stages);
+      const auto batch = pipe_.issue(tests, aux_free_ + feed);
+      done = batch.done + times(stage, config_.select_stages);
+      clock_.catch_up(aux_free_);
+      steps_ += steps;
+      cells_ += cells;
+    }
+    service_total_ += done - start;
+    res.service_start = start;
+    modules::send_message(result_out, res, done, RayResult::kWireBytes);
+  }
+}
+
+}  // namespace rtsim::platform::ullner

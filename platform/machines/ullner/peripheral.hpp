@@ -1,0 +1,63 @@
+#pragma once
+// Ullner's ray tracing peripheral (seed 000 §2.3.2, Fig. 2-11): polygon fetch from the 20
+// parameter memories, the intersection pipeline, closest-hit selection with validity bits, and
+// (optionally) the grid auxiliary processor in front of it (L592-L596).
+//
+// The answer for each ray is computed by the firmware (the machine's functional twin, so the
+// image is the same bit for bit); the time is computed from what the hardware does for it:
+//  * brute force: every polygon streams through the pipe, one per intersect interval
+//    (L482, L588); shadow rays stream them all too unless peripheral.shadow_early_exit;
+//  * grid: the auxiliary processor steps t_d per subvolume visited (L654) and feeds the pipe
+//    the polygon addresses of each, through one extra indirection stage (L596).
+// The result leaves the pipe `latency` after its last polygon entered; the next ray's polygons
+// follow the previous ray's without a gap (the pipe is never flushed, L522-L528).
+#include <systemc>
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include "firmware/tasks/shade_task.hpp"
+#include "firmware/tracer.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/pipelined_unit.hpp"
+#include "platform/machines/ullner/config.hpp"
+#include "platform/machines/ullner/messages.hpp"
+
+namespace rtsim::platform::ullner {
+
+class Peripheral : public sc_core::sc_module {
+ public:
+  modules::MessageQueue<RayRequest> rays;             ///< the ray queue (host -> peripheral)
+  tlm_utils::simple_initiator_socket<Peripheral> result_out;  ///< to the host's result queue
+
+  SC_HAS_PROCESS(Peripheral);
+  Peripheral(sc_core::sc_module_name name, const Tracer& tracer, const tasks::ShadeTask& shade,
+             std::uint64_t polygons, const PeripheralConfig& config, TraceCounters& counters);
+
+  const modules::PipelinedUnit& pipeline() const { return pipe_; }
+  sc_core::sc_time aux_busy() const { return aux_busy_; }
+  std::uint64_t rays_served() const { return rays_; }
+  std::uint64_t dda_steps() const { return steps_; }
+  std::uint64_t subvolumes_visited() const { return cells_; }
+  sc_core::sc_time service_time_total() const { return service_total_; }
+  /// Sum of primary-ray hit distances and their count (mean ray travel d_r).
+  double primary_travel_sum() const { return travel_sum_; }
+  std::uint64_t primary_hits() const { return primary_hits_; }
+
+ private:
+  void run();
+
+  const Tracer& tracer_;
+  const tasks::ShadeTask& shade_;
+  std::uint64_t polygons_;
+  PeripheralConfig config_;
+  TraceCounters& counters_;
+  modules::LocalClock clock_;
+  modules::PipelinedUnit pipe_;
+  sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time service_total_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t rays_ = 0, steps_ = 0, cells_ = 0, primary_hits_ = 0;
+  double travel_sum_ = 0.0;
+};
+
+}  // namespace rtsim::platform::ullner

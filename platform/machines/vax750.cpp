@@ -1,0 +1,146 @@
+#include "platform/machines/vax750.hpp"
+
+#include <chrono>
+#include <systemc>
+
+#include "firmware/shading/camera.hpp"
+#include "firmware/tasks/shade_task.hpp"
+#include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/functional/scene_tracer.hpp"
+#include "platform/machines/machine_support.hpp"
+
+namespace rtsim::platform {
+namespace {
+
+using modules::from_ps;
+using modules::times;
+using shading::TracedRay;
+
+/// The VAX running the whole ray tracer in one process: each ray costs T_s to spawn and shade
+/// plus T_i for each object of the scene (brute force).
+class VaxHost : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(VaxHost);
+  VaxHost(sc_core::sc_module_name name, const scenes::Scene& scene, const Tracer& tracer,
+          functional::FrameState& frame, const functional::RenderSettings& settings,
+          sc_core::sc_time ray_time, sc_core::sc_time test_time, std::uint64_t objects,
+          const RunOptions& opts)
+      : sc_core::sc_module(name),
+        scene_(scene),
+        tracer_(tracer),
+        frame_(frame),
+        settings_(settings),
+        ray_cost_(ray_time + times(test_time, objects)),
+        opts_(opts) {
+    SC_THREAD(run);
+  }
+
+  sc_core::sc_time frame_time() const { return frame_time_; }
+  sc_core::sc_time busy() const { return busy_; }
+  const modules::LatencyRecorder& latency() const { return latency_; }
+
+ private:
+  void run() {
+    modules::LocalClock clock;
+    shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
+    tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+    tasks::ShadeTask shade(scene_, settings_.shade);
+    std::vector<TracedRay> stack, spawned;
+    long rays = 0;
+    while (!vision.done()) {
+      int sample = 0;
+      stack.push_back(vision.next(sample));
+      bool first = true;
+      while (!stack.empty()) {
+        const TracedRay r = stack.back();
+        stack.pop_back();
+        frame_.counters().count_ray(r.kind);
+        Hit hit;
+        const bool found = trace_one(tracer_, shade, r, hit, frame_.counters());
+        if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
+        first = false;
+        shade.on_result(r, found, hit, frame_.fb(), spawned);
+        for (auto it = spawned.rbegin(); it != spawned.rend(); ++it) stack.push_back(*it);
+        // T_s + O T_i for this ray (seed 001 L326).
+        clock.advance(ray_cost_);
+        busy_ += ray_cost_;
+        latency_.add(ray_cost_);
+        if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
+      }
+    }
+    frame_time_ = clock.now();
+    clock.sync();
+  }
+
+  const scenes::Scene& scene_;
+  const Tracer& tracer_;
+  functional::FrameState& frame_;
+  const functional::RenderSettings& settings_;
+  sc_core::sc_time ray_cost_;
+  const RunOptions& opts_;
+  sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  modules::LatencyRecorder latency_;
+};
+
+}  // namespace
+
+void Vax750::declare_params(params::ParamRegistry& r) const {
+  r.declare({.name = "vax.intersection_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "429 us",
+             .min = "0 s",
+             .description = "T_i: average time of one ray/object intersection calculation on "
+                            "the VAX-11/750 with FPU",
+             .source = "seed 001 L317"});
+  r.declare({.name = "vax.ray_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "710 us",
+             .min = "0 s",
+             .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
+             .source = "seed 001 L318"});
+}
+
+FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
+  // The VAX runs the ordinary software ray tracer: the functional renderer's own geometry.
+  return make_functional_twin(scene, functional::read_render_settings(r));
+}
+
+RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& r,
+                      const RunOptions& opts) const {
+  const auto start = std::chrono::steady_clock::now();
+  const int w = opts.width > 0 ? opts.width : scene.camera.width;
+  const int h = opts.height > 0 ? opts.height : scene.camera.height;
+  functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
+  const std::uint64_t objects = scene.primitives.size();
+  begin_simulation(r);
+  VaxHost host("vax", scene, *twin.tracer, frame, twin.settings,
+               from_ps(r.get_time_ps("vax.ray_time")),
+               from_ps(r.get_time_ps("vax.intersection_time")), objects, opts);
+  sc_core::sc_start();
+
+  RunResult res;
+  res.simulated_time_s = host.frame_time().to_seconds();
+  modules::StatsRegistry stats;
+  stats.module("vax").busy = host.busy();
+  stats.module("vax").values["rays"] = static_cast<double>(frame.counters().total_rays());
+  res.stats["modules"] = stats.to_json(host.frame_time());
+  res.stats["ray_latency_s"] = host.latency().to_json();
+  // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
+  res.stats["intersection_tests"] = frame.counters().total_rays() * objects;
+  res.stats["vax"] = {{"objects", objects},
+                      {"intersection_time_s", r.get_time_s("vax.intersection_time")},
+                      {"ray_time_s", r.get_time_s("vax.ray_time")},
+                      {"intersection_tests_charged",
+                       static_cast<double>(frame.counters().total_rays()) *
+                           static_cast<double>(objects)}};
+  res.image = frame.finish(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return res;
+}
+
+}  // namespace rtsim::platform

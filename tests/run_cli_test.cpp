@@ -1,0 +1,159 @@
+// End-to-end tests of `rtsim run` (the SystemC machines): outputs and keys, the image equal
+// to the machine's functional twin, agreement with the plain functional renderer, quantum
+// independence of the image, the VAX formula, bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::compare_images;
+using rtsim::test::read_file;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+using rtsim::test::shared_path;
+
+namespace {
+
+nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
+
+fs::path run_ok(const std::string& tag, const std::string& args) {
+  const auto dir = scratch_dir(tag);
+  const auto r = run_rtsim(args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  return dir;
+}
+
+}  // namespace
+
+TEST(RunCli, PeripheralWritesTheDocumentedStats) {
+  const auto dir = run_ok("run-keys",
+                          "run --machine ullner-peripheral --scene builtin:ullner-cubes "
+                          "--width 40 --height 30 --overhead --aov id,depth");
+  for (const char* f : {"image.png", "image.exr", "stats.json", "id.exr", "depth.exr"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const auto s = read_json(dir / "stats.json");
+  for (const char* key : {"machine", "scene", "width", "height", "simulated_time_s", "wall_time_s",
+                          "functional_wall_time_s", "overhead_ratio", "rays",
+                          "intersection_tests", "modules", "ray_latency_s"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_EQ(s["machine"], "ullner-peripheral");
+  EXPECT_EQ(s["width"], 40);
+  EXPECT_EQ(s["rays"]["primary"], 40 * 30);
+  for (const char* k : {"total", "primary", "shadow", "reflected", "refracted"})
+    EXPECT_TRUE(s["rays"].contains(k)) << k;
+  for (const char* k : {"mean", "p50", "p99"}) EXPECT_GT(s["ray_latency_s"][k].get<double>(), 0);
+  for (const char* m : {"host", "peripheral.pipeline", "peripheral.ray_queue"}) {
+    ASSERT_TRUE(s["modules"].contains(m)) << m;
+    EXPECT_TRUE(s["modules"][m].contains("busy_s"));
+    EXPECT_TRUE(s["modules"][m].contains("utilization"));
+  }
+  EXPECT_TRUE(s["functional_image_identical"].get<bool>());
+  EXPECT_GT(s["simulated_time_s"].get<double>(), 0.0);
+}
+
+TEST(RunCli, ImageEqualsTheMachinesFunctionalTwinByteForByte) {
+  struct Case {
+    const char* tag;
+    std::string machine_args;
+  };
+  const std::vector<Case> cases = {
+      {"brute", "--machine ullner-peripheral --scene builtin:ullner-cubes"},
+      {"grid", "--machine ullner-peripheral --scene builtin:ullner-cubes "
+               "-p peripheral.grid.divisions=6"},
+      {"printed", "--machine ullner-peripheral --scene builtin:ullner-cubes "
+                  "-p peripheral.grid.divisions=6 -p peripheral.grid.dda=as-printed"},
+      {"tetra", "--machine ullner-peripheral --scene " + shared_path("scenes/tetra-s3.nff")},
+      {"vax", "--machine vax-750 --scene " + shared_path("scenes/balls-s1.nff")},
+  };
+  for (const auto& c : cases) {
+    const std::string size = " --width 48 --height 40 --aov id ";
+    const auto run = run_ok(std::string("twin-run-") + c.tag, "run " + c.machine_args + size);
+    const auto render =
+        run_ok(std::string("twin-render-") + c.tag, "render " + c.machine_args + size);
+    EXPECT_EQ(read_file(run / "image.png"), read_file(render / "image.png")) << c.tag;
+    EXPECT_EQ(read_file(run / "image.exr"), read_file(render / "image.exr")) << c.tag;
+    EXPECT_EQ(read_file(run / "id.exr"), read_file(render / "id.exr")) << c.tag;
+  }
+}
+
+TEST(RunCli, MachinesAgreeWithThePlainFunctionalRenderer) {
+  // Ullner's quads versus the renderer's triangles, and the grid versus the shell hierarchy:
+  // different kernels and searches, the same picture. Tolerance: pixels over 2/255 at most
+  // 0.5% (rays through polygon edges may be decided differently by the two kernels).
+  for (const std::string& scene : {std::string("builtin:ullner-cubes"),
+                                  shared_path("scenes/tetra-s3.nff")}) {
+    const std::string size = " --width 64 --height 64 --scene " + scene;
+    const auto run = run_ok("agree-run", "run --machine ullner-peripheral" + size);
+    const auto plain = run_ok("agree-plain", "render" + size);
+    const auto cr = compare_images((run / "image.png").string(), (plain / "image.png").string(),
+                                   2.0f / 255.0f);
+    std::cout << scene << ": peripheral vs functional: " << cr.nfail
+              << " of 4096 pixels over 2/255, max error " << cr.maxerror << "\n";
+    EXPECT_LE(cr.nfail, 20u);
+  }
+}
+
+TEST(RunCli, ImageDoesNotDependOnTheQuantumAndRunsAreDeterministic) {
+  const std::string base =
+      "run --machine ullner-peripheral --scene builtin:ullner-cubes --width 32 --height 32 "
+      "-p peripheral.grid.divisions=5";
+  const auto a = run_ok("quantum-0a", base + " --quantum 0");
+  const auto b = run_ok("quantum-0b", base + " --quantum 0");
+  const auto c = run_ok("quantum-1ms", base + " --quantum \"1 ms\"");
+  EXPECT_EQ(read_file(a / "image.png"), read_file(b / "image.png"));
+  EXPECT_EQ(read_file(a / "image.exr"), read_file(c / "image.exr"));
+  auto sa = read_json(a / "stats.json");
+  auto sb = read_json(b / "stats.json");
+  EXPECT_EQ(sa["simulated_time_s"], sb["simulated_time_s"]);
+  EXPECT_EQ(sa["modules"], sb["modules"]);
+  EXPECT_EQ(sa["ray_latency_s"], sb["ray_latency_s"]);
+}
+
+TEST(RunCli, VaxFrameTimeIsGaudetsFormula) {
+  // T_t = R_t (T_s + T_i O) (seed 001 L326) with the run's own ray count: pure arithmetic,
+  // so the tolerance is rounding only (1e-9 relative).
+  const auto dir =
+      run_ok("vax", "run --machine vax-750 --scene " + shared_path("scenes/balls-s1.nff") +
+                        " --width 24 --height 24");
+  const auto s = read_json(dir / "stats.json");
+  const double rays = s["rays"]["total"].get<double>();
+  const double objects = s["scene_stats"]["primitives"].get<double>();
+  const double expected = rays * (710e-6 + 429e-6 * objects);
+  const double got = s["simulated_time_s"].get<double>();
+  std::cout << "vax-750: simulated " << got << " s, formula " << expected << " s\n";
+  EXPECT_NEAR(got, expected, expected * 1e-9);
+  EXPECT_EQ(s["intersection_tests"].get<double>(), rays * objects);
+}
+
+TEST(RunCli, BadMachineSceneOrQuantumIsBadInputAndWritesNothing) {
+  const auto dir = scratch_dir("run-bad");
+  auto r = run_rtsim("run --machine ulner-peripheral --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("ullner-peripheral"), std::string::npos) << r.output;
+  r = run_rtsim("run --machine ullner-peripheral --scene " + shared_path("scenes/balls-s1.nff") +
+                " --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("polygons only"), std::string::npos) << r.output;
+  r = run_rtsim("run --quantum 5 --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = run_rtsim("run -p peripheral.adder_stages=2 --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;  // 1 or 3 only
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(RunCli, ListsMachinesAndTheirParameters) {
+  auto r = run_rtsim("list machines");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("vax-750"), std::string::npos);
+  EXPECT_NE(r.output.find("ullner-peripheral"), std::string::npos);
+  r = run_rtsim("list params --machine ullner-peripheral");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* name : {"peripheral.intersect_interval", "peripheral.adder_stages",
+                           "peripheral.grid.divisions", "peripheral.grid.dda",
+                           "peripheral.grid.step_time", "host.clock", "quantum"})
+    EXPECT_NE(r.output.find(name), std::string::npos) << name;
+  EXPECT_NE(r.output.find("333.333 ns"), std::string::npos);
+  EXPECT_NE(r.output.find("seed 000 L654"), std::string::npos);
+}
