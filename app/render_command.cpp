@@ -1,7 +1,7 @@
 // `rtsim render`: the functional renderer from the command line.
 #include <cmath>
-#include <iostream>
 #include <fstream>
+#include <iostream>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"

@@ -8,6 +8,7 @@
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
+#include "scenes/generators/ullner_random.hpp"
 #include "scenes/input_error.hpp"
 #include "scenes/nff_reader.hpp"
 #include "scenes/scene_text.hpp"
@@ -22,6 +23,11 @@ constexpr std::size_t kMaxSuggestions = 3;
 /// The npp scenes listed by name: Gaudet's Fig 6-1 and Figs 6-9..6-11 use pp in this set.
 constexpr std::array<int, 3> kListedNppBranching = {2, 4, 8};
 constexpr std::array<int, 5> kListedNppSpheres = {4, 8, 12, 16, 20};
+/// The ullner-random scenes listed by name: decades around Ullner's n_p = 1000 (seed 000 L654)
+/// up to the 10^6 polygons the peripheral scales to (L751), for the "various scene
+/// complexities" of Figs 2-20 to 2-22 (L662).
+constexpr std::array<std::size_t, 5> kListedUllnerRandomCounts = {100, 1000, 10'000, 100'000,
+                                                                  1'000'000};
 
 std::string lower(std::string_view s) {
   std::string out(s);
@@ -33,7 +39,9 @@ std::string lower(std::string_view s) {
 
 }  // namespace
 
-GeneratorSeeds default_generator_seeds() { return {kNppDefaultSeed, kUllnerDefaultSeed}; }
+GeneratorSeeds default_generator_seeds() {
+  return {kNppDefaultSeed, kUllnerDefaultSeed, kUllnerRandomDefaultSeed};
+}
 
 const std::vector<BuiltinScene>& builtin_scenes() {
   static const std::vector<BuiltinScene> scenes = [] {
@@ -42,6 +50,11 @@ const std::vector<BuiltinScene>& builtin_scenes() {
         {"default", "checkerboard floor, mirror, glass and plastic spheres, 2 lights (69 prims)"});
     list.push_back({"ullner-cubes",
                     "Ullner Fig 2-19: 83 randomly oriented cubes as 498 quads in the unit cube"});
+    for (std::size_t n : kListedUllnerRandomCounts) {
+      list.push_back({std::string(kUllnerRandomPrefix) + std::to_string(n),
+                      cat("Ullner's analytic model: N = ", n,
+                          " random squares of total area 2 in the unit cube, no lights")});
+    }
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -83,6 +96,14 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   int n = 0;
   int pp = 0;
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);
+  if (const auto polygons = parse_ullner_random_name(name)) {
+    if (*polygons < kUllnerRandomMinPolygons || *polygons > kUllnerRandomMaxPolygons) {
+      throw InputError("", 0,
+                       cat("builtin scene ", quote_token(name), ": ullner-random-N takes N from ",
+                           kUllnerRandomMinPolygons, " to ", kUllnerRandomMaxPolygons));
+    }
+    return make_ullner_random(*polygons, seeds.ullner_random);
+  }
 
   std::vector<std::pair<std::size_t, std::string>> ranked;
   for (const auto& s : builtin_scenes()) {
@@ -100,7 +121,9 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
     if (ranked[i].first > ranked[0].first + 1) break;
     msg += cat(i == 0 ? "" : ", ", kBuiltinPrefix, ranked[i].second);
   }
-  msg += "? (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99)";
+  msg += cat("? (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99; ",
+             kUllnerRandomPrefix, "N takes N in ", kUllnerRandomMinPolygons, "..",
+             kUllnerRandomMaxPolygons, ")");
   throw InputError("", 0, msg);
 }
 

@@ -19,6 +19,7 @@ inline constexpr std::string_view kBuiltinPrefix = "builtin:";
 struct GeneratorSeeds {
   std::uint64_t npp;
   std::uint64_t ullner_cubes;
+  std::uint64_t ullner_random;  ///< builtin:ullner-random-N
 };
 GeneratorSeeds default_generator_seeds();
 
@@ -27,9 +28,11 @@ struct BuiltinScene {
   std::string description;  ///< one line, for `rtsim list scenes`
 };
 
-/// Every builtin scene, in listing order: default, ullner-cubes, then the npp scenes n = 2, 4, 8
-/// with pp = 04, 08, 12, 16, 20 (Gaudet's Fig 6-1 and §6.2 set). make_builtin_scene also accepts
-/// any other npp-NPP with n in {2,4,8} and pp in 01..99.
+/// Every builtin scene, in listing order: default, ullner-cubes, ullner-random-N for N = 100,
+/// 1000, 10000, 100000, 1000000 (Ullner's analytic-model scene, seed 000 L654), then the npp
+/// scenes n = 2, 4, 8 with pp = 04, 08, 12, 16, 20 (Gaudet's Fig 6-1 and §6.2 set).
+/// make_builtin_scene also accepts any other npp-NPP with n in {2,4,8} and pp in 01..99, and
+/// any ullner-random-N with N in [kUllnerRandomMinPolygons, kUllnerRandomMaxPolygons].
 const std::vector<BuiltinScene>& builtin_scenes();
 std::vector<std::string> builtin_scene_names();
 

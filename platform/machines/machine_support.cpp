@@ -7,10 +7,6 @@
 #include "platform/functional/auto_view.hpp"
 #include "platform/functional/scene_tracer.hpp"
 
-// SystemC's library calls sc_main from its own main(); rtsim has its own main and starts the
-// simulation itself, so this is never called.
-int sc_main(int, char*[]) { return 0; }
-
 namespace rtsim::platform {
 
 FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::RenderSettings& s) {

@@ -1,0 +1,451 @@
+// Trace writers: the Perfetto/Chrome JSON trace (tracks, metadata, times, arguments, dropped
+// events, escaping, determinism, streaming) and the VCD signal trace (header, $var lines, value
+// changes at the simulated times). Scenarios that call sc_start run in a forked child (one
+// SystemC simulation per process, tests/systemc_test_support.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/trace/perfetto_trace.hpp"
+#include "modules/trace/vcd_trace.hpp"
+#include "systemc_test_support.hpp"
+#include "test_support.hpp"
+
+int sc_main(int, char*[]) { return 0; }
+
+namespace rtsim::modules {
+namespace {
+
+using nlohmann::json;
+using rtsim::test::read_file;
+using rtsim::test::run_in_child;
+using rtsim::test::scratch_dir;
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  auto dir = scratch_dir(name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+json parse_trace(const std::filesystem::path& p) {
+  const std::string text = read_file(p);
+  EXPECT_FALSE(text.empty()) << p;
+  return json::parse(text);  // throws (fails the test) on malformed JSON
+}
+
+/// Events of one phase.
+std::vector<json> events_of(const json& trace, const std::string& phase) {
+  std::vector<json> out;
+  for (const auto& e : trace.at("traceEvents")) {
+    if (e.at("ph") == phase) out.push_back(e);
+  }
+  return out;
+}
+
+/// The metadata event `what` for (pid, tid), or null.
+json metadata(const json& trace, const std::string& what, int pid, int tid) {
+  for (const auto& e : trace.at("traceEvents")) {
+    if (e.at("ph") == "M" && e.at("name") == what && e.at("pid") == pid && e.at("tid") == tid) {
+      return e;
+    }
+  }
+  return nullptr;
+}
+
+// --- time formatting ---------------------------------------------------------------------------
+
+TEST(PerfettoTrace, TimesAreMicrosecondsWithPicosecondDigits) {
+  EXPECT_EQ(perfetto_us_from_seconds(0.0), "0.000000");
+  EXPECT_EQ(perfetto_us_from_seconds(-0.0), "0.000000");
+  EXPECT_EQ(perfetto_us_from_seconds(1.5e-6), "1.500000");
+  EXPECT_EQ(perfetto_us_from_seconds(1e-12), "0.000001");  // one picosecond
+  EXPECT_EQ(perfetto_us_from_seconds(2.5e-9), "0.002500");
+  EXPECT_EQ(perfetto_us_from_seconds(87.4), "87400000.000000");
+  EXPECT_THROW(perfetto_us_from_seconds(-1e-9), std::invalid_argument);
+  EXPECT_THROW(perfetto_us_from_seconds(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(perfetto_us_from_seconds(std::numeric_limits<double>::infinity()),
+               std::invalid_argument);
+  // Integer picoseconds are exact at any magnitude (here ~5 hours).
+  EXPECT_EQ(perfetto_us_from_ps(0), "0.000000");
+  EXPECT_EQ(perfetto_us_from_ps(1), "0.000001");
+  EXPECT_EQ(perfetto_us_from_ps(1'234'567), "1.234567");
+  EXPECT_EQ(perfetto_us_from_ps(18'000'000'000'000'001ull), "18000000000.000001");
+}
+
+TEST(PerfettoTrace, JsonStringsAreEscapedAndValidUtf8) {
+  EXPECT_EQ(perfetto_json_string("plain"), "\"plain\"");
+  EXPECT_EQ(perfetto_json_string("a\"b\\c\nd\te\x01"), "\"a\\\"b\\\\c\\nd\\te\\u0001\"");
+  EXPECT_EQ(perfetto_json_string("\xC2\xB5s"), "\"\xC2\xB5s\"");      // "µs" kept
+  EXPECT_EQ(perfetto_json_string("x\xFFy"), "\"x\\ufffdy\"");         // invalid byte
+  EXPECT_EQ(perfetto_json_string("\xE2\x82"), "\"\\ufffd\\ufffd\"");  // truncated sequence
+  EXPECT_EQ(perfetto_json_string("\xED\xA0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // surrogate
+  // Whatever the bytes, nlohmann parses the result back.
+  std::string all;
+  for (int c = 0; c < 256; ++c) all += static_cast<char>(c);
+  EXPECT_TRUE(json::accept(perfetto_json_string(all)));
+}
+
+// --- the JSON trace
+// --------------------------------------------------------------------------------
+
+TEST(PerfettoTrace, ModuleHierarchyBecomesProcessesAndThreads) {
+  const auto dir = fresh_dir("perfetto-tracks");
+  const auto path = dir / "trace.json";
+  {
+    PerfettoTrace trace(path, 100);
+    const int pipeline = trace.track("peripheral.pipeline");
+    const int memory = trace.track("peripheral.memory.bank0");
+    const int host = trace.track("host");
+    EXPECT_EQ(pipeline, 0);
+    EXPECT_EQ(memory, 1);
+    EXPECT_EQ(host, 2);
+    EXPECT_EQ(trace.track("peripheral.pipeline"), pipeline);  // idempotent
+    EXPECT_EQ(trace.track("host"), host);
+    EXPECT_EQ(trace.track_count(), 3u);
+    EXPECT_THROW(trace.track(""), std::invalid_argument);
+    EXPECT_THROW(trace.track(".x"), std::invalid_argument);
+    // Before close the trace is only the partial file.
+    EXPECT_TRUE(std::filesystem::exists(dir / "trace.json.partial"));
+    EXPECT_FALSE(std::filesystem::exists(path));
+  }  // the destructor closes
+  EXPECT_FALSE(std::filesystem::exists(dir / "trace.json.partial"));
+  const json t = parse_trace(path);
+  EXPECT_EQ(t.at("displayTimeUnit"), "ns");
+  // Two processes, three threads; process of the peripheral tracks shared.
+  std::map<std::string, int> pid_of_process;
+  std::map<std::string, std::pair<int, int>> thread;
+  for (const auto& e : events_of(t, "M")) {
+    if (e.at("name") == "process_name") pid_of_process[e["args"]["name"]] = e["pid"];
+    if (e.at("name") == "thread_name") thread[e["args"]["name"]] = {e["pid"], e["tid"]};
+  }
+  ASSERT_EQ(pid_of_process.size(), 2u);
+  ASSERT_EQ(thread.size(), 3u);
+  const int peripheral = pid_of_process.at("peripheral");
+  EXPECT_EQ(thread.at("peripheral.pipeline").first, peripheral);
+  EXPECT_EQ(thread.at("peripheral.memory.bank0").first, peripheral);
+  EXPECT_EQ(thread.at("host").first, pid_of_process.at("host"));
+  // No tid equals a pid (a viewer would take it for the process's main thread); all distinct.
+  std::set<int> ids;
+  for (const auto& [name, pid] : pid_of_process) ids.insert(pid);
+  for (const auto& [name, pt] : thread) ids.insert(pt.second);
+  EXPECT_EQ(ids.size(), 5u);
+  // Sort indices keep the creation order.
+  for (const auto& [name, pt] : thread) {
+    const json s = metadata(t, "thread_sort_index", pt.first, pt.second);
+    ASSERT_FALSE(s.is_null()) << name;
+    EXPECT_EQ(s["args"]["sort_index"], pt.second);
+  }
+  EXPECT_FALSE(metadata(t, "process_sort_index", peripheral, 0).is_null());
+  EXPECT_EQ(t["otherData"]["rtsim_events_written"], 0);
+  EXPECT_EQ(t["otherData"]["rtsim_events_dropped"], 0);
+}
+
+TEST(PerfettoTrace, SlicesInstantsAndCountersCarryTheirTimes) {
+  const auto dir = fresh_dir("perfetto-events");
+  const auto path = dir / "trace.json";
+  PerfettoTrace trace(path, 100);
+  const int pipe = trace.track("peripheral.pipeline");
+  const int queue = trace.track("peripheral.queue");
+  trace.slice(pipe, "ray 17", 1.5e-6, 1000 / 3.0 * 1e-6, {{"ray", 17}, {"polygons", 1000}});
+  trace.slice(pipe, "ray 18", 1e-12, 2.5e-9);  // picosecond start
+  trace.slice(pipe, "early", 0.5e-6, 1e-6);    // out of time order: allowed
+  trace.instant(pipe, "hit", 2e-6);
+  trace.counter(queue, "depth", 3e-6, 4);
+  trace.counter(queue, "depth", 4e-6, 0.5);
+  // sc_time overloads are exact in picoseconds.
+  trace.slice(pipe, "sc", sc_core::sc_time(1'234'567, sc_core::SC_PS),
+              sc_core::sc_time(400, sc_core::SC_NS), {{"n", 2}});
+  trace.instant(pipe, "sc-hit", sc_core::sc_time(7, sc_core::SC_PS));
+  trace.counter(queue, "depth", sc_core::sc_time(5, sc_core::SC_US), 1);
+  EXPECT_EQ(trace.events_written(), 9u);
+  trace.close();
+  trace.close();  // idempotent
+  EXPECT_FALSE(trace.is_open());
+
+  const std::string text = read_file(path);
+  // Times as written (microseconds, six decimals).
+  EXPECT_NE(text.find("\"ts\":1.500000,"), std::string::npos);
+  EXPECT_NE(text.find("\"dur\":333.333333,"), std::string::npos);
+  EXPECT_NE(text.find("\"ts\":0.000001,"), std::string::npos);
+  EXPECT_NE(text.find("\"dur\":0.002500"), std::string::npos);
+  EXPECT_NE(text.find("\"ts\":1.234567,"), std::string::npos);
+  EXPECT_NE(text.find("\"dur\":0.400000,"), std::string::npos);
+  EXPECT_NE(text.find("\"ts\":0.000007,"), std::string::npos);
+
+  const json t = json::parse(text);
+  const auto slices = events_of(t, "X");
+  ASSERT_EQ(slices.size(), 4u);
+  EXPECT_EQ(slices[0]["name"], "ray 17");
+  EXPECT_DOUBLE_EQ(slices[0]["ts"].get<double>(), 1.5);
+  EXPECT_NEAR(slices[0]["dur"].get<double>(), 1000 / 3.0, 1e-6);
+  EXPECT_EQ(slices[0]["args"]["ray"], 17);
+  EXPECT_EQ(slices[0]["args"]["polygons"], 1000);
+  EXPECT_FALSE(slices[1].contains("args"));
+  EXPECT_DOUBLE_EQ(slices[2]["ts"].get<double>(), 0.5);
+  EXPECT_EQ(slices[3]["args"]["n"], 2);
+  const auto instants = events_of(t, "i");
+  ASSERT_EQ(instants.size(), 2u);
+  EXPECT_EQ(instants[0]["name"], "hit");
+  EXPECT_EQ(instants[0]["s"], "t");
+  EXPECT_DOUBLE_EQ(instants[0]["ts"].get<double>(), 2.0);
+  const auto counters = events_of(t, "C");
+  ASSERT_EQ(counters.size(), 3u);
+  EXPECT_EQ(counters[0]["name"], "peripheral.queue.depth");
+  EXPECT_EQ(counters[0]["args"]["value"], 4);
+  EXPECT_DOUBLE_EQ(counters[1]["args"]["value"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(counters[2]["ts"].get<double>(), 5.0);
+  // Every event sits on its track's pid/tid.
+  const json thread = metadata(t, "thread_name", slices[0]["pid"], slices[0]["tid"]);
+  ASSERT_FALSE(thread.is_null());
+  EXPECT_EQ(thread["args"]["name"], "peripheral.pipeline");
+  EXPECT_EQ(metadata(t, "thread_name", counters[0]["pid"], counters[0]["tid"])["args"]["name"],
+            "peripheral.queue");
+}
+
+TEST(PerfettoTrace, EventsBeyondTheLimitAreDroppedAndCounted) {
+  const auto dir = fresh_dir("perfetto-drop");
+  const auto path = dir / "trace.json";
+  PerfettoTrace trace(path, 3);
+  const int a = trace.track("a.x");
+  for (int i = 0; i < 5; ++i) trace.slice(a, "s", i * 1e-6, 1e-6);
+  trace.instant(a, "i", 0.0);
+  const int b = trace.track("b");  // metadata is never dropped
+  trace.counter(b, "c", 0.0, 1.0);
+  EXPECT_EQ(trace.events_written(), 3u);
+  EXPECT_EQ(trace.events_dropped(), 4u);
+  trace.close();
+  const json t = parse_trace(path);
+  EXPECT_EQ(events_of(t, "X").size(), 3u);
+  EXPECT_EQ(events_of(t, "i").size(), 0u);
+  EXPECT_EQ(events_of(t, "C").size(), 0u);
+  EXPECT_EQ(events_of(t, "M").size(), 8u);  // 2 processes x 2 + 2 threads x 2
+  EXPECT_EQ(t["otherData"]["rtsim_events_written"], 3);
+  EXPECT_EQ(t["otherData"]["rtsim_events_dropped"], 4);
+  EXPECT_EQ(t["otherData"]["rtsim_max_events"], 3);
+}
+
+TEST(PerfettoTrace, NamesAreEscaped) {
+  const auto dir = fresh_dir("perfetto-escape");
+  const auto path = dir / "trace.json";
+  const std::string odd = "say \"hi\"\\\n\t\x01 \xC2\xB5s \xFF";
+  {
+    PerfettoTrace trace(path, 10);
+    const int tr = trace.track("top.\"quoted\" module");
+    trace.slice(tr, odd, 0.0, 1e-6, {{"arg \"x\"", 1}});
+  }
+  const json t = parse_trace(path);
+  const auto slices = events_of(t, "X");
+  ASSERT_EQ(slices.size(), 1u);
+  EXPECT_EQ(slices[0]["name"], "say \"hi\"\\\n\t\x01 \xC2\xB5s \xEF\xBF\xBD");
+  EXPECT_EQ(slices[0]["args"]["arg \"x\""], 1);
+  EXPECT_EQ(metadata(t, "thread_name", slices[0]["pid"], slices[0]["tid"])["args"]["name"],
+            "top.\"quoted\" module");
+}
+
+TEST(PerfettoTrace, SameCallsGiveTheSameBytes) {
+  const auto dir = fresh_dir("perfetto-determinism");
+  auto write = [](const std::filesystem::path& p) {
+    PerfettoTrace trace(p, 50);
+    for (int i = 0; i < 40; ++i) {
+      const int tr = trace.track(i % 3 == 0 ? "host" : "peripheral.unit" + std::to_string(i % 4));
+      trace.slice(tr, "job " + std::to_string(i), 1e-7 * (40 - i), 3.3e-8 * i, {{"i", i}});
+      trace.counter(tr, "q", 1e-7 * i, i % 5);
+    }
+  };
+  write(dir / "a.json");
+  write(dir / "b.json");
+  const std::string a = read_file(dir / "a.json");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, read_file(dir / "b.json"));
+  EXPECT_TRUE(json::accept(a));
+}
+
+TEST(PerfettoTrace, EventsAreStreamedToDisk) {
+  // 20,000 events of ~100 bytes: the partial file holds nearly all of them before close, so the
+  // writer keeps only its stream buffer in memory (tolerance: one buffer, 64 KiB, unwritten).
+  const auto dir = fresh_dir("perfetto-stream");
+  PerfettoTrace trace(dir / "trace.json", 1'000'000);
+  const int tr = trace.track("peripheral.pipeline");
+  for (int i = 0; i < 20'000; ++i) trace.slice(tr, "ray", i * 1e-6, 1e-6, {{"ray", i}});
+  const auto on_disk = std::filesystem::file_size(dir / "trace.json.partial");
+  std::cout << "partial file before close: " << on_disk << " bytes\n";
+  EXPECT_GT(on_disk, 20'000u * 80u - 65'536u);
+  trace.close();
+  EXPECT_EQ(parse_trace(dir / "trace.json")["traceEvents"].size(), 20'000u + 4u);  // + metadata
+  std::filesystem::remove_all(dir);                                                // 2 MB
+}
+
+TEST(PerfettoTrace, MisuseIsReported) {
+  const auto dir = fresh_dir("perfetto-misuse");
+  PerfettoTrace trace(dir / "trace.json", 10);
+  const int tr = trace.track("m");
+  EXPECT_THROW(trace.slice(tr + 1, "x", 0.0, 1.0), std::out_of_range);
+  EXPECT_THROW(trace.slice(-1, "x", 0.0, 1.0), std::out_of_range);
+  EXPECT_THROW(trace.slice(tr, "x", 0.0, -1e-9), std::invalid_argument);
+  EXPECT_THROW(trace.slice(tr, "x", std::nan(""), 1.0), std::invalid_argument);
+  EXPECT_THROW(trace.slice(tr, "x", 0.0, 1.0, {{"a", std::nan("")}}), std::invalid_argument);
+  EXPECT_THROW(trace.counter(tr, "x", 0.0, std::numeric_limits<double>::infinity()),
+               std::invalid_argument);
+  EXPECT_EQ(trace.events_written(), 0u);  // rejected calls write nothing
+  trace.close();
+  EXPECT_NO_THROW((void)parse_trace(dir / "trace.json"));
+  EXPECT_THROW(PerfettoTrace(dir / "no-such-dir" / "t.json", 1), std::runtime_error);
+}
+
+TEST(PerfettoTrace, AbandonLeavesNoFile) {
+  const auto dir = fresh_dir("perfetto-abandon");
+  {
+    PerfettoTrace trace(dir / "trace.json", 10);
+    trace.slice(trace.track("m"), "x", 0.0, 1e-6);
+    trace.abandon();
+    trace.close();  // no-op after abandon
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// --- traces from a running simulation --------------------------------------------------------
+
+/// A unit that takes jobs from a queue: busy for kJob per job, the queue drained at kArrivals.
+struct Unit : sc_core::sc_module {
+  sc_core::sc_signal<bool> busy{"busy"};
+  sc_core::sc_signal<int> depth{"depth"};
+  PerfettoTrace* trace = nullptr;
+  int track = -1;
+  SC_HAS_PROCESS(Unit);
+  explicit Unit(sc_core::sc_module_name name) : sc_core::sc_module(name) { SC_THREAD(run); }
+  void run() {
+    using sc_core::SC_NS;
+    using sc_core::sc_time;
+    // t = 10 ns: 2 jobs arrive; each takes 15 ns; idle from 40 ns.
+    wait(sc_time(10, SC_NS));
+    depth.write(2);
+    for (int job = 0; job < 2; ++job) {
+      busy.write(true);
+      const sc_time start = sc_core::sc_time_stamp();
+      if (trace) trace->counter(track, "depth", start, 2 - job);
+      wait(sc_time(15, SC_NS));
+      depth.write(1 - job);
+      if (trace) trace->slice(track, "job", start, sc_time(15, SC_NS), {{"job", job}});
+    }
+    busy.write(false);
+    if (trace) trace->counter(track, "depth", sc_core::sc_time_stamp(), 0);
+  }
+};
+
+TEST(SystemCTrace, VcdHasHeaderVarsAndValueChangesAtSimulatedTimes) {
+  const auto dir = fresh_dir("vcd");
+  const auto vcd_path = dir / "signals.vcd";
+  ASSERT_EQ(run_in_child([&] {
+              struct Top : sc_core::sc_module {
+                Unit unit{"unit"};
+                sc_core::sc_signal<bool> late{"late"};  // never traced
+                explicit Top(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
+              } top("top");
+              VcdTrace vcd(dir / "signals");  // ".vcd" appended
+              EXPECT_EQ(vcd.path(), vcd_path);
+              vcd.trace_busy(top.unit.busy, top.unit.busy.name());
+              vcd.trace_queue_depth(top.unit.depth, top.unit.depth.name());
+              sc_core::sc_start();
+              EXPECT_EQ(sc_core::sc_time_stamp(), sc_core::sc_time(40, sc_core::SC_NS));
+              // Too late to add a signal now.
+              EXPECT_THROW(vcd.trace_busy(top.late, "top.late"), std::logic_error);
+              vcd.close();  // writes the final step (advances time by 1 ps)
+              EXPECT_EQ(sc_core::sc_time_stamp(), sc_core::sc_time(40'001, sc_core::SC_PS));
+              vcd.close();  // idempotent
+              return 0;
+            }),
+            0);
+  const std::string vcd = read_file(vcd_path);
+  ASSERT_FALSE(vcd.empty());
+  EXPECT_NE(vcd.find("$timescale"), std::string::npos);
+  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$timescale\s+1 ps\s+\$end)")));
+  EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
+  // The dotted names became scopes top / unit.
+  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$scope module top \$end)")));
+  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$scope module unit \$end)")));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(vcd, m, std::regex(R"(\$var wire\s+1\s+(\S+)\s+busy\s+\$end)")));
+  const std::string busy_id = m[1];
+  ASSERT_TRUE(std::regex_search(
+      vcd, m, std::regex(R"(\$var wire\s+32\s+(\S+)\s+depth(\s+\[31:0\])?\s+\$end)")));
+  const std::string depth_id = m[1];
+  // Initial values, then the value changes per time stamp (ps).
+  EXPECT_TRUE(std::regex_search(
+      vcd, std::regex("\\$dumpvars\\s+0" + busy_id + "\\s+b0 " + depth_id + "\\s+\\$end")));
+  std::map<long long, std::vector<std::string>> changes;
+  long long now = -1;
+  std::istringstream lines(vcd.substr(vcd.find("$enddefinitions")));
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line[0] == '#') {
+      now = std::stoll(line.substr(1));
+    } else if (now >= 0 && !line.empty() && line[0] != '$') {
+      changes[now].push_back(line);
+    }
+  }
+  auto has = [&](long long t, const std::string& change) {
+    const auto& v = changes[t];
+    return std::find(v.begin(), v.end(), change) != v.end();
+  };
+  const auto bits = [](int v) {
+    std::string s;
+    for (int b = 31; b >= 0; --b) s += ((v >> b) & 1) ? '1' : '0';
+    const auto first = s.find('1');
+    return "b" + (first == std::string::npos ? std::string("0") : s.substr(first));
+  };
+  EXPECT_TRUE(has(10'000, "1" + busy_id)) << "busy rises at 10 ns";
+  EXPECT_TRUE(has(10'000, bits(2) + " " + depth_id));
+  EXPECT_TRUE(has(25'000, bits(1) + " " + depth_id));
+  EXPECT_TRUE(has(40'000, bits(0) + " " + depth_id));
+  EXPECT_TRUE(has(40'000, "0" + busy_id)) << "busy falls at 40 ns";
+  // Nothing changes between the events.
+  for (const auto& [t, v] : changes) {
+    EXPECT_TRUE(t == 10'000 || t == 25'000 || t == 40'000 || (t == 40'001 && v.empty()))
+        << "change at " << t;
+  }
+}
+
+TEST(SystemCTrace, PerfettoSlicesFromARunningSimulation) {
+  const auto dir = fresh_dir("perfetto-sim");
+  const auto path = dir / "trace.json";
+  ASSERT_EQ(run_in_child([&] {
+              PerfettoTrace trace(path, 100);
+              Unit unit("peripheral");
+              unit.trace = &trace;
+              unit.track = trace.track(unit.name());
+              sc_core::sc_start();
+              trace.close();
+              return 0;
+            }),
+            0);
+  const json t = parse_trace(path);
+  const auto slices = events_of(t, "X");
+  ASSERT_EQ(slices.size(), 2u);
+  EXPECT_DOUBLE_EQ(slices[0]["ts"].get<double>(), 0.010);
+  EXPECT_DOUBLE_EQ(slices[0]["dur"].get<double>(), 0.015);
+  EXPECT_DOUBLE_EQ(slices[1]["ts"].get<double>(), 0.025);
+  EXPECT_EQ(slices[1]["args"]["job"], 1);
+  const auto counters = events_of(t, "C");
+  ASSERT_EQ(counters.size(), 3u);
+  EXPECT_EQ(counters[0]["name"], "peripheral.depth");
+  EXPECT_DOUBLE_EQ(counters[2]["ts"].get<double>(), 0.040);
+  EXPECT_EQ(counters[2]["args"]["value"], 0);
+}
+
+TEST(SystemCTrace, RunInChildReportsFailures) {
+  EXPECT_EQ(run_in_child([] { return 7; }), 7);
+  EXPECT_EQ(run_in_child([]() -> int { throw std::runtime_error("boom"); }), 2);
+}
+
+}  // namespace
+}  // namespace rtsim::modules
