@@ -84,6 +84,12 @@ struct SweepPoint {
   double dda_steps_per_ray = 0.0;
   double mean_ray_travel = 0.0;
   double step_time_us = kStepTimeUs;
+  double interval_us = 0.0;
+  double latency_us = 0.0;
+  /// Ullner's t_r = n_d t_d + n_i t_i + t_l (L648) with this run's own counts and times.
+  double formula_us() const {
+    return subvolumes_per_ray * step_time_us + tests_per_ray * interval_us + latency_us;
+  }
 };
 
 double step_time_us_of(const nlohmann::json& stats) {
@@ -111,6 +117,8 @@ SweepPoint read_point(const RunResults& results, const std::string& key, int n_s
   p.dda_steps_per_ray = stats_number(results, key, "peripheral.dda_steps_per_ray");
   p.mean_ray_travel = stats_number(results, key, "peripheral.mean_ray_travel");
   p.step_time_us = step_time_us_of(stats_of(results, key));
+  p.interval_us = stats_number(results, key, "peripheral.intersect_interval_s") * kMicro;
+  p.latency_us = stats_number(results, key, "peripheral.pipeline_latency_s") * kMicro;
   return p;
 }
 
@@ -421,9 +429,25 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
       .workload = sweep_workload,
       .runs = sweep_keys,
       .measure =
-          [sweep, divisions](const RunResults& r) {
-            const auto shape = curve_shape(time_curve(read_sweep(r, sweep, divisions)));
-            return Measured{shape.minimum, shape_note(shape, "us")};
+          [sweep, divisions, thesis_model](const RunResults& r) {
+            const auto points = read_sweep(r, sweep, divisions);
+            const auto shape = curve_shape(time_curve(points));
+            // Where the difference comes from: the model's n_i and n_d against the run's.
+            const auto best = std::find_if(points.begin(), points.end(), [&](const SweepPoint& p) {
+              return p.n_s == static_cast<int>(shape.argmin);
+            });
+            const double ns = best->n_s;
+            const double model_n_d = (ns - 1.0) * thesis_model.d_r + 1.0;  // L614
+            const double model_n_i = (thesis_model.time_per_ray_us(best->n_s, kUllnerPolygons) -
+                                      model_n_d * thesis_model.t_d_us - thesis_model.t_l_us) /
+                                     thesis_model.t_i_us;
+            return Measured{
+                shape.minimum,
+                shape_note(shape, "us") + "; there n_i = " + format_number(best->tests_per_ray) +
+                    " (model " + format_number(model_n_i) +
+                    "), n_d = " + format_number(best->subvolumes_per_ray) + " (model " +
+                    format_number(model_n_d) + "), d_r = " + format_number(best->mean_ray_travel) +
+                    " (model 0.5)"};
           },
   });
   {
@@ -450,6 +474,42 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+
+  plan.figures.push_back(Figure{
+      .id = "V8f",
+      .title = "Time per ray = n_d t_d + n_i t_i + t_l of the run's counts",
+      .seed_ref = "seed 000 L648",
+      .seed_text =
+          "t_r = n_d t_d + n_i t_i + t_l: subvolume steps, intersections, pipeline latency",
+      .seed_value = 0,
+      .seed_display = "t_r (L648)",
+      .unit = "%",
+      .tolerance = Tolerance::range(
+          0, 5,
+          "worst relative difference over the sweep between the reported time per ray and "
+          "L648 evaluated on the same run's n_d, n_i, t_d, t_i, t_l; the auxiliary processor's "
+          "indirection stage (L596) and the hand-over between subvolumes may add a few stage "
+          "times a ray, nothing more"),
+      .workload = sweep_workload,
+      .runs = sweep_keys,
+      .measure =
+          [sweep, divisions](const RunResults& r) {
+            const auto points = read_sweep(r, sweep, divisions);
+            double worst = 0.0;
+            const SweepPoint* where = &points.front();
+            for (const auto& p : points) {
+              const double d = std::abs(p.time_per_ray_us - p.formula_us()) / p.formula_us();
+              if (d > worst) {
+                worst = d;
+                where = &p;
+              }
+            }
+            return Measured{worst * 100.0, "worst at n_s = " + std::to_string(where->n_s) + ": " +
+                                               format_number(where->time_per_ray_us) +
+                                               " us reported, " +
+                                               format_number(where->formula_us()) + " us by L648"};
+          },
+  });
 
   const std::string why_steeper =
       "Ullner: \"much steeper on the left side of the minimum\", \"less costly to overestimate\" "
