@@ -157,3 +157,31 @@ TEST(RunCli, ListsMachinesAndTheirParameters) {
   EXPECT_NE(r.output.find("333.333 ns"), std::string::npos);
   EXPECT_NE(r.output.find("seed 000 L654"), std::string::npos);
 }
+
+TEST(RunCli, TracesOpenAsPerfettoJsonAndVcd) {
+  const auto dir = run_ok("traces",
+                          "run --machine ullner-peripheral --scene builtin:ullner-cubes "
+                          "--width 24 --height 24 -p peripheral.grid.divisions=4 "
+                          "--trace vcd,perfetto");
+  ASSERT_TRUE(fs::exists(dir / "trace.json"));
+  ASSERT_TRUE(fs::exists(dir / "trace.vcd"));
+  const auto trace = read_json(dir / "trace.json");
+  std::map<std::string, int> threads;  // tid -> track name
+  std::map<std::string, int> slices;   // track name -> slices
+  std::map<int, std::string> names;
+  for (const auto& e : trace["traceEvents"])
+    if (e["ph"] == "M" && e["name"] == "thread_name")
+      names[e["tid"].get<int>()] = e["args"]["name"].get<std::string>();
+  for (const auto& e : trace["traceEvents"]) {
+    if (e["ph"] != "X") continue;
+    EXPECT_GE(e["dur"].get<double>(), 0.0);
+    slices[names[e["tid"].get<int>()]]++;
+  }
+  for (const char* track : {"host", "peripheral.pipeline", "peripheral.aux"})
+    EXPECT_GT(slices[track], 0) << track;
+  const std::string vcd = read_file(dir / "trace.vcd");
+  EXPECT_NE(vcd.find("$var wire    1"), std::string::npos);
+  EXPECT_NE(vcd.find("busy"), std::string::npos);
+  EXPECT_NE(vcd.find("depth"), std::string::npos);
+  EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
+}

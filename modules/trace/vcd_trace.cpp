@@ -68,7 +68,7 @@ void VcdTrace::trace_busy(const sc_core::sc_signal<bool>& busy,
   sc_core::sc_trace(file_, busy, hierarchical_name);
 }
 
-void VcdTrace::trace_queue_depth(const sc_core::sc_signal<int>& depth,
+void VcdTrace::trace_queue_depth(const sc_core::sc_signal_in_if<int>& depth,
                                  const std::string& hierarchical_name) {
   check_can_trace(hierarchical_name);
   sc_core::sc_trace(file_, depth, hierarchical_name);

@@ -31,7 +31,7 @@ class VcdTrace {
   /// A module's busy flag, e.g. trace_busy(busy_, name() + std::string(".busy")).
   void trace_busy(const sc_core::sc_signal<bool>& busy, const std::string& hierarchical_name);
   /// A queue's depth (number of entries).
-  void trace_queue_depth(const sc_core::sc_signal<int>& depth,
+  void trace_queue_depth(const sc_core::sc_signal_in_if<int>& depth,
                          const std::string& hierarchical_name);
 
   /// The file, for other sc_trace overloads; owned by this object.

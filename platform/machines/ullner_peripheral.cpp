@@ -212,13 +212,17 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   const std::uint64_t quads = twin.geometry->shapes.size();
 
   begin_simulation(r);
+  MachineTrace trace(opts);
   tasks::ShadeTask shade(scene, twin.settings.shade);
-  ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters());
+  ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters(),
+                                trace);
   ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc,
-                    opts);
+                    opts, trace);
+  peripheral.set_ray_queue_depth_handle(host.ray_queue_depth_handle());
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);
   sc_core::sc_start();
+  trace.close();
 
   const sc_core::sc_time frame_time = host.frame_time();
   RunResult res;

@@ -12,6 +12,7 @@
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machines/machine_support.hpp"
+#include "platform/machines/machine_trace.hpp"
 
 namespace rtsim::platform {
 namespace {
@@ -28,14 +29,16 @@ class VaxHost : public sc_core::sc_module {
   VaxHost(sc_core::sc_module_name name, const scenes::Scene& scene, const Tracer& tracer,
           functional::FrameState& frame, const functional::RenderSettings& settings,
           sc_core::sc_time ray_time, sc_core::sc_time test_time, std::uint64_t objects,
-          const RunOptions& opts)
+          const RunOptions& opts, MachineTrace& trace)
       : sc_core::sc_module(name),
         scene_(scene),
         tracer_(tracer),
         frame_(frame),
         settings_(settings),
         ray_cost_(ray_time + times(test_time, objects)),
-        opts_(opts) {
+        opts_(opts),
+        trace_(trace),
+        busy_signal_(trace.declare_busy("vax")) {
     SC_THREAD(run);
   }
 
@@ -51,6 +54,7 @@ class VaxHost : public sc_core::sc_module {
     tasks::ShadeTask shade(scene_, settings_.shade);
     std::vector<TracedRay> stack, spawned;
     long rays = 0;
+    trace_.busy(busy_signal_, true);
     while (!vision.done()) {
       int sample = 0;
       stack.push_back(vision.next(sample));
@@ -66,6 +70,8 @@ class VaxHost : public sc_core::sc_module {
         shade.on_result(r, found, hit, frame_.fb(), spawned);
         for (auto it = spawned.rbegin(); it != spawned.rend(); ++it) stack.push_back(*it);
         // T_s + O T_i for this ray (seed 001 L326).
+        trace_.slice("vax", "ray", clock.now(), ray_cost_,
+                     {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
         clock.advance(ray_cost_);
         busy_ += ray_cost_;
         latency_.add(ray_cost_);
@@ -74,6 +80,7 @@ class VaxHost : public sc_core::sc_module {
     }
     frame_time_ = clock.now();
     clock.sync();
+    trace_.busy(busy_signal_, false);
   }
 
   const scenes::Scene& scene_;
@@ -82,6 +89,8 @@ class VaxHost : public sc_core::sc_module {
   const functional::RenderSettings& settings_;
   sc_core::sc_time ray_cost_;
   const RunOptions& opts_;
+  MachineTrace& trace_;
+  int busy_signal_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
   modules::LatencyRecorder latency_;
@@ -118,10 +127,12 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
   const std::uint64_t objects = scene.primitives.size();
   begin_simulation(r);
+  MachineTrace trace(opts);
   VaxHost host("vax", scene, *twin.tracer, frame, twin.settings,
                from_ps(r.get_time_ps("vax.ray_time")),
-               from_ps(r.get_time_ps("vax.intersection_time")), objects, opts);
+               from_ps(r.get_time_ps("vax.intersection_time")), objects, opts, trace);
   sc_core::sc_start();
+  trace.close();
 
   RunResult res;
   res.simulated_time_s = host.frame_time().to_seconds();

@@ -16,7 +16,7 @@ constexpr Cost kSendCost{.mem_words = RayRequest::kWireBytes / 4, .instructions 
 Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
            const shading::ShadeParams& shade, functional::FrameState& frame,
            const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-           const PeripheralConfig& peripheral, const RunOptions& opts)
+           const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace)
     : sc_core::sc_module(name),
       ray_out("ray_out"),
       results("result_queue", peripheral.result_queue_depth),
@@ -27,6 +27,10 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
       host_(host),
       peripheral_(peripheral),
       opts_(opts),
+      trace_(trace),
+      busy_signal_(trace.declare_busy("host")),
+      ray_queue_depth_(trace.declare_depth("peripheral.ray_queue")),
+      result_queue_depth_(trace.declare_depth("host.result_queue")),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
       // at the peripheral's arithmetic rate (L584).
       lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
@@ -57,6 +61,7 @@ void Host::send(RayRequest req) {
   // The host only sends when the queue has room, so the ray enters it now.
   req.sent = clock_.now();
   modules::send_message(ray_out, req, clock_.now(), RayRequest::kWireBytes);
+  trace_.depth(ray_queue_depth_, static_cast<int>(ray_queue_.size()), req.sent);
   ++outstanding_;
 }
 
@@ -80,10 +85,15 @@ void Host::run() {
       const shading::TracedRay& r = res.request.ray;
       frame_.counters().count_ray(r.kind);
       if (res.request.first_sample) frame_.record_primary(r.pixel, res.found, res.hit);
+      trace_.depth(result_queue_depth_, static_cast<int>(results.fifo.size()), taken);
       const Cost c = shade.on_result(r, res.found, res.hit, frame_.fb(), spawned);
       frame_.counters().cost += c;
       const sc_core::sc_time t = result_time(c);
+      trace_.busy(busy_signal_, true);
+      trace_.slice("host", "result", clock_.now(), t,
+                   {{"ray", res.request.id}, {"spawned", spawned.size()}});
       clock_.advance(t);
+      trace_.busy(busy_signal_, false);
       busy_ += t;
       for (const auto& s : spawned) backlog_.push_back(RayRequest{s, 0, {}, false});
       backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
@@ -105,7 +115,10 @@ void Host::run() {
       RayRequest req{vision.next(sample), 0, {}, false};
       req.first_sample = sample == 0;
       const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
+      trace_.busy(busy_signal_, true);
+      trace_.slice("host", "vision ray", clock_.now(), t, {{"pixel", req.ray.pixel}});
       clock_.advance(t);
+      trace_.busy(busy_signal_, false);
       busy_ += t;
       ++vision_rays_;
       send(req);

@@ -15,6 +15,7 @@
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner/config.hpp"
 #include "platform/machines/ullner/messages.hpp"
 
@@ -29,7 +30,7 @@ class Host : public sc_core::sc_module {
   Host(sc_core::sc_module_name name, const scenes::Scene& scene,
        const shading::ShadeParams& shade, functional::FrameState& frame,
        const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-       const PeripheralConfig& peripheral, const RunOptions& opts);
+       const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace);
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   sc_core::sc_time busy() const { return busy_; }
@@ -38,6 +39,7 @@ class Host : public sc_core::sc_module {
   std::uint64_t vision_rays() const { return vision_rays_; }
   std::uint64_t results_processed() const { return results_processed_; }
   std::uint64_t backlog_peak() const { return backlog_peak_; }
+  int ray_queue_depth_handle() const { return ray_queue_depth_; }
 
  private:
   void run();
@@ -51,6 +53,10 @@ class Host : public sc_core::sc_module {
   HostConfig host_;
   PeripheralConfig peripheral_;
   const RunOptions& opts_;
+  MachineTrace& trace_;
+  int busy_signal_;
+  int ray_queue_depth_;
+  int result_queue_depth_;
 
   modules::LocalClock clock_;
   modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension

@@ -9,7 +9,8 @@ using modules::times;
 
 Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
-                       const PeripheralConfig& config, TraceCounters& counters)
+                       const PeripheralConfig& config, TraceCounters& counters,
+                       MachineTrace& trace)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
       result_out("result_out"),
@@ -18,6 +19,8 @@ Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
       polygons_(polygons),
       config_(config),
       counters_(counters),
+      trace_(trace),
+      busy_signal_(trace.declare_busy("peripheral")),
       pipe_(config.intersect_interval, config.pipeline_stages) {
   SC_THREAD(run);
 }
@@ -28,12 +31,15 @@ void Peripheral::run() {
   for (;;) {
     if (rays.fifo.empty()) {
       clock_.sync();
+      trace_.busy(busy_signal_, false);
       while (rays.fifo.empty()) sc_core::wait(rays.fifo.put_event());
       clock_.resync();
+      trace_.busy(busy_signal_, true);
     }
     sc_core::sc_time taken;
     RayRequest req = rays.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);
+    trace_.depth(ray_queue_depth_, static_cast<int>(rays.fifo.size()), taken);
     ++rays_;
 
     // The answer (firmware), and what it took.
@@ -59,6 +65,8 @@ void Peripheral::run() {
       const auto batch = pipe_.issue(n, start + times(stage, config_.fetch_stages));
       start = batch.first_issue - times(stage, config_.fetch_stages);
       done = batch.done + times(stage, config_.select_stages);
+      trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
+                   batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", n}});
       clock_.catch_up(batch.next_free - times(stage, config_.fetch_stages));
     } else {
       // Auxiliary processor: n_d subvolumes visited at t_d each (L648, L654), their polygon
@@ -71,6 +79,12 @@ void Peripheral::run() {
           times(stage, config_.indirection_stages + config_.fetch_stages);
       const auto batch = pipe_.issue(tests, aux_free_ + feed);
       done = batch.done + times(stage, config_.select_stages);
+      if (walk > sc_core::SC_ZERO_TIME)
+        trace_.slice("peripheral.aux", "walk", start, walk,
+                     {{"ray", req.id}, {"subvolumes", cells}});
+      if (tests > 0)
+        trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
+                     batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", tests}});
       clock_.catch_up(aux_free_);
       steps_ += steps;
       cells_ += cells;

@@ -19,6 +19,7 @@
 #include "modules/local_clock.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
+#include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner/config.hpp"
 #include "platform/machines/ullner/messages.hpp"
 
@@ -31,9 +32,12 @@ class Peripheral : public sc_core::sc_module {
 
   SC_HAS_PROCESS(Peripheral);
   Peripheral(sc_core::sc_module_name name, const Tracer& tracer, const tasks::ShadeTask& shade,
-             std::uint64_t polygons, const PeripheralConfig& config, TraceCounters& counters);
+             std::uint64_t polygons, const PeripheralConfig& config, TraceCounters& counters,
+             MachineTrace& trace);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
+  /// The trace handle of the ray queue's depth (declared by the host, written here too).
+  void set_ray_queue_depth_handle(int h) { ray_queue_depth_ = h; }
   sc_core::sc_time aux_busy() const { return aux_busy_; }
   std::uint64_t rays_served() const { return rays_; }
   std::uint64_t dda_steps() const { return steps_; }
@@ -51,6 +55,9 @@ class Peripheral : public sc_core::sc_module {
   std::uint64_t polygons_;
   PeripheralConfig config_;
   TraceCounters& counters_;
+  MachineTrace& trace_;
+  int busy_signal_;
+  int ray_queue_depth_ = -1;
   modules::LocalClock clock_;
   modules::PipelinedUnit pipe_;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
