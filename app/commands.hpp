@@ -44,7 +44,18 @@ struct ListArgs {
   ConfigArgs config;
 };
 
+struct ValidateArgs {
+  bool quick = false;
+  int jobs = 1;
+  std::vector<std::string> only;  ///< figure ids or groups ("V2" = V2a, V2b, ...)
+  std::string out_dir;            ///< empty: a temporary folder
+  bool keep = false;              ///< keep the run folders (and the temporary --out)
+  bool list = false;              ///< list the figures, run nothing
+  std::string rtsim;              ///< binary to run; empty: this one
+};
+
 int run_render(const RenderArgs& args);
+int run_validate(const ValidateArgs& args);
 int run_list(const ListArgs& args);
 int run_run(const RunArgs& args);
 

@@ -1,0 +1,185 @@
+// `rtsim validate`: reproduce the seeds' figures by running this binary's `run` and `render`
+// subcommands as separate processes (SystemC allows one simulation per process), and compare.
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/cli.hpp"
+#include "app/commands.hpp"
+#include "app/progress_bar.hpp"
+#include "platform/validation/all_figures.hpp"
+#include "platform/validation/run_queue.hpp"
+#include "platform/validation/validation.hpp"
+
+namespace rtsim::app {
+
+namespace fs = std::filesystem;
+namespace val = rtsim::validation;
+
+namespace {
+
+/// A fresh folder `parent/prefixXXXXXX` (mkdtemp).
+fs::path make_temp_dir(const fs::path& parent, const std::string& prefix) {
+  fs::create_directories(parent);
+  std::string templ = (parent / (prefix + "XXXXXX")).string();
+  if (::mkdtemp(templ.data()) == nullptr)
+    throw std::runtime_error("cannot create a temporary folder in " + parent.string());
+  return templ;
+}
+
+/// Written to a temporary name and renamed (DESIGN.md "Outputs").
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".partial";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+std::string seed_of(const val::Figure& f) {
+  if (!f.seed_display.empty()) return f.seed_display;
+  if (f.seed_from_run) return "from the run";
+  return f.unit.empty() ? val::format_number(f.seed_value)
+                        : val::format_number(f.seed_value) + " " + f.unit;
+}
+
+void print_list(const val::Plan& plan) {
+  // Sweeps have dozens of runs that differ in one parameter: show the first and a count.
+  constexpr std::size_t kRunsShown = 2;
+  for (const auto& f : plan.figures) {
+    std::cout << f.id << "  " << f.title << "  (" << f.seed_ref << ")\n"
+              << "    seed:      " << seed_of(f) << " -- " << f.seed_text << "\n"
+              << "    tolerance: " << f.tolerance.describe() << " -- " << f.tolerance.why << "\n"
+              << "    workload:  " << f.workload << "\n";
+    for (std::size_t i = 0; i < f.runs.size() && i < kRunsShown; ++i) {
+      if (const auto* r = plan.find_run(f.runs[i]))
+        std::cout << "    run:       " << r->command_line() << "\n";
+    }
+    if (f.runs.size() > kRunsShown)
+      std::cout << "    ... and " << f.runs.size() - kRunsShown << " more runs of the sweep\n";
+  }
+}
+
+fs::path this_executable() {
+  std::error_code ec;
+  fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe)");
+  return p;
+}
+
+}  // namespace
+
+int run_validate(const ValidateArgs& args) {
+  val::PlanOptions options;
+  options.quick = args.quick;
+  val::Plan plan;
+  try {
+    plan = val::select_figures(val::make_validation_plan(options), args.only);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "rtsim validate: --only: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (args.list) {
+    print_list(plan);
+    return kExitOk;
+  }
+
+  const fs::path executable = args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
+  const bool temporary_out = args.out_dir.empty();
+  const fs::path out_dir = temporary_out
+                               ? make_temp_dir(fs::temp_directory_path(), "rtsim-validate-")
+                               : fs::absolute(args.out_dir);
+  fs::create_directories(out_dir);
+  const fs::path work_dir = make_temp_dir(out_dir, "runs-");
+
+  std::cout << "rtsim validate: " << plan.figures.size() << " figures, " << plan.runs.size()
+            << " runs, " << args.jobs << " at a time, " << (args.quick ? "quick" : "full")
+            << " mode\n"
+            << std::flush;
+
+  const auto start = std::chrono::steady_clock::now();
+  val::RunResults results;
+  {
+    ProgressBar bar("validate");
+    val::RunQueueOptions q;
+    q.executable = executable;
+    q.work_dir = work_dir;
+    q.jobs = args.jobs;
+    q.on_finished = [&bar](const val::RunOutcome&, int done, int total) {
+      bar.update(done, total);
+    };
+    results = val::run_all(plan.runs, q);
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const auto rows = val::evaluate(plan, results);
+  const auto passed = static_cast<int>(
+      std::count_if(rows.begin(), rows.end(), [](const auto& r) { return r.pass(); }));
+  const bool all_pass = passed == static_cast<int>(rows.size());
+  int failed_runs = 0;
+
+  nlohmann::ordered_json doc;
+  doc["tool"] = "rtsim";
+  doc["version"] = RTSIM_VERSION;
+  doc["command"] = "validate";
+  doc["mode"] = args.quick ? "quick" : "full";
+  doc["executable"] = executable.string();
+  doc["jobs"] = args.jobs;
+  doc["wall_time_s"] = wall;
+  doc["figures"] = rows.size();
+  doc["passed"] = passed;
+  doc["failed"] = static_cast<int>(rows.size()) - passed;
+  doc["pass"] = all_pass;
+  doc["rows"] = val::rows_to_json(rows);
+  auto runs = nlohmann::ordered_json::array();
+  for (const auto& r : plan.runs) {
+    const auto& o = results.at(r.key);
+    if (!o.failure.empty()) ++failed_runs;
+    nlohmann::ordered_json j;
+    j["key"] = r.key;
+    j["command"] = r.command_line();
+    j["exit_code"] = o.exit_code;
+    j["wall_time_s"] = o.wall_s;
+    j["failure"] = o.failure;
+    runs.push_back(std::move(j));
+  }
+  doc["runs"] = runs;
+
+  write_file(out_dir / "validation.json", doc.dump(2) + "\n");
+  write_file(out_dir / "validation.csv", val::rows_to_csv(rows));
+  std::vector<std::string> written = {"validation.json", "validation.csv"};
+  for (const auto& a : plan.artifacts) {
+    write_file(out_dir / a.file_name, a.contents(results));
+    written.push_back(a.file_name);
+  }
+
+  std::cout << "\n" << val::format_table(rows);
+  std::cout << "wall time " << val::format_number(wall) << " s\n";
+
+  // Run folders go unless asked for; a failed run's folder stays so its log can be read.
+  const bool keep_runs = args.keep || failed_runs > 0;
+  if (!keep_runs) fs::remove_all(work_dir);
+  if (temporary_out && !keep_runs) {
+    fs::remove_all(out_dir);
+  } else {
+    std::cout << "results in " << out_dir.string() << ":";
+    for (const auto& w : written) std::cout << " " << w;
+    std::cout << "\n";
+    if (keep_runs) {
+      std::cout << "runs in " << work_dir.string();
+      if (!args.keep) std::cout << " (kept: " << failed_runs << " run(s) failed)";
+      std::cout << "\n";
+    }
+  }
+  return all_pass ? kExitOk : kExitFailure;
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,15 @@
+#include "platform/validation/all_figures.hpp"
+
+#include "platform/validation/ullner_figures.hpp"
+#include "platform/validation/vax_figures.hpp"
+
+namespace rtsim::validation {
+
+Plan make_validation_plan(const PlanOptions& options) {
+  Plan plan;
+  add_ullner_figures(plan, options);
+  add_vax_figures(plan, options);
+  return plan;
+}
+
+}  // namespace rtsim::validation

@@ -1,0 +1,41 @@
+#pragma once
+// The figures of Ullner's ray-tracing peripheral (seed 000 §2.3.4, L586-L680; note 000 §2.5,
+// §7.4): intersection interval and latency, brute-force time per ray and frame, and the grid
+// subdivision curve of Fig. 2-18 against the analytic model of L652.
+#include <vector>
+
+#include "firmware/accel/grid_divisions.hpp"
+#include "platform/validation/curve_shape.hpp"
+#include "platform/validation/validation.hpp"
+
+namespace rtsim::validation {
+
+/// Machine name of Ullner's peripheral in `rtsim run`.
+inline constexpr const char* kUllnerMachine = "ullner-peripheral";
+/// Fig. 2-18's hypothetical scene: n_p = 1000 polygons, a_t = 2, d_r ~ 1/2 (seed 000 L654).
+inline constexpr const char* kUllnerRandomScene = "builtin:ullner-random-1000";
+inline constexpr double kUllnerPolygons = 1000.0;  ///< n_p of L590 and L654
+/// Fig. 2-19's scene: 83 randomly oriented cubes (seed 000 L668).
+inline constexpr const char* kUllnerCubesScene = "builtin:ullner-cubes";
+/// 512 x 512, one ray per pixel (seed 000 L590): the frame of V5.
+inline constexpr int kUllnerFrameSide = 512;
+/// Quick mode's image side: 4096 primary rays, so a mean per ray has a sampling error of a
+/// few tenths of a percent while each run takes well under a second.
+inline constexpr int kUllnerQuickSide = 64;
+
+/// The n_s swept for Fig. 2-18: 1..30 in full mode; in quick mode a subset dense around the
+/// thesis's minimum (11) and spread to both ends, so argmin and steepness are still defined.
+std::vector<int> fig2_18_divisions(bool quick);
+/// n_s swept on the cubes of Fig. 2-19 (fewer points: only an interior minimum is checked).
+std::vector<int> fig2_19_divisions(bool quick);
+
+/// Ullner's t_r(n_s) (seed 000 L652), in microseconds, at each n_s.
+std::vector<CurvePoint> fig2_18_model_curve(const std::vector<int>& n_s,
+                                            const accel::UllnerGridModel& model = {},
+                                            double n_p = kUllnerPolygons);
+
+/// Adds the peripheral's figures and runs (ids V1, V2a-d, V4, V5, V8a-f, V9a-c, V10, V11, G1)
+/// and the artifact fig2-18.csv to the plan.
+void add_ullner_figures(Plan& plan, const PlanOptions& options);
+
+}  // namespace rtsim::validation

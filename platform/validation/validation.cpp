@@ -1,0 +1,408 @@
+#include "platform/validation/validation.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace rtsim::validation {
+
+// ---- Tolerance ----------------------------------------------------------------------------
+
+Tolerance Tolerance::relative(double fraction, std::string why) {
+  return {.kind = Kind::kRelative, .value = fraction, .why = std::move(why)};
+}
+Tolerance Tolerance::absolute(double amount, std::string why) {
+  return {.kind = Kind::kAbsolute, .value = amount, .why = std::move(why)};
+}
+Tolerance Tolerance::above(double bound, std::string why) {
+  return {.kind = Kind::kAbove, .value = bound, .why = std::move(why)};
+}
+Tolerance Tolerance::range(double lo, double hi, std::string why) {
+  return {.kind = Kind::kRange, .lo = lo, .hi = hi, .why = std::move(why)};
+}
+
+bool Tolerance::accepts(double seed, double simulated) const {
+  if (std::isnan(simulated)) return false;
+  switch (kind) {
+    case Kind::kRelative:
+      return std::isfinite(simulated) && std::abs(simulated - seed) <= value * std::abs(seed);
+    case Kind::kAbsolute:
+      return std::isfinite(simulated) && std::abs(simulated - seed) <= value;
+    case Kind::kAbove:
+      return simulated > value;
+    case Kind::kRange:
+      return simulated >= lo && simulated <= hi;
+  }
+  return false;
+}
+
+std::string Tolerance::describe() const {
+  switch (kind) {
+    case Kind::kRelative: {
+      // Percent with as many digits as the tolerance needs: 2% -> "±2%", 1e-6 -> "±0.0001%".
+      const double pct = value * 100.0;
+      return "±" + format_number(pct) + "%";
+    }
+    case Kind::kAbsolute:
+      return value == 0.0 ? "exact" : "±" + format_number(value);
+    case Kind::kAbove:
+      return "> " + format_number(value);
+    case Kind::kRange:
+      if (lo == hi) return "= " + format_number(lo);
+      return "[" + format_number(lo) + ", " + format_number(hi) + "]";
+  }
+  return "?";
+}
+
+namespace {
+
+const char* kind_name(Tolerance::Kind k) {
+  switch (k) {
+    case Tolerance::Kind::kRelative:
+      return "relative";
+    case Tolerance::Kind::kAbsolute:
+      return "absolute";
+    case Tolerance::Kind::kAbove:
+      return "above";
+    case Tolerance::Kind::kRange:
+      return "range";
+  }
+  return "?";
+}
+
+// Shortest text that reads back as the same double (CSV keeps full precision).
+std::string exact_number(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+bool needs_quoting(const std::string& s) {
+  return s.find_first_of(" \t\"'\\$`|&;<>()*?[]{}~#!") != std::string::npos || s.empty();
+}
+
+std::string shell_quote(const std::string& s) {
+  if (!needs_quoting(s)) return s;
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+bool is_group_member(const std::string& id, const std::string& group) {
+  if (id.size() <= group.size() || id.compare(0, group.size(), group) != 0) return false;
+  return std::all_of(id.begin() + static_cast<std::ptrdiff_t>(group.size()), id.end(),
+                     [](char c) { return c >= 'a' && c <= 'z'; });
+}
+
+}  // namespace
+
+// ---- Runs and plans -------------------------------------------------------------------------
+
+std::string RunRequest::command_line() const {
+  std::string s = "rtsim";
+  for (const auto& a : args) s += " " + shell_quote(a);
+  return s;
+}
+
+const std::string& Plan::add_run(RunRequest run) {
+  for (const auto& r : runs) {
+    if (r.key == run.key) {
+      if (r.args != run.args)
+        throw std::logic_error("validation plan: two different runs named " + run.key);
+      return r.key;
+    }
+  }
+  runs.push_back(std::move(run));
+  return runs.back().key;
+}
+
+const RunRequest* Plan::find_run(const std::string& key) const {
+  for (const auto& r : runs)
+    if (r.key == key) return &r;
+  return nullptr;
+}
+
+Plan select_figures(const Plan& plan, const std::vector<std::string>& ids) {
+  if (ids.empty()) return plan;
+  std::vector<bool> keep(plan.figures.size(), false);
+  for (const auto& id : ids) {
+    bool matched = false;
+    for (std::size_t i = 0; i < plan.figures.size(); ++i) {
+      const auto& fid = plan.figures[i].id;
+      if (fid == id || is_group_member(fid, id)) keep[i] = matched = true;
+    }
+    if (!matched) {
+      std::string known;
+      for (const auto& f : plan.figures) known += (known.empty() ? "" : ", ") + f.id;
+      throw std::invalid_argument("no figure \"" + id + "\"; known figures: " + known);
+    }
+  }
+  Plan out;
+  std::vector<std::string> needed;
+  for (std::size_t i = 0; i < plan.figures.size(); ++i) {
+    if (!keep[i]) continue;
+    out.figures.push_back(plan.figures[i]);
+    needed.insert(needed.end(), plan.figures[i].runs.begin(), plan.figures[i].runs.end());
+  }
+  for (const auto& r : plan.runs)
+    if (std::find(needed.begin(), needed.end(), r.key) != needed.end()) out.runs.push_back(r);
+  for (const auto& a : plan.artifacts) {
+    const bool all = std::all_of(a.runs.begin(), a.runs.end(), [&](const std::string& k) {
+      return std::find(needed.begin(), needed.end(), k) != needed.end();
+    });
+    if (all) out.artifacts.push_back(a);
+  }
+  return out;
+}
+
+// ---- Evaluation ----------------------------------------------------------------------------
+
+bool Row::pass() const {
+  return error.empty() && simulated.has_value() && tolerance.accepts(seed_value, *simulated);
+}
+
+std::optional<double> Row::relative_error() const {
+  if (!simulated || !seed_display.empty() || seed_value == 0.0) return std::nullopt;
+  return (*simulated - seed_value) / std::abs(seed_value);
+}
+
+std::vector<Row> evaluate(const Plan& plan, const RunResults& results) {
+  std::vector<Row> rows;
+  rows.reserve(plan.figures.size());
+  for (const auto& f : plan.figures) {
+    Row row{.id = f.id,
+            .title = f.title,
+            .seed_ref = f.seed_ref,
+            .seed_text = f.seed_text,
+            .seed_display = f.seed_display,
+            .unit = f.unit,
+            .workload = f.workload,
+            .seed_value = f.seed_value,
+            .tolerance = f.tolerance};
+    for (const auto& key : f.runs) {
+      if (const RunRequest* r = plan.find_run(key)) row.commands.push_back(r->command_line());
+    }
+    try {
+      const Measured m = f.measure(results);
+      row.simulated = m.value;
+      row.note = m.note;
+      if (m.reference) row.seed_value = *m.reference;
+      if (std::isnan(m.value)) row.error = "the measured value is not a number";
+    } catch (const std::exception& e) {
+      row.error = e.what();
+    }
+    if (f.seed_from_run && row.seed_display.empty() && !row.simulated)
+      row.seed_display = "(from run)";
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+const nlohmann::json& stats_of(const RunResults& results, const std::string& key) {
+  const auto it = results.find(key);
+  if (it == results.end()) throw MeasureError("run " + key + " was not executed");
+  const RunOutcome& r = it->second;
+  if (!r.failure.empty()) throw MeasureError("run " + key + " failed: " + r.failure);
+  if (!r.stats) throw MeasureError("run " + key + " left no stats.json");
+  return *r.stats;
+}
+
+double stats_number(const RunResults& results, const std::string& key, const std::string& path) {
+  const nlohmann::json* node = &stats_of(results, key);
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t dot = path.find('.', start);
+    const std::string part =
+        path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (!node->is_object() || !node->contains(part))
+      throw MeasureError("stats.json of run " + key + " has no " + path);
+    node = &(*node)[part];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  if (!node->is_number())
+    throw MeasureError("stats.json of run " + key + ": " + path + " is not a number");
+  return node->get<double>();
+}
+
+// ---- Output --------------------------------------------------------------------------------
+
+std::string format_number(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  const double a = std::abs(v);
+  if (a == 0.0) return "0";
+  if (v == std::round(v) && a < 1e9) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  } else if (a >= 1e-3 && a < 1e6) {
+    const int mag = static_cast<int>(std::floor(std::log10(a)));
+    const int decimals = std::max(0, 3 - mag);
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    // Drop trailing zeros of the fraction ("2.500" -> "2.5"), keeping at least one digit.
+    std::string s(buf);
+    if (s.find('.') != std::string::npos) {
+      while (s.back() == '0') s.pop_back();
+      if (s.back() == '.') s.pop_back();
+    }
+    return s;
+  } else {
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+  }
+  return buf;
+}
+
+namespace {
+
+std::string with_unit(double v, const std::string& unit) {
+  return unit.empty() ? format_number(v) : format_number(v) + " " + unit;
+}
+
+std::string percent(double fraction) {
+  char buf[64];
+  const double pct = fraction * 100.0;
+  if (std::abs(pct) < 0.01 && pct != 0.0)
+    std::snprintf(buf, sizeof buf, "%+.1e%%", pct);
+  else
+    std::snprintf(buf, sizeof buf, "%+.2f%%", pct);
+  return buf;
+}
+
+// Display width of a UTF-8 string (the table holds "±" and "µ"-free text otherwise).
+std::size_t display_width(const std::string& s) {
+  std::size_t n = 0;
+  for (unsigned char c : s)
+    if ((c & 0xC0) != 0x80) ++n;
+  return n;
+}
+
+std::string pad(const std::string& s, std::size_t width) {
+  const std::size_t w = display_width(s);
+  return w >= width ? s : s + std::string(width - w, ' ');
+}
+
+}  // namespace
+
+std::string format_table(const std::vector<Row>& rows) {
+  const std::vector<std::string> head = {"id",        "figure", "source",    "seed",
+                                         "simulated", "error",  "tolerance", "result"};
+  std::vector<std::vector<std::string>> cells;
+  for (const auto& r : rows) {
+    const auto rel = r.relative_error();
+    cells.push_back({r.id, r.title, r.seed_ref,
+                     r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
+                     r.simulated ? with_unit(*r.simulated, r.unit) : "-", rel ? percent(*rel) : "-",
+                     r.tolerance.describe(), r.pass() ? "pass" : "FAIL"});
+  }
+  std::vector<std::size_t> width(head.size());
+  for (std::size_t c = 0; c < head.size(); ++c) {
+    width[c] = display_width(head[c]);
+    for (const auto& row : cells) width[c] = std::max(width[c], display_width(row[c]));
+  }
+  std::ostringstream out;
+  auto line = [&](const std::vector<std::string>& cols) {
+    std::string s;
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      s += c + 1 < cols.size() ? pad(cols[c], width[c] + 2) : cols[c];
+    }
+    out << s << "\n";
+  };
+  line(head);
+  std::vector<std::string> rule;
+  for (std::size_t c = 0; c < head.size(); ++c) rule.push_back(std::string(width[c], '-'));
+  line(rule);
+  for (const auto& row : cells) line(row);
+
+  bool any_note = false;
+  for (const auto& r : rows) {
+    if (r.note.empty() && r.error.empty()) continue;
+    if (!any_note) out << "\n";
+    any_note = true;
+    if (!r.error.empty()) out << r.id << ": error: " << r.error << "\n";
+    if (!r.note.empty()) out << r.id << ": " << r.note << "\n";
+  }
+  const auto passed = static_cast<std::size_t>(
+      std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.pass(); }));
+  out << "\n" << passed << " of " << rows.size() << " figures pass\n";
+  return out.str();
+}
+
+nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
+  auto arr = nlohmann::ordered_json::array();
+  for (const auto& r : rows) {
+    nlohmann::ordered_json j;
+    j["id"] = r.id;
+    j["title"] = r.title;
+    j["seed_ref"] = r.seed_ref;
+    j["seed_text"] = r.seed_text;
+    j["unit"] = r.unit;
+    j["seed_value"] = r.seed_value;
+    j["seed_display"] = r.seed_display;
+    // JSON has no inf or nan: such a value is written as null and explained in "error".
+    if (r.simulated && std::isfinite(*r.simulated))
+      j["simulated_value"] = *r.simulated;
+    else
+      j["simulated_value"] = nullptr;
+    const auto rel = r.relative_error();
+    if (rel && std::isfinite(*rel))
+      j["relative_error"] = *rel;
+    else
+      j["relative_error"] = nullptr;
+    nlohmann::ordered_json t;
+    t["kind"] = kind_name(r.tolerance.kind);
+    if (r.tolerance.kind == Tolerance::Kind::kRange) {
+      t["lo"] = r.tolerance.lo;
+      t["hi"] = r.tolerance.hi;
+    } else {
+      t["value"] = r.tolerance.value;
+    }
+    t["text"] = r.tolerance.describe();
+    t["why"] = r.tolerance.why;
+    j["tolerance"] = t;
+    j["pass"] = r.pass();
+    j["note"] = r.note;
+    j["error"] = r.error;
+    j["workload"] = r.workload;
+    j["commands"] = r.commands;
+    arr.push_back(std::move(j));
+  }
+  return arr;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string rows_to_csv(const std::vector<Row>& rows) {
+  std::ostringstream out;
+  out << "id,title,seed_ref,unit,seed_value,seed_display,simulated_value,relative_error,"
+         "tolerance,pass,note,error\n";
+  for (const auto& r : rows) {
+    const auto rel = r.relative_error();
+    out << csv_field(r.id) << ',' << csv_field(r.title) << ',' << csv_field(r.seed_ref) << ','
+        << csv_field(r.unit) << ',' << exact_number(r.seed_value) << ','
+        << csv_field(r.seed_display) << ',' << (r.simulated ? exact_number(*r.simulated) : "")
+        << ',' << (rel ? exact_number(*rel) : "") << ',' << csv_field(r.tolerance.describe()) << ','
+        << (r.pass() ? "pass" : "fail") << ',' << csv_field(r.note) << ',' << csv_field(r.error)
+        << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace rtsim::validation

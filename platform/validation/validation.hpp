@@ -1,0 +1,160 @@
+#pragma once
+// The validation framework behind `rtsim validate`: a figure from a seed (what the seed says,
+// with its line), the runs of the rtsim binary it needs, how its simulated value is read from
+// their stats.json, and the tolerance it is judged with and why.
+//
+// A Plan holds the runs and the figures. Runs are executed by run_queue.hpp (each `rtsim run`
+// is its own process: SystemC allows one simulation per process); evaluate() turns the runs'
+// results into one Row per figure; the rows are written as a text table, JSON and CSV.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rtsim::validation {
+
+/// How a simulated value is judged against the seed's value.
+struct Tolerance {
+  enum class Kind {
+    kRelative,  ///< |simulated - seed| <= value * |seed|
+    kAbsolute,  ///< |simulated - seed| <= value
+    kAbove,     ///< simulated > value (a qualitative "more than" figure)
+    kRange,     ///< lo <= simulated <= hi
+  };
+  Kind kind = Kind::kRelative;
+  double value = 0.0;
+  double lo = 0.0;
+  double hi = 0.0;
+  std::string why;  ///< the reason this tolerance, and not a tighter one, is right
+
+  static Tolerance relative(double fraction, std::string why);
+  static Tolerance absolute(double amount, std::string why);
+  static Tolerance above(double bound, std::string why);
+  static Tolerance range(double lo, double hi, std::string why);
+
+  /// Whether `simulated` passes against `seed`. A non-finite value never passes.
+  bool accepts(double seed, double simulated) const;
+  /// Short form for the table: "±2%", "±3", "> 1", "[2, 29]".
+  std::string describe() const;
+};
+
+/// One invocation of the rtsim binary. The runner appends `--out FOLDER`.
+struct RunRequest {
+  std::string key;                ///< unique in a plan; also the name of its folder
+  std::vector<std::string> args;  ///< e.g. {"run", "--machine", "vax-750", "--scene", ...}
+  /// Expected relative run time; the queue starts the biggest first so the slowest runs do not
+  /// end up alone at the end.
+  double cost_hint = 1.0;
+  /// The command line as a user would type it (args shell-quoted where needed).
+  std::string command_line() const;
+};
+
+/// What came of one run.
+struct RunOutcome {
+  RunRequest request;
+  std::filesystem::path out_dir;  ///< the --out folder given to the run
+  std::filesystem::path log;      ///< its stdout and stderr
+  int exit_code = -1;             ///< -1: did not start or was killed by a signal
+  double wall_s = 0.0;
+  std::string failure;                  ///< empty on success, else what went wrong
+  std::optional<nlohmann::json> stats;  ///< out_dir/stats.json, parsed, on success
+};
+
+using RunResults = std::map<std::string, RunOutcome>;
+
+/// Thrown by a figure's measure function when its value cannot be had (a run failed, a
+/// stats.json key is missing); the message goes into the row.
+struct MeasureError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A simulated value and how it was obtained (quick-mode scaling, the points used...).
+struct Measured {
+  double value = 0.0;
+  std::string note{};
+  /// The seed's value when it depends on the run (a formula evaluated on the run's own counts,
+  /// like Gaudet's T_t = R_t (T_s + T_i O)); replaces Figure::seed_value in the row.
+  std::optional<double> reference{};
+};
+
+/// One seed figure.
+struct Figure {
+  std::string id;         ///< "V4"; a trailing lower-case letter marks a member of a group ("V2a")
+  std::string title;      ///< what is measured
+  std::string seed_ref;   ///< "seed 000 L590"
+  std::string seed_text;  ///< the seed's words or derivation, for the docs and the JSON
+  double seed_value = 0.0;
+  /// For a qualitative figure ("steeper on the left"), what the table shows instead of
+  /// seed_value; such a row has no relative error.
+  std::string seed_display{};
+  /// The seed's value is a formula on the run's counts (Measured::reference), not a constant.
+  bool seed_from_run = false;
+  std::string unit;  ///< the unit of seed_value and of the measured value ("us", "s", "")
+  Tolerance tolerance;
+  std::string workload;           ///< what is run, in words
+  std::vector<std::string> runs;  ///< keys of the RunRequests whose results it reads
+  std::function<Measured(const RunResults&)> measure;
+};
+
+/// A figure's verdict: a row of the table.
+struct Row {
+  std::string id{}, title{}, seed_ref{}, seed_text{}, seed_display{}, unit{}, workload{};
+  double seed_value = 0.0;
+  std::optional<double> simulated{};
+  Tolerance tolerance{};
+  std::string note{};                   ///< from Measured::note
+  std::string error{};                  ///< why there is no value (then the row fails)
+  std::vector<std::string> commands{};  ///< command lines of its runs
+
+  bool pass() const;
+  /// (simulated - seed) / |seed|; empty without a value, for a qualitative figure, or when
+  /// the seed value is 0.
+  std::optional<double> relative_error() const;
+};
+
+/// Side output written after the runs (e.g. the two curves of Fig. 2-18 as CSV).
+struct Artifact {
+  std::string file_name;
+  std::vector<std::string> runs;  ///< keys it reads; it is written only if all were selected
+  std::function<std::string(const RunResults&)> contents;
+};
+
+/// Size and mode of a validation: quick shrinks images so the suite runs in CI.
+struct PlanOptions {
+  bool quick = false;
+};
+
+struct Plan {
+  std::vector<RunRequest> runs;
+  std::vector<Figure> figures;
+  std::vector<Artifact> artifacts;
+
+  /// Adds a run unless one with the same key exists (figures share runs); returns the key.
+  const std::string& add_run(RunRequest run);
+  const RunRequest* find_run(const std::string& key) const;
+};
+
+/// Keep only the figures named by `ids` (an exact id, or a group: "V2" keeps V2a, V2b, ...)
+/// and the runs they need. Throws std::invalid_argument naming an id that matches nothing.
+Plan select_figures(const Plan& plan, const std::vector<std::string>& ids);
+
+/// The rows of every figure of the plan, from the runs' results.
+std::vector<Row> evaluate(const Plan& plan, const RunResults& results);
+
+/// Readers for the measure functions. Each throws MeasureError with a clear message.
+const nlohmann::json& stats_of(const RunResults& results, const std::string& key);
+/// Value at a dotted path ("peripheral.time_per_ray_s") of a run's stats.json.
+double stats_number(const RunResults& results, const std::string& key, const std::string& path);
+
+/// Output.
+std::string format_number(double v);  ///< 4 significant digits, no exponent for 1e-3..1e6
+std::string format_table(const std::vector<Row>& rows);
+nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows);
+std::string rows_to_csv(const std::vector<Row>& rows);
+/// One field of a CSV line, quoted when it holds a comma, quote or line break.
+std::string csv_field(const std::string& s);
+
+}  // namespace rtsim::validation

@@ -1,0 +1,580 @@
+// Tests of `rtsim validate`: the framework's pure parts (tolerances, rows, table/JSON/CSV,
+// figure selection, curve shape), Ullner's analytic Fig. 2-18 curve, the figure sets' plans,
+// the subprocess runner and the command end to end against a fake rtsim
+// (tests/data/fake_rtsim.py, which answers with the seeds' formulas), and, once `rtsim run`
+// exists, the real quick validation.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "platform/validation/all_figures.hpp"
+#include "platform/validation/curve_shape.hpp"
+#include "platform/validation/run_queue.hpp"
+#include "platform/validation/ullner_figures.hpp"
+#include "platform/validation/validation.hpp"
+#include "platform/validation/vax_figures.hpp"
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace rtsim::validation;
+using rtsim::test::read_file;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+const std::string kFake = std::string(RTSIM_TEST_DATA_DIR) + "/fake_rtsim.py";
+
+bool have_python() { return fs::exists("/usr/bin/python3"); }
+
+// Sets an environment variable for one scope (the runner's children inherit it).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    ::setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() { ::unsetenv(name_); }
+
+ private:
+  const char* name_;
+};
+
+Row make_row(double seed, std::optional<double> simulated, Tolerance tol) {
+  Row r;
+  r.id = "X1";
+  r.title = "a figure";
+  r.seed_ref = "seed 000 L1";
+  r.unit = "us";
+  r.seed_value = seed;
+  r.simulated = simulated;
+  r.tolerance = std::move(tol);
+  return r;
+}
+
+RunOutcome ok_run(const std::string& key, nlohmann::json stats) {
+  RunOutcome o;
+  o.request.key = key;
+  o.exit_code = 0;
+  o.stats = std::move(stats);
+  return o;
+}
+
+}  // namespace
+
+// ---- Tolerances -------------------------------------------------------------------------------
+
+TEST(ValidateTolerance, RelativeAcceptsInsideAndRejectsOutside) {
+  const auto t = Tolerance::relative(0.02, "why");
+  EXPECT_TRUE(t.accepts(100.0, 100.0));
+  EXPECT_TRUE(t.accepts(100.0, 102.0));
+  EXPECT_TRUE(t.accepts(100.0, 98.0));
+  EXPECT_FALSE(t.accepts(100.0, 102.1));
+  EXPECT_FALSE(t.accepts(100.0, 97.9));
+  EXPECT_TRUE(t.accepts(-5.0, -5.1));  // relative to |seed|
+  EXPECT_FALSE(t.accepts(100.0, std::nan("")));
+  EXPECT_FALSE(t.accepts(100.0, std::numeric_limits<double>::infinity()));
+  EXPECT_EQ(t.describe(), "±2%");
+  EXPECT_EQ(Tolerance::relative(1e-6, "").describe(), "±0.0001%");
+}
+
+TEST(ValidateTolerance, AbsoluteAboveAndRange) {
+  const auto a = Tolerance::absolute(3, "why");
+  EXPECT_TRUE(a.accepts(11, 14));
+  EXPECT_TRUE(a.accepts(11, 8));
+  EXPECT_FALSE(a.accepts(11, 15));
+  EXPECT_EQ(a.describe(), "±3");
+  const auto exact = Tolerance::absolute(0, "why");
+  EXPECT_TRUE(exact.accepts(17, 17));
+  EXPECT_FALSE(exact.accepts(17, 17.000001));
+  EXPECT_EQ(exact.describe(), "exact");
+
+  const auto above = Tolerance::above(1, "why");
+  EXPECT_TRUE(above.accepts(0, 1.0001));
+  EXPECT_FALSE(above.accepts(0, 1.0));
+  EXPECT_TRUE(above.accepts(0, std::numeric_limits<double>::infinity()));
+  EXPECT_FALSE(above.accepts(0, std::nan("")));
+  EXPECT_EQ(above.describe(), "> 1");
+
+  const auto range = Tolerance::range(2, 29, "why");
+  EXPECT_TRUE(range.accepts(0, 2));
+  EXPECT_TRUE(range.accepts(0, 29));
+  EXPECT_FALSE(range.accepts(0, 1));
+  EXPECT_FALSE(range.accepts(0, 30));
+  EXPECT_EQ(range.describe(), "[2, 29]");
+  EXPECT_EQ(Tolerance::range(0, 0, "").describe(), "= 0");
+}
+
+TEST(ValidateRow, PassNeedsAValueAndNoError) {
+  auto r = make_row(333.33, 339.0, Tolerance::relative(0.03, "fill"));
+  EXPECT_TRUE(r.pass());
+  ASSERT_TRUE(r.relative_error().has_value());
+  EXPECT_NEAR(*r.relative_error(), (339.0 - 333.33) / 333.33, 1e-12);
+  r.error = "run failed";
+  EXPECT_FALSE(r.pass());
+  auto none = make_row(333.33, std::nullopt, Tolerance::relative(0.03, ""));
+  EXPECT_FALSE(none.pass());
+  EXPECT_FALSE(none.relative_error().has_value());
+  auto qualitative = make_row(1, 1.5, Tolerance::above(1, ""));
+  qualitative.seed_display = "steeper left";
+  EXPECT_TRUE(qualitative.pass());
+  EXPECT_FALSE(qualitative.relative_error().has_value());
+  EXPECT_FALSE(make_row(0, 0.0, Tolerance::range(0, 0, "")).relative_error().has_value());
+}
+
+// ---- Output -----------------------------------------------------------------------------------
+
+TEST(ValidateOutput, NumbersAreShortAndReadable) {
+  EXPECT_EQ(format_number(17), "17");
+  EXPECT_EQ(format_number(262144), "262144");
+  EXPECT_EQ(format_number(1000.0 / 3.0), "333.3");
+  EXPECT_EQ(format_number(5.6), "5.6");
+  EXPECT_EQ(format_number(14.306), "14.31");
+  EXPECT_EQ(format_number(0.3333333), "0.3333");
+  EXPECT_EQ(format_number(0), "0");
+  EXPECT_EQ(format_number(-2.5), "-2.5");
+  EXPECT_EQ(format_number(1.5e-7), "1.5e-07");
+  EXPECT_EQ(format_number(std::numeric_limits<double>::infinity()), "inf");
+}
+
+TEST(ValidateOutput, TableShowsEveryRowVerdictAndNotes) {
+  std::vector<Row> rows;
+  rows.push_back(make_row(333.33, 339.0, Tolerance::relative(0.03, "")));
+  rows.back().note = "a mean per ray";
+  rows.push_back(make_row(5.6, 7.0, Tolerance::relative(0.02, "")));
+  rows.back().id = "X2";
+  rows.push_back(make_row(11, std::nullopt, Tolerance::absolute(3, "")));
+  rows.back().id = "X3";
+  rows.back().error = "run peripheral-grid-ns11 failed: exit status 3";
+  const std::string t = format_table(rows);
+  std::cout << t;
+  EXPECT_NE(t.find("seed"), std::string::npos);
+  EXPECT_NE(t.find("simulated"), std::string::npos);
+  EXPECT_NE(t.find("tolerance"), std::string::npos);
+  EXPECT_NE(t.find("333.3 us"), std::string::npos);
+  EXPECT_NE(t.find("339 us"), std::string::npos);
+  EXPECT_NE(t.find("+1.70%"), std::string::npos);
+  EXPECT_NE(t.find("+25.00%"), std::string::npos);
+  EXPECT_NE(t.find("pass"), std::string::npos);
+  EXPECT_NE(t.find("FAIL"), std::string::npos);
+  EXPECT_NE(t.find("X1: a mean per ray"), std::string::npos);
+  EXPECT_NE(t.find("X3: error: run peripheral-grid-ns11 failed"), std::string::npos);
+  EXPECT_NE(t.find("1 of 3 figures pass"), std::string::npos);
+}
+
+TEST(ValidateOutput, JsonAndCsvHoldTheSameRows) {
+  std::vector<Row> rows;
+  rows.push_back(make_row(333.33, 339.0, Tolerance::relative(0.03, "pipeline fill, 1.7%")));
+  rows.back().title = "time per ray, brute force";  // a comma: quoted in the CSV
+  rows.back().commands = {"rtsim run --machine ullner-peripheral"};
+  rows.push_back(make_row(11, std::nullopt, Tolerance::range(2, 29, "interior")));
+  rows.back().id = "X2";
+  rows.back().error = "no \"value\"";
+  const auto j = rows_to_json(rows);
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(j[0]["id"], "X1");
+  EXPECT_EQ(j[0]["seed_value"], 333.33);
+  EXPECT_EQ(j[0]["simulated_value"], 339.0);
+  EXPECT_NEAR(j[0]["relative_error"].get<double>(), (339.0 - 333.33) / 333.33, 1e-12);
+  EXPECT_EQ(j[0]["tolerance"]["kind"], "relative");
+  EXPECT_EQ(j[0]["tolerance"]["value"], 0.03);
+  EXPECT_EQ(j[0]["tolerance"]["why"], "pipeline fill, 1.7%");
+  EXPECT_EQ(j[0]["pass"], true);
+  EXPECT_EQ(j[0]["commands"][0], "rtsim run --machine ullner-peripheral");
+  EXPECT_TRUE(j[1]["simulated_value"].is_null());
+  EXPECT_TRUE(j[1]["relative_error"].is_null());
+  EXPECT_EQ(j[1]["tolerance"]["lo"], 2);
+  EXPECT_EQ(j[1]["tolerance"]["hi"], 29);
+  EXPECT_EQ(j[1]["pass"], false);
+
+  const std::string csv = rows_to_csv(rows);
+  std::istringstream in(csv);
+  std::string header, r1, r2, extra;
+  std::getline(in, header);
+  std::getline(in, r1);
+  std::getline(in, r2);
+  EXPECT_FALSE(std::getline(in, extra));
+  EXPECT_EQ(header,
+            "id,title,seed_ref,unit,seed_value,seed_display,simulated_value,relative_error,"
+            "tolerance,pass,note,error");
+  EXPECT_EQ(r1.rfind("X1,\"time per ray, brute force\",seed 000 L1,us,333.33,,339,", 0), 0u) << r1;
+  EXPECT_NE(r1.find(",pass,"), std::string::npos);
+  EXPECT_NE(r2.find(",fail,"), std::string::npos);
+  EXPECT_NE(r2.find("\"no \"\"value\"\"\""), std::string::npos) << r2;
+  EXPECT_EQ(csv_field("plain"), "plain");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+}
+
+// ---- Plans ------------------------------------------------------------------------------------
+
+TEST(ValidatePlan, SelectingAGroupKeepsItsMembersAndTheirRunsOnly) {
+  Plan p;
+  for (const char* id : {"V2a", "V2b", "V20", "V4"}) {
+    Figure f;
+    f.id = id;
+    f.runs = {std::string("run-") + id};
+    p.add_run(RunRequest{.key = f.runs[0], .args = {"run", id}});
+    p.figures.push_back(f);
+  }
+  p.artifacts.push_back(Artifact{.file_name = "a.csv", .runs = {"run-V4"}, .contents = {}});
+  const Plan s = select_figures(p, {"V2"});
+  ASSERT_EQ(s.figures.size(), 2u);
+  EXPECT_EQ(s.figures[0].id, "V2a");
+  EXPECT_EQ(s.figures[1].id, "V2b");
+  ASSERT_EQ(s.runs.size(), 2u);
+  EXPECT_TRUE(s.artifacts.empty());
+  const Plan exact = select_figures(p, {"V20", "V4"});
+  EXPECT_EQ(exact.figures.size(), 2u);
+  EXPECT_EQ(exact.artifacts.size(), 1u);
+  EXPECT_EQ(select_figures(p, {}).figures.size(), 4u);
+  EXPECT_THROW(select_figures(p, {"V3"}), std::invalid_argument);
+  // Sharing: the same key with other arguments is a programming error.
+  EXPECT_THROW(p.add_run(RunRequest{.key = "run-V4", .args = {"other"}}), std::logic_error);
+  EXPECT_EQ(p.add_run(RunRequest{.key = "run-V4", .args = {"run", "V4"}}), "run-V4");
+  EXPECT_EQ(p.runs.size(), 4u);
+}
+
+TEST(ValidatePlan, EveryFigureIsCompleteAndItsRunsExist) {
+  for (bool quick : {true, false}) {
+    const Plan plan = make_validation_plan(PlanOptions{.quick = quick});
+    std::set<std::string> ids, keys;
+    for (const auto& r : plan.runs) {
+      EXPECT_TRUE(keys.insert(r.key).second) << "duplicate run " << r.key;
+      ASSERT_FALSE(r.args.empty());
+      EXPECT_TRUE(r.args[0] == "run" || r.args[0] == "render") << r.key;
+    }
+    for (const auto& f : plan.figures) {
+      EXPECT_TRUE(ids.insert(f.id).second) << "duplicate figure " << f.id;
+      EXPECT_FALSE(f.title.empty()) << f.id;
+      EXPECT_FALSE(f.seed_ref.empty()) << f.id;
+      EXPECT_FALSE(f.seed_text.empty()) << f.id;
+      EXPECT_FALSE(f.workload.empty()) << f.id;
+      EXPECT_GT(f.tolerance.why.size(), 20u) << f.id << ": say why the tolerance";
+      EXPECT_TRUE(static_cast<bool>(f.measure)) << f.id;
+      for (const auto& k : f.runs) EXPECT_TRUE(keys.count(k)) << f.id << " needs " << k;
+    }
+    for (const char* id : {"V1", "V2a", "V2b", "V2c", "V2d", "V4", "V5", "V8a", "V8b", "V8c", "V8d",
+                           "V9a", "V9b", "VAX1", "VAX2"})
+      EXPECT_TRUE(ids.count(id)) << id;
+    // The brute-force run is the frame of V5: 512x512 in full mode, smaller in quick mode.
+    const RunRequest* brute = plan.find_run("peripheral-brute-adders1");
+    ASSERT_NE(brute, nullptr);
+    const std::string side = quick ? std::to_string(kUllnerQuickSide) : "512";
+    const auto w = std::find(brute->args.begin(), brute->args.end(), "--width");
+    ASSERT_NE(w, brute->args.end());
+    EXPECT_EQ(*(w + 1), side);
+    const auto divisions = fig2_18_divisions(quick);
+    EXPECT_EQ(divisions.size(), quick ? 12u : 30u);
+    for (int n : divisions)
+      EXPECT_TRUE(
+          keys.count("peripheral-grid-ns" + std::string(n < 10 ? "0" : "") + std::to_string(n)))
+          << n;
+  }
+}
+
+TEST(ValidatePlan, FiguresWithoutRunsAreTheAnalyticModel) {
+  const Plan plan = select_figures(make_validation_plan({}), {"V8a", "V8b", "V9a"});
+  EXPECT_TRUE(plan.runs.empty());
+  const auto rows = evaluate(plan, {});
+  for (const auto& r : rows) {
+    std::cout << r.id << ": seed "
+              << (r.seed_display.empty() ? format_number(r.seed_value) : r.seed_display)
+              << ", model " << format_number(r.simulated.value_or(NAN)) << " ("
+              << r.tolerance.describe() << ")\n";
+    EXPECT_TRUE(r.pass()) << r.id << " " << r.error;
+  }
+}
+
+// ---- Evaluation -------------------------------------------------------------------------------
+
+TEST(ValidateEvaluate, FailedRunsAndMissingKeysBecomeRowErrors) {
+  RunResults results;
+  results["good"] = ok_run("good", {{"peripheral", {{"time_per_ray_s", 339e-6}}}});
+  RunOutcome bad;
+  bad.request.key = "bad";
+  bad.exit_code = 2;
+  bad.failure = "exit status 2: unknown parameter";
+  results["bad"] = bad;
+  EXPECT_DOUBLE_EQ(stats_number(results, "good", "peripheral.time_per_ray_s"), 339e-6);
+  try {
+    stats_number(results, "good", "peripheral.tests_per_ray");
+    FAIL() << "no throw";
+  } catch (const MeasureError& e) {
+    EXPECT_NE(std::string(e.what()).find("has no peripheral.tests_per_ray"), std::string::npos);
+  }
+  EXPECT_THROW(stats_of(results, "bad"), MeasureError);
+  EXPECT_THROW(stats_of(results, "absent"), MeasureError);
+
+  Plan plan;
+  plan.add_run({.key = "good", .args = {"run"}});
+  plan.add_run({.key = "bad", .args = {"run", "-p", "x=1"}});
+  Figure f;
+  f.id = "A";
+  f.seed_value = 333.33;
+  f.tolerance = Tolerance::relative(0.03, "");
+  f.runs = {"good"};
+  f.measure = [](const RunResults& r) {
+    return Measured{stats_number(r, "good", "peripheral.time_per_ray_s") * 1e6, "note"};
+  };
+  plan.figures.push_back(f);
+  f.id = "B";
+  f.runs = {"bad"};
+  f.measure = [](const RunResults& r) {
+    return Measured{stats_number(r, "bad", "peripheral.time_per_ray_s"), ""};
+  };
+  plan.figures.push_back(f);
+  f.id = "C";
+  f.seed_from_run = true;
+  f.runs = {"good"};
+  f.measure = [](const RunResults&) { return Measured{2.0, "", 2.0}; };
+  plan.figures.push_back(f);
+
+  const auto rows = evaluate(plan, results);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_TRUE(rows[0].pass());
+  EXPECT_EQ(rows[0].note, "note");
+  EXPECT_EQ(rows[0].commands, std::vector<std::string>{"rtsim run"});
+  EXPECT_FALSE(rows[1].pass());
+  EXPECT_NE(rows[1].error.find("run bad failed: exit status 2"), std::string::npos);
+  EXPECT_EQ(rows[1].commands, std::vector<std::string>{"rtsim run -p x=1"});
+  EXPECT_DOUBLE_EQ(rows[2].seed_value, 2.0);  // the reference replaces the seed value
+  EXPECT_TRUE(rows[2].pass());
+}
+
+// ---- Curve shape and Ullner's analytic model (Fig. 2-18) ---------------------------------------
+
+TEST(ValidateCurve, ShapeOfASampledCurve) {
+  // y = 100/x + x: minimum at 10 (y = 20); y(5) = 25, y(20) = 25: the rises are equal.
+  std::vector<CurvePoint> c;
+  for (int x = 1; x <= 30; ++x) c.push_back({double(x), 100.0 / x + x});
+  const auto s = curve_shape(c);
+  EXPECT_EQ(s.argmin, 10);
+  EXPECT_DOUBLE_EQ(s.minimum, 20);
+  EXPECT_DOUBLE_EQ(s.left_rise, 5);
+  EXPECT_DOUBLE_EQ(s.right_rise, 5);
+  EXPECT_DOUBLE_EQ(s.steepness, 1);
+  EXPECT_FALSE(s.left_clamped);
+  EXPECT_FALSE(s.right_clamped);
+  // Interpolation between samples, clamped at the ends.
+  EXPECT_DOUBLE_EQ(interpolate({{1, 10}, {3, 30}}, 2), 20);
+  EXPECT_DOUBLE_EQ(interpolate({{1, 10}, {3, 30}}, 0), 10);
+  EXPECT_DOUBLE_EQ(interpolate({{1, 10}, {3, 30}}, 9), 30);
+  // 2 x argmin past the last sample: the last one is used and flagged.
+  const auto clamped = curve_shape({{1, 5}, {2, 3}, {3, 4}});
+  EXPECT_EQ(clamped.argmin, 2);
+  EXPECT_TRUE(clamped.right_clamped);
+  EXPECT_DOUBLE_EQ(clamped.right_rise, 1);
+  // A flat right side with a rising left is infinitely steeper on the left.
+  EXPECT_TRUE(std::isinf(curve_shape({{1, 9}, {2, 1}, {4, 1}}).steepness));
+  EXPECT_THROW(curve_shape({}), std::invalid_argument);
+  EXPECT_THROW(curve_shape({{2, 1}, {1, 1}}), std::invalid_argument);
+}
+
+TEST(ValidateCurve, UllnerModelHasTheThesisMinimumAndIsSteeperOnTheLeft) {
+  // Seed 000 L654: minimum 14.3 us per ray at n_s = 11; L656: steeper left of the minimum.
+  std::vector<int> all;
+  for (int n = 1; n <= 30; ++n) all.push_back(n);
+  const auto curve = fig2_18_model_curve(all);
+  const auto s = curve_shape(curve);
+  std::cout << "Fig. 2-18 model: argmin " << s.argmin << " (thesis 11), minimum " << s.minimum
+            << " us (thesis 14.3, tolerance 0.5%: three printed digits), steepness " << s.steepness
+            << " (> 1: steeper left)\n";
+  EXPECT_EQ(s.argmin, 11);
+  EXPECT_NEAR(s.minimum, 14.3, 14.3 * 0.005);
+  EXPECT_GT(s.steepness, 1.0);
+  // Spot values of note 000 §2.5's recomputed table (n_s = 1, 4, 20, 30), to its 4 digits.
+  EXPECT_NEAR(curve[0].y, 339.9, 0.05);
+  EXPECT_NEAR(curve[3].y, 28.0, 0.05);
+  EXPECT_NEAR(curve[19].y, 16.92, 0.005);
+  EXPECT_NEAR(curve[29].y, 21.47, 0.005);
+  // The quick subset keeps the minimum and both sides.
+  const auto quick = curve_shape(fig2_18_model_curve(fig2_18_divisions(true)));
+  EXPECT_EQ(quick.argmin, 11);
+  EXPECT_GT(quick.steepness, 1.0);
+  EXPECT_FALSE(quick.left_clamped);
+  EXPECT_FALSE(quick.right_clamped);
+}
+
+TEST(ValidateVax, GaudetsFig14EstimateIs238Hours) {
+  // seed 001 L322: R_t = 1,824,915.46; L326: T_t = R_t (T_s + T_i O) ~ 238 h.
+  EXPECT_NEAR(gaudet_fig1_4_rays(), 1824915.46, 0.01);
+  const double hours =
+      gaudet_fig1_4_rays() * (kVaxRayTime + kVaxIntersectionTime * kGaudetFig14Objects) / 3600;
+  std::cout << "Gaudet Fig 1-4 on the VAX: " << hours << " h (seed: about 238 h)\n";
+  EXPECT_NEAR(hours, 238.05, 0.01);
+}
+
+// ---- The runner and the command, against the fake rtsim ---------------------------------------
+
+TEST(ValidateRunner, RunsInParallelAndReportsFailures) {
+  if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 missing: the fake rtsim needs it";
+  const auto dir = scratch_dir("validate-runner");
+  std::vector<RunRequest> reqs;
+  for (int i = 0; i < 5; ++i) {
+    reqs.push_back({.key = "vax-" + std::to_string(i),
+                    .args = {"run", "--machine", "vax-750", "--scene", "builtin:default", "--width",
+                             std::to_string(4 + i), "--height", "4"},
+                    .cost_hint = double(i)});
+  }
+  reqs.push_back({.key = "bad-fails", .args = {"run", "--machine", "vax-750"}});
+  ScopedEnv fail("FAKE_RTSIM_FAIL", "-fails");
+  int calls = 0, last_done = 0;
+  const auto results = run_all(reqs, {.executable = kFake,
+                                      .work_dir = dir,
+                                      .jobs = 3,
+                                      .on_finished = [&](const RunOutcome&, int done, int total) {
+                                        ++calls;
+                                        EXPECT_EQ(total, 6);
+                                        EXPECT_EQ(done, last_done + 1);
+                                        last_done = done;
+                                      }});
+  EXPECT_EQ(calls, 6);
+  ASSERT_EQ(results.size(), 6u);
+  for (int i = 0; i < 5; ++i) {
+    const auto& o = results.at("vax-" + std::to_string(i));
+    EXPECT_EQ(o.exit_code, 0) << o.failure;
+    EXPECT_TRUE(o.failure.empty());
+    ASSERT_TRUE(o.stats.has_value());
+    EXPECT_EQ((*o.stats)["width"], 4 + i);
+    EXPECT_EQ(o.out_dir, dir / ("vax-" + std::to_string(i)));
+  }
+  const auto& bad = results.at("bad-fails");
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_NE(bad.failure.find("exit status 3"), std::string::npos) << bad.failure;
+  EXPECT_NE(bad.failure.find("failing on purpose"), std::string::npos) << bad.failure;
+  EXPECT_FALSE(bad.stats.has_value());
+
+  const auto missing = run_all({{.key = "x", .args = {"run"}}},
+                               {.executable = dir / "no-such-binary", .work_dir = dir, .jobs = 1});
+  EXPECT_FALSE(missing.at("x").failure.empty());
+  fs::remove_all(dir);
+}
+
+TEST(ValidateCommand, QuickValidationAgainstAFakeThatFollowsTheSeedsPasses) {
+  if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 missing: the fake rtsim needs it";
+  const auto dir = scratch_dir("validate-fake");
+  const auto r = run_rtsim("validate --quick --jobs 2 --rtsim " + kFake + " --out " + dir.string());
+  std::cout << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("figures pass"), std::string::npos);
+  const auto doc = nlohmann::json::parse(read_file(dir / "validation.json"));
+  EXPECT_EQ(doc["mode"], "quick");
+  EXPECT_EQ(doc["pass"], true);
+  EXPECT_EQ(doc["failed"], 0);
+  EXPECT_EQ(doc["rows"].size(), doc["figures"].get<std::size_t>());
+  EXPECT_GE(doc["rows"].size(), 20u);
+  for (const auto& row : doc["rows"]) EXPECT_TRUE(row["pass"].get<bool>()) << row["id"];
+  // CSV: a header and one line per figure.
+  std::istringstream csv(read_file(dir / "validation.csv"));
+  std::string line;
+  std::size_t lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, doc["rows"].size() + 1);
+  // fig2-18.csv: a header and one line per n_s of the quick sweep, both curves filled.
+  std::istringstream fig(read_file(dir / "fig2-18.csv"));
+  std::getline(fig, line);
+  EXPECT_EQ(line.rfind("n_s,model_t_r_us,simulated_t_r_us,", 0), 0u);
+  std::size_t points = 0;
+  while (std::getline(fig, line)) {
+    ++points;
+    EXPECT_EQ(line.find(",,"), std::string::npos) << line;
+  }
+  EXPECT_EQ(points, fig2_18_divisions(true).size());
+  // Run folders are temporary: none is left without --keep.
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_FALSE(e.is_directory()) << e.path() << " left behind";
+  fs::remove_all(dir);
+}
+
+TEST(ValidateCommand, AFailedRunOrAFigureOutOfToleranceFailsTheValidation) {
+  if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 missing: the fake rtsim needs it";
+  {
+    const auto dir = scratch_dir("validate-fail-run");
+    ScopedEnv fail("FAKE_RTSIM_FAIL", "-ns11");
+    const auto r =
+        run_rtsim("validate --quick --only V8c,V1 --rtsim " + kFake + " --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("V8c: error: 1 of 12 sweep runs unusable"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("1 of 2 figures pass"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("kept: 1 run(s) failed"), std::string::npos) << r.output;
+    const auto doc = nlohmann::json::parse(read_file(dir / "validation.json"));
+    EXPECT_EQ(doc["failed"], 1);
+    fs::remove_all(dir);
+  }
+  {
+    const auto dir = scratch_dir("validate-fail-skew");
+    ScopedEnv skew("FAKE_RTSIM_SKEW", "1.1");  // 10% slower rays: V4 (3%) must fail
+    const auto r =
+        run_rtsim("validate --quick --only V4 --rtsim " + kFake + " --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("FAIL"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+  }
+}
+
+TEST(ValidateCommand, BadUsageExitsWithTwo) {
+  EXPECT_EQ(run_rtsim("validate --only NOPE --quick").exit_code, 2);
+  EXPECT_EQ(run_rtsim("validate --jobs 0").exit_code, 2);
+  EXPECT_EQ(run_rtsim("validate --frobnicate").exit_code, 2);
+  const auto list = run_rtsim("validate --list --only V2");
+  EXPECT_EQ(list.exit_code, 0);
+  EXPECT_NE(list.output.find("V2a"), std::string::npos);
+  EXPECT_NE(list.output.find("V2d"), std::string::npos);
+  EXPECT_EQ(list.output.find("V4 "), std::string::npos);
+}
+
+// ---- The real thing, once `rtsim run` exists ---------------------------------------------------
+
+// Figures the real machines do not meet yet, with the reason; docs/validation.md ("Open
+// figures") says more. The test fails if any other figure fails, and says so when one of these
+// starts to pass (then remove it here and in the docs).
+const std::map<std::string, std::string> kOpenFigures = {
+    {"V8d",
+     "builtin:ullner-random-1000's wide view (130 degrees from the middle of a face) makes rays "
+     "cross ~1.5x the model's n_d subvolumes, and squares in several subvolumes are tested in "
+     "each (n_i ~2.5x the model's): minimum ~22 us, not 14.3"},
+    {"V8e", "follows from V8d"},
+    {"V8f",
+     "peripheral.time_per_ray_s at n_s = 1 is 10.9 ms, 32x L648's t_r: with the grid, a ray's "
+     "service time runs from the start of the auxiliary processor's walk, which runs ahead of "
+     "the pipe, so it includes waiting behind earlier rays' tests (it grows with "
+     "peripheral.ray_queue_depth; brute force restarts it at the first issue)"},
+};
+
+TEST(ValidateCommand, RealQuickValidationPasses) {
+  // Activates by itself when the SystemC machines land: `rtsim run --help` must describe the
+  // real command (the placeholder has no --machine option).
+  const auto help = run_rtsim("run --help");
+  if (help.exit_code != 0 || help.output.find("--machine") == std::string::npos)
+    GTEST_SKIP() << "`rtsim run` is not built yet (its --help has no --machine); the real "
+                    "`rtsim validate --quick` runs once it is";
+  const auto dir = scratch_dir("validate-real");
+  const auto r = run_rtsim("validate --quick --jobs 2 --out " + dir.string());
+  std::cout << r.output;
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "validate itself failed";
+  const auto doc = nlohmann::json::parse(read_file(dir / "validation.json"));
+  for (const auto& run : doc["runs"])
+    EXPECT_EQ(run["failure"], "") << run["command"].get<std::string>();
+  EXPECT_TRUE(fs::exists(dir / "fig2-18.csv"));
+  for (const auto& row : doc["rows"]) {
+    const std::string id = row["id"];
+    const bool pass = row["pass"];
+    const auto open = kOpenFigures.find(id);
+    if (open == kOpenFigures.end()) {
+      EXPECT_TRUE(pass) << id << " (" << row["title"].get<std::string>()
+                        << ") is out of tolerance; see the table above";
+      EXPECT_TRUE(row["error"].get<std::string>().empty()) << id << ": " << row["error"];
+    } else if (pass) {
+      std::cout << "NOTE: open figure " << id << " now passes: remove it from kOpenFigures "
+                << "and from docs/validation.md\n";
+    } else {
+      std::cout << "open figure " << id << " still fails (known): " << open->second << "\n";
+    }
+  }
+  fs::remove_all(dir);
+}
