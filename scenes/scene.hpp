@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware/bounds.hpp"
 #include "firmware/math.hpp"
 
 namespace rtsim::scenes {
@@ -97,6 +98,10 @@ struct Scene {
   /// Branching factor of the shell hierarchy the clusters are meant for (Gaudet's npp scenes:
   /// the n of npp); 0 when the scene does not say.
   int cluster_branching = 0;
+
+  /// Ullner's modelling space (seed 000 L2118: the space the grid divides), when the scene
+  /// defines one (his synthetic scenes: the unit cube). Empty: the bounding box of the geometry.
+  Bounds modelling_space;
 
   std::size_t primitive_count() const { return primitives.size(); }
 };

@@ -9,6 +9,7 @@
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_random.hpp"
+#include "scenes/generators/ullner_sheets.hpp"
 #include "scenes/input_error.hpp"
 #include "scenes/nff_reader.hpp"
 #include "scenes/scene_text.hpp"
@@ -55,6 +56,9 @@ const std::vector<BuiltinScene>& builtin_scenes() {
                       cat("Ullner's analytic model: N = ", n,
                           " random squares of total area 2 in the unit cube, no lights")});
     }
+    list.push_back({std::string(kUllnerSheetsPrefix) + "1000",
+                    "Ullner's Fig 2-18 scene: 1000 quads as two sheets through the unit cube "
+                    "(a_t = 2, d_r = 1/2), no lights; any ullner-sheets-N"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -103,6 +107,14 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
                            kUllnerRandomMinPolygons, " to ", kUllnerRandomMaxPolygons));
     }
     return make_ullner_random(*polygons, seeds.ullner_random);
+  }
+  if (const auto polygons = parse_ullner_sheets_name(name)) {
+    if (*polygons < kUllnerSheetsMinPolygons || *polygons > kUllnerSheetsMaxPolygons) {
+      throw InputError("", 0,
+                       cat("builtin scene ", quote_token(name), ": ullner-sheets-N takes N from ",
+                           kUllnerSheetsMinPolygons, " to ", kUllnerSheetsMaxPolygons));
+    }
+    return make_ullner_sheets(*polygons);
   }
 
   std::vector<std::pair<std::size_t, std::string>> ranked;

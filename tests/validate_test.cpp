@@ -533,18 +533,9 @@ TEST(ValidateCommand, BadUsageExitsWithTwo) {
 // Figures the real machines do not meet yet, with the reason; docs/validation.md ("Open
 // figures") says more. The test fails if any other figure fails, and says so when one of these
 // starts to pass (then remove it here and in the docs).
-const std::map<std::string, std::string> kOpenFigures = {
-    {"V8d",
-     "builtin:ullner-random-1000's wide view (130 degrees from the middle of a face) makes rays "
-     "cross ~1.5x the model's n_d subvolumes, and squares in several subvolumes are tested in "
-     "each (n_i ~2.5x the model's): minimum ~22 us, not 14.3"},
-    {"V8e", "follows from V8d"},
-    {"V8f",
-     "peripheral.time_per_ray_s at n_s = 1 is 10.9 ms, 32x L648's t_r: with the grid, a ray's "
-     "service time runs from the start of the auxiliary processor's walk, which runs ahead of "
-     "the pipe, so it includes waiting behind earlier rays' tests (it grows with "
-     "peripheral.ray_queue_depth; brute force restarts it at the first issue)"},
-};
+// Figures known to fail, with the reason (none now: Fig. 2-18 runs on builtin:ullner-sheets-1000,
+// the scene its text describes; on random squares its minimum is ~22 us, see docs/validation.md).
+const std::map<std::string, std::string> kOpenFigures = {};
 
 TEST(ValidateCommand, RealQuickValidationPasses) {
   // Activates by itself when the SystemC machines land: `rtsim run --help` must describe the

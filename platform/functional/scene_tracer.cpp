@@ -84,8 +84,9 @@ class BruteForceTracer final : public Tracer {
 /// Ullner's subvolumes walked by the corrected Appendix B DDA.
 class GridTracer final : public Tracer {
  public:
-  GridTracer(const SceneGeometry& g, accel::GridDivisions n, accel::DdaVariant variant)
-      : tester_(g), grid_(g.bounds, g.scene_bounds, n), dda_(grid_, variant) {}
+  GridTracer(const SceneGeometry& g, const Bounds& box, accel::GridDivisions n,
+             accel::DdaVariant variant)
+      : tester_(g), grid_(g.bounds, box, n), dda_(grid_, variant) {}
 
   const accel::UniformGrid& grid() const { return grid_; }
 
@@ -191,9 +192,13 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
   if (settings.accel == AccelKind::Grid) {
     accel::GridDivisions n{settings.grid_divisions, settings.grid_divisions,
                            settings.grid_divisions};
-    if (settings.grid_divisions == 0) n = accel::choose_divisions(g.scene_bounds, g.shapes.size());
+    // The grid divides the modelling space (seed 000 L2118): the scene's own when it defines
+    // one, else the bounding box of the geometry.
+    Bounds box = g.scene_bounds;
+    if (!scene.modelling_space.empty()) box.extend(scene.modelling_space);
+    if (settings.grid_divisions == 0) n = accel::choose_divisions(box, g.shapes.size());
     auto tracer = std::make_unique<GridTracer>(
-        g, n, settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
+        g, box, n, settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
     const auto& grid = tracer->grid();
  desc << "grid " << n.x << "x" << n.y << "x" << n.z
          << (settings.dda_as_printed ? " (DDA as printed)" : "") << ", " << grid.occupied_cell_count()

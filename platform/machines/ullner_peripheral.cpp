@@ -206,10 +206,12 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   const int w = opts.width > 0 ? opts.width : scene.camera.width;
   const int h = opts.height > 0 ? opts.height : scene.camera.height;
   functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
-  const PeripheralConfig pc = read_peripheral(r);
+  PeripheralConfig pc = read_peripheral(r);
   HostConfig hc;
   hc.timing = read_processor_timing(r, "host");
   const std::uint64_t quads = twin.geometry->shapes.size();
+  pc.modelling_space = twin.geometry->scene_bounds;
+  if (!scene.modelling_space.empty()) pc.modelling_space.extend(scene.modelling_space);
 
   begin_simulation(r);
   MachineTrace trace(opts);
@@ -264,7 +266,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
 
   const double rays = static_cast<double>(std::max<std::uint64_t>(peripheral.rays_served(), 1));
   const double issued = static_cast<double>(peripheral.pipeline().issued());
-  const double extent = twin.settings.shade.scene_extent;
+  const double extent = functional::scene_extent(pc.modelling_space);
   res.stats["peripheral"] = {
       {"polygons", quads},
       {"intersect_interval_s",

@@ -12,8 +12,14 @@ namespace rtsim::validation {
 
 /// Machine name of Ullner's peripheral in `rtsim run`.
 inline constexpr const char* kUllnerMachine = "ullner-peripheral";
-/// Fig. 2-18's hypothetical scene: n_p = 1000 polygons, a_t = 2, d_r ~ 1/2 (seed 000 L654).
+/// 1000 polygons of total area 2 as random squares: the brute-force figures (every polygon
+/// streams through the pipe, so only the count matters).
 inline constexpr const char* kUllnerRandomScene = "builtin:ullner-random-1000";
+/// Fig. 2-18's hypothetical scene read literally (seed 000 L654): a_t = 2 as two sheets that
+/// "stretch through the modeling space twice", rays travelling d_r = 1/2 before a hit; 968
+/// polygons (two 22 x 22 sheets). Random small squares (kUllnerRandomScene) break the model's
+/// occupied-subvolume assumption (L642): there the minimum is ~22 us (docs/validation.md).
+inline constexpr const char* kUllnerSheetsScene = "builtin:ullner-sheets-1000";
 inline constexpr double kUllnerPolygons = 1000.0;  ///< n_p of L590 and L654
 /// Fig. 2-19's scene: 83 randomly oriented cubes (seed 000 L668).
 inline constexpr const char* kUllnerCubesScene = "builtin:ullner-cubes";

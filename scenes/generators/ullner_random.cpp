@@ -50,6 +50,7 @@ Scene make_ullner_random(std::size_t polygon_count, std::uint64_t seed) {
   Scene scene;
   scene.name = "builtin:" + std::string(kUllnerRandomPrefix) + std::to_string(polygon_count);
   scene.has_camera = true;
+  scene.modelling_space = Bounds{Vec3(0.0), Vec3(1.0)};
   scene.camera.from = kUllnerRandomEye;
   scene.camera.at = kUllnerRandomLookAt;
   scene.camera.up = kUllnerRandomUp;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <systemc>
 
+#include "firmware/bounds.hpp"
 #include "modules/processor_timing.hpp"
 
 namespace rtsim::platform::ullner {
@@ -23,6 +24,9 @@ struct PeripheralConfig {
   unsigned rsqrt_stages = 2;
   sc_core::sc_time load_word_time;
   std::uint64_t memory_polygons = 0;  ///< capacity of the parameter memories
+  /// The modelling space (the grid's box; the scene's bounds in brute force): d_r is measured
+  /// from where a primary ray enters it, in units of its largest side.
+  Bounds modelling_space;
 
   /// Physical stages of the intersection computation (seed 000 L588, Fig. 2-17): t needs a
   /// multiply, two additions and a long division (4 stages with 1-stage adders, 6 with 3);

@@ -50,8 +50,10 @@ void Peripheral::run() {
     const std::uint64_t tests = counters_.intersection_tests - before.intersection_tests;
     const std::uint64_t cells = counters_.cells_visited - before.cells_visited;
     const std::uint64_t steps = counters_.dda_steps - before.dda_steps;
-    if (req.ray.kind == RayKind::Primary && res.found) {
-      travel_sum_ += res.hit.surface.t;
+    double t_enter = 0.0, t_exit = 0.0;
+    if (req.ray.kind == RayKind::Primary && res.found &&
+        config_.modelling_space.intersect(req.ray.ray, 0.0, kInfinity, t_enter, t_exit)) {
+      travel_sum_ += res.hit.surface.t - t_enter;
       ++primary_hits_;
     }
 
