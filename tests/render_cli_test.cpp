@@ -20,6 +20,7 @@ namespace {
 nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
 
 std::vector<float> read_channel(const fs::path& p) {
+  rtsim::test::forget_cached_image(p.string());
   OIIO::ImageBuf buf(p.string());
   EXPECT_TRUE(buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << p;
   const auto& spec = buf.spec();

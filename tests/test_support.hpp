@@ -3,6 +3,7 @@
 // images with OpenImageIO.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imagecache.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -54,10 +55,20 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
+/// An ImageBuf made from a file name reads it through OpenImageIO's shared ImageCache, which
+/// keeps a file it has seen and re-reads it only when its modification time changed: a test that
+/// writes the same path twice within one second (a scratch folder reused in a loop) would get the
+/// first image again. Call this before reading a path that may have been rewritten.
+inline void forget_cached_image(const std::string& path) {
+  OIIO::ImageCache::create(/*shared=*/true)->invalidate(OIIO::ustring(path), /*force=*/true);
+}
+
 /// OpenImageIO's comparison of two images; fails if either cannot be read.
 inline OIIO::ImageBufAlgo::CompareResults compare_images(const std::string& a,
                                                          const std::string& b,
                                                          float fail_threshold) {
+  forget_cached_image(a);
+  forget_cached_image(b);
   OIIO::ImageBuf A(a), B(b);
   OIIO::ImageBufAlgo::CompareResults cr;
   cr.error = true;
