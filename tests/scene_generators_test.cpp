@@ -266,11 +266,12 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 22u);
+  ASSERT_EQ(names.size(), 23u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
   EXPECT_EQ(names[6], "ullner-random-1000000");
+  EXPECT_EQ(names[7], "ullner-sheets-1000");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());
