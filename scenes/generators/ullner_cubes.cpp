@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "scenes/generators/random_rotation.hpp"
 #include "scenes/generators/splitmix64.hpp"
 
 namespace rtsim::scenes {
@@ -45,13 +46,6 @@ constexpr std::array<std::array<int, 4>, 6> kCubeFaces = {{
     {4, 5, 7, 6},  // +z
 }};
 
-/// Rotation matrix columns from a unit quaternion (w, x, y, z).
-std::array<Vec3, 3> rotation_of(double w, double x, double y, double z) {
-  return {Vec3{1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)},
-          Vec3{2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)},
-          Vec3{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}};
-}
-
 }  // namespace
 
 Scene make_ullner_cubes(std::uint64_t seed, int cube_count) {
@@ -78,19 +72,7 @@ Scene make_ullner_cubes(std::uint64_t seed, int cube_count) {
   for (std::size_t cube = 0; cube < n; ++cube) {
     const Vec3 centre{rng.uniform(margin, 1.0 - margin), rng.uniform(margin, 1.0 - margin),
                       rng.uniform(margin, 1.0 - margin)};
-    // Uniform random rotation: a point uniform in the 4-ball (rejection from the cube [-1,1]^4),
-    // normalised, is a uniform unit quaternion. Only +, *, sqrt: the same on every libm.
-    double q[4];
-    double norm2 = 0.0;
-    do {
-      norm2 = 0.0;
-      for (double& c : q) {
-        c = rng.uniform(-1.0, 1.0);
-        norm2 += c * c;
-      }
-    } while (norm2 > 1.0 || norm2 < 1e-6);
-    const double inv = 1.0 / std::sqrt(norm2);
-    const auto axes = rotation_of(q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv);
+    const auto axes = random_rotation(rng);
     std::array<Vec3, 8> corners;
     for (int i = 0; i < 8; ++i) {
       const double sx = (i & 1) ? half : -half;

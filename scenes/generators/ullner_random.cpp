@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/generators/random_rotation.hpp"
 #include "scenes/generators/splitmix64.hpp"
 
 namespace rtsim::scenes {
@@ -31,13 +32,6 @@ constexpr double kUllnerRandomFieldOfViewDeg = 130.0;
 constexpr double kUllnerRandomHither = 1e-9;
 constexpr int kUllnerRandomImageSize = 512;  ///< seed 000 L590
 const Material kUllnerRandomMaterial{Color{1.0, 1.0, 1.0}, 1.0, 0.0, 0.0, 0.0, 1.0};
-
-/// Rotation matrix columns from a unit quaternion (w, x, y, z).
-std::array<Vec3, 3> rotation_of(double w, double x, double y, double z) {
-  return {Vec3{1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)},
-          Vec3{2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)},
-          Vec3{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}};
-}
 
 }  // namespace
 
@@ -67,19 +61,7 @@ Scene make_ullner_random(std::size_t polygon_count, std::uint64_t seed) {
   scene.polygons.resize(polygon_count);
   scene.primitives.resize(polygon_count);
   for (std::size_t k = 0; k < polygon_count; ++k) {
-    // Uniform random rotation: a point uniform in the 4-ball (rejection from [-1,1]^4),
-    // normalised. Only +, *, sqrt: the same on every libm.
-    double q[4];
-    double norm2 = 0.0;
-    do {
-      norm2 = 0.0;
-      for (double& c : q) {
-        c = rng.uniform(-1.0, 1.0);
-        norm2 += c * c;
-      }
-    } while (norm2 > 1.0 || norm2 < 1e-6);
-    const double inv = 1.0 / std::sqrt(norm2);
-    const auto axes = rotation_of(q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv);
+    const auto axes = random_rotation(rng);
     const Vec3 u = half * axes[0];
     const Vec3 v = half * axes[1];
     // Half extent per axis, h(|u_i| + |v_i|) <= h sqrt(2) <= 1/2 for N >= 4.
