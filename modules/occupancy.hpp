@@ -20,16 +20,17 @@ class Occupancy {
     int max = 0;
   };
 
-  /// Occupancy over [0, end].
-  Summary summarize(const sc_core::sc_time& end) const {
+  /// Occupancy over [begin, end].
+  Summary summarize(const sc_core::sc_time& begin, const sc_core::sc_time& end) const {
     Summary s;
+    const std::uint64_t b = begin.value();
     const std::uint64_t e = end.value();
-    if (e == 0) return s;
+    if (e <= b) return s;
     long level = 0;
-    std::uint64_t last = 0;
+    std::uint64_t last = b;
     long double area = 0;
     auto step = [&](std::uint64_t t, int delta) {
-      t = std::min(t, e);
+      t = std::clamp(t, b, e);
       area += static_cast<long double>(level) * static_cast<long double>(t - last);
       last = t;
       level += delta;
@@ -44,7 +45,7 @@ class Occupancy {
         step(puts_[p++], +1);
     }
     area += static_cast<long double>(level) * static_cast<long double>(e - last);
-    s.mean = static_cast<double>(area / static_cast<long double>(e));
+    s.mean = static_cast<double>(area / static_cast<long double>(e - b));
     return s;
   }
 

@@ -219,7 +219,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters(),
                                 trace);
   ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc,
-                    opts, trace);
+                    opts, trace, *twin.geometry);
+  host.load_out.bind(peripheral.parameters.socket);
   peripheral.set_ray_queue_depth_handle(host.ray_queue_depth_handle());
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);
@@ -238,11 +239,12 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   auto& rq = stats.module("peripheral.ray_queue");
   rq.has_occupancy = true;
   rq.capacity = pc.ray_queue_depth;
-  rq.occupancy = peripheral.rays.fifo.occupancy().summarize(frame_time);
+  const sc_core::sc_time frame_end = host.load_time() + frame_time;
+  rq.occupancy = peripheral.rays.fifo.occupancy().summarize(host.load_time(), frame_end);
   auto& hq = stats.module("host.result_queue");
   hq.has_occupancy = true;
   hq.capacity = pc.result_queue_depth;
-  hq.occupancy = host.results.fifo.occupancy().summarize(frame_time);
+  hq.occupancy = host.results.fifo.occupancy().summarize(host.load_time(), frame_end);
   auto& ps = stats.module("peripheral.pipeline");
   ps.busy = peripheral.pipeline().busy();
   ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());
@@ -256,9 +258,11 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
     as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
     as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
   }
-  auto& ms = stats.module("peripheral.memory");
+  auto& ms = stats.module("peripheral.parameter_memories");
+  ms.busy = peripheral.parameters.read_busy();
   ms.values["polygons"] = static_cast<double>(quads);
-  ms.values["words"] = static_cast<double>(quads * 20);
+  ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
+  ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
   res.stats["modules"] = stats.to_json(frame_time);
   res.stats["ray_latency_s"] = host.latency().to_json();
   // What the hardware did: every polygon address fed to the pipe is an intersection.
@@ -282,7 +286,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
            ? peripheral.primary_travel_sum() / static_cast<double>(peripheral.primary_hits()) /
                  extent
            : 0.0},
-      {"load_time_s", (modules::times(pc.load_word_time, quads * 20)).to_seconds()},
+      {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};
   res.image = frame.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -1,5 +1,7 @@
 #include "platform/machines/ullner/host.hpp"
 
+#include <cstring>
+
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/sim_time.hpp"
@@ -16,9 +18,11 @@ constexpr Cost kSendCost{.mem_words = RayRequest::kWireBytes / 4, .instructions 
 Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
            const shading::ShadeParams& shade, functional::FrameState& frame,
            const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-           const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace)
+           const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace,
+           const functional::SceneGeometry& geometry)
     : sc_core::sc_module(name),
       ray_out("ray_out"),
+      load_out("load_out"),
       results("result_queue", peripheral.result_queue_depth),
       scene_(scene),
       shade_params_(shade),
@@ -28,6 +32,7 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
       peripheral_(peripheral),
       opts_(opts),
       trace_(trace),
+      geometry_(geometry),
       busy_signal_(trace.declare_busy("host")),
       ray_queue_depth_(trace.declare_depth("peripheral.ray_queue")),
       result_queue_depth_(trace.declare_depth("host.result_queue")),
@@ -65,7 +70,36 @@ void Host::send(RayRequest req) {
   ++outstanding_;
 }
 
+void Host::load_scene() {
+  // Each polygon's 20 parameters as 32-bit words (24-bit fraction, 8-bit exponent, L582) into
+  // line k of the parameter memories. One transaction per polygon, its delay annotated and
+  // accumulated (loosely timed: the host synchronises once, when the load is done).
+  sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
+  std::array<std::uint32_t, kParameterWords> words{};
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_data_length(kParameterWords * 4);
+  gp.set_streaming_width(kParameterWords * 4);
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
+  for (std::size_t k = 0; k < geometry_.shapes.size(); ++k) {
+    const auto* quad = std::get_if<kernels::UllnerQuadKernel>(&geometry_.shapes[k].shape);
+    if (!quad) continue;
+    for (unsigned i = 0; i < kParameterWords; ++i) {
+      const float f = static_cast<float>(quad->params.word[i]);
+      std::memcpy(&words[i], &f, 4);
+    }
+    gp.set_address(k * kParameterWords * 4);
+    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    load_out->b_transport(gp, delay);
+    if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/ullner", "parameter memory load failed");
+  }
+  clock_.catch_up(delay);
+  frame_start_ = clock_.now();
+}
+
 void Host::run() {
+  load_scene();
   shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
   tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
   tasks::ShadeTask shade(scene_, shade_params_);
@@ -153,7 +187,7 @@ void Host::run() {
       sc_core::wait(results.fifo.put_event());
     clock_.resync();
   }
-  frame_time_ = clock_.now();
+  frame_time_ = clock_.now() - frame_start_;
   clock_.sync();
   if (opts_.progress)
     opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));

@@ -14,6 +14,7 @@
 #include "modules/pipelined_unit.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
+#include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner/config.hpp"
@@ -24,15 +25,19 @@ namespace rtsim::platform::ullner {
 class Host : public sc_core::sc_module {
  public:
   tlm_utils::simple_initiator_socket<Host> ray_out;  ///< to the peripheral's ray queue
+  tlm_utils::simple_initiator_socket<Host> load_out;  ///< to the parameter memories' load port
   modules::MessageQueue<RayResult> results;           ///< the result queue
 
   SC_HAS_PROCESS(Host);
   Host(sc_core::sc_module_name name, const scenes::Scene& scene,
        const shading::ShadeParams& shade, functional::FrameState& frame,
        const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-       const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace);
+       const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace,
+       const functional::SceneGeometry& geometry);
 
+  /// From the end of the scene load to the host having the last answer.
   sc_core::sc_time frame_time() const { return frame_time_; }
+  sc_core::sc_time load_time() const { return frame_start_; }
   sc_core::sc_time busy() const { return busy_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
   const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
@@ -43,6 +48,7 @@ class Host : public sc_core::sc_module {
 
  private:
   void run();
+  void load_scene();
   void send(RayRequest req);
   sc_core::sc_time result_time(const Cost& shade_cost);
 
@@ -54,6 +60,8 @@ class Host : public sc_core::sc_module {
   PeripheralConfig peripheral_;
   const RunOptions& opts_;
   MachineTrace& trace_;
+  const functional::SceneGeometry& geometry_;
+  sc_core::sc_time frame_start_ = sc_core::SC_ZERO_TIME;
   int busy_signal_;
   int ray_queue_depth_;
   int result_queue_depth_;

@@ -13,6 +13,8 @@ Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
                        MachineTrace& trace)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
+      parameters("parameter_memories", polygons * kParameterWords, kParameterWords,
+                 config.load_word_time, config.intersect_interval),
       result_out("result_out"),
       tracer_(tracer),
       shade_(shade),
@@ -64,6 +66,7 @@ void Peripheral::run() {
       // Every polygon streams through, fetched from the parameter memories (L544).
       const bool early = config_.shadow_early_exit && req.ray.kind == RayKind::Shadow;
       const std::uint64_t n = early ? tests : polygons_;
+      parameters.account_line_reads(n);  // fetch: one polygon a cycle, in step with the pipe
       const auto batch = pipe_.issue(n, start + times(stage, config_.fetch_stages));
       start = batch.first_issue - times(stage, config_.fetch_stages);
       done = batch.done + times(stage, config_.select_stages);
@@ -80,6 +83,7 @@ void Peripheral::run() {
       const sc_core::sc_time walk = times(config_.step_time, cells);
       const sc_core::sc_time feed =
           times(stage, config_.indirection_stages + config_.fetch_stages);
+      parameters.account_line_reads(tests);
       const auto batch = pipe_.issue(tests, start + walk + feed);
       done = batch.done + times(stage, config_.select_stages);
       aux_free_ = std::max(start + walk, batch.next_free - feed);

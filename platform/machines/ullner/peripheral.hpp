@@ -17,6 +17,7 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
 #include "modules/local_clock.hpp"
+#include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -28,6 +29,9 @@ namespace rtsim::platform::ullner {
 class Peripheral : public sc_core::sc_module {
  public:
   modules::MessageQueue<RayRequest> rays;             ///< the ray queue (host -> peripheral)
+  /// The 20 parameter memories (seed 000 L544): polygon k's 20 words at line k, loaded by the
+  /// host through the dual-ported load path, read a whole line per cycle by the fetch stage.
+  modules::Memory parameters;
   tlm_utils::simple_initiator_socket<Peripheral> result_out;  ///< to the host's result queue
 
   SC_HAS_PROCESS(Peripheral);

@@ -1,0 +1,87 @@
+#pragma once
+// A word-addressed memory behind a TLM-2.0 target socket. b_transport reads or writes
+// data_length / 4 32-bit words at the payload's byte address and annotates the access time:
+// writes come through a load port at `write_word_time` per word; reads fetch whole lines of
+// `line_words` words in parallel at `read_line_time` a line (Ullner's 20 parameter memories:
+// "one cycle reads a whole polygon", seed 000 L544). Streams the model only needs to time (a
+// pipeline fetching every polygon for every ray) are charged with account_line_reads(), which
+// advances the same counters without moving data.
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_target_socket.h>
+#include <vector>
+
+#include "modules/sim_time.hpp"
+
+namespace rtsim::modules {
+
+class Memory : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_target_socket<Memory> socket;
+
+  Memory(sc_core::sc_module_name name, std::size_t words, unsigned line_words,
+         sc_core::sc_time write_word_time, sc_core::sc_time read_line_time)
+      : sc_core::sc_module(name),
+        socket("socket"),
+        data_(words, 0),
+        line_words_(line_words ? line_words : 1),
+        write_word_time_(write_word_time),
+        read_line_time_(read_line_time) {
+    socket.register_b_transport(this, &Memory::b_transport);
+  }
+
+  const std::vector<std::uint32_t>& contents() const { return data_; }
+  std::uint64_t words_written() const { return words_written_; }
+  std::uint64_t lines_read() const { return lines_read_; }
+  sc_core::sc_time write_busy() const { return write_busy_; }
+  sc_core::sc_time read_busy() const { return read_busy_; }
+
+  /// `lines` line reads whose data the model does not need; returns their time.
+  sc_core::sc_time account_line_reads(std::uint64_t lines) {
+    lines_read_ += lines;
+    const sc_core::sc_time t = times(read_line_time_, lines);
+    read_busy_ += t;
+    return t;
+  }
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+    const std::uint64_t addr = gp.get_address();
+    const unsigned len = gp.get_data_length();
+    if (addr % 4 != 0 || len % 4 != 0 || gp.get_byte_enable_ptr() != nullptr ||
+        gp.get_streaming_width() < len) {
+      gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+      return;
+    }
+    const std::uint64_t first = addr / 4, words = len / 4;
+    if (first + words > data_.size()) {
+      gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+      return;
+    }
+    if (gp.is_write()) {
+      std::memcpy(&data_[first], gp.get_data_ptr(), len);
+      words_written_ += words;
+      const sc_core::sc_time t = times(write_word_time_, words);
+      write_busy_ += t;
+      delay += t;
+    } else if (gp.is_read()) {
+      std::memcpy(gp.get_data_ptr(), &data_[first], len);
+      delay += account_line_reads((words + line_words_ - 1) / line_words_);
+    }
+    gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+
+  std::vector<std::uint32_t> data_;
+  unsigned line_words_;
+  sc_core::sc_time write_word_time_;
+  sc_core::sc_time read_line_time_;
+  std::uint64_t words_written_ = 0;
+  std::uint64_t lines_read_ = 0;
+  sc_core::sc_time write_busy_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time read_busy_ = sc_core::SC_ZERO_TIME;
+};
+
+}  // namespace rtsim::modules
