@@ -63,14 +63,15 @@ Placement random_placement(RandomGeometry& g, double offset, double scale) {
 
 /// Checks a triangulation of `shape` placed by `pl`; returns the number of failed checks.
 void check(const Shape& shape, const Placement& pl, const std::string& name,
-           bool expect_warning_free = true) {
+           bool expect_warning_free = true, EarChoice choice = EarChoice::Walk) {
   SCOPED_TRACE(name);
   std::vector<Vec3> verts;
   for (V2 p : shape) verts.push_back(pl(p));
-  const TriangulationResult r = triangulate_polygon(verts);
+  const TriangulationResult r = triangulate_polygon(verts, choice);
   ASSERT_TRUE(r.ok()) << r.reason;
   if (expect_warning_free) {
     EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    EXPECT_FALSE(r.not_simple);
   }
   const double area2d = shoelace(shape);  // signed: negative for clockwise drawings
   const double scale2 = pl.scale * pl.scale;
@@ -232,6 +233,29 @@ TEST(Triangulate, CollinearDuplicateAndSpikeVertices) {
   }
 }
 
+TEST(Triangulate, BestShapedEarsTileTheSameShapes) {
+  // The ear choice of the convex-quad converter: the same checks (exact area, no inverted or
+  // outside triangle, consistent mesh). comb(40) has 160 vertices: it starts on the walk and
+  // finishes on best-shaped ears below kBestEarVertexLimit.
+  RandomGeometry g(46);
+  const Placement pl = random_placement(g, 3.0, 1.0);
+  const EarChoice best = EarChoice::BestShaped;
+  check(kSquare, pl, "square, best-shaped", true, best);
+  check(circle(16), pl, "16-gon, best-shaped", true, best);
+  check(kL, pl, "L, best-shaped", true, best);
+  check(reversed(kU), pl, "U clockwise, best-shaped", true, best);
+  check(star(12, 0.2), pl, "12-point star, best-shaped", true, best);
+  check(comb(40, 20.0), pl, "comb 40 teeth, best-shaped", true, best);
+  const Shape keyhole{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 2}, {1, 2},
+                      {1, 3}, {3, 3}, {3, 1}, {1, 1}, {1, 2}, {0, 2}};
+  check(keyhole, pl, "keyhole, best-shaped", true, best);
+  check(star(9, 0.3), random_placement(g, 1e6, 1.0), "star at 1e6, best-shaped", true, best);
+  // A bow tie crosses itself: flagged, whichever ear choice.
+  const std::vector<Vec3> bowtie{{0, 0, 0}, {3, 0, 0}, {0, 2, 0}, {1, 3, 0}};
+  EXPECT_TRUE(triangulate_polygon(bowtie, best).not_simple);
+  EXPECT_TRUE(triangulate_polygon(bowtie).not_simple);
+}
+
 TEST(Triangulate, ManyVertexCircles) {
   RandomGeometry g(44);
   const Placement pl = random_placement(g, 3.0, 1.0);
@@ -287,6 +311,7 @@ TEST(Triangulate, SelfIntersectingPolygonWarnsAndStaysFinite) {
   ASSERT_TRUE(r.ok()) << r.reason;
   EXPECT_FALSE(r.triangles.empty());
   EXPECT_FALSE(r.warnings.empty());
+  EXPECT_TRUE(r.not_simple);
   for (const auto& t : r.triangles) {
     for (auto i : t) EXPECT_LT(i, v.size());
   }

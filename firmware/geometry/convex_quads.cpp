@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <unordered_map>
 
-#include "firmware/bounds.hpp"
+#include "firmware/geometry/triangulate.hpp"
 #include "firmware/kernels/ullner_quad.hpp"
 
 namespace rtsim::geometry {
@@ -88,8 +88,6 @@ std::string ConvexQuadReport::summary() const {
 namespace {
 
 using Tri = std::array<std::uint32_t, 3>;
-
-double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
 
 /// Smallest turning sine of the corners of a (counter-clockwise about n) polygon; negative when
 /// a corner turns the wrong way.
@@ -224,108 +222,10 @@ void merge_triangles(const std::vector<Vec3>& v, const std::vector<Vec3>* normal
   }
 }
 
-double polygon_size(const std::vector<Vec3>& v) {
-  Bounds b;
-  for (const Vec3& p : v) b.extend(p);
-  return glm::length(b.extent());
-}
-
-/// Vector area (Newell's method about the centroid): its direction is the polygon's normal.
-Vec3 vector_area(const std::vector<Vec3>& v) {
-  Vec3 c(0.0);
-  for (const Vec3& p : v) c += p;
-  c /= static_cast<double>(v.size());
-  Vec3 a(0.0);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    a += glm::cross(v[i] - c, v[(i + 1) % v.size()] - c);
-  }
-  return 0.5 * a;
-}
-
 }  // namespace
 
-bool ear_clip(const std::vector<Vec3>& vertices, const Vec3& normal, std::vector<Tri>& triangles) {
-  const std::size_t n = vertices.size();
-  if (n < 3) return false;
-  // Project onto the polygon's plane with a frame (t1, t2) such that t1 x t2 = normal, so the
-  // counter-clockwise order about `normal` stays counter-clockwise in 2-D.
-  const Vec3 nn = glm::normalize(normal);
-  const Vec3 helper = std::fabs(nn.x) < 0.7 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  const Vec3 t1 = glm::normalize(glm::cross(nn, helper));
-  const Vec3 t2 = glm::cross(nn, t1);
-  std::vector<glm::dvec2> p(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 d = vertices[i] - vertices[0];
-    p[i] = glm::dvec2(glm::dot(d, t1), glm::dot(d, t2));
-  }
-  // Not simple when two non-adjacent edges cross properly (ear clipping alone would happily
-  // triangulate a self-intersecting polygon into overlapping triangles). Touching edges are let
-  // through: the ear test below refuses ears with a vertex on them.
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec2 a = p[i], b = p[(i + 1) % n];
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;  // adjacent through the wrap-around
-      const glm::dvec2 c = p[j], d = p[(j + 1) % n];
-      const double s1 = cross2(b - a, c - a), s2 = cross2(b - a, d - a);
-      const double s3 = cross2(d - c, a - c), s4 = cross2(d - c, b - c);
-      if (((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) &&
-          ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0))) {
-        return false;
-      }
-    }
-  }
-  std::vector<std::uint32_t> idx(n);
-  for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
-
-  // Best-ear selection (largest smallest corner sine) for small polygons, first ear otherwise,
-  // to keep the cost near O(n^2) for very large ones.
-  constexpr std::size_t kBestEarLimit = 64;
-  auto corner_sine = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
-    const glm::dvec2 e1 = b - a, e2 = c - b;
-    const double l = glm::length(e1) * glm::length(e2);
-    return l > 0.0 ? cross2(e1, e2) / l : -1.0;
-  };
-  while (idx.size() > 3) {
-    const std::size_t m = idx.size();
-    std::size_t best = m;
-    double best_q = -kInfinity;
-    for (std::size_t k = 0; k < m; ++k) {
-      const glm::dvec2& a = p[idx[(k + m - 1) % m]];
-      const glm::dvec2& b = p[idx[k]];
-      const glm::dvec2& c = p[idx[(k + 1) % m]];
-      const double s = corner_sine(a, b, c);
-      if (!(s > kPolygonVertexTolerance)) continue;  // reflex or straight: not an ear
-      bool empty = true;
-      for (std::size_t j = 0; j < m && empty; ++j) {
-        if (j == k || j == (k + m - 1) % m || j == (k + 1) % m) continue;
-        const glm::dvec2& x = p[idx[j]];
-        if (x == a || x == b || x == c) continue;  // a coincident vertex (bridged holes)
-        if (cross2(b - a, x - a) >= 0.0 && cross2(c - b, x - b) >= 0.0 &&
-            cross2(a - c, x - c) >= 0.0) {
-          empty = false;  // a vertex inside or on the candidate triangle
-        }
-      }
-      if (!empty) continue;
-      const double q = std::min({s, corner_sine(b, c, a), corner_sine(c, a, b)});
-      if (q > best_q) {
-        best_q = q;
-        best = k;
-      }
-      if (m > kBestEarLimit) break;
-    }
-    if (best == m) return false;  // no ear: the polygon is not simple
-    triangles.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
-    idx.erase(idx.begin() + static_cast<std::ptrdiff_t>(best));
-  }
-  const double s = corner_sine(p[idx[0]], p[idx[1]], p[idx[2]]);
-  if (!(s > kPolygonVertexTolerance)) return false;
-  triangles.push_back({idx[0], idx[1], idx[2]});
-  return true;
-}
-
-std::size_t convert_polygon(const std::vector<Vec3>& vertices_in,
-                            const std::vector<Vec3>& normals_in, std::vector<ConvexQuad>& out,
-                            ConvexQuadReport& report) {
+std::size_t convert_polygon(const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals_in,
+                            std::vector<ConvexQuad>& out, ConvexQuadReport& report) {
   ++report.polygons;
   std::array<bool, static_cast<std::size_t>(PolygonRepair::kCount)> repairs{};
   auto reject = [&](PolygonRejection r) {
@@ -333,94 +233,82 @@ std::size_t convert_polygon(const std::vector<Vec3>& vertices_in,
     ++report.rejections[static_cast<std::size_t>(r)];
     return std::size_t{0};
   };
-  if (vertices_in.size() < 3) return reject(PolygonRejection::TooFewVertices);
-  for (const Vec3& p : vertices_in) {
+  // triangulate_polygon rejects these two as well, but only with a text: checking them here
+  // keeps them apart from the zero-area rejections below.
+  if (vertices.size() < 3) return reject(PolygonRejection::TooFewVertices);
+  for (const Vec3& p : vertices) {
     if (!is_finite(p)) return reject(PolygonRejection::NonFiniteVertex);
   }
-  // Normals: one per vertex, finite and non-zero, or none.
-  bool has_normals = !normals_in.empty();
-  if (has_normals) {
-    bool ok = normals_in.size() == vertices_in.size();
+  // Normals: one per vertex, finite and non-zero, or none. Indexed like `vertices`.
+  std::vector<Vec3> nrm;
+  if (!normals_in.empty()) {
+    bool ok = normals_in.size() == vertices.size();
     for (std::size_t i = 0; ok && i < normals_in.size(); ++i) {
       const double l = glm::length(normals_in[i]);
       ok = std::isfinite(l) && l > 0.0;
+      if (ok) nrm.push_back(normals_in[i] / l);
     }
     if (!ok) {
-      has_normals = false;
+      nrm.clear();
       repairs[static_cast<std::size_t>(PolygonRepair::NormalsDropped)] = true;
     }
   }
-  std::vector<Vec3> v;
-  std::vector<Vec3> nrm;
-  const double size = polygon_size(vertices_in);
-  if (!(size > 0.0)) return reject(PolygonRejection::ZeroArea);
-  // Consecutive duplicates (also across the wrap-around).
-  for (std::size_t i = 0; i < vertices_in.size(); ++i) {
-    if (!v.empty() && glm::length(vertices_in[i] - v.back()) <= kPolygonVertexTolerance * size) {
-      repairs[static_cast<std::size_t>(PolygonRepair::DuplicateVertex)] = true;
-      continue;
-    }
-    v.push_back(vertices_in[i]);
-    if (has_normals) nrm.push_back(glm::normalize(normals_in[i]));
-  }
-  while (v.size() > 1 && glm::length(v.front() - v.back()) <= kPolygonVertexTolerance * size) {
-    v.pop_back();
-    if (has_normals) nrm.pop_back();
+  const bool has_normals = !nrm.empty();
+
+  // The clean-up (duplicate and collinear vertices) and the ear clipping are triangulate's; its
+  // triangles index `vertices`, counter-clockwise about the polygon's Newell normal. Best-shaped
+  // ears: they pair up into convex quads more often than the default walk's.
+  const TriangulationResult tri = triangulate_polygon(vertices, EarChoice::BestShaped);
+  // Fewer than 3 distinct or non-collinear vertices, or no area (the reason texts tell apart
+  // which; the report counts them all as zero area, as before).
+  if (tri.rejected) return reject(PolygonRejection::ZeroArea);
+  // Forced ears or triangles that do not tile the polygon: it crosses itself.
+  if (tri.not_simple) return reject(PolygonRejection::NotSimple);
+  if (tri.removed_duplicates > 0) {
     repairs[static_cast<std::size_t>(PolygonRepair::DuplicateVertex)] = true;
   }
-  if (v.size() < 3) return reject(PolygonRejection::ZeroArea);
-  const Vec3 area = vector_area(v);
-  const double area_len = glm::length(area);
-  if (!(area_len > kernels::kUllnerMinRelativeArea * size * size)) {
-    return reject(PolygonRejection::ZeroArea);
+  if (tri.removed_collinear > 0) {
+    repairs[static_cast<std::size_t>(PolygonRepair::CollinearVertex)] = true;
   }
-  const Vec3 n = area / area_len;
-  // Collinear vertices (straight corners, and zero-width spikes that double back).
-  for (bool changed = true; changed && v.size() >= 3;) {
-    changed = false;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const std::size_t m = v.size();
-      const Vec3 e1 = v[i] - v[(i + m - 1) % m];
-      const Vec3 e2 = v[(i + 1) % m] - v[i];
-      const double l = glm::length(e1) * glm::length(e2);
-      if (std::fabs(glm::dot(glm::cross(e1, e2), n)) <= kPolygonVertexTolerance * l) {
-        v.erase(v.begin() + static_cast<std::ptrdiff_t>(i));
-        if (has_normals) nrm.erase(nrm.begin() + static_cast<std::ptrdiff_t>(i));
-        repairs[static_cast<std::size_t>(PolygonRepair::CollinearVertex)] = true;
-        changed = true;
-        break;
-      }
-    }
-  }
-  if (v.size() < 3) return reject(PolygonRejection::ZeroArea);
-  // Planarity about the vertex centroid.
-  Vec3 c(0.0);
-  for (const Vec3& p : v) c += p;
-  c /= static_cast<double>(v.size());
-  bool planar = true;
-  for (const Vec3& p : v) {
-    if (std::fabs(glm::dot(p - c, n)) > kernels::kUllnerPlanarityTolerance * size) planar = false;
-  }
+  // Ullner's planarity tolerance (tighter than triangulate's warning threshold); both are
+  // relative to the polygon's diameter.
+  const bool planar = tri.plane_deviation <= kernels::kUllnerPlanarityTolerance;
   if (!planar) repairs[static_cast<std::size_t>(PolygonRepair::NonPlanar)] = true;
+
+  // A polygon left with 3 or 4 vertices: its outline is the vertices its triangles use, in
+  // input order (triangulate removes vertices but never reorders them).
+  std::vector<std::uint32_t> outline;
+  if (tri.triangles.size() <= 2) {
+    for (const Tri& t : tri.triangles) outline.insert(outline.end(), t.begin(), t.end());
+    std::sort(outline.begin(), outline.end());
+    outline.erase(std::unique(outline.begin(), outline.end()), outline.end());
+  }
+  auto corner = [&](std::size_t i) { return vertices[outline[i]]; };
+  auto normal_of = [&](std::size_t i) { return nrm[outline[i]]; };
 
   std::size_t quads = 0, tris = 0;
   const std::size_t before = out.size();
-  if (v.size() == 4 && planar && acceptable_quad({v[0], v[1], v[2], v[3]})) {
+  if (outline.size() == 4 && planar &&
+      acceptable_quad({corner(0), corner(1), corner(2), corner(3)})) {
     // A convex quad as given keeps its vertex order: p00 = first vertex (u, v follow the file).
     ConvexQuad q;
-    q.corners = {v[0], v[1], v[2], v[3]};
-    if (has_normals) q.normals = {nrm[0], nrm[1], nrm[2], nrm[3]};
+    q.corners = {corner(0), corner(1), corner(2), corner(3)};
+    if (has_normals) q.normals = {normal_of(0), normal_of(1), normal_of(2), normal_of(3)};
     q.has_normals = has_normals;
     out.push_back(q);
     quads = 1;
-  } else if (v.size() == 3) {
-    out.push_back(has_normals ? make_triangle(v[0], v[1], v[2], &nrm[0], &nrm[1], &nrm[2])
-                              : make_triangle(v[0], v[1], v[2], nullptr, nullptr, nullptr));
+  } else if (outline.size() == 3) {
+    // A triangle likewise keeps its order: p00 = first vertex, p11 = p01 = last.
+    if (has_normals) {
+      const Vec3 n0 = normal_of(0), n1 = normal_of(1), n2 = normal_of(2);
+      out.push_back(make_triangle(corner(0), corner(1), corner(2), &n0, &n1, &n2));
+    } else {
+      out.push_back(make_triangle(corner(0), corner(1), corner(2), nullptr, nullptr, nullptr));
+    }
     tris = 1;
   } else {
-    std::vector<Tri> t;
-    if (!ear_clip(v, n, t)) return reject(PolygonRejection::NotSimple);
-    merge_triangles(v, has_normals ? &nrm : nullptr, t, planar, out, quads, tris);
+    merge_triangles(vertices, has_normals ? &nrm : nullptr, tri.triangles, planar, out, quads,
+                    tris);
   }
   ++report.converted;
   bool any = false;

@@ -2,7 +2,8 @@
 // Turning scene polygons into Ullner's primitives (seed 000 L267: "only convex quadrilaterals
 // will be considered. These may, of course, be pieced together in order to form arbitrarily
 // complicated polygons"). A planar polygon -- possibly concave, with optional per-vertex normals
-// -- is cut into triangles by ear clipping, and adjacent triangle pairs are merged greedily into
+// -- is cleaned up and cut into triangles by triangulate_polygon (triangulate.hpp: duplicate and
+// collinear vertices removed, ear clipping), and adjacent triangle pairs are merged greedily into
 // convex quads where the pair is coplanar and the quad convex. A triangle that stays alone is
 // given as a quad with two equal vertices (p11 == p01), which the Ullner kernel supports.
 //
@@ -40,7 +41,8 @@ enum class PolygonRejection : std::uint8_t {
   TooFewVertices,   ///< fewer than 3 vertices
   NonFiniteVertex,  ///< NaN or infinite coordinate
   ZeroArea,         ///< no area left (collinear or coincident vertices)
-  NotSimple,        ///< self-intersecting: ear clipping found no ear
+  NotSimple,        ///< self-intersecting: ear clipping had to force ears, or its triangles
+                    ///< do not tile the polygon (TriangulationResult::not_simple)
   kCount
 };
 std::string_view to_string(PolygonRepair r);
@@ -70,11 +72,6 @@ struct ConvexQuadReport {
 /// lose accuracy like 1/sine. 1e-2 (~0.6 degrees) costs few merges. (Assumption.)
 inline constexpr double kMinQuadCornerSine = 1e-2;
 
-/// Vertices closer than this times the polygon's size are duplicates; a vertex whose two edges
-/// have |sine| below it is collinear. Both are rounding-level (the scene files' precision is far
-/// coarser), so only true degeneracies are touched.
-inline constexpr double kPolygonVertexTolerance = 1e-12;
-
 /// Converts one polygon (vertices counter-clockwise about its front side, possibly concave;
 /// `normals` empty or one per vertex). Appends to `out` and updates `report`; returns the number
 /// of primitives appended.
@@ -93,11 +90,5 @@ std::vector<ConvexQuad> convert_polygon(const std::vector<Vec3>& vertices,
 std::vector<ConvexQuad> convert_triangles_to_quads(
     const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
     const std::vector<Vec3>& normals = {}, ConvexQuadReport* report = nullptr);
-
-/// The ear clipper used by convert_polygon, exposed for tests: triangles of a simple planar
-/// polygon (indices into `vertices`), counter-clockwise about `normal`. Returns false (and a
-/// partial list) when the polygon is not simple.
-bool ear_clip(const std::vector<Vec3>& vertices, const Vec3& normal,
-              std::vector<std::array<std::uint32_t, 3>>& triangles);
 
 }  // namespace rtsim::geometry

@@ -35,8 +35,8 @@ Vec3 newell_normal(const std::vector<Vec3>& v, const Vec3& centre) {
 /// Ear clipping over a cyclic doubly linked list of projected vertices.
 class EarClipper {
  public:
-  EarClipper(std::vector<P2> pts, std::vector<std::uint32_t> ids, double diameter)
-      : p_(std::move(pts)), id_(std::move(ids)), diameter_(diameter) {
+  EarClipper(std::vector<P2> pts, std::vector<std::uint32_t> ids, double diameter, EarChoice choice)
+      : p_(std::move(pts)), id_(std::move(ids)), diameter_(diameter), choice_(choice) {
     const std::size_t n = p_.size();
     prev_.resize(n);
     next_.resize(n);
@@ -50,8 +50,17 @@ class EarClipper {
   void run(TriangulationResult& out) {
     std::size_t i = 0;
     std::size_t misses = 0;  // ear tests failed since the last clip
-    bool warned = false;
     while (remaining_ > 3) {
+      if (choice_ == EarChoice::BestShaped && remaining_ <= kBestEarVertexLimit) {
+        const std::size_t best = best_shaped_ear();
+        if (best != kNone) {
+          i = next_[best];
+          clip(best, out);
+        } else {
+          i = force(i, out);
+        }
+        continue;
+      }
       if (is_ear(i)) {
         const std::size_t after = next_[i];
         clip(i, out);
@@ -61,30 +70,7 @@ class EarClipper {
       }
       i = next_[i];
       if (++misses <= remaining_) continue;
-      // A full cycle without an ear: the polygon self-intersects or is numerically degenerate.
-      // Clip the most convex corner anyway, or drop a flat one.
-      if (!warned) {
-        out.warnings.emplace_back(
-            "no valid ear found (self-intersecting or numerically degenerate polygon); "
-            "clipped the most convex corners");
-        warned = true;
-      }
-      std::size_t best = i;
-      double best_sine = -2.0;
-      std::size_t j = i;
-      for (std::size_t k = 0; k < remaining_; ++k, j = next_[j]) {
-        const double s = corner_sine(j);
-        if (s > best_sine) {
-          best_sine = s;
-          best = j;
-        }
-      }
-      if (best_sine > kCollinearRelativeSine) {
-        clip(best, out);
-      } else {
-        unlink(best);  // flat or reflex everywhere: no area left to cover here
-      }
-      i = next_[best];
+      i = force(i, out);
       misses = 0;
     }
     if (remaining_ == 3 && corner_sine(i) > kCollinearRelativeSine) clip(i, out);
@@ -98,6 +84,59 @@ class EarClipper {
     const double l = length(e1) * length(e2);
     if (!(l > 0.0)) return 0.0;
     return cross(e1, e2) / l;
+  }
+
+  /// No ear could be found (a full cycle without one, or none at all): the polygon self-
+  /// intersects or is numerically degenerate. Clips the most convex corner anyway, or drops a flat
+  /// one; returns the vertex to go on from.
+  std::size_t force(std::size_t i, TriangulationResult& out) {
+    if (!out.not_simple) {
+      out.not_simple = true;
+      out.warnings.emplace_back(
+          "no valid ear found (self-intersecting or numerically degenerate polygon); "
+          "clipped the most convex corners");
+    }
+    std::size_t best = i;
+    double best_sine = -2.0;
+    std::size_t j = i;
+    for (std::size_t k = 0; k < remaining_; ++k, j = next_[j]) {
+      const double s = corner_sine(j);
+      if (s > best_sine) {
+        best_sine = s;
+        best = j;
+      }
+    }
+    if (best_sine > kCollinearRelativeSine) {
+      clip(best, out);
+    } else {
+      unlink(best);  // flat or reflex everywhere: no area left to cover here
+    }
+    return next_[best];
+  }
+
+  /// The ear whose triangle has the largest smallest angle sine (the first such in input order),
+  /// or kNone when there is no ear.
+  std::size_t best_shaped_ear() const {
+    std::size_t best = kNone;
+    double best_quality = -kInfinity;
+    std::size_t j = head_;
+    for (std::size_t k = 0; k < remaining_; ++k, j = next_[j]) {
+      if (!is_ear(j)) continue;
+      const P2 a = p_[prev_[j]], b = p_[j], c = p_[next_[j]];
+      // For a triangle the turn sines at its corners are the sines of its interior angles.
+      const double quality = std::min({corner_sine(j), turn_sine(b, c, a), turn_sine(c, a, b)});
+      if (quality > best_quality) {
+        best_quality = quality;
+        best = j;
+      }
+    }
+    return best;
+  }
+
+  static double turn_sine(P2 a, P2 b, P2 c) {
+    const P2 e1 = b - a, e2 = c - b;
+    const double l = length(e1) * length(e2);
+    return l > 0.0 ? cross(e1, e2) / l : 0.0;
   }
 
   bool inside_or_on(P2 a, P2 b, P2 c, P2 q) const {
@@ -129,6 +168,7 @@ class EarClipper {
   }
 
   void unlink(std::size_t i) {
+    if (i == head_) head_ = next_[i];  // the list runs in input order: next is the next lowest
     next_[prev_[i]] = next_[i];
     prev_[next_[i]] = prev_[i];
     --remaining_;
@@ -137,8 +177,11 @@ class EarClipper {
   std::vector<P2> p_;
   std::vector<std::uint32_t> id_;
   std::vector<std::size_t> prev_, next_;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::size_t remaining_ = 0;
+  std::size_t head_ = 0;  ///< the remaining vertex that comes first in the input
   double diameter_ = 1.0;
+  EarChoice choice_ = EarChoice::Walk;
 };
 
 std::string format_relative(double x) {
@@ -149,7 +192,7 @@ std::string format_relative(double x) {
 
 }  // namespace
 
-TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices) {
+TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices, EarChoice choice) {
   TriangulationResult out;
   auto reject = [&out](std::string reason) {
     out.rejected = true;
@@ -247,7 +290,7 @@ TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices) {
   pts.clear();
   for (std::uint32_t id : ids) pts.push_back(project(vertices[id]));
 
-  EarClipper clipper(std::move(pts), std::move(ids), diameter);
+  EarClipper clipper(std::move(pts), std::move(ids), diameter, choice);
   clipper.run(out);
   if (out.triangles.empty()) return reject("polygon has zero area after removing collinear runs");
 
@@ -259,6 +302,7 @@ TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices) {
     covered += 0.5 * glm::dot(glm::cross(b - a, c - a), out.normal);
   }
   if (std::fabs(covered - out.area) > kAreaMismatchRelative * out.area) {
+    out.not_simple = true;
     out.warnings.push_back("triangles cover " + format_relative(covered / out.area) +
                            " of the polygon's area (self-intersecting polygon?)");
   }

@@ -10,8 +10,8 @@
 // Output triangles index the ORIGINAL vertex array and are counter-clockwise about the Newell
 // normal, i.e. they keep the input's winding (clockwise input gives a normal pointing the other
 // way and triangles wound like the input). Removed vertices (duplicates, collinear) are used by no
-// triangle. The seeds do not triangulate (Ullner needs convex quads, a separate converter); the
-// tolerances below are assumptions, each with its reason.
+// triangle. The seeds do not triangulate (Ullner needs convex quads: convex_quads.hpp merges these
+// triangles into them); the tolerances below are assumptions, each with its reason.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -48,6 +48,22 @@ inline constexpr double kEarContainmentRelative = 1e-10;
 /// is issued. Rounding alone gives ~1e-15; 1e-6 only fires for self-crossing polygons.
 inline constexpr double kAreaMismatchRelative = 1e-6;
 
+/// Which ear is clipped next.
+enum class EarChoice : std::uint8_t {
+  /// The first ear found walking the outline, skipping one vertex after each clip: balanced,
+  /// non-fan triangles on convex runs, O(n^2) at worst. The default (the triangle kernels).
+  Walk,
+  /// While at most kBestEarVertexLimit vertices remain, the ear whose triangle has the largest
+  /// smallest angle (ties: first in input order); then as Walk. Well-shaped triangles that pair
+  /// up into convex quads (convex_quads.hpp, Ullner's primitives); O(n^3) for small polygons.
+  BestShaped,
+};
+
+/// EarChoice::BestShaped compares every ear while at most this many vertices remain (each step
+/// costs O(n^2) ear tests), as the converter's own ear clipper did before it was replaced by
+/// this one: polygons of up to 64 vertices are triangulated entirely on best-shaped ears.
+inline constexpr std::size_t kBestEarVertexLimit = 64;
+
 struct TriangulationResult {
   /// Index triples into the input vertex array, counter-clockwise about `normal`.
   std::vector<std::array<std::uint32_t, 3>> triangles;
@@ -59,12 +75,17 @@ struct TriangulationResult {
   double plane_deviation = 0.0;       ///< largest distance from the plane / diameter
   std::size_t removed_duplicates = 0;
   std::size_t removed_collinear = 0;
+  /// Set with the "no valid ear" or the area-mismatch warning: the polygon crosses itself (or is
+  /// numerically degenerate), so the triangles may overlap or leave gaps. Callers that need a
+  /// simple polygon (the convex-quad converter) reject it on this flag.
+  bool not_simple = false;
 
   bool ok() const { return !rejected; }
 };
 
 /// Triangulates a planar polygon given in order (either winding). Never throws for bad geometry:
 /// degenerate input comes back with `rejected` and a reason.
-TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices);
+TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices,
+                                        EarChoice choice = EarChoice::Walk);
 
 }  // namespace rtsim::geometry
