@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
-#include "scenes/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace rtsim::app {
 namespace {

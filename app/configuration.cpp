@@ -1,6 +1,6 @@
 #include "app/configuration.hpp"
 
-#include "scenes/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace rtsim::app {
 

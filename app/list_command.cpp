@@ -6,7 +6,7 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
-#include "scenes/input_error.hpp"
+#include "common/input_error.hpp"
 #include "platform/machine.hpp"
 #include "scenes/scene_loader.hpp"
 

@@ -10,8 +10,8 @@
 #include "app/progress_bar.hpp"
 #include "app/scene_input.hpp"
 #include "app/stats_json.hpp"
+#include "common/input_error.hpp"
 #include "platform/machine.hpp"
-#include "scenes/input_error.hpp"
 
 namespace rtsim::app {
 

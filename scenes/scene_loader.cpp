@@ -4,13 +4,14 @@
 #include <array>
 #include <filesystem>
 
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "scenes/bpt_reader.hpp"
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_random.hpp"
 #include "scenes/generators/ullner_sheets.hpp"
-#include "scenes/input_error.hpp"
 #include "scenes/nff_reader.hpp"
 #include "scenes/scene_text.hpp"
 
@@ -79,21 +80,6 @@ std::vector<std::string> builtin_scene_names() {
   return names;
 }
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "default") return make_default_scene();
   if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
@@ -117,23 +103,30 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
     return make_ullner_sheets(*polygons);
   }
 
-  std::vector<std::pair<std::size_t, std::string>> ranked;
+  // Suggestions: names that contain what was typed ("ullner"), in listing order, then the
+  // closest by edit distance (closest_names, as for parameter names); at most kMaxSuggestions.
+  std::vector<std::string_view> candidates;
+  std::vector<std::string> near;
   for (const auto& s : builtin_scenes()) {
-    // A name the user typed part of ("ullner") counts as one edit away.
-    const bool part = !name.empty() && s.name.find(name) != std::string::npos;
-    ranked.emplace_back(
-        part ? std::min<std::size_t>(1, edit_distance(name, s.name)) : edit_distance(name, s.name),
-        s.name);
+    candidates.push_back(s.name);
+    if (!name.empty() && s.name.find(name) != std::string::npos && near.size() < kMaxSuggestions) {
+      near.push_back(s.name);
+    }
   }
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::string msg = cat("unknown builtin scene ", quote_token(name), "; did you mean ");
-  // The closest names: at most kMaxSuggestions, and none more than one edit worse than the best.
-  for (std::size_t i = 0; i < kMaxSuggestions && i < ranked.size(); ++i) {
-    if (ranked[i].first > ranked[0].first + 1) break;
-    msg += cat(i == 0 ? "" : ", ", kBuiltinPrefix, ranked[i].second);
+  for (std::string& s : closest_names(name, candidates, kMaxSuggestions)) {
+    if (near.size() < kMaxSuggestions && std::find(near.begin(), near.end(), s) == near.end()) {
+      near.push_back(std::move(s));
+    }
   }
-  msg += cat("? (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99; ",
+  std::string msg = cat("unknown builtin scene ", quote_token(name));
+  if (!near.empty()) {
+    msg += "; did you mean ";
+    for (std::size_t i = 0; i < near.size(); ++i) {
+      msg += cat(i == 0 ? "" : ", ", kBuiltinPrefix, near[i]);
+    }
+    msg += "?";
+  }
+  msg += cat(" (`rtsim list scenes` lists all; npp-NPP takes n in {2,4,8} and pp in 01..99; ",
              kUllnerRandomPrefix, "N takes N in ", kUllnerRandomMinPolygons, "..",
              kUllnerRandomMaxPolygons, ")");
   throw InputError("", 0, msg);

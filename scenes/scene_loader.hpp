@@ -37,14 +37,11 @@ const std::vector<BuiltinScene>& builtin_scenes();
 std::vector<std::string> builtin_scene_names();
 
 /// Makes builtin scene `name` (without prefix). Unknown name -> InputError("", 0, ...) listing
-/// the closest valid names by edit distance.
+/// the valid names that contain it, then the closest by edit distance (rtsim::closest_names).
 Scene make_builtin_scene(std::string_view name,
                          const GeneratorSeeds& seeds = default_generator_seeds());
 
 /// Loads a scene file or builtin:NAME (see above).
 Scene load_scene(const std::string& spec, const GeneratorSeeds& seeds = default_generator_seeds());
-
-/// Levenshtein distance (for suggestions).
-std::size_t edit_distance(std::string_view a, std::string_view b);
 
 }  // namespace rtsim::scenes

@@ -9,7 +9,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "scenes/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace rtsim::scenes {
 

@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "platform/params/registry.hpp"
-#include "platform/params/suggest.hpp"
-#include "scenes/input_error.hpp"
 
 namespace rtsim::params {
 namespace {

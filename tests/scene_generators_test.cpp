@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "common/suggest.hpp"
 #include "scene_test_support.hpp"
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/npp_scene.hpp"
@@ -297,8 +298,8 @@ TEST(SceneLoader, UnknownBuiltinSuggestsTheClosestNames) {
   expect_input_error([] { load_scene("builtin:npp-1204"); }, 0, "did you mean builtin:npp-204");
   expect_input_error([] { load_scene("builtin:npp-300"); }, 0, "npp-NPP takes n in {2,4,8}");
   expect_input_error([] { load_scene("builtin:"); }, 0, "unknown builtin scene ''");
-  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
-  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  EXPECT_EQ(rtsim::edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(rtsim::edit_distance("", "abc"), 3u);
 }
 
 TEST(SceneLoader, FilesDispatchByExtension) {

@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "scenes/input_error.hpp"
+#include "common/input_error.hpp"
 #include "scenes/scene.hpp"
 
 namespace rtsim::scenes::testing {

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "common/input_error.hpp"
 #include "firmware/kernels/ullner_quad.hpp"
 #include "firmware/shading/camera.hpp"
 #include "scenes/generators/ullner_sheets.hpp"
-#include "scenes/input_error.hpp"
 #include "scenes/scene_loader.hpp"
 
 using namespace rtsim;

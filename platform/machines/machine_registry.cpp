@@ -1,10 +1,10 @@
 #include <algorithm>
 
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/ullner_peripheral.hpp"
 #include "platform/machines/vax750.hpp"
-#include "platform/params/suggest.hpp"
-#include "scenes/input_error.hpp"
 
 namespace rtsim::platform {
 
@@ -23,7 +23,7 @@ const Machine& find_machine(const std::string& name) {
   }
   const std::vector<std::string_view> names(owned.begin(), owned.end());
   std::string msg = "unknown machine '" + name + "'";
-  const auto close = params::closest_names(name, names);
+  const auto close = closest_names(name, names);
   if (!close.empty()) {
     msg += "; did you mean ";
     for (std::size_t i = 0; i < close.size(); ++i)

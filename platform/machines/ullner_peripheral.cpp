@@ -3,6 +3,7 @@
 #include <chrono>
 #include <systemc>
 
+#include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -10,7 +11,6 @@
 #include "platform/machines/ullner/host.hpp"
 #include "platform/machines/ullner/peripheral.hpp"
 #include "platform/processor_params.hpp"
-#include "scenes/input_error.hpp"
 
 namespace rtsim::platform {
 

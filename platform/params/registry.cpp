@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "platform/params/suggest.hpp"
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "platform/params/units.hpp"
-#include "scenes/input_error.hpp"
 
 namespace rtsim::params {
 namespace {

@@ -1,9 +1,9 @@
-#include "platform/params/suggest.hpp"
+#include "common/suggest.hpp"
 
 #include <algorithm>
 #include <tuple>
 
-namespace rtsim::params {
+namespace rtsim {
 namespace {
 
 std::string_view last_segment(std::string_view name) {
@@ -58,4 +58,4 @@ std::vector<std::string> closest_names(std::string_view unknown,
   return out;
 }
 
-}  // namespace rtsim::params
+}  // namespace rtsim

@@ -1,11 +1,11 @@
 #pragma once
-// "Did you mean ...?" for mistyped parameter names and enum values.
+// "Did you mean ...?" for mistyped names: parameters, enum values, builtin scenes.
 #include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace rtsim::params {
+namespace rtsim {
 
 /// Damerau-Levenshtein distance in its optimal-string-alignment form: inserting, deleting or
 /// substituting a character, or swapping two adjacent ones, each cost 1. Works on bytes.
@@ -23,4 +23,4 @@ std::vector<std::string> closest_names(std::string_view unknown,
                                        const std::vector<std::string_view>& candidates,
                                        std::size_t max_count = 3);
 
-}  // namespace rtsim::params
+}  // namespace rtsim
