@@ -38,6 +38,30 @@ class ShapeTester {
         g_->shapes[slot].shape);
   }
 
+  /// The per-candidate callback of the grid and shell traversals (their PrimTest): tests shape
+  /// `slot` over (lo, hi) and returns its hit distance, or kInfinity on a miss. Each hit's
+  /// details are copied to `last` (a miss leaves it alone); the closest-hit traversals pass
+  /// hi = the best hit so far, so `last` ends as the details of the closest hit.
+  auto candidate_test(const Ray& ray, SurfaceHit& last, TraceCounters& c) const {
+    return [this, &ray, &last, &c, s = SurfaceHit{}](std::uint32_t slot, double lo,
+                                                     double hi) mutable {
+      if (!test(slot, ray, lo, hi, s, c)) return kInfinity;
+      last = s;
+      return s.t;
+    };
+  }
+
+  /// Ends a grid or shell closest-hit search: for a hit (`result` valid) fills `hit` from the
+  /// details candidate_test kept, which are the closest hit's, and counts it.
+  template <class SearchHit>
+  bool report_closest(const SearchHit& result, const SurfaceHit& details, Hit& hit,
+                      TraceCounters& c) const {
+    if (!result.valid()) return false;
+    fill(hit, static_cast<std::uint32_t>(result.prim), details);
+    ++c.hits;
+    return true;
+  }
+
   void fill(Hit& hit, std::uint32_t slot, const SurfaceHit& s) const {
     hit.surface = s;
     hit.prim_id = g_->shapes[slot].prim_id;
@@ -92,33 +116,19 @@ class GridTracer final : public Tracer {
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
-    SurfaceHit s, best;
+    SurfaceHit best;
     accel::GridTraversalStats st;
-    const auto h = accel::grid_closest_hit(
-        dda_, ray, t_min, t_max,
-        [&](std::uint32_t slot, double lo, double hi) {
-          if (!tester_.test(slot, ray, lo, hi, s, c)) return kInfinity;
-          best = s;
-          return s.t;
-        },
-        st);
+    const auto h =
+        accel::grid_closest_hit(dda_, ray, t_min, t_max, tester_.candidate_test(ray, best, c), st);
     add(st, c);
-    if (!h.valid()) return false;
-    // The callback kept the details of the last accepted hit, which is the closest.
-    tester_.fill(hit, static_cast<std::uint32_t>(h.prim), best);
-    ++c.hits;
-    return true;
+    return tester_.report_closest(h, best, hit, c);
   }
 
   bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
-    SurfaceHit s;
+    SurfaceHit unused;
     accel::GridTraversalStats st;
-    const auto h = accel::grid_any_hit(
-        dda_, ray, t_min, t_max,
-        [&](std::uint32_t slot, double lo, double hi) {
-          return tester_.test(slot, ray, lo, hi, s, c) ? s.t : kInfinity;
-        },
-        st);
+    const auto h =
+        accel::grid_any_hit(dda_, ray, t_min, t_max, tester_.candidate_test(ray, unused, c), st);
     add(st, c);
     return h.valid();
   }
@@ -142,34 +152,20 @@ class ShellTracer final : public Tracer {
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
-    SurfaceHit s, best;
+    SurfaceHit best;
     accel::ShellTraversalStats st;
     accel::ShellTraverser traverser(tree_);
-    const auto h = traverser.closest_hit(
-        ray, t_min, t_max,
-        [&](std::uint32_t slot, double lo, double hi) {
-          if (!tester_.test(slot, ray, lo, hi, s, c)) return kInfinity;
-          best = s;
-          return s.t;
-        },
-        st);
+    const auto h =
+        traverser.closest_hit(ray, t_min, t_max, tester_.candidate_test(ray, best, c), st);
     c.box_tests += st.box_tests;
-    if (!h.valid()) return false;
-    tester_.fill(hit, static_cast<std::uint32_t>(h.prim), best);
-    ++c.hits;
-    return true;
+    return tester_.report_closest(h, best, hit, c);
   }
 
   bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
-    SurfaceHit s;
+    SurfaceHit unused;
     accel::ShellTraversalStats st;
     accel::ShellTraverser traverser(tree_);
-    const auto h = traverser.any_hit(
-        ray, t_min, t_max,
-        [&](std::uint32_t slot, double lo, double hi) {
-          return tester_.test(slot, ray, lo, hi, s, c) ? s.t : kInfinity;
-        },
-        st);
+    const auto h = traverser.any_hit(ray, t_min, t_max, tester_.candidate_test(ray, unused, c), st);
     c.box_tests += st.box_tests;
     return h.valid();
   }
