@@ -26,21 +26,9 @@ int MachineTrace::declare_depth(const std::string& queue) {
   return static_cast<int>(depth_.size()) - 1;
 }
 
-void MachineTrace::busy(int handle, bool value) {
-  if (handle >= 0) busy_[static_cast<std::size_t>(handle)]->write(value);
-}
-
-void MachineTrace::depth(int handle, int value, const sc_core::sc_time& t) {
-  if (handle < 0) return;
-  const auto h = static_cast<std::size_t>(handle);
+void MachineTrace::write_depth(std::size_t h, int value, const sc_core::sc_time& t) {
   if (vcd_) depth_[h]->write(value);
   if (perfetto_) perfetto_->counter(depth_track_[h], depth_name_[h], t, value);
-}
-
-void MachineTrace::slice(const std::string& module, std::string_view name,
-                         const sc_core::sc_time& start, const sc_core::sc_time& duration,
-                         std::initializer_list<modules::PerfettoTrace::Arg> args) {
-  if (perfetto_) perfetto_->slice(perfetto_->track(module), name, start, duration, args);
 }
 
 void MachineTrace::close() {

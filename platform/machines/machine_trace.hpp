@@ -27,18 +27,25 @@ class MachineTrace {
   int declare_depth(const std::string& queue);
 
   /// Simulation: set a busy flag; set a queue depth (also a Perfetto counter at `t`).
-  void busy(int handle, bool value);
-  void depth(int handle, int value, const sc_core::sc_time& t);
+  void busy(int handle, bool value) {
+    if (handle >= 0) busy_[static_cast<std::size_t>(handle)]->write(value);
+  }
+  void depth(int handle, int value, const sc_core::sc_time& t) {
+    if (handle >= 0) write_depth(static_cast<std::size_t>(handle), value, t);
+  }
 
   /// A Perfetto slice on the track of `module` (tracks are created on first use).
-  void slice(const std::string& module, std::string_view name, const sc_core::sc_time& start,
+  void slice(std::string_view module, std::string_view name, const sc_core::sc_time& start,
              const sc_core::sc_time& duration,
-             std::initializer_list<modules::PerfettoTrace::Arg> args = {});
+             std::initializer_list<modules::PerfettoTrace::Arg> args = {}) {
+    if (perfetto_) perfetto_->slice(perfetto_->track(module), name, start, duration, args);
+  }
 
   /// Ends the traces (the VCD file may need one more resolution step: call after sc_start).
   void close();
 
  private:
+  void write_depth(std::size_t h, int value, const sc_core::sc_time& t);
   using DepthSignal = sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS>;
   std::unique_ptr<modules::PerfettoTrace> perfetto_;
   std::unique_ptr<modules::VcdTrace> vcd_;
