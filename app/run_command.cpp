@@ -1,5 +1,6 @@
 // `rtsim run`: a timed machine model (SystemC) renders one frame.
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 
 #include "app/cli.hpp"
@@ -76,7 +77,18 @@ int run_run(const RunArgs& args) {
               << result.image.width << "x" << result.image.height << ": frame time "
               << result.simulated_time_s << " s simulated, " << result.image.wall_time_s
               << " s wall\n"
-              << "  image  " << (out.dir() / "image.png").string() << "  "
+              << "  busy  ";
+    for (const auto& [name, m] : stats["modules"].items())
+      if (m.contains("utilization") && m["busy_s"].get<double>() > 0)
+        std::cout << " " << name << " " << std::fixed << std::setprecision(1)
+                  << 100.0 * m["utilization"].get<double>() << "%";
+    std::cout.unsetf(std::ios::fixed);
+    std::cout << std::setprecision(6) << "\n";
+    if (stats.contains("ray_latency_s"))
+      std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
+                << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
+                << stats["ray_latency_s"]["p99"].get<double>() << " s\n";
+    std::cout << "  image  " << (out.dir() / "image.png").string() << "  "
               << (out.dir() / "image.exr").string() << "\n"
               << "  stats  " << (out.dir() / "stats.json").string() << "\n";
     if (!opts.vcd_path.empty()) std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
