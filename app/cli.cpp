@@ -1,7 +1,6 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 #include <thread>
 
@@ -41,8 +40,9 @@ int run_cli(int argc, char** argv) {
   RenderArgs render;
   render.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   auto* r = app.add_subcommand(
-      "render", "Render a scene with the functional renderer: the firmware kernels and shading\n"
-                "with no timing. Its image is the golden reference for every machine.");
+      "render",
+      "Render a scene with the functional renderer: the firmware kernels and shading\n"
+      "with no timing. Its image is the golden reference for every machine.");
   r->add_option("--scene", render.scene, "Scene file (.nff, .bpt) or builtin:NAME")
       ->capture_default_str();
   r->add_option("--machine", render.machine,
@@ -70,8 +70,9 @@ int run_cli(int argc, char** argv) {
 
   RunArgs runa;
   auto* run = app.add_subcommand(
-      "run", "Run a machine model: SystemC/TLM-2.0 modules with annotated timing render one\n"
-             "frame; writes the image, stats.json (frame time, utilisation, latency) and traces.");
+      "run",
+      "Run a machine model: SystemC/TLM-2.0 modules with annotated timing render one\n"
+      "frame; writes the image, stats.json (frame time, utilisation, latency) and traces.");
   run->add_option("--machine", runa.machine, "Machine (`rtsim list machines`)")
       ->capture_default_str();
   run->add_option("--scene", runa.scene, "Scene file (.nff, .bpt) or builtin:NAME")

@@ -46,7 +46,8 @@ void list_params(const ListArgs& args) {
     value_w = std::max(value_w, e.value_text.size());
   }
   std::cout << std::left << std::setw(static_cast<int>(name_w + 2)) << "name"
-            << std::setw(static_cast<int>(value_w + 2)) << "value" << "set by\n";
+            << std::setw(static_cast<int>(value_w + 2)) << "value"
+            << "set by\n";
   for (const auto& e : entries) {
     std::cout << std::left << std::setw(static_cast<int>(name_w + 2)) << e.name
               << std::setw(static_cast<int>(value_w + 2)) << e.value_text << e.where_set << "\n"

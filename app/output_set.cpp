@@ -13,8 +13,9 @@ OutputSet::OutputSet(fs::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
   if (!fs::exists(dir_, ec)) {
     fs::create_directories(dir_, ec);
-    if (ec) throw std::runtime_error("cannot create output folder " + dir_.string() + ": " +
-                                     ec.message());
+    if (ec)
+      throw std::runtime_error("cannot create output folder " + dir_.string() + ": " +
+                               ec.message());
     created_dir_ = true;
   } else if (!fs::is_directory(dir_, ec)) {
     throw std::runtime_error("output path " + dir_.string() + " exists and is not a folder");
@@ -40,8 +41,9 @@ void OutputSet::commit() {
   for (const auto& name : names_) {
     std::error_code ec;
     fs::rename(staging_ / name, dir_ / name, ec);
-    if (ec) throw std::runtime_error("cannot move " + name + " into " + dir_.string() + ": " +
-                                     ec.message());
+    if (ec)
+      throw std::runtime_error("cannot move " + name + " into " + dir_.string() + ": " +
+                               ec.message());
   }
   committed_ = true;
 }

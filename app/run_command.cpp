@@ -23,7 +23,8 @@ int run_run(const RunArgs& args) {
   if (!args.quantum.empty()) {
     try {
       // A bare 0 needs no unit.
-      registry.apply_override("quantum=" + (args.quantum == "0" ? std::string("0 s") : args.quantum));
+      registry.apply_override("quantum=" +
+                              (args.quantum == "0" ? std::string("0 s") : args.quantum));
     } catch (const InputError& e) {
       throw InputError("--quantum " + args.quantum, 0, e.message());
     }
@@ -91,7 +92,8 @@ int run_run(const RunArgs& args) {
     std::cout << "  image  " << (out.dir() / "image.png").string() << "  "
               << (out.dir() / "image.exr").string() << "\n"
               << "  stats  " << (out.dir() / "stats.json").string() << "\n";
-    if (!opts.vcd_path.empty()) std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
+    if (!opts.vcd_path.empty())
+      std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
     if (!opts.perfetto_path.empty())
       std::cout << "  trace  " << (out.dir() / "trace.json").string() << "\n";
   }

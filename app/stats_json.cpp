@@ -30,9 +30,12 @@ ordered_json params_json(const params::ParamRegistry& registry) {
 
 const char* accel_name(functional::AccelKind k) {
   switch (k) {
-    case functional::AccelKind::Grid: return "grid";
-    case functional::AccelKind::Shells: return "shells";
-    case functional::AccelKind::None: return "none";
+    case functional::AccelKind::Grid:
+      return "grid";
+    case functional::AccelKind::Shells:
+      return "shells";
+    case functional::AccelKind::None:
+      return "none";
   }
   return "?";
 }
@@ -40,8 +43,7 @@ const char* accel_name(functional::AccelKind k) {
 }  // namespace
 
 ordered_json frame_stats_json(const std::string& command, const std::string& machine,
-                              const scenes::Scene& scene,
-                              const functional::SceneGeometry& geometry,
+                              const scenes::Scene& scene, const functional::SceneGeometry& geometry,
                               const params::ParamRegistry& registry,
                               const functional::RenderSettings& settings,
                               const functional::RenderResult& result, int threads,
@@ -50,8 +52,10 @@ ordered_json frame_stats_json(const std::string& command, const std::string& mac
   std::size_t nonfinite = 0;
   double sum[3] = {0, 0, 0};
   for (std::size_t i = 0; i < result.rgb.size(); ++i) {
-    if (!std::isfinite(result.rgb[i])) ++nonfinite;
-    else sum[i % 3] += result.rgb[i];
+    if (!std::isfinite(result.rgb[i]))
+      ++nonfinite;
+    else
+      sum[i % 3] += result.rgb[i];
   }
   const double pixels = static_cast<double>(result.width) * result.height;
   ordered_json j;
@@ -78,23 +82,18 @@ ordered_json frame_stats_json(const std::string& command, const std::string& mac
                             {"description", geometry.accel_description}};
   j["patch_subdivisions"] = c.patch_subdivisions;
   j["firmware_cost"] = cost_json(c.cost);
-  j["scene_stats"] = ordered_json{{"primitives", scene.primitives.size()},
-                                  {"spheres", scene.spheres.size()},
-                                  {"polygons", scene.polygons.size()},
-                                  {"cones", scene.cones.size()},
-                                  {"patches", scene.patches.size()},
-                                  {"lights", scene.lights.size()},
-                                  {"materials", scene.materials.size()}};
-  j["geometry"] = ordered_json{{"triangles", geometry.report.triangles},
-                               {"ullner_quads", geometry.report.quads},
-                               {"spheres", geometry.report.spheres},
-                               {"cones", geometry.report.cones},
-                               {"patches", geometry.report.patches},
-                               {"rejected", geometry.report.rejected},
-                               {"messages", geometry.report.messages}};
-  j["image"] = ordered_json{
-      {"nonfinite_values", nonfinite},
-      {"mean_rgb", {sum[0] / pixels, sum[1] / pixels, sum[2] / pixels}}};
+  j["scene_stats"] =
+      ordered_json{{"primitives", scene.primitives.size()}, {"spheres", scene.spheres.size()},
+                   {"polygons", scene.polygons.size()},     {"cones", scene.cones.size()},
+                   {"patches", scene.patches.size()},       {"lights", scene.lights.size()},
+                   {"materials", scene.materials.size()}};
+  j["geometry"] = ordered_json{
+      {"triangles", geometry.report.triangles}, {"ullner_quads", geometry.report.quads},
+      {"spheres", geometry.report.spheres},     {"cones", geometry.report.cones},
+      {"patches", geometry.report.patches},     {"rejected", geometry.report.rejected},
+      {"messages", geometry.report.messages}};
+  j["image"] = ordered_json{{"nonfinite_values", nonfinite},
+                            {"mean_rgb", {sum[0] / pixels, sum[1] / pixels, sum[2] / pixels}}};
   j["params"] = params_json(registry);
   return j;
 }

@@ -42,8 +42,8 @@ const std::string kShared = RTSIM_SHARED_DIR;
 
 }  // namespace
 
-#define RTSIM_RENDER_BENCH(name, spec, accel)                                                  \
-  BENCHMARK_CAPTURE(render_scene, name, spec, functional::AccelKind::accel)                    \
+#define RTSIM_RENDER_BENCH(name, spec, accel)                               \
+  BENCHMARK_CAPTURE(render_scene, name, spec, functional::AccelKind::accel) \
       ->Unit(benchmark::kMillisecond)
 
 RTSIM_RENDER_BENCH(balls_s2_grid, kShared + "/scenes/balls-s2.nff", Grid);

@@ -7,7 +7,7 @@ namespace rtsim {
 /// module turns them into time with its own parameters (cycles per op class, memory cycle).
 /// The functional renderer adds them up for statistics only.
 struct Cost {
-  std::uint64_t fp_add = 0;   ///< additions, subtractions, comparisons
+  std::uint64_t fp_add = 0;  ///< additions, subtractions, comparisons
   std::uint64_t fp_mul = 0;
   std::uint64_t fp_div = 0;
   std::uint64_t fp_sqrt = 0;

@@ -9,8 +9,8 @@ namespace rtsim {
 /// Normals are unit length and are NOT flipped toward the ray: surfaces are two-sided and the
 /// shader decides which side was hit.
 struct SurfaceHit {
-  double t = kInfinity;   ///< distance along the (unit-direction) ray
-  double u = 0.0;         ///< surface parameter (kernel-specific: bilinear u, barycentric, ...)
+  double t = kInfinity;  ///< distance along the (unit-direction) ray
+  double u = 0.0;        ///< surface parameter (kernel-specific: bilinear u, barycentric, ...)
   double v = 0.0;
   Vec3 geometric_normal{0.0, 0.0, 1.0};
   Vec3 shading_normal{0.0, 0.0, 1.0};  ///< interpolated normal where the primitive has one

@@ -3,9 +3,8 @@
 // double precision; kernels that model 32-bit hardware arithmetic are templated on the scalar
 // type so the same code can be run in float and compared against double.
 #include <cmath>
-#include <limits>
-
 #include <glm/glm.hpp>
+#include <limits>
 
 namespace rtsim {
 

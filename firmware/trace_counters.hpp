@@ -10,14 +10,14 @@
 namespace rtsim {
 
 struct TraceCounters {
-  std::array<std::uint64_t, 4> rays{};  ///< by RayKind
-  std::uint64_t intersection_tests = 0; ///< ray/primitive tests
+  std::array<std::uint64_t, 4> rays{};   ///< by RayKind
+  std::uint64_t intersection_tests = 0;  ///< ray/primitive tests
   std::uint64_t hits = 0;
-  std::uint64_t box_tests = 0;          ///< shell (bounding box) tests
-  std::uint64_t dda_steps = 0;          ///< subvolume steps of the grid DDA
+  std::uint64_t box_tests = 0;  ///< shell (bounding box) tests
+  std::uint64_t dda_steps = 0;  ///< subvolume steps of the grid DDA
   std::uint64_t cells_visited = 0;
-  std::uint64_t patch_subdivisions = 0; ///< Wang 4-way splits
-  Cost cost;                            ///< firmware cost (intersection + shading)
+  std::uint64_t patch_subdivisions = 0;  ///< Wang 4-way splits
+  Cost cost;                             ///< firmware cost (intersection + shading)
 
   std::uint64_t total_rays() const { return rays[0] + rays[1] + rays[2] + rays[3]; }
   void count_ray(RayKind k) { ++rays[static_cast<std::size_t>(k)]; }

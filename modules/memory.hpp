@@ -6,12 +6,13 @@
 // "one cycle reads a whole polygon", seed 000 L544). Streams the model only needs to time (a
 // pipeline fetching every polygon for every ray) are charged with account_line_reads(), which
 // advances the same counters without moving data.
+#include <tlm_utils/simple_target_socket.h>
+
 #include <cstdint>
 #include <cstring>
 #include <string>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_target_socket.h>
 #include <vector>
 
 #include "modules/sim_time.hpp"

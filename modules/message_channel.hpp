@@ -3,11 +3,12 @@
 // local time offset as the annotated delay (loosely-timed style); the target queues it in a
 // TimedFifo stamped with sc_time_stamp() + delay, blocking the caller while the FIFO is full
 // (back-pressure), and returns the delay actually incurred.
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+
 #include <string>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_initiator_socket.h>
-#include <tlm_utils/simple_target_socket.h>
 
 #include "modules/timed_fifo.hpp"
 

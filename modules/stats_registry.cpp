@@ -56,8 +56,8 @@ nlohmann::ordered_json LatencyRecorder::to_json() const {
   for (int b = 0; b <= buckets; ++b) edges[static_cast<std::size_t>(b)] = lo * std::exp2(b / 4.0);
   std::vector<std::uint64_t> counts(static_cast<std::size_t>(buckets), 0);
   for (double v : s) {
-    const auto b = static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), v) -
-                                            edges.begin());
+    const auto b =
+        static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), v) - edges.begin());
     counts[std::min(counts.size() - 1, b == 0 ? 0 : b - 1)]++;
   }
   j["histogram"] = {{"edges_s", edges}, {"counts", counts}};

@@ -17,6 +17,7 @@ struct ProcessorDefaults {
 
 void declare_processor_params(params::ParamRegistry& r, const std::string& prefix,
                               const ProcessorDefaults& d);
-modules::ProcessorTiming read_processor_timing(const params::ParamRegistry& r, const std::string& prefix);
+modules::ProcessorTiming read_processor_timing(const params::ParamRegistry& r,
+                                               const std::string& prefix);
 
 }  // namespace rtsim::platform

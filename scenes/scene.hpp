@@ -81,7 +81,7 @@ struct Primitive {
 };
 
 struct Scene {
-  std::string name;       ///< file path or builtin:NAME
+  std::string name;  ///< file path or builtin:NAME
   Camera camera;
   bool has_camera = false;  ///< false for files without a view (e.g. .bpt): frame automatically
   Color background{0.0};

@@ -49,13 +49,12 @@ class GoldenImage : public ::testing::TestWithParam<GoldenCase> {};
 TEST_P(GoldenImage, MatchesReviewedImage) {
   const GoldenCase& c = GetParam();
   const auto dir = rtsim::test::scratch_dir(std::string("golden-") + c.name);
-  const auto r = rtsim::test::run_rtsim("render --scene " + c.scene + " --width " +
-                                        std::to_string(kSize) + " --height " +
-                                        std::to_string(kSize) + " -q " + c.extra + " --out " +
-                                        dir.string());
+  const auto r = rtsim::test::run_rtsim(
+      "render --scene " + c.scene + " --width " + std::to_string(kSize) + " --height " +
+      std::to_string(kSize) + " -q " + c.extra + " --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const fs::path golden = fs::path(RTSIM_TEST_DATA_DIR).parent_path() / "golden" /
-                          (std::string(c.name) + ".png");
+  const fs::path golden =
+      fs::path(RTSIM_TEST_DATA_DIR).parent_path() / "golden" / (std::string(c.name) + ".png");
   if (std::getenv("RTSIM_UPDATE_GOLDEN")) {
     fs::create_directories(golden.parent_path());
     fs::copy_file(dir / "image.png", golden, fs::copy_options::overwrite_existing);
@@ -66,16 +65,15 @@ TEST_P(GoldenImage, MatchesReviewedImage) {
       rtsim::test::compare_images((dir / "image.png").string(), golden.string(), kPixelTolerance);
   ASSERT_FALSE(cr.error) << "could not compare " << golden;
   const double fail_fraction = static_cast<double>(cr.nfail) / (kSize * kSize);
-  std::cout << c.name << ": max error " << cr.maxerror << " (tolerance " << kPixelTolerance
-            << "), " << cr.nfail << " failing pixels = " << 100.0 * fail_fraction
-            << "% (limit " << 100.0 * kMaxFailFraction << "%)\n";
+  std::cout << c.name << ": max error " << cr.maxerror << " (tolerance " << kPixelTolerance << "), "
+            << cr.nfail << " failing pixels = " << 100.0 * fail_fraction << "% (limit "
+            << 100.0 * kMaxFailFraction << "%)\n";
   EXPECT_LE(fail_fraction, kMaxFailFraction);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, GoldenImage, ::testing::ValuesIn(cases()),
-                         [](const auto& info) {
-                           std::string n = info.param.name;
-                           for (auto& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Scenes, GoldenImage, ::testing::ValuesIn(cases()), [](const auto& info) {
+  std::string n = info.param.name;
+  for (auto& ch : n)
+    if (ch == '-') ch = '_';
+  return n;
+});

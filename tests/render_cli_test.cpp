@@ -1,7 +1,6 @@
 // End-to-end tests of `rtsim render`: outputs, determinism, AOVs, bad input.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -33,8 +32,8 @@ std::vector<float> read_channel(const fs::path& p) {
 
 TEST(RenderCli, WritesImageExrAndStatsWithStableKeys) {
   const auto dir = scratch_dir("render-basic");
-  const auto r = run_rtsim("render --scene builtin:default --width 64 --height 48 -q --out " +
-                           dir.string());
+  const auto r =
+      run_rtsim("render --scene builtin:default --width 64 --height 48 -q --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"image.png", "image.exr", "stats.json"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
@@ -194,9 +193,10 @@ TEST(RenderCli, UllnerQuadAndTriangleKernelsRenderTheSamePolygons) {
     std::vector<fs::path> dirs;
     for (const char* kernel : {"triangle", "ullner-quad"}) {
       const auto dir = scratch_dir(std::string("render-kernel-") + kernel);
-      const auto r = run_rtsim("render --scene " + shared_path(scene) +
-                               " --width 96 --height 96 --aov id -q -p render.polygon_kernel=" +
-                               kernel + " --out " + dir.string());
+      const auto r =
+          run_rtsim("render --scene " + shared_path(scene) +
+                    " --width 96 --height 96 --aov id -q -p render.polygon_kernel=" + kernel +
+                    " --out " + dir.string());
       ASSERT_EQ(r.exit_code, 0) << r.output;
       dirs.push_back(dir);
     }
@@ -206,8 +206,8 @@ TEST(RenderCli, UllnerQuadAndTriangleKernelsRenderTheSamePolygons) {
     for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
     const auto cr = compare_images((dirs[0] / "image.png").string(),
                                    (dirs[1] / "image.png").string(), 2.0f / 255.0f);
-    std::cout << scene << ": " << differ << " of " << a.size() << " id pixels differ; "
-              << cr.nfail << " image pixels over 2/255 (max error " << cr.maxerror << ")\n";
+    std::cout << scene << ": " << differ << " of " << a.size() << " id pixels differ; " << cr.nfail
+              << " image pixels over 2/255 (max error " << cr.maxerror << ")\n";
     EXPECT_LE(differ, a.size() / 500) << "more than 0.2% of primary hits disagree";
     EXPECT_LE(cr.nfail, a.size() / 200) << "more than 0.5% of pixels differ visibly";
   }

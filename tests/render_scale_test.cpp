@@ -46,9 +46,9 @@ Rendered render_nff(const rtsim::scenes::Scene& scene, const std::string& tag) {
   const auto file = dir / "scene.nff";
   std::ofstream(file) << rtsim::scenes::write_nff(scene);
   const auto out = dir / "out";
-  const auto r = rtsim::test::run_rtsim("render --scene " + file.string() +
-                                        " --width 96 --height 96 --aov id -q --out " +
-                                        out.string());
+  const auto r =
+      rtsim::test::run_rtsim("render --scene " + file.string() +
+                             " --width 96 --height 96 --aov id -q --out " + out.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return {out, nlohmann::json::parse(rtsim::test::read_file(out / "stats.json"))};
 }

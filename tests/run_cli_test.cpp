@@ -35,8 +35,8 @@ TEST(RunCli, PeripheralWritesTheDocumentedStats) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const auto s = read_json(dir / "stats.json");
   for (const char* key : {"machine", "scene", "width", "height", "simulated_time_s", "wall_time_s",
-                          "functional_wall_time_s", "overhead_ratio", "rays",
-                          "intersection_tests", "modules", "ray_latency_s"})
+                          "functional_wall_time_s", "overhead_ratio", "rays", "intersection_tests",
+                          "modules", "ray_latency_s"})
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["machine"], "ullner-peripheral");
   EXPECT_EQ(s["width"], 40);
@@ -60,10 +60,12 @@ TEST(RunCli, ImageEqualsTheMachinesFunctionalTwinByteForByte) {
   };
   const std::vector<Case> cases = {
       {"brute", "--machine ullner-peripheral --scene builtin:ullner-cubes"},
-      {"grid", "--machine ullner-peripheral --scene builtin:ullner-cubes "
-               "-p peripheral.grid.divisions=6"},
-      {"printed", "--machine ullner-peripheral --scene builtin:ullner-cubes "
-                  "-p peripheral.grid.divisions=6 -p peripheral.grid.dda=as-printed"},
+      {"grid",
+       "--machine ullner-peripheral --scene builtin:ullner-cubes "
+       "-p peripheral.grid.divisions=6"},
+      {"printed",
+       "--machine ullner-peripheral --scene builtin:ullner-cubes "
+       "-p peripheral.grid.divisions=6 -p peripheral.grid.dda=as-printed"},
       {"tetra", "--machine ullner-peripheral --scene " + shared_path("scenes/tetra-s3.nff")},
       {"vax", "--machine vax-750 --scene " + shared_path("scenes/balls-s1.nff")},
   };
@@ -82,13 +84,13 @@ TEST(RunCli, MachinesAgreeWithThePlainFunctionalRenderer) {
   // Ullner's quads versus the renderer's triangles, and the grid versus the shell hierarchy:
   // different kernels and searches, the same picture. Tolerance: pixels over 2/255 at most
   // 0.5% (rays through polygon edges may be decided differently by the two kernels).
-  for (const std::string& scene : {std::string("builtin:ullner-cubes"),
-                                  shared_path("scenes/tetra-s3.nff")}) {
+  for (const std::string& scene :
+       {std::string("builtin:ullner-cubes"), shared_path("scenes/tetra-s3.nff")}) {
     const std::string size = " --width 64 --height 64 --scene " + scene;
     const auto run = run_ok("agree-run", "run --machine ullner-peripheral" + size);
     const auto plain = run_ok("agree-plain", "render" + size);
-    const auto cr = compare_images((run / "image.png").string(), (plain / "image.png").string(),
-                                   2.0f / 255.0f);
+    const auto cr =
+        compare_images((run / "image.png").string(), (plain / "image.png").string(), 2.0f / 255.0f);
     std::cout << scene << ": peripheral vs functional: " << cr.nfail
               << " of 4096 pixels over 2/255, max error " << cr.maxerror << "\n";
     EXPECT_LE(cr.nfail, 20u);
@@ -150,9 +152,9 @@ TEST(RunCli, ListsMachinesAndTheirParameters) {
   EXPECT_NE(r.output.find("ullner-peripheral"), std::string::npos);
   r = run_rtsim("list params --machine ullner-peripheral");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* name : {"peripheral.intersect_interval", "peripheral.adder_stages",
-                           "peripheral.grid.divisions", "peripheral.grid.dda",
-                           "peripheral.grid.step_time", "host.clock", "quantum"})
+  for (const char* name :
+       {"peripheral.intersect_interval", "peripheral.adder_stages", "peripheral.grid.divisions",
+        "peripheral.grid.dda", "peripheral.grid.step_time", "host.clock", "quantum"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
   EXPECT_NE(r.output.find("333.333 ns"), std::string::npos);
   EXPECT_NE(r.output.find("seed 000 L654"), std::string::npos);

@@ -29,12 +29,12 @@ TEST(UllnerSheetsScene, TwoSheetsOfTotalAreaTwoInTheUnitCube) {
         EXPECT_GE(v[a], 0.0);
         EXPECT_LE(v[a], 1.0);
       }
-    area += 0.5 * glm::length(glm::cross(q.vertices[2] - q.vertices[0],
-                                         q.vertices[3] - q.vertices[1]));
+    area +=
+        0.5 * glm::length(glm::cross(q.vertices[2] - q.vertices[0], q.vertices[3] - q.vertices[1]));
     // Every quad is a valid convex Ullner polygon.
-    EXPECT_TRUE(kernels::UllnerQuadKernel::from(q.vertices[0], q.vertices[1], q.vertices[2],
-                                                q.vertices[3])
-                    .has_value());
+    EXPECT_TRUE(
+        kernels::UllnerQuadKernel::from(q.vertices[0], q.vertices[1], q.vertices[2], q.vertices[3])
+            .has_value());
   }
   // The tilts add sqrt(1 + a^2 + b^2) - 1 < 0.5% to each unit sheet.
   std::printf("a_t = %.5f (target 2, tilted sheets: within 0.5%%)\n", area);
@@ -48,8 +48,8 @@ TEST(UllnerSheetsScene, PrimaryRaysTravelHalfTheModellingSpace) {
   const Scene s = make_ullner_sheets(1000);
   std::vector<kernels::UllnerQuadKernel> quads;
   for (const auto& q : s.polygons)
-    quads.push_back(
-        *kernels::UllnerQuadKernel::from(q.vertices[0], q.vertices[1], q.vertices[2], q.vertices[3]));
+    quads.push_back(*kernels::UllnerQuadKernel::from(q.vertices[0], q.vertices[1], q.vertices[2],
+                                                     q.vertices[3]));
   const shading::PinholeCamera camera(s.camera, 64, 64);
   double travel = 0.0;
   int hits = 0;

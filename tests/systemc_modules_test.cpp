@@ -2,9 +2,9 @@
 // forked simulation (SystemC allows one per process), the TimedFifo between two temporally
 // decoupled threads, the TLM message queue's back-pressure, and the TLM memory.
 #include <gtest/gtest.h>
+#include <tlm_utils/simple_initiator_socket.h>
 
 #include <systemc>
-#include <tlm_utils/simple_initiator_socket.h>
 
 #include "modules/local_clock.hpp"
 #include "modules/memory.hpp"
@@ -16,8 +16,8 @@
 
 extern "C" int sc_main(int, char*[]) { return 0; }
 
-using sc_core::sc_time;
 using sc_core::SC_NS;
+using sc_core::sc_time;
 using sc_core::SC_US;
 using namespace rtsim::modules;
 
@@ -147,9 +147,7 @@ struct Sender : sc_core::sc_module {
   tlm_utils::simple_initiator_socket<Sender> out;
   std::vector<sc_time> accepted;
   SC_HAS_PROCESS(Sender);
-  explicit Sender(sc_core::sc_module_name n) : sc_core::sc_module(n), out("out") {
-    SC_THREAD(run);
-  }
+  explicit Sender(sc_core::sc_module_name n) : sc_core::sc_module(n), out("out") { SC_THREAD(run); }
   void run() {
     LocalClock c;
     for (int i = 0; i < 6; ++i) {
@@ -237,7 +235,7 @@ struct MemoryUser : sc_core::sc_module {
     out->b_transport(gp, delay);
     EXPECT_EQ(back, line);
     EXPECT_EQ(delay, sc_time::from_value(333333));  // one line: all 20 banks in one cycle
-    gp.set_address(4 * 80);                          // past the end
+    gp.set_address(4 * 80);                         // past the end
     out->b_transport(gp, delay);
     EXPECT_EQ(gp.get_response_status(), tlm::TLM_ADDRESS_ERROR_RESPONSE);
     EXPECT_EQ(mem->words_written(), 20u);

@@ -64,8 +64,7 @@ inline void forget_cached_image(const std::string& path) {
 }
 
 /// OpenImageIO's comparison of two images; fails if either cannot be read.
-inline OIIO::ImageBufAlgo::CompareResults compare_images(const std::string& a,
-                                                         const std::string& b,
+inline OIIO::ImageBufAlgo::CompareResults compare_images(const std::string& a, const std::string& b,
                                                          float fail_threshold) {
   forget_cached_image(a);
   forget_cached_image(b);

@@ -11,12 +11,12 @@ namespace rtsim::shading {
 struct TracedRay {
   Ray ray;
   RayKind kind = RayKind::Primary;
-  std::uint8_t depth = 0;        ///< 0 for primary rays, +1 per reflection/refraction
-  double t_max = kInfinity;      ///< shadow rays stop at the light
-  Color weight{1.0};             ///< contribution factor of whatever this ray finds
-  Color light_contribution{0.0}; ///< shadow rays: added to the pixel if the light is unobstructed
-  std::uint32_t pixel = 0;       ///< y * width + x
-  std::uint16_t light = 0;       ///< shadow rays: which light
+  std::uint8_t depth = 0;         ///< 0 for primary rays, +1 per reflection/refraction
+  double t_max = kInfinity;       ///< shadow rays stop at the light
+  Color weight{1.0};              ///< contribution factor of whatever this ray finds
+  Color light_contribution{0.0};  ///< shadow rays: added to the pixel if the light is unobstructed
+  std::uint32_t pixel = 0;        ///< y * width + x
+  std::uint16_t light = 0;        ///< shadow rays: which light
 };
 
 }  // namespace rtsim::shading

@@ -29,8 +29,7 @@ Color miss_contribution(const TracedRay& in, const Color& background) {
 }
 
 Cost shade_hit(const TracedRay& in, const Hit& hit, const scenes::Material& m,
-               std::span<const scenes::Light> lights, const ShadeParams& params,
-               ShadeOutput& out) {
+               std::span<const scenes::Light> lights, const ShadeParams& params, ShadeOutput& out) {
   out.spawned.clear();
   Cost cost;
   const Vec3 d = in.ray.direction;

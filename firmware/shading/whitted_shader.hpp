@@ -24,8 +24,7 @@ struct ShadeOutput {
 /// Shade the hit of `in`. `out.spawned` is cleared and refilled (shadow rays in light order,
 /// then the reflected ray, then the refracted ray). Returns the cost of the work done.
 Cost shade_hit(const TracedRay& in, const Hit& hit, const scenes::Material& material,
-               std::span<const scenes::Light> lights, const ShadeParams& params,
-               ShadeOutput& out);
+               std::span<const scenes::Light> lights, const ShadeParams& params, ShadeOutput& out);
 
 /// What a ray that hits nothing adds: its weight times the background colour (shadow rays
 /// that reach their light add their carried contribution instead).

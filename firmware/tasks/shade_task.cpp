@@ -3,8 +3,7 @@
 namespace rtsim::tasks {
 
 Cost ShadeTask::on_result(const shading::TracedRay& ray, bool found, const Hit& hit,
-                          shading::PixelAccumulator& fb,
-                          std::vector<shading::TracedRay>& spawned) {
+                          shading::PixelAccumulator& fb, std::vector<shading::TracedRay>& spawned) {
   spawned.clear();
   Cost cost;
   cost.instructions += 4;

@@ -12,9 +12,12 @@ void sample_offset(int s, double& dx, double& dy) {
   dy = std::fmod(0.5 + a2 * s, 1.0);
 }
 
-VisionRayTask::VisionRayTask(const shading::PinholeCamera& camera, int width, int height,
-                             int spp, std::uint32_t first_pixel, std::uint32_t end_pixel)
-    : camera_(&camera), width_(width), spp_(spp < 1 ? 1 : spp), pixel_(first_pixel),
+VisionRayTask::VisionRayTask(const shading::PinholeCamera& camera, int width, int height, int spp,
+                             std::uint32_t first_pixel, std::uint32_t end_pixel)
+    : camera_(&camera),
+      width_(width),
+      spp_(spp < 1 ? 1 : spp),
+      pixel_(first_pixel),
       end_(std::min<std::uint32_t>(end_pixel, static_cast<std::uint32_t>(width * height))) {}
 
 VisionRayTask::VisionRayTask(const shading::PinholeCamera& camera, int width, int height, int spp)

@@ -26,8 +26,8 @@ class VisionRayTask {
   shading::TracedRay next(int& sample);
 
   /// Cost of generating one vision ray: d = f + x r + y u, then normalise.
-  static constexpr Cost kCost{.fp_add = 8, .fp_mul = 9, .fp_div = 1, .fp_sqrt = 1,
-                              .mem_words = 8, .instructions = 10};
+  static constexpr Cost kCost{
+      .fp_add = 8, .fp_mul = 9, .fp_div = 1, .fp_sqrt = 1, .mem_words = 8, .instructions = 10};
 
  private:
   const shading::PinholeCamera* camera_;

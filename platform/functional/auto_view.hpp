@@ -15,7 +15,8 @@ inline constexpr double kAutoViewDir[3] = {0.35, -1.0, 0.55};
 inline constexpr int kAutoViewResolution = 512;
 
 /// Sets scene.camera to look at the centre of `bounds` from kAutoViewDir, far enough that the
-/// bounding sphere about fills the view; adds two white lights (key and fill) if the scene has none.
+/// bounding sphere about fills the view; adds two white lights (key and fill) if the scene has
+/// none.
 void frame_automatically(scenes::Scene& scene, const Bounds& bounds);
 
 }  // namespace rtsim::functional

@@ -1,7 +1,7 @@
 #pragma once
-// What a renderer (functional or timed machine) accumulates while it renders a frame: the frame buffer (fixed point,
-// order-independent), the primary-hit AOVs and the work counters; turned into the same
-// RenderResult the functional renderer produces.
+// What a renderer (functional or timed machine) accumulates while it renders a frame: the frame
+// buffer (fixed point, order-independent), the primary-hit AOVs and the work counters; turned into
+// the same RenderResult the functional renderer produces.
 #include <limits>
 #include <vector>
 

@@ -5,11 +5,11 @@
 #include <thread>
 
 #include "firmware/shading/camera.hpp"
-#include "platform/functional/frame_state.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/shading/whitted_shader.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "platform/functional/frame_state.hpp"
 
 namespace rtsim::functional {
 namespace {
@@ -20,8 +20,7 @@ using shading::TracedRay;
 /// (order-independent).
 void trace_tree(const TracedRay& primary, const Tracer& tracer, tasks::ShadeTask& shade,
                 shading::PixelAccumulator& fb, TraceCounters& counters,
-                std::vector<TracedRay>& stack, std::vector<TracedRay>& spawned,
-                Hit* primary_hit) {
+                std::vector<TracedRay>& stack, std::vector<TracedRay>& spawned, Hit* primary_hit) {
   stack.clear();
   stack.push_back(primary);
   bool first = true;
@@ -30,10 +29,9 @@ void trace_tree(const TracedRay& primary, const Tracer& tracer, tasks::ShadeTask
     stack.pop_back();
     counters.count_ray(r.kind);
     Hit hit;
-    const bool found =
-        r.kind == RayKind::Shadow
-            ? tracer.any_hit(r.ray, shade.t_min(r), r.t_max, counters)
-            : tracer.closest_hit(r.ray, shade.t_min(r), r.t_max, hit, counters);
+    const bool found = r.kind == RayKind::Shadow
+                           ? tracer.any_hit(r.ray, shade.t_min(r), r.t_max, counters)
+                           : tracer.closest_hit(r.ray, shade.t_min(r), r.t_max, hit, counters);
     if (first && primary_hit) *primary_hit = found ? hit : Hit{};
     first = false;
     counters.cost += shade.on_result(r, found, hit, fb, spawned);

@@ -15,9 +15,9 @@
 namespace rtsim::functional {
 
 struct RenderOptions {
-  int width = 0;   ///< 0: the scene's resolution
+  int width = 0;  ///< 0: the scene's resolution
   int height = 0;
-  int spp = 1;     ///< samples per pixel
+  int spp = 1;  ///< samples per pixel
   int threads = 1;
   bool aov_id = false;
   bool aov_depth = false;

@@ -37,7 +37,8 @@ void declare_render_params(params::ParamRegistry& r) {
              .max = "1024",
              .unit = "per axis",
              .description = "Subvolumes per axis of the grid; 0 chooses from the primitive count",
-             .source = "seed 000 L648-L654: Ullner's time model gives n_s = 1.10 cbrt(n_p) (docs/parameters.md)"});
+             .source = "seed 000 L648-L654: Ullner's time model gives n_s = 1.10 cbrt(n_p) "
+                       "(docs/parameters.md)"});
   r.declare({.name = "render.shells.branching",
              .kind = ParamKind::kInt,
              .default_value = "4",
@@ -103,8 +104,9 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
   RenderSettings s;
   s.spp = static_cast<int>(r.get_int("render.spp"));
   const std::string& accel = r.get_string("render.accel");
-  s.accel = accel == "shells" ? AccelKind::Shells : accel == "none" ? AccelKind::None
-                                                                    : AccelKind::Grid;
+  s.accel = accel == "shells" ? AccelKind::Shells
+            : accel == "none" ? AccelKind::None
+                              : AccelKind::Grid;
   s.polygon_kernel = r.get_string("render.polygon_kernel") == "ullner-quad"
                          ? PolygonKernel::UllnerQuad
                          : PolygonKernel::Triangle;

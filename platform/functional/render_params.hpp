@@ -18,7 +18,7 @@ struct RenderSettings {
   int spp = 1;
   AccelKind accel = AccelKind::Shells;
   PolygonKernel polygon_kernel = PolygonKernel::Triangle;
-  int grid_divisions = 0;      ///< per axis; 0 = chosen from the primitive count
+  int grid_divisions = 0;       ///< per axis; 0 = chosen from the primitive count
   bool dda_as_printed = false;  ///< Appendix B exactly as printed (machines' fidelity option)
   int shell_branching = 4;
   int shell_leaf_size = 8;

@@ -25,9 +25,9 @@ void add_ullner_quads(const scenes::Polygon& poly, std::size_t id, const scenes:
     for (auto& n : normals)
       if (glm::dot(n, ng) < 0.0) n = -n;
     kernels::QuadRejection why{};
-    if (auto k = kernels::UllnerQuadKernel::from(q.corners[0], q.corners[1], q.corners[2],
-                                                 q.corners[3],
-                                                 q.has_normals ? normals.data() : nullptr, why)) {
+    if (auto k =
+            kernels::UllnerQuadKernel::from(q.corners[0], q.corners[1], q.corners[2], q.corners[3],
+                                            q.has_normals ? normals.data() : nullptr, why)) {
       add(*k, id, p.material);
       ++made;
     }
@@ -112,9 +112,9 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
               if (glm::dot(n[c], ng) < 0.0) n[c] = -n[c];
             }
           }
-          if (auto k = kernels::TriangleKernel::from(poly.vertices[t[0]], poly.vertices[t[1]],
-                                                     poly.vertices[t[2]],
-                                                     has_normals ? n : nullptr)) {
+          if (auto k =
+                  kernels::TriangleKernel::from(poly.vertices[t[0]], poly.vertices[t[1]],
+                                                poly.vertices[t[2]], has_normals ? n : nullptr)) {
             add(*k, id, p.material);
             ++made;
           }

@@ -19,8 +19,8 @@
 
 namespace rtsim::functional {
 
-using Shape = std::variant<kernels::TriangleKernel, kernels::UllnerQuadKernel, kernels::SphereKernel,
-                           kernels::ConeKernel, kernels::BezierPatchKernel>;
+using Shape = std::variant<kernels::TriangleKernel, kernels::UllnerQuadKernel,
+                           kernels::SphereKernel, kernels::ConeKernel, kernels::BezierPatchKernel>;
 
 struct ShapeRecord {
   Shape shape;

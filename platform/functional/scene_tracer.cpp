@@ -194,11 +194,13 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
     if (!scene.modelling_space.empty()) box.extend(scene.modelling_space);
     if (settings.grid_divisions == 0) n = accel::choose_divisions(box, g.shapes.size());
     auto tracer = std::make_unique<GridTracer>(
-        g, box, n, settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
+        g, box, n,
+        settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
     const auto& grid = tracer->grid();
- desc << "grid " << n.x << "x" << n.y << "x" << n.z
-         << (settings.dda_as_printed ? " (DDA as printed)" : "") << ", " << grid.occupied_cell_count()
-         << " occupied subvolumes, " << grid.reference_count() << " polygon addresses";
+    desc << "grid " << n.x << "x" << n.y << "x" << n.z
+         << (settings.dda_as_printed ? " (DDA as printed)" : "") << ", "
+         << grid.occupied_cell_count() << " occupied subvolumes, " << grid.reference_count()
+         << " polygon addresses";
     g.accel_description = desc.str();
     return tracer;
   }
@@ -207,16 +209,16 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
   if (!scene.cluster_of_primitive.empty()) {
     std::vector<std::uint32_t> cluster_of_shape(g.shapes.size());
     for (std::size_t i = 0; i < g.shapes.size(); ++i)
-      cluster_of_shape[i] = scene.cluster_of_primitive[static_cast<std::size_t>(g.shapes[i].prim_id)];
+      cluster_of_shape[i] =
+          scene.cluster_of_primitive[static_cast<std::size_t>(g.shapes[i].prim_id)];
     const int b = scene.cluster_branching > 0 ? scene.cluster_branching : settings.shell_branching;
     tree = accel::ShellTree::from_clusters(g.bounds, cluster_of_shape, b);
   } else {
     tree = accel::ShellTree::build(g.bounds, settings.shell_branching, settings.shell_leaf_size);
   }
   const auto counts = tree.counts();
-  desc << "shells: " << counts.shells << " shells in " << counts.shell_packets
-       << " shell packets, " << counts.prims << " primitives in " << counts.prim_packets
-       << " primitive packets";
+  desc << "shells: " << counts.shells << " shells in " << counts.shell_packets << " shell packets, "
+       << counts.prims << " primitives in " << counts.prim_packets << " primitive packets";
   g.accel_description = desc.str();
   return std::make_unique<ShellTracer>(g, std::move(tree));
 }

@@ -12,8 +12,7 @@ namespace rtsim::platform {
 FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::RenderSettings& s) {
   FunctionalTwin twin;
   twin.settings = s;
-  twin.geometry =
-      std::make_unique<functional::SceneGeometry>(functional::convert_scene(scene, s));
+  twin.geometry = std::make_unique<functional::SceneGeometry>(functional::convert_scene(scene, s));
   if (!scene.has_camera) functional::frame_automatically(scene, twin.geometry->scene_bounds);
   twin.settings.shade.scene_extent = functional::scene_extent(twin.geometry->scene_bounds);
   twin.tracer = functional::make_tracer(*twin.geometry, scene, twin.settings);

@@ -4,15 +4,15 @@ namespace rtsim::platform {
 
 MachineTrace::MachineTrace(const RunOptions& opts) {
   if (!opts.perfetto_path.empty())
-    perfetto_ = std::make_unique<modules::PerfettoTrace>(opts.perfetto_path,
-                                                         opts.perfetto_max_events);
+    perfetto_ =
+        std::make_unique<modules::PerfettoTrace>(opts.perfetto_path, opts.perfetto_max_events);
   if (!opts.vcd_path.empty()) vcd_ = std::make_unique<modules::VcdTrace>(opts.vcd_path);
 }
 
 int MachineTrace::declare_busy(const std::string& module) {
   if (!vcd_) return -1;
-  busy_.push_back(std::make_unique<sc_core::sc_signal<bool>>(
-      sc_core::sc_gen_unique_name("busy"), false));
+  busy_.push_back(
+      std::make_unique<sc_core::sc_signal<bool>>(sc_core::sc_gen_unique_name("busy"), false));
   vcd_->trace_busy(*busy_.back(), module + ".busy");
   return static_cast<int>(busy_.size()) - 1;
 }

@@ -45,7 +45,12 @@ PeripheralConfig read_peripheral(const params::ParamRegistry& r) {
 void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
   declare_processor_params(
       r, "host",
-      {.clock = "5 MHz", .fp_add = 6, .fp_mul = 8, .fp_div = 20, .fp_sqrt = 60, .mem_word = 2,
+      {.clock = "5 MHz",
+       .fp_add = 6,
+       .fp_mul = 8,
+       .fp_div = 20,
+       .fp_sqrt = 60,
+       .mem_word = 2,
        .instruction = 2,
        .source = "assumption: the thesis gives no host costs (seed 000 L476); a VAX-11/780-class "
                  "\"medium-sized host\" (L462) with floating-point accelerator"});
@@ -177,13 +182,15 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
   if (other > 0)
     throw InputError(scene.name, first_line,
                      "ullner-peripheral intersects polygons only (convex quadrilaterals, seed "
-                     "000 L267); this scene has " + std::to_string(other) +
+                     "000 L267); this scene has " +
+                         std::to_string(other) +
                          " sphere/cone/patch primitive(s). Use a polygon scene or another "
                          "machine (`rtsim list machines`)");
   if (const auto a = r.get_int("peripheral.adder_stages"); a != 1 && a != 3)
     throw InputError(r.where_set("peripheral.adder_stages"), 0,
                      "peripheral.adder_stages must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), "
-                     "got " + std::to_string(a));
+                     "got " +
+                         std::to_string(a));
   auto settings = functional::read_render_settings(r);
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
   const int n = static_cast<int>(r.get_int("peripheral.grid.divisions"));
@@ -218,8 +225,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   tasks::ShadeTask shade(scene, twin.settings.shade);
   ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters(),
                                 trace);
-  ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc,
-                    opts, trace, *twin.geometry);
+  ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc, opts,
+                    trace, *twin.geometry);
   host.load_out.bind(peripheral.parameters.socket);
   peripheral.set_ray_queue_depth_handle(host.ray_queue_depth_handle());
   host.ray_out.bind(peripheral.rays.socket);
@@ -281,15 +288,14 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
       {"tests_per_ray", issued / rays},
       {"dda_steps_per_ray", static_cast<double>(peripheral.dda_steps()) / rays},
       {"subvolumes_visited_per_ray", static_cast<double>(peripheral.subvolumes_visited()) / rays},
-      {"mean_ray_travel",
-       peripheral.primary_hits() > 0
-           ? peripheral.primary_travel_sum() / static_cast<double>(peripheral.primary_hits()) /
-                 extent
-           : 0.0},
+      {"mean_ray_travel", peripheral.primary_hits() > 0
+                              ? peripheral.primary_travel_sum() /
+                                    static_cast<double>(peripheral.primary_hits()) / extent
+                              : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};
-  res.image = frame.finish(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  res.image =
+      frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return res;
 }
 

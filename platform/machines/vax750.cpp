@@ -143,14 +143,14 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   res.stats["ray_latency_s"] = host.latency().to_json();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
   res.stats["intersection_tests"] = frame.counters().total_rays() * objects;
-  res.stats["vax"] = {{"objects", objects},
-                      {"intersection_time_s", r.get_time_s("vax.intersection_time")},
-                      {"ray_time_s", r.get_time_s("vax.ray_time")},
-                      {"intersection_tests_charged",
-                       static_cast<double>(frame.counters().total_rays()) *
-                           static_cast<double>(objects)}};
-  res.image = frame.finish(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  res.stats["vax"] = {
+      {"objects", objects},
+      {"intersection_time_s", r.get_time_s("vax.intersection_time")},
+      {"ray_time_s", r.get_time_s("vax.ray_time")},
+      {"intersection_tests_charged",
+       static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)}};
+  res.image =
+      frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return res;
 }
 

@@ -64,9 +64,8 @@ Scene make_ullner_sheets(std::size_t polygon_count) {
         Polygon q;
         // Counter-clockwise seen from the eye (normal (a, -1, b) points toward -y).
         q.vertices = {sheet.at(x0, z0), sheet.at(x1, z0), sheet.at(x1, z1), sheet.at(x0, z1)};
-        scene.primitives.push_back(Primitive{PrimitiveKind::Polygon,
-                                             static_cast<std::uint32_t>(scene.polygons.size()),
-                                             0, 0});
+        scene.primitives.push_back(Primitive{
+            PrimitiveKind::Polygon, static_cast<std::uint32_t>(scene.polygons.size()), 0, 0});
         scene.polygons.push_back(std::move(q));
       }
     }

@@ -17,7 +17,7 @@ struct PeripheralConfig {
   std::size_t ray_queue_depth = 16;
   std::size_t result_queue_depth = 16;
   bool shadow_early_exit = false;
-  int grid_divisions = 0;  ///< 0: brute force
+  int grid_divisions = 0;      ///< 0: brute force
   sc_core::sc_time step_time;  ///< t_d
   unsigned indirection_stages = 1;
   bool lighting = true;

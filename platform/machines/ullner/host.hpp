@@ -4,9 +4,10 @@
 // rays "whenever the host would otherwise be idle". Rays go to the peripheral's ray queue; rays
 // that find it full wait in host memory (so the host never blocks on the peripheral and the
 // two queues cannot deadlock).
+#include <tlm_utils/simple_initiator_socket.h>
+
 #include <deque>
 #include <systemc>
-#include <tlm_utils/simple_initiator_socket.h>
 
 #include "firmware/tasks/shade_task.hpp"
 #include "modules/local_clock.hpp"
@@ -24,16 +25,15 @@ namespace rtsim::platform::ullner {
 
 class Host : public sc_core::sc_module {
  public:
-  tlm_utils::simple_initiator_socket<Host> ray_out;  ///< to the peripheral's ray queue
+  tlm_utils::simple_initiator_socket<Host> ray_out;   ///< to the peripheral's ray queue
   tlm_utils::simple_initiator_socket<Host> load_out;  ///< to the parameter memories' load port
   modules::MessageQueue<RayResult> results;           ///< the result queue
 
   SC_HAS_PROCESS(Host);
-  Host(sc_core::sc_module_name name, const scenes::Scene& scene,
-       const shading::ShadeParams& shade, functional::FrameState& frame,
-       const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-       const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace,
-       const functional::SceneGeometry& geometry);
+  Host(sc_core::sc_module_name name, const scenes::Scene& scene, const shading::ShadeParams& shade,
+       functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
+       const HostConfig& host, const PeripheralConfig& peripheral, const RunOptions& opts,
+       MachineTrace& trace, const functional::SceneGeometry& geometry);
 
   /// From the end of the scene load to the host having the last answer.
   sc_core::sc_time frame_time() const { return frame_time_; }

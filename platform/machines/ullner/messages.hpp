@@ -17,7 +17,7 @@ inline constexpr unsigned kParameterWords = 20;
 struct RayRequest {
   shading::TracedRay ray;
   std::uint64_t id = 0;
-  sc_core::sc_time sent;  ///< when it entered the ray queue (for the latency probe)
+  sc_core::sc_time sent;      ///< when it entered the ray queue (for the latency probe)
   bool first_sample = false;  ///< sample 0 of a primary ray: its answer fills the AOVs
   /// On the wire: r0 (3 words), r1 (3 words), shadow flag (1 word).
   static constexpr unsigned kWireBytes = 7 * 4;

@@ -9,8 +9,7 @@ using modules::times;
 
 Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
-                       const PeripheralConfig& config, TraceCounters& counters,
-                       MachineTrace& trace)
+                       const PeripheralConfig& config, TraceCounters& counters, MachineTrace& trace)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
       parameters("parameter_memories", polygons * kParameterWords, kParameterWords,
@@ -81,8 +80,7 @@ void Peripheral::run() {
       // Ullner's t_r (L648).
       start = std::max(start, aux_free_);
       const sc_core::sc_time walk = times(config_.step_time, cells);
-      const sc_core::sc_time feed =
-          times(stage, config_.indirection_stages + config_.fetch_stages);
+      const sc_core::sc_time feed = times(stage, config_.indirection_stages + config_.fetch_stages);
       parameters.account_line_reads(tests);
       const auto batch = pipe_.issue(tests, start + walk + feed);
       done = batch.done + times(stage, config_.select_stages);

@@ -11,8 +11,9 @@
 //    the polygon addresses of each, through one extra indirection stage (L596).
 // The result leaves the pipe `latency` after its last polygon entered; the next ray's polygons
 // follow the previous ray's without a gap (the pipe is never flushed, L522-L528).
-#include <systemc>
 #include <tlm_utils/simple_initiator_socket.h>
+
+#include <systemc>
 
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
@@ -28,7 +29,7 @@ namespace rtsim::platform::ullner {
 
 class Peripheral : public sc_core::sc_module {
  public:
-  modules::MessageQueue<RayRequest> rays;             ///< the ray queue (host -> peripheral)
+  modules::MessageQueue<RayRequest> rays;  ///< the ray queue (host -> peripheral)
   /// The 20 parameter memories (seed 000 L544): polygon k's 20 words at line k, loaded by the
   /// host through the dual-ported load path, read a whole line per cycle by the fetch stage.
   modules::Memory parameters;
