@@ -50,7 +50,8 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
   ConversionReport& report = g.report;
   auto add = [&g](Shape shape, std::size_t prim_id, std::uint32_t material) {
     const Bounds b = std::visit([](const auto& s) { return s.bounds(); }, shape);
-    g.shapes.push_back(ShapeRecord{std::move(shape), static_cast<std::int32_t>(prim_id), material});
+    g.shapes.push_back(
+        ShapeRecord{std::move(shape), static_cast<std::int32_t>(prim_id), material});
     g.bounds.push_back(b);
     g.scene_bounds.extend(b);
   };
@@ -124,7 +125,9 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
         break;
       }
       case scenes::PrimitiveKind::Patch:
-        add(kernels::BezierPatchKernel::from(scene.patches[p.index], settings.bezier_iterations),
+        add(PatchShape{std::make_unique<const kernels::BezierPatchKernel>(
+                kernels::BezierPatchKernel::from(scene.patches[p.index],
+                                                 settings.bezier_iterations))},
             id, p.material);
         ++report.patches;
         break;

@@ -4,6 +4,7 @@
 // map one to one). Each shape remembers the scene primitive it came from (its prim_id, the
 // index in scene-file order) and its material. Degenerate primitives are skipped and counted.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -19,8 +20,21 @@
 
 namespace rtsim::functional {
 
+/// Wang's patch kernel holds two control nets (about 630 bytes): it is kept behind a pointer so
+/// that the shapes of large polygon scenes (a million of Ullner's quads) stay small.
+struct PatchShape {
+  std::unique_ptr<const kernels::BezierPatchKernel> kernel;
+
+  static constexpr Cost kTestCost = kernels::BezierPatchKernel::kTestCost;
+  bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit,
+                 kernels::WangCounters* counters = nullptr) const {
+    return kernel->intersect(ray, t_min, t_max, hit, counters);
+  }
+  Bounds bounds() const { return kernel->bounds(); }
+};
+
 using Shape = std::variant<kernels::TriangleKernel, kernels::UllnerQuadKernel,
-                           kernels::SphereKernel, kernels::ConeKernel, kernels::BezierPatchKernel>;
+                           kernels::SphereKernel, kernels::ConeKernel, PatchShape>;
 
 struct ShapeRecord {
   Shape shape;

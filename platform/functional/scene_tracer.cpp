@@ -23,7 +23,7 @@ class ShapeTester {
     return std::visit(
         [&](const auto& s) {
           using Kernel = std::decay_t<decltype(s)>;
-          if constexpr (std::is_same_v<Kernel, kernels::BezierPatchKernel>) {
+          if constexpr (std::is_same_v<Kernel, PatchShape>) {
             // Wang's loop stops early when no subpatch survives: count the work it did.
             kernels::WangCounters wc;
             const bool hit = s.intersect(ray, t_min, t_max, out, &wc);
