@@ -7,40 +7,14 @@
 #include "firmware/shading/camera.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/shading/whitted_shader.hpp"
+#include "firmware/tasks/ray_tree.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "platform/functional/frame_state.hpp"
 
 namespace rtsim::functional {
-namespace {
 
 using shading::TracedRay;
-
-/// Trace one ray tree depth-first with the shade task. Contributions go into `fb`
-/// (order-independent).
-void trace_tree(const TracedRay& primary, const Tracer& tracer, tasks::ShadeTask& shade,
-                shading::PixelAccumulator& fb, TraceCounters& counters,
-                std::vector<TracedRay>& stack, std::vector<TracedRay>& spawned, Hit* primary_hit) {
-  stack.clear();
-  stack.push_back(primary);
-  bool first = true;
-  while (!stack.empty()) {
-    const TracedRay r = stack.back();
-    stack.pop_back();
-    counters.count_ray(r.kind);
-    Hit hit;
-    const bool found = r.kind == RayKind::Shadow
-                           ? tracer.any_hit(r.ray, shade.t_min(r), r.t_max, counters)
-                           : tracer.closest_hit(r.ray, shade.t_min(r), r.t_max, hit, counters);
-    if (first && primary_hit) *primary_hit = found ? hit : Hit{};
-    first = false;
-    counters.cost += shade.on_result(r, found, hit, fb, spawned);
-    // Push in reverse so rays are traced in the order they were spawned.
-    for (auto it = spawned.rbegin(); it != spawned.rend(); ++it) stack.push_back(*it);
-  }
-}
-
-}  // namespace
 
 RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts) {
   const auto start = std::chrono::steady_clock::now();
@@ -66,10 +40,13 @@ RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const Rend
       while (!vision.done()) {
         int sample = 0;
         const TracedRay r = vision.next(sample);
-        Hit primary_hit;
-        trace_tree(r, tracer, shade, frame.fb(), counters, stack, spawned,
-                   sample == 0 ? &primary_hit : nullptr);
-        if (sample == 0) frame.record_primary(r.pixel, primary_hit.valid(), primary_hit);
+        bool first = true;
+        tasks::trace_ray_tree(r, tracer, shade, frame.fb(), counters, stack, spawned,
+                              [&](const TracedRay& ray, bool found, const Hit& hit) {
+                                if (first && sample == 0)
+                                  frame.record_primary(ray.pixel, found, hit);
+                                first = false;
+                              });
       }
       const int done = rows_done.fetch_add(1) + 1;
       if (t == 0 && opts.progress) opts.progress(done, h);

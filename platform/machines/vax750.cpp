@@ -4,6 +4,7 @@
 #include <systemc>
 
 #include "firmware/shading/camera.hpp"
+#include "firmware/tasks/ray_tree.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/local_clock.hpp"
@@ -57,26 +58,21 @@ class VaxHost : public sc_core::sc_module {
     trace_.busy(busy_signal_, true);
     while (!vision.done()) {
       int sample = 0;
-      stack.push_back(vision.next(sample));
       bool first = true;
-      while (!stack.empty()) {
-        const TracedRay r = stack.back();
-        stack.pop_back();
-        frame_.counters().count_ray(r.kind);
-        Hit hit;
-        const bool found = trace_one(tracer_, shade, r, hit, frame_.counters());
-        if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
-        first = false;
-        shade.on_result(r, found, hit, frame_.fb(), spawned);
-        for (auto it = spawned.rbegin(); it != spawned.rend(); ++it) stack.push_back(*it);
-        // T_s + O T_i for this ray (seed 001 L326).
-        trace_.slice("vax", "ray", clock.now(), ray_cost_,
-                     {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
-        clock.advance(ray_cost_);
-        busy_ += ray_cost_;
-        latency_.add(ray_cost_);
-        if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
-      }
+      tasks::trace_ray_tree(vision.next(sample), tracer_, shade, frame_.fb(), frame_.counters(),
+                            stack, spawned, [&](const TracedRay& r, bool found, const Hit& hit) {
+                              if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
+                              first = false;
+                              // T_s + O T_i for this ray (seed 001 L326).
+                              trace_.slice(
+                                  "vax", "ray", clock.now(), ray_cost_,
+                                  {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
+                              clock.advance(ray_cost_);
+                              busy_ += ray_cost_;
+                              latency_.add(ray_cost_);
+                              if (opts_.progress && (++rays & 1023) == 0)
+                                opts_.progress(rays, rays);
+                            });
     }
     frame_time_ = clock.now();
     clock.sync();

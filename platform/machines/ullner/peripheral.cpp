@@ -1,7 +1,7 @@
 #include "platform/machines/ullner/peripheral.hpp"
 
+#include "firmware/tasks/ray_tree.hpp"
 #include "modules/sim_time.hpp"
-#include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform::ullner {
 
@@ -47,7 +47,7 @@ void Peripheral::run() {
     TraceCounters before = counters_;
     RayResult res;
     res.request = req;
-    res.found = trace_one(tracer_, shade_, req.ray, res.hit, counters_);
+    res.found = tasks::trace_one(tracer_, shade_, req.ray, res.hit, counters_);
     const std::uint64_t tests = counters_.intersection_tests - before.intersection_tests;
     const std::uint64_t cells = counters_.cells_visited - before.cells_visited;
     const std::uint64_t steps = counters_.dda_steps - before.dda_steps;
