@@ -29,6 +29,19 @@ void add_config_options(CLI::App* cmd, ConfigArgs& cfg) {
                   "repeatable, applied after --config");
 }
 
+/// --width, --height and --aov, the same for every command that writes an image.
+void add_image_options(CLI::App* cmd, int& width, int& height, std::vector<std::string>& aovs) {
+  cmd->add_option("--width", width, "Image width in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", height, "Image height in pixels (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--aov", aovs,
+                  "Extra outputs, comma-separated: id (primitive index of the primary hit, -1 "
+                  "for a miss) and depth (primary hit distance, inf for a miss)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"id", "depth"}));
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -51,17 +64,9 @@ int run_cli(int argc, char** argv) {
   r->add_option("--out", render.out_dir,
                 "Output folder: image.png, image.exr, stats.json (+ id.exr, depth.exr)")
       ->capture_default_str();
-  r->add_option("--width", render.width, "Image width in pixels (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
-  r->add_option("--height", render.height, "Image height in pixels (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
+  add_image_options(r, render.width, render.height, render.aovs);
   r->add_option("--spp", render.spp, "Samples per pixel (default: render.spp, 1)")
       ->check(CLI::Range(1, 4096));
-  r->add_option("--aov", render.aovs,
-                "Extra outputs, comma-separated: id (primitive index of the primary hit, -1 for a "
-                "miss) and depth (primary hit distance, inf for a miss)")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"id", "depth"}));
   r->add_option("--threads", render.threads, "Worker threads (the image does not depend on it)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1024));
@@ -80,13 +85,7 @@ int run_cli(int argc, char** argv) {
   run->add_option("--out", runa.out_dir,
                   "Output folder: image.png, image.exr, stats.json (+ AOVs, traces)")
       ->capture_default_str();
-  run->add_option("--width", runa.width, "Image width in pixels (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
-  run->add_option("--height", runa.height, "Image height in pixels (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
-  run->add_option("--aov", runa.aovs, "Extra outputs, comma-separated: id, depth")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"id", "depth"}));
+  add_image_options(run, runa.width, runa.height, runa.aovs);
   run->add_option("--trace", runa.traces,
                   "Traces, comma-separated: vcd (signals for GTKWave: busy flags, queue depths) "
                   "and perfetto (transactions as Chrome trace events, ui.perfetto.dev)")

@@ -1,5 +1,6 @@
 #pragma once
 // Arguments and entry points of the subcommands.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,11 @@ struct ValidateArgs {
   bool list = false;              ///< list the figures, run nothing
   std::string rtsim;              ///< binary to run; empty: this one
 };
+
+/// Whether --aov asked for `name` (id, depth).
+inline bool wants_aov(const std::vector<std::string>& aovs, const std::string& name) {
+  return std::find(aovs.begin(), aovs.end(), name) != aovs.end();
+}
 
 int run_render(const RenderArgs& args);
 int run_validate(const ValidateArgs& args);

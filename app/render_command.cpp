@@ -38,10 +38,8 @@ int run_render(const RenderArgs& args) {
   opts.spp = settings.spp;
   opts.threads = args.threads;
   opts.shade = settings.shade;
-  for (const auto& a : args.aovs) {
-    if (a == "id") opts.aov_id = true;
-    if (a == "depth") opts.aov_depth = true;
-  }
+  opts.aov_id = wants_aov(args.aovs, "id");
+  opts.aov_depth = wants_aov(args.aovs, "depth");
   ProgressBar bar(args.quiet ? std::string() : "render");
   if (!args.quiet) opts.progress = [&bar](int done, int total) { bar.update(done, total); };
   const auto result = functional::render(scene, *tracer, opts);

@@ -36,10 +36,8 @@ int run_run(const RunArgs& args) {
   platform::RunOptions opts;
   opts.width = args.width;
   opts.height = args.height;
-  for (const auto& a : args.aovs) {
-    if (a == "id") opts.aov_id = true;
-    if (a == "depth") opts.aov_depth = true;
-  }
+  opts.aov_id = wants_aov(args.aovs, "id");
+  opts.aov_depth = wants_aov(args.aovs, "depth");
   for (const auto& t : args.traces) {
     if (t == "vcd") opts.vcd_path = out.stage("trace.vcd");
     if (t == "perfetto") opts.perfetto_path = out.stage("trace.json");
