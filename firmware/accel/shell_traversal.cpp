@@ -26,36 +26,52 @@ bool hit_box(const Bounds& b, const Ray& ray, const Vec3& inv, double t_min, dou
 
 }  // namespace
 
+bool shell_search_possible(const ShellTree& tree, const Ray& ray, double t_min, double t_max) {
+  return tree.shell_packet_count() > 0 && is_finite(ray.origin) && is_finite(ray.direction) &&
+         t_min <= t_max;
+}
+
+std::size_t shell_packet_task(const ShellTree& tree, std::uint32_t packet, const Ray& ray,
+                              const Vec3& inv_dir, double t_min, double t_max,
+                              std::vector<LeafShellEntry>& leaves,
+                              std::vector<std::uint32_t>& children) {
+  const auto shells = tree.shell_packet(packet);
+  for (const Shell& s : shells) {
+    double t = 0.0;
+    if (!hit_box(s.box, ray, inv_dir, t_min, t_max, t)) continue;
+    if (s.leaf) {
+      leaves.push_back({s.child_index, t});  // LeafShellList U= {child_index, t-value}
+    } else {
+      children.push_back(s.child_index);  // ShellTask(child_index of shell)
+    }
+  }
+  return shells.size();
+}
+
+void sort_leaf_shell_list(std::vector<LeafShellEntry>& list) {
+  std::sort(list.begin(), list.end(), [](const LeafShellEntry& a, const LeafShellEntry& b) {
+    return a.t < b.t || (a.t == b.t && a.child_index < b.child_index);
+  });
+}
+
 void shell_task(const ShellTree& tree, const Ray& ray, double t_min, double t_max,
                 std::vector<LeafShellEntry>& list, ShellTraversalStats& stats) {
   list.clear();
   ++stats.rays;
-  if (tree.shell_packet_count() == 0 || !is_finite(ray.origin) || !is_finite(ray.direction) ||
-      !(t_min <= t_max)) {
-    return;
-  }
+  if (!shell_search_possible(tree, ray, t_min, t_max)) return;
   const Vec3 inv(1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z);
   // Fig. 4-10 recurses into a hit parent's children; a stack of packet indices does the same.
   std::vector<std::uint32_t> pending{0};  // SHELL_ARRAY[0]: the root's children (L662)
+  std::vector<std::uint32_t> children;
   while (!pending.empty()) {
     const std::uint32_t packet = pending.back();
     pending.pop_back();
     ++stats.shell_packets;
-    for (const Shell& s : tree.shell_packet(packet)) {
-      ++stats.box_tests;
-      double t = 0.0;
-      if (!hit_box(s.box, ray, inv, t_min, t_max, t)) continue;
-      if (s.leaf) {
-        list.push_back({s.child_index, t});  // LeafShellList U= {child_index, t-value}
-      } else {
-        pending.push_back(s.child_index);  // ShellTask(child_index of shell)
-      }
-    }
+    children.clear();
+    stats.box_tests += shell_packet_task(tree, packet, ray, inv, t_min, t_max, list, children);
+    pending.insert(pending.end(), children.begin(), children.end());
   }
-  // Sort LeafShellList on increasing t-value (ties: PRIM_ARRAY order).
-  std::sort(list.begin(), list.end(), [](const LeafShellEntry& a, const LeafShellEntry& b) {
-    return a.t < b.t || (a.t == b.t && a.child_index < b.child_index);
-  });
+  sort_leaf_shell_list(list);
   stats.leaf_shells_sorted += list.size();
   stats.longest_list = std::max<std::uint64_t>(stats.longest_list, list.size());
   if (list.size() > kLeafShellListCapacity) {

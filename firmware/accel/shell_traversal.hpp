@@ -95,6 +95,23 @@ struct ShellHit {
   bool valid() const { return prim >= 0; }
 };
 
+/// Whether ShellTask can search at all: a tree with packets, a finite ray, t_min <= t_max.
+/// (A ray that cannot search asks for no packet and gets an empty LeafShellList.)
+bool shell_search_possible(const ShellTree& tree, const Ray& ray, double t_min, double t_max);
+
+/// One step of ShellTask (Fig. 4-10, L755-L757), as a ShellProcessor runs it when a SHELL
+/// packet arrives: every SHELL of packet `packet` is box-tested; a hit leaf shell is appended to
+/// `leaves` ({child_index, t-value}), a hit parent shell's child_index (the packet of its
+/// children, to be asked for next) to `children`. `inv_dir` is 1/direction per axis (the per-ray
+/// setup, kShellRaySetupCost). Returns the number of boxes tested.
+std::size_t shell_packet_task(const ShellTree& tree, std::uint32_t packet, const Ray& ray,
+                              const Vec3& inv_dir, double t_min, double t_max,
+                              std::vector<LeafShellEntry>& leaves,
+                              std::vector<std::uint32_t>& children);
+
+/// Sorts a LeafShellList on increasing t-value (L734); ties keep PRIM_ARRAY order.
+void sort_leaf_shell_list(std::vector<LeafShellEntry>& list);
+
 /// ShellTask: the sorted LeafShellList of `ray` over (t_min, t_max), into `list` (cleared).
 /// Ties in t keep PRIM_ARRAY order, so the result is deterministic.
 void shell_task(const ShellTree& tree, const Ray& ray, double t_min, double t_max,

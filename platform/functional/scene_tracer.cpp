@@ -5,8 +5,6 @@
 #include "firmware/accel/dda.hpp"
 #include "firmware/accel/grid_divisions.hpp"
 #include "firmware/accel/grid_traversal.hpp"
-#include "firmware/accel/shell_traversal.hpp"
-#include "firmware/accel/shell_tree.hpp"
 #include "firmware/accel/uniform_grid.hpp"
 
 namespace rtsim::functional {
@@ -144,29 +142,40 @@ class GridTracer final : public Tracer {
 };
 
 /// Gaudet's box-shell hierarchy searched as the Shell and Prim tasks do.
-class ShellTracer final : public Tracer {
+class ShellTracer final : public ShellSearch {
  public:
   ShellTracer(const SceneGeometry& g, accel::ShellTree tree) : tester_(g), tree_(std::move(tree)) {}
 
-  const accel::ShellTree& tree() const { return tree_; }
+  const accel::ShellTree& tree() const override { return tree_; }
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
-    SurfaceHit best;
     accel::ShellTraversalStats st;
+    return closest_hit(ray, t_min, t_max, hit, c, st);
+  }
+  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
+    accel::ShellTraversalStats st;
+    return any_hit(ray, t_min, t_max, c, st);
+  }
+
+  bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit, TraceCounters& c,
+                   accel::ShellTraversalStats& st) const override {
+    SurfaceHit best;
+    const std::uint64_t boxes = st.box_tests;
     accel::ShellTraverser traverser(tree_);
     const auto h =
         traverser.closest_hit(ray, t_min, t_max, tester_.candidate_test(ray, best, c), st);
-    c.box_tests += st.box_tests;
+    c.box_tests += st.box_tests - boxes;
     return tester_.report_closest(h, best, hit, c);
   }
 
-  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c) const override {
+  bool any_hit(const Ray& ray, double t_min, double t_max, TraceCounters& c,
+               accel::ShellTraversalStats& st) const override {
     SurfaceHit unused;
-    accel::ShellTraversalStats st;
+    const std::uint64_t boxes = st.box_tests;
     accel::ShellTraverser traverser(tree_);
     const auto h = traverser.any_hit(ray, t_min, t_max, tester_.candidate_test(ray, unused, c), st);
-    c.box_tests += st.box_tests;
+    c.box_tests += st.box_tests - boxes;
     return h.valid();
   }
 
