@@ -61,7 +61,13 @@ int run_run(const RunArgs& args) {
     stats["overhead_ratio"] = result.image.wall_time_s / functional_result.wall_time_s;
     stats["functional_image_identical"] = functional_result.rgb == result.image.rgb;
   }
-  for (auto& [key, value] : result.stats.items()) stats[key] = value;
+  // Machine keys are added; an object the app already wrote (scene_stats) is extended.
+  for (auto& [key, value] : result.stats.items()) {
+    if (value.is_object() && stats.contains(key) && stats[key].is_object())
+      stats[key].update(value);
+    else
+      stats[key] = value;
+  }
 
   stage_images(out, result.image);
   {

@@ -3,6 +3,7 @@
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/gaudet_pert.hpp"
 #include "platform/machines/ullner_peripheral.hpp"
 #include "platform/machines/vax750.hpp"
 
@@ -11,7 +12,8 @@ namespace rtsim::platform {
 const std::vector<const Machine*>& machines() {
   static const Vax750 vax;
   static const UllnerPeripheral peripheral;
-  static const std::vector<const Machine*> all{&vax, &peripheral};
+  static const GaudetPert pert;
+  static const std::vector<const Machine*> all{&vax, &peripheral, &pert};
   return all;
 }
 

@@ -29,14 +29,18 @@ class VaxHost : public sc_core::sc_module {
   SC_HAS_PROCESS(VaxHost);
   VaxHost(sc_core::sc_module_name name, const scenes::Scene& scene, const Tracer& tracer,
           functional::FrameState& frame, const functional::RenderSettings& settings,
-          sc_core::sc_time ray_time, sc_core::sc_time test_time, std::uint64_t objects,
-          const RunOptions& opts, MachineTrace& trace)
+          sc_core::sc_time ray_time, sc_core::sc_time test_time, sc_core::sc_time box_time,
+          bool brute_force, std::uint64_t objects, const RunOptions& opts, MachineTrace& trace)
       : sc_core::sc_module(name),
         scene_(scene),
         tracer_(tracer),
         frame_(frame),
         settings_(settings),
-        ray_cost_(ray_time + times(test_time, objects)),
+        ray_time_(ray_time),
+        test_time_(test_time),
+        box_time_(box_time),
+        brute_force_(brute_force),
+        objects_(objects),
         opts_(opts),
         trace_(trace),
         busy_signal_(trace.declare_busy("vax")) {
@@ -56,6 +60,7 @@ class VaxHost : public sc_core::sc_module {
     std::vector<TracedRay> stack, spawned;
     long rays = 0;
     trace_.busy(busy_signal_, true);
+    std::uint64_t tests_seen = 0, boxes_seen = 0;
     while (!vision.done()) {
       int sample = 0;
       bool first = true;
@@ -63,13 +68,23 @@ class VaxHost : public sc_core::sc_module {
                             stack, spawned, [&](const TracedRay& r, bool found, const Hit& hit) {
                               if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
                               first = false;
-                              // T_s + O T_i for this ray (seed 001 L326).
+                              // Brute force: T_s + O T_i for this ray (seed 001 L326).
+                              // Shells: T_s + T_i per primitive test + T_b per box test.
+                              const auto& c = frame_.counters();
+                              const sc_core::sc_time cost =
+                                  brute_force_
+                                      ? ray_time_ + times(test_time_, objects_)
+                                      : ray_time_ +
+                                            times(test_time_, c.intersection_tests - tests_seen) +
+                                            times(box_time_, c.box_tests - boxes_seen);
+                              tests_seen = c.intersection_tests;
+                              boxes_seen = c.box_tests;
                               trace_.slice(
-                                  "vax", "ray", clock.now(), ray_cost_,
+                                  "vax", "ray", clock.now(), cost,
                                   {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
-                              clock.advance(ray_cost_);
-                              busy_ += ray_cost_;
-                              latency_.add(ray_cost_);
+                              clock.advance(cost);
+                              busy_ += cost;
+                              latency_.add(cost);
                               if (opts_.progress && (++rays & 1023) == 0)
                                 opts_.progress(rays, rays);
                             });
@@ -83,7 +98,9 @@ class VaxHost : public sc_core::sc_module {
   const Tracer& tracer_;
   functional::FrameState& frame_;
   const functional::RenderSettings& settings_;
-  sc_core::sc_time ray_cost_;
+  sc_core::sc_time ray_time_, test_time_, box_time_;
+  bool brute_force_;
+  std::uint64_t objects_;
   const RunOptions& opts_;
   MachineTrace& trace_;
   int busy_signal_;
@@ -108,11 +125,34 @@ void Vax750::declare_params(params::ParamRegistry& r) const {
              .min = "0 s",
              .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
              .source = "seed 001 L318"});
+  r.declare({.name = "vax.search",
+             .kind = params::ParamKind::kString,
+             .default_value = "brute-force",
+             .allowed = {"brute-force", "shells"},
+             .description = "brute-force: every ray pays T_i for every object (the cost model of "
+                            "seed 001 L320-L326); shells: the sequential C renderer with Gaudet's "
+                            "box-shell hierarchy, paying T_i per primitive tested and "
+                            "vax.box_test_time per shell box tested (the baseline of the PERT "
+                            "speed-ups, L964)",
+             .source = "seed 001 L320-L326, L964"});
+  r.declare({.name = "vax.box_test_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "429 us",
+             .min = "0 s",
+             .description = "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
+                            "= shells)",
+             .source = "assumption: the thesis measured only T_i, the average intersection "
+                       "calculation (L317); a slab test costs about as many floating-point "
+                       "operations as a sphere test, so T_b = T_i"});
 }
 
 FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
   // The VAX runs the ordinary software ray tracer: the functional renderer's own geometry.
-  return make_functional_twin(scene, functional::read_render_settings(r));
+  auto settings = functional::read_render_settings(r);
+  // With shells, the VAX runs Gaudet's own search; brute force charges every object whatever
+  // structure finds the answer (the image is the same).
+  if (r.get_string("vax.search") == "shells") settings.accel = functional::AccelKind::Shells;
+  return make_functional_twin(scene, settings);
 }
 
 RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& r,
@@ -126,7 +166,9 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   MachineTrace trace(opts);
   VaxHost host("vax", scene, *twin.tracer, frame, twin.settings,
                from_ps(r.get_time_ps("vax.ray_time")),
-               from_ps(r.get_time_ps("vax.intersection_time")), objects, opts, trace);
+               from_ps(r.get_time_ps("vax.intersection_time")),
+               from_ps(r.get_time_ps("vax.box_test_time")),
+               r.get_string("vax.search") == "brute-force", objects, opts, trace);
   sc_core::sc_start();
   trace.close();
 
@@ -138,13 +180,17 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   res.stats["modules"] = stats.to_json(host.frame_time());
   res.stats["ray_latency_s"] = host.latency().to_json();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
-  res.stats["intersection_tests"] = frame.counters().total_rays() * objects;
+  const bool brute = r.get_string("vax.search") == "brute-force";
+  if (brute) res.stats["intersection_tests"] = frame.counters().total_rays() * objects;
   res.stats["vax"] = {
       {"objects", objects},
       {"intersection_time_s", r.get_time_s("vax.intersection_time")},
       {"ray_time_s", r.get_time_s("vax.ray_time")},
+      {"search", r.get_string("vax.search")},
       {"intersection_tests_charged",
-       static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)}};
+       brute ? static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)
+             : static_cast<double>(frame.counters().intersection_tests)},
+      {"box_tests_charged", brute ? 0.0 : static_cast<double>(frame.counters().box_tests)}};
   res.image =
       frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return res;

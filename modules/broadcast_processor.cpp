@@ -1,0 +1,146 @@
+#include "modules/broadcast_processor.hpp"
+
+#include "modules/sim_time.hpp"
+
+namespace rtsim::modules {
+
+BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name, std::size_t memory_words,
+                                       sc_core::sc_time load_word_time,
+                                       const BroadcastTiming& timing, bool adaptive)
+    : sc_core::sc_module(name),
+      // The BP streams its memory (L875): the loop's timings already include the reads, so a
+      // read costs no extra time here.
+      memory("memory", memory_words, 1, load_word_time, sc_core::SC_ZERO_TIME),
+      timing_(timing),
+      adaptive_(adaptive) {
+  SC_THREAD(run);
+}
+
+void BroadcastProcessor::attach(BusInterface& bic) {
+  bic.bus_ = this;
+  bics_.push_back(&bic);
+}
+
+void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
+                               std::uint32_t entry_words) {
+  // Read the ID list the control processor loaded: {ID, address, size} per entry (L877).
+  const auto& mem = memory.contents();
+  slots_.clear();
+  std::uint32_t max_id = 0;
+  for (std::size_t i = 0; i < ids; ++i) {
+    const std::size_t at = i * entry_words;
+    slots_.push_back(Slot{mem.at(at), mem.at(at + 2)});
+    max_id = std::max(max_id, mem.at(at));
+  }
+  demand_.assign(slots_.empty() ? 0 : max_id + 1, 0);
+  idle_cycle_ = timing_.loop_reset;
+  idle_cycle_packets_ = idle_cycle_words_ = 0;
+  for (const Slot& s : slots_) {
+    idle_cycle_ += timing_.id_slot;
+    if (!adaptive_) {
+      idle_cycle_ += packet_time(s);
+      ++idle_cycle_packets_;
+      idle_cycle_words_ += s.words;
+    }
+  }
+  cursor_ = Cursor{0, t};
+  started_ = true;
+  start_.notify(t > sc_core::sc_time_stamp() ? t - sc_core::sc_time_stamp()
+                                             : sc_core::SC_ZERO_TIME);
+}
+
+sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
+  return times(timing_.id_slot, slots_.size()) + timing_.loop_reset;
+}
+
+void BroadcastProcessor::demand(std::uint32_t id, int delta) {
+  if (id >= demand_.size()) return;  // an ID this data set does not have: never broadcast
+  demand_[id] += delta;
+  total_demand_ += delta;
+}
+
+sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
+  return timing_.packet_overhead + times(timing_.word_time, s.words);
+}
+
+void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
+  const Slot& s = slots_[c.pos];
+  c.t += timing_.id_slot;
+  if (sent) c.t += packet_time(s);
+  if (account) {
+    ++stats_.ids;
+    if (sent) {
+      ++stats_.packets;
+      stats_.packet_words += s.words;
+      stats_.packet_time += packet_time(s);
+    }
+  }
+  if (++c.pos == slots_.size()) {
+    c.pos = 0;
+    c.t += timing_.loop_reset;
+    if (account) ++stats_.cycles;
+  }
+}
+
+void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
+  // Slot by slot to the start of a cycle, whole idle cycles at once (each the same length),
+  // then slot by slot.
+  while (cursor_.t < t && cursor_.pos != 0) pass(cursor_, !adaptive_, true);
+  if (cursor_.t < t && idle_cycle_ > sc_core::SC_ZERO_TIME) {
+    const std::uint64_t k = (t - cursor_.t).value() / idle_cycle_.value();
+    cursor_.t += times(idle_cycle_, k);
+    stats_.cycles += k;
+    stats_.ids += k * slots_.size();
+    stats_.packets += k * idle_cycle_packets_;
+    stats_.packet_words += k * idle_cycle_words_;
+    stats_.packet_time += times(idle_cycle_ - minimum_cycle(), k);
+  }
+  while (cursor_.t < t) pass(cursor_, !adaptive_, true);
+}
+
+void BroadcastProcessor::run() {
+  sc_core::wait(start_);
+  if (slots_.empty()) return;
+  for (;;) {
+    if (total_demand_ <= 0) {
+      sc_core::wait(wake_);
+      skip_to(sc_core::sc_time_stamp());
+      continue;
+    }
+    // The next slot whose ID some BIC holds (at most one cycle ahead).
+    Cursor c = cursor_;
+    for (std::size_t n = 0; n < slots_.size() && demand_[slots_[c.pos].id] <= 0; ++n)
+      pass(c, !adaptive_, false);
+    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    if (c.t > now) {
+      sc_core::wait(c.t - now, wake_);
+      // Woken early by a new request or a freed buffer: nothing was wanted before now.
+      if (sc_core::sc_time_stamp() < c.t) {
+        skip_to(sc_core::sc_time_stamp());
+        continue;
+      }
+    }
+    while (cursor_.pos != c.pos || cursor_.t != c.t) pass(cursor_, !adaptive_, true);
+    // The sync strobe: every BIC compares the ID with its registers (L920).
+    const Slot& s = slots_[cursor_.pos];
+    const sc_core::sc_time strobe = cursor_.t;
+    hitters_.clear();
+    for (BusInterface* b : bics_)
+      if (b->hit(s.id, strobe)) hitters_.push_back(b);
+    const bool sent = !hitters_.empty() || !adaptive_;
+    if (!hitters_.empty()) {
+      const sc_core::sc_time start = strobe + timing_.id_slot;
+      const sc_core::sc_time arrival = start + packet_time(s);
+      for (BusInterface* b : hitters_) b->capture(s.id, arrival);
+      ++stats_.hit_packets;
+      stats_.captures += hitters_.size();
+      stats_.hit_packet_time += packet_time(s);
+      if (on_packet) on_packet(s.id, start, packet_time(s), hitters_.size());
+    }
+    pass(cursor_, sent, true);
+    // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
+    if (cursor_.t > sc_core::sc_time_stamp()) sc_core::wait(cursor_.t - sc_core::sc_time_stamp());
+  }
+}
+
+}  // namespace rtsim::modules

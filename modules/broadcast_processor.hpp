@@ -1,0 +1,112 @@
+#pragma once
+// Gaudet's Broadcast Processor and its bus (seed 001 §5.1-5.3, L814-L895): a processor with its
+// own memory module holding one data set — first the ID list ({ID, address, size} per packet),
+// then the packets in successive locations (Fig. 5-5, L877-L879) — cycling for ever through the
+// ID list and broadcasting on a 32-bit bus with a sync strobe and a wired-OR hit line.
+//
+// The Fig. 5-6 loop (L893), with the simulator's timings (L957-L962):
+//   loop0: point at the start of the ID list
+//   loop1: broadcast the next ID (sync strobe), wait for the comparators, fetch the packet's
+//          address and size                                       -> id_slot (1000 ns)
+//          if the hit line is low, skip the packet (adaptive broadcasting, §5.1.2)
+//          start the streamed read                                 -> packet_overhead (800 ns)
+//   loop2: broadcast the packet word by word                       -> word_time (400 ns) a word
+//   check: at the end of the ID list reset the loop                -> loop_reset (400 ns)
+// Non-adaptive broadcasting sends every packet every cycle, hit or not (L837, L1047).
+//
+// The broadcast order is the order of the ID list in memory, which the control processor lays
+// out (breadth-first, depth-first or random, Fig. 6-11).
+//
+// Events only where order matters (DESIGN.md): the loop runs arithmetically through IDs that no
+// Bus Interface Controller holds, and the thread wakes only for an ID some BIC asked for (or a
+// new request). The bus is cycling all the time all the same: its statistics count every ID and
+// packet the loop went through.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/bus_interface.hpp"
+#include "modules/memory.hpp"
+
+namespace rtsim::modules {
+
+struct BroadcastTiming {
+  sc_core::sc_time id_slot = sc_core::sc_time(1000, sc_core::SC_NS);         ///< L959
+  sc_core::sc_time packet_overhead = sc_core::sc_time(800, sc_core::SC_NS);  ///< L960
+  sc_core::sc_time word_time = sc_core::sc_time(400, sc_core::SC_NS);        ///< L961
+  sc_core::sc_time loop_reset = sc_core::sc_time(400, sc_core::SC_NS);       ///< L962
+};
+
+class BroadcastProcessor : public sc_core::sc_module {
+ public:
+  /// The data set's memory module; the control processor loads it through memory.socket.
+  Memory memory;
+
+  SC_HAS_PROCESS(BroadcastProcessor);
+  BroadcastProcessor(sc_core::sc_module_name name, std::size_t memory_words,
+                     sc_core::sc_time load_word_time, const BroadcastTiming& timing,
+                     bool adaptive);
+
+  /// Elaboration: a BIC listening on this bus.
+  void attach(BusInterface& bic);
+
+  /// Starts the loop at `t` (absolute) on the ID list the control processor loaded: `ids`
+  /// entries of `entry_words` words from address 0.
+  void start(const sc_core::sc_time& t, std::size_t ids, std::uint32_t entry_words);
+
+  /// Minimum cycle time (nothing sent): mct of L1068-L1079.
+  sc_core::sc_time minimum_cycle() const;
+
+  struct Stats {
+    std::uint64_t ids = 0;            ///< IDs broadcast
+    std::uint64_t cycles = 0;         ///< completed passes through the ID list
+    std::uint64_t packets = 0;        ///< packets broadcast
+    std::uint64_t packet_words = 0;   ///< their words
+    std::uint64_t hit_packets = 0;    ///< packets some BIC captured
+    std::uint64_t captures = 0;       ///< packets captured, summed over BICs
+    sc_core::sc_time packet_time;     ///< time spent sending packets (overhead + words)
+    sc_core::sc_time hit_packet_time; ///< of which packets some BIC captured
+  };
+  const Stats& stats() const { return stats_; }
+  /// Called for every packet some BIC captures (traces): id, start, duration, captures.
+  std::function<void(std::uint32_t, sc_core::sc_time, sc_core::sc_time, std::size_t)> on_packet;
+
+  /// Called by the BICs.
+  void demand(std::uint32_t id, int delta);
+  void wake() { wake_.notify(sc_core::SC_ZERO_TIME); }
+
+ private:
+  struct Slot {
+    std::uint32_t id = 0;
+    std::uint32_t words = 0;
+  };
+  struct Cursor {
+    std::size_t pos = 0;
+    sc_core::sc_time t = sc_core::SC_ZERO_TIME;  ///< when slot `pos` starts
+  };
+  void run();
+  sc_core::sc_time packet_time(const Slot& s) const;
+  /// The slot at `c` passes with its packet sent (`sent`) or skipped; `account`: count it.
+  void pass(Cursor& c, bool sent, bool account);
+  /// Moves the cursor to the first slot starting at or after `t`; no ID there is wanted.
+  void skip_to(const sc_core::sc_time& t);
+
+  BroadcastTiming timing_;
+  bool adaptive_;
+  std::vector<BusInterface*> bics_;
+  std::vector<Slot> slots_;
+  std::vector<int> demand_;  ///< by ID: valid registers holding it, over all BICs
+  long total_demand_ = 0;
+  sc_core::sc_time idle_cycle_ = sc_core::SC_ZERO_TIME;  ///< one cycle with nothing wanted
+  std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;
+  Cursor cursor_;
+  sc_core::sc_event start_;
+  sc_core::sc_event wake_;
+  bool started_ = false;
+  Stats stats_;
+  std::vector<BusInterface*> hitters_;
+};
+
+}  // namespace rtsim::modules

@@ -1,0 +1,124 @@
+#include "modules/bus_interface.hpp"
+
+#include <algorithm>
+
+#include "modules/broadcast_processor.hpp"
+
+namespace rtsim::modules {
+
+BusInterface::BusInterface(std::string name, std::size_t id_registers, std::size_t buffers)
+    : name_(std::move(name)),
+      registers_(std::max<std::size_t>(id_registers, 1)),
+      buffers_(std::max<std::size_t>(buffers, 1)) {}
+
+bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
+  if (pending(id)) return true;  // the comparator matches it once for everyone who wants it
+  // The processor searches the registers serially for a free one (L910).
+  for (Register& r : registers_) {
+    if (r.valid || r.from > t) continue;
+    r = Register{id, true, t};
+    ++requests_;
+    const auto used = static_cast<std::size_t>(
+        std::count_if(registers_.begin(), registers_.end(), [](const Register& x) {
+          return x.valid;
+        }));
+    peak_registers_ = std::max(peak_registers_, used);
+    if (bus_) {
+      bus_->demand(id, +1);
+      bus_->wake();
+    }
+    return true;
+  }
+  ++register_full_;
+  return false;
+}
+
+void BusInterface::cancel(std::uint32_t id, const sc_core::sc_time& t) {
+  for (Register& r : registers_) {
+    if (!r.valid || r.id != id) continue;
+    r.valid = false;
+    r.from = std::max(t, r.from);
+    if (bus_) bus_->demand(id, -1);
+  }
+  for (Buffer& b : buffers_) {
+    if (b.state != BufferState::kFilled || b.id != id) continue;
+    b.state = BufferState::kFree;
+    b.at = std::max(t, b.at);
+    if (bus_) bus_->wake();
+  }
+}
+
+bool BusInterface::pending(std::uint32_t id) const {
+  return std::any_of(registers_.begin(), registers_.end(),
+                     [id](const Register& r) { return r.valid && r.id == id; });
+}
+
+bool BusInterface::register_free(const sc_core::sc_time& t) const {
+  return std::any_of(registers_.begin(), registers_.end(),
+                     [&t](const Register& r) { return !r.valid && r.from <= t; });
+}
+
+std::optional<sc_core::sc_time> BusInterface::next_arrival(std::optional<std::uint32_t> id) const {
+  std::optional<sc_core::sc_time> best;
+  for (const Buffer& b : buffers_) {
+    if (b.state != BufferState::kFilled || (id && b.id != *id)) continue;
+    if (!best || b.at < *best) best = b.at;
+  }
+  return best;
+}
+
+std::optional<ReceivedPacket> BusInterface::take(const sc_core::sc_time& t,
+                                                 std::optional<std::uint32_t> id) {
+  int pick = -1;
+  for (std::size_t i = 0; i < buffers_.size(); ++i) {
+    const Buffer& b = buffers_[i];
+    if (b.state != BufferState::kFilled || b.at > t || (id && b.id != *id)) continue;
+    if (pick < 0 || b.at < buffers_[static_cast<std::size_t>(pick)].at) pick = static_cast<int>(i);
+  }
+  if (pick < 0) return std::nullopt;
+  Buffer& b = buffers_[static_cast<std::size_t>(pick)];
+  b.state = BufferState::kInUse;
+  return ReceivedPacket{b.id, b.at, pick};
+}
+
+void BusInterface::release(const ReceivedPacket& p, const sc_core::sc_time& t) {
+  Buffer& b = buffers_.at(static_cast<std::size_t>(p.buffer));
+  b.state = BufferState::kFree;
+  b.at = t;
+  // A free buffer can turn a waiting match into a hit: the bus must look again.
+  if (bus_) bus_->wake();
+}
+
+int BusInterface::free_buffer(const sc_core::sc_time& t) const {
+  for (std::size_t i = 0; i < buffers_.size(); ++i)
+    if (buffers_[i].state == BufferState::kFree && buffers_[i].at <= t) return static_cast<int>(i);
+  return -1;
+}
+
+bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
+  const bool match = std::any_of(registers_.begin(), registers_.end(), [&](const Register& r) {
+    return r.valid && r.id == id && r.from <= t;
+  });
+  if (!match) return false;
+  if (free_buffer(t) < 0) {
+    ++missed_;  // a match without a free buffer does not raise the hit line (L920)
+    return false;
+  }
+  return true;
+}
+
+void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& arrival) {
+  const int i = free_buffer(sc_core::sc_time_stamp());
+  if (i < 0) return;  // hit() said otherwise: cannot happen
+  buffers_[static_cast<std::size_t>(i)] = Buffer{BufferState::kFilled, id, arrival};
+  ++received_;
+  for (Register& r : registers_) {
+    if (!r.valid || r.id != id) continue;
+    r.valid = false;
+    r.from = arrival;  // freed when the packet has been received (L912)
+    if (bus_) bus_->demand(id, -1);
+  }
+  changed_.notify(sc_core::SC_ZERO_TIME);
+}
+
+}  // namespace rtsim::modules

@@ -1,0 +1,84 @@
+#pragma once
+// Gaudet's Bus Interface Controller (seed 001 §5.4, L897-L924; Fig. 5-7 is lost, the prose
+// survives): the processor's only connection to a broadcast bus.
+//  * ID registers (§5.4.1, L910-L912): the processor writes the ID of a packet it wants into a
+//    free register; the register is flagged free again when its packet has been received.
+//  * Comparator and hit line (§5.4.2, L920): on the Broadcast Processor's sync strobe the ID on
+//    the bus is latched and compared with all valid registers in parallel; if one matches *and*
+//    a buffer is free, the BIC drives the (wired-OR) hit line and arms the free buffer. A match
+//    with no free buffer is not a hit: the packet is missed until a later cycle.
+//  * Buffers (§5.4.3, L924): two FIFO buffers; the processor works on a packet in one while the
+//    BIC fills the other, and reads a word per cycle.
+// The number of registers and of buffers are parameters (the thesis says "multiple" and 2).
+// Every register and buffer carries the time from which its state holds, so a processor that
+// runs ahead of simulated time cannot make the bus see a request before its time.
+#include <cstdint>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/packet_port.hpp"
+
+namespace rtsim::modules {
+
+class BroadcastProcessor;
+
+class BusInterface final : public PacketPort {
+ public:
+  BusInterface(std::string name, std::size_t id_registers, std::size_t buffers);
+
+  const std::string& name() const { return name_; }
+
+  // Processor side (PacketPort).
+  bool request(std::uint32_t id, const sc_core::sc_time& t) override;
+  void cancel(std::uint32_t id, const sc_core::sc_time& t) override;
+  bool pending(std::uint32_t id) const override;
+  bool register_free(const sc_core::sc_time& t) const override;
+  std::optional<sc_core::sc_time> next_arrival(
+      std::optional<std::uint32_t> id = std::nullopt) const override;
+  std::optional<ReceivedPacket> take(const sc_core::sc_time& t,
+                                     std::optional<std::uint32_t> id = std::nullopt) override;
+  void release(const ReceivedPacket& p, const sc_core::sc_time& t) override;
+  const sc_core::sc_event& changed_event() const override { return changed_; }
+
+  // Bus side (the Broadcast Processor's sync strobe at `t`).
+  /// Some valid register holds `id` (valid at `t`) but no buffer is free: counted as a miss.
+  bool hit(std::uint32_t id, const sc_core::sc_time& t);
+  /// The packet `id` streams into a free buffer; its last word is in at `arrival`. The
+  /// register that asked for it is freed on receipt (L912).
+  void capture(std::uint32_t id, const sc_core::sc_time& arrival);
+
+  std::uint64_t requests() const { return requests_; }
+  std::uint64_t packets_received() const { return received_; }
+  std::uint64_t missed_no_buffer() const { return missed_; }
+  std::uint64_t register_full() const { return register_full_; }
+  std::size_t registers_in_use_peak() const { return peak_registers_; }
+
+ private:
+  friend class BroadcastProcessor;
+  struct Register {
+    std::uint32_t id = 0;
+    bool valid = false;
+    sc_core::sc_time from = sc_core::SC_ZERO_TIME;  ///< valid from / free from
+  };
+  enum class BufferState { kFree, kFilled, kInUse };
+  struct Buffer {
+    BufferState state = BufferState::kFree;
+    std::uint32_t id = 0;
+    sc_core::sc_time at = sc_core::SC_ZERO_TIME;  ///< free from / arrival
+  };
+  int free_buffer(const sc_core::sc_time& t) const;
+
+  std::string name_;
+  std::vector<Register> registers_;
+  std::vector<Buffer> buffers_;
+  BroadcastProcessor* bus_ = nullptr;
+  sc_core::sc_event changed_;
+  std::uint64_t requests_ = 0;
+  std::uint64_t received_ = 0;
+  std::uint64_t missed_ = 0;
+  std::uint64_t register_full_ = 0;
+  std::size_t peak_registers_ = 0;
+};
+
+}  // namespace rtsim::modules

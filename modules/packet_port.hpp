@@ -1,0 +1,57 @@
+#pragma once
+// How a processor gets the packets of a data set it does not hold (seed 001 §5.1-5.4): it asks
+// for a packet by its ID and later finds the packet in a buffer. Two implementations:
+//  * BusInterface (bus_interface.hpp): Gaudet's Bus Interface Controller on a broadcast bus —
+//    ID registers, comparator, hit line, double FIFO buffer (§5.4, L897-L924);
+//  * LocalDataSet (local_data_set.hpp): the "direct memory" baseline, every processor holding
+//    the whole data set in its own memory (L806, L1103) — a packet is there when asked for.
+// The processor reads a packet's words at one cycle a word in both cases (FIFO read, L924;
+// streamed memory, L863) and charges that itself.
+//
+// Times are absolute. A processor may run ahead of simulated time (temporal decoupling); every
+// request and release is stamped with the processor's local time, and the broadcast side
+// honours a stamp only from that time on, so the outcome does not depend on who ran ahead.
+#include <cstdint>
+#include <optional>
+#include <systemc>
+
+namespace rtsim::modules {
+
+/// A packet that has arrived in one of the port's buffers.
+struct ReceivedPacket {
+  std::uint32_t id = 0;
+  sc_core::sc_time arrival = sc_core::SC_ZERO_TIME;  ///< its last word is in the buffer
+  int buffer = -1;
+};
+
+class PacketPort {
+ public:
+  virtual ~PacketPort() = default;
+
+  /// Ask for packet `id` from local time `t`. False if no ID register is free at `t` (the
+  /// processor keeps the ID in its own memory and tries again later, L910).
+  virtual bool request(std::uint32_t id, const sc_core::sc_time& t) = 0;
+  /// Withdraw a request not yet served (the PrimProcessor's prefetch it no longer needs).
+  /// A packet of that ID already in a buffer is dropped and its buffer freed at `t`.
+  virtual void cancel(std::uint32_t id, const sc_core::sc_time& t) = 0;
+  /// Whether a register holds `id` (asked for, not yet received).
+  virtual bool pending(std::uint32_t id) const = 0;
+  /// Whether a register is free at `t`.
+  virtual bool register_free(const sc_core::sc_time& t) const = 0;
+
+  /// The earliest arrival among packets waiting in buffers (of `id` only, if given).
+  virtual std::optional<sc_core::sc_time> next_arrival(
+      std::optional<std::uint32_t> id = std::nullopt) const = 0;
+  /// Takes the earliest packet that has arrived by `t` (of `id` only, if given): the processor
+  /// now works on it in its buffer.
+  virtual std::optional<ReceivedPacket> take(const sc_core::sc_time& t,
+                                             std::optional<std::uint32_t> id = std::nullopt) = 0;
+  /// The processor is done with the packet: its buffer is free from `t`.
+  virtual void release(const ReceivedPacket& p, const sc_core::sc_time& t) = 0;
+
+  /// Notified when a packet is captured or a register freed (the processor then looks at
+  /// next_arrival(); arrival times may lie ahead of the notification).
+  virtual const sc_core::sc_event& changed_event() const = 0;
+};
+
+}  // namespace rtsim::modules

@@ -1,0 +1,49 @@
+#include "platform/machines/gaudet/pert_processor.hpp"
+
+namespace rtsim::platform::gaudet {
+
+PertProcessor::PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
+                             MachineTrace& trace)
+    : sc_core::sc_module(name),
+      timing_(timing),
+      trace_(trace),
+      track_(this->name()),
+      busy_signal_(trace.declare_busy(this->name())) {}
+
+void PertProcessor::compute(const Cost& c, std::string_view what) {
+  const sc_core::sc_time t = timing_.time_for(c);
+  if (t == sc_core::SC_ZERO_TIME) return;
+  trace_.busy(busy_signal_, true);
+  trace_.slice(track_, what, clock_.now(), t);
+  clock_.advance(t);
+  trace_.busy(busy_signal_, false);
+  split_.processing += t;
+}
+
+void PertProcessor::idle(std::optional<sc_core::sc_time> until,
+                         const sc_core::sc_event_or_list& events, bool for_bus) {
+  const sc_core::sc_time before = clock_.now();
+  clock_.sync();
+  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  // A time already reached is something the caller cannot act on yet: wait for a change.
+  if (until && *until > g)
+    sc_core::wait(*until - g, events);
+  else
+    sc_core::wait(events);
+  clock_.resync();
+  const sc_core::sc_time spent = clock_.now() - before;
+  (for_bus ? split_.latency : split_.pipeline_wait) += spent;
+}
+
+void PertProcessor::begin_frame() {
+  if (frame_start_) sc_core::wait(*frame_start_);
+  clock_.resync();
+}
+
+void PertProcessor::blocked_until(const sc_core::sc_time& t) {
+  if (t <= clock_.now()) return;
+  split_.pipeline_wait += t - clock_.now();
+  clock_.catch_up(t);
+}
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,68 @@
+#pragma once
+// What the three processors of a PERT have in common (seed 001 §5.2, L853-L863): an SJ16
+// microprocessor with a Weitek floating-point unit, timed from the firmware's reported costs
+// (modules::ProcessorTiming), with its own local clock (temporal decoupling).
+//
+// Its time splits the way Gaudet's performance model does (L1045):
+//   time = (processing/ray + latency/ray + pipelinewait/ray) x rays
+// processing: the processor computes; latency: it waits for broadcast data with nothing else
+// to do; pipelinewait: it waits for the next stage's queue to take a message or for work from
+// the previous stage.
+#include <optional>
+#include <string>
+#include <systemc>
+
+#include "firmware/cost.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/processor_timing.hpp"
+#include "platform/machines/machine_trace.hpp"
+
+namespace rtsim::platform::gaudet {
+
+struct TimeSplit {
+  sc_core::sc_time processing = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time latency = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time pipeline_wait = sc_core::SC_ZERO_TIME;
+  std::uint64_t rays = 0;  ///< rays this processor finished its part of
+  TimeSplit& operator+=(const TimeSplit& o) {
+    processing += o.processing;
+    latency += o.latency;
+    pipeline_wait += o.pipeline_wait;
+    rays += o.rays;
+    return *this;
+  }
+};
+
+class PertProcessor : public sc_core::sc_module {
+ public:
+  const TimeSplit& split() const { return split_; }
+  /// Elaboration: the event that starts the frame (the control processor's).
+  void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
+
+ protected:
+  PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
+                MachineTrace& trace);
+
+  /// Spends the time of `c` computing (a Perfetto slice named `what` on this processor).
+  void compute(const Cost& c, std::string_view what);
+  /// Waits until `until` (if known) or until one of `events` fires, whichever comes first.
+  /// The time counts as latency if `for_bus`, else as pipeline wait.
+  void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
+            bool for_bus);
+  /// Waits for the frame to start.
+  void begin_frame();
+  /// Accounts time lost blocked in a put (pipeline wait) up to `t`.
+  void blocked_until(const sc_core::sc_time& t);
+
+  modules::LocalClock clock_;
+  modules::ProcessorTiming timing_;
+  MachineTrace& trace_;
+  TimeSplit split_;
+
+ private:
+  const sc_core::sc_event* frame_start_ = nullptr;
+  std::string track_;
+  int busy_signal_;
+};
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,105 @@
+#include "platform/machines/gaudet/prim_processor.hpp"
+
+#include "firmware/tasks/pert_task_costs.hpp"
+
+namespace rtsim::platform::gaudet {
+
+PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
+                             const std::vector<std::uint32_t>& packet_words,
+                             const std::vector<Cost>& test_cost, modules::PacketPort& port, const ProcessorConfig& config,
+                             std::size_t input_depth, TraceCounters& counters, MachineTrace& trace)
+    : PertProcessor(name, config.timing, trace),
+      input("input", input_depth),
+      out("out"),
+      search_(search),
+      packet_words_(packet_words),
+      test_cost_(test_cost),
+      port_(port),
+      counters_(counters) {
+  SC_THREAD(run);
+}
+
+void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k) {
+  if (k >= msg.leaf_shells.size() || asked_[k]) return;
+  compute(tasks::kAskPacketCost, "ask");
+  asked_[k] = port_.request(msg.leaf_shells[k].child_index, clock_.now());
+}
+
+void PrimProcessor::serve(ShellToPrim& msg) {
+  compute(tasks::words_cost(msg.words()), "ray");
+  const shading::TracedRay& r = msg.ticket.ray;
+  PrimToShade res{msg.ticket, false, {}};
+  // The answer, as the twin computes it (same search, same kernels).
+  TraceCounters c;
+  accel::ShellTraversalStats st;
+  res.found = r.kind == RayKind::Shadow
+                  ? search_.any_hit(r.ray, msg.ticket.t_min, r.t_max, c, st)
+                  : search_.closest_hit(r.ray, msg.ticket.t_min, r.t_max, res.hit, c, st);
+  counters_ += c;
+  if (st.leaf_shells_sorted != msg.leaf_shells.size()) ++list_mismatches_;
+  const std::size_t n = msg.leaf_shells.size();
+  const std::size_t k = std::min<std::size_t>(st.leaf_shells_tested, n);
+  prim_tests_ += st.prim_tests;
+
+  // Play the packets that search needed through the BIC, in t order (Fig. 4-12).
+  asked_.assign(n, false);
+  if (k > 0) ++rays_with_packets_;
+  const sc_core::sc_time asked_first = clock_.now();
+  ask(msg, 0);
+  ask(msg, 1);
+  std::uint64_t tests_done = 0;
+  for (std::size_t j = 0; j < k; ++j) {
+    const std::uint32_t id = msg.leaf_shells[j].child_index;
+    std::optional<modules::ReceivedPacket> p;
+    while (!(p = port_.take(clock_.now(), id))) {
+      if (!asked_[j]) {
+        if (port_.register_free(clock_.now())) {
+          ask(msg, j);
+          continue;
+        }
+        // Registers free as packets arrive.
+        idle(port_.next_arrival(), port_.changed_event(), true);
+      } else {
+        idle(port_.next_arrival(id), port_.changed_event(), true);
+      }
+    }
+    if (j == 0) first_packet_.add(p->arrival - asked_first);
+    ++packets_;
+    // The primitives are tested in packet order; a light ray stops at its first hit.
+    const auto slots = search_.tree().prim_packet(id);
+    const std::uint64_t tests = std::min<std::uint64_t>(slots.size(), st.prim_tests - tests_done);
+    tests_done += tests;
+    Cost work = tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost +
+                tasks::kStopTestCost;
+    for (std::size_t q = 0; q < tests; ++q) work += test_cost_[slots[q]];
+    compute(work, "primitive tests");
+    port_.release(*p, clock_.now());
+    if (j + 1 < k) ask(msg, j + 2);
+  }
+  // Withdraw what the search no longer needs.
+  for (std::size_t e = k; e < n; ++e) {
+    if (!asked_[e]) continue;
+    port_.cancel(msg.leaf_shells[e].child_index, clock_.now());
+    ++cancelled_;
+  }
+  if (res.found) compute(tasks::kHitInfoCost, "hit info");
+  compute(tasks::words_cost(PrimToShade::kWords), "send");
+  ++split_.rays;
+  blocked_until(modules::send_message(out, res, clock_.now(), PrimToShade::kWords * 4));
+}
+
+void PrimProcessor::run() {
+  begin_frame();
+  for (;;) {
+    if (!input.fifo.has_item_by(clock_.now())) {
+      idle(input.fifo.next_item_time(), input.fifo.put_event(), false);
+      continue;
+    }
+    sc_core::sc_time taken;
+    ShellToPrim msg = input.fifo.get(clock_.now(), taken);
+    clock_.catch_up(taken);
+    serve(msg);
+  }
+}
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,72 @@
+#pragma once
+// The PrimProcessor of a PERT (seed 001 §4.5, Fig. 4-12, L771-L786; §6.3, L1053-L1062): takes
+// SHELL_TO_PRIM rays and tests the primitives of their leaf shells strictly in t order, a PRIM
+// packet at a time, with the packets its BIC catches off the Prim bus.
+//
+// One ray at a time, at most two packet IDs in the BIC (L910, L1056): it asks for the first
+// two leaf shells, and after testing packet j, if the search goes on, for leaf shell j + 2. It
+// stops when the nearest primitive hit is closer than the next leaf shell (L646-L648), or for a
+// light ray at the first hit (L776), and withdraws the request it no longer needs. Then it
+// computes the point and normal and sends PRIM_TO_SHADE.
+//
+// The answer (which primitive, where) is computed functionally by the machine's twin — the
+// same search, the same kernels — so the image equals `rtsim render`; the processor plays the
+// packets that search needed through the bus and charges its own firmware's tests for the
+// primitives it tested (tasks::kPertSphereTestCost, kPertTriangleTestCost).
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <vector>
+
+#include "modules/message_channel.hpp"
+#include "modules/packet_port.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/scene_tracer.hpp"
+#include "platform/machines/gaudet/config.hpp"
+#include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/pert_processor.hpp"
+
+namespace rtsim::platform::gaudet {
+
+class PrimProcessor : public PertProcessor {
+ public:
+  modules::MessageQueue<ShellToPrim> input;
+  tlm_utils::simple_initiator_socket<PrimProcessor> out;
+
+  SC_HAS_PROCESS(PrimProcessor);
+  PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
+                const std::vector<std::uint32_t>& packet_words,
+                const std::vector<Cost>& test_cost, modules::PacketPort& port,
+                const ProcessorConfig& config, std::size_t input_depth, TraceCounters& counters,
+                MachineTrace& trace);
+
+
+  std::uint64_t packets_processed() const { return packets_; }
+  std::uint64_t packets_cancelled() const { return cancelled_; }
+  std::uint64_t prim_tests() const { return prim_tests_; }
+  /// From asking for a ray's first packet to having it (L1060-L1062).
+  const modules::LatencyRecorder& first_packet_latency() const { return first_packet_; }
+  /// Rays that needed at least one packet.
+  std::uint64_t rays_with_packets() const { return rays_with_packets_; }
+  /// Rays whose LeafShellList from the ShellProcessor differs in length from the twin's (a
+  /// consistency check of the model: must be 0).
+  std::uint64_t list_mismatches() const { return list_mismatches_; }
+
+ private:
+  void run();
+  void serve(ShellToPrim& msg);
+  /// Asks for leaf shell `k` of the list; keeps it for later if no register is free.
+  void ask(const ShellToPrim& msg, std::size_t k);
+
+  const functional::ShellSearch& search_;
+  const std::vector<std::uint32_t>& packet_words_;
+  const std::vector<Cost>& test_cost_;  ///< by primitive slot: the PERT's own test
+  modules::PacketPort& port_;
+  TraceCounters& counters_;
+
+  std::vector<bool> asked_;  ///< per list entry of the current ray
+  std::uint64_t packets_ = 0, cancelled_ = 0, prim_tests_ = 0, rays_with_packets_ = 0;
+  std::uint64_t list_mismatches_ = 0;
+  modules::LatencyRecorder first_packet_;
+};
+
+}  // namespace rtsim::platform::gaudet

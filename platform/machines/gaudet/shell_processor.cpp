@@ -1,0 +1,133 @@
+#include "platform/machines/gaudet/shell_processor.hpp"
+
+#include "firmware/tasks/pert_task_costs.hpp"
+
+namespace rtsim::platform::gaudet {
+
+ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+                               const std::vector<std::uint32_t>& packet_words,
+                               modules::PacketPort& port, const ProcessorConfig& config,
+                               std::size_t input_depth, MachineTrace& trace)
+    : PertProcessor(name, config.timing, trace),
+      input("input", input_depth),
+      out("out"),
+      tree_(tree),
+      packet_words_(packet_words),
+      port_(port),
+      config_(config),
+      searches_(std::max<std::size_t>(config.rays_in_flight, 1)) {
+  SC_THREAD(run);
+}
+
+void ShellProcessor::ask(std::uint32_t packet, int search) {
+  compute(tasks::kAskPacketCost, "ask");
+  auto& w = waiting_[packet];
+  w.push_back(search);
+  if (w.size() > 1) return;  // already asked for by another ray
+  if (!port_.request(packet, clock_.now())) {
+    overflow_.push_back(packet);
+    overflow_peak_ = std::max<std::uint64_t>(overflow_peak_, overflow_.size());
+  }
+}
+
+void ShellProcessor::begin(ShadeToShell msg) {
+  int slot = 0;
+  while (searches_[static_cast<std::size_t>(slot)].active) ++slot;
+  Search& s = searches_[static_cast<std::size_t>(slot)];
+  s.active = true;
+  s.ticket = msg.ticket;
+  s.leaves.clear();
+  s.outstanding = 0;
+  const Ray& ray = s.ticket.ray.ray;
+  s.inv_dir = Vec3(1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z);
+  compute(tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
+  if (!accel::shell_search_possible(tree_, ray, s.ticket.t_min, s.ticket.ray.t_max)) {
+    finish(slot);
+    return;
+  }
+  s.outstanding = 1;
+  ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+}
+
+void ShellProcessor::process(const modules::ReceivedPacket& p) {
+  ++packets_;
+  compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
+  const auto node = waiting_.extract(p.id);
+  if (!node.empty()) {
+    for (const int slot : node.mapped()) {
+      Search& s = searches_[static_cast<std::size_t>(slot)];
+      ++packet_uses_;
+      children_.clear();
+      const std::size_t before = s.leaves.size();
+      const std::size_t boxes =
+          accel::shell_packet_task(tree_, p.id, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
+                                   s.ticket.ray.t_max, s.leaves, children_);
+      box_tests_ += boxes;
+      compute(accel::kShellBoxTestCost * boxes +
+                  tasks::kLeafShellAppendCost * (s.leaves.size() - before),
+              "box tests");
+      s.outstanding += static_cast<int>(children_.size()) - 1;
+      for (const std::uint32_t c : children_) ask(c, slot);
+      if (s.outstanding == 0) finish(slot);
+    }
+  }
+  port_.release(p, clock_.now());
+}
+
+void ShellProcessor::finish(int slot) {
+  Search& s = searches_[static_cast<std::size_t>(slot)];
+  compute(tasks::leaf_shell_sort_cost(s.leaves.size()), "sort");
+  accel::sort_leaf_shell_list(s.leaves);
+  leaf_shells_ += s.leaves.size();
+  if (s.leaves.size() > accel::kLeafShellListCapacity) ++over_capacity_;
+  done_.push_back(slot);
+}
+
+void ShellProcessor::run() {
+  begin_frame();
+  for (;;) {
+    const sc_core::sc_time now = clock_.now();
+    // A finished search goes on to the PrimProcessor when its queue has room.
+    if (!done_.empty() && out_queue_->has_room_by(now)) {
+      Search& s = searches_[static_cast<std::size_t>(done_.front())];
+      done_.pop_front();
+      ShellToPrim msg{s.ticket, std::move(s.leaves)};
+      s.leaves = {};
+      s.active = false;
+      compute(tasks::words_cost(msg.words()), "send");
+      modules::send_message(out, msg, clock_.now(), msg.words() * 4);
+      ++split_.rays;
+      continue;
+    }
+    if (auto p = port_.take(now)) {
+      process(*p);
+      continue;
+    }
+    if (!overflow_.empty() && port_.register_free(now)) {
+      const std::uint32_t id = overflow_.back();
+      compute(tasks::kAskPacketCost, "ask");
+      if (port_.request(id, clock_.now())) overflow_.pop_back();
+      continue;
+    }
+    const bool slot_free =
+        std::any_of(searches_.begin(), searches_.end(), [](const Search& s) { return !s.active; });
+    if (slot_free && input.fifo.has_item_by(now)) {
+      sc_core::sc_time taken;
+      ShadeToShell msg = input.fifo.get(now, taken);
+      clock_.catch_up(taken);
+      begin(std::move(msg));
+      continue;
+    }
+    // Nothing to do now: wait for a packet, a ray, or room in the output queue.
+    std::optional<sc_core::sc_time> next = port_.next_arrival();
+    auto earliest = [&next](std::optional<sc_core::sc_time> t) {
+      if (t && (!next || *t < *next)) next = t;
+    };
+    if (slot_free) earliest(input.fifo.next_item_time());
+    if (!done_.empty()) earliest(out_queue_->next_room_time());
+    const bool for_bus = !waiting_.empty();
+    idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
+  }
+}
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,76 @@
+#pragma once
+// The ShellProcessor of a PERT (seed 001 §4.5, Fig. 4-10, L752-L757; §5.4.1, L910): takes
+// SHADE_TO_SHELL rays, searches the shell hierarchy with the SHELL packets its BIC catches off
+// the Shell bus, and sends each ray's sorted LeafShellList on as SHELL_TO_PRIM.
+//
+// Per ray: ask for packet 0 (the root's children, L662); box-test the SHELLs of every packet as
+// it arrives — in broadcast order, not request order — adding hit leaf shells to the list and
+// asking for the children packet of every hit parent; when no packet is outstanding, sort the
+// list (L734) and send it. The processor keeps up to `rays_in_flight` rays at a time and stores
+// IDs "continually": when no ID register is free it stacks the ID in its own memory until one
+// is (L910). A packet several rays wait for is caught once and tested for each of them.
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <deque>
+#include <map>
+#include <vector>
+
+#include "firmware/accel/shell_traversal.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/packet_port.hpp"
+#include "platform/machines/gaudet/config.hpp"
+#include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/pert_processor.hpp"
+
+namespace rtsim::platform::gaudet {
+
+class ShellProcessor : public PertProcessor {
+ public:
+  modules::MessageQueue<ShadeToShell> input;
+  tlm_utils::simple_initiator_socket<ShellProcessor> out;
+
+  SC_HAS_PROCESS(ShellProcessor);
+  ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+                 const std::vector<std::uint32_t>& packet_words, modules::PacketPort& port,
+                 const ProcessorConfig& config, std::size_t input_depth, MachineTrace& trace);
+
+  /// Elaboration: the queue `out` feeds (to see whether it has room).
+  void set_output_queue(const modules::TimedFifo<ShellToPrim>& q) { out_queue_ = &q; }
+
+  std::uint64_t box_tests() const { return box_tests_; }
+  std::uint64_t packets_processed() const { return packets_; }
+  std::uint64_t packet_uses() const { return packet_uses_; }
+  std::uint64_t overflow_peak() const { return overflow_peak_; }
+  std::uint64_t leaf_shells() const { return leaf_shells_; }
+  std::uint64_t rays_over_capacity() const { return over_capacity_; }
+
+ private:
+  struct Search {
+    RayTicket ticket;
+    Vec3 inv_dir;
+    std::vector<accel::LeafShellEntry> leaves;
+    int outstanding = 0;  ///< packets asked for and not yet tested
+    bool active = false;
+  };
+  void run();
+  void begin(ShadeToShell msg);
+  void process(const modules::ReceivedPacket& p);
+  void ask(std::uint32_t packet, int search);
+  void finish(int search);
+
+  const accel::ShellTree& tree_;
+  const std::vector<std::uint32_t>& packet_words_;
+  modules::PacketPort& port_;
+  ProcessorConfig config_;
+  const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
+
+  std::vector<Search> searches_;
+  std::map<std::uint32_t, std::vector<int>> waiting_;  ///< packet ID -> searches waiting for it
+  std::vector<std::uint32_t> overflow_;  ///< IDs stacked in memory, no register free (L910)
+  std::deque<int> done_;                 ///< searches whose list is ready to send
+  std::vector<std::uint32_t> children_;
+  std::uint64_t box_tests_ = 0, packets_ = 0, packet_uses_ = 0, overflow_peak_ = 0;
+  std::uint64_t leaf_shells_ = 0, over_capacity_ = 0;
+};
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,531 @@
+#include "platform/machines/gaudet_pert.hpp"
+
+#include <chrono>
+#include <memory>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "firmware/shading/camera.hpp"
+#include "firmware/tasks/pert_task_costs.hpp"
+#include "modules/bus_interface.hpp"
+#include "modules/local_data_set.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/functional/scene_tracer.hpp"
+#include "platform/machines/gaudet/control_processor.hpp"
+#include "platform/machines/gaudet/data_sets.hpp"
+#include "platform/machines/gaudet/expected_latency.hpp"
+#include "platform/machines/gaudet/prim_processor.hpp"
+#include "platform/machines/gaudet/shade_processor.hpp"
+#include "platform/machines/gaudet/shell_processor.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/processor_params.hpp"
+
+namespace rtsim::platform {
+
+using gaudet::BroadcastMode;
+using gaudet::BroadcastOrder;
+using gaudet::PertConfig;
+using modules::from_ps;
+using params::ParamKind;
+
+namespace {
+
+constexpr const char* kKinds[] = {"shade", "shell", "prim"};
+
+accel::RecordWords read_words(const params::ParamRegistry& r) {
+  accel::RecordWords w;
+  auto u = [&r](const char* n) { return static_cast<std::uint32_t>(r.get_int(n)); };
+  w.id_list_entry = u("data.words.id_list_entry");
+  w.shell = u("data.words.shell");
+  w.prim_header = u("data.words.prim_header");
+  w.sphere = u("data.words.sphere");
+  w.polygon_fixed = u("data.words.polygon_fixed");
+  w.polygon_per_vertex = u("data.words.polygon_vertex");
+  w.shade = u("data.words.shade");
+  return w;
+}
+
+PertConfig read_config(const params::ParamRegistry& r) {
+  PertConfig c;
+  c.pert_count = static_cast<int>(r.get_int("pert_count"));
+  const std::string& mode = r.get_string("broadcast.mode");
+  c.mode = mode == "direct"         ? BroadcastMode::kDirect
+           : mode == "non-adaptive" ? BroadcastMode::kNonAdaptive
+                                    : BroadcastMode::kAdaptive;
+  const std::string& order = r.get_string("broadcast.order");
+  c.order = order == "depth"    ? BroadcastOrder::kDepth
+            : order == "random" ? BroadcastOrder::kRandom
+                                : BroadcastOrder::kBreadth;
+  c.order_seed = static_cast<std::uint64_t>(r.get_int("broadcast.random_seed"));
+  c.bus.id_slot = from_ps(r.get_time_ps("broadcast.id_time"));
+  c.bus.packet_overhead = from_ps(r.get_time_ps("broadcast.packet_overhead"));
+  c.bus.word_time = from_ps(r.get_time_ps("broadcast.word_time"));
+  c.bus.loop_reset = from_ps(r.get_time_ps("broadcast.loop_reset"));
+  c.load_word_time = from_ps(r.get_time_ps("control.load_word_time"));
+  c.first_access = from_ps(r.get_time_ps("pert.memory.first_access"));
+  gaudet::ProcessorConfig* p[] = {&c.shade, &c.shell, &c.prim};
+  for (int i = 0; i < 3; ++i) {
+    const std::string k = std::string("pert.") + kKinds[i];
+    p[i]->timing = read_processor_timing(r, k);
+    p[i]->id_registers = static_cast<std::size_t>(r.get_int(k + ".bic.id_registers"));
+    p[i]->buffers = static_cast<std::size_t>(r.get_int(k + ".bic.buffers"));
+  }
+  c.shade.rays_in_flight = static_cast<std::size_t>(r.get_int("pert.shade.rays_in_flight"));
+  c.shell.rays_in_flight = static_cast<std::size_t>(r.get_int("pert.shell.rays_in_flight"));
+  c.prim.rays_in_flight = 1;
+  c.shade_to_shell_depth = static_cast<std::size_t>(r.get_int("pert.queue.shade_to_shell"));
+  c.shell_to_prim_depth = static_cast<std::size_t>(r.get_int("pert.queue.shell_to_prim"));
+  c.prim_to_shade_depth = static_cast<std::size_t>(r.get_int("pert.queue.prim_to_shade"));
+  return c;
+}
+
+void declare_time(params::ParamRegistry& r, std::string name, std::string value,
+                  std::string description, std::string source) {
+  r.declare({.name = std::move(name),
+             .kind = ParamKind::kTime,
+             .default_value = std::move(value),
+             .min = "0 s",
+             .description = std::move(description),
+             .source = std::move(source)});
+}
+
+void declare_count(params::ParamRegistry& r, std::string name, std::string value, std::string min,
+                   std::string max, std::string unit, std::string description,
+                   std::string source) {
+  r.declare({.name = std::move(name),
+             .kind = ParamKind::kInt,
+             .default_value = std::move(value),
+             .min = std::move(min),
+             .max = std::move(max),
+             .unit = std::move(unit),
+             .description = std::move(description),
+             .source = std::move(source)});
+}
+
+/// Everything of one run: the modules, built in elaboration order.
+struct PertPlatform {
+  std::vector<std::unique_ptr<modules::PacketPort>> ports;  // 3 per PERT: shade, shell, prim
+  std::vector<std::unique_ptr<modules::BroadcastProcessor>> buses;  // shade, shell, prim
+  std::vector<std::unique_ptr<gaudet::ShadeProcessor>> shade;
+  std::vector<std::unique_ptr<gaudet::ShellProcessor>> shell;
+  std::vector<std::unique_ptr<gaudet::PrimProcessor>> prim;
+  std::unique_ptr<gaudet::ControlProcessor> control;
+};
+
+nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
+  const double rays = static_cast<double>(std::max<std::uint64_t>(t.rays, 1));
+  return {{"rays", t.rays},
+          {"processing_per_ray_s", t.processing.to_seconds() / rays},
+          {"latency_per_ray_s", t.latency.to_seconds() / rays},
+          {"pipeline_wait_per_ray_s", t.pipeline_wait.to_seconds() / rays},
+          {"processing_s", t.processing.to_seconds()},
+          {"latency_s", t.latency.to_seconds()},
+          {"pipeline_wait_s", t.pipeline_wait.to_seconds()}};
+}
+
+const char* mode_name(BroadcastMode m) {
+  return m == BroadcastMode::kDirect        ? "direct"
+         : m == BroadcastMode::kNonAdaptive ? "non-adaptive"
+                                            : "adaptive";
+}
+
+const char* order_name(BroadcastOrder o) {
+  return o == BroadcastOrder::kDepth ? "depth" : o == BroadcastOrder::kRandom ? "random" : "breadth";
+}
+
+nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTree& tree,
+                                    const gaudet::PertDataSets& sets, const PertPlatform& p,
+                                    gaudet::ShadeShared& shared, const sc_core::sc_time& frame) {
+  nlohmann::ordered_json out;
+  modules::StatsRegistry stats;
+  gaudet::TimeSplit totals[3];
+  std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
+  std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
+  std::uint64_t mismatches = 0, rays_with_packets = 0, backlog_peak = 0;
+  modules::LatencyRecorder first_packet;
+  double first_packet_sum = 0.0;
+  std::uint64_t first_packet_count = 0;
+  const sc_core::sc_time end = p.control->load_time() + frame;
+  for (int i = 0; i < cfg.pert_count; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const std::string pert = "pert" + std::to_string(i);
+    const gaudet::PertProcessor* procs[] = {p.shade[u].get(), p.shell[u].get(), p.prim[u].get()};
+    for (int k = 0; k < 3; ++k) {
+      const gaudet::TimeSplit& t = procs[k]->split();
+      totals[k] += t;
+      auto& m = stats.module(pert + "." + kKinds[k]);
+      m.busy = t.processing;
+      m.values["rays"] = static_cast<double>(t.rays);
+      m.values["latency_s"] = t.latency.to_seconds();
+      m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
+    }
+    const auto& sh = *p.shell[u];
+    box_tests += sh.box_tests();
+    shell_packets += sh.packets_processed();
+    shell_uses += sh.packet_uses();
+    overflow_peak = std::max(overflow_peak, sh.overflow_peak());
+    leaf_shells += sh.leaf_shells();
+    over_capacity += sh.rays_over_capacity();
+    const auto& pr = *p.prim[u];
+    prim_packets += pr.packets_processed();
+    cancelled += pr.packets_cancelled();
+    mismatches += pr.list_mismatches();
+    rays_with_packets += pr.rays_with_packets();
+    first_packet_count += pr.first_packet_latency().count();
+    const auto fp = pr.first_packet_latency().to_json();
+    if (fp.contains("mean"))
+      first_packet_sum += fp["mean"].get<double>() * static_cast<double>(pr.first_packet_latency().count());
+    backlog_peak = std::max(backlog_peak, p.shade[u]->backlog_peak());
+    struct {
+      const char* name;
+      const modules::Occupancy* occ;
+      std::size_t depth;
+    } queues[] = {{"queue.shade_to_shell", &p.shell[u]->input.fifo.occupancy(), cfg.shade_to_shell_depth},
+                  {"queue.shell_to_prim", &p.prim[u]->input.fifo.occupancy(), cfg.shell_to_prim_depth},
+                  {"queue.prim_to_shade", &p.shade[u]->input.fifo.occupancy(), cfg.prim_to_shade_depth}};
+    for (const auto& q : queues) {
+      auto& m = stats.module(pert + "." + q.name);
+      m.has_occupancy = true;
+      m.capacity = q.depth;
+      m.occupancy = q.occ->summarize(p.control->load_time(), end);
+    }
+  }
+  nlohmann::ordered_json buses = nlohmann::ordered_json::object();
+  const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
+  for (std::size_t b = 0; b < p.buses.size(); ++b) {
+    const auto& bp = *p.buses[b];
+    const auto& s = bp.stats();
+    // Bus utilisation: the share of the frame the bus carried packet words (IDs go by
+    // whether or not anyone listens).
+    auto& m = stats.module(std::string(kKinds[b]) + "_bus");
+    m.busy = s.packet_time;
+    m.values["ids"] = static_cast<double>(s.ids);
+    m.values["cycles"] = static_cast<double>(s.cycles);
+    m.values["packets"] = static_cast<double>(s.packets);
+    m.values["packet_words"] = static_cast<double>(s.packet_words);
+    m.values["hit_packets"] = static_cast<double>(s.hit_packets);
+    m.values["captures"] = static_cast<double>(s.captures);
+    const double hits = static_cast<double>(std::max<std::uint64_t>(s.hit_packets, 1));
+    buses[kKinds[b]] = {
+        {"packets_in_data_set", set_of[b]->order.size()},
+        {"data_set_words", set_of[b]->memory.size()},
+        {"minimum_cycle_s", bp.minimum_cycle().to_seconds()},
+        {"mean_cycle_s", s.cycles ? frame.to_seconds() / static_cast<double>(s.cycles) : 0.0},
+        {"cycles", s.cycles},
+        {"packets_broadcast", s.packets},
+        {"hit_packets", s.hit_packets},
+        {"captures", s.captures},
+        {"mean_hit_packet_time_s", s.hit_packet_time.to_seconds() / hits},
+        {"utilization", frame > sc_core::SC_ZERO_TIME ? s.packet_time.to_seconds() / frame.to_seconds() : 0.0}};
+  }
+  out["modules"] = stats.to_json(frame);
+  out["ray_latency_s"] = shared.latency.to_json();
+  const auto counts = tree.counts();
+  out["scene_stats"] = {{"shells", counts.shells},
+                        {"shell_packets", counts.shell_packets},
+                        {"prims", counts.prims},
+                        {"prim_packets", counts.prim_packets}};
+  nlohmann::ordered_json g;
+  g["pert_count"] = cfg.pert_count;
+  g["broadcast_mode"] = mode_name(cfg.mode);
+  g["broadcast_order"] = order_name(cfg.order);
+  g["load_time_s"] = p.control->load_time().to_seconds();
+  g["words_loaded"] = p.control->words_loaded();
+  g["shade"] = split_json(totals[0]);
+  g["shade"]["backlog_peak"] = backlog_peak;
+  g["shell"] = split_json(totals[1]);
+  const double shell_rays = static_cast<double>(std::max<std::uint64_t>(totals[1].rays, 1));
+  g["shell"]["box_tests_per_ray"] = static_cast<double>(box_tests) / shell_rays;
+  g["shell"]["packets_per_ray"] = static_cast<double>(shell_uses) / shell_rays;
+  g["shell"]["packets_caught"] = shell_packets;
+  g["shell"]["leaf_shells_per_ray"] = static_cast<double>(leaf_shells) / shell_rays;
+  g["shell"]["rays_over_list_capacity"] = over_capacity;
+  g["shell"]["overflow_peak"] = overflow_peak;
+  g["prim"] = split_json(totals[2]);
+  const double prim_rays = static_cast<double>(std::max<std::uint64_t>(totals[2].rays, 1));
+  g["prim"]["packets_per_ray"] = static_cast<double>(prim_packets) / prim_rays;
+  g["prim"]["packets_cancelled"] = cancelled;
+  g["prim"]["list_mismatches"] = mismatches;
+  g["prim"]["rays_with_packets"] = rays_with_packets;
+  const double fp_mean = first_packet_count ? first_packet_sum / static_cast<double>(first_packet_count) : 0.0;
+  g["prim"]["first_packet_latency_s"] = fp_mean;
+  if (cfg.broadcasting()) {
+    const auto& s = p.buses[2]->stats();
+    gaudet::EalInputs in;
+    in.n = cfg.pert_count;
+    in.p = static_cast<double>(prim_packets);
+    in.r = static_cast<double>(rays_with_packets);
+    in.mct_s = p.buses[2]->minimum_cycle().to_seconds();
+    in.apt_s = s.hit_packets ? s.hit_packet_time.to_seconds() / static_cast<double>(s.hit_packets) : 0.0;
+    g["prim"]["eal"] = {{"n", in.n},
+                        {"p", in.p},
+                        {"r", in.r},
+                        {"P2", gaudet::eal_two_packet_probability(in)},
+                        {"mct_s", in.mct_s},
+                        {"apt_s", in.apt_s},
+                        {"eal_s", gaudet::expected_average_latency_s(in)}};
+  }
+  g["buses"] = buses;
+  out["gaudet"] = g;
+  return out;
+}
+
+}  // namespace
+
+void GaudetPert::declare_params(params::ParamRegistry& r) const {
+  declare_count(r, "pert_count", "1", "1", "1024", "PERTs",
+                "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
+                "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)");
+  r.declare({.name = "broadcast.mode",
+             .kind = ParamKind::kString,
+             .default_value = "adaptive",
+             .allowed = {"adaptive", "non-adaptive", "direct"},
+             .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
+                            "non-adaptive: every packet every cycle; direct: no broadcast, "
+                            "every processor holds its whole data set",
+             .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
+  r.declare({.name = "broadcast.order",
+             .kind = ParamKind::kString,
+             .default_value = "breadth",
+             .allowed = {"breadth", "depth", "random"},
+             .description = "Order of the ID lists: SHELL packets breadth-first or depth-first "
+                            "over the hierarchy, or every data set shuffled",
+             .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
+  declare_count(r, "broadcast.random_seed", "1985", "0", "9223372036854775807", "",
+                "Seed of the shuffle of broadcast.order = random",
+                "assumption: the thesis does not say how its random order was drawn");
+  declare_time(r, "broadcast.id_time", "1000 ns",
+               "Broadcast Processor: time to broadcast an ID and sample the hit line",
+               "seed 001 L959");
+  declare_time(r, "broadcast.packet_overhead", "800 ns",
+               "Broadcast Processor: overhead of sending a packet", "seed 001 L960");
+  declare_time(r, "broadcast.word_time", "400 ns",
+               "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
+               "seed 001 L883, L961");
+  declare_time(r, "broadcast.loop_reset", "400 ns",
+               "Broadcast Processor: time to reset the loop at the end of the ID list",
+               "seed 001 L962");
+  declare_time(r, "control.load_word_time", "400 ns",
+               "Control processor: time to download one word into a BP or PERT memory (before "
+               "the frame; not part of the frame time)",
+               "assumption: one bus word time (L883); the thesis gives no load rate");
+  declare_time(r, "pert.memory.first_access", "200 ns",
+               "Direct memory: first-access latency of a packet in a processor's own memory "
+               "(later words stream at one cycle each)",
+               "assumption: one SJ16 cycle; seed 001 L863 gives only the streamed rate");
+  const char* words_src =
+      "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); "
+      "the thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
+  declare_count(r, "data.words.id_list_entry", "3", "3", "64", "words",
+                "Words of an ID list entry {ID, address, size}", "seed 001 L877; " +
+                                                                     std::string(words_src));
+  declare_count(r, "data.words.shell", "8", "8", "64", "words",
+                "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
+  declare_count(r, "data.words.prim_header", "3", "3", "64", "words",
+                "Words of a PRIM record's header: prim_id, surface_index, type", words_src);
+  declare_count(r, "data.words.sphere", "4", "4", "64", "words",
+                "Words of a sphere's PTYPE: centre[3], radius", words_src);
+  declare_count(r, "data.words.polygon_fixed", "1", "1", "64", "words",
+                "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
+  declare_count(r, "data.words.polygon_vertex", "3", "3", "64", "words",
+                "Words per polygon vertex", words_src);
+  declare_count(r, "data.words.shade", "9", "9", "64", "words",
+                "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]",
+                words_src);
+  // The three processors: SJ16 at 5 MHz with a Weitek FPU; the per-operation costs are
+  // calibrated on Fig. 6-10 (docs/machines.md, docs/validation.md).
+  for (const char* k : kKinds) {
+    const std::string p = std::string("pert.") + k;
+    declare_processor_params(
+        r, p,
+        {.clock = "5 MHz",
+         .fp_add = 9,
+         .fp_mul = 9,
+         .fp_div = 15,
+         .fp_sqrt = 30,
+         .mem_word = 1,
+         .instruction = 1,
+         .source = "seed 001 L951 (5 MHz SJ16), L859 (Weitek FPU > 2.78 Mflops), L863 and L924 "
+                   "(one cycle a streamed or FIFO word); cycles per FP operation calibrated on "
+                   "Fig. 6-10 (L1025-L1030), same for the three processors (same hardware)"});
+    declare_count(r, p + ".bic.buffers", "2", "1", "64", "buffers",
+                  "FIFO packet buffers of the " + std::string(k) + " processor's BIC",
+                  "seed 001 L924 (double buffer)");
+  }
+  declare_count(r, "pert.shade.bic.id_registers", "4", "1", "4096", "registers",
+                "ID registers of the ShadeProcessor's BIC",
+                "assumption: \"multiple\" (L910); Shade puts at most one ID per ray");
+  declare_count(r, "pert.shell.bic.id_registers", "8", "1", "4096", "registers",
+                "ID registers of the ShellProcessor's BIC (more IDs wait in its memory)",
+                "assumption: \"multiple\" (L910); Shell stores IDs continually and stacks the "
+                "overflow in its own memory");
+  declare_count(r, "pert.prim.bic.id_registers", "2", "1", "4096", "registers",
+                "ID registers of the PrimProcessor's BIC",
+                "seed 001 L910, L1056 (the PrimProcessor uses at most two)");
+  declare_count(r, "pert.shade.rays_in_flight", "4", "1", "100000", "initial rays",
+                "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every ray "
+                "it spawns)",
+                "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
+                "(L738-L742) but a pipeline of three needs several in flight; see "
+                "docs/machines.md");
+  declare_count(r, "pert.shell.rays_in_flight", "4", "1", "100000", "rays",
+                "Rays a ShellProcessor searches at a time",
+                "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
+                "docs/machines.md");
+  declare_count(r, "pert.queue.shade_to_shell", "4", "1", "100000", "messages",
+                "Queue depth ShadeProcessor -> ShellProcessor",
+                "assumption: queues inside a PERT are not described (note 001 §2.1)");
+  declare_count(r, "pert.queue.shell_to_prim", "4", "1", "100000", "messages",
+                "Queue depth ShellProcessor -> PrimProcessor",
+                "assumption: queues inside a PERT are not described (note 001 §2.1)");
+  declare_count(r, "pert.queue.prim_to_shade", "4", "1", "100000", "messages",
+                "Queue depth PrimProcessor -> ShadeProcessor",
+                "assumption: queues inside a PERT are not described (note 001 §2.1)");
+}
+
+FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
+  // Spheres and polygons only (§4.3.6, L634-L636).
+  std::size_t other = 0;
+  std::uint32_t first_line = 0;
+  for (const auto& p : scene.primitives) {
+    if (p.kind == scenes::PrimitiveKind::Sphere || p.kind == scenes::PrimitiveKind::Polygon)
+      continue;
+    if (other++ == 0) first_line = p.source_line;
+  }
+  if (other > 0)
+    throw InputError(scene.name, first_line,
+                     "gaudet-pert holds spheres and polygons only (seed 001 L634-L636); this "
+                     "scene has " +
+                         std::to_string(other) +
+                         " cone/patch primitive(s). Use another machine (`rtsim list machines`)");
+  auto settings = functional::read_render_settings(r);
+  settings.accel = functional::AccelKind::Shells;  // the PERT's search is Gaudet's
+  settings.polygon_kernel = functional::PolygonKernel::Triangle;
+  return make_functional_twin(scene, settings);
+}
+
+RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
+                          const params::ParamRegistry& r, const RunOptions& opts) const {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const int w = opts.width > 0 ? opts.width : scene.camera.width;
+  const int h = opts.height > 0 ? opts.height : scene.camera.height;
+  functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
+  const PertConfig cfg = read_config(r);
+  const auto* search = dynamic_cast<const functional::ShellSearch*>(twin.tracer.get());
+  if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
+  const accel::ShellTree& tree = search->tree();
+  gaudet::PertDataSets sets;
+  try {
+    sets = gaudet::make_pert_data_sets(tree, *twin.geometry, scene, read_words(r), cfg.order,
+                                       cfg.order_seed);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene.name, 0, std::string("gaudet-pert: ") + e.what());
+  }
+  const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
+  // The PrimProcessor's own test of each primitive (make_pert_data_sets accepted only these).
+  std::vector<Cost> test_cost;
+  for (const auto& shape : twin.geometry->shapes)
+    test_cost.push_back(std::holds_alternative<kernels::SphereKernel>(shape.shape)
+                            ? tasks::kPertSphereTestCost
+                            : tasks::kPertTriangleTestCost);
+
+  begin_simulation(r);
+  MachineTrace trace(opts);
+  shading::PinholeCamera camera(scene.camera, w, h);
+  gaudet::ShadeShared shared;
+  shared.scene = &scene;
+  shared.shade = twin.settings.shade;
+  shared.frame = &frame;
+  shared.camera = &camera;
+  shared.packet_words = &sets.shade.packet_words;
+  shared.initial_rays_total =
+      static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(frame.spp());
+  shared.opts = &opts;
+
+  PertPlatform p;
+  const gaudet::ProcessorConfig* pcfg[] = {&cfg.shade, &cfg.shell, &cfg.prim};
+  if (cfg.broadcasting()) {
+    for (int b = 0; b < 3; ++b) {
+      auto bp = std::make_unique<modules::BroadcastProcessor>(
+          (std::string(kKinds[b]) + "_bus").c_str(), set_of[b]->memory.size(), cfg.load_word_time,
+          cfg.bus, cfg.mode == BroadcastMode::kAdaptive);
+      const int busy = trace.declare_busy(bp->name());
+      const std::string track = bp->name();
+      bp->on_packet = [&trace, busy, track](std::uint32_t id, sc_core::sc_time start,
+                                            sc_core::sc_time dur, std::size_t captures) {
+        trace.slice(track, "packet", start, dur, {{"id", id}, {"captures", captures}});
+        (void)busy;
+      };
+      p.buses.push_back(std::move(bp));
+    }
+  }
+  for (int i = 0; i < cfg.pert_count; ++i) {
+    const std::string pert = "pert" + std::to_string(i);
+    for (int b = 0; b < 3; ++b) {
+      if (cfg.broadcasting()) {
+        auto bic = std::make_unique<modules::BusInterface>(pert + "." + kKinds[b] + ".bic",
+                                                           pcfg[b]->id_registers, pcfg[b]->buffers);
+        p.buses[static_cast<std::size_t>(b)]->attach(*bic);
+        p.ports.push_back(std::move(bic));
+      } else {
+        p.ports.push_back(std::make_unique<modules::LocalDataSet>(cfg.first_access));
+      }
+    }
+    auto& ports = p.ports;
+    const std::size_t base = ports.size() - 3;
+    p.shade.push_back(std::make_unique<gaudet::ShadeProcessor>(
+        (pert + "_shade").c_str(), i, cfg.pert_count, shared, *ports[base], cfg.shade,
+        cfg.prim_to_shade_depth, trace));
+    p.shell.push_back(std::make_unique<gaudet::ShellProcessor>(
+        (pert + "_shell").c_str(), tree, sets.shell.packet_words, *ports[base + 1], cfg.shell,
+        cfg.shade_to_shell_depth, trace));
+    p.prim.push_back(std::make_unique<gaudet::PrimProcessor>(
+        (pert + "_prim").c_str(), *search, sets.prim.packet_words, test_cost, *ports[base + 2],
+        cfg.prim,
+        cfg.shell_to_prim_depth, frame.counters(), trace));
+    auto& sh = *p.shade.back();
+    auto& se = *p.shell.back();
+    auto& pr = *p.prim.back();
+    sh.out.bind(se.input.socket);
+    sh.set_output_queue(se.input.fifo);
+    se.out.bind(pr.input.socket);
+    se.set_output_queue(pr.input.fifo);
+    pr.out.bind(sh.input.socket);
+  }
+  std::vector<modules::BroadcastProcessor*> buses;
+  std::vector<const gaudet::DataSetImage*> loaded;
+  for (int b = 0; b < 3; ++b) {
+    if (cfg.broadcasting()) buses.push_back(p.buses[static_cast<std::size_t>(b)].get());
+    loaded.push_back(set_of[b]);
+  }
+  std::vector<gaudet::ShadeProcessor*> shade_ptrs;
+  for (auto& s : p.shade) shade_ptrs.push_back(s.get());
+  // Globals for spawning rays (L928): the camera (eye, look, up, angle, resolution: 12 words),
+  // and per light its position and intensity (6 words).
+  const std::uint64_t globals = 12 + 6 * scene.lights.size();
+  p.control = std::make_unique<gaudet::ControlProcessor>("control", cfg, buses, loaded, globals,
+                                                         shade_ptrs);
+  for (auto& s : p.shell) s->set_frame_start(p.control->frame_start());
+  for (auto& s : p.prim) s->set_frame_start(p.control->frame_start());
+
+  // The control processor ends the frame with sc_stop(): that is no news.
+  sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
+                                          sc_core::SC_DO_NOTHING);
+  sc_core::sc_start();
+  trace.close();
+
+  const sc_core::sc_time frame_time = p.control->frame_time();
+  RunResult res;
+  res.simulated_time_s = frame_time.to_seconds();
+  res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time);
+  res.image = frame.finish(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+  if (opts.progress)
+    opts.progress(static_cast<long>(shared.initial_rays_done),
+                  static_cast<long>(shared.initial_rays_total));
+  return res;
+}
+
+}  // namespace rtsim::platform
