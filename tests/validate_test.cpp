@@ -457,7 +457,12 @@ TEST(ValidateRunner, RunsInParallelAndReportsFailures) {
 TEST(ValidateCommand, QuickValidationAgainstAFakeThatFollowsTheSeedsPasses) {
   if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 missing: the fake rtsim needs it";
   const auto dir = scratch_dir("validate-fake");
-  const auto r = run_rtsim("validate --quick --jobs 2 --rtsim " + kFake + " --out " + dir.string());
+  // The fake answers the peripheral and the VAX (gaudet-pert's figures run on the real binary
+  // in RealQuickValidationPasses).
+  const auto r = run_rtsim(
+      "validate --quick --jobs 2 --only V1,V2,V4,V5,V8,V9,V10,V11,G1,VAX1,VAX2,VAX3,VAX4,VAX5 "
+      "--rtsim " +
+      kFake + " --out " + dir.string());
   std::cout << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("figures pass"), std::string::npos);
@@ -535,7 +540,11 @@ TEST(ValidateCommand, BadUsageExitsWithTwo) {
 // starts to pass (then remove it here and in the docs).
 // Figures known to fail, with the reason (none now: Fig. 2-18 runs on builtin:ullner-sheets-1000,
 // the scene its text describes; on random squares its minimum is ~22 us, see docs/validation.md).
-const std::map<std::string, std::string> kOpenFigures = {};
+const std::map<std::string, std::string> kOpenFigures = {
+    {"P4a",
+     "Fig. 6-11's order effect is not reproduced: a ShellProcessor spends ~40 us a box test, so "
+     "the bus has cycled several times whenever it asks again (docs/validation.md)"},
+    {"P4b", "as P4a"}};
 
 TEST(ValidateCommand, RealQuickValidationPasses) {
   // Activates by itself when the SystemC machines land: `rtsim run --help` must describe the

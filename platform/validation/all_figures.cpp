@@ -1,5 +1,6 @@
 #include "platform/validation/all_figures.hpp"
 
+#include "platform/validation/gaudet_figures.hpp"
 #include "platform/validation/ullner_figures.hpp"
 #include "platform/validation/vax_figures.hpp"
 
@@ -9,6 +10,7 @@ Plan make_validation_plan(const PlanOptions& options) {
   Plan plan;
   add_ullner_figures(plan, options);
   add_vax_figures(plan, options);
+  add_gaudet_figures(plan, options);
   return plan;
 }
 

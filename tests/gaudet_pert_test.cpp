@@ -1,0 +1,222 @@
+// gaudet-pert: the image equals the functional twin for any PERT count, broadcast mode, order
+// and quantum; stats.json carries the documented keys and consistent counts; the Broadcast
+// Processor and BIC keep the thesis's timings (seed 001 L957-L962) and the hit rule (L920);
+// Gaudet's expected-latency formula (L1083-L1097).
+#include <gtest/gtest.h>
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <systemc>
+
+#include "modules/broadcast_processor.hpp"
+#include "modules/bus_interface.hpp"
+#include "platform/machines/gaudet/expected_latency.hpp"
+#include "tests/systemc_test_support.hpp"
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+using sc_core::SC_NS;
+using sc_core::sc_time;
+
+namespace {
+
+fs::path run_ok(const std::string& tag, const std::string& args) {
+  const auto dir = scratch_dir(tag);
+  const auto r = run_rtsim(args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  return dir;
+}
+
+nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
+
+}  // namespace
+
+TEST(GaudetPert, ImageEqualsTheFunctionalTwinForAnyPertCountModeOrderAndQuantum) {
+  const std::string scene = " --scene builtin:npp-412 --width 40 --height 32 --aov id";
+  const auto render = run_ok("gp-render", "render --machine gaudet-pert" + scene);
+  const std::vector<std::string> variants = {
+      "-p pert_count=1",
+      "-p pert_count=3 -p broadcast.mode=non-adaptive -p broadcast.order=depth",
+      "-p pert_count=5 -p broadcast.mode=direct -p broadcast.order=random",
+      "-p pert_count=2 -p broadcast.order=random --quantum \"10 us\"",
+      "-p pert_count=7 -p pert.shell.bic.id_registers=1 -p pert.prim.bic.id_registers=1 "
+      "-p pert.shade.bic.id_registers=1 -p pert.queue.shell_to_prim=1",
+  };
+  int i = 0;
+  for (const auto& v : variants) {
+    const auto run =
+        run_ok("gp-run-" + std::to_string(i++), "run --machine gaudet-pert" + scene + " " + v);
+    EXPECT_EQ(read_file(run / "image.exr"), read_file(render / "image.exr")) << v;
+    EXPECT_EQ(read_file(run / "id.exr"), read_file(render / "id.exr")) << v;
+    const auto s = read_json(run / "stats.json");
+    EXPECT_EQ(s["gaudet"]["prim"]["list_mismatches"], 0) << v;
+  }
+}
+
+TEST(GaudetPert, PolygonScenesRunAndPatchesAreRefused) {
+  const std::string tetra = rtsim::test::shared_path("scenes/tetra-s3.nff");
+  const std::string args = " --machine gaudet-pert --scene " + tetra + " --width 32 --height 32";
+  const auto run = run_ok("gp-tetra", "run" + args + " -p pert_count=2");
+  const auto render = run_ok("gp-tetra-r", "render" + args);
+  EXPECT_EQ(read_file(run / "image.exr"), read_file(render / "image.exr"));
+  const auto dir = scratch_dir("gp-patch");
+  const auto bad =
+      run_rtsim("run --machine gaudet-pert --scene " +
+                rtsim::test::shared_path("scenes/teapot.bpt") + " -q --out " + dir.string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("spheres and polygons only"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "stats.json"));
+}
+
+TEST(GaudetPert, StatsCarryTheDocumentedKeysAndConsistentCounts) {
+  const auto run =
+      run_ok("gp-stats",
+             "run --machine gaudet-pert --scene builtin:npp-408 --width 32 --height 32 "
+             "-p pert_count=2");
+  const auto s = read_json(run / "stats.json");
+  // Fig. 6-1 (seed 001 L980-L989) for scene 408.
+  EXPECT_EQ(s["scene_stats"]["shells"], 84);
+  EXPECT_EQ(s["scene_stats"]["shell_packets"], 21);
+  EXPECT_EQ(s["scene_stats"]["prims"], 512);
+  EXPECT_EQ(s["scene_stats"]["prim_packets"], 64);
+  EXPECT_EQ(s["scene_stats"]["spheres"], 512);  // the app's own keys stay
+  for (const char* bus : {"shade_bus", "shell_bus", "prim_bus"}) {
+    ASSERT_TRUE(s["modules"].contains(bus)) << bus;
+    const double u = s["modules"][bus]["utilization"];
+    EXPECT_GT(u, 0.0) << bus;
+    EXPECT_LE(u, 1.0) << bus;
+  }
+  for (const char* p : {"pert0.shade", "pert1.shell", "pert1.prim", "pert0.queue.shell_to_prim"})
+    EXPECT_TRUE(s["modules"].contains(p)) << p;
+  // Every ray goes once through each processor; the ShellProcessors' box tests are the twin's.
+  const auto& g = s["gaudet"];
+  const double rays = s["rays"]["total"];
+  EXPECT_EQ(g["shade"]["rays"].get<double>(), rays);
+  EXPECT_EQ(g["shell"]["rays"].get<double>(), rays);
+  EXPECT_EQ(g["prim"]["rays"].get<double>(), rays);
+  EXPECT_NEAR(g["shell"]["box_tests_per_ray"].get<double>() * rays,
+              s["accel"]["box_tests"].get<double>(), 1e-6 * rays);
+  // Bus stats: mct of the prim data set is 64 IDs x 1 us + 0.4 us (L959, L962).
+  EXPECT_NEAR(g["buses"]["prim"]["minimum_cycle_s"].get<double>(), 64.4e-6, 1e-12);
+  EXPECT_GT(g["buses"]["prim"]["hit_packets"].get<double>(), 0);
+  EXPECT_LT(s["simulated_time_s"].get<double>(), 100.0);
+}
+
+TEST(GaudetPert, RunsAreDeterministicAndBadParametersAreBadInput) {
+  const std::string base =
+      "run --machine gaudet-pert --scene builtin:npp-204 --width 24 --height 24 -p pert_count=3";
+  const auto a = read_json(run_ok("gp-det-a", base) / "stats.json");
+  const auto b = read_json(run_ok("gp-det-b", base) / "stats.json");
+  EXPECT_EQ(a["simulated_time_s"], b["simulated_time_s"]);
+  EXPECT_EQ(a["modules"], b["modules"]);
+  EXPECT_EQ(a["gaudet"], b["gaudet"]);
+  const auto dir = scratch_dir("gp-bad");
+  const auto bad = run_rtsim(base + " -p broadcast.mode=adaptiv -q --out " + dir.string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("adaptive"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
+}
+
+TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
+  // Three packets of 2, 5 and 1 words; ID list in memory as the control processor lays it out.
+  for (const bool adaptive : {true, false}) {
+    EXPECT_EQ(rtsim::test::run_in_child([adaptive] {
+                using namespace rtsim::modules;
+                BroadcastTiming t;  // 1000 / 800 / 400 / 400 ns (seed 001 L959-L962)
+                BroadcastProcessor bp("bp", 64, sc_time(0, SC_NS), t, adaptive);
+                BusInterface bic("bic", 4, 1);  // one buffer: a second packet must wait
+                bp.attach(bic);
+                const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
+                struct Driver : sc_core::sc_module {
+                  SC_HAS_PROCESS(Driver);
+                  Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
+                         const std::uint32_t* w)
+                      : sc_module(n), bp(b), bic(i), words(w) {
+                    SC_THREAD(run);
+                  }
+                  void run() {
+                    for (std::uint32_t a = 0; a < 9; ++a) {
+                      // The ID list {ID, address, size} and the packets, through the load port.
+                      tlm::tlm_generic_payload gp;
+                      std::uint32_t v = words[a];
+                      gp.set_command(tlm::TLM_WRITE_COMMAND);
+                      gp.set_address(a * 4);
+                      gp.set_data_ptr(reinterpret_cast<unsigned char*>(&v));
+                      gp.set_data_length(4);
+                      gp.set_streaming_width(4);
+                      gp.set_byte_enable_ptr(nullptr);
+                      sc_time d = sc_core::SC_ZERO_TIME;
+                      socket->b_transport(gp, d);
+                    }
+                    bp.start(sc_time(0, SC_NS), 3, 3);
+                    EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                    sc_core::wait(bic.changed_event());
+                    got1 = bic.next_arrival(1);
+                    // The only buffer holds packet 1: packet 0 matches but cannot be caught.
+                    EXPECT_TRUE(bic.request(0, sc_core::sc_time_stamp()));
+                    sc_core::wait(sc_time(100, sc_core::SC_US));
+                    // Packet 0 matched but found no free buffer: not caught yet.
+                    EXPECT_FALSE(bic.next_arrival(0).has_value());
+                    EXPECT_GT(bic.missed_no_buffer(), 0u);
+                    auto p = bic.take(sc_core::sc_time_stamp(), 1);
+                    EXPECT_TRUE(p.has_value());
+                    bic.release(*p, sc_core::sc_time_stamp());
+                    released = sc_core::sc_time_stamp();
+                    sc_core::wait(bic.changed_event());
+                    got0 = bic.next_arrival(0);
+                  }
+                  tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
+                  BroadcastProcessor& bp;
+                  BusInterface& bic;
+                  const std::uint32_t* words;
+                  std::optional<sc_time> got1, got0;
+                  sc_time released;
+                } drv("drv", bp, bic, words);
+                drv.socket.bind(bp.memory.socket);
+                sc_core::sc_start(sc_time(1, sc_core::SC_MS));
+                // Packet 1 (5 words): ID 0's slot, then ID 1 at 1000 ns, the packet after its
+                // 1000 ns slot: + 800 + 5 x 400 ns. Non-adaptive, packet 0 (2 words) goes first.
+                const sc_time expect1 = adaptive ? sc_time(1000 + 1000 + 800 + 2000, SC_NS)
+                                                 : sc_time(2600 + 1000 + 800 + 2000, SC_NS);
+                EXPECT_TRUE(drv.got1.has_value());
+                if (drv.got1) {
+                  EXPECT_EQ(*drv.got1, expect1) << adaptive;
+                }
+                // Packet 0 comes at its next slot after the buffer was freed at 100 us.
+                EXPECT_TRUE(drv.got0.has_value());
+                if (drv.got0) {
+                  EXPECT_GT(*drv.got0, drv.released);
+                  const sc_time cycle = adaptive ? sc_time(3400, SC_NS)
+                                                 : sc_time(3000 + 3 * 800 + 8 * 400 + 400, SC_NS);
+                  EXPECT_LE(*drv.got0 - drv.released, cycle + sc_time(1800, SC_NS));
+                }
+                EXPECT_EQ(bp.minimum_cycle(), sc_time(3400, SC_NS));
+                return 0;
+              }),
+              0)
+        << (adaptive ? "adaptive" : "non-adaptive");
+  }
+}
+
+TEST(ExpectedLatency, GaudetsFormula) {
+  using rtsim::platform::gaudet::EalInputs;
+  using rtsim::platform::gaudet::expected_average_latency_s;
+  // One processor, one packet a ray: half the minimum cycle plus the packet (L1091, i = 0).
+  EXPECT_NEAR(expected_average_latency_s(EalInputs{1, 100, 100, 64.4e-6, 34.4e-6}),
+              64.4e-6 / 2 + 34.4e-6, 1e-15);
+  // The note's transcription (note 001 §4.3e) for n = 8, p/r = 1.45 (L1064's example).
+  const EalInputs in{8, 145, 100, 64.4e-6, 34.4e-6};
+  double ref = 0;
+  for (int i = 0; i <= 8; ++i) {
+    const double c = std::tgamma(9) / (std::tgamma(i + 1) * std::tgamma(9 - i));
+    ref += c * std::pow(0.55, 8 - i) * std::pow(0.45, i) *
+           ((64.4e-6 + (8 + i - 1) * 34.4e-6) / 2 + 34.4e-6);
+  }
+  EXPECT_NEAR(expected_average_latency_s(in), ref, 1e-12);
+  std::cout << "eal(n=8, p/r=1.45, mct=64.4us, apt=34.4us) = "
+            << expected_average_latency_s(in) * 1e6 << " us\n";
+}
