@@ -46,8 +46,7 @@ class BroadcastProcessor : public sc_core::sc_module {
 
   SC_HAS_PROCESS(BroadcastProcessor);
   BroadcastProcessor(sc_core::sc_module_name name, std::size_t memory_words,
-                     sc_core::sc_time load_word_time, const BroadcastTiming& timing,
-                     bool adaptive);
+                     sc_core::sc_time load_word_time, const BroadcastTiming& timing, bool adaptive);
 
   /// Elaboration: a BIC listening on this bus.
   void attach(BusInterface& bic);
@@ -60,14 +59,14 @@ class BroadcastProcessor : public sc_core::sc_module {
   sc_core::sc_time minimum_cycle() const;
 
   struct Stats {
-    std::uint64_t ids = 0;            ///< IDs broadcast
-    std::uint64_t cycles = 0;         ///< completed passes through the ID list
-    std::uint64_t packets = 0;        ///< packets broadcast
-    std::uint64_t packet_words = 0;   ///< their words
-    std::uint64_t hit_packets = 0;    ///< packets some BIC captured
-    std::uint64_t captures = 0;       ///< packets captured, summed over BICs
-    sc_core::sc_time packet_time;     ///< time spent sending packets (overhead + words)
-    sc_core::sc_time hit_packet_time; ///< of which packets some BIC captured
+    std::uint64_t ids = 0;             ///< IDs broadcast
+    std::uint64_t cycles = 0;          ///< completed passes through the ID list
+    std::uint64_t packets = 0;         ///< packets broadcast
+    std::uint64_t packet_words = 0;    ///< their words
+    std::uint64_t hit_packets = 0;     ///< packets some BIC captured
+    std::uint64_t captures = 0;        ///< packets captured, summed over BICs
+    sc_core::sc_time packet_time;      ///< time spent sending packets (overhead + words)
+    sc_core::sc_time hit_packet_time;  ///< of which packets some BIC captured
   };
   const Stats& stats() const { return stats_; }
   /// Called for every packet some BIC captures (traces): id, start, duration, captures.

@@ -18,10 +18,8 @@ bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
     if (r.valid || r.from > t) continue;
     r = Register{id, true, t};
     ++requests_;
-    const auto used = static_cast<std::size_t>(
-        std::count_if(registers_.begin(), registers_.end(), [](const Register& x) {
-          return x.valid;
-        }));
+    const auto used = static_cast<std::size_t>(std::count_if(
+        registers_.begin(), registers_.end(), [](const Register& x) { return x.valid; }));
     peak_registers_ = std::max(peak_registers_, used);
     if (bus_) {
       bus_->demand(id, +1);

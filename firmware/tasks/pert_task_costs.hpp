@@ -31,7 +31,8 @@ inline constexpr Cost kHitInfoCost{
 ///   t in (t_min, t_max)? (2 compares) — 13 additions/compares, 7 multiplications, 1 root.
 /// The SPHERE record's words are charged as the packet is read. (The functional kernel does
 /// more, for accuracy in double; the PERT's timing is its own firmware's.)
-inline constexpr Cost kPertSphereTestCost{.fp_add = 13, .fp_mul = 7, .fp_sqrt = 1, .instructions = 4};
+inline constexpr Cost kPertSphereTestCost{
+    .fp_add = 13, .fp_mul = 7, .fp_sqrt = 1, .instructions = 4};
 /// PrimTask's ray/triangle test (a polygon of 3 vertices): the plane, then the inside test,
 ///   e1, e2 (6 sub), n = e1 x e2 (6 mul, 3 add) (the PRIM record holds vertices only),
 ///   n.d and the plane distance (6 mul, 5 add), t = num / den (1 div), range (2 compares),

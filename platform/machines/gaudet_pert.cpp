@@ -92,8 +92,7 @@ void declare_time(params::ParamRegistry& r, std::string name, std::string value,
 }
 
 void declare_count(params::ParamRegistry& r, std::string name, std::string value, std::string min,
-                   std::string max, std::string unit, std::string description,
-                   std::string source) {
+                   std::string max, std::string unit, std::string description, std::string source) {
   r.declare({.name = std::move(name),
              .kind = ParamKind::kInt,
              .default_value = std::move(value),
@@ -132,7 +131,9 @@ const char* mode_name(BroadcastMode m) {
 }
 
 const char* order_name(BroadcastOrder o) {
-  return o == BroadcastOrder::kDepth ? "depth" : o == BroadcastOrder::kRandom ? "random" : "breadth";
+  return o == BroadcastOrder::kDepth    ? "depth"
+         : o == BroadcastOrder::kRandom ? "random"
+                                        : "breadth";
 }
 
 nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTree& tree,
@@ -176,15 +177,17 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     first_packet_count += pr.first_packet_latency().count();
     const auto fp = pr.first_packet_latency().to_json();
     if (fp.contains("mean"))
-      first_packet_sum += fp["mean"].get<double>() * static_cast<double>(pr.first_packet_latency().count());
+      first_packet_sum +=
+          fp["mean"].get<double>() * static_cast<double>(pr.first_packet_latency().count());
     backlog_peak = std::max(backlog_peak, p.shade[u]->backlog_peak());
     struct {
       const char* name;
       const modules::Occupancy* occ;
       std::size_t depth;
-    } queues[] = {{"queue.shade_to_shell", &p.shell[u]->input.fifo.occupancy(), cfg.shade_to_shell_depth},
-                  {"queue.shell_to_prim", &p.prim[u]->input.fifo.occupancy(), cfg.shell_to_prim_depth},
-                  {"queue.prim_to_shade", &p.shade[u]->input.fifo.occupancy(), cfg.prim_to_shade_depth}};
+    } queues[] = {
+        {"queue.shade_to_shell", &p.shell[u]->input.fifo.occupancy(), cfg.shade_to_shell_depth},
+        {"queue.shell_to_prim", &p.prim[u]->input.fifo.occupancy(), cfg.shell_to_prim_depth},
+        {"queue.prim_to_shade", &p.shade[u]->input.fifo.occupancy(), cfg.prim_to_shade_depth}};
     for (const auto& q : queues) {
       auto& m = stats.module(pert + "." + q.name);
       m.has_occupancy = true;
@@ -218,7 +221,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
         {"hit_packets", s.hit_packets},
         {"captures", s.captures},
         {"mean_hit_packet_time_s", s.hit_packet_time.to_seconds() / hits},
-        {"utilization", frame > sc_core::SC_ZERO_TIME ? s.packet_time.to_seconds() / frame.to_seconds() : 0.0}};
+        {"utilization",
+         frame > sc_core::SC_ZERO_TIME ? s.packet_time.to_seconds() / frame.to_seconds() : 0.0}};
   }
   out["modules"] = stats.to_json(frame);
   out["ray_latency_s"] = shared.latency.to_json();
@@ -249,7 +253,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   g["prim"]["packets_cancelled"] = cancelled;
   g["prim"]["list_mismatches"] = mismatches;
   g["prim"]["rays_with_packets"] = rays_with_packets;
-  const double fp_mean = first_packet_count ? first_packet_sum / static_cast<double>(first_packet_count) : 0.0;
+  const double fp_mean =
+      first_packet_count ? first_packet_sum / static_cast<double>(first_packet_count) : 0.0;
   g["prim"]["first_packet_latency_s"] = fp_mean;
   if (cfg.broadcasting()) {
     const auto& s = p.buses[2]->stats();
@@ -258,7 +263,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     in.p = static_cast<double>(prim_packets);
     in.r = static_cast<double>(rays_with_packets);
     in.mct_s = p.buses[2]->minimum_cycle().to_seconds();
-    in.apt_s = s.hit_packets ? s.hit_packet_time.to_seconds() / static_cast<double>(s.hit_packets) : 0.0;
+    in.apt_s =
+        s.hit_packets ? s.hit_packet_time.to_seconds() / static_cast<double>(s.hit_packets) : 0.0;
     g["prim"]["eal"] = {{"n", in.n},
                         {"p", in.p},
                         {"r", in.r},
@@ -319,8 +325,8 @@ void GaudetPert::declare_params(params::ParamRegistry& r) const {
       "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); "
       "the thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
   declare_count(r, "data.words.id_list_entry", "3", "3", "64", "words",
-                "Words of an ID list entry {ID, address, size}", "seed 001 L877; " +
-                                                                     std::string(words_src));
+                "Words of an ID list entry {ID, address, size}",
+                "seed 001 L877; " + std::string(words_src));
   declare_count(r, "data.words.shell", "8", "8", "64", "words",
                 "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
   declare_count(r, "data.words.prim_header", "3", "3", "64", "words",
@@ -329,8 +335,8 @@ void GaudetPert::declare_params(params::ParamRegistry& r) const {
                 "Words of a sphere's PTYPE: centre[3], radius", words_src);
   declare_count(r, "data.words.polygon_fixed", "1", "1", "64", "words",
                 "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
-  declare_count(r, "data.words.polygon_vertex", "3", "3", "64", "words",
-                "Words per polygon vertex", words_src);
+  declare_count(r, "data.words.polygon_vertex", "3", "3", "64", "words", "Words per polygon vertex",
+                words_src);
   declare_count(r, "data.words.shade", "9", "9", "64", "words",
                 "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]",
                 words_src);
@@ -440,8 +446,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   shared.frame = &frame;
   shared.camera = &camera;
   shared.packet_words = &sets.shade.packet_words;
-  shared.initial_rays_total =
-      static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(frame.spp());
+  shared.initial_rays_total = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
+                              static_cast<std::uint64_t>(frame.spp());
   shared.opts = &opts;
 
   PertPlatform p;
@@ -483,8 +489,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
         cfg.shade_to_shell_depth, trace));
     p.prim.push_back(std::make_unique<gaudet::PrimProcessor>(
         (pert + "_prim").c_str(), *search, sets.prim.packet_words, test_cost, *ports[base + 2],
-        cfg.prim,
-        cfg.shell_to_prim_depth, frame.counters(), trace));
+        cfg.prim, cfg.shell_to_prim_depth, frame.counters(), trace));
     auto& sh = *p.shade.back();
     auto& se = *p.shell.back();
     auto& pr = *p.prim.back();

@@ -64,30 +64,27 @@ class VaxHost : public sc_core::sc_module {
     while (!vision.done()) {
       int sample = 0;
       bool first = true;
-      tasks::trace_ray_tree(vision.next(sample), tracer_, shade, frame_.fb(), frame_.counters(),
-                            stack, spawned, [&](const TracedRay& r, bool found, const Hit& hit) {
-                              if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
-                              first = false;
-                              // Brute force: T_s + O T_i for this ray (seed 001 L326).
-                              // Shells: T_s + T_i per primitive test + T_b per box test.
-                              const auto& c = frame_.counters();
-                              const sc_core::sc_time cost =
-                                  brute_force_
-                                      ? ray_time_ + times(test_time_, objects_)
-                                      : ray_time_ +
-                                            times(test_time_, c.intersection_tests - tests_seen) +
-                                            times(box_time_, c.box_tests - boxes_seen);
-                              tests_seen = c.intersection_tests;
-                              boxes_seen = c.box_tests;
-                              trace_.slice(
-                                  "vax", "ray", clock.now(), cost,
-                                  {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
-                              clock.advance(cost);
-                              busy_ += cost;
-                              latency_.add(cost);
-                              if (opts_.progress && (++rays & 1023) == 0)
-                                opts_.progress(rays, rays);
-                            });
+      tasks::trace_ray_tree(
+          vision.next(sample), tracer_, shade, frame_.fb(), frame_.counters(), stack, spawned,
+          [&](const TracedRay& r, bool found, const Hit& hit) {
+            if (first && sample == 0) frame_.record_primary(r.pixel, found, hit);
+            first = false;
+            // Brute force: T_s + O T_i for this ray (seed 001 L326).
+            // Shells: T_s + T_i per primitive test + T_b per box test.
+            const auto& c = frame_.counters();
+            const sc_core::sc_time cost =
+                brute_force_ ? ray_time_ + times(test_time_, objects_)
+                             : ray_time_ + times(test_time_, c.intersection_tests - tests_seen) +
+                                   times(box_time_, c.box_tests - boxes_seen);
+            tests_seen = c.intersection_tests;
+            boxes_seen = c.box_tests;
+            trace_.slice("vax", "ray", clock.now(), cost,
+                         {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
+            clock.advance(cost);
+            busy_ += cost;
+            latency_.add(cost);
+            if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
+          });
     }
     frame_time_ = clock.now();
     clock.sync();
@@ -164,11 +161,10 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   const std::uint64_t objects = scene.primitives.size();
   begin_simulation(r);
   MachineTrace trace(opts);
-  VaxHost host("vax", scene, *twin.tracer, frame, twin.settings,
-               from_ps(r.get_time_ps("vax.ray_time")),
-               from_ps(r.get_time_ps("vax.intersection_time")),
-               from_ps(r.get_time_ps("vax.box_test_time")),
-               r.get_string("vax.search") == "brute-force", objects, opts, trace);
+  VaxHost host(
+      "vax", scene, *twin.tracer, frame, twin.settings, from_ps(r.get_time_ps("vax.ray_time")),
+      from_ps(r.get_time_ps("vax.intersection_time")), from_ps(r.get_time_ps("vax.box_test_time")),
+      r.get_string("vax.search") == "brute-force", objects, opts, trace);
   sc_core::sc_start();
   trace.close();
 

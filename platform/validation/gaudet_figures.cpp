@@ -333,8 +333,9 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
       .seed_value = 0,
       .seed_display = "> 3 (qualitative)",
       .unit = "ratio",
-      .tolerance = Tolerance::above(3, "\"dramatically\" against \"slowly\": at least 3 times "
-                                       "steeper"),
+      .tolerance = Tolerance::above(3,
+                                    "\"dramatically\" against \"slowly\": at least 3 times "
+                                    "steeper"),
       .workload = mode_workload,
       .runs = all_modes,
       .measure =

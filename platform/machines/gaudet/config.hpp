@@ -33,8 +33,8 @@ struct PertConfig {
   BroadcastOrder order = BroadcastOrder::kBreadth;
   std::uint64_t order_seed = 1985;
   modules::BroadcastTiming bus;
-  sc_core::sc_time load_word_time;     ///< control processor -> BP memories
-  sc_core::sc_time first_access;       ///< direct memory: first-access latency
+  sc_core::sc_time load_word_time;  ///< control processor -> BP memories
+  sc_core::sc_time first_access;    ///< direct memory: first-access latency
   ProcessorConfig shade, shell, prim;
   std::size_t shade_to_shell_depth = 4;  ///< messages
   std::size_t shell_to_prim_depth = 4;

@@ -71,8 +71,8 @@ accel::PrimEncoder shape_prim_encoder(const functional::SceneGeometry& g,
       w.f32(s->radius());
       w.finish();
     } else if (const auto* t = std::get_if<kernels::TriangleKernel>(&rec.shape)) {
-      accel::RecordWriter w(out, words.prim_header + words.polygon_fixed + 3 * words.polygon_per_vertex,
-                            "PRIM");
+      accel::RecordWriter w(
+          out, words.prim_header + words.polygon_fixed + 3 * words.polygon_per_vertex, "PRIM");
       w.word(slot);
       w.word(rec.material);
       w.word(static_cast<std::uint32_t>(accel::PrimType::Polygon));

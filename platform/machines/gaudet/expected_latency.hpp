@@ -15,9 +15,9 @@
 namespace rtsim::platform::gaudet {
 
 struct EalInputs {
-  int n = 1;          ///< PrimProcessors (PERTs)
-  double p = 0.0;     ///< packets broadcast
-  double r = 0.0;     ///< rays processed
+  int n = 1;       ///< PrimProcessors (PERTs)
+  double p = 0.0;  ///< packets broadcast
+  double r = 0.0;  ///< rays processed
   double mct_s = 0.0;
   double apt_s = 0.0;
 };
@@ -34,7 +34,8 @@ inline double expected_average_latency_s(const EalInputs& in) {
   double eal = 0.0;
   for (int i = 0; i <= in.n; ++i) {
     // C(n, i) P1^(n-i) P2^i through logs: n may be large.
-    const double log_c = std::lgamma(in.n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(in.n - i + 1.0);
+    const double log_c =
+        std::lgamma(in.n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(in.n - i + 1.0);
     double prob = 0.0;
     if ((p1 > 0 || i == in.n) && (p2 > 0 || i == 0))
       prob = std::exp(log_c + (in.n - i > 0 ? (in.n - i) * std::log(p1) : 0.0) +

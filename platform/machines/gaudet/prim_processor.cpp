@@ -6,8 +6,9 @@ namespace rtsim::platform::gaudet {
 
 PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
                              const std::vector<std::uint32_t>& packet_words,
-                             const std::vector<Cost>& test_cost, modules::PacketPort& port, const ProcessorConfig& config,
-                             std::size_t input_depth, TraceCounters& counters, MachineTrace& trace)
+                             const std::vector<Cost>& test_cost, modules::PacketPort& port,
+                             const ProcessorConfig& config, std::size_t input_depth,
+                             TraceCounters& counters, MachineTrace& trace)
     : PertProcessor(name, config.timing, trace),
       input("input", input_depth),
       out("out"),
@@ -69,8 +70,8 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     const auto slots = search_.tree().prim_packet(id);
     const std::uint64_t tests = std::min<std::uint64_t>(slots.size(), st.prim_tests - tests_done);
     tests_done += tests;
-    Cost work = tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost +
-                tasks::kStopTestCost;
+    Cost work =
+        tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost + tasks::kStopTestCost;
     for (std::size_t q = 0; q < tests; ++q) work += test_cost_[slots[q]];
     compute(work, "primitive tests");
     port_.release(*p, clock_.now());

@@ -34,11 +34,9 @@ class PrimProcessor : public PertProcessor {
 
   SC_HAS_PROCESS(PrimProcessor);
   PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
-                const std::vector<std::uint32_t>& packet_words,
-                const std::vector<Cost>& test_cost, modules::PacketPort& port,
-                const ProcessorConfig& config, std::size_t input_depth, TraceCounters& counters,
-                MachineTrace& trace);
-
+                const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
+                modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
+                TraceCounters& counters, MachineTrace& trace);
 
   std::uint64_t packets_processed() const { return packets_; }
   std::uint64_t packets_cancelled() const { return cancelled_; }

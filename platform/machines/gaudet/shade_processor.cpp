@@ -31,9 +31,9 @@ bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
     if (scanline_) y_ += pert_count_;
     if (y_ >= f.height()) return false;
     const auto first = static_cast<std::uint32_t>(y_) * static_cast<std::uint32_t>(f.width());
-    scanline_ = std::make_unique<tasks::VisionRayTask>(*shared_.camera, f.width(), f.height(),
-                                                       f.spp(), first,
-                                                       first + static_cast<std::uint32_t>(f.width()));
+    scanline_ = std::make_unique<tasks::VisionRayTask>(
+        *shared_.camera, f.width(), f.height(), f.spp(), first,
+        first + static_cast<std::uint32_t>(f.width()));
   }
   ray = scanline_->next(sample);
   return true;

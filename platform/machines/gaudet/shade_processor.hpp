@@ -85,13 +85,13 @@ class ShadeProcessor : public PertProcessor {
 
   tasks::ShadeTask task_;
   std::unique_ptr<tasks::VisionRayTask> scanline_;
-  int y_;  ///< current scanline
+  int y_;                                   ///< current scanline
   std::vector<std::uint32_t> outstanding_;  ///< per tree slot: rays not yet answered
   std::vector<std::uint32_t> free_trees_;
   std::size_t trees_in_flight_ = 0;
   std::deque<RayTicket> backlog_;
   std::map<std::uint32_t, std::vector<PrimToShade>> awaiting_;  ///< SHADE packet -> answers
-  std::vector<std::uint32_t> unasked_;  ///< SHADE IDs not yet in a register
+  std::vector<std::uint32_t> unasked_;                          ///< SHADE IDs not yet in a register
   std::vector<shading::TracedRay> spawned_;
   std::uint64_t next_id_ = 0, backlog_peak_ = 0;
   bool finished_ = false;
