@@ -45,6 +45,7 @@ class VaxHost : public sc_core::sc_module {
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   sc_core::sc_time busy() const { return busy_; }
+  const modules::BusyTimeline& timeline() const { return timeline_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
 
  private:
@@ -67,6 +68,7 @@ class VaxHost : public sc_core::sc_module {
                               trace_.slice(
                                   "vax", "ray", clock.now(), ray_cost_,
                                   {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
+                              timeline_.add(clock.now(), ray_cost_);
                               clock.advance(ray_cost_);
                               busy_ += ray_cost_;
                               latency_.add(ray_cost_);
@@ -89,6 +91,7 @@ class VaxHost : public sc_core::sc_module {
   int busy_signal_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline timeline_;
   modules::LatencyRecorder latency_;
 };
 
@@ -134,6 +137,8 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   res.simulated_time_s = host.frame_time().to_seconds();
   modules::StatsRegistry stats;
   stats.module("vax").busy = host.busy();
+  stats.module("vax").windows = host.timeline().windows(sc_core::SC_ZERO_TIME, host.frame_time(),
+                                                        modules::kUtilizationWindows);
   stats.module("vax").values["rays"] = static_cast<double>(frame.counters().total_rays());
   res.stats["modules"] = stats.to_json(host.frame_time());
   res.stats["ray_latency_s"] = host.latency().to_json();
