@@ -148,7 +148,10 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
     groups = [(None, df)] if not group else list(df.groupby(group, sort=True, dropna=False))
     out = {}
     for label, g in groups:
-        yv = g["_y"].astype(float)
+        # Repeated x values are averaged first; the ratio is of the averages.
+        agg = g.groupby("_x", sort=True)["_y"].mean().astype(float)
+        xs = np.array(agg.index, dtype=float)
+        ys = np.array(agg.values, dtype=float)
         if base_col is not None and base_value is not None:
             want = to_number(base_value)
             col = g[base_col]
@@ -159,14 +162,11 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
                       "left out", file=sys.stderr)
                 continue
             baseline = float(g.loc[match, "_y"].astype(float).mean())
-            yv = baseline / yv if ratio_mode == "speedup" else yv / baseline
+            ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
         elif base_col is not None:
-            baseline = g[base_col].map(to_number).astype(float)
-            yv = baseline / yv if ratio_mode == "speedup" else yv / baseline
-        g = g.assign(_r=yv.values)
-        agg = g.groupby("_x", sort=True)["_r"].mean()
-        xs = np.array(agg.index, dtype=float)
-        ys = np.array(agg.values, dtype=float)
+            g = g.assign(_b=g[base_col].map(to_number).astype(float))
+            baseline = g.groupby("_x", sort=True)["_b"].mean().to_numpy(float)
+            ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
         out["all" if label is None else str(label)] = (xs, ys)
     return out, categories
 
