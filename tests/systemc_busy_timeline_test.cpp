@@ -6,6 +6,7 @@
 #include <systemc>
 
 #include "modules/busy_timeline.hpp"
+#include "modules/occupancy.hpp"
 #include "modules/stats_registry.hpp"
 
 extern "C" int sc_main(int, char*[]) { return 0; }
@@ -92,4 +93,18 @@ TEST(StatsRegistry, WritesUtilizationWindowsOnlyWhenRecorded) {
   EXPECT_DOUBLE_EQ(j["a"]["utilization_windows"]["values"][1].get<double>(), 0.0);
   EXPECT_DOUBLE_EQ(j["a"]["utilization_windows"]["window_s"].get<double>(), 500e-12);
   EXPECT_FALSE(j["b"].contains("utilization_windows"));
+}
+
+TEST(Occupancy, PutsStampedOutOfOrderGiveTheTimeWeightedMean) {
+  // A producer may stamp a put earlier than its previous one (a ray with no intersections
+  // answered before the previous ray leaves the pipe). Items in [10, 30) and [5, 20) over
+  // [0, 40): area 20 + 15 = 35, mean 35 / 40; at most 2 at once.
+  rtsim::modules::Occupancy q;
+  q.put(ps(10));
+  q.put(ps(5));
+  q.got(ps(20));
+  q.got(ps(30));
+  const auto s = q.summarize(ps(0), ps(40));
+  EXPECT_DOUBLE_EQ(s.mean, 35.0 / 40.0);
+  EXPECT_EQ(s.max, 2);
 }
