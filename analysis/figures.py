@@ -265,6 +265,17 @@ def series_fig218(val):
     return out
 
 
+def plain_log_ticks(axis):
+    """Numbers (20, 50, 100) rather than powers of ten on a logarithmic axis."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    fmt = ScalarFormatter()
+    fmt.set_scientific(False)
+    axis.set_major_formatter(fmt)
+    axis.set_minor_formatter(NullFormatter())
+
+
 def draw_fig218(ax, val):
     s = series_fig218(val)
     ax.plot(*s["model"], "k-", label="model, L652 with L654's parameters")
@@ -278,6 +289,7 @@ def draw_fig218(ax, val):
                 label="simulated: random squares (ullner-random-1000)")
     ax.plot([ULLNER_MIN_NS], [ULLNER_MIN_US], "r*", ms=13, label="seed: 14.3 µs at n_s = 11 (L654)")
     ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
     ax.set_xlabel("subdivisions per axis n_s")
     ax.set_ylabel("time per ray (µs)")
     ax.set_title("Fig. 2-18: time per ray against grid divisions")
@@ -295,6 +307,7 @@ def draw_fig221(ax, val):
     ax.plot(n, [ullner_model_intersections(x) for x in n], "k-", label="model n_i (L652)")
     ax.plot(df["n_s"], df["simulated_tests_per_ray"], "o-", ms=4, label="simulated: two sheets")
     ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
     ax.set_xlabel("subdivisions per axis n_s")
     ax.set_ylabel("intersections per ray")
     ax.set_title("Fig. 2-21: intersections per ray")
