@@ -96,6 +96,10 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--overhead", runa.overhead,
                 "Also render the same frame with no timing in this process and report "
                 "functional_wall_time_s and overhead_ratio");
+  run->add_flag("--report", runa.report,
+                "Also write report.html: one self-contained page with the image, headline "
+                "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "
+                "parameters with their sources");
   run->add_flag("-q,--quiet", runa.quiet, "Print nothing but errors");
   add_config_options(run, runa.config);
 

@@ -34,6 +34,7 @@ struct RunArgs {
   std::vector<std::string> traces;  ///< vcd, perfetto
   std::string quantum;              ///< "" keeps the parameter `quantum`
   bool overhead = false;
+  bool report = false;  ///< also write report.html
   bool quiet = false;
   ConfigArgs config;
 };

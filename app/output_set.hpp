@@ -18,6 +18,9 @@ class OutputSet {
 
   /// Where to write the file `name` now; it becomes DIR/name on commit().
   std::filesystem::path stage(const std::string& name);
+  /// Where a file staged as `name` is before commit() (for readers of staged files, such as
+  /// the report); also a place for scratch files that must not be committed.
+  std::filesystem::path staged_path(const std::string& name) const { return staging_ / name; }
   /// Move every staged file into place. Throws std::runtime_error on failure.
   void commit();
   const std::filesystem::path& dir() const { return dir_; }

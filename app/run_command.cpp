@@ -9,12 +9,38 @@
 #include "app/image_files.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
+#include "app/report.hpp"
 #include "app/scene_input.hpp"
 #include "app/stats_json.hpp"
 #include "common/input_error.hpp"
 #include "platform/machine.hpp"
 
 namespace rtsim::app {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  if (!s.empty() && s.find_first_of(" \t\"'\\$`|&;<>()*?[]{}~#!") == std::string::npos) return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// The command as a user would type it again (for the report).
+std::string command_line(const RunArgs& a) {
+  std::string s = "rtsim run --machine " + quoted(a.machine) + " --scene " + quoted(a.scene);
+  if (a.width > 0) s += " --width " + std::to_string(a.width);
+  if (a.height > 0) s += " --height " + std::to_string(a.height);
+  for (const auto& c : a.config.config_files) s += " --config " + quoted(c);
+  for (const auto& p : a.config.overrides) s += " -p " + quoted(p);
+  if (!a.quantum.empty()) s += " --quantum " + quoted(a.quantum);
+  for (const auto& t : a.traces) s += " --trace " + t;
+  for (const auto& v : a.aovs) s += " --aov " + v;
+  if (a.overhead) s += " --overhead";
+  return s + " --report --out " + quoted(a.out_dir);
+}
+
+}  // namespace
 
 int run_run(const RunArgs& args) {
   // Everything that can be wrong with the input is checked before any output exists.
@@ -75,6 +101,18 @@ int run_run(const RunArgs& args) {
     f << stats.dump(2) << "\n";
     if (!f) throw std::runtime_error("cannot write stats.json");
   }
+  if (args.report) {
+    // Drawn from the staged files, staged itself: it appears with the others or not at all.
+    RunReportInputs in;
+    in.stats_json = out.staged_path("stats.json");
+    in.image_png = out.staged_path("image.png");
+    in.trace_json = opts.perfetto_path;
+    in.params = registry.list();
+    in.command_line = command_line(args);
+    ReportTools tools;
+    tools.scratch_dir = out.staged_path(".report-plots");
+    write_run_report(in, out.stage("report.html"), tools);
+  }
   out.commit();
 
   if (!args.quiet) {
@@ -100,6 +138,7 @@ int run_run(const RunArgs& args) {
       std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
     if (!opts.perfetto_path.empty())
       std::cout << "  trace  " << (out.dir() / "trace.json").string() << "\n";
+    if (args.report) std::cout << "  report " << (out.dir() / "report.html").string() << "\n";
   }
   return kExitOk;
 }

@@ -15,6 +15,7 @@
 #include <tlm>
 #include <vector>
 
+#include "modules/busy_timeline.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -47,6 +48,14 @@ class Memory : public sc_core::sc_module {
     read_busy_ += t;
     return t;
   }
+  /// The same, starting at `start`: also recorded in the read timeline.
+  sc_core::sc_time account_line_reads(std::uint64_t lines, const sc_core::sc_time& start) {
+    const sc_core::sc_time t = account_line_reads(lines);
+    read_timeline_.add(start, t);
+    return t;
+  }
+  /// When the read port was busy (reads charged with a start time, and b_transport reads).
+  const BusyTimeline& read_timeline() const { return read_timeline_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
@@ -70,7 +79,8 @@ class Memory : public sc_core::sc_module {
       delay += t;
     } else if (gp.is_read()) {
       std::memcpy(gp.get_data_ptr(), &data_[first], len);
-      delay += account_line_reads((words + line_words_ - 1) / line_words_);
+      delay += account_line_reads((words + line_words_ - 1) / line_words_,
+                                  sc_core::sc_time_stamp() + delay);
     }
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
@@ -83,6 +93,7 @@ class Memory : public sc_core::sc_module {
   std::uint64_t lines_read_ = 0;
   sc_core::sc_time write_busy_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time read_busy_ = sc_core::SC_ZERO_TIME;
+  BusyTimeline read_timeline_;
 };
 
 }  // namespace rtsim::modules

@@ -1,8 +1,9 @@
 #pragma once
-// Time-weighted occupancy of a queue from the timestamps of its puts and gets. One producer
-// puts in non-decreasing time order and one consumer gets in non-decreasing time order, so the
-// two lists are each sorted and are merged at the end in linear time (the threads themselves
-// may record them out of global time order when temporally decoupled).
+// Time-weighted occupancy of a queue from the timestamps of its puts and gets. The two lists
+// are sorted and merged at the end: they are usually in time order already, but a producer may
+// stamp a put earlier than its previous one (Ullner's peripheral sends the answer of a ray with
+// no intersections before the previous ray's leaves the pipe), and the threads may record them
+// out of global time order when temporally decoupled.
 #include <algorithm>
 #include <cstdint>
 #include <systemc>
@@ -36,13 +37,16 @@ class Occupancy {
       level += delta;
       s.max = std::max(s.max, static_cast<int>(level));
     };
+    std::vector<std::uint64_t> puts = puts_, gets = gets_;
+    std::sort(puts.begin(), puts.end());
+    std::sort(gets.begin(), gets.end());
     // At equal times gets go first, so a slot handed over at one instant is not counted twice.
     std::size_t p = 0, g = 0;
-    while (p < puts_.size() || g < gets_.size()) {
-      if (g < gets_.size() && (p == puts_.size() || gets_[g] <= puts_[p]))
-        step(gets_[g++], -1);
+    while (p < puts.size() || g < gets.size()) {
+      if (g < gets.size() && (p == puts.size() || gets[g] <= puts[p]))
+        step(gets[g++], -1);
       else
-        step(puts_[p++], +1);
+        step(puts[p++], +1);
     }
     area += static_cast<long double>(level) * static_cast<long double>(e - last);
     s.mean = static_cast<double>(area / static_cast<long double>(e - b));

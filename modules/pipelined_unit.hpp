@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <systemc>
 
+#include "modules/busy_timeline.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -37,6 +38,7 @@ class PipelinedUnit {
     b.done = b.next_free - interval_ + latency();
     next_free_ = b.next_free;
     issued_ += n;
+    timeline_.add(b.first_issue, b.next_free - b.first_issue);
     return b;
   }
 
@@ -47,12 +49,15 @@ class PipelinedUnit {
   std::uint64_t issued() const { return issued_; }
   /// Busy time: one issue interval per item.
   sc_core::sc_time busy() const { return times(interval_, issued_); }
+  /// When it was busy: its issue slots, batch by batch.
+  const BusyTimeline& timeline() const { return timeline_; }
 
  private:
   sc_core::sc_time interval_ = sc_core::SC_ZERO_TIME;
   unsigned stages_ = 1;
   sc_core::sc_time next_free_ = sc_core::SC_ZERO_TIME;
   std::uint64_t issued_ = 0;
+  BusyTimeline timeline_;
 };
 
 }  // namespace rtsim::modules

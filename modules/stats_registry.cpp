@@ -17,6 +17,10 @@ nlohmann::ordered_json StatsRegistry::to_json(const sc_core::sc_time& frame_time
       j["queue"] = {{"capacity", m.capacity},
                     {"mean_occupancy", m.occupancy.mean},
                     {"max_occupancy", m.occupancy.max}};
+    if (!m.windows.values.empty())
+      j["utilization_windows"] = {{"begin_s", m.windows.begin_s},
+                                  {"window_s", m.windows.window_s},
+                                  {"values", m.windows.values}};
     out[name] = std::move(j);
   }
   return out;

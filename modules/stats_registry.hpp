@@ -7,6 +7,7 @@
 #include <string>
 #include <systemc>
 
+#include "modules/busy_timeline.hpp"
 #include "modules/occupancy.hpp"
 
 namespace rtsim::modules {
@@ -17,14 +18,21 @@ struct ModuleStats {
   bool has_occupancy = false;
   Occupancy::Summary occupancy;
   std::size_t capacity = 0;  ///< queues: depth
+  /// Busy fraction per window of the frame (BusyTimeline::windows); empty values: not recorded.
+  UtilizationWindows windows{};
 };
+
+/// Windows a frame is cut into for `utilization_windows`: enough to see phases (fill, steady
+/// state, drain) in a plot, few enough to keep stats.json small (assumption, not a seed figure).
+inline constexpr std::size_t kUtilizationWindows = 100;
 
 class StatsRegistry {
  public:
   ModuleStats& module(const std::string& name) { return modules_[name]; }
   const std::map<std::string, ModuleStats>& modules() const { return modules_; }
 
-  /// {name: {busy_s, utilization, ...values, queue: {capacity, mean_occupancy, max_occupancy}}}
+  /// {name: {busy_s, utilization, ...values, queue: {capacity, mean_occupancy, max_occupancy},
+  ///         utilization_windows: {begin_s, window_s, values}}}
   nlohmann::ordered_json to_json(const sc_core::sc_time& frame_time) const;
 
  private:

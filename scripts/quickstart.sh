@@ -19,6 +19,9 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-matplotlib python3-numpy python3-pandas
 )
+# Only the tests need these: headless Chromium opens report.html (tests/report_test.cpp).
+test_packages=(chromium)
+if [ "$mode" = test ]; then packages+=("${test_packages[@]}"); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -240,6 +240,11 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   modules::StatsRegistry stats;
   auto& hs = stats.module("host");
   hs.busy = host.busy();
+  // Utilisation over time, in windows of the frame (after the scene load).
+  const auto windows = [&](const modules::BusyTimeline& t) {
+    return t.windows(host.load_time(), host.load_time() + frame_time, modules::kUtilizationWindows);
+  };
+  hs.windows = windows(host.timeline());
   hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
   hs.values["results_processed"] = static_cast<double>(host.results_processed());
   hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
@@ -254,19 +259,23 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   hq.occupancy = host.results.fifo.occupancy().summarize(host.load_time(), frame_end);
   auto& ps = stats.module("peripheral.pipeline");
   ps.busy = peripheral.pipeline().busy();
+  ps.windows = windows(peripheral.pipeline().timeline());
   ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());
   ps.values["stages"] = pc.pipeline_stages;
   auto& ls = stats.module("peripheral.lighting");
   ls.busy = host.lighting_unit().busy();
+  ls.windows = windows(host.lighting_unit().timeline());
   ls.values["inner_products"] = static_cast<double>(host.lighting_unit().issued());
   if (pc.grid_divisions > 0) {
     auto& as = stats.module("peripheral.aux");
     as.busy = peripheral.aux_busy();
+    as.windows = windows(peripheral.aux_timeline());
     as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
     as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
   }
   auto& ms = stats.module("peripheral.parameter_memories");
   ms.busy = peripheral.parameters.read_busy();
+  ms.windows = windows(peripheral.parameters.read_timeline());
   ms.values["polygons"] = static_cast<double>(quads);
   ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
   ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());

@@ -49,6 +49,7 @@ class VaxHost : public sc_core::sc_module {
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   sc_core::sc_time busy() const { return busy_; }
+  const modules::BusyTimeline& timeline() const { return timeline_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
 
  private:
@@ -80,6 +81,7 @@ class VaxHost : public sc_core::sc_module {
             boxes_seen = c.box_tests;
             trace_.slice("vax", "ray", clock.now(), cost,
                          {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
+            timeline_.add(clock.now(), cost);
             clock.advance(cost);
             busy_ += cost;
             latency_.add(cost);
@@ -103,6 +105,7 @@ class VaxHost : public sc_core::sc_module {
   int busy_signal_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline timeline_;
   modules::LatencyRecorder latency_;
 };
 
@@ -172,6 +175,8 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   res.simulated_time_s = host.frame_time().to_seconds();
   modules::StatsRegistry stats;
   stats.module("vax").busy = host.busy();
+  stats.module("vax").windows = host.timeline().windows(sc_core::SC_ZERO_TIME, host.frame_time(),
+                                                        modules::kUtilizationWindows);
   stats.module("vax").values["rays"] = static_cast<double>(frame.counters().total_rays());
   res.stats["modules"] = stats.to_json(host.frame_time());
   res.stats["ray_latency_s"] = host.latency().to_json();

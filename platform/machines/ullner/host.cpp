@@ -60,6 +60,7 @@ sc_core::sc_time Host::result_time(const Cost& c) {
 
 void Host::send(RayRequest req) {
   const sc_core::sc_time cost = host_.timing.time_for(kSendCost);
+  timeline_.add(clock_.now(), cost);
   clock_.advance(cost);
   busy_ += cost;
   req.id = next_id_++;
@@ -126,6 +127,7 @@ void Host::run() {
       trace_.busy(busy_signal_, true);
       trace_.slice("host", "result", clock_.now(), t,
                    {{"ray", res.request.id}, {"spawned", spawned.size()}});
+      timeline_.add(clock_.now(), t);
       clock_.advance(t);
       trace_.busy(busy_signal_, false);
       busy_ += t;
@@ -151,6 +153,7 @@ void Host::run() {
       const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
       trace_.busy(busy_signal_, true);
       trace_.slice("host", "vision ray", clock_.now(), t, {{"pixel", req.ray.pixel}});
+      timeline_.add(clock_.now(), t);
       clock_.advance(t);
       trace_.busy(busy_signal_, false);
       busy_ += t;

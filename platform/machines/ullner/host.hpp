@@ -39,6 +39,7 @@ class Host : public sc_core::sc_module {
   sc_core::sc_time frame_time() const { return frame_time_; }
   sc_core::sc_time load_time() const { return frame_start_; }
   sc_core::sc_time busy() const { return busy_; }
+  const modules::BusyTimeline& timeline() const { return timeline_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
   const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
   std::uint64_t vision_rays() const { return vision_rays_; }
@@ -76,6 +77,7 @@ class Host : public sc_core::sc_module {
   std::uint64_t backlog_peak_ = 0;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline timeline_;
   modules::LatencyRecorder latency_;
 };
 

@@ -65,9 +65,10 @@ void Peripheral::run() {
       // Every polygon streams through, fetched from the parameter memories (L544).
       const bool early = config_.shadow_early_exit && req.ray.kind == RayKind::Shadow;
       const std::uint64_t n = early ? tests : polygons_;
-      parameters.account_line_reads(n);  // fetch: one polygon a cycle, in step with the pipe
       const auto batch = pipe_.issue(n, start + times(stage, config_.fetch_stages));
       start = batch.first_issue - times(stage, config_.fetch_stages);
+      // Fetch: one polygon a cycle, in step with the pipe, a fetch stage ahead of it.
+      parameters.account_line_reads(n, start);
       done = batch.done + times(stage, config_.select_stages);
       trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
                    batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", n}});
@@ -81,11 +82,13 @@ void Peripheral::run() {
       start = std::max(start, aux_free_);
       const sc_core::sc_time walk = times(config_.step_time, cells);
       const sc_core::sc_time feed = times(stage, config_.indirection_stages + config_.fetch_stages);
-      parameters.account_line_reads(tests);
       const auto batch = pipe_.issue(tests, start + walk + feed);
+      // Fetch: in step with the pipe, a fetch stage ahead of it.
+      parameters.account_line_reads(tests, batch.first_issue - times(stage, config_.fetch_stages));
       done = batch.done + times(stage, config_.select_stages);
       aux_free_ = std::max(start + walk, batch.next_free - feed);
       aux_busy_ += aux_free_ - start;
+      aux_timeline_.add(start, aux_free_ - start);
       if (walk > sc_core::SC_ZERO_TIME)
         trace_.slice("peripheral.aux", "walk", start, walk,
                      {{"ray", req.id}, {"subvolumes", cells}});

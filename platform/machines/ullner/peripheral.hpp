@@ -44,6 +44,7 @@ class Peripheral : public sc_core::sc_module {
   /// The trace handle of the ray queue's depth (declared by the host, written here too).
   void set_ray_queue_depth_handle(int h) { ray_queue_depth_ = h; }
   sc_core::sc_time aux_busy() const { return aux_busy_; }
+  const modules::BusyTimeline& aux_timeline() const { return aux_timeline_; }
   std::uint64_t rays_served() const { return rays_; }
   std::uint64_t dda_steps() const { return steps_; }
   std::uint64_t subvolumes_visited() const { return cells_; }
@@ -67,6 +68,7 @@ class Peripheral : public sc_core::sc_module {
   modules::PipelinedUnit pipe_;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline aux_timeline_;
   sc_core::sc_time service_total_ = sc_core::SC_ZERO_TIME;
   std::uint64_t rays_ = 0, steps_ = 0, cells_ = 0, primary_hits_ = 0;
   double travel_sum_ = 0.0;

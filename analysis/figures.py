@@ -1,0 +1,519 @@
+#!/usr/bin/python3
+"""The seeds' figures redrawn with the simulated values over the seeds' own numbers, from the
+folder `rtsim validate --out DIR` writes (validation.json, fig2-18.csv; with --keep also the
+run folders runs-XXXXXX/KEY/stats.json, which add curves the table has no room for).
+
+    rtsim validate --quick --out val --keep
+    python3 analysis/figures.py val figures.png                 # every figure it can draw
+    python3 analysis/figures.py val fig2-18.png --figure fig2-18
+    python3 analysis/figures.py val figures.png --each val/figures   # also one PNG a figure
+
+Figures (each drawn only when its data is there; the others are skipped with a note):
+  fig2-18  Ullner's time per ray against grid divisions n_s: the analytic model (seed 000
+           L652 with L654's parameters) as a curve, the simulated points on the two-sheet scene
+           (fig2-18.csv) and on the random squares (run folders), the seed's minimum 14.3 us
+           at n_s = 11 (L654).
+  fig2-21  intersections per ray against n_s: model (L614-L642) and simulated (fig2-18.csv).
+  fig2-19  time per ray against n_s on the 83 cubes (run folders; the seed's values are lost,
+           only the character survives, L662-L668).
+  vax      the VAX-11/750 time per ray against the object count O: Gaudet's T_s + T_i O with
+           T_i = 429 us, T_s = 710 us (seed 001 L317-L318, L326), the simulated runs, and the
+           Fig 1-4 scene (O = 1093, about 238 h for 1,824,915 rays, L322-L326).
+  fig6-10  Gaudet's ShellProcessor average processing and latency per ray for the binary,
+           quad and oct trees (scenes 212, 412, 812; seed 001 L1025-L1030).
+  fig6-11  Gaudet's ShellProcessor average latency per ray for breadth-first, depth-first and
+           random broadcast order of the shell packets (scenes 404-420; seed 001 L1032-L1039).
+  summary  every row of the table: relative error against its tolerance.
+
+Gaudet's simulated values come from validation rows whose id starts with "G". A row is matched
+to a cell of the thesis's tables by, in order of weight: its seed line (seed_ref naming
+L1026/L1027/L1028 for processing/latency/total, L1033-L1037 for the Fig 6-11 scenes) or the
+figure number ("6-10", "6-11") in its text; the scene number (212, 412, ...); the words
+processing/latency/total or breadth/depth/random in its title; and its seed_value equal to the
+thesis number. Its value is read in its unit (s, ms, us, ns). Cells with no row are drawn from
+the thesis alone.
+"""
+
+import argparse
+import glob
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+# ---- The seeds' numbers ----------------------------------------------------------------------
+
+# Ullner 1983, Fig. 2-18 (seed 000 L652-L654): the model's parameters and its stated minimum.
+ULLNER_T_I_US = 1.0 / 3.0  # L654 (and L588): one intersection every 1/3 us
+ULLNER_T_D_US = 1.0        # L654: one microsecond to step to the next subvolume (assumed there)
+ULLNER_T_L_US = 5.6        # L654 (L588): pipeline latency
+ULLNER_D_R = 0.5           # L654: rays travel through about half of the modelling space
+ULLNER_A_T = 2.0           # L654: surface area stretching through the space twice
+ULLNER_N_P = 1000          # L654: a thousand polygons
+ULLNER_MIN_NS = 11         # L654: "eleven subdivisions per axis"
+ULLNER_MIN_US = 14.3       # L654: "14.3 microseconds per ray"
+ULLNER_BRUTE_US = 1000.0 / 3.0  # L590: 1/3 ms per ray without subdivision
+
+# Gaudet 1985, the VAX-11/750 baseline (seed 001 L310-L326).
+VAX_T_I_US = 429.0           # L317: T_i, one ray/object intersection
+VAX_T_S_US = 710.0           # L318: T_s, spawning (and shading) one ray
+VAX_FIG14_OBJECTS = 1093     # L322: the Fig 1-4 scene's objects O
+VAX_FIG14_RAYS = 1_824_915   # L324: its rays R_t
+VAX_FIG14_HOURS = 238.0      # L326: "approximately 238 hours"
+
+# Gaudet 1985, Fig 6-10 (seed 001 L1025-L1030): ShellProcessor, average times per ray (us).
+GAUDET_FIG610 = {
+    # tree: (scene, processing L1026, latency L1027, total L1028)
+    "binary": (212, 467.8, 124.9, 592.7),
+    "quad": (412, 523.9, 5.0, 528.9),
+    "oct": (812, 690.5, 0.5, 691.0),
+}
+GAUDET_FIG610_LINES = {"processing": 1026, "latency": 1027, "total": 1028}
+
+# Gaudet 1985, Fig 6-11 (seed 001 L1032-L1039): ShellProcessor, average latency per ray (us).
+GAUDET_FIG611 = {
+    # scene: (seed line, breadth-first, depth-first, random)
+    404: (1033, 5.1, 11.4, 11.4),
+    408: (1034, 4.7, 11.4, 11.3),
+    412: (1035, 5.0, 12.0, 12.0),
+    416: (1036, 5.1, 12.1, 11.9),
+    420: (1037, 4.9, 11.9, 11.7),
+}
+GAUDET_ORDERS = ("breadth", "depth", "random")
+
+FIGURES = ("fig2-18", "fig2-21", "fig2-19", "vax", "fig6-10", "fig6-11", "summary")
+
+
+def ullner_model_us(n_s, n_p=ULLNER_N_P, t_i=ULLNER_T_I_US, t_d=ULLNER_T_D_US, t_l=ULLNER_T_L_US,
+                    d_r=ULLNER_D_R, a_t=ULLNER_A_T):
+    """Time per ray (us), seed 000 L652:
+    t_r = [(n_s - 1) d_r + 1] t_d + ((1 - 1/n_s) d_r n_s^-2 + [(n_s - 1) sqrt(a_t) + 1]^-2) n_p t_i
+          + t_l"""
+    steps = ((n_s - 1.0) * d_r + 1.0) * t_d
+    tests = ((1.0 - 1.0 / n_s) * d_r / n_s**2 + ((n_s - 1.0) * math.sqrt(a_t) + 1.0) ** -2) * n_p
+    return steps + tests * t_i + t_l
+
+
+def ullner_model_intersections(n_s, n_p=ULLNER_N_P, d_r=ULLNER_D_R, a_t=ULLNER_A_T):
+    """n_i of L652: the intersection term's count."""
+    return ((1.0 - 1.0 / n_s) * d_r / n_s**2 + ((n_s - 1.0) * math.sqrt(a_t) + 1.0) ** -2) * n_p
+
+
+# ---- Reading the validation folder -----------------------------------------------------------
+
+
+class Validation:
+    """What `rtsim validate --out DIR [--keep]` left in DIR."""
+
+    def __init__(self, folder):
+        if not os.path.isdir(folder):
+            raise common.InputProblem(f"{folder}: not a folder (give the --out of rtsim validate)")
+        self.folder = folder
+        path = os.path.join(folder, "validation.json")
+        self.rows = []
+        if os.path.exists(path):
+            data = common.read_json(path)
+            self.rows = data.get("rows", []) if isinstance(data, dict) else []
+        self.fig218 = self._read_csv(os.path.join(folder, "fig2-18.csv"))
+        self.run_dirs = {}
+        for d in sorted(glob.glob(os.path.join(folder, "runs-*", "*", "stats.json"))):
+            self.run_dirs.setdefault(os.path.basename(os.path.dirname(d)), d)
+        if not self.rows and self.fig218 is None and not self.run_dirs:
+            raise common.InputProblem(f"{folder}: no validation.json, fig2-18.csv or run folders")
+
+    @staticmethod
+    def _read_csv(path):
+        if not os.path.exists(path):
+            return None
+        import pandas as pd
+
+        try:
+            return pd.read_csv(path)
+        except Exception as e:
+            raise common.InputProblem(f"{path}: not a CSV table: {e}")
+
+    def row(self, rid):
+        for r in self.rows:
+            if r.get("id") == rid:
+                return r
+        return None
+
+    def stats(self, key):
+        p = self.run_dirs.get(key)
+        return common.read_json(p) if p else None
+
+    def sweep(self, prefix, path):
+        """[(n_s, value)] from run folders PREFIX-nsNN, value at the dotted `path`."""
+        out = []
+        for key in self.run_dirs:
+            m = re.fullmatch(re.escape(prefix) + r"-ns(\d+)", key)
+            if not m:
+                continue
+            v = dig(self.stats(key), path)
+            if common.finite(v):
+                out.append((int(m.group(1)), float(v)))
+        return sorted(out)
+
+
+def dig(obj, path):
+    for part in path.split("."):
+        if not isinstance(obj, dict) or part not in obj:
+            return None
+        obj = obj[part]
+    return obj
+
+
+# ---- Gaudet's rows ---------------------------------------------------------------------------
+
+_UNIT_TO_US = {"s": 1e6, "ms": 1e3, "us": 1.0, "µs": 1.0, "ns": 1e-3, "": 1.0}
+
+
+def row_value_us(row):
+    v = row.get("simulated_value")
+    if not common.finite(v):
+        return None
+    unit = (row.get("unit") or "").strip()
+    return float(v) * _UNIT_TO_US.get(unit, 1.0)
+
+
+def _row_text(row):
+    return " ".join(str(row.get(k, "")) for k in ("id", "title", "seed_text", "workload",
+                                                    "seed_ref", "note")).lower()
+
+
+def _mentions_line(row, line):
+    return re.search(rf"\bl{line}\b", str(row.get("seed_ref", "")).lower()) is not None
+
+
+def _close(a, b):
+    return common.finite(a) and abs(float(a) - b) <= 1e-6 * max(1.0, abs(b))
+
+
+def gaudet_points(rows):
+    """Simulated values of Gaudet's tables found among the G rows:
+    ({(tree, quantity): us}, {(scene, order): us}) for Fig 6-10 and Fig 6-11."""
+    candidates = [r for r in rows if str(r.get("id", "")).startswith("G")]
+    cells = []  # (score, row index, key)
+    for i, r in enumerate(candidates):
+        text = _row_text(r)
+        title = str(r.get("title", "")).lower()
+        is611 = "6-11" in text or any(_mentions_line(r, v[0]) for v in GAUDET_FIG611.values())
+        is610 = "6-10" in text or any(_mentions_line(r, ln) for ln in GAUDET_FIG610_LINES.values())
+        for tree, (scene, *values) in GAUDET_FIG610.items():
+            for quantity, value in zip(("processing", "latency", "total"), values):
+                word = quantity in title or (quantity in text and not any(
+                    q in title for q in GAUDET_FIG610_LINES if q != quantity))
+                if not word or is611 and not is610:
+                    continue
+                if str(scene) not in text and tree not in text:
+                    continue
+                score = 3 * (is610 or _mentions_line(r, GAUDET_FIG610_LINES[quantity]))
+                score += 2 * (str(scene) in text) + (tree in text)
+                score += 2 * _close(r.get("seed_value"), value)
+                if score >= 3:
+                    cells.append((score, i, ("6-10", tree, quantity)))
+        for scene, (line, *values) in GAUDET_FIG611.items():
+            if str(scene) not in text:
+                continue
+            for order, value in zip(GAUDET_ORDERS, values):
+                word = order in title or (order in text and not any(
+                    o in title for o in GAUDET_ORDERS if o != order))
+                if not word or (is610 and not is611):
+                    continue
+                score = 3 * (is611 or _mentions_line(r, line)) + 2
+                score += 2 * _close(r.get("seed_value"), value)
+                if score >= 5:
+                    cells.append((score, i, ("6-11", scene, order)))
+    fig610, fig611, used, taken = {}, {}, set(), set()
+    for score, i, key in sorted(cells, key=lambda c: -c[0]):
+        if i in used or key in taken:
+            continue
+        v = row_value_us(candidates[i])
+        if v is None:
+            continue
+        used.add(i)
+        taken.add(key)
+        if key[0] == "6-10":
+            fig610[(key[1], key[2])] = v
+        else:
+            fig611[(key[1], key[2])] = v
+    return fig610, fig611
+
+
+# ---- The figures -----------------------------------------------------------------------------
+
+
+def series_fig218(val):
+    """{"model": (n, us), "simulated": ..., "model_measured_d_r": ..., "random": ...}."""
+    import numpy as np
+
+    n = np.linspace(1.0, 30.0, 291)
+    out = {"model": (n, np.array([ullner_model_us(x) for x in n]))}
+    if val.fig218 is not None and "simulated_t_r_us" in val.fig218:
+        df = val.fig218.sort_values("n_s")
+        out["simulated"] = (df["n_s"].to_numpy(float), df["simulated_t_r_us"].to_numpy(float))
+        if "model_t_r_measured_d_r_us" in df:
+            out["model_measured_d_r"] = (df["n_s"].to_numpy(float),
+                                         df["model_t_r_measured_d_r_us"].to_numpy(float))
+    random = val.sweep("peripheral-grid-random", "peripheral.time_per_ray_s")
+    if random:
+        out["random"] = (np.array([p[0] for p in random], float),
+                         np.array([p[1] * 1e6 for p in random]))
+    return out
+
+
+def plain_log_ticks(axis):
+    """Numbers (20, 50, 100) rather than powers of ten on a logarithmic axis."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    fmt = ScalarFormatter()
+    fmt.set_scientific(False)
+    axis.set_major_formatter(fmt)
+    axis.set_minor_formatter(NullFormatter())
+
+
+def draw_fig218(ax, val):
+    s = series_fig218(val)
+    ax.plot(*s["model"], "k-", label="model, L652 with L654's parameters")
+    if "model_measured_d_r" in s:
+        ax.plot(*s["model_measured_d_r"], "k:", label="model with the measured d_r")
+    if "simulated" in s:
+        ax.plot(*s["simulated"], "o-", color="tab:blue", ms=4,
+                label="simulated: two sheets (ullner-sheets-1000)")
+    if "random" in s:
+        ax.plot(*s["random"], "s--", color="tab:orange", ms=4,
+                label="simulated: random squares (ullner-random-1000)")
+    ax.plot([ULLNER_MIN_NS], [ULLNER_MIN_US], "r*", ms=13, label="seed: 14.3 µs at n_s = 11 (L654)")
+    ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
+    ax.set_xlabel("subdivisions per axis n_s")
+    ax.set_ylabel("time per ray (µs)")
+    ax.set_title("Fig. 2-18: time per ray against grid divisions")
+    ax.legend(fontsize="x-small")
+    return True
+
+
+def draw_fig221(ax, val):
+    import numpy as np
+
+    if val.fig218 is None or "simulated_tests_per_ray" not in val.fig218:
+        return False
+    df = val.fig218.sort_values("n_s")
+    n = np.linspace(1.0, 30.0, 291)
+    ax.plot(n, [ullner_model_intersections(x) for x in n], "k-", label="model n_i (L652)")
+    ax.plot(df["n_s"], df["simulated_tests_per_ray"], "o-", ms=4, label="simulated: two sheets")
+    ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
+    ax.set_xlabel("subdivisions per axis n_s")
+    ax.set_ylabel("intersections per ray")
+    ax.set_title("Fig. 2-21: intersections per ray")
+    ax.legend(fontsize="x-small")
+    return True
+
+
+def draw_fig219(ax, val):
+    cubes = val.sweep("peripheral-cubes", "peripheral.time_per_ray_s")
+    if not cubes:
+        return False
+    ax.plot([p[0] for p in cubes], [p[1] * 1e6 for p in cubes], "o-", ms=4,
+            label="simulated: 83 cubes (ullner-cubes)")
+    best = min(cubes, key=lambda p: p[1])
+    ax.plot([best[0]], [best[1] * 1e6], "r*", ms=12, label=f"minimum at n_s = {best[0]}")
+    ax.set_xlabel("subdivisions per axis n_s")
+    ax.set_ylabel("time per ray (µs)")
+    ax.set_title("Fig. 2-19: 83 cubes (seed values lost: shape only)")
+    ax.legend(fontsize="x-small")
+    return True
+
+
+def series_vax(val):
+    """Simulated (O, ms per ray) points from the VAX runs, and the recovered T_i, T_s (us)."""
+    points = []
+    for key in ("vax-default", "vax-cubes"):
+        st = val.stats(key)
+        if not st:
+            continue
+        rays, objects, t = (dig(st, "rays.total"), dig(st, "scene_stats.primitives"),
+                            dig(st, "simulated_time_s"))
+        if common.finite(rays) and rays > 0 and common.finite(objects) and common.finite(t):
+            points.append((float(objects), float(t) / float(rays) * 1e3))
+    recovered = {}
+    for rid, name in (("VAX3", "t_i_us"), ("VAX4", "t_s_us")):
+        r = val.row(rid)
+        if r and common.finite(r.get("simulated_value")):
+            recovered[name] = row_value_us(r)
+    return sorted(points), recovered
+
+
+def draw_vax(ax, val):
+    import numpy as np
+
+    points, rec = series_vax(val)
+    if not points and len(rec) < 2:
+        return False
+    o = np.linspace(0, VAX_FIG14_OBJECTS * 1.05, 50)
+    ax.plot(o, (VAX_T_S_US + VAX_T_I_US * o) / 1e3, "k-",
+            label="seed: T_s + T_i O, 710 + 429 O µs (L317-L318)")
+    if len(rec) == 2:
+        ax.plot(o, (rec["t_s_us"] + rec["t_i_us"] * o) / 1e3, "--", color="tab:orange",
+                label=f"recovered: {rec['t_s_us']:.4g} + {rec['t_i_us']:.4g} O µs (VAX3, VAX4)")
+    if points:
+        ax.plot([p[0] for p in points], [p[1] for p in points], "o", color="tab:blue", ms=6,
+                label="simulated runs (vax-750)")
+    per_ray_ms = VAX_FIG14_HOURS * 3600.0 / VAX_FIG14_RAYS * 1e3
+    ax.plot([VAX_FIG14_OBJECTS], [per_ray_ms], "r*", ms=12,
+            label="seed: Fig 1-4 scene, 238 h / 1,824,915 rays (L322-L326)")
+    ax.set_xlabel("objects O")
+    ax.set_ylabel("time per ray (ms)")
+    ax.set_title("VAX-11/750: time per ray, T_t = R_t (T_s + T_i O)")
+    ax.legend(fontsize="x-small")
+    return True
+
+
+def draw_fig610(ax, val):
+    import numpy as np
+
+    sim, _ = gaudet_points(val.rows)
+    trees = list(GAUDET_FIG610)
+    x = np.arange(len(trees))
+    w = 0.38
+    proc = [GAUDET_FIG610[t][1] for t in trees]
+    lat = [GAUDET_FIG610[t][2] for t in trees]
+    ax.bar(x - w / 2, proc, w, color="tab:blue", alpha=0.45, label="thesis: processing (L1026)")
+    ax.bar(x - w / 2, lat, w, bottom=proc, color="tab:red", alpha=0.45,
+           label="thesis: latency (L1027)")
+    any_sim = False
+    for i, t in enumerate(trees):
+        p = sim.get((t, "processing"))
+        latency = sim.get((t, "latency"))
+        total = sim.get((t, "total"))
+        if p is not None:
+            ax.bar(x[i] + w / 2, p, w, color="tab:blue", label="simulated: processing"
+                   if not any_sim else None)
+        if latency is not None:
+            ax.bar(x[i] + w / 2, latency, w, bottom=p or 0.0, color="tab:red",
+                   label="simulated: latency" if not any_sim else None)
+        if total is not None and (p is None or latency is None):
+            ax.plot([x[i] + w / 2], [total], "kD", label="simulated: total" if not any_sim
+                    else None)
+        any_sim |= p is not None or latency is not None or total is not None
+    ax.set_xticks(x)
+    ax.set_xticklabels([f"{t} ({GAUDET_FIG610[t][0]})" for t in trees])
+    ax.set_ylabel("time per ray (µs)")
+    note = "" if any_sim else " — no simulated rows yet"
+    ax.set_title(f"Fig 6-10: ShellProcessor per ray, tree order{note}")
+    ax.legend(fontsize="x-small")
+    return True
+
+
+def draw_fig611(ax, val):
+    _, sim = gaudet_points(val.rows)
+    scenes = sorted(GAUDET_FIG611)
+    colors = {"breadth": "tab:blue", "depth": "tab:red", "random": "tab:green"}
+    any_sim = False
+    for k, order in enumerate(GAUDET_ORDERS):
+        ax.plot(scenes, [GAUDET_FIG611[s][1 + k] for s in scenes], "--", color=colors[order],
+                alpha=0.6, label=f"thesis: {order}-first" if order != "random" else
+                "thesis: random")
+        pts = [(s, sim[(s, order)]) for s in scenes if (s, order) in sim]
+        if pts:
+            any_sim = True
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=colors[order],
+                    label=f"simulated: {order}")
+    ax.set_xticks(scenes)
+    ax.set_xlabel("scene")
+    ax.set_ylabel("latency per ray (µs)")
+    note = "" if any_sim else " — no simulated rows yet"
+    ax.set_title(f"Fig 6-11: broadcast order (L1032-L1039){note}")
+    ax.legend(fontsize="x-small", ncol=2)
+    return True
+
+
+def draw_summary(ax, val):
+    rows = [r for r in val.rows if r.get("id")]
+    if not rows:
+        return False
+    ids = [r["id"] for r in rows]
+    errs = []
+    for r in rows:
+        e = r.get("relative_error")
+        errs.append(100.0 * float(e) if common.finite(e) else 0.0)
+    colors = ["tab:green" if r.get("pass") else "tab:red" for r in rows]
+    ax.bar(range(len(ids)), errs, color=colors)
+    for i, r in enumerate(rows):
+        tol = r.get("tolerance") or {}
+        if tol.get("kind") == "relative" and common.finite(tol.get("value")):
+            t = 100.0 * float(tol["value"])
+            ax.plot([i - 0.4, i + 0.4], [t, t], "k-", lw=0.8)
+            ax.plot([i - 0.4, i + 0.4], [-t, -t], "k-", lw=0.8)
+    ax.set_xticks(range(len(ids)))
+    ax.set_xticklabels(ids, rotation=60, fontsize="x-small")
+    ax.set_ylabel("relative error (%)")
+    ax.axhline(0, color="k", lw=0.5)
+    passed = sum(1 for r in rows if r.get("pass"))
+    ax.set_title(f"All figures: {passed} of {len(rows)} pass (bars: error; lines: tolerance)")
+    return True
+
+
+DRAW = {"fig2-18": draw_fig218, "fig2-21": draw_fig221, "fig2-19": draw_fig219, "vax": draw_vax,
+        "fig6-10": draw_fig610, "fig6-11": draw_fig611, "summary": draw_summary}
+
+
+def render(val, names, out_path):
+    """Draw `names` into one PNG (a grid of panels); returns the names drawn."""
+    plt = common.pyplot()
+    # Draw each on a scratch figure first to know which have data.
+    drawable = []
+    for name in names:
+        fig, ax = plt.subplots()
+        if DRAW[name](ax, val):
+            drawable.append(name)
+        else:
+            print(f"figures.py: {name}: no data in {val.folder}; skipped", file=sys.stderr)
+        plt.close(fig)
+    if not drawable:
+        raise common.InputProblem(f"{val.folder}: none of {', '.join(names)} has data")
+    cols = 1 if len(drawable) == 1 else 2
+    nrows = (len(drawable) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(7.5 * cols, 4.8 * nrows), squeeze=False)
+    for k, name in enumerate(drawable):
+        DRAW[name](axes[k // cols][k % cols], val)
+        axes[k // cols][k % cols].grid(True, which="both", alpha=0.3)
+    for k in range(len(drawable), nrows * cols):
+        axes[k // cols][k % cols].set_axis_off()
+    fig.tight_layout()
+    common.save(fig, out_path)
+    plt.close(fig)
+    return drawable
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(
+        prog="figures.py", description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("input", help="the --out folder of `rtsim validate` (use --keep for curves)")
+    ap.add_argument("out", help="PNG to write (all the figures drawn, as panels)")
+    ap.add_argument("--figure", default="all", help=f"all, or one or more of {', '.join(FIGURES)} "
+                    "(comma-separated)")
+    ap.add_argument("--each", default=None, metavar="DIR",
+                    help="also write each figure drawn as DIR/NAME.png")
+    args = ap.parse_args(argv)
+    names = list(FIGURES) if args.figure == "all" else [s.strip() for s in args.figure.split(",")]
+    for n in names:
+        if n not in DRAW:
+            raise common.InputProblem(f"--figure: no figure '{n}' (known: {', '.join(FIGURES)})")
+    val = Validation(args.input)
+    drawn = render(val, names, args.out)
+    if args.each:
+        for name in drawn:
+            render(val, [name], os.path.join(args.each, f"{name}.png"))
+    print(f"figures.py: drew {', '.join(drawn)} into {args.out}")
+    return common.EXIT_OK
+
+
+if __name__ == "__main__":
+    common.main_wrapper(main)

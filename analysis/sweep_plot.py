@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""Plot any column of a sweep's results table against any other, one line per scene or
+machine (or any grouping column).
+
+    python3 analysis/sweep_plot.py results.csv out.png --x peripheral.grid.divisions \\
+        --y peripheral.time_per_ray_s --logy
+    python3 analysis/sweep_plot.py results.jsonl speedup.png --x pert.count \\
+        --y simulated_time_s --ratio-to pert.count=1     # speed-up over the 1-PERT point
+
+INPUT is results.csv or results.jsonl from `rtsim sweep` (one row per point: the swept
+parameters, machine, scene, headline stats such as simulated_time_s, wall_time_s, rays.total,
+modules.NAME.utilization), or a folder holding one of them. Nested JSON objects become dotted
+column names; extra columns are ignored. Rows whose exit status or status says the point
+failed are left out. Values written with units ("400 ns", "5 MHz") are read in the SI base
+unit. `utilisation` and `utilization` name the same column.
+
+--ratio-to draws y as a ratio to a baseline: COL=VALUE takes, in each group, the row where COL
+equals VALUE (e.g. the 1-PERT run); a bare column name divides by that column row by row.
+--ratio-mode speedup (default) plots baseline / y, fraction plots y / baseline.
+"""
+
+import argparse
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+# SI prefixes of values written with units in configs and sweep files ("400 ns", "5 MHz").
+_PREFIX = {"p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "m": 1e-3, "": 1.0, "k": 1e3,
+           "K": 1e3, "M": 1e6, "G": 1e9, "T": 1e12}
+_UNIT_RE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([pnuµmkKMGT]?)"
+                      r"(s|Hz|bit/s|bps|bit|B|)\s*$")
+
+
+def to_number(value):
+    """A float for 3, "3", "400 ns" (4e-7), "5 MHz" (5e6); None if it is not a number."""
+    if isinstance(value, bool):
+        return float(value)
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str):
+        m = _UNIT_RE.match(value)
+        if m:
+            number, prefix, unit = m.groups()
+            if unit == "" and prefix not in ("",):
+                return None  # "3 m" is not a unit rtsim writes
+            return float(number) * _PREFIX[prefix]
+    return None
+
+
+def read_results(path):
+    """The results table as a pandas DataFrame (CSV or JSON lines, or a folder with one)."""
+    import pandas as pd
+
+    if os.path.isdir(path):
+        for name in ("results.jsonl", "results.csv"):
+            if os.path.exists(os.path.join(path, name)):
+                path = os.path.join(path, name)
+                break
+        else:
+            raise common.InputProblem(f"{path}: no results.jsonl or results.csv in this folder")
+    if not os.path.exists(path):
+        raise common.InputProblem(f"{path}: no such file")
+    if path.endswith(".jsonl") or path.endswith(".json"):
+        import json
+
+        rows = []
+        with open(path, encoding="utf-8") as f:
+            for lineno, line in enumerate(f, 1):
+                if not line.strip():
+                    continue
+                try:
+                    obj = json.loads(line)
+                except json.JSONDecodeError as e:
+                    raise common.InputProblem(f"{path}:{lineno}: not JSON: {e.msg}")
+                if not isinstance(obj, dict):
+                    raise common.InputProblem(f"{path}:{lineno}: expected a JSON object")
+                rows.append(common.flatten(obj))
+        return pd.DataFrame(rows)
+    try:
+        return pd.read_csv(path)
+    except Exception as e:  # pandas raises several parser errors
+        raise common.InputProblem(f"{path}: not a CSV table: {e}")
+
+
+def ok_rows(df):
+    """Leave out the points that failed (exit status not 0, status not ok, an error text)."""
+    import pandas as pd
+
+    keep = pd.Series(True, index=df.index)
+    for col in ("exit_status", "exit_code"):
+        if col in df.columns:
+            codes = df[col].map(to_number)
+            keep &= codes.isna() | (codes == 0)
+    if "status" in df.columns:
+        st = df["status"].fillna("").astype(str).str.lower()
+        keep &= st.isin(["", "ok", "done", "success", "succeeded", "passed", "pass", "0"])
+    if "error" in df.columns:
+        keep &= df["error"].fillna("").astype(str).str.strip() == ""
+    return df[keep]
+
+
+def default_group(df):
+    for col in ("scene", "machine"):
+        if col in df.columns and df[col].nunique(dropna=True) > 1:
+            return col
+    return None
+
+
+def _numeric(series):
+    nums = series.map(to_number)
+    return nums if nums.notna().all() else None
+
+
+def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
+    """{label: (xs, ys)} as plotted: rows grouped by `group`, sorted by x, repeated x values
+    averaged, y turned into a ratio to a baseline when `ratio_to` is given. x values are
+    numbers when every one reads as a number, else category labels in order of appearance."""
+    import numpy as np
+
+    df = ok_rows(df)
+    x = common.resolve_column(df.columns, x)
+    y = common.resolve_column(df.columns, y)
+    if group:
+        group = common.resolve_column(df.columns, group, "group column")
+    ys_all = df[y].map(to_number)
+    df = df.assign(_y=ys_all)
+    base_col, base_value = None, None
+    if ratio_to:
+        if "=" in ratio_to:
+            base_col, base_value = ratio_to.split("=", 1)
+            base_col = common.resolve_column(df.columns, base_col.strip(), "--ratio-to column")
+            base_value = base_value.strip()
+        else:
+            base_col = common.resolve_column(df.columns, ratio_to, "--ratio-to column")
+    if ratio_mode not in ("speedup", "fraction"):
+        raise common.InputProblem(f"--ratio-mode must be speedup or fraction, not {ratio_mode}")
+    df = df[df["_y"].notna()]
+    xnum = _numeric(df[x])
+    categories = None
+    if xnum is None:
+        categories = list(dict.fromkeys(df[x].astype(str)))
+        df = df.assign(_x=df[x].astype(str).map(categories.index).astype(float))
+    else:
+        df = df.assign(_x=xnum)
+    groups = [(None, df)] if not group else list(df.groupby(group, sort=True, dropna=False))
+    out = {}
+    for label, g in groups:
+        # Repeated x values are averaged first; the ratio is of the averages.
+        agg = g.groupby("_x", sort=True)["_y"].mean().astype(float)
+        xs = np.array(agg.index, dtype=float)
+        ys = np.array(agg.values, dtype=float)
+        if base_col is not None and base_value is not None:
+            want = to_number(base_value)
+            col = g[base_col]
+            nums = col.map(to_number)
+            match = (nums == want) if want is not None else (col.astype(str) == base_value)
+            if not match.any():
+                print(f"sweep_plot: group {label}: no row with {base_col} = {base_value}; "
+                      "left out", file=sys.stderr)
+                continue
+            baseline = float(g.loc[match, "_y"].astype(float).mean())
+            ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
+        elif base_col is not None:
+            g = g.assign(_b=g[base_col].map(to_number).astype(float))
+            baseline = g.groupby("_x", sort=True)["_b"].mean().to_numpy(float)
+            ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
+        out["all" if label is None else str(label)] = (xs, ys)
+    return out, categories
+
+
+def plot(series, categories, args, out_path):
+    plt = common.pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for label, (xs, ys) in series.items():
+        ax.plot(xs, ys, marker="o", markersize=4, label=label)
+    if categories:
+        ax.set_xticks(range(len(categories)))
+        ax.set_xticklabels(categories, rotation=30, ha="right")
+    if args.logx:
+        ax.set_xscale("log")
+    if args.logy:
+        ax.set_yscale("log")
+    ax.set_xlabel(args.xlabel or args.x)
+    if args.ylabel:
+        ylabel = args.ylabel
+    elif args.ratio_to:
+        ylabel = (f"speed-up over {args.ratio_to}\n({args.y})" if args.ratio_mode == "speedup"
+                  else f"{args.y}\nrelative to {args.ratio_to}")
+    else:
+        ylabel = args.y
+    ax.set_ylabel(ylabel)
+    if args.title:
+        ax.set_title(args.title)
+    if len(series) > 1 or (len(series) == 1 and next(iter(series)) != "all"):
+        ax.legend(title=args.group_used, fontsize="small")
+    ax.grid(True, which="both", alpha=0.3)
+    common.save(fig, out_path)
+    plt.close(fig)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(
+        prog="sweep_plot.py", description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("input", help="results.csv, results.jsonl, or the sweep's folder")
+    ap.add_argument("out", help="PNG to write")
+    ap.add_argument("--x", required=True, help="column on the horizontal axis (a swept parameter)")
+    ap.add_argument("--y", required=True, help="column to plot (a stat: simulated_time_s, ...)")
+    ap.add_argument("--group", default=None,
+                    help="one line per value of this column (default: scene, else machine, "
+                         "whichever varies; 'none' for one line)")
+    ap.add_argument("--logx", action="store_true", help="logarithmic x axis")
+    ap.add_argument("--logy", action="store_true", help="logarithmic y axis")
+    ap.add_argument("--ratio-to", default=None, metavar="COL=VALUE|COL",
+                    help="plot y relative to a baseline row (COL=VALUE, per group) or column")
+    ap.add_argument("--ratio-mode", default="speedup", choices=("speedup", "fraction"),
+                    help="speedup: baseline / y (default); fraction: y / baseline")
+    ap.add_argument("--title", default=None)
+    ap.add_argument("--xlabel", default=None)
+    ap.add_argument("--ylabel", default=None)
+    args = ap.parse_args(argv)
+    df = read_results(args.input)
+    if df.empty:
+        raise common.InputProblem(f"{args.input}: the table has no rows")
+    group = args.group
+    if group is None:
+        group = default_group(df)
+    elif group.lower() == "none":
+        group = None
+    args.group_used = group
+    series, categories = compute_series(df, args.x, args.y, group, args.ratio_to, args.ratio_mode)
+    if not series or all(len(xs) == 0 for xs, _ in series.values()):
+        raise common.InputProblem(f"{args.input}: no successful rows with a value of {args.y}")
+    plot(series, categories, args, args.out)
+    return common.EXIT_OK
+
+
+if __name__ == "__main__":
+    common.main_wrapper(main)

@@ -1,0 +1,525 @@
+#include "app/report.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace rtsim::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// ---- Tools -----------------------------------------------------------------------------------
+
+ReportTools ReportTools::resolved() const {
+  ReportTools t = *this;
+  if (t.python.empty()) {
+    if (const char* env = std::getenv("RTSIM_PYTHON"); env && *env)
+      t.python = env;
+    else if (fs::exists("/usr/bin/python3"))
+      t.python = "/usr/bin/python3";
+    else
+      t.python = "python3";
+  }
+  if (t.analysis_dir.empty()) {
+    if (const char* env = std::getenv("RTSIM_ANALYSIS_DIR"); env && *env)
+      t.analysis_dir = env;
+    else
+      t.analysis_dir = fs::path(RTSIM_SOURCE_DIR) / "analysis";
+  }
+  if (t.scratch_dir.empty()) t.scratch_dir = fs::temp_directory_path() / "rtsim-report";
+  return t;
+}
+
+namespace {
+
+std::string read_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot read " + p.string());
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+/// Last `n` non-empty lines of `text`, joined with "; ".
+std::string last_lines(const std::string& text, int n) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  std::string out;
+  for (std::size_t i = lines.size() > static_cast<std::size_t>(n) ? lines.size() - n : 0;
+       i < lines.size(); ++i)
+    out += (out.empty() ? "" : "; ") + lines[i];
+  return out;
+}
+
+}  // namespace
+
+ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string& script,
+                                 const std::vector<std::string>& args) {
+  const ReportTools tools = tools_in.resolved();
+  ScriptResult res;
+  const fs::path script_path = tools.analysis_dir / script;
+  if (!fs::exists(script_path)) {
+    res.message = "no analysis script " + script_path.string();
+    return res;
+  }
+  std::error_code ec;
+  fs::create_directories(tools.scratch_dir, ec);
+  const fs::path log = tools.scratch_dir / (script + ".log");
+  std::vector<std::string> argv_s = {tools.python, script_path.string()};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    res.message = "cannot run " + tools.python + ": " + std::strerror(rc);
+    return res;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      res.message = std::string("waitpid: ") + std::strerror(errno);
+      return res;
+    }
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    res.ok = true;
+    return res;
+  }
+  std::string text;
+  try {
+    text = read_file(log);
+  } catch (const std::exception&) {
+  }
+  // posix_spawnp reports a missing interpreter as exit status 127 from the child.
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && text.empty())
+    res.message = "cannot run " + tools.python;
+  else
+    res.message = tools.python + " " + script + " failed" +
+                  (WIFEXITED(status) ? " (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
+                                     : " (killed by a signal)") +
+                  (text.empty() ? "" : ": " + last_lines(text, 2));
+  return res;
+}
+
+// ---- HTML ------------------------------------------------------------------------------------
+
+std::string base64(const std::string& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const auto a = static_cast<unsigned char>(bytes[i]);
+    const auto b = static_cast<unsigned char>(bytes[i + 1]);
+    const auto c = static_cast<unsigned char>(bytes[i + 2]);
+    out += kAlphabet[a >> 2];
+    out += kAlphabet[((a & 3) << 4) | (b >> 4)];
+    out += kAlphabet[((b & 15) << 2) | (c >> 6)];
+    out += kAlphabet[c & 63];
+  }
+  if (i + 1 == bytes.size()) {
+    const auto a = static_cast<unsigned char>(bytes[i]);
+    out += kAlphabet[a >> 2];
+    out += kAlphabet[(a & 3) << 4];
+    out += "==";
+  } else if (i + 2 == bytes.size()) {
+    const auto a = static_cast<unsigned char>(bytes[i]);
+    const auto b = static_cast<unsigned char>(bytes[i + 1]);
+    out += kAlphabet[a >> 2];
+    out += kAlphabet[((a & 3) << 4) | (b >> 4)];
+    out += kAlphabet[(b & 15) << 2];
+    out += '=';
+  }
+  return out;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
+
+void HtmlReport::heading(const std::string& text) {
+  body_ += "<h2>" + html_escape(text) + "</h2>\n";
+}
+
+void HtmlReport::paragraph(const std::string& text) {
+  body_ += "<p>" + html_escape(text) + "</p>\n";
+}
+
+void HtmlReport::note(const std::string& text) {
+  body_ += "<p class=\"note\">" + html_escape(text) + "</p>\n";
+}
+
+void HtmlReport::key_values(const std::vector<std::pair<std::string, std::string>>& rows) {
+  body_ += "<table class=\"kv\">\n";
+  for (const auto& [k, v] : rows)
+    body_ += "<tr><th>" + html_escape(k) + "</th><td>" + html_escape(v) + "</td></tr>\n";
+  body_ += "</table>\n";
+}
+
+void HtmlReport::table(const std::vector<std::string>& head,
+                       const std::vector<std::vector<std::string>>& rows,
+                       const std::vector<bool>& emphasised) {
+  body_ += "<table>\n<tr>";
+  for (const auto& h : head) body_ += "<th>" + html_escape(h) + "</th>";
+  body_ += "</tr>\n";
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const bool em = r < emphasised.size() && emphasised[r];
+    body_ += em ? "<tr class=\"set\">" : "<tr>";
+    for (const auto& c : rows[r]) body_ += "<td>" + html_escape(c) + "</td>";
+    body_ += "</tr>\n";
+  }
+  body_ += "</table>\n";
+}
+
+void HtmlReport::image(const fs::path& png, const std::string& alt, const std::string& caption,
+                       bool pixelated) {
+  const std::string data = read_file(png);
+  body_ += std::string("<figure><img") + (pixelated ? " class=\"frame\"" : "") + " alt=\"" +
+           html_escape(alt) + "\" src=\"data:image/png;base64," + base64(data) + "\">";
+  if (!caption.empty()) body_ += "<figcaption>" + html_escape(caption) + "</figcaption>";
+  body_ += "</figure>\n";
+  ++images_;
+}
+
+std::string HtmlReport::html() const {
+  // The small script only checks that every picture decoded: it marks the page with the count
+  // (data-images-decoded, read by the headless-browser test) and logs a console error for a
+  // picture that did not.
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+         "<title>" +
+         html_escape(title_) +
+         "</title>\n<style>\n"
+         "body{font-family:sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;"
+         "color:#222}\n"
+         "h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}\n"
+         "table{border-collapse:collapse;font-size:.9em;margin:.5em 0}\n"
+         "td,th{border:1px solid #ddd;padding:.2em .5em;text-align:left;vertical-align:top}\n"
+         "th{background:#f4f4f4}table.kv th{width:16em}tr.set td{font-weight:bold}\n"
+         "figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}\n"
+         "img.frame{min-width:512px;image-rendering:pixelated}\n"
+         "figcaption{font-size:.85em;color:#555}\n"
+         ".note{background:#fff6d5;border-left:4px solid #e0b000;padding:.4em .8em}\n"
+         "</style>\n</head>\n<body>\n<h1>" +
+         html_escape(title_) + "</h1>\n" + body_ +
+         "<script>\n"
+         "window.addEventListener('load', function () {\n"
+         "  var imgs = document.querySelectorAll('img'), ok = 0;\n"
+         "  for (var i = 0; i < imgs.length; i++) {\n"
+         "    if (imgs[i].complete && imgs[i].naturalWidth > 0) ok++;\n"
+         "    else console.error('report: picture did not decode: ' + imgs[i].alt);\n"
+         "  }\n"
+         "  document.body.setAttribute('data-images-decoded', String(ok));\n"
+         "});\n"
+         "</script>\n</body>\n</html>\n";
+}
+
+void HtmlReport::write(const fs::path& path) const {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f << html();
+  f.close();
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+// ---- The run report --------------------------------------------------------------------------
+
+namespace {
+
+std::string number(double v, int digits = 4) {
+  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+  char buf[64];
+  if (v == std::round(v) && std::abs(v) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+/// Seconds with a unit that reads well: "346 ms", "14.3 µs".
+std::string seconds(double s) {
+  const double a = std::abs(s);
+  if (a == 0.0) return "0 s";
+  if (a >= 1.0) return number(s, 5) + " s";
+  if (a >= 1e-3) return number(s * 1e3, 4) + " ms";
+  if (a >= 1e-6) return number(s * 1e6, 4) + " µs";
+  return number(s * 1e9, 4) + " ns";
+}
+
+std::string value_text(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number()) return number(v.get<double>(), 6);
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_null()) return "-";
+  std::string s = v.dump();
+  if (s.size() > 160) s = s.substr(0, 157) + "...";
+  return s;
+}
+
+const json* find(const json& j, const std::string& key) {
+  const auto it = j.find(key);
+  return it == j.end() ? nullptr : &*it;
+}
+
+double num(const json& j, const std::string& key, double fallback = NAN) {
+  const json* v = find(j, key);
+  return v && v->is_number() ? v->get<double>() : fallback;
+}
+
+std::string str(const json& j, const std::string& key) {
+  const json* v = find(j, key);
+  return v && v->is_string() ? v->get<std::string>() : std::string("?");
+}
+
+bool has_windows(const json& stats) {
+  const json* mods = find(stats, "modules");
+  if (!mods || !mods->is_object()) return false;
+  for (const auto& [name, m] : mods->items())
+    if (m.is_object() && m.contains("utilization_windows")) return true;
+  return false;
+}
+
+/// Keys the report shows in their own sections; every other top-level object of stats.json
+/// (a machine's own figures: "peripheral", "vax", ...) gets a table.
+const std::set<std::string> kShownKeys = {"tool",
+                                          "version",
+                                          "command",
+                                          "machine",
+                                          "scene",
+                                          "width",
+                                          "height",
+                                          "spp",
+                                          "simulated_time_s",
+                                          "wall_time_s",
+                                          "threads",
+                                          "rays",
+                                          "rays_per_second",
+                                          "params",
+                                          "modules",
+                                          "ray_latency_s",
+                                          "image",
+                                          "firmware_cost",
+                                          "scene_stats",
+                                          "geometry",
+                                          "accel",
+                                          "hits",
+                                          "intersection_tests",
+                                          "patch_subdivisions",
+                                          "functional_wall_time_s",
+                                          "overhead_ratio",
+                                          "functional_image_identical"};
+
+}  // namespace
+
+void write_run_report(const RunReportInputs& in, const fs::path& out_html,
+                      const ReportTools& tools_in) {
+  const ReportTools tools = tools_in.resolved();
+  json stats;
+  try {
+    stats = json::parse(read_file(in.stats_json));
+  } catch (const json::exception& e) {
+    throw std::runtime_error("report: " + in.stats_json.string() + " is not JSON: " + e.what());
+  }
+  const std::string machine = str(stats, "machine");
+  const std::string scene = str(stats, "scene");
+  HtmlReport page("rtsim " + str(stats, "command") + ": " + machine + " on " + scene);
+  if (!in.command_line.empty()) page.paragraph(in.command_line);
+
+  // Headline numbers.
+  std::vector<std::pair<std::string, std::string>> head;
+  head.emplace_back("machine", machine);
+  head.emplace_back("scene", scene);
+  head.emplace_back("image", number(num(stats, "width")) + " x " + number(num(stats, "height")) +
+                                 ", " + number(num(stats, "spp")) + " sample(s) per pixel");
+  if (const double t = num(stats, "simulated_time_s"); std::isfinite(t))
+    head.emplace_back("simulated frame time", seconds(t));
+  if (const double t = num(stats, "wall_time_s"); std::isfinite(t))
+    head.emplace_back("wall time", seconds(t));
+  if (const json* rays = find(stats, "rays"); rays && rays->is_object()) {
+    std::string by_kind;
+    for (const char* k : {"primary", "shadow", "reflected", "refracted"})
+      by_kind += std::string(by_kind.empty() ? "" : ", ") + k + " " + value_text((*rays)[k]);
+    head.emplace_back("rays", value_text((*rays)["total"]) + " (" + by_kind + ")");
+  }
+  if (const double v = num(stats, "intersection_tests"); std::isfinite(v))
+    head.emplace_back("intersection tests", number(v));
+  if (const double v = num(stats, "overhead_ratio"); std::isfinite(v))
+    head.emplace_back("overhead (wall / functional wall)", number(v));
+  if (const json* lat = find(stats, "ray_latency_s"); lat && lat->is_object())
+    head.emplace_back("ray latency", "mean " + seconds(num(*lat, "mean")) + ", p50 " +
+                                         seconds(num(*lat, "p50")) + ", p99 " +
+                                         seconds(num(*lat, "p99")) + ", max " +
+                                         seconds(num(*lat, "max")) + " (" +
+                                         value_text((*lat)["count"]) + " rays)");
+  page.heading("Headline");
+  page.key_values(head);
+
+  if (!in.image_png.empty() && fs::exists(in.image_png)) {
+    page.heading("Image");
+    page.image(in.image_png, "rendered image", "image.png", true);
+  }
+
+  // Plots through analysis/.
+  page.heading("Utilisation and latency");
+  std::vector<std::string> problems;
+  fs::create_directories(tools.scratch_dir);
+  const bool trace = !in.trace_json.empty() && fs::exists(in.trace_json);
+  if (trace || has_windows(stats)) {
+    const fs::path png = tools.scratch_dir / "utilisation.png";
+    const auto r = run_analysis_script(
+        tools, "utilisation_timeline.py",
+        {trace ? in.trace_json.string() : in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "utilisation over time",
+                 trace ? "Busy fraction of each traced module and mean queue depths per window "
+                         "(from trace.json; analysis/utilisation_timeline.py)"
+                       : "Busy fraction of each module per window of the frame (stats.json "
+                         "utilization_windows; analysis/utilisation_timeline.py)");
+    else
+      problems.push_back(r.message);
+  }
+  if (const json* lat = find(stats, "ray_latency_s"); lat && num(*lat, "count", 0) > 0) {
+    const fs::path png = tools.scratch_dir / "latency.png";
+    const auto r =
+        run_analysis_script(tools, "latency_histogram.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "ray latency histogram",
+                 "Per-ray latency from entering the ray queue to the host having the answer "
+                 "(analysis/latency_histogram.py)");
+    else
+      problems.push_back(r.message);
+  }
+  if (!problems.empty()) {
+    std::string text = "Plots are missing: ";
+    std::set<std::string> said;
+    for (const auto& p : problems)
+      if (said.insert(p).second) text += (said.size() > 1 ? " | " : "") + p;
+    text +=
+        ". They need Debian's python3 with python3-matplotlib, python3-numpy and "
+        "python3-pandas (set RTSIM_PYTHON to use another interpreter).";
+    page.note(text);
+  }
+
+  // Modules.
+  if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
+    page.heading("Modules");
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& [name, m] : mods->items()) {
+      std::string other;
+      for (const auto& [k, v] : m.items()) {
+        if (k == "busy_s" || k == "utilization" || k == "queue" || k == "utilization_windows")
+          continue;
+        other += (other.empty() ? "" : ", ") + k + " " + value_text(v);
+      }
+      std::string queue;
+      if (const json* q = find(m, "queue"))
+        queue = "capacity " + value_text((*q)["capacity"]) + ", mean " +
+                number(num(*q, "mean_occupancy"), 4) + ", max " + value_text((*q)["max_occupancy"]);
+      rows.push_back({name, seconds(num(m, "busy_s", 0.0)),
+                      number(100.0 * num(m, "utilization", 0.0), 4) + " %", queue, other});
+    }
+    page.table({"module", "busy", "utilisation", "queue occupancy", "counts"}, rows);
+  }
+
+  // A machine's own figures and the other measured objects.
+  for (const auto& [key, v] : stats.items()) {
+    if (kShownKeys.count(key) || !v.is_object()) continue;
+    page.heading(key);
+    std::vector<std::pair<std::string, std::string>> kv;
+    for (const auto& [k, x] : v.items()) kv.emplace_back(k, value_text(x));
+    page.key_values(kv);
+  }
+  {
+    std::vector<std::pair<std::string, std::string>> kv;
+    for (const char* key : {"accel", "scene_stats", "geometry", "firmware_cost", "image"}) {
+      const json* o = find(stats, key);
+      if (!o || !o->is_object()) continue;
+      for (const auto& [k, x] : o->items())
+        kv.emplace_back(std::string(key) + "." + k, value_text(x));
+    }
+    if (!kv.empty()) {
+      page.heading("Scene and firmware");
+      page.key_values(kv);
+    }
+  }
+
+  // Parameters with their sources.
+  page.heading("Parameters");
+  if (!in.params.empty()) {
+    page.paragraph(
+        "Every parameter as used. \"set by\" is where the value came from (default, "
+        "FILE:LINE of a config, or -p); rows not at their default are bold. \"source\" is "
+        "where the default comes from (a seed line or an assumption).");
+    std::vector<std::vector<std::string>> rows;
+    std::vector<bool> set;
+    for (const auto& p : in.params) {
+      rows.push_back({p.name, p.value_text, p.default_text, p.where_set, p.source});
+      set.push_back(p.where_set != "default");
+    }
+    page.table({"parameter", "value", "default", "set by", "source"}, rows, set);
+  } else if (const json* ps = find(stats, "params"); ps && ps->is_object()) {
+    page.paragraph("Every parameter as used (stats.json params; sources: `rtsim list params`).");
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& [k, v] : ps->items()) rows.push_back({k, value_text(v)});
+    page.table({"parameter", "value"}, rows);
+  }
+
+  page.paragraph("Written by " + str(stats, "tool") + " " + str(stats, "version") +
+                 ". Every figure here is also in stats.json (schema: docs/stats.md).");
+  page.write(out_html);
+}
+
+}  // namespace rtsim::app

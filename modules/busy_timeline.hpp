@@ -1,0 +1,53 @@
+#pragma once
+// When a module was busy, coarsely: busy intervals are summed into fixed-width time bins whose
+// width doubles (pairs of bins merge) whenever the recorded span outgrows kMaxBins, so memory
+// stays bounded however long the frame and however many intervals. At the end the bins are
+// resampled into N equal windows of the frame: the busy fraction per window, for utilisation
+// over time (stats.json `modules.NAME.utilization_windows`, analysis/utilisation_timeline.py).
+//
+// Exact while a window boundary falls on a bin boundary; otherwise a bin cut by a window
+// boundary is shared out in proportion to the overlap (as if its busy time were spread evenly
+// over the part of the bin between the first start and the last end recorded), an error of at
+// most one bin width per boundary. The span is at least kMaxBins / 2 bins wide once it has
+// grown, so with 100 windows that is < 1.3% of a window.
+#include <cstdint>
+#include <systemc>
+#include <vector>
+
+namespace rtsim::modules {
+
+/// Busy fraction per window of a frame.
+struct UtilizationWindows {
+  double begin_s = 0.0;          ///< absolute simulated time of the first window's start
+  double window_s = 0.0;         ///< width of every window
+  std::vector<double> values{};  ///< busy time / window_s, in [0, 1]; empty: not recorded
+};
+
+class BusyTimeline {
+ public:
+  /// Bins kept at most; 16384 x 8 bytes = 128 KiB a module at most.
+  static constexpr std::size_t kMaxBins = 16384;
+
+  /// The module was busy over [start, start + duration). Intervals may come in any order;
+  /// overlapping intervals add (a pipelined unit records its issue slots, which never overlap).
+  void add(const sc_core::sc_time& start, const sc_core::sc_time& duration);
+
+  /// Busy fraction in `n` equal windows of [begin, end]. Empty if n == 0 or end <= begin.
+  UtilizationWindows windows(const sc_core::sc_time& begin, const sc_core::sc_time& end,
+                             std::size_t n) const;
+
+  /// Total busy time recorded (exact: the bins hold integer ticks).
+  sc_core::sc_time total() const;
+  std::uint64_t bin_width_ticks() const { return width_; }
+  std::size_t bins() const { return busy_.size(); }
+
+ private:
+  void merge_pairs();
+  std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
+  std::uint64_t width_ = 1;   ///< ticks per bin
+  std::uint64_t first_ = 0;   ///< earliest start recorded
+  std::uint64_t last_ = 0;    ///< latest end recorded
+  std::vector<std::uint64_t> busy_;
+};
+
+}  // namespace rtsim::modules

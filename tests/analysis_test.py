@@ -1,0 +1,391 @@
+#!/usr/bin/python3
+"""Tests of analysis/: each script on small inputs made here, checking the numbers it draws
+(through the function that computes them) and that its PNG is a real picture. Run by CTest
+(tests/CMakeLists.txt) with Debian's /usr/bin/python3; exits 77 (skipped) when matplotlib,
+numpy or pandas is missing. With RTSIM_BINARY set, also one real `rtsim run` whose trace and
+stats.json must give the same utilisation."""
+
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SKIP = 77
+HERE = os.path.dirname(os.path.abspath(__file__))
+ANALYSIS = os.path.join(os.path.dirname(HERE), "analysis")
+sys.path.insert(0, ANALYSIS)
+
+try:
+    import matplotlib  # noqa: F401
+    import numpy as np
+    import pandas  # noqa: F401
+except ImportError as e:
+    print(f"analysis_test: skipped: {e} (Debian: python3-matplotlib python3-numpy "
+          "python3-pandas)")
+    sys.exit(SKIP)
+
+import figures  # noqa: E402
+import latency_histogram  # noqa: E402
+import sweep_plot  # noqa: E402
+import utilisation_timeline  # noqa: E402
+
+PYTHON = sys.executable
+
+
+def run_script(name, *args):
+    return subprocess.run([PYTHON, os.path.join(ANALYSIS, name), *map(str, args)],
+                          capture_output=True, text=True, timeout=120)
+
+
+def png_size(path):
+    """(width, height) from the PNG header; fails the test if it is not a PNG."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return struct.unpack(">II", head[16:24])
+
+
+class PngMixin:
+    def assertGoodPng(self, path, min_w=300, min_h=200):
+        self.assertTrue(os.path.exists(path), path)
+        w, h = png_size(path)
+        self.assertGreaterEqual(w, min_w)
+        self.assertGreaterEqual(h, min_h)
+        self.assertGreater(os.path.getsize(path), 5000)  # more than an empty canvas
+        import matplotlib.image as mpimg
+
+        pixels = mpimg.imread(path)
+        self.assertGreater(float(pixels[..., :3].std()), 0.02, "the picture is blank")
+        # No half-written temporary left beside it.
+        folder = os.path.dirname(os.path.abspath(path))
+        self.assertEqual([f for f in os.listdir(folder) if f.endswith(".partial")], [])
+
+
+class SweepPlotTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+        self.csv = os.path.join(self.dir, "results.csv")
+        with open(self.csv, "w") as f:
+            f.write("machine,scene,pert.count,link.bit_time,simulated_time_s,wall_time_s,"
+                    "rays.total,modules.host.utilization,exit_status,error,unrelated\n"
+                    "gaudet-pert,builtin:npp-404,1,200 ns,8.0,1.5,100,0.9,0,,a\n"
+                    "gaudet-pert,builtin:npp-404,2,200 ns,4.0,1.2,100,0.8,0,,b\n"
+                    "gaudet-pert,builtin:npp-404,4,200 ns,2.5,1.1,100,0.7,0,,c\n"
+                    "gaudet-pert,builtin:npp-404,4,200 ns,1.5,1.1,100,0.7,0,,repeat\n"
+                    "gaudet-pert,builtin:npp-408,1,400 ns,10.0,2.0,100,0.9,0,,d\n"
+                    "gaudet-pert,builtin:npp-408,2,400 ns,6.0,2.0,100,0.8,0,,e\n"
+                    "gaudet-pert,builtin:npp-408,8,400 ns,,0,0,0,1,crashed,f\n")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_speed_up_per_scene_against_the_one_pert_row(self):
+        df = sweep_plot.read_results(self.csv)
+        series, cats = sweep_plot.compute_series(df, "pert.count", "simulated_time_s", "scene",
+                                                 "pert.count=1")
+        self.assertIsNone(cats)
+        xs, ys = series["builtin:npp-404"]
+        np.testing.assert_allclose(xs, [1, 2, 4])
+        # 8/8, 8/4, 8/mean(2.5, 1.5): repeated points are averaged before the ratio is drawn.
+        np.testing.assert_allclose(ys, [1.0, 2.0, 4.0])
+        xs, ys = series["builtin:npp-408"]
+        np.testing.assert_allclose(xs, [1, 2])  # the failed 8-PERT point is left out
+        np.testing.assert_allclose(ys, [1.0, 10.0 / 6.0])
+
+    def test_units_spelling_and_plain_values(self):
+        df = sweep_plot.read_results(self.csv)
+        # "200 ns" reads as 2e-7 s; utilisation finds the utilization column.
+        series, _ = sweep_plot.compute_series(df, "link.bit_time", "modules.host.utilisation",
+                                              "scene")
+        xs, ys = series["builtin:npp-404"]
+        np.testing.assert_allclose(xs, [2e-7])
+        np.testing.assert_allclose(ys, [(0.9 + 0.8 + 0.7 + 0.7) / 4])
+        self.assertAlmostEqual(sweep_plot.to_number("5 MHz"), 5e6)
+        self.assertAlmostEqual(sweep_plot.to_number("1.5 Gbit/s"), 1.5e9)
+        self.assertIsNone(sweep_plot.to_number("scanline"))
+
+    def test_jsonl_nested_objects_become_dotted_columns(self):
+        path = os.path.join(self.dir, "results.jsonl")
+        with open(path, "w") as f:
+            for n, t in ((1, 9.0), (3, 3.0)):
+                f.write(json.dumps({"machine": "m", "scene": "s", "peripheral.grid.divisions": n,
+                                    "simulated_time_s": t, "rays": {"total": 7},
+                                    "status": "ok"}) + "\n")
+            f.write(json.dumps({"machine": "m", "scene": "s", "peripheral.grid.divisions": 5,
+                                "status": "failed", "error": "boom"}) + "\n")
+        df = sweep_plot.read_results(self.dir)  # the folder: results.jsonl is found
+        series, _ = sweep_plot.compute_series(df, "peripheral.grid.divisions", "rays.total")
+        np.testing.assert_allclose(series["all"][0], [1, 3])
+        np.testing.assert_allclose(series["all"][1], [7, 7])
+        series, _ = sweep_plot.compute_series(df, "peripheral.grid.divisions",
+                                              "simulated_time_s", None, "simulated_time_s",
+                                              "fraction")
+        np.testing.assert_allclose(series["all"][1], [1.0, 1.0])
+
+    def test_command_line_writes_a_png_and_rejects_an_unknown_column(self):
+        out = os.path.join(self.dir, "speedup.png")
+        r = run_script("sweep_plot.py", self.csv, out, "--x", "pert.count", "--y",
+                       "simulated_time_s", "--ratio-to", "pert.count=1", "--logx")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        r = run_script("sweep_plot.py", self.csv, out + "2", "--x", "pert.count", "--y",
+                       "simulated_tme_s")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("did you mean simulated_time_s", r.stderr)
+        self.assertFalse(os.path.exists(out + "2"))
+        self.assertEqual(run_script("sweep_plot.py", "--help").returncode, 0)
+
+
+def make_trace():
+    """Two tracks and a queue counter over [0, 40) us."""
+    meta = [
+        {"name": "thread_name", "ph": "M", "pid": 1, "tid": 2, "args": {"name": "bus"}},
+        {"name": "thread_name", "ph": "M", "pid": 1, "tid": 3, "args": {"name": "cpu"}},
+    ]
+    ev = [
+        # bus: [0, 10) and [20, 30) us -> windows of 10 us: 1, 0, 1, 0
+        {"name": "x", "ph": "X", "ts": 0.0, "dur": 10.0, "pid": 1, "tid": 2},
+        {"name": "x", "ph": "X", "ts": 20.0, "dur": 10.0, "pid": 1, "tid": 2},
+        # cpu: [5, 15) and an overlapping [10, 15) (counted once), [35, 40)
+        {"name": "y", "ph": "X", "ts": 5.0, "dur": 10.0, "pid": 1, "tid": 3},
+        {"name": "y", "ph": "X", "ts": 10.0, "dur": 5.0, "pid": 1, "tid": 3},
+        {"name": "y", "ph": "X", "ts": 35.0, "dur": 5.0, "pid": 1, "tid": 3},
+        # queue depth: 2 over [0, 20), 4 over [20, 40)
+        {"name": "q.depth", "ph": "C", "ts": 0.0, "pid": 1, "tid": 2, "args": {"value": 2}},
+        {"name": "q.depth", "ph": "C", "ts": 20.0, "pid": 1, "tid": 2, "args": {"value": 4}},
+        {"name": "q.depth", "ph": "C", "ts": 40.0, "pid": 1, "tid": 2, "args": {"value": 0}},
+    ]
+    return {"traceEvents": meta + ev[::-1], "displayTimeUnit": "ns"}  # out of time order
+
+
+class UtilisationTimelineTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_busy_fraction_per_window_from_a_trace(self):
+        edges, busy, depth = utilisation_timeline.busy_from_trace(make_trace(), windows=4)
+        np.testing.assert_allclose(edges, [0, 10e-6, 20e-6, 30e-6, 40e-6], atol=1e-15)
+        np.testing.assert_allclose(busy["bus"], [1.0, 0.0, 1.0, 0.0], atol=1e-9)
+        np.testing.assert_allclose(busy["cpu"], [0.5, 0.5, 0.0, 0.5], atol=1e-9)
+        np.testing.assert_allclose(depth["q.depth"], [2.0, 2.0, 4.0, 4.0], atol=1e-9)
+        # Windows given by width; a regular expression keeps only some tracks.
+        edges, busy, _ = utilisation_timeline.busy_from_trace(make_trace(), window_s=20e-6,
+                                                              modules="^bus$")
+        self.assertEqual(list(busy), ["bus"])
+        np.testing.assert_allclose(busy["bus"], [0.5, 0.5], atol=1e-9)
+
+    def test_windows_from_stats_json(self):
+        stats = {"machine": "m", "scene": "s", "modules": {
+            "host": {"busy_s": 1.0, "utilization_windows": {
+                "begin_s": 2.0, "window_s": 0.5, "values": [1.0, 0.5, 0.0]}},
+            "queue": {"busy_s": 0.0}}}
+        edges, series = utilisation_timeline.busy_from_stats(stats)
+        np.testing.assert_allclose(edges, [2.0, 2.5, 3.0, 3.5])
+        self.assertEqual(list(series), ["host"])
+        np.testing.assert_allclose(series["host"][1], [1.0, 0.5, 0.0])
+
+    def test_command_line_on_a_trace_and_on_stats(self):
+        trace = os.path.join(self.dir, "trace.json")
+        with open(trace, "w") as f:
+            json.dump(make_trace(), f)
+        out = os.path.join(self.dir, "t.png")
+        r = run_script("utilisation_timeline.py", trace, out, "--windows", "8")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        stats = os.path.join(self.dir, "stats.json")
+        with open(stats, "w") as f:
+            json.dump({"modules": {"host": {"utilization_windows": {
+                "begin_s": 0.0, "window_s": 1e-3, "values": [0.2, 0.9, 0.4]}}}}, f)
+        out2 = os.path.join(self.dir, "s.png")
+        r = run_script("utilisation_timeline.py", stats, out2)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out2)
+        with open(stats, "w") as f:
+            json.dump({"modules": {"host": {"busy_s": 1}}}, f)
+        r = run_script("utilisation_timeline.py", stats, out2)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("utilization_windows", r.stderr)
+
+
+class LatencyHistogramTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_series_and_png(self):
+        stats = {"machine": "m", "scene": "s", "ray_latency_s": {
+            "count": 7, "mean": 2.5e-6, "p50": 2e-6, "p99": 4e-6, "max": 4e-6,
+            "histogram": {"edges_s": [1e-6, 2e-6, 4e-6, 8e-6], "counts": [1, 4, 2]}}}
+        edges, counts, marks = latency_histogram.histogram_series(stats)
+        self.assertEqual(edges, [1e-6, 2e-6, 4e-6, 8e-6])
+        self.assertEqual(counts, [1, 4, 2])
+        self.assertEqual(marks, {"mean": 2.5e-6, "p50": 2e-6, "p99": 4e-6, "max": 4e-6})
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(stats, f)
+        out = os.path.join(self.dir, "l.png")
+        r = run_script("latency_histogram.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        with self.assertRaises(Exception):
+            latency_histogram.histogram_series({"ray_latency_s": {
+                "histogram": {"edges_s": [1, 2], "counts": [1, 2]}}})
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            f.write("{ not json")
+        r = run_script("latency_histogram.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("stats.json:1", r.stderr)
+
+
+def g_row(rid, title, seed_ref, seed_value, simulated, unit="us", workload=""):
+    return {"id": rid, "title": title, "seed_ref": seed_ref, "seed_text": "", "unit": unit,
+            "seed_value": seed_value, "simulated_value": simulated, "relative_error": None,
+            "tolerance": {"kind": "relative", "value": 0.2}, "pass": True, "note": "",
+            "error": "", "workload": workload}
+
+
+class FiguresTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_ullner_model_reproduces_the_seed_minimum(self):
+        # L652 with L654's parameters: minimum 14.3 us at n_s = 11 (seed 000 L654), and 1/3 ms
+        # plus stepping and latency without subdivision.
+        values = {n: figures.ullner_model_us(n) for n in range(1, 31)}
+        best = min(values, key=values.get)
+        self.assertEqual(best, 11)
+        self.assertAlmostEqual(values[11], 14.31, delta=0.01)
+        self.assertAlmostEqual(values[1], 1.0 + 1000.0 / 3.0 + 5.6, places=9)
+        self.assertAlmostEqual(figures.ullner_model_intersections(1), 1000.0)
+
+    def test_gaudet_rows_are_matched_to_the_thesis_cells(self):
+        rows = [
+            # The existing G1 (an image identity figure) must match nothing.
+            g_row("G1", "the peripheral's image equals the functional renderer's", "DESIGN.md",
+                  0, 0, unit=""),
+            g_row("G610a", "Fig 6-10: ShellProcessor processing per ray, binary tree (212)",
+                  "seed 001 L1026", 467.8, 455.0),
+            g_row("G610b", "ShellProcessor latency per ray, quad tree", "seed 001 L1027", 5.0,
+                  6.0e-6, unit="s", workload="builtin:npp-412"),
+            g_row("G611-404-depth", "Fig 6-11 scene 404: depth-first latency per ray",
+                  "seed 001 L1033", 11.4, 10.9),
+            g_row("G611-404-random", "Fig 6-11 scene 404: random order latency per ray",
+                  "seed 001 L1033", 11.4, 11.8),
+            g_row("G611-412-breadth", "Fig 6-11 scene 412, breadth-first", "seed 001 L1035", 5.0,
+                  5000.0, unit="ns"),
+        ]
+        fig610, fig611 = figures.gaudet_points(rows)
+        self.assertEqual(fig610, {("binary", "processing"): 455.0, ("quad", "latency"): 6.0})
+        self.assertEqual(fig611, {(404, "depth"): 10.9, (404, "random"): 11.8,
+                                  (412, "breadth"): 5.0})
+
+    def make_validation(self, with_gaudet):
+        rows = [g_row("V8b", "Fig. 2-18, analytic model: minimum", "seed 000 L654", 14.3, 14.31),
+                g_row("VAX3", "T_i recovered", "seed 001 L317", 429, 429.0),
+                g_row("VAX4", "T_s recovered", "seed 001 L318", 710, 710.0)]
+        if with_gaudet:
+            rows.append(g_row("G6-10q", "processing per ray, quad tree (412)", "seed 001 L1026",
+                              523.9, 510.0))
+        with open(os.path.join(self.dir, "validation.json"), "w") as f:
+            json.dump({"rows": rows}, f)
+        with open(os.path.join(self.dir, "fig2-18.csv"), "w") as f:
+            f.write("n_s,model_t_r_us,simulated_t_r_us,model_intersections_per_ray,"
+                    "simulated_tests_per_ray,model_t_r_measured_d_r_us\n")
+            for n in (1, 4, 11, 30):
+                f.write(f"{n},{figures.ullner_model_us(n)},{figures.ullner_model_us(n) * 1.1},"
+                        f"{figures.ullner_model_intersections(n)},20,"
+                        f"{figures.ullner_model_us(n)}\n")
+        run = os.path.join(self.dir, "runs-abc123", "vax-default")
+        os.makedirs(run)
+        with open(os.path.join(run, "stats.json"), "w") as f:
+            json.dump({"rays": {"total": 100}, "scene_stats": {"primitives": 10},
+                       "simulated_time_s": 100 * (710e-6 + 10 * 429e-6)}, f)
+
+    def test_series_read_from_a_validation_folder(self):
+        self.make_validation(with_gaudet=True)
+        val = figures.Validation(self.dir)
+        s = figures.series_fig218(val)
+        np.testing.assert_allclose(s["simulated"][0], [1, 4, 11, 30])
+        np.testing.assert_allclose(s["simulated"][1],
+                                   [figures.ullner_model_us(n) * 1.1 for n in (1, 4, 11, 30)])
+        points, rec = figures.series_vax(val)
+        self.assertEqual(len(points), 1)
+        self.assertAlmostEqual(points[0][0], 10)
+        self.assertAlmostEqual(points[0][1], 0.710 + 10 * 0.429)  # ms per ray
+        self.assertEqual(rec, {"t_i_us": 429.0, "t_s_us": 710.0})
+        fig610, _ = figures.gaudet_points(val.rows)
+        self.assertEqual(fig610, {("quad", "processing"): 510.0})
+
+    def test_command_line_draws_what_there_is(self):
+        self.make_validation(with_gaudet=False)
+        out = os.path.join(self.dir, "all.png")
+        each = os.path.join(self.dir, "each")
+        r = run_script("figures.py", self.dir, out, "--each", each)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out, 800, 800)
+        # No cubes runs: Fig 2-19 is skipped with a note; the Gaudet tables are drawn from the
+        # thesis alone.
+        self.assertIn("fig2-19: no data", r.stderr)
+        drawn = sorted(os.listdir(each))
+        self.assertEqual(drawn, ["fig2-18.png", "fig2-21.png", "fig6-10.png", "fig6-11.png",
+                                 "summary.png", "vax.png"])
+        for name in drawn:
+            self.assertGoodPng(os.path.join(each, name))
+        r = run_script("figures.py", self.dir, out, "--figure", "fig9-99")
+        self.assertEqual(r.returncode, 2)
+
+
+@unittest.skipUnless(os.environ.get("RTSIM_BINARY"), "RTSIM_BINARY not set")
+class RealRunTest(unittest.TestCase, PngMixin):
+    """A real run: the trace and stats.json windows must tell the same story."""
+
+    def test_trace_and_stats_agree_on_utilisation(self):
+        out = tempfile.mkdtemp(prefix="rtsim-analysis-run-")
+        try:
+            r = subprocess.run([os.environ["RTSIM_BINARY"], "run", "--width", "16", "--height",
+                                "16", "--trace", "perfetto", "-q", "--out", out],
+                               capture_output=True, text=True, timeout=300)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "stats.json")) as f:
+                stats = json.load(f)
+            edges, series = utilisation_timeline.busy_from_stats(stats)
+            for name, (e, values) in series.items():
+                m = stats["modules"][name]
+                # The windows add up to the module's busy time and average to its utilisation.
+                self.assertAlmostEqual(float(np.sum(values)) * (e[1] - e[0]), m["busy_s"],
+                                       delta=1e-9 + 1e-6 * m["busy_s"])
+                self.assertAlmostEqual(float(np.mean(values)), m["utilization"], delta=1e-6)
+            tedges, busy, depth = utilisation_timeline.busy_from_trace(
+                utilisation_timeline.load(os.path.join(out, "trace.json"))[1], windows=100)
+            self.assertIn("peripheral.ray_queue.depth", depth)
+            # The pipeline's slices are its busy intervals: the same busy time as stats.json.
+            trace_busy = float(np.sum(busy["peripheral.pipeline"]) * (tedges[1] - tedges[0]))
+            self.assertAlmostEqual(trace_busy, stats["modules"]["peripheral.pipeline"]["busy_s"],
+                                   delta=0.01 * stats["modules"]["peripheral.pipeline"]["busy_s"])
+            for script, args in (("utilisation_timeline.py", [out]),
+                                 ("latency_histogram.py", [os.path.join(out, "stats.json")])):
+                png = os.path.join(out, script.replace(".py", ".png"))
+                r = run_script(script, *args, png)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                self.assertGoodPng(png)
+        finally:
+            shutil.rmtree(out)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

@@ -1,0 +1,153 @@
+// `rtsim run --report`: report.html is one self-contained page (pictures embedded as base64
+// PNG), staged with the other outputs, with plots drawn by analysis/ when Debian's python3 and
+// matplotlib are there and a note instead when they are not; and it opens in headless
+// Chromium (Debian's chromium package) with every picture decoded and no console message.
+#include "app/report.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
+/// The base64 data of the page's <img> elements (found by hand: std::regex recurses per
+/// character and overflows the stack on 100 kB of base64).
+std::vector<std::string> image_data(const std::string& html) {
+  std::vector<std::string> out;
+  const std::string prefix = "src=\"data:image/png;base64,";
+  for (std::size_t p = html.find("<img"); p != std::string::npos; p = html.find("<img", p + 1)) {
+    const std::size_t end_tag = html.find('>', p);
+    const std::size_t src = html.find(prefix, p);
+    if (src == std::string::npos || src > end_tag) {
+      out.emplace_back();  // an <img> without inline PNG data
+      continue;
+    }
+    const std::size_t begin = src + prefix.size();
+    out.push_back(html.substr(begin, html.find('"', begin) - begin));
+  }
+  return out;
+}
+
+bool matplotlib_available() {
+  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy, pandas' >/dev/null 2>&1") == 0;
+}
+
+std::string chromium() {
+  for (const char* p : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
+    if (fs::exists(p)) return p;
+  return "";
+}
+
+const char* kRunArgs =
+    "run --machine ullner-peripheral --scene builtin:ullner-cubes --width 32 --height 32 "
+    "-p peripheral.grid.divisions=4 --trace perfetto --report -q";
+
+}  // namespace
+
+TEST(Report, Base64AndEscaping) {
+  EXPECT_EQ(rtsim::app::base64(""), "");
+  EXPECT_EQ(rtsim::app::base64("f"), "Zg==");
+  EXPECT_EQ(rtsim::app::base64("fo"), "Zm8=");
+  EXPECT_EQ(rtsim::app::base64("foo"), "Zm9v");
+  EXPECT_EQ(rtsim::app::base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(rtsim::app::base64(std::string("\x89PNG", 4)), "iVBORw==");
+  EXPECT_EQ(rtsim::app::html_escape("<a href=\"x\">&'</a>"),
+            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
+}
+
+TEST(Report, RunWritesASelfContainedPageWithImagePlotsAndParameters) {
+  if (!matplotlib_available()) GTEST_SKIP() << "no /usr/bin/python3 with matplotlib";
+  const auto dir = scratch_dir("report");
+  const auto r = run_rtsim(std::string(kRunArgs) + " --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(dir / "report.html"));
+  const std::string html = read_file(dir / "report.html");
+  // The frame, the utilisation timeline and the latency histogram, each a real PNG inline.
+  const auto images = image_data(html);
+  ASSERT_EQ(images.size(), 3u) << html.substr(0, 2000);
+  for (const auto& b64 : images) {
+    EXPECT_EQ(b64.rfind("iVBORw0KGgo", 0), 0u);  // base64 of the PNG signature
+    EXPECT_GT(b64.size(), 1000u);
+  }
+  EXPECT_EQ(count(html, "src=\"http"), 0);  // nothing fetched from elsewhere
+  EXPECT_EQ(count(html, "src=\"file"), 0);
+  EXPECT_NE(html.find("simulated frame time"), std::string::npos);
+  EXPECT_NE(html.find("ray latency"), std::string::npos);
+  EXPECT_NE(html.find("peripheral.pipeline"), std::string::npos);
+  // Parameters with where they were set and their documented source.
+  EXPECT_NE(html.find("<tr class=\"set\"><td>peripheral.grid.divisions</td><td>4</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>-p</td>"), std::string::npos);
+  EXPECT_NE(html.find("seed 000 L"), std::string::npos);
+  EXPECT_EQ(html.find("Plots are missing"), std::string::npos);
+  // Staged with the rest: no scratch or partial file left behind.
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().rfind(".rtsim-partial", 0), std::string::npos)
+        << e.path();
+  fs::remove_all(dir);
+}
+
+TEST(Report, BadInputWritesNothing) {
+  const auto dir = scratch_dir("report-bad");
+  const auto r = run_rtsim("run --scene builtin:no-such-scene --report -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(Report, WithoutPythonThePageSaysWhyThereAreNoPlots) {
+  const auto dir = scratch_dir("report-nopython");
+  const std::string cmd = "RTSIM_PYTHON=/nonexistent/python3 " + std::string(RTSIM_BINARY) +
+                          " run --machine vax-750 --scene builtin:ullner-cubes --width 8 "
+                          "--height 8 -p shade.max_depth=0 --report -q --out " +
+                          dir.string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string html = read_file(dir / "report.html");
+  EXPECT_EQ(image_data(html).size(), 1u);  // the frame only
+  EXPECT_NE(html.find("Plots are missing"), std::string::npos);
+  EXPECT_NE(html.find("/nonexistent/python3"), std::string::npos);
+  EXPECT_NE(html.find("simulated frame time"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Report, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) {
+  const std::string browser = chromium();
+  if (browser.empty()) GTEST_SKIP() << "chromium is not installed (Debian package chromium)";
+  if (!matplotlib_available()) GTEST_SKIP() << "no /usr/bin/python3 with matplotlib";
+  const auto dir = scratch_dir("report-chromium");
+  const auto r = run_rtsim(std::string(kRunArgs) + " --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path page = fs::absolute(dir / "report.html");
+  const fs::path dom = dir / "dom.html", log = dir / "chromium.log";
+  // --virtual-time-budget lets the load event (and the page's check of its pictures) run
+  // before the DOM is dumped; a profile of its own keeps parallel runs apart.
+  const std::string cmd = "timeout 120 " + browser +
+                          " --headless --disable-gpu --no-sandbox --enable-logging=stderr "
+                          "--v=0 --virtual-time-budget=10000 --user-data-dir=" +
+                          (dir / "profile").string() + " --dump-dom file://" + page.string() +
+                          " >" + dom.string() + " 2>" + log.string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(log);
+  const std::string html = read_file(dom);
+  const auto images = image_data(html);
+  ASSERT_EQ(images.size(), 3u) << html.substr(0, 2000);
+  for (const auto& b64 : images) EXPECT_GT(b64.size(), 1000u);
+  // Set by the page once loaded: every <img> decoded (naturalWidth > 0).
+  EXPECT_NE(html.find("data-images-decoded=\"3\""), std::string::npos) << html.substr(0, 500);
+  // Chromium logs every console message (console.log, console.error, uncaught exceptions) as
+  // ":CONSOLE" lines; the page writes to the console only when something is wrong.
+  const std::string messages = read_file(log);
+  EXPECT_EQ(messages.find(":CONSOLE"), std::string::npos) << messages;
+  fs::remove_all(dir);
+}
