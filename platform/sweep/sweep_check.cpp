@@ -52,7 +52,9 @@ void check_sweep(const SweepFile& file, const std::vector<Point>& points,
       try {
         registry.apply_override(s.name + "=" + s.value.text);
       } catch (const InputError& e) {
-        throw InputError(file.origin, s.value.line,
+        // An unknown name is reported where the name is; a bad value where the value is.
+        const std::size_t line = registry.contains(s.name) ? s.value.line : s.name_line;
+        throw InputError(file.origin, line,
                          "on machine " + in_quotes(machine->value.text) + ": " + e.message());
       }
     }

@@ -229,8 +229,8 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
     // A step that lands on stop within rounding includes it.
     const double n = std::floor(span + 1e-9) + 1;
     if (n > static_cast<double>(kMaxPoints))
-      fail(line,
-           where + " has " + exact_text(n) + " values, more than " + std::to_string(kMaxPoints));
+      fail(line, where + " has " + std::to_string(static_cast<long long>(n)) +
+                     " values, more than " + std::to_string(kMaxPoints));
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
       raw.push_back(start + static_cast<double>(k) * s);
   }

@@ -68,7 +68,7 @@ std::vector<Point> expand_points(const SweepFile& file) {
     p.index = index;
     p.key = std::to_string(index);
     if (p.key.size() < digits) p.key.insert(0, digits - p.key.size(), '0');
-    for (const auto& f : file.fixed) p.settings.push_back({f.name, f.value, false});
+    for (const auto& f : file.fixed) p.settings.push_back({f.name, f.value, false, f.value.line});
     // Mixed-radix digits of the index, the last axis fastest.
     std::vector<std::size_t> at(file.axes.size());
     std::size_t rest = index;
@@ -78,7 +78,7 @@ std::vector<Point> expand_points(const SweepFile& file) {
     }
     for (std::size_t a = 0; a < file.axes.size(); ++a)
       for (const auto& m : file.axes[a].members)
-        p.settings.push_back({m.name, m.values[at[a]], true});
+        p.settings.push_back({m.name, m.values[at[a]], true, m.line});
 
     p.args = {"run", "--machine", p.machine(), "--scene", scene_argument(file, p.scene())};
     for (std::string_view option : {kWidth, kHeight})

@@ -14,7 +14,8 @@ namespace rtsim::sweep {
 struct Setting {
   std::string name{};
   Value value{};
-  bool swept = false;  ///< from an axis (a column of the results table), not fixed
+  bool swept = false;         ///< from an axis (a column of the results table), not fixed
+  std::size_t name_line = 0;  ///< where the name is given (for an unknown name)
 };
 
 struct Point {
