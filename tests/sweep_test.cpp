@@ -421,3 +421,22 @@ TEST(ResultsTable, OneRowPerPointWithSweptValuesStatsAndFailures) {
   EXPECT_TRUE(is_wall_clock_column("wall_time_s"));
   EXPECT_FALSE(is_wall_clock_column("simulated_time_s"));
 }
+
+TEST(SweepExamples, ConfigsSweepsParse) {
+  // Fig. 2-18 is checked whole (its machine exists); gaudet-pert may not be built yet, so its
+  // example is only read and counted.
+  const std::string dir = std::string(RTSIM_SOURCE_DIR) + "/configs/sweeps/";
+  const SweepFile fig = read_sweep_file(dir + "fig2-18-grid.toml");
+  const auto points = expand_points(fig);
+  ASSERT_EQ(points.size(), 30u);
+  EXPECT_EQ(points.front().find("peripheral.grid.divisions")->value.text, "1");
+  EXPECT_EQ(points.back().find("peripheral.grid.divisions")->value.text, "30");
+  EXPECT_NO_THROW(check_sweep(fig, points));
+
+  const SweepFile gaudet = read_sweep_file(dir + "gaudet-pert-speedup.toml");
+  EXPECT_EQ(gaudet.point_count(), 3u * 7u);
+  EXPECT_EQ(texts(gaudet.axes.back().members.at(0)),
+            (Strings{"1", "2", "4", "8", "16", "32", "64"}));
+  EXPECT_EQ(texts(gaudet.axes.front().members.at(0)),
+            (Strings{"builtin:npp-412", "builtin:npp-816", "builtin:npp-820"}));
+}
