@@ -110,7 +110,8 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   fs::create_directories(points_dir);
   if (!args.quiet) {
     std::cout << "rtsim sweep: " << (plan.file.name.empty() ? args.file : plan.file.name) << ": "
-              << n << " points, " << requests.size() << " to run (" << reused << " done before), ";
+              << n << (n == 1 ? " point, " : " points, ") << requests.size() << " to run ("
+              << reused << " done before), ";
     if (session)
       std::cout << session->size() << " MPI ranks, " << jobs << " at a time on each";
     else
@@ -130,14 +131,20 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
       outcomes[p.index] = o;
       if (o.ok) {
         const fs::path dir = points_dir / p.key;
-        // A rank without a shared file system wrote stats.json on its own disk: keep a copy
-        // here, where the table, the marker and resuming live.
-        std::error_code ec;
-        if (!fs::exists(dir / "stats.json", ec)) {
-          fs::create_directories(dir);
-          sweep::write_file_atomically(dir / "stats.json", o.stats_text);
+        try {
+          // A rank without a shared file system wrote stats.json on its own disk: keep a copy
+          // here, where the table, the marker and resuming live.
+          std::error_code ec;
+          if (!fs::exists(dir / "stats.json", ec)) {
+            fs::create_directories(dir);
+            sweep::write_file_atomically(dir / "stats.json", o.stats_text);
+          }
+          sweep::write_marker(dir, p, o);
+        } catch (const std::exception& e) {
+          // Called from the queue's threads: a full disk fails the point, not the sweep.
+          outcomes[p.index].ok = false;
+          outcomes[p.index].error = std::string("ran, but cannot record it: ") + e.what();
         }
-        sweep::write_marker(dir, p, o);
       }
       if (!args.quiet) bar.update(++finished, static_cast<long>(requests.size()));
     };
@@ -168,8 +175,9 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   std::size_t failed = 0;
   for (const auto& o : outcomes) failed += o.ok ? 0 : 1;
   if (!args.quiet) {
-    std::cout << "rtsim sweep: " << n << " points: " << n - failed << " ok (" << reused
-              << " done before), " << failed << " failed; " << wall << " s wall\n";
+    std::cout << "rtsim sweep: " << n << (n == 1 ? " point: " : " points: ") << n - failed
+              << " ok (" << reused << " done before), " << failed << " failed; " << wall
+              << " s wall\n";
     std::size_t shown = 0;
     for (const auto& p : plan.points) {
       const auto& o = outcomes[p.index];
