@@ -20,6 +20,32 @@ constexpr const char* kFooter =
     "Scenes: an .nff or .bpt file, or builtin:NAME (see `rtsim list scenes`).\n"
     "Parameters: `rtsim list params` prints every name with its value, unit, default and source.";
 
+constexpr const char* kSweepFooter =
+    "\nThe sweep file (docs/sweeps.md has the whole format and examples):\n"
+    "  machine = \"ullner-peripheral\"          a machine, or a list of them (an axis)\n"
+    "  scene = \"builtin:ullner-sheets-1000\"   a scene, or a list (files: relative to the sweep)\n"
+    "  width = 64                             image size (optional: the scene's)\n"
+    "  height = 64\n"
+    "  configs = [\"base.toml\"]                optional --config files for every point\n"
+    "  [params]                               fixed parameters, as -p NAME=VALUE\n"
+    "  \"shade.max_depth\" = 0\n"
+    "  [[axes]]                               an axis: one parameter and its values\n"
+    "  param = \"peripheral.grid.divisions\"\n"
+    "  range = { start = 1, stop = 30, step = 1 }     or count = N; or values = [1, 2, 4]\n"
+    "  [[axes]]\n"
+    "  param = \"pert_count\"\n"
+    "  range = { start = 1, stop = 64, count = 7, scale = \"log\" }    1, 2, 4, ..., 64\n"
+    "  [[axes]]                               zipped: parameters that advance together\n"
+    "  zip = [ { param = \"a\", values = [1, 2] }, { param = \"b\", values = [\"1 ns\", \"2 ns\"] "
+    "} ]\n"
+    "The points are the cartesian product of the axes: machine, scene, then [[axes]] in file\n"
+    "order, the last varying fastest. Every name and value is checked before any point runs.\n"
+    "\nOutputs in --out: results.csv and results.jsonl (one row per point, in point order: the\n"
+    "swept values, status, exit code, error, wall time and every stats.json number), and\n"
+    "points/NNNN/ (stats.json, images, run.log, done.json). A point whose folder holds a\n"
+    "done.json with the same command line is not run again.\n"
+    "\nExit status: 0 all points ran, 1 a point failed (the others still run), 2 bad sweep file.";
+
 void add_config_options(CLI::App* cmd, ConfigArgs& cfg) {
   cmd->add_option("--config", cfg.config_files,
                   "TOML file(s) layered on the preset, in order (later files win)")
@@ -103,8 +129,33 @@ int run_cli(int argc, char** argv) {
   run->add_flag("-q,--quiet", runa.quiet, "Print nothing but errors");
   add_config_options(run, runa.config);
 
-  auto* sweep = app.add_subcommand("sweep", "Run a parameter sweep from a file. Not yet built.");
-  sweep->allow_extras();
+  SweepArgs sw;
+  auto* sweep = app.add_subcommand(
+      "sweep",
+      "Run a parameter sweep from a TOML file: each point of the product of its axes is one\n"
+      "`rtsim run` process; writes one results table (CSV and JSON lines) and each point's\n"
+      "stats.json. Re-running the same sweep skips the points already done.");
+  sweep->footer(kSweepFooter);
+  sweep->add_option("file", sw.file, "The sweep file (TOML)")->required();
+  sweep->add_option("--out", sw.out_dir,
+                    "Output folder: results.csv, results.jsonl, points/NNNN/ (default: "
+                    "out/sweeps/<file name>)");
+  sweep
+      ->add_option("--jobs", sw.jobs,
+                   "Points at once, each its own process (default: the cores; with --mpi, 1 "
+                   "per rank)")
+      ->check(CLI::Range(1, 1024));
+  sweep->add_flag("--mpi", sw.mpi,
+                  "Spread the points over MPI ranks (mpirun -np K rtsim sweep FILE --mpi): "
+                  "rank 0 hands them out one at a time and writes the table");
+  sweep->add_flag("--force", sw.force, "Run every point again, even those done before");
+  sweep->add_flag("--list", sw.list,
+                  "Print each point's command line (and whether it is done); run nothing");
+  sweep
+      ->add_option("--rtsim", sw.rtsim,
+                   "The rtsim binary to run for each point (default: this one)")
+      ->check(CLI::ExistingFile);
+  sweep->add_flag("-q,--quiet", sw.quiet, "Print nothing but errors");
   ValidateArgs va;
   va.jobs = render.threads;
   auto* validate = app.add_subcommand(
@@ -153,7 +204,7 @@ int run_cli(int argc, char** argv) {
     if (l->parsed()) return run_list(list);
     if (run->parsed()) return run_run(runa);
     if (validate->parsed()) return run_validate(va);
-    std::cerr << "rtsim sweep: not yet built in this version.\n";
+    if (sweep->parsed()) return run_sweep(sw);
     return kExitFailure;
   } catch (const InputError& e) {
     std::cerr << "rtsim: error: " << e.what() << "\n";

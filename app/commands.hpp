@@ -56,6 +56,17 @@ struct ValidateArgs {
   std::string rtsim;              ///< binary to run; empty: this one
 };
 
+struct SweepArgs {
+  std::string file;     ///< the sweep file (TOML, docs/sweeps.md)
+  std::string out_dir;  ///< empty: out/sweeps/<file name without extension>
+  int jobs = 0;         ///< points at once (per rank with --mpi); 0: the cores (1 with --mpi)
+  bool mpi = false;     ///< spread the points over MPI ranks (under mpirun / srun)
+  bool force = false;   ///< run every point again, even those done before
+  bool list = false;    ///< print the points' command lines, run nothing
+  bool quiet = false;
+  std::string rtsim;  ///< binary to run for each point; empty: this one
+};
+
 /// Whether --aov asked for `name` (id, depth).
 inline bool wants_aov(const std::vector<std::string>& aovs, const std::string& name) {
   return std::find(aovs.begin(), aovs.end(), name) != aovs.end();
@@ -65,5 +76,6 @@ int run_render(const RenderArgs& args);
 int run_validate(const ValidateArgs& args);
 int run_list(const ListArgs& args);
 int run_run(const RunArgs& args);
+int run_sweep(const SweepArgs& args);
 
 }  // namespace rtsim::app

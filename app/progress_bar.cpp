@@ -6,27 +6,40 @@
 
 namespace rtsim::app {
 
-ProgressBar::ProgressBar(std::string label)
+ProgressBar::ProgressBar(std::string label, bool lines_when_not_a_terminal)
     : label_(std::move(label)),
       enabled_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()),
-      last_(start_) {}
+      last_(start_) {
+  if (!enabled_ && lines_when_not_a_terminal) enabled_ = lines_ = true;
+  if (label_.empty()) enabled_ = false;
+}
 
 ProgressBar::~ProgressBar() {
-  if (drawn_) std::fputc('\n', stderr);
+  if (drawn_ && !lines_) std::fputc('\n', stderr);
 }
 
 void ProgressBar::update(long done, long total) {
   if (!enabled_ || total <= 0) return;
   const auto now = std::chrono::steady_clock::now();
+  const double frac = static_cast<double>(done) / static_cast<double>(total);
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double eta = done > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
+  if (lines_) {
+    // A line every kLineInterval; the last one only if earlier ones were printed.
+    if (now - last_ < kLineInterval && !(done == total && drawn_)) return;
+    last_ = now;
+    drawn_ = true;
+    std::fprintf(stderr, "%s: %ld/%ld (%d%%)  elapsed %.0fs  ETA %.0fs\n", label_.c_str(), done,
+                 total, static_cast<int>(frac * 100.0), elapsed, eta);
+    std::fflush(stderr);
+    return;
+  }
   if (done < total && drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
   last_ = now;
   drawn_ = true;
   constexpr int kWidth = 30;
-  const double frac = static_cast<double>(done) / static_cast<double>(total);
   const int filled = static_cast<int>(frac * kWidth);
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double eta = done > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
   std::string bar(static_cast<std::size_t>(filled), '=');
   bar.resize(kWidth, ' ');
   std::fprintf(stderr, "\r%s [%s] %3d%%  %ld/%ld  elapsed %.1fs  ETA %.1fs ", label_.c_str(),

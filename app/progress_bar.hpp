@@ -1,5 +1,7 @@
 #pragma once
-// A progress bar with an ETA on stderr, drawn only when stderr is a terminal.
+// A progress bar with an ETA on stderr, drawn only when stderr is a terminal. On request, when
+// stderr is not a terminal (a batch job, mpirun's forwarded output), a plain progress line
+// every kLineInterval instead.
 #include <chrono>
 #include <string>
 
@@ -7,14 +9,19 @@ namespace rtsim::app {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(std::string label);
+  /// An empty label draws nothing.
+  explicit ProgressBar(std::string label, bool lines_when_not_a_terminal = false);
   ~ProgressBar();
   /// Redraws at most ten times a second, and always at completion.
   void update(long done, long total);
 
+  /// Time between two progress lines when stderr is not a terminal.
+  static constexpr std::chrono::seconds kLineInterval{10};
+
  private:
   std::string label_;
   bool enabled_;
+  bool lines_ = false;  ///< plain lines, not a redrawn bar
   bool drawn_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_;

@@ -11,12 +11,13 @@ mode="${1:-run}"
 build_dir="${RTSIM_BUILD_DIR:-build}"
 jobs="$(nproc 2>/dev/null || echo 2)"
 
-# Every Debian package the build, the tests and analysis/ need.
+# Every Debian package the build, the tests and analysis/ need (OpenMPI: `rtsim sweep --mpi`).
 packages=(
   cmake g++ make pkg-config
   libsystemc-dev libglm-dev libopenimageio-dev openimageio-tools libboost-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy python3-pandas
 )
 # Only the tests need these: headless Chromium opens report.html (tests/report_test.cpp).

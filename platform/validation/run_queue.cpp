@@ -47,13 +47,25 @@ std::string describe_status(int status) {
   return "unknown wait status " + std::to_string(status);
 }
 
-RunOutcome run_one(const RunRequest& request, const RunQueueOptions& options) {
+}  // namespace
+
+RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options) {
   RunOutcome out;
   out.request = request;
   out.out_dir = options.work_dir / request.key;
-  out.log = options.work_dir / (request.key + ".log");
+  out.log =
+      options.log_in_run_dir ? out.out_dir / "run.log" : options.work_dir / (request.key + ".log");
   std::error_code ec;
   fs::remove_all(out.out_dir, ec);
+  fs::create_directories(options.work_dir, ec);
+  if (options.log_in_run_dir) {
+    fs::create_directories(out.out_dir, ec);
+    if (ec) {
+      out.status = "did not start";
+      out.failure = "cannot create " + out.out_dir.string() + ": " + ec.message();
+      return out;
+    }
+  }
 
   std::vector<std::string> args;
   args.push_back(options.executable.string());
@@ -76,18 +88,21 @@ RunOutcome run_one(const RunRequest& request, const RunQueueOptions& options) {
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
+    out.status = "did not start";
     out.failure = "cannot start " + args[0] + ": " + std::strerror(rc);
     return out;
   }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) {
+      out.status = "lost";
       out.failure = std::string("waitpid: ") + std::strerror(errno);
       return out;
     }
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  out.status = describe_status(status);
 
   if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
     out.failure = describe_status(status) + " (log " + out.log.string() + ")";
@@ -109,8 +124,6 @@ RunOutcome run_one(const RunRequest& request, const RunQueueOptions& options) {
   return out;
 }
 
-}  // namespace
-
 RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOptions& options) {
   fs::create_directories(options.work_dir);
   const int total = static_cast<int>(requests.size());
@@ -131,7 +144,7 @@ RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOption
       const std::size_t n = next.fetch_add(1);
       if (n >= order.size()) return;
       const std::size_t i = order[n];
-      outcomes[i] = run_one(requests[i], options);
+      outcomes[i] = run_request(requests[i], options);
       std::lock_guard lock(report);
       ++done;
       if (options.on_finished) options.on_finished(outcomes[i], done, total);

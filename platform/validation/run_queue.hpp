@@ -1,8 +1,9 @@
 #pragma once
 // Runs the rtsim binary once per RunRequest, as separate processes (SystemC allows one
 // simulation per process), up to `jobs` at a time. Each run gets its own folder
-// WORK/KEY/ as --out and writes its stdout and stderr to WORK/KEY.log; its stats.json is read
-// back when it exits with status 0.
+// WORK/KEY/ as --out and writes its stdout and stderr to WORK/KEY.log (or WORK/KEY/run.log with
+// log_in_run_dir); its stats.json is read back when it exits with status 0. `rtsim validate` and
+// `rtsim sweep` (locally, and one run at a time on each MPI rank) run through it.
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -15,12 +16,19 @@ struct RunQueueOptions {
   std::filesystem::path executable;  ///< the rtsim binary
   std::filesystem::path work_dir;    ///< parent of the run folders; created if missing
   int jobs = 1;                      ///< processes at once (at least 1)
+  /// The log goes inside the run's folder (WORK/KEY/run.log) instead of beside it, so a folder
+  /// holds everything about its run (rtsim sweep's point folders).
+  bool log_in_run_dir = false;
   /// Called after each run ends, from the thread that waited for it, one call at a time.
   std::function<void(const RunOutcome&, int done, int total)> on_finished{};
 };
 
 /// Execute every request; never throws for a failed run (the outcome says what failed).
 RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOptions& options);
+
+/// Execute one request in this thread (jobs and on_finished are not used). The run's folder is
+/// emptied first. Never throws for a failed run.
+RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options);
 
 /// Last `max_lines` lines of a text file ("" if it cannot be read).
 std::string tail_of_file(const std::filesystem::path& file, int max_lines);

@@ -58,6 +58,9 @@ struct RunOutcome {
   std::filesystem::path out_dir;  ///< the --out folder given to the run
   std::filesystem::path log;      ///< its stdout and stderr
   int exit_code = -1;             ///< -1: did not start or was killed by a signal
+  /// How the process ended, in words: "exit status 2", "killed by signal Segmentation fault",
+  /// "did not start".
+  std::string status;
   double wall_s = 0.0;
   std::string failure;                  ///< empty on success, else what went wrong
   std::optional<nlohmann::json> stats;  ///< out_dir/stats.json, parsed, on success

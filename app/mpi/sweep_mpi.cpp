@@ -1,0 +1,257 @@
+// `rtsim sweep --mpi` with the MPI C API (OpenMPI from Debian). The only file that includes
+// mpi.h; see app/sweep_mpi.hpp for the protocol's shape.
+//
+// Messages are JSON text in MPI_CHAR buffers:
+//   worker -> 0  kTagReady   {"slots": J}                    one per free slot: "give me a point"
+//   worker -> 0  kTagResult  {"slots": J, "job": i, "outcome": {...}}   a result, and a request
+//   0 -> worker  kTagAssign  {"job": i, "key": K, "args": [...], "work_dir": D}
+//   0 -> worker  kTagStop    {}                              no more points for that slot
+// Every request gets exactly one reply, so a worker is done when it has had J stops.
+//
+// Only the main thread calls MPI (MPI_THREAD_FUNNELED); threads of a small pool run the `rtsim
+// run` processes. Blocking receives in OpenMPI spin a core, and a core here is worth a point:
+// the main threads poll (MPI_Iprobe) and sleep between polls instead.
+#include "app/sweep_mpi.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <utility>
+
+namespace rtsim::app::mpi {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+constexpr int kTagReady = 1;
+constexpr int kTagResult = 2;
+constexpr int kTagAssign = 3;
+constexpr int kTagStop = 4;
+
+// Pause of an idle main thread between polls: short against a point (a tenth of a second or
+// more), long enough to leave the core to the points.
+constexpr auto kPollInterval = std::chrono::milliseconds(5);
+
+void check(int rc, const char* what) {
+  if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+void send_text(const std::string& text, int dest, int tag) {
+  // MPI_Send takes a non-const buffer in older MPI headers.
+  check(MPI_Send(const_cast<char*>(text.data()), static_cast<int>(text.size()), MPI_CHAR, dest, tag,
+                 MPI_COMM_WORLD),
+        "MPI_Send");
+}
+
+struct Message {
+  int source = 0;
+  int tag = 0;
+  std::string text;
+};
+
+// The next message from `source` (or any), if one has arrived.
+std::optional<Message> poll(int source) {
+  int arrived = 0;
+  MPI_Status status;
+  check(MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
+  if (!arrived) return std::nullopt;
+  int count = 0;
+  check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
+  Message m{status.MPI_SOURCE, status.MPI_TAG, std::string(static_cast<std::size_t>(count), '\0')};
+  check(MPI_Recv(m.text.data(), count, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE),
+        "MPI_Recv");
+  return m;
+}
+
+/// A fixed pool of threads that run requests through the run queue, one process each.
+class LocalRunner {
+ public:
+  LocalRunner(validation::RunQueueOptions options, int slots) : options_(std::move(options)) {
+    for (int i = 0; i < slots; ++i) threads_.emplace_back([this] { loop(); });
+  }
+  ~LocalRunner() {
+    {
+      std::lock_guard lock(mutex_);
+      closing_ = true;
+    }
+    wake_.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+
+  void submit(std::size_t job, validation::RunRequest request, fs::path work_dir) {
+    {
+      std::lock_guard lock(mutex_);
+      queue_.push_back({job, std::move(request), std::move(work_dir)});
+      ++in_flight_;
+    }
+    wake_.notify_one();
+  }
+
+  /// Requests submitted and not yet taken back by take_finished().
+  int in_flight() const {
+    std::lock_guard lock(mutex_);
+    return in_flight_;
+  }
+
+  std::vector<std::pair<std::size_t, sweep::PointOutcome>> take_finished() {
+    std::lock_guard lock(mutex_);
+    std::vector<std::pair<std::size_t, sweep::PointOutcome>> out;
+    out.swap(finished_);
+    in_flight_ -= static_cast<int>(out.size());
+    return out;
+  }
+
+ private:
+  struct Job {
+    std::size_t index;
+    validation::RunRequest request;
+    fs::path work_dir;
+  };
+
+  void loop() {
+    for (;;) {
+      Job job;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [this] { return closing_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        job = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      validation::RunQueueOptions o = options_;
+      o.work_dir = job.work_dir;
+      sweep::PointOutcome outcome = sweep::outcome_of(validation::run_request(job.request, o));
+      std::lock_guard lock(mutex_);
+      finished_.emplace_back(job.index, std::move(outcome));
+    }
+  }
+
+  validation::RunQueueOptions options_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Job> queue_;
+  std::vector<std::pair<std::size_t, sweep::PointOutcome>> finished_;
+  int in_flight_ = 0;
+  bool closing_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace
+
+bool built_with_mpi() { return true; }
+
+Session::Session() {
+  int provided = 0;
+  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
+  check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+}
+
+Session::~Session() {
+  // An exception on one rank would leave the others waiting for it forever: end them all.
+  if (std::uncaught_exceptions() > 0) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Finalize();
+}
+
+int Session::share_status(int status) {
+  check(MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  return status;
+}
+
+void Session::dispatch(
+    const std::vector<validation::RunRequest>& requests, const validation::RunQueueOptions& local,
+    const std::function<void(std::size_t, const sweep::PointOutcome&)>& on_done) {
+  const int local_slots = std::max(1, local.jobs);
+  LocalRunner runner(local, local_slots);
+  std::size_t next = 0;
+  std::size_t finished = 0;
+  std::vector<int> slots(static_cast<std::size_t>(size_), 0);  // per rank, from its messages
+  std::vector<int> stops(static_cast<std::size_t>(size_), 0);  // stops sent to it
+
+  const auto all_stopped = [&] {
+    for (int w = 1; w < size_; ++w)
+      if (slots[w] == 0 || stops[w] < slots[w]) return false;
+    return true;
+  };
+  const auto reply = [&](int worker) {
+    if (next < requests.size()) {
+      const auto& r = requests[next];
+      const Json job = {
+          {"job", next}, {"key", r.key}, {"args", r.args}, {"work_dir", local.work_dir.string()}};
+      send_text(job.dump(), worker, kTagAssign);
+      ++next;
+    } else {
+      send_text("{}", worker, kTagStop);
+      ++stops[worker];
+    }
+  };
+
+  while (finished < requests.size() || !all_stopped()) {
+    bool busy = false;
+    for (auto& [job, outcome] : runner.take_finished()) {
+      on_done(job, outcome);
+      ++finished;
+      busy = true;
+    }
+    while (runner.in_flight() < local_slots && next < requests.size()) {
+      runner.submit(next, requests[next], local.work_dir);
+      ++next;
+      busy = true;
+    }
+    while (auto m = poll(MPI_ANY_SOURCE)) {
+      busy = true;
+      const Json j = Json::parse(m->text);
+      slots[m->source] = j.at("slots").get<int>();
+      if (m->tag == kTagResult) {
+        on_done(j.at("job").get<std::size_t>(), sweep::PointOutcome::from_json(j.at("outcome")));
+        ++finished;
+      }
+      reply(m->source);
+    }
+    if (!busy) std::this_thread::sleep_for(kPollInterval);
+  }
+}
+
+void Session::work(const validation::RunQueueOptions& options) {
+  const int slots = std::max(1, options.jobs);
+  LocalRunner runner(options, slots);
+  const std::string ready = Json{{"slots", slots}}.dump();
+  for (int s = 0; s < slots; ++s) send_text(ready, 0, kTagReady);
+  int stops = 0;
+  while (stops < slots) {
+    bool busy = false;
+    for (auto& [job, outcome] : runner.take_finished()) {
+      const Json result = {{"slots", slots}, {"job", job}, {"outcome", outcome.to_json()}};
+      send_text(result.dump(), 0, kTagResult);
+      busy = true;
+    }
+    while (auto m = poll(0)) {
+      busy = true;
+      if (m->tag == kTagStop) {
+        ++stops;
+        continue;
+      }
+      const Json j = Json::parse(m->text);
+      validation::RunRequest r;
+      r.key = j.at("key").get<std::string>();
+      r.args = j.at("args").get<std::vector<std::string>>();
+      runner.submit(j.at("job").get<std::size_t>(), std::move(r),
+                    fs::path(j.at("work_dir").get<std::string>()));
+    }
+    if (!busy) std::this_thread::sleep_for(kPollInterval);
+  }
+}
+
+}  // namespace rtsim::app::mpi

@@ -1,0 +1,232 @@
+// `rtsim sweep SWEEP.toml`: every point of a sweep file is one `rtsim run` process, run on the
+// local cores (the run queue) or over MPI ranks (--mpi); one results table at the end.
+// docs/sweeps.md describes the file, the outputs and resuming.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+
+#include "app/cli.hpp"
+#include "app/commands.hpp"
+#include "app/progress_bar.hpp"
+#include "app/sweep_mpi.hpp"
+#include "common/input_error.hpp"
+#include "platform/sweep/point_outcome.hpp"
+#include "platform/sweep/results_table.hpp"
+#include "platform/sweep/sweep_check.hpp"
+#include "platform/sweep/sweep_file.hpp"
+#include "platform/sweep/sweep_points.hpp"
+#include "platform/validation/run_queue.hpp"
+
+namespace rtsim::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Failed points listed in the summary; the table has them all.
+constexpr std::size_t kFailuresShown = 10;
+
+fs::path this_executable() {
+  std::error_code ec;
+  fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe)");
+  return p;
+}
+
+fs::path executable_of(const SweepArgs& args) {
+  return args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
+}
+
+int default_jobs() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+fs::path out_dir_of(const SweepArgs& args) {
+  if (!args.out_dir.empty()) return fs::absolute(args.out_dir);
+  return fs::absolute(fs::path("out") / "sweeps" / fs::path(args.file).stem());
+}
+
+/// The sweep read, checked and expanded; throws InputError before anything is written.
+struct Plan {
+  sweep::SweepFile file;
+  std::vector<sweep::Point> points;
+};
+
+Plan make_plan(const SweepArgs& args) {
+  Plan plan;
+  plan.file = sweep::read_sweep_file(args.file);
+  plan.points = sweep::expand_points(plan.file);
+  sweep::check_sweep(plan.file, plan.points);
+  return plan;
+}
+
+/// What the swept settings of a point are, for messages: "peripheral.grid.divisions=3 ...".
+std::string describe_point(const sweep::Point& p) {
+  std::string s;
+  for (const auto& setting : p.settings) {
+    if (!setting.swept) continue;
+    if (!s.empty()) s += " ";
+    s += setting.name + "=" + setting.value.text;
+  }
+  return s.empty() ? "the only point" : s;
+}
+
+int list_points(const Plan& plan, const fs::path& out) {
+  for (const auto& p : plan.points) {
+    const bool done = sweep::find_done(out / "points" / p.key, p).has_value();
+    std::cout << p.key << (done ? "  done  " : "        ") << p.command_line() << "\n";
+  }
+  return kExitOk;
+}
+
+/// Runs the sweep (rank 0 under MPI): resume, run, table, summary.
+int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
+  const fs::path out = out_dir_of(args);
+  const fs::path points_dir = out / "points";
+  const std::size_t n = plan.points.size();
+
+  std::vector<sweep::PointOutcome> outcomes(n);
+  std::vector<validation::RunRequest> requests;
+  std::vector<std::size_t> request_point;  // request i runs point request_point[i]
+  for (const auto& p : plan.points) {
+    if (!args.force) {
+      if (auto done = sweep::find_done(points_dir / p.key, p)) {
+        outcomes[p.index] = std::move(*done);
+        continue;
+      }
+    }
+    validation::RunRequest r;
+    r.key = p.key;
+    r.args = p.args;
+    requests.push_back(std::move(r));
+    request_point.push_back(p.index);
+  }
+  const std::size_t reused = n - requests.size();
+  const int jobs = args.jobs > 0 ? args.jobs : (session ? 1 : default_jobs());
+
+  fs::create_directories(points_dir);
+  if (!args.quiet) {
+    std::cout << "rtsim sweep: " << (plan.file.name.empty() ? args.file : plan.file.name) << ": "
+              << n << (n == 1 ? " point, " : " points, ") << requests.size() << " to run ("
+              << reused << " done before), ";
+    if (session)
+      std::cout << session->size() << " MPI ranks, " << jobs << " at a time on each";
+    else
+      std::cout << jobs << " at a time";
+    std::cout << "\n  out  " << out.string() << "\n" << std::flush;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  {
+    ProgressBar bar(args.quiet ? std::string() : "sweep",
+                    /*lines_when_not_a_terminal=*/!args.quiet);
+    std::mutex record_mutex;
+    long finished = 0;
+    const auto record = [&](std::size_t request, const sweep::PointOutcome& o) {
+      std::lock_guard lock(record_mutex);
+      const sweep::Point& p = plan.points[request_point[request]];
+      outcomes[p.index] = o;
+      if (o.ok) {
+        const fs::path dir = points_dir / p.key;
+        try {
+          // A rank without a shared file system wrote stats.json on its own disk: keep a copy
+          // here, where the table, the marker and resuming live.
+          std::error_code ec;
+          if (!fs::exists(dir / "stats.json", ec)) {
+            fs::create_directories(dir);
+            sweep::write_file_atomically(dir / "stats.json", o.stats_text);
+          }
+          sweep::write_marker(dir, p, o);
+        } catch (const std::exception& e) {
+          // Called from the queue's threads: a full disk fails the point, not the sweep.
+          outcomes[p.index].ok = false;
+          outcomes[p.index].error = std::string("ran, but cannot record it: ") + e.what();
+        }
+      }
+      if (!args.quiet) bar.update(++finished, static_cast<long>(requests.size()));
+    };
+
+    validation::RunQueueOptions q;
+    q.executable = executable_of(args);
+    q.work_dir = points_dir;
+    q.jobs = jobs;
+    q.log_in_run_dir = true;
+    if (session) {
+      session->dispatch(requests, q, record);
+    } else {
+      std::unordered_map<std::string, std::size_t> request_of_key;  // run_all reports by key
+      for (std::size_t i = 0; i < requests.size(); ++i) request_of_key[requests[i].key] = i;
+      q.on_finished = [&](const validation::RunOutcome& run, int, int) {
+        record(request_of_key.at(run.request.key), sweep::outcome_of(run));
+      };
+      (void)validation::run_all(requests, q);
+    }
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const auto table = sweep::make_results_table(plan.file, plan.points, outcomes);
+  sweep::write_file_atomically(out / "results.csv", sweep::to_csv(table));
+  sweep::write_file_atomically(out / "results.jsonl", sweep::to_jsonl(table));
+
+  std::size_t failed = 0;
+  for (const auto& o : outcomes) failed += o.ok ? 0 : 1;
+  if (!args.quiet) {
+    std::cout << "rtsim sweep: " << n << (n == 1 ? " point: " : " points: ") << n - failed
+              << " ok (" << reused << " done before), " << failed << " failed; " << wall
+              << " s wall\n";
+    std::size_t shown = 0;
+    for (const auto& p : plan.points) {
+      const auto& o = outcomes[p.index];
+      if (o.ok) continue;
+      if (shown++ == kFailuresShown) {
+        std::cout << "  ... and " << failed - kFailuresShown << " more (results.csv has all)\n";
+        break;
+      }
+      std::cout << "  failed  point " << p.key << " (" << describe_point(p) << "): " << o.error
+                << "\n";
+    }
+    std::cout << "  table  " << (out / "results.csv").string() << "  "
+              << (out / "results.jsonl").string() << "\n"
+              << "  points " << points_dir.string() << "/NNNN/ (stats.json, images, run.log)\n";
+  }
+  return failed > 0 ? kExitFailure : kExitOk;
+}
+
+int run_sweep_mpi(const SweepArgs& args) {
+  mpi::Session session;
+  if (session.rank() != 0) {
+    // Rank 0 reads and checks the sweep; the others wait for its word, then run points.
+    if (const int status = session.share_status(0); status != 0) return status;
+    validation::RunQueueOptions q;
+    q.executable = executable_of(args);
+    q.jobs = args.jobs > 0 ? args.jobs : 1;
+    q.log_in_run_dir = true;
+    session.work(q);
+    return kExitOk;
+  }
+  Plan plan;
+  try {
+    plan = make_plan(args);
+  } catch (const InputError& e) {
+    session.share_status(kExitBadInput);
+    std::cerr << "rtsim: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  session.share_status(0);
+  return execute(args, plan, &session);
+}
+
+}  // namespace
+
+int run_sweep(const SweepArgs& args) {
+  if (args.mpi && !args.list) return run_sweep_mpi(args);
+  const Plan plan = make_plan(args);
+  if (args.list) return list_points(plan, out_dir_of(args));
+  return execute(args, plan, nullptr);
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,150 @@
+#include "platform/sweep/results_table.hpp"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "platform/validation/validation.hpp"
+
+namespace rtsim::sweep {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// stats.json keys that are not stats columns: constant for a sweep, already leading columns, or
+// the whole parameter set (in each point's own stats.json).
+constexpr std::array<std::string_view, 8> kNotStats = {"tool",  "version", "command", "machine",
+                                                       "scene", "width",   "height",  "params"};
+
+// The stats a reader looks for first, in this order; the rest follow sorted by name.
+constexpr std::array<std::string_view, 13> kHeadline = {
+    "simulated_time_s",   "wall_time_s",        "rays.total",
+    "rays.primary",       "rays.shadow",        "rays.reflected",
+    "rays.refracted",     "intersection_tests", "hits",
+    "ray_latency_s.mean", "ray_latency_s.p50",  "ray_latency_s.p99",
+    "ray_latency_s.max"};
+
+// Scalar leaves by dotted path; arrays (histograms, messages, mean_rgb) are left out.
+void flatten(const Json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, Json>>& out) {
+  for (const auto& [key, value] : j.items()) {
+    if (prefix.empty() && std::find(kNotStats.begin(), kNotStats.end(), key) != kNotStats.end())
+      continue;
+    const std::string path = prefix.empty() ? key : prefix + "." + key;
+    if (value.is_object()) {
+      flatten(value, path, out);
+    } else if (!value.is_array()) {
+      out.emplace_back(path, value);
+    }
+  }
+}
+
+std::string csv_cell(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return validation::csv_field(v.get<std::string>());
+  return v.dump();
+}
+
+}  // namespace
+
+bool is_wall_clock_column(std::string_view column) {
+  return column == "point_wall_time_s" || column == "wall_time_s" || column == "rays_per_second" ||
+         column == "functional_wall_time_s" || column == "overhead_ratio";
+}
+
+ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>& points,
+                                const std::vector<PointOutcome>& outcomes) {
+  ResultsTable t;
+  const std::vector<std::string> swept = file.swept_params();
+  std::vector<std::string> leading = {"point", "machine", "scene", "width", "height"};
+  leading.insert(leading.end(), swept.begin(), swept.end());
+  for (const char* c : {"status", "exit_code", "error", "point_wall_time_s", "dir"})
+    leading.emplace_back(c);
+  const std::set<std::string> taken(leading.begin(), leading.end());
+
+  // Each row's stats, flattened; a stats path that is already a column gets "stats." in front.
+  std::vector<Json> docs(points.size());
+  std::vector<std::map<std::string, Json>> stats(points.size());
+  std::set<std::string> stat_names;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!outcomes[i].ok) continue;
+    docs[i] = Json::parse(outcomes[i].stats_text);
+    std::vector<std::pair<std::string, Json>> leaves;
+    flatten(docs[i], "", leaves);
+    for (auto& [path, value] : leaves) {
+      std::string name = taken.contains(path) ? "stats." + path : path;
+      stat_names.insert(name);
+      stats[i][name] = std::move(value);
+    }
+  }
+  std::vector<std::string> stat_columns;
+  for (std::string_view h : kHeadline)
+    if (stat_names.contains(std::string(h))) stat_columns.emplace_back(h);
+  for (const auto& n : stat_names)
+    if (std::find(kHeadline.begin(), kHeadline.end(), n) == kHeadline.end())
+      stat_columns.push_back(n);
+
+  t.columns = leading;
+  t.columns.insert(t.columns.end(), stat_columns.begin(), stat_columns.end());
+  t.columns.emplace_back("command");
+
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    const PointOutcome& o = outcomes[i];
+    std::vector<Json> row;
+    row.emplace_back(p.index);
+    row.emplace_back(p.machine());
+    row.emplace_back(p.scene());
+    for (std::string_view size : {kWidth, kHeight}) {
+      // As rendered when the run said so; else as asked (null: the scene's own size).
+      const std::string key(size);
+      if (docs[i].contains(key)) {
+        row.push_back(docs[i][key]);
+      } else if (const Setting* set = p.find(size)) {
+        row.push_back(set->value.json);
+      } else {
+        row.emplace_back(nullptr);
+      }
+    }
+    for (const auto& name : swept) row.push_back(p.find(name)->value.json);
+    row.emplace_back(o.ok ? "ok" : "failed");
+    row.emplace_back(o.exit_code);
+    row.emplace_back(o.error);
+    row.emplace_back(o.wall_s);
+    row.emplace_back("points/" + p.key);
+    for (const auto& c : stat_columns) {
+      auto it = stats[i].find(c);
+      row.push_back(it == stats[i].end() ? Json() : it->second);
+    }
+    row.emplace_back(p.command_line());
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+std::string to_csv(const ResultsTable& table) {
+  std::ostringstream out;
+  for (std::size_t c = 0; c < table.columns.size(); ++c)
+    out << (c ? "," : "") << validation::csv_field(table.columns[c]);
+  out << "\n";
+  for (const auto& row : table.rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << csv_cell(row[c]);
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string to_jsonl(const ResultsTable& table) {
+  std::ostringstream out;
+  for (const auto& row : table.rows) {
+    Json j = Json::object();
+    for (std::size_t c = 0; c < row.size(); ++c) j[table.columns[c]] = row[c];
+    out << j.dump() << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace rtsim::sweep

@@ -1,0 +1,47 @@
+#pragma once
+// The results table of a sweep: one row per point, in point order, written as results.csv and
+// results.jsonl (docs/sweeps.md lists the columns). Columns:
+//   point, machine, scene, width, height       the run options (width/height as rendered)
+//   <every swept parameter>                    by name, the value as written in the sweep file
+//   status, exit_code, error                   "ok" or "failed", the process's exit status
+//                                              (-1 for a signal), what went wrong
+//   point_wall_time_s                          wall time of the point's `rtsim run` process
+//   dir                                        the point's folder, relative to --out
+//   <stats.json>                               headline stats first (simulated_time_s,
+//                                              wall_time_s, rays.*, intersection_tests, hits,
+//                                              ray_latency_s.*), then every other scalar by its
+//                                              dotted path, sorted (modules.NAME.utilization...)
+//   command                                    the point's `rtsim run` command line
+// The stats columns are the union over the rows; a row without a value has an empty cell (CSV)
+// or null (JSON lines).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "platform/sweep/point_outcome.hpp"
+#include "platform/sweep/sweep_file.hpp"
+#include "platform/sweep/sweep_points.hpp"
+
+namespace rtsim::sweep {
+
+struct ResultsTable {
+  std::vector<std::string> columns{};
+  std::vector<std::vector<nlohmann::ordered_json>> rows{};  ///< null: no value
+};
+
+/// `outcomes[i]` belongs to `points[i]`.
+ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>& points,
+                                const std::vector<PointOutcome>& outcomes);
+
+/// RFC 4180 CSV with a header line.
+std::string to_csv(const ResultsTable& table);
+/// One JSON object per line, keys in column order.
+std::string to_jsonl(const ResultsTable& table);
+
+/// Columns that hold wall-clock measurements: the only ones that differ between two runs of the
+/// same sweep (point_wall_time_s, wall_time_s, rays_per_second, functional_wall_time_s,
+/// overhead_ratio).
+bool is_wall_clock_column(std::string_view column);
+
+}  // namespace rtsim::sweep

@@ -1,0 +1,120 @@
+// `rtsim sweep --mpi` under `mpirun -np 2 --oversubscribe` on loopback: the table equals the
+// local run's table except the wall-clock columns (failed points included), and a bad sweep file
+// stops every rank with status 2 before anything is written. Skipped in a build without MPI.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "platform/sweep/results_table.hpp"
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+#ifdef RTSIM_MPIEXEC
+rtsim::test::CommandResult run_mpi(const std::string& args) {
+  // OpenMPI refuses to run as root (CI containers) unless told twice.
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  const std::string cmd =
+      std::string(RTSIM_MPIEXEC) + " -np 2 --oversubscribe " + RTSIM_BINARY + " " + args + " 2>&1";
+  rtsim::test::CommandResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+#endif
+
+std::vector<Json> read_jsonl(const fs::path& p) {
+  std::vector<Json> rows;
+  std::istringstream in(read_file(p));
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) rows.push_back(Json::parse(line));
+  return rows;
+}
+
+// The table without its wall-clock cells.
+std::vector<Json> without_wall_clock(std::vector<Json> rows) {
+  for (auto& r : rows)
+    for (auto& [key, value] : r.items())
+      if (rtsim::sweep::is_wall_clock_column(key)) value = nullptr;
+  return rows;
+}
+
+}  // namespace
+
+TEST(SweepMpi, TwoRanksGiveTheLocalTable) {
+#ifndef RTSIM_MPIEXEC
+  GTEST_SKIP() << "built without MPI";
+#else
+  const fs::path dir = scratch_dir("sweep-mpi");
+  fs::create_directories(dir);
+  const fs::path file = dir / "tiny.toml";
+  std::ofstream(file) << "machine = \"ullner-peripheral\"\n"
+                         "scene = \"builtin:ullner-sheets-1000\"\n"
+                         "width = 16\nheight = 12\n"
+                         "[params]\n\"shade.max_depth\" = 0\n"
+                         "[[axes]]\nparam = \"peripheral.grid.divisions\"\nvalues = [0, 3, 6]\n"
+                         "[[axes]]\nparam = \"peripheral.adder_stages\"\nvalues = [1, 2]\n";
+  const auto local = rtsim::test::run_rtsim("sweep " + file.string() + " --jobs 2 --out " +
+                                            (dir / "local").string());
+  EXPECT_EQ(local.exit_code, 1) << local.output;  // adder_stages = 2 fails on three points
+  const auto mpi = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "mpi").string());
+  EXPECT_EQ(mpi.exit_code, 1) << mpi.output;
+  EXPECT_NE(mpi.output.find("6 points, 6 to run (0 done before), 2 MPI ranks"), std::string::npos)
+      << mpi.output;
+
+  const auto local_rows = read_jsonl(dir / "local" / "results.jsonl");
+  const auto mpi_rows = read_jsonl(dir / "mpi" / "results.jsonl");
+  ASSERT_EQ(local_rows.size(), 6u);
+  EXPECT_EQ(without_wall_clock(mpi_rows), without_wall_clock(local_rows));
+  std::size_t failed = 0;
+  for (const auto& r : mpi_rows) failed += r["status"] == "failed" ? 1 : 0;
+  EXPECT_EQ(failed, 3u);
+  // Same columns in the CSV.
+  const std::string a = read_file(dir / "local" / "results.csv");
+  const std::string b = read_file(dir / "mpi" / "results.csv");
+  EXPECT_EQ(a.substr(0, a.find('\n')), b.substr(0, b.find('\n')));
+  for (const char* key : {"0000", "0002", "0004"})
+    EXPECT_TRUE(fs::exists(dir / "mpi" / "points" / key / "done.json")) << key;
+
+  // Resuming works under MPI too: nothing left to run but the failed points.
+  const auto again = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "mpi").string());
+  EXPECT_NE(again.output.find("6 points, 3 to run (3 done before)"), std::string::npos)
+      << again.output;
+  fs::remove_all(dir);
+#endif
+}
+
+TEST(SweepMpi, BadSweepStopsEveryRankWithStatus2) {
+#ifndef RTSIM_MPIEXEC
+  GTEST_SKIP() << "built without MPI";
+#else
+  const fs::path dir = scratch_dir("sweep-mpi-bad");
+  fs::create_directories(dir);
+  const fs::path file = dir / "bad.toml";
+  std::ofstream(file) << "machine = \"ullner-peripheral\"\nscene = \"builtin:default\"\n"
+                         "[params]\n\"peripheral.grid.divisons\" = 3\n";
+  const auto r = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(":4: on machine 'ullner-peripheral': unknown parameter"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+#endif
+}
