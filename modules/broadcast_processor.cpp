@@ -44,7 +44,6 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
     }
   }
   cursor_ = Cursor{0, t};
-  started_ = true;
   start_.notify(t > sc_core::sc_time_stamp() ? t - sc_core::sc_time_stamp()
                                              : sc_core::SC_ZERO_TIME);
 }

@@ -103,7 +103,6 @@ class BroadcastProcessor : public sc_core::sc_module {
   Cursor cursor_;
   sc_core::sc_event start_;
   sc_core::sc_event wake_;
-  bool started_ = false;
   Stats stats_;
   std::vector<BusInterface*> hitters_;
 };

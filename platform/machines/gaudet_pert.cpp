@@ -145,8 +145,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
   std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
   std::uint64_t mismatches = 0, rays_with_packets = 0, backlog_peak = 0;
-  modules::LatencyRecorder first_packet;
-  double first_packet_sum = 0.0;
+  sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packet_count = 0;
   const sc_core::sc_time end = p.control->load_time() + frame;
   for (int i = 0; i < cfg.pert_count; ++i) {
@@ -174,11 +173,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     cancelled += pr.packets_cancelled();
     mismatches += pr.list_mismatches();
     rays_with_packets += pr.rays_with_packets();
-    first_packet_count += pr.first_packet_latency().count();
-    const auto fp = pr.first_packet_latency().to_json();
-    if (fp.contains("mean"))
-      first_packet_sum +=
-          fp["mean"].get<double>() * static_cast<double>(pr.first_packet_latency().count());
+    first_packet_total += pr.first_packet_latency_total();
+    first_packet_count += pr.first_packets();
     backlog_peak = std::max(backlog_peak, p.shade[u]->backlog_peak());
     struct {
       const char* name;
@@ -254,7 +250,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   g["prim"]["list_mismatches"] = mismatches;
   g["prim"]["rays_with_packets"] = rays_with_packets;
   const double fp_mean =
-      first_packet_count ? first_packet_sum / static_cast<double>(first_packet_count) : 0.0;
+      first_packet_count ? first_packet_total.to_seconds() / static_cast<double>(first_packet_count)
+                         : 0.0;
   g["prim"]["first_packet_latency_s"] = fp_mean;
   if (cfg.broadcasting()) {
     const auto& s = p.buses[2]->stats();
@@ -457,12 +454,10 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
       auto bp = std::make_unique<modules::BroadcastProcessor>(
           (std::string(kKinds[b]) + "_bus").c_str(), set_of[b]->memory.size(), cfg.load_word_time,
           cfg.bus, cfg.mode == BroadcastMode::kAdaptive);
-      const int busy = trace.declare_busy(bp->name());
       const std::string track = bp->name();
-      bp->on_packet = [&trace, busy, track](std::uint32_t id, sc_core::sc_time start,
-                                            sc_core::sc_time dur, std::size_t captures) {
+      bp->on_packet = [&trace, track](std::uint32_t id, sc_core::sc_time start,
+                                      sc_core::sc_time dur, std::size_t captures) {
         trace.slice(track, "packet", start, dur, {{"id", id}, {"captures", captures}});
-        (void)busy;
       };
       p.buses.push_back(std::move(bp));
     }

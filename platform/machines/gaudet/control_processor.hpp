@@ -46,8 +46,6 @@ class ControlProcessor : public sc_core::sc_module {
   sc_core::sc_time load_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   std::uint64_t words_loaded_ = 0;
-
-  friend class ShadeProcessor;
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -64,7 +64,10 @@ void PrimProcessor::serve(ShellToPrim& msg) {
         idle(port_.next_arrival(id), port_.changed_event(), true);
       }
     }
-    if (j == 0) first_packet_.add(p->arrival - asked_first);
+    if (j == 0) {
+      first_packet_total_ += p->arrival - asked_first;
+      ++first_packets_;
+    }
     ++packets_;
     // The primitives are tested in packet order; a light ray stops at its first hit.
     const auto slots = search_.tree().prim_packet(id);

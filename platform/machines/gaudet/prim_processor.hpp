@@ -19,7 +19,6 @@
 
 #include "modules/message_channel.hpp"
 #include "modules/packet_port.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machines/gaudet/config.hpp"
 #include "platform/machines/gaudet/messages.hpp"
@@ -41,8 +40,9 @@ class PrimProcessor : public PertProcessor {
   std::uint64_t packets_processed() const { return packets_; }
   std::uint64_t packets_cancelled() const { return cancelled_; }
   std::uint64_t prim_tests() const { return prim_tests_; }
-  /// From asking for a ray's first packet to having it (L1060-L1062).
-  const modules::LatencyRecorder& first_packet_latency() const { return first_packet_; }
+  /// From asking for a ray's first packet to having it (L1060-L1062), summed over rays.
+  sc_core::sc_time first_packet_latency_total() const { return first_packet_total_; }
+  std::uint64_t first_packets() const { return first_packets_; }
   /// Rays that needed at least one packet.
   std::uint64_t rays_with_packets() const { return rays_with_packets_; }
   /// Rays whose LeafShellList from the ShellProcessor differs in length from the twin's (a
@@ -64,7 +64,8 @@ class PrimProcessor : public PertProcessor {
   std::vector<bool> asked_;  ///< per list entry of the current ray
   std::uint64_t packets_ = 0, cancelled_ = 0, prim_tests_ = 0, rays_with_packets_ = 0;
   std::uint64_t list_mismatches_ = 0;
-  modules::LatencyRecorder first_packet_;
+  sc_core::sc_time first_packet_total_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t first_packets_ = 0;
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -15,7 +15,6 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, int pert, int pert_
       pert_count_(pert_count),
       shared_(shared),
       port_(port),
-      config_(config),
       task_(*shared.scene, shared.shade),
       y_(pert),
       outstanding_(std::max<std::size_t>(config.rays_in_flight, 1), 0) {

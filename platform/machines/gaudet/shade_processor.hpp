@@ -79,7 +79,6 @@ class ShadeProcessor : public PertProcessor {
   int pert_, pert_count_;
   ShadeShared& shared_;
   modules::PacketPort& port_;
-  ProcessorConfig config_;
   const modules::TimedFifo<ShadeToShell>* out_queue_ = nullptr;
   sc_core::sc_event* done_event_ = nullptr;
 

@@ -14,7 +14,6 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellT
       tree_(tree),
       packet_words_(packet_words),
       port_(port),
-      config_(config),
       searches_(std::max<std::size_t>(config.rays_in_flight, 1)) {
   SC_THREAD(run);
 }

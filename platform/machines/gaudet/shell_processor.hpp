@@ -61,7 +61,6 @@ class ShellProcessor : public PertProcessor {
   const accel::ShellTree& tree_;
   const std::vector<std::uint32_t>& packet_words_;
   modules::PacketPort& port_;
-  ProcessorConfig config_;
   const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
 
   std::vector<Search> searches_;
