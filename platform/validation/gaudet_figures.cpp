@@ -203,46 +203,37 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
-  plan.figures.push_back(Figure{
-      .id = "P3a",
-      .title = "ShellProcessor latency per ray, binary over quad",
-      .seed_ref = "seed 001 L1015, L1025-L1030",
-      .seed_text = "latency 124.9 us (binary) against 5.0 (quad): more, smaller packets to wait "
-                   "for",
-      .seed_value = 124.9 / 5.0,
-      .seed_display = "> 1 (thesis 25)",
-      .unit = "ratio",
-      .tolerance = Tolerance::above(1,
-                                    "the latency is not calibrated: it emerges from the bus "
-                                    "model, so only the thesis's direction is judged"),
-      .workload = tree_workload,
-      .runs = {k212, k412},
-      .measure =
-          [k212, k412](const RunResults& r) {
-            return Measured{shell_latency(r, k212) / shell_latency(r, k412),
-                            "latency " + format_number(shell_latency(r, k212)) + " and " +
-                                format_number(shell_latency(r, k412)) + " us per ray"};
-          },
-  });
-  plan.figures.push_back(Figure{
-      .id = "P3b",
-      .title = "ShellProcessor latency per ray, quad over oct",
-      .seed_ref = "seed 001 L1015, L1025-L1030",
-      .seed_text = "latency 5.0 us (quad) against 0.5 (oct)",
-      .seed_value = 10,
-      .seed_display = "> 1 (thesis 10)",
-      .unit = "ratio",
-      .tolerance =
-          Tolerance::above(1, "emergent from the bus model, as P3a: only the direction is judged"),
-      .workload = tree_workload,
-      .runs = {k412, k812},
-      .measure =
-          [k412, k812](const RunResults& r) {
-            return Measured{shell_latency(r, k412) / shell_latency(r, k812),
-                            "latency " + format_number(shell_latency(r, k412)) + " and " +
-                                format_number(shell_latency(r, k812)) + " us per ray"};
-          },
-  });
+  // P3a, P3b: the latency is not calibrated, it emerges from the bus model, so only the
+  // thesis's direction is judged (more, smaller packets to wait for: binary > quad > oct).
+  auto latency_ratio = [&](std::string id, std::string trees, std::string seed_text, double thesis,
+                           const std::string& more, const std::string& less) {
+    return Figure{
+        .id = std::move(id),
+        .title = "ShellProcessor latency per ray, " + trees,
+        .seed_ref = "seed 001 L1015, L1025-L1030",
+        .seed_text = std::move(seed_text),
+        .seed_value = thesis,
+        .seed_display = "> 1 (thesis " + format_number(thesis) + ")",
+        .unit = "ratio",
+        .tolerance = Tolerance::above(1,
+                                      "the latency is not calibrated: it emerges from the bus "
+                                      "model, so only the thesis's direction is judged"),
+        .workload = tree_workload,
+        .runs = {more, less},
+        .measure =
+            [more, less](const RunResults& r) {
+              return Measured{shell_latency(r, more) / shell_latency(r, less),
+                              "latency " + format_number(shell_latency(r, more)) + " and " +
+                                  format_number(shell_latency(r, less)) + " us per ray"};
+            },
+    };
+  };
+  plan.figures.push_back(latency_ratio(
+      "P3a", "binary over quad",
+      "latency 124.9 us (binary) against 5.0 (quad): more, smaller packets to wait for",
+      124.9 / 5.0, k212, k412));
+  plan.figures.push_back(latency_ratio("P3b", "quad over oct",
+                                       "latency 5.0 us (quad) against 0.5 (oct)", 10, k412, k812));
   plan.figures.push_back(Figure{
       .id = "P3c",
       .title = "Quad tree best: total per ray over the better of binary and oct",
