@@ -43,6 +43,7 @@ class StatsRegistry {
 class LatencyRecorder {
  public:
   void add(const sc_core::sc_time& t) { samples_.push_back(t.to_seconds()); }
+  void add_seconds(double s) { samples_.push_back(s); }
   std::size_t count() const { return samples_.size(); }
   /// {count, mean, p50, p99, max, histogram: {edges_s, counts}} (log-spaced buckets).
   nlohmann::ordered_json to_json() const;
