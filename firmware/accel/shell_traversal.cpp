@@ -36,16 +36,20 @@ std::size_t shell_packet_task(const ShellTree& tree, std::uint32_t packet, const
                               std::vector<LeafShellEntry>& leaves,
                               std::vector<std::uint32_t>& children) {
   const auto shells = tree.shell_packet(packet);
-  for (const Shell& s : shells) {
-    double t = 0.0;
-    if (!hit_box(s.box, ray, inv_dir, t_min, t_max, t)) continue;
-    if (s.leaf) {
-      leaves.push_back({s.child_index, t});  // LeafShellList U= {child_index, t-value}
-    } else {
-      children.push_back(s.child_index);  // ShellTask(child_index of shell)
-    }
-  }
+  for (const Shell& s : shells) shell_box_task(s, ray, inv_dir, t_min, t_max, leaves, children);
   return shells.size();
+}
+
+void shell_box_task(const Shell& shell, const Ray& ray, const Vec3& inv_dir, double t_min,
+                    double t_max, std::vector<LeafShellEntry>& leaves,
+                    std::vector<std::uint32_t>& children) {
+  double t = 0.0;
+  if (!hit_box(shell.box, ray, inv_dir, t_min, t_max, t)) return;
+  if (shell.leaf) {
+    leaves.push_back({shell.child_index, t});  // LeafShellList U= {child_index, t-value}
+  } else {
+    children.push_back(shell.child_index);  // ShellTask(child_index of shell)
+  }
 }
 
 void sort_leaf_shell_list(std::vector<LeafShellEntry>& list) {

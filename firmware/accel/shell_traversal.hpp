@@ -99,6 +99,14 @@ struct ShellHit {
 /// (A ray that cannot search asks for no packet and gets an empty LeafShellList.)
 bool shell_search_possible(const ShellTree& tree, const Ray& ray, double t_min, double t_max);
 
+/// The box test of one SHELL of a packet (Fig. 4-10, L755-L757): on a hit, a leaf shell is
+/// appended to `leaves` ({child_index, t-value}) and a parent shell's child_index (the packet of
+/// its children, to be asked for next) to `children`. A ShellProcessor posts that ID as soon as
+/// this test is done, while it goes on with the packet's other SHELLs.
+void shell_box_task(const Shell& shell, const Ray& ray, const Vec3& inv_dir, double t_min,
+                    double t_max, std::vector<LeafShellEntry>& leaves,
+                    std::vector<std::uint32_t>& children);
+
 /// One step of ShellTask (Fig. 4-10, L755-L757), as a ShellProcessor runs it when a SHELL
 /// packet arrives: every SHELL of packet `packet` is box-tested; a hit leaf shell is appended to
 /// `leaves` ({child_index, t-value}), a hit parent shell's child_index (the packet of its

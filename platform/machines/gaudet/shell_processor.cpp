@@ -56,18 +56,20 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
     for (const int slot : node.mapped()) {
       Search& s = searches_[static_cast<std::size_t>(slot)];
       ++packet_uses_;
-      children_.clear();
-      const std::size_t before = s.leaves.size();
-      const std::size_t boxes =
-          accel::shell_packet_task(tree_, p.id, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
-                                   s.ticket.ray.t_max, s.leaves, children_);
-      box_tests_ += boxes;
-      compute(accel::kShellBoxTestCost * boxes +
-                  tasks::kLeafShellAppendCost * (s.leaves.size() - before),
-              "box tests");
-      s.outstanding += static_cast<int>(children_.size()) - 1;
-      for (const std::uint32_t c : children_) ask(c, slot);
-      if (s.outstanding == 0) finish(slot);
+      // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
+      // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
+      for (const accel::Shell& shell : tree_.shell_packet(p.id)) {
+        children_.clear();
+        const std::size_t before = s.leaves.size();
+        accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
+                              s.ticket.ray.t_max, s.leaves, children_);
+        ++box_tests_;
+        compute(accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),
+                "box test");
+        s.outstanding += static_cast<int>(children_.size());
+        for (const std::uint32_t c : children_) ask(c, slot);
+      }
+      if (--s.outstanding == 0) finish(slot);
     }
   }
   port_.release(p, clock_.now());
