@@ -65,15 +65,16 @@ sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
 void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
   const Slot& s = slots_[c.pos];
   c.t += timing_.id_slot;
-  if (sent) c.t += packet_time(s);
   if (account) {
     ++stats_.ids;
     if (sent) {
       ++stats_.packets;
       stats_.packet_words += s.words;
       stats_.packet_time += packet_time(s);
+      timeline_.add(c.t, packet_time(s));
     }
   }
+  if (sent) c.t += packet_time(s);
   if (++c.pos == slots_.size()) {
     c.pos = 0;
     c.t += timing_.loop_reset;
@@ -87,6 +88,12 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
   while (cursor_.t < t && cursor_.pos != 0) pass(cursor_, !adaptive_, true);
   if (cursor_.t < t && idle_cycle_ > sc_core::SC_ZERO_TIME) {
     const std::uint64_t k = (t - cursor_.t).value() / idle_cycle_.value();
+    // Non-adaptive idle cycles still send every packet: one interval a cycle is exact enough
+    // for utilisation windows (a window spans many cycles).
+    const sc_core::sc_time sent_per_cycle = idle_cycle_ - minimum_cycle();
+    if (sent_per_cycle > sc_core::SC_ZERO_TIME)
+      for (std::uint64_t i = 0; i < k; ++i)
+        timeline_.add(cursor_.t + times(idle_cycle_, i), sent_per_cycle);
     cursor_.t += times(idle_cycle_, k);
     stats_.cycles += k;
     stats_.ids += k * slots_.size();

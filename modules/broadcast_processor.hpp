@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "modules/bus_interface.hpp"
+#include "modules/busy_timeline.hpp"
 #include "modules/memory.hpp"
 
 namespace rtsim::modules {
@@ -69,6 +70,8 @@ class BroadcastProcessor : public sc_core::sc_module {
     sc_core::sc_time hit_packet_time;  ///< of which packets some BIC captured
   };
   const Stats& stats() const { return stats_; }
+  /// When the bus carried packet words (Stats::packet_time over time), for utilisation windows.
+  const BusyTimeline& timeline() const { return timeline_; }
   /// Called for every packet some BIC captures (traces): id, start, duration, captures.
   std::function<void(std::uint32_t, sc_core::sc_time, sc_core::sc_time, std::size_t)> on_packet;
 
@@ -104,6 +107,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   sc_core::sc_event start_;
   sc_core::sc_event wake_;
   Stats stats_;
+  BusyTimeline timeline_;
   std::vector<BusInterface*> hitters_;
 };
 

@@ -92,6 +92,17 @@ TEST(GaudetPert, StatsCarryTheDocumentedKeysAndConsistentCounts) {
   }
   for (const char* p : {"pert0.shade", "pert1.shell", "pert1.prim", "pert0.queue.shell_to_prim"})
     EXPECT_TRUE(s["modules"].contains(p)) << p;
+  // Utilisation over time for every processor and bus: 100 windows whose mean is the frame's
+  // utilisation (both cover the frame after the load).
+  for (const char* m : {"pert0.shade", "pert1.shell", "pert0.prim", "shell_bus", "prim_bus"}) {
+    const auto& mod = s["modules"][m];
+    ASSERT_TRUE(mod.contains("utilization_windows")) << m;
+    const auto& v = mod["utilization_windows"]["values"];
+    ASSERT_EQ(v.size(), 100u) << m;
+    double sum = 0;
+    for (const auto& x : v) sum += x.get<double>();
+    EXPECT_NEAR(sum / 100.0, mod["utilization"].get<double>(), 1e-6) << m;
+  }
   // Every ray goes once through each processor; the ShellProcessors' box tests are the twin's.
   const auto& g = s["gaudet"];
   const double rays = s["rays"]["total"];

@@ -157,6 +157,8 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
       totals[k] += t;
       auto& m = stats.module(pert + "." + kKinds[k]);
       m.busy = t.processing;
+      m.windows =
+          procs[k]->timeline().windows(p.control->load_time(), end, modules::kUtilizationWindows);
       m.values["rays"] = static_cast<double>(t.rays);
       m.values["latency_s"] = t.latency.to_seconds();
       m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
@@ -200,6 +202,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     // whether or not anyone listens).
     auto& m = stats.module(std::string(kKinds[b]) + "_bus");
     m.busy = s.packet_time;
+    m.windows = bp.timeline().windows(p.control->load_time(), end, modules::kUtilizationWindows);
     m.values["ids"] = static_cast<double>(s.ids);
     m.values["cycles"] = static_cast<double>(s.cycles);
     m.values["packets"] = static_cast<double>(s.packets);

@@ -15,6 +15,7 @@ void PertProcessor::compute(const Cost& c, std::string_view what) {
   if (t == sc_core::SC_ZERO_TIME) return;
   trace_.busy(busy_signal_, true);
   trace_.slice(track_, what, clock_.now(), t);
+  timeline_.add(clock_.now(), t);
   clock_.advance(t);
   trace_.busy(busy_signal_, false);
   split_.processing += t;

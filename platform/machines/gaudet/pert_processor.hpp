@@ -13,6 +13,7 @@
 #include <systemc>
 
 #include "firmware/cost.hpp"
+#include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/processor_timing.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -36,6 +37,8 @@ struct TimeSplit {
 class PertProcessor : public sc_core::sc_module {
  public:
   const TimeSplit& split() const { return split_; }
+  /// When it computed (TimeSplit::processing over time), for utilisation windows.
+  const modules::BusyTimeline& timeline() const { return timeline_; }
   /// Elaboration: the event that starts the frame (the control processor's).
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
 
@@ -58,6 +61,7 @@ class PertProcessor : public sc_core::sc_module {
   modules::ProcessorTiming timing_;
   MachineTrace& trace_;
   TimeSplit split_;
+  modules::BusyTimeline timeline_;
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
