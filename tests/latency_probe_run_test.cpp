@@ -235,3 +235,23 @@ TEST(LatencyProbeRun, SlowerHostMeansLongerWaitInTheResultQueue) {
                      stage(fast["latency_probe"], st, "service_s"))
         << st;
 }
+
+TEST(LatencyProbeRun, EverythingIsAttributedAtALargeQuantumToo) {
+  // Temporal decoupling (here 1 ms, far more than a ray's latency) changes the timing the
+  // machine computes, not the bookkeeping: the parts still cover the window exactly.
+  const json s = check_probe_changes_nothing_and_covers_the_window(
+      "probe-quantum",
+      kCubes + "--width 16 --height 16 -p peripheral.grid.divisions=6 --quantum \"1 ms\"");
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["latency_probe"]["stages"].size(), 5u);
+}
+
+TEST(LatencyProbeRun, HelpSaysWhatItRecordsAndWhere) {
+  const auto r = run_rtsim("run --help");
+  EXPECT_EQ(r.exit_code, 0);
+  const std::size_t at = r.output.find("--latency-probe");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string text = r.output.substr(at, 400);
+  for (const char* word : {"queueing", "service", "transfer", "stats.json", "latency_probe"})
+    EXPECT_NE(text.find(word), std::string::npos) << word << " in " << text;
+}
