@@ -122,6 +122,11 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--overhead", runa.overhead,
                 "Also render the same frame with no timing in this process and report "
                 "functional_wall_time_s and overhead_ratio");
+  run->add_flag("--latency-probe", runa.latency_probe,
+                "Record each ray's end-to-end latency (from entering the machine until the host "
+                "has its answer) broken down by stage (module or queue) into queueing, service "
+                "and transfer time: stats.json `latency_probe` (docs/stats.md); with --report, "
+                "a \"Where a ray spends its time\" section");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "
                 "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "

@@ -34,7 +34,8 @@ struct RunArgs {
   std::vector<std::string> traces;  ///< vcd, perfetto
   std::string quantum;              ///< "" keeps the parameter `quantum`
   bool overhead = false;
-  bool report = false;  ///< also write report.html
+  bool report = false;         ///< also write report.html
+  bool latency_probe = false;  ///< stats.json latency_probe: per-ray time by stage and part
   bool quiet = false;
   ConfigArgs config;
 };

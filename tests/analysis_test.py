@@ -29,6 +29,7 @@ except ImportError as e:
     sys.exit(SKIP)
 
 import figures  # noqa: E402
+import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
@@ -249,6 +250,83 @@ class LatencyHistogramTest(unittest.TestCase, PngMixin):
         self.assertIn("stats.json:1", r.stderr)
 
 
+def probe_stats():
+    """A latency_probe of two stages: 'queue' (2 us queueing) and 'cpu' (3 us service, 1 us
+    transfer), 7 us end to end, so 1 us unattributed."""
+    return {"machine": "m", "scene": "s", "latency_probe": {
+        "rays": 5,
+        "end_to_end_s": {"count": 5, "mean": 7e-6, "p50": 7e-6, "p99": 9e-6, "max": 9e-6},
+        "unattributed_s": 1e-6,
+        "stages": {
+            "queue": {"queueing_s": 2e-6, "service_s": 0.0, "transfer_s": 0.0, "total_s": 2e-6,
+                      "p99_s": 3e-6, "share": 2 / 7},
+            "cpu": {"queueing_s": 0.0, "service_s": 3e-6, "transfer_s": 1e-6, "total_s": 4e-6,
+                    "p99_s": 5e-6, "share": 4 / 7}}}}
+
+
+class LatencyBreakdownTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_series(self):
+        s = latency_breakdown.breakdown_series(probe_stats())
+        self.assertEqual(s["stages"], ["queue", "cpu"])  # the order stats.json lists them in
+        self.assertEqual(s["queueing"], [2e-6, 0.0])
+        self.assertEqual(s["service"], [0.0, 3e-6])
+        self.assertEqual(s["transfer"], [0.0, 1e-6])
+        self.assertEqual((s["end_to_end_s"], s["unattributed_s"], s["rays"]), (7e-6, 1e-6, 5))
+
+    def test_drawn_bars(self):
+        fig, ax, bars = latency_breakdown.draw(
+            latency_breakdown.breakdown_series(probe_stats()), "t")
+        try:
+            # The rectangles matplotlib holds, in microseconds (the unit chosen for 7 us):
+            # stacked queueing | service | transfer per stage, then the rest and end to end.
+            drawn = {}
+            for c in ax.containers:
+                for r in c.patches:
+                    drawn.setdefault(c.get_label(), []).append(
+                        (round(r.get_y() + r.get_height() / 2), r.get_x(), r.get_width()))
+            def close(got, want):
+                np.testing.assert_allclose(np.asarray(got), np.asarray(want), atol=1e-9)
+
+            close(drawn["queueing"], [(0, 0.0, 2.0), (1, 0.0, 0.0)])
+            close(drawn["service"], [(0, 2.0, 0.0), (1, 0.0, 3.0)])
+            close(drawn["transfer"], [(0, 2.0, 0.0), (1, 3.0, 1.0)])
+            close(drawn["unattributed"], [(2, 0.0, 1.0)])
+            (e2e,) = [v for k, v in drawn.items()
+                      if k not in ("queueing", "service", "transfer", "unattributed")]
+            close(e2e, [(3, 0.0, 7.0)])
+            # The stage bars and the rest add up to the end-to-end bar.
+            total = sum(w for k in ("queueing", "service", "transfer", "unattributed")
+                        for _, _, w in drawn[k])
+            self.assertAlmostEqual(total, 7.0, places=9)
+            self.assertEqual([t.get_text() for t in ax.get_yticklabels()],
+                             ["queue", "cpu", "unattributed", "end to end (mean)"])
+            self.assertIn("µs", ax.get_xlabel())
+            self.assertEqual(bars["cpu"]["transfer"], (3.0, 1.0))
+        finally:
+            latency_breakdown.common.pyplot().close(fig)
+
+    def test_command_line_and_bad_input(self):
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(probe_stats(), f)
+        out = os.path.join(self.dir, "b.png")
+        r = run_script("latency_breakdown.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(path, "w") as f:
+            json.dump({"machine": "m", "ray_latency_s": {"count": 1}}, f)
+        r = run_script("latency_breakdown.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--latency-probe", r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.png")))
+
+
 def g_row(rid, title, seed_ref, seed_value, simulated, unit="us", workload=""):
     return {"id": rid, "title": title, "seed_ref": seed_ref, "seed_text": "", "unit": unit,
             "seed_value": seed_value, "simulated_value": simulated, "relative_error": None,
@@ -358,7 +436,8 @@ class RealRunTest(unittest.TestCase, PngMixin):
         out = tempfile.mkdtemp(prefix="rtsim-analysis-run-")
         try:
             r = subprocess.run([os.environ["RTSIM_BINARY"], "run", "--width", "16", "--height",
-                                "16", "--trace", "perfetto", "-q", "--out", out],
+                                "16", "--trace", "perfetto", "--latency-probe", "-q", "--out",
+                                out],
                                capture_output=True, text=True, timeout=300)
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(os.path.join(out, "stats.json")) as f:
@@ -377,8 +456,16 @@ class RealRunTest(unittest.TestCase, PngMixin):
             trace_busy = float(np.sum(busy["peripheral.pipeline"]) * (tedges[1] - tedges[0]))
             self.assertAlmostEqual(trace_busy, stats["modules"]["peripheral.pipeline"]["busy_s"],
                                    delta=0.01 * stats["modules"]["peripheral.pipeline"]["busy_s"])
+            # The probe's breakdown as drawn adds up to the end-to-end mean, which is the mean
+            # of ray_latency_s (the same rays over the same window).
+            series = latency_breakdown.breakdown_series(stats)
+            drawn = sum(sum(series[p]) for p in latency_breakdown.PARTS)
+            drawn += series["unattributed_s"]
+            self.assertAlmostEqual(drawn, stats["ray_latency_s"]["mean"],
+                                   delta=1e-9 * stats["ray_latency_s"]["mean"])
             for script, args in (("utilisation_timeline.py", [out]),
-                                 ("latency_histogram.py", [os.path.join(out, "stats.json")])):
+                                 ("latency_histogram.py", [os.path.join(out, "stats.json")]),
+                                 ("latency_breakdown.py", [out])):
                 png = os.path.join(out, script.replace(".py", ".png"))
                 r = run_script(script, *args, png)
                 self.assertEqual(r.returncode, 0, r.stderr)
