@@ -311,12 +311,10 @@ def series_fig218(val):
 
 def plain_log_ticks(axis):
     """Numbers (20, 50, 100) rather than powers of ten on a logarithmic axis."""
-    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-    fmt = ScalarFormatter()
-    fmt.set_scientific(False)
-    axis.set_major_formatter(fmt)
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     axis.set_minor_formatter(NullFormatter())
 
 
@@ -496,13 +494,13 @@ def draw_speedup(ax, val):
                     color=colors[k % len(colors)], label=f"{scene} {mode}")
     ax.plot([1], [20], "r*", ms=13, label="thesis: 1 PERT 20x (L1141)")
     ax.plot([8], [100], "rP", ms=11, label="thesis: 8 PERTs ~100x (L1135, L1143)")
-    from matplotlib.ticker import FixedLocator, NullLocator, ScalarFormatter
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 
     ax.set_xscale("log", base=2)
     counts = sorted({int(n) for modes in curves.values() for ns, _ in modes.values() for n in ns})
     ax.xaxis.set_major_locator(FixedLocator(counts))
     ax.xaxis.set_minor_locator(NullLocator())
-    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.set_yscale("log")
     plain_log_ticks(ax.yaxis)
     ax.set_xlabel("PERTs n")

@@ -128,7 +128,10 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", ca
     x = common.resolve_column(df.columns, x)
     y = common.resolve_column(df.columns, y)
     if group:
-        group = common.resolve_column(df.columns, group, "group column")
+        # Several columns (a list, or "scene,broadcast.mode"): one line per combination.
+        names = group if isinstance(group, (list, tuple)) else str(group).split(",")
+        group = [common.resolve_column(df.columns, g.strip(), "group column") for g in names]
+        group = group[0] if len(group) == 1 else group
     ys_all = df[y].map(to_number)
     df = df.assign(_y=ys_all)
     base_col, base_value = None, None
@@ -172,7 +175,11 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", ca
             g = g.assign(_b=g[base_col].map(to_number).astype(float))
             baseline = g.groupby("_x", sort=True)["_b"].mean().to_numpy(float)
             ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
-        out["all" if label is None else str(label)] = (xs, ys)
+        if label is None:
+            label = "all"
+        elif isinstance(label, tuple):
+            label = ", ".join(map(str, label))
+        out[str(label)] = (xs, ys)
     return out, categories
 
 
@@ -227,17 +234,23 @@ def plot(series, categories, args, out_path):
     if args.logx:
         ax.set_xscale("log")
         # Plain numbers at the values swept (1, 2, 4, ..., 64), not powers of ten.
-        from matplotlib.ticker import FixedLocator, NullLocator, ScalarFormatter
+        from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 
         ticks = sorted({float(x) for xs, _ in series.values() for x in xs if x > 0})
         if 0 < len(ticks) <= 12:
             ax.xaxis.set_major_locator(FixedLocator(ticks))
             ax.xaxis.set_minor_locator(NullLocator())
-            fmt = ScalarFormatter()
-            fmt.set_scientific(False)
-            ax.xaxis.set_major_formatter(fmt)
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     if args.logy:
         ax.set_yscale("log")
+        # Plain numbers (1, 2, 5, 10, 20, 50) rather than powers of ten when they read well.
+        ys = [float(y) for _, yv in series.values() for y in yv if y > 0]
+        if ys and 1e-3 <= min(ys) and max(ys) < 1e6:
+            from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+            ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(args.xlabel or args.x)
     if args.ylabel:
         ylabel = args.ylabel
@@ -272,8 +285,9 @@ def main(argv):
     ap.add_argument("--y", required=True, action="append",
                     help="column to plot (a stat: simulated_time_s, ...); repeat for several")
     ap.add_argument("--group", default=None,
-                    help="one line per value of this column (default: scene, else machine, "
-                         "whichever varies; 'none' for one line)")
+                    help="one line per value of this column, or per combination of several "
+                         "(COL,COL) (default: scene, else machine, whichever varies; 'none' for "
+                         "one line)")
     ap.add_argument("--logx", action="store_true", help="logarithmic x axis")
     ap.add_argument("--logy", action="store_true", help="logarithmic y axis")
     ap.add_argument("--ratio-to", default=None, metavar="COL=VALUE|COL",

@@ -29,10 +29,11 @@ constexpr std::size_t kMaxSweepText = 200000;
 constexpr std::size_t kMaxFailuresListed = 200;
 // Values of an axis listed in the headline before "...".
 constexpr std::size_t kMaxAxisValuesShown = 12;
-// An axis becomes the lines of another axis's plots when it has at most this many values.
-constexpr std::size_t kMaxLines = 8;
+// The other axes become the lines of an axis's plots when their combinations are at most this
+// many; else the first other axis with at most this many values does, the rest are averaged.
+constexpr std::size_t kMaxLines = 12;
 // A stat spanning more than this ratio (all values above 0) is drawn on a log axis.
-constexpr double kLogSpan = 30.0;
+constexpr double kLogSpan = 20.0;
 // Thumbnails are drawn this many pixels wide (pixels kept sharp).
 constexpr int kThumbPixels = 128;
 
@@ -221,10 +222,11 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
     }
     axes.push_back(std::move(a));
   }
-  // x: every axis that is not a machine or scene list; only when there is none, the first list.
+  // x: every axis of numbers; names (machines, scenes, broadcast.mode = "adaptive", ...) make
+  // lines. Only when no axis has numbers, the first axis of names is x.
   std::vector<std::size_t> xs;
   for (std::size_t i = 0; i < axes.size(); ++i)
-    if (!axes[i].run_option) xs.push_back(i);
+    if (axes[i].numeric) xs.push_back(i);
   if (xs.empty() && !axes.empty()) xs.push_back(0);
 
   const auto add = [&](SweepPlotSpec s) {
@@ -232,22 +234,39 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
   };
   for (const std::size_t i : xs) {
     const AxisInfo& xa = axes[i];
-    // Lines: the first other axis short enough (machine and scene lists come first).
-    std::size_t group = axes.size();
-    for (std::size_t j = 0; j < axes.size() && group == axes.size(); ++j)
-      if (j != i && axes[j].size <= kMaxLines) group = j;
-    std::string averaged;
+    // Lines: every other axis together when their combinations are few, else the first other
+    // axis short enough (machine and scene lists come first) with the rest averaged.
+    std::vector<std::size_t> group;
+    std::size_t combinations = 1;
     for (std::size_t j = 0; j < axes.size(); ++j)
-      if (j != i && j != group) averaged += (averaged.empty() ? "" : ", ") + axes[j].column;
-    const std::size_t lines = group < axes.size() ? axes[group].size : 1;
+      if (j != i) group.push_back(j), combinations *= axes[j].size;
+    if (combinations > kMaxLines) {
+      group.clear();
+      for (std::size_t j = 0; j < axes.size() && group.empty(); ++j)
+        if (j != i && axes[j].size <= kMaxLines) group.push_back(j);
+    }
+    std::string averaged, group_columns;
+    std::size_t lines = 1;
+    for (std::size_t j = 0; j < axes.size(); ++j) {
+      if (j == i) continue;
+      if (std::find(group.begin(), group.end(), j) != group.end()) {
+        group_columns += (group_columns.empty() ? "" : ",") + axes[j].column;
+        lines *= axes[j].size;
+      } else {
+        averaged += (averaged.empty() ? "" : ", ") + axes[j].column;
+      }
+    }
     const std::string over =
         averaged.empty() ? "" : " Points that differ only in " + averaged + " are averaged.";
 
     SweepPlotSpec base;
     base.x = xa.column;
-    base.group = group < axes.size() ? axes[group].column : "";
+    base.group = group_columns;
     base.logx = xa.numeric && log_spaced(xa.values);
-    const std::string lines_text = base.group.empty() ? "" : ", one line per " + base.group;
+    std::string per = base.group;  // "scene,broadcast.mode" -> "scene and broadcast.mode"
+    for (auto c = per.find(','); c != std::string::npos; c = per.find(',', c))
+      per.replace(c, 1, " and ");
+    const std::string lines_text = per.empty() ? "" : ", one line per " + per;
 
     const auto stat_plot = [&](std::vector<std::string> ys, const std::string& what,
                                const std::string& ylabel) {
@@ -298,7 +317,7 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
     }
     std::stable_sort(busy.begin(), busy.end(),
                      [](const auto& a, const auto& b) { return a.first > b.first; });
-    const std::size_t keep = std::max<std::size_t>(2, kMaxLines / lines);
+    const std::size_t keep = lines >= 8 ? 1 : std::max<std::size_t>(2, 8 / lines);
     if (busy.size() > keep) busy.resize(keep);
     if (!busy.empty()) {
       std::vector<std::string> ys;
@@ -315,7 +334,7 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
     for (const char* c : {"ray_latency_s.mean", "ray_latency_s.p99"}) {
       const auto v = view.numbers(c);
       if (!v.empty() && *std::max_element(v.begin(), v.end()) > 0 &&
-          (latency.empty() || lines <= kMaxLines / 2))
+          (latency.empty() || lines <= 4))
         latency.push_back(c);
     }
     if (!latency.empty()) add(stat_plot(latency, "Ray latency", "ray latency (s)"));

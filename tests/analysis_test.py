@@ -96,6 +96,13 @@ class SweepPlotTest(unittest.TestCase, PngMixin):
         np.testing.assert_allclose(xs, [1, 2])  # the failed 8-PERT point is left out
         np.testing.assert_allclose(ys, [1.0, 10.0 / 6.0])
 
+    def test_one_line_per_combination_of_several_group_columns(self):
+        df = sweep_plot.read_results(self.csv)
+        series, _ = sweep_plot.compute_series(df, "pert.count", "simulated_time_s",
+                                              "scene,link.bit_time", "pert.count=1")
+        self.assertEqual(sorted(series), ["builtin:npp-404, 200 ns", "builtin:npp-408, 400 ns"])
+        np.testing.assert_allclose(series["builtin:npp-404, 200 ns"][1], [1.0, 2.0, 4.0])
+
     def test_units_spelling_and_plain_values(self):
         df = sweep_plot.read_results(self.csv)
         # "200 ns" reads as 2e-7 s; utilisation finds the utilization column.
