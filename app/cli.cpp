@@ -145,7 +145,8 @@ int run_cli(int argc, char** argv) {
   sweep
       ->add_option("--jobs", sw.jobs,
                    "Points at once, each its own process (default: the cores; with --mpi, 1 "
-                   "per rank)")
+                   "per rank; more than 1 per rank needs mpirun --bind-to none, or the points "
+                   "share the rank's core)")
       ->check(CLI::Range(1, 1024));
   sweep->add_flag("--mpi", sw.mpi,
                   "Spread the points over MPI ranks (mpirun -np K rtsim sweep FILE --mpi): "
