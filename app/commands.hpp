@@ -64,6 +64,7 @@ struct SweepArgs {
   bool mpi = false;     ///< spread the points over MPI ranks (under mpirun / srun)
   bool force = false;   ///< run every point again, even those done before
   bool list = false;    ///< print the points' command lines, run nothing
+  bool report = false;  ///< also write report.html (app/sweep_report.hpp)
   bool quiet = false;
   std::string rtsim;  ///< binary to run for each point; empty: this one
 };

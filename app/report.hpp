@@ -61,6 +61,12 @@ class HtmlReport {
              bool pixelated = false);
   /// Number of images embedded so far.
   int images() const { return images_; }
+  /// Appends `html` as it is (the caller escapes its text): pieces the methods above do not
+  /// cover, such as preformatted text or a grid of thumbnails. `images`: <img> elements in it.
+  void raw(const std::string& html, int images = 0) {
+    body_ += html;
+    images_ += images;
+  }
 
   std::string html() const;
   /// Writes html() to `path` (the caller stages it: app/output_set.hpp).
