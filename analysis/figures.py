@@ -20,18 +20,25 @@ Figures (each drawn only when its data is there; the others are skipped with a n
            T_i = 429 us, T_s = 710 us (seed 001 L317-L318, L326), the simulated runs, and the
            Fig 1-4 scene (O = 1093, about 238 h for 1,824,915 rays, L322-L326).
   fig6-10  Gaudet's ShellProcessor average processing and latency per ray for the binary,
-           quad and oct trees (scenes 212, 412, 812; seed 001 L1025-L1030).
+           quad and oct trees (scenes 212, 412, 812; seed 001 L1025-L1030): thesis against
+           simulated (rows P2a-P2c: processing as the value, latency in the note).
   fig6-11  Gaudet's ShellProcessor average latency per ray for breadth-first, depth-first and
-           random broadcast order of the shell packets (scenes 404-420; seed 001 L1032-L1039).
+           random broadcast order (scenes 404-420; seed 001 L1032-L1039): thesis against
+           simulated (rows P4a, P4b: the per-scene latencies in their notes). The model does
+           not reproduce this figure (P4 is open, docs/validation.md); the title says so.
+  speedup  Gaudet's Figs 6-12..6-14: times faster than a VAX-11/750 against the number of
+           PERTs, direct memory (dotted), non-adaptive (dashed) and adaptive (solid) broadcasting
+           (gaudet-speedup.csv), with the thesis's two numbers: 20x for one PERT (L1141) and
+           about 100x for eight (L1135, L1143). The thesis's graphs are lost (no values).
   summary  every row of the table: relative error against its tolerance.
 
-Gaudet's simulated values come from validation rows whose id starts with "G". A row is matched
-to a cell of the thesis's tables by, in order of weight: its seed line (seed_ref naming
-L1026/L1027/L1028 for processing/latency/total, L1033-L1037 for the Fig 6-11 scenes) or the
-figure number ("6-10", "6-11") in its text; the scene number (212, 412, ...); the words
-processing/latency/total or breadth/depth/random in its title; and its seed_value equal to the
-thesis number. Its value is read in its unit (s, ms, us, ns). Cells with no row are drawn from
-the thesis alone.
+Gaudet's values are taken, when `--keep` left them, from the run folders
+(pert-SCENE-MODE-ORDER-nN/stats.json: gaudet.shell.processing_per_ray_s and
+latency_per_ray_s), else from the rows `rtsim validate` writes (platform/validation/
+gaudet_figures.cpp): P2a/P2b/P2c (binary 212, quad 412, oct 812) hold the processing per ray
+as their value and "latency (emerges from the bus) X us per ray" in their note; P4a and P4b hold
+"breadth a/b/c/d/e us, other f/g/h/i/j us" (scenes 404, 408, 412, 416, 420; other = depth-first
+for P4a, random for P4b). Cells with no value are drawn from the thesis alone.
 """
 
 import argparse
@@ -71,7 +78,6 @@ GAUDET_FIG610 = {
     "quad": (412, 523.9, 5.0, 528.9),
     "oct": (812, 690.5, 0.5, 691.0),
 }
-GAUDET_FIG610_LINES = {"processing": 1026, "latency": 1027, "total": 1028}
 
 # Gaudet 1985, Fig 6-11 (seed 001 L1032-L1039): ShellProcessor, average latency per ray (us).
 GAUDET_FIG611 = {
@@ -84,7 +90,8 @@ GAUDET_FIG611 = {
 }
 GAUDET_ORDERS = ("breadth", "depth", "random")
 
-FIGURES = ("fig2-18", "fig2-21", "fig2-19", "vax", "fig6-10", "fig6-11", "summary")
+FIGURES = ("fig2-18", "fig2-21", "fig2-19", "vax", "fig6-10", "fig6-11", "speedup",
+           "summary")
 
 
 def ullner_model_us(n_s, n_p=ULLNER_N_P, t_i=ULLNER_T_I_US, t_d=ULLNER_T_D_US, t_l=ULLNER_T_L_US,
@@ -118,11 +125,14 @@ class Validation:
             data = common.read_json(path)
             self.rows = data.get("rows", []) if isinstance(data, dict) else []
         self.fig218 = self._read_csv(os.path.join(folder, "fig2-18.csv"))
+        self.speedup = self._read_csv(os.path.join(folder, "gaudet-speedup.csv"))
         self.run_dirs = {}
         for d in sorted(glob.glob(os.path.join(folder, "runs-*", "*", "stats.json"))):
             self.run_dirs.setdefault(os.path.basename(os.path.dirname(d)), d)
-        if not self.rows and self.fig218 is None and not self.run_dirs:
-            raise common.InputProblem(f"{folder}: no validation.json, fig2-18.csv or run folders")
+        if (not self.rows and self.fig218 is None and self.speedup is None
+                and not self.run_dirs):
+            raise common.InputProblem(
+                f"{folder}: no validation.json, fig2-18.csv, gaudet-speedup.csv or run folders")
 
     @staticmethod
     def _read_csv(path):
@@ -166,9 +176,11 @@ def dig(obj, path):
     return obj
 
 
-# ---- Gaudet's rows ---------------------------------------------------------------------------
+# ---- Gaudet's values ------------------------------------------------------------------------
 
 _UNIT_TO_US = {"s": 1e6, "ms": 1e3, "us": 1.0, "µs": 1.0, "ns": 1e-3, "": 1.0}
+GAUDET_FIG611_SCENES = (404, 408, 412, 416, 420)  # the order of P4's note (L1033-L1037)
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
 
 def row_value_us(row):
@@ -179,68 +191,100 @@ def row_value_us(row):
     return float(v) * _UNIT_TO_US.get(unit, 1.0)
 
 
-def _row_text(row):
-    return " ".join(str(row.get(k, "")) for k in ("id", "title", "seed_text", "workload",
-                                                    "seed_ref", "note")).lower()
+def _rows_with_prefix(rows, prefix):
+    return [r for r in rows if re.fullmatch(re.escape(prefix) + r"[a-z]?", str(r.get("id", "")))]
 
 
-def _mentions_line(row, line):
-    return re.search(rf"\bl{line}\b", str(row.get("seed_ref", "")).lower()) is not None
+def _run_us(val, key, path):
+    v = dig(val.stats(key), path)
+    return float(v) * 1e6 if common.finite(v) else None
 
 
-def _close(a, b):
-    return common.finite(a) and abs(float(a) - b) <= 1e-6 * max(1.0, abs(b))
+def gaudet_fig610(val):
+    """{tree: {"processing": us, "latency": us}} simulated, for the trees of Fig 6-10: from the
+    run folders pert-SCENE-adaptive-breadth-n1 if kept, else from rows P2a-P2c (the scene
+    number in the title picks the tree; processing is the value, latency is in the note)."""
+    out = {}
+    rows = _rows_with_prefix(val.rows, "P2")
+    for tree, (scene, *_) in GAUDET_FIG610.items():
+        cell = {}
+        key = f"pert-{scene}-adaptive-breadth-n1"
+        for q in ("processing", "latency"):
+            v = _run_us(val, key, f"gaudet.shell.{q}_per_ray_s")
+            if v is not None:
+                cell[q] = v
+        row = next((r for r in rows if f"({scene})" in str(r.get("title", ""))), None)
+        if row is not None:
+            if "processing" not in cell and row_value_us(row) is not None:
+                cell["processing"] = row_value_us(row)
+            m = re.search(rf"latency[^0-9]*?({_NUMBER}) us per ray", str(row.get("note", "")))
+            if "latency" not in cell and m:
+                cell["latency"] = float(m.group(1))
+        if cell:
+            out[tree] = cell
+    return out
 
 
-def gaudet_points(rows):
-    """Simulated values of Gaudet's tables found among the G rows:
-    ({(tree, quantity): us}, {(scene, order): us}) for Fig 6-10 and Fig 6-11."""
-    candidates = [r for r in rows if str(r.get("id", "")).startswith("G")]
-    cells = []  # (score, row index, key)
-    for i, r in enumerate(candidates):
-        text = _row_text(r)
-        title = str(r.get("title", "")).lower()
-        is611 = "6-11" in text or any(_mentions_line(r, v[0]) for v in GAUDET_FIG611.values())
-        is610 = "6-10" in text or any(_mentions_line(r, ln) for ln in GAUDET_FIG610_LINES.values())
-        for tree, (scene, *values) in GAUDET_FIG610.items():
-            for quantity, value in zip(("processing", "latency", "total"), values):
-                word = quantity in title or (quantity in text and not any(
-                    q in title for q in GAUDET_FIG610_LINES if q != quantity))
-                if not word or is611 and not is610:
-                    continue
-                if str(scene) not in text and tree not in text:
-                    continue
-                score = 3 * (is610 or _mentions_line(r, GAUDET_FIG610_LINES[quantity]))
-                score += 2 * (str(scene) in text) + (tree in text)
-                score += 2 * _close(r.get("seed_value"), value)
-                if score >= 3:
-                    cells.append((score, i, ("6-10", tree, quantity)))
-        for scene, (line, *values) in GAUDET_FIG611.items():
-            if str(scene) not in text:
-                continue
-            for order, value in zip(GAUDET_ORDERS, values):
-                word = order in title or (order in text and not any(
-                    o in title for o in GAUDET_ORDERS if o != order))
-                if not word or (is610 and not is611):
-                    continue
-                score = 3 * (is611 or _mentions_line(r, line)) + 2
-                score += 2 * _close(r.get("seed_value"), value)
-                if score >= 5:
-                    cells.append((score, i, ("6-11", scene, order)))
-    fig610, fig611, used, taken = {}, {}, set(), set()
-    for score, i, key in sorted(cells, key=lambda c: -c[0]):
-        if i in used or key in taken:
+def _note_series(row, word):
+    """The five numbers after `word` in a P4 note ("breadth 4.1/6.5/13.7/16.5/18.7 us")."""
+    m = re.search(rf"{word} ({_NUMBER}(?:/{_NUMBER})*) us", str(row.get("note", "")))
+    if not m:
+        return None
+    values = [float(x) for x in m.group(1).split("/")]
+    return values if len(values) == len(GAUDET_FIG611_SCENES) else None
+
+
+def gaudet_fig611(val):
+    """{(scene, order): us} simulated ShellProcessor latency per ray for Fig 6-11: from the run
+    folders pert-SCENE-adaptive-ORDER-n1 if kept, else from the notes of P4a (breadth, and
+    depth-first as "other") and P4b (random as "other")."""
+    out = {}
+    for scene in GAUDET_FIG611_SCENES:
+        for order in GAUDET_ORDERS:
+            v = _run_us(val, f"pert-{scene}-adaptive-{order}-n1", "gaudet.shell.latency_per_ray_s")
+            if v is not None:
+                out[(scene, order)] = v
+    for rid, order in (("P4a", "depth"), ("P4b", "random")):
+        row = val.row(rid)
+        if row is None:
             continue
-        v = row_value_us(candidates[i])
-        if v is None:
-            continue
-        used.add(i)
-        taken.add(key)
-        if key[0] == "6-10":
-            fig610[(key[1], key[2])] = v
-        else:
-            fig611[(key[1], key[2])] = v
-    return fig610, fig611
+        for word, o in (("breadth", "breadth"), ("other", order)):
+            values = _note_series(row, word)
+            if values:
+                for scene, v in zip(GAUDET_FIG611_SCENES, values):
+                    out.setdefault((scene, o), v)
+    return out
+
+
+def gaudet_order_verdict(val):
+    """What the validation said of Fig 6-11: "not reproduced (P4a, P4b fail)", "reproduced
+    (P4a, P4b pass)", or None without P4 rows."""
+    rows = [r for r in (val.row("P4a"), val.row("P4b")) if r is not None]
+    if not rows:
+        return None
+    ids = ", ".join(r["id"] for r in rows)
+    if all(r.get("pass") for r in rows):
+        return f"reproduced ({ids} pass)"
+    failing = ", ".join(r["id"] for r in rows if not r.get("pass"))
+    return f"NOT reproduced ({failing} fail{'s' if ',' not in failing else ''})"
+
+
+def gaudet_speedup(val):
+    """{scene: {mode: (pert counts, times faster than the VAX-11/750)}} from gaudet-speedup.csv
+    (columns scene, mode, pert_count, frame_s, vax_frame_s, speedup_over_vax)."""
+    df = val.speedup
+    if df is None:
+        return {}
+    need = {"scene", "mode", "pert_count", "speedup_over_vax"}
+    if not need <= set(df.columns):
+        raise common.InputProblem(f"{val.folder}/gaudet-speedup.csv: expected the columns "
+                                  f"{', '.join(sorted(need))}; got {', '.join(df.columns)}")
+    out = {}
+    for (scene, mode), g in df.groupby(["scene", "mode"], sort=False):
+        g = g.sort_values("pert_count")
+        out.setdefault(str(scene), {})[str(mode)] = (g["pert_count"].to_numpy(float),
+                                                     g["speedup_over_vax"].to_numpy(float))
+    return out
 
 
 # ---- The figures -----------------------------------------------------------------------------
@@ -267,12 +311,10 @@ def series_fig218(val):
 
 def plain_log_ticks(axis):
     """Numbers (20, 50, 100) rather than powers of ten on a logarithmic axis."""
-    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-    fmt = ScalarFormatter()
-    fmt.set_scientific(False)
-    axis.set_major_formatter(fmt)
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     axis.set_minor_formatter(NullFormatter())
 
 
@@ -377,59 +419,95 @@ def draw_vax(ax, val):
 def draw_fig610(ax, val):
     import numpy as np
 
-    sim, _ = gaudet_points(val.rows)
+    sim = gaudet_fig610(val)
     trees = list(GAUDET_FIG610)
     x = np.arange(len(trees))
     w = 0.38
     proc = [GAUDET_FIG610[t][1] for t in trees]
     lat = [GAUDET_FIG610[t][2] for t in trees]
-    ax.bar(x - w / 2, proc, w, color="tab:blue", alpha=0.45, label="thesis: processing (L1026)")
-    ax.bar(x - w / 2, lat, w, bottom=proc, color="tab:red", alpha=0.45,
+    ax.bar(x - w / 2, proc, w, color="tab:blue", alpha=0.4, label="thesis: processing (L1026)")
+    ax.bar(x - w / 2, lat, w, bottom=proc, color="tab:red", alpha=0.4,
            label="thesis: latency (L1027)")
-    any_sim = False
+    labelled = False
     for i, t in enumerate(trees):
-        p = sim.get((t, "processing"))
-        latency = sim.get((t, "latency"))
-        total = sim.get((t, "total"))
+        ax.annotate(f"lat {lat[i]:g}", (x[i] - w / 2, proc[i] + lat[i]), ha="center",
+                    va="bottom", fontsize="x-small")
+        cell = sim.get(t, {})
+        p, latency = cell.get("processing"), cell.get("latency")
         if p is not None:
-            ax.bar(x[i] + w / 2, p, w, color="tab:blue", label="simulated: processing"
-                   if not any_sim else None)
+            ax.bar(x[i] + w / 2, p, w, color="tab:blue",
+                   label=None if labelled else "simulated: processing")
         if latency is not None:
             ax.bar(x[i] + w / 2, latency, w, bottom=p or 0.0, color="tab:red",
-                   label="simulated: latency" if not any_sim else None)
-        if total is not None and (p is None or latency is None):
-            ax.plot([x[i] + w / 2], [total], "kD", label="simulated: total" if not any_sim
-                    else None)
-        any_sim |= p is not None or latency is not None or total is not None
+                   label=None if labelled else "simulated: latency")
+            ax.annotate(f"lat {latency:.3g}", (x[i] + w / 2, (p or 0.0) + latency),
+                        ha="center", va="bottom", fontsize="x-small")
+        labelled |= p is not None or latency is not None
     ax.set_xticks(x)
     ax.set_xticklabels([f"{t} ({GAUDET_FIG610[t][0]})" for t in trees])
-    ax.set_ylabel("time per ray (µs)")
-    note = "" if any_sim else " — no simulated rows yet"
-    ax.set_title(f"Fig 6-10: ShellProcessor per ray, tree order{note}")
-    ax.legend(fontsize="x-small")
+    ax.set_ylabel("ShellProcessor time per ray (µs)")
+    ax.set_ylim(0, max(a + b for a, b in zip(proc, lat)) * 1.25)
+    note = "" if sim else " — no simulated values"
+    ax.set_title(f"Fig 6-10: processing + latency per ray, left thesis, right simulated{note}",
+                 fontsize="small")
+    ax.legend(fontsize="x-small", loc="upper left", ncol=2)
     return True
 
 
 def draw_fig611(ax, val):
-    _, sim = gaudet_points(val.rows)
-    scenes = sorted(GAUDET_FIG611)
+    sim = gaudet_fig611(val)
+    scenes = list(GAUDET_FIG611_SCENES)
     colors = {"breadth": "tab:blue", "depth": "tab:red", "random": "tab:green"}
-    any_sim = False
     for k, order in enumerate(GAUDET_ORDERS):
+        name = "random" if order == "random" else f"{order}-first"
         ax.plot(scenes, [GAUDET_FIG611[s][1 + k] for s in scenes], "--", color=colors[order],
-                alpha=0.6, label=f"thesis: {order}-first" if order != "random" else
-                "thesis: random")
+                alpha=0.6, marker="x", label=f"thesis: {name}")
         pts = [(s, sim[(s, order)]) for s in scenes if (s, order) in sim]
         if pts:
-            any_sim = True
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=colors[order],
-                    label=f"simulated: {order}")
+                    label=f"simulated: {name}")
     ax.set_xticks(scenes)
-    ax.set_xlabel("scene")
-    ax.set_ylabel("latency per ray (µs)")
-    note = "" if any_sim else " — no simulated rows yet"
-    ax.set_title(f"Fig 6-11: broadcast order (L1032-L1039){note}")
+    ax.set_xlabel("scene (4-ary tree, 4..20 spheres per cluster)")
+    ax.set_ylabel("ShellProcessor latency per ray (µs)")
+    verdict = gaudet_order_verdict(val)
+    if not sim:
+        note = " — no simulated values"
+    elif verdict:
+        note = f" — {verdict}"
+    else:
+        note = ""
+    ax.set_title(f"Fig 6-11: broadcast order (L1032-L1039){note}", fontsize="small",
+                 color="tab:red" if verdict and verdict.startswith("NOT") else "black")
     ax.legend(fontsize="x-small", ncol=2)
+    return True
+
+
+def draw_speedup(ax, val):
+    curves = gaudet_speedup(val)
+    if not curves:
+        return False
+    styles = {"direct": ":", "non-adaptive": "--", "adaptive": "-"}
+    colors = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown"]
+    for k, (scene, modes) in enumerate(curves.items()):
+        for mode, (ns, ys) in modes.items():
+            ax.plot(ns, ys, styles.get(mode, "-."), marker="o", ms=3,
+                    color=colors[k % len(colors)], label=f"{scene} {mode}")
+    ax.plot([1], [20], "r*", ms=13, label="thesis: 1 PERT 20x (L1141)")
+    ax.plot([8], [100], "rP", ms=11, label="thesis: 8 PERTs ~100x (L1135, L1143)")
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+
+    ax.set_xscale("log", base=2)
+    counts = sorted({int(n) for modes in curves.values() for ns, _ in modes.values() for n in ns})
+    ax.xaxis.set_major_locator(FixedLocator(counts))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
+    ax.set_xlabel("PERTs n")
+    ax.set_ylabel("times faster than the VAX-11/750")
+    ax.set_title("Figs 6-12..6-14: speed-up over the VAX (thesis graphs lost; dotted direct, "
+                 "dashed non-adaptive, solid adaptive)", fontsize="small")
+    ax.legend(fontsize="xx-small", ncol=2)
     return True
 
 
@@ -460,7 +538,8 @@ def draw_summary(ax, val):
 
 
 DRAW = {"fig2-18": draw_fig218, "fig2-21": draw_fig221, "fig2-19": draw_fig219, "vax": draw_vax,
-        "fig6-10": draw_fig610, "fig6-11": draw_fig611, "summary": draw_summary}
+        "fig6-10": draw_fig610, "fig6-11": draw_fig611, "speedup": draw_speedup,
+        "summary": draw_summary}
 
 
 def render(val, names, out_path):

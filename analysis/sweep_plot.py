@@ -17,6 +17,9 @@ unit. `utilisation` and `utilization` name the same column.
 --ratio-to draws y as a ratio to a baseline: COL=VALUE takes, in each group, the row where COL
 equals VALUE (e.g. the 1-PERT run); a bare column name divides by that column row by row.
 --ratio-mode speedup (default) plots baseline / y, fraction plots y / baseline.
+
+--y may be given several times (e.g. each module's utilisation): one line per column (and per
+group), labelled by what differs between the column names.
 """
 
 import argparse
@@ -114,17 +117,21 @@ def _numeric(series):
     return nums if nums.notna().all() else None
 
 
-def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
+def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", categories=None):
     """{label: (xs, ys)} as plotted: rows grouped by `group`, sorted by x, repeated x values
     averaged, y turned into a ratio to a baseline when `ratio_to` is given. x values are
-    numbers when every one reads as a number, else category labels in order of appearance."""
+    numbers when every one reads as a number, else category labels in order of appearance
+    (`categories` fixes their order, e.g. to share it between several y columns)."""
     import numpy as np
 
     df = ok_rows(df)
     x = common.resolve_column(df.columns, x)
     y = common.resolve_column(df.columns, y)
     if group:
-        group = common.resolve_column(df.columns, group, "group column")
+        # Several columns (a list, or "scene,broadcast.mode"): one line per combination.
+        names = group if isinstance(group, (list, tuple)) else str(group).split(",")
+        group = [common.resolve_column(df.columns, g.strip(), "group column") for g in names]
+        group = group[0] if len(group) == 1 else group
     ys_all = df[y].map(to_number)
     df = df.assign(_y=ys_all)
     base_col, base_value = None, None
@@ -141,9 +148,10 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
     xnum = _numeric(df[x])
     categories = None
     if xnum is None:
-        categories = list(dict.fromkeys(df[x].astype(str)))
+        categories = list(dict.fromkeys(list(categories or []) + list(df[x].astype(str))))
         df = df.assign(_x=df[x].astype(str).map(categories.index).astype(float))
     else:
+        categories = None
         df = df.assign(_x=xnum)
     groups = [(None, df)] if not group else list(df.groupby(group, sort=True, dropna=False))
     out = {}
@@ -167,7 +175,51 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup"):
             g = g.assign(_b=g[base_col].map(to_number).astype(float))
             baseline = g.groupby("_x", sort=True)["_b"].mean().to_numpy(float)
             ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
-        out["all" if label is None else str(label)] = (xs, ys)
+        if label is None:
+            label = "all"
+        elif isinstance(label, tuple):
+            label = ", ".join(map(str, label))
+        out[str(label)] = (xs, ys)
+    return out, categories
+
+
+def short_names(columns):
+    """What differs between dotted column names: modules.host.utilization and
+    modules.peripheral.pipeline.utilization -> host, peripheral.pipeline (and the common
+    pattern modules.*.utilization)."""
+    parts = [str(c).split(".") for c in columns]
+    if len(parts) < 2:
+        return [str(c) for c in columns], None
+    head = 0
+    while all(len(p) > head + 1 for p in parts) and len({p[head] for p in parts}) == 1:
+        head += 1
+    tail = 0
+    while (all(len(p) > head + tail + 1 for p in parts)
+           and len({p[len(p) - 1 - tail] for p in parts}) == 1):
+        tail += 1
+    short = [".".join(p[head:len(p) - tail]) for p in parts]
+    if head == 0 and tail == 0:
+        return short, None
+    pattern = ".".join(parts[0][:head] + ["*"] + parts[0][len(parts[0]) - tail:])
+    return short, pattern
+
+
+def compute_multi(df, x, ys, group=None, ratio_to=None, ratio_mode="speedup"):
+    """compute_series for several y columns: {label: (xs, ys)}, one entry per column and group
+    ("GROUP: COLUMN" with several groups), categories shared."""
+    if len(ys) == 1:
+        return compute_series(df, x, ys[0], group, ratio_to, ratio_mode)
+    ok = ok_rows(df)
+    xcol = common.resolve_column(ok.columns, x)
+    categories = None
+    if _numeric(ok[xcol]) is None:
+        categories = list(dict.fromkeys(ok[xcol].astype(str)))
+    short, _ = short_names(ys)
+    out = {}
+    for y, name in zip(ys, short):
+        series, categories = compute_series(df, x, y, group, ratio_to, ratio_mode, categories)
+        for label, s in series.items():
+            out[name if label == "all" else f"{label}: {name}"] = s
     return out, categories
 
 
@@ -181,21 +233,43 @@ def plot(series, categories, args, out_path):
         ax.set_xticklabels(categories, rotation=30, ha="right")
     if args.logx:
         ax.set_xscale("log")
+        # Plain numbers at the values swept (1, 2, 4, ..., 64), not powers of ten.
+        from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+
+        ticks = sorted({float(x) for xs, _ in series.values() for x in xs if x > 0})
+        if 0 < len(ticks) <= 12:
+            ax.xaxis.set_major_locator(FixedLocator(ticks))
+            ax.xaxis.set_minor_locator(NullLocator())
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     if args.logy:
         ax.set_yscale("log")
+        # Plain numbers (1, 2, 5, 10, 20, 50) rather than powers of ten when they read well.
+        ys = [float(y) for _, yv in series.values() for y in yv if y > 0]
+        if ys and 1e-3 <= min(ys) and max(ys) < 1e6:
+            from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+            ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(args.xlabel or args.x)
     if args.ylabel:
         ylabel = args.ylabel
-    elif args.ratio_to:
-        ylabel = (f"speed-up over {args.ratio_to}\n({args.y})" if args.ratio_mode == "speedup"
-                  else f"{args.y}\nrelative to {args.ratio_to}")
     else:
-        ylabel = args.y
+        y = args.y[0] if len(args.y) == 1 else short_names(args.y)[1] or ", ".join(args.y)
+        if args.ratio_to:
+            ylabel = (f"speed-up over {args.ratio_to}\n({y})" if args.ratio_mode == "speedup"
+                      else f"{y}\nrelative to {args.ratio_to}")
+        else:
+            ylabel = y
     ax.set_ylabel(ylabel)
     if args.title:
         ax.set_title(args.title)
     if len(series) > 1 or (len(series) == 1 and next(iter(series)) != "all"):
-        ax.legend(title=args.group_used, fontsize="small")
+        if len(series) <= 4:
+            ax.legend(title=args.group_used, fontsize="small")
+        else:  # beside the axes, where it hides no line
+            ax.legend(title=args.group_used, fontsize="x-small", loc="upper left",
+                      bbox_to_anchor=(1.02, 1.0))
     ax.grid(True, which="both", alpha=0.3)
     common.save(fig, out_path)
     plt.close(fig)
@@ -208,10 +282,12 @@ def main(argv):
     ap.add_argument("input", help="results.csv, results.jsonl, or the sweep's folder")
     ap.add_argument("out", help="PNG to write")
     ap.add_argument("--x", required=True, help="column on the horizontal axis (a swept parameter)")
-    ap.add_argument("--y", required=True, help="column to plot (a stat: simulated_time_s, ...)")
+    ap.add_argument("--y", required=True, action="append",
+                    help="column to plot (a stat: simulated_time_s, ...); repeat for several")
     ap.add_argument("--group", default=None,
-                    help="one line per value of this column (default: scene, else machine, "
-                         "whichever varies; 'none' for one line)")
+                    help="one line per value of this column, or per combination of several "
+                         "(COL,COL) (default: scene, else machine, whichever varies; 'none' for "
+                         "one line)")
     ap.add_argument("--logx", action="store_true", help="logarithmic x axis")
     ap.add_argument("--logy", action="store_true", help="logarithmic y axis")
     ap.add_argument("--ratio-to", default=None, metavar="COL=VALUE|COL",
@@ -231,9 +307,10 @@ def main(argv):
     elif group.lower() == "none":
         group = None
     args.group_used = group
-    series, categories = compute_series(df, args.x, args.y, group, args.ratio_to, args.ratio_mode)
+    series, categories = compute_multi(df, args.x, args.y, group, args.ratio_to, args.ratio_mode)
     if not series or all(len(xs) == 0 for xs, _ in series.values()):
-        raise common.InputProblem(f"{args.input}: no successful rows with a value of {args.y}")
+        raise common.InputProblem(
+            f"{args.input}: no successful rows with a value of {' or '.join(args.y)}")
     plot(series, categories, args, args.out)
     return common.EXIT_OK
 

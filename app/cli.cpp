@@ -43,7 +43,9 @@ constexpr const char* kSweepFooter =
     "\nOutputs in --out: results.csv and results.jsonl (one row per point, in point order: the\n"
     "swept values, status, exit code, error, wall time and every stats.json number), and\n"
     "points/NNNN/ (stats.json, images, run.log, done.json). A point whose folder holds a\n"
-    "done.json with the same command line is not run again.\n"
+    "done.json with the same command line is not run again. With --report also report.html:\n"
+    "the sweep file, the results table, plots of the headline stats against each axis\n"
+    "(analysis/sweep_plot.py), the points' images and the parameters with their sources.\n"
     "\nExit status: 0 all points ran, 1 a point failed (the others still run), 2 bad sweep file.";
 
 void add_config_options(CLI::App* cmd, ConfigArgs& cfg) {
@@ -122,6 +124,11 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--overhead", runa.overhead,
                 "Also render the same frame with no timing in this process and report "
                 "functional_wall_time_s and overhead_ratio");
+  run->add_flag("--latency-probe", runa.latency_probe,
+                "Record each ray's end-to-end latency (from entering the machine until the host "
+                "has its answer) broken down by stage (module or queue) into queueing, service "
+                "and transfer time: stats.json `latency_probe` (docs/stats.md); with --report, "
+                "a \"Where a ray spends its time\" section");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "
                 "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "
@@ -143,7 +150,8 @@ int run_cli(int argc, char** argv) {
   sweep
       ->add_option("--jobs", sw.jobs,
                    "Points at once, each its own process (default: the cores; with --mpi, 1 "
-                   "per rank)")
+                   "per rank; more than 1 per rank needs mpirun --bind-to none, or the points "
+                   "share the rank's core)")
       ->check(CLI::Range(1, 1024));
   sweep->add_flag("--mpi", sw.mpi,
                   "Spread the points over MPI ranks (mpirun -np K rtsim sweep FILE --mpi): "
@@ -155,6 +163,12 @@ int run_cli(int argc, char** argv) {
       ->add_option("--rtsim", sw.rtsim,
                    "The rtsim binary to run for each point (default: this one)")
       ->check(CLI::ExistingFile);
+  sweep->add_flag("--report", sw.report,
+                  "Also write report.html in --out: one self-contained page with the sweep file, "
+                  "the results table (failed points listed), plots of frame time, speed-up, "
+                  "utilisation and latency against each axis (analysis/sweep_plot.py, "
+                  "python3-matplotlib), thumbnails of the first 24 images and the parameters "
+                  "with their sources");
   sweep->add_flag("-q,--quiet", sw.quiet, "Print nothing but errors");
   ValidateArgs va;
   va.jobs = render.threads;

@@ -34,7 +34,8 @@ struct RunArgs {
   std::vector<std::string> traces;  ///< vcd, perfetto
   std::string quantum;              ///< "" keeps the parameter `quantum`
   bool overhead = false;
-  bool report = false;  ///< also write report.html
+  bool report = false;         ///< also write report.html
+  bool latency_probe = false;  ///< stats.json latency_probe: per-ray time by stage and part
   bool quiet = false;
   ConfigArgs config;
 };
@@ -63,6 +64,7 @@ struct SweepArgs {
   bool mpi = false;     ///< spread the points over MPI ranks (under mpirun / srun)
   bool force = false;   ///< run every point again, even those done before
   bool list = false;    ///< print the points' command lines, run nothing
+  bool report = false;  ///< also write report.html (app/sweep_report.hpp)
   bool quiet = false;
   std::string rtsim;  ///< binary to run for each point; empty: this one
 };

@@ -324,6 +324,17 @@ std::string str(const json& j, const std::string& key) {
   return v && v->is_string() ? v->get<std::string>() : std::string("?");
 }
 
+/// The note that says which plots could not be drawn and why.
+std::string missing_plots_note(const std::vector<std::string>& problems) {
+  std::string text = "Plots are missing: ";
+  std::set<std::string> said;
+  for (const auto& p : problems)
+    if (said.insert(p).second) text += (said.size() > 1 ? " | " : "") + p;
+  return text +
+         ". They need Debian's python3 with python3-matplotlib, python3-numpy and "
+         "python3-pandas (set RTSIM_PYTHON to use another interpreter).";
+}
+
 bool has_windows(const json& stats) {
   const json* mods = find(stats, "modules");
   if (!mods || !mods->is_object()) return false;
@@ -350,6 +361,7 @@ const std::set<std::string> kShownKeys = {"tool",
                                           "params",
                                           "modules",
                                           "ray_latency_s",
+                                          "latency_probe",
                                           "image",
                                           "firmware_cost",
                                           "scene_stats",
@@ -442,15 +454,59 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     else
       problems.push_back(r.message);
   }
-  if (!problems.empty()) {
-    std::string text = "Plots are missing: ";
-    std::set<std::string> said;
-    for (const auto& p : problems)
-      if (said.insert(p).second) text += (said.size() > 1 ? " | " : "") + p;
-    text +=
-        ". They need Debian's python3 with python3-matplotlib, python3-numpy and "
-        "python3-pandas (set RTSIM_PYTHON to use another interpreter).";
-    page.note(text);
+  if (!problems.empty()) page.note(missing_plots_note(problems));
+
+  // `--latency-probe`: the per-stage breakdown of a ray's latency.
+  if (const json* probe = find(stats, "latency_probe"); probe && probe->is_object()) {
+    page.heading("Where a ray spends its time");
+    const json* stages = find(*probe, "stages");
+    const json* e2e = find(*probe, "end_to_end_s");
+    const double mean = e2e && e2e->is_object() ? num(*e2e, "mean", 0.0) : 0.0;
+    const double rest = num(*probe, "unattributed_s", 0.0);
+    page.paragraph(
+        "Mean time per ray at each stage (module or queue, in the order a ray meets them) over " +
+        value_text((*probe)["rays"]) +
+        " rays, from the ray entering the machine until the host has its answer (the window "
+        "of the ray latency above): queueing is waiting for the stage, service the stage "
+        "working on the ray, transfer moving its data. A ray that never met a stage counts 0 "
+        "there; share is the stage's total over the end-to-end mean; unattributed is what no "
+        "stage reported (0 up to rounding when the machine reports everything). stats.json "
+        "latency_probe; docs/stats.md says what each part means on each machine.");
+    std::vector<std::vector<std::string>> rows;
+    // The stages in the file's order, as a ray meets them (json sorts its keys).
+    std::vector<std::string> order;
+    if (stages && stages->is_object()) {
+      const auto ordered = nlohmann::ordered_json::parse(read_file(in.stats_json));
+      for (const auto& [name, st] : ordered["latency_probe"]["stages"].items())
+        order.push_back(name);
+    }
+    for (const std::string& name : order)
+      if (const json& st = (*stages)[name]; st.is_object())
+        rows.push_back(
+            {name, seconds(num(st, "queueing_s", 0.0)), seconds(num(st, "service_s", 0.0)),
+             seconds(num(st, "transfer_s", 0.0)), seconds(num(st, "total_s", 0.0)),
+             number(100.0 * num(st, "share", 0.0), 4) + " %", seconds(num(st, "p99_s", 0.0))});
+    // Below 1e-9 of the mean the rest is the rounding of summing the parts: say so.
+    const double rest_share = mean > 0 ? rest / mean : 0.0;
+    if (std::abs(rest_share) < 1e-9)
+      rows.push_back(
+          {"unattributed", "", "", "", "0 (rounding: " + number(rest_share, 2) + ")", "0 %", ""});
+    else
+      rows.push_back(
+          {"unattributed", "", "", "", seconds(rest), number(100.0 * rest_share, 4) + " %", ""});
+    rows.push_back({"end to end (mean)", "", "", "", seconds(mean), "100 %",
+                    e2e && e2e->is_object() ? seconds(num(*e2e, "p99", 0.0)) : ""});
+    page.table({"stage", "queueing", "service", "transfer", "total", "share", "p99 of total"},
+               rows);
+    const fs::path png = tools.scratch_dir / "latency_breakdown.png";
+    const auto r =
+        run_analysis_script(tools, "latency_breakdown.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "where a ray spends its time",
+                 "Mean queueing, service and transfer time per ray at each stage, the "
+                 "unattributed rest and the end-to-end mean (analysis/latency_breakdown.py)");
+    else
+      page.note(missing_plots_note({r.message}));
   }
 
   // Modules.

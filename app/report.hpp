@@ -61,6 +61,12 @@ class HtmlReport {
              bool pixelated = false);
   /// Number of images embedded so far.
   int images() const { return images_; }
+  /// Appends `html` as it is (the caller escapes its text): pieces the methods above do not
+  /// cover, such as preformatted text or a grid of thumbnails. `images`: <img> elements in it.
+  void raw(const std::string& html, int images = 0) {
+    body_ += html;
+    images_ += images;
+  }
 
   std::string html() const;
   /// Writes html() to `path` (the caller stages it: app/output_set.hpp).
@@ -88,7 +94,9 @@ struct RunReportInputs {
 
 /// Writes report.html for one `rtsim run`: headline numbers, the image, the utilisation
 /// timeline (from the trace if given, else from stats.json's utilization_windows), the
-/// ray-latency histogram, the module table, machine-specific figures and the parameters.
+/// ray-latency histogram, where a ray spends its time (stats.json latency_probe, from
+/// --latency-probe: a per-stage table and analysis/latency_breakdown.py's plot), the module
+/// table, machine-specific figures and the parameters.
 /// Throws std::runtime_error if stats.json cannot be read or the page cannot be written; a
 /// plot that cannot be drawn only adds a note.
 void write_run_report(const RunReportInputs& in, const std::filesystem::path& out_html,

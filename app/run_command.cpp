@@ -37,6 +37,7 @@ std::string command_line(const RunArgs& a) {
   for (const auto& t : a.traces) s += " --trace " + t;
   for (const auto& v : a.aovs) s += " --aov " + v;
   if (a.overhead) s += " --overhead";
+  if (a.latency_probe) s += " --latency-probe";
   return s + " --report --out " + quoted(a.out_dir);
 }
 
@@ -64,6 +65,7 @@ int run_run(const RunArgs& args) {
   opts.height = args.height;
   opts.aov_id = wants_aov(args.aovs, "id");
   opts.aov_depth = wants_aov(args.aovs, "depth");
+  opts.latency_probe = args.latency_probe;
   for (const auto& t : args.traces) {
     if (t == "vcd") opts.vcd_path = out.stage("trace.vcd");
     if (t == "perfetto") opts.perfetto_path = out.stage("trace.json");
@@ -131,6 +133,15 @@ int run_run(const RunArgs& args) {
       std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
                 << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
                 << stats["ray_latency_s"]["p99"].get<double>() << " s\n";
+    if (stats.contains("latency_probe")) {
+      const auto& p = stats["latency_probe"];
+      std::cout << "  per ray by stage ";
+      for (const auto& [name, st] : p["stages"].items())
+        std::cout << " " << name << " " << st["total_s"].get<double>() << " s ("
+                  << std::setprecision(3) << 100.0 * st["share"].get<double>() << "%)"
+                  << std::setprecision(6);
+      std::cout << ", unattributed " << p["unattributed_s"].get<double>() << " s\n";
+    }
     std::cout << "  image  " << (out.dir() / "image.png").string() << "  "
               << (out.dir() / "image.exr").string() << "\n"
               << "  stats  " << (out.dir() / "stats.json").string() << "\n";

@@ -12,8 +12,10 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/sweep_mpi.hpp"
+#include "app/sweep_report.hpp"
 #include "common/input_error.hpp"
 #include "platform/sweep/point_outcome.hpp"
 #include "platform/sweep/results_table.hpp"
@@ -72,6 +74,15 @@ std::string describe_point(const sweep::Point& p) {
     s += setting.name + "=" + setting.value.text;
   }
   return s.empty() ? "the only point" : s;
+}
+
+/// The command as a user would type it again (for the report).
+std::string command_line(const SweepArgs& a, const fs::path& out) {
+  std::string s = "rtsim sweep " + a.file;
+  if (a.mpi) s += " --mpi";
+  if (a.jobs > 0) s += " --jobs " + std::to_string(a.jobs);
+  if (a.force) s += " --force";
+  return s + " --report --out " + out.string();
 }
 
 int list_points(const Plan& plan, const fs::path& out) {
@@ -174,6 +185,32 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
 
   std::size_t failed = 0;
   for (const auto& o : outcomes) failed += o.ok ? 0 : 1;
+
+  // The report covers every point of the table, run now or before, failed or not.
+  std::string report_error;
+  if (args.report) {
+    try {
+      OutputSet set(out);
+      SweepReportInputs in;
+      in.file = &plan.file;
+      in.points = &plan.points;
+      in.outcomes = &outcomes;
+      in.table = &table;
+      in.results_jsonl = out / "results.jsonl";
+      in.points_dir = points_dir;
+      in.command_line = command_line(args, out);
+      in.wall_s = wall;
+      in.run_now = requests.size();
+      in.ranks = session ? session->size() : 0;
+      ReportTools tools;
+      tools.scratch_dir = set.staged_path(".report-plots");
+      write_sweep_report(in, set.stage("report.html"), tools);
+      set.commit();
+    } catch (const std::exception& e) {
+      report_error = e.what();
+    }
+  }
+
   if (!args.quiet) {
     std::cout << "rtsim sweep: " << n << (n == 1 ? " point: " : " points: ") << n - failed
               << " ok (" << reused << " done before), " << failed << " failed; " << wall
@@ -192,6 +229,12 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     std::cout << "  table  " << (out / "results.csv").string() << "  "
               << (out / "results.jsonl").string() << "\n"
               << "  points " << points_dir.string() << "/NNNN/ (stats.json, images, run.log)\n";
+    if (args.report && report_error.empty())
+      std::cout << "  report " << (out / "report.html").string() << "\n";
+  }
+  if (!report_error.empty()) {
+    std::cerr << "rtsim: error: report.html: " << report_error << "\n";
+    return kExitFailure;
   }
   return failed > 0 ? kExitFailure : kExitOk;
 }

@@ -23,7 +23,7 @@ LatencyProbe::Journey LatencyProbe::begin(const sc_core::sc_time& now) {
     slots_.emplace_back();
   }
   Slot& s = slots_[j];
-  s.begin_s = now.to_seconds();
+  s.begin = now;
   std::fill(s.parts.begin(), s.parts.end(), 0.0);
   return j;
 }
@@ -40,7 +40,7 @@ void LatencyProbe::add(Journey j, int stage, LatencyPart part, const sc_core::sc
 void LatencyProbe::end(Journey j, const sc_core::sc_time& now) {
   if (j == kNoJourney) return;
   Slot& s = slots_[j];
-  const double e2e = now.to_seconds() - s.begin_s;
+  const double e2e = (now - s.begin).to_seconds();
   end_to_end_.add_seconds(e2e);
   double attributed = 0.0;
   for (std::size_t st = 0; st < stages_.size(); ++st) {

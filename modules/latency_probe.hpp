@@ -56,7 +56,9 @@ class LatencyProbe {
 
  private:
   struct Slot {
-    double begin_s = 0.0;
+    /// Kept as an sc_time (integer picoseconds) so that end-to-end = (now - begin) is exact and
+    /// equals a machine's own `ray_latency_s` sample for the same window bit for bit.
+    sc_core::sc_time begin;
     std::vector<double> parts;  ///< [stage * kLatencyParts + part], seconds
   };
   struct StageTotals {

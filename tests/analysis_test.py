@@ -29,6 +29,7 @@ except ImportError as e:
     sys.exit(SKIP)
 
 import figures  # noqa: E402
+import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
@@ -96,6 +97,13 @@ class SweepPlotTest(unittest.TestCase, PngMixin):
         np.testing.assert_allclose(xs, [1, 2])  # the failed 8-PERT point is left out
         np.testing.assert_allclose(ys, [1.0, 10.0 / 6.0])
 
+    def test_one_line_per_combination_of_several_group_columns(self):
+        df = sweep_plot.read_results(self.csv)
+        series, _ = sweep_plot.compute_series(df, "pert.count", "simulated_time_s",
+                                              "scene,link.bit_time", "pert.count=1")
+        self.assertEqual(sorted(series), ["builtin:npp-404, 200 ns", "builtin:npp-408, 400 ns"])
+        np.testing.assert_allclose(series["builtin:npp-404, 200 ns"][1], [1.0, 2.0, 4.0])
+
     def test_units_spelling_and_plain_values(self):
         df = sweep_plot.read_results(self.csv)
         # "200 ns" reads as 2e-7 s; utilisation finds the utilization column.
@@ -125,6 +133,33 @@ class SweepPlotTest(unittest.TestCase, PngMixin):
                                               "simulated_time_s", None, "simulated_time_s",
                                               "fraction")
         np.testing.assert_allclose(series["all"][1], [1.0, 1.0])
+
+    def test_several_y_columns_one_line_each(self):
+        path = os.path.join(self.dir, "results.jsonl")
+        with open(path, "w") as f:
+            for scene in ("a", "b"):
+                for n, busy in ((1, 0.9), (2, 0.6)):
+                    f.write(json.dumps({"scene": scene, "pert_count": n, "status": "ok",
+                                        "modules.host.utilization": busy,
+                                        "modules.bus.prim.utilization": busy / 3}) + "\n")
+        df = sweep_plot.read_results(path)
+        ys = ["modules.host.utilization", "modules.bus.prim.utilization"]
+        self.assertEqual(sweep_plot.short_names(ys), (["host", "bus.prim"],
+                                                       "modules.*.utilization"))
+        self.assertEqual(sweep_plot.short_names(["simulated_time_s", "rays.total"]),
+                         (["simulated_time_s", "rays.total"], None))
+        series, cats = sweep_plot.compute_multi(df, "pert_count", ys, "scene")
+        self.assertIsNone(cats)
+        self.assertEqual(sorted(series), ["a: bus.prim", "a: host", "b: bus.prim", "b: host"])
+        np.testing.assert_allclose(series["b: bus.prim"][1], [0.3, 0.2])
+        series, _ = sweep_plot.compute_multi(df, "scene", ys, None)  # categories on x
+        self.assertEqual(sorted(series), ["bus.prim", "host"])
+        np.testing.assert_allclose(series["host"][0], [0, 1])
+        out = os.path.join(self.dir, "busy.png")
+        r = run_script("sweep_plot.py", path, out, "--x", "pert_count", "--y", ys[0], "--y",
+                       ys[1])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
 
     def test_command_line_writes_a_png_and_rejects_an_unknown_column(self):
         out = os.path.join(self.dir, "speedup.png")
@@ -249,11 +284,113 @@ class LatencyHistogramTest(unittest.TestCase, PngMixin):
         self.assertIn("stats.json:1", r.stderr)
 
 
-def g_row(rid, title, seed_ref, seed_value, simulated, unit="us", workload=""):
+def probe_stats():
+    """A latency_probe of two stages: 'queue' (2 us queueing) and 'cpu' (3 us service, 1 us
+    transfer), 7 us end to end, so 1 us unattributed."""
+    return {"machine": "m", "scene": "s", "latency_probe": {
+        "rays": 5,
+        "end_to_end_s": {"count": 5, "mean": 7e-6, "p50": 7e-6, "p99": 9e-6, "max": 9e-6},
+        "unattributed_s": 1e-6,
+        "stages": {
+            "queue": {"queueing_s": 2e-6, "service_s": 0.0, "transfer_s": 0.0, "total_s": 2e-6,
+                      "p99_s": 3e-6, "share": 2 / 7},
+            "cpu": {"queueing_s": 0.0, "service_s": 3e-6, "transfer_s": 1e-6, "total_s": 4e-6,
+                    "p99_s": 5e-6, "share": 4 / 7}}}}
+
+
+class LatencyBreakdownTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_series(self):
+        s = latency_breakdown.breakdown_series(probe_stats())
+        self.assertEqual(s["stages"], ["queue", "cpu"])  # the order stats.json lists them in
+        self.assertEqual(s["queueing"], [2e-6, 0.0])
+        self.assertEqual(s["service"], [0.0, 3e-6])
+        self.assertEqual(s["transfer"], [0.0, 1e-6])
+        self.assertEqual((s["end_to_end_s"], s["unattributed_s"], s["rays"]), (7e-6, 1e-6, 5))
+
+    def test_drawn_bars(self):
+        fig, ax, bars = latency_breakdown.draw(
+            latency_breakdown.breakdown_series(probe_stats()), "t")
+        try:
+            # The rectangles matplotlib holds, in microseconds (the unit chosen for 7 us):
+            # stacked queueing | service | transfer per stage, then the rest and end to end.
+            drawn = {}
+            for c in ax.containers:
+                for r in c.patches:
+                    drawn.setdefault(c.get_label(), []).append(
+                        (round(r.get_y() + r.get_height() / 2), r.get_x(), r.get_width()))
+            def close(got, want):
+                np.testing.assert_allclose(np.asarray(got), np.asarray(want), atol=1e-9)
+
+            close(drawn["queueing"], [(0, 0.0, 2.0), (1, 0.0, 0.0)])
+            close(drawn["service"], [(0, 2.0, 0.0), (1, 0.0, 3.0)])
+            close(drawn["transfer"], [(0, 2.0, 0.0), (1, 3.0, 1.0)])
+            close(drawn["unattributed"], [(2, 0.0, 1.0)])
+            (e2e,) = [v for k, v in drawn.items()
+                      if k not in ("queueing", "service", "transfer", "unattributed")]
+            close(e2e, [(3, 0.0, 7.0)])
+            # The stage bars and the rest add up to the end-to-end bar.
+            total = sum(w for k in ("queueing", "service", "transfer", "unattributed")
+                        for _, _, w in drawn[k])
+            self.assertAlmostEqual(total, 7.0, places=9)
+            self.assertEqual([t.get_text() for t in ax.get_yticklabels()],
+                             ["queue", "cpu", "unattributed", "end to end (mean)"])
+            self.assertIn("µs", ax.get_xlabel())
+            self.assertEqual(bars["cpu"]["transfer"], (3.0, 1.0))
+        finally:
+            latency_breakdown.common.pyplot().close(fig)
+
+    def test_command_line_and_bad_input(self):
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(probe_stats(), f)
+        out = os.path.join(self.dir, "b.png")
+        r = run_script("latency_breakdown.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(path, "w") as f:
+            json.dump({"machine": "m", "ray_latency_s": {"count": 1}}, f)
+        r = run_script("latency_breakdown.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--latency-probe", r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.png")))
+
+
+def g_row(rid, title, seed_ref, seed_value, simulated, unit="us", workload="", note="",
+          passed=True):
     return {"id": rid, "title": title, "seed_ref": seed_ref, "seed_text": "", "unit": unit,
             "seed_value": seed_value, "simulated_value": simulated, "relative_error": None,
-            "tolerance": {"kind": "relative", "value": 0.2}, "pass": True, "note": "",
+            "tolerance": {"kind": "relative", "value": 0.2}, "pass": passed, "note": note,
             "error": "", "workload": workload}
+
+
+def gaudet_rows():
+    """Rows shaped as `rtsim validate --only P2,P4` writes them (platform/validation/
+    gaudet_figures.cpp), with round numbers."""
+    def p2(rid, tree, scene, processing, latency):
+        return g_row(rid, f"ShellProcessor processing per ray, {tree} ({scene})",
+                     "seed 001 L1025-L1030", 467.8, processing,
+                     note=f"latency (emerges from the bus) {latency} us per ray, thesis 124.9 "
+                          "us; 11.69 boxes tested per ray")
+    def p4(rid, other, breadth, values, passed):
+        return g_row(rid, f"ShellProcessor latency, {other} over breadth-first (mean of "
+                          "404..420)", "seed 001 L1019, L1032-L1039", 2.37, 1.01, unit="ratio",
+                     note=f"breadth {breadth} us, other {values} us", passed=passed)
+    return [
+        # Ullner's G1 (an image identity) must be ignored.
+        g_row("G1", "the peripheral's image equals the functional renderer's", "DESIGN.md", 0, 0,
+              unit=""),
+        p2("P2a", "binary", 212, 500.5, 33.5),
+        p2("P2b", "quad", 412, 505.0, 13.66),
+        p2("P2c", "oct", 812, 660.0, 1.2e1),
+        p4("P4a", "depth-first", "4/6/13/16/18", "4.5/6.5/13.5/16.5/18.5", False),
+        p4("P4b", "random", "4/6/13/16/18", "5/7/14/17/19", True),
+    ]
 
 
 class FiguresTest(unittest.TestCase, PngMixin):
@@ -273,34 +410,66 @@ class FiguresTest(unittest.TestCase, PngMixin):
         self.assertAlmostEqual(values[1], 1.0 + 1000.0 / 3.0 + 5.6, places=9)
         self.assertAlmostEqual(figures.ullner_model_intersections(1), 1000.0)
 
-    def test_gaudet_rows_are_matched_to_the_thesis_cells(self):
-        rows = [
-            # The existing G1 (an image identity figure) must match nothing.
-            g_row("G1", "the peripheral's image equals the functional renderer's", "DESIGN.md",
-                  0, 0, unit=""),
-            g_row("G610a", "Fig 6-10: ShellProcessor processing per ray, binary tree (212)",
-                  "seed 001 L1026", 467.8, 455.0),
-            g_row("G610b", "ShellProcessor latency per ray, quad tree", "seed 001 L1027", 5.0,
-                  6.0e-6, unit="s", workload="builtin:npp-412"),
-            g_row("G611-404-depth", "Fig 6-11 scene 404: depth-first latency per ray",
-                  "seed 001 L1033", 11.4, 10.9),
-            g_row("G611-404-random", "Fig 6-11 scene 404: random order latency per ray",
-                  "seed 001 L1033", 11.4, 11.8),
-            g_row("G611-412-breadth", "Fig 6-11 scene 412, breadth-first", "seed 001 L1035", 5.0,
-                  5000.0, unit="ns"),
-        ]
-        fig610, fig611 = figures.gaudet_points(rows)
-        self.assertEqual(fig610, {("binary", "processing"): 455.0, ("quad", "latency"): 6.0})
-        self.assertEqual(fig611, {(404, "depth"): 10.9, (404, "random"): 11.8,
-                                  (412, "breadth"): 5.0})
+    def test_gaudet_values_are_read_from_the_rows_validate_writes(self):
+        with open(os.path.join(self.dir, "validation.json"), "w") as f:
+            json.dump({"rows": gaudet_rows()}, f)
+        val = figures.Validation(self.dir)
+        self.assertEqual(figures.gaudet_fig610(val), {
+            "binary": {"processing": 500.5, "latency": 33.5},
+            "quad": {"processing": 505.0, "latency": 13.66},
+            "oct": {"processing": 660.0, "latency": 12.0}})
+        fig611 = figures.gaudet_fig611(val)
+        self.assertEqual(len(fig611), 15)
+        self.assertEqual(fig611[(404, "breadth")], 4.0)
+        self.assertEqual(fig611[(420, "breadth")], 18.0)
+        self.assertEqual(fig611[(408, "depth")], 6.5)
+        self.assertEqual(fig611[(416, "random")], 17.0)
+        # P4a fails: the figure says it is not reproduced.
+        self.assertEqual(figures.gaudet_order_verdict(val), "NOT reproduced (P4a fails)")
+        self.assertEqual(figures.gaudet_speedup(val), {})
+
+        # Kept run folders are read first (exact values rather than the notes' 4 digits).
+        run = os.path.join(self.dir, "runs-x", "pert-412-adaptive-breadth-n1")
+        os.makedirs(run)
+        with open(os.path.join(run, "stats.json"), "w") as f:
+            json.dump({"gaudet": {"shell": {"processing_per_ray_s": 5.1e-4,
+                                            "latency_per_ray_s": 1.25e-5}}}, f)
+        val = figures.Validation(self.dir)
+        quad = figures.gaudet_fig610(val)["quad"]
+        self.assertAlmostEqual(quad["processing"], 510.0)
+        self.assertAlmostEqual(quad["latency"], 12.5)
+        self.assertAlmostEqual(figures.gaudet_fig611(val)[(412, "breadth")], 12.5)
+        self.assertEqual(figures.gaudet_fig611(val)[(412, "depth")], 13.5)
+
+    def test_speedup_curves_from_gaudet_speedup_csv(self):
+        with open(os.path.join(self.dir, "gaudet-speedup.csv"), "w") as f:
+            f.write("scene,mode,pert_count,frame_s,vax_frame_s,speedup_over_vax\n")
+            for mode, t1 in (("direct", 3.5), ("non-adaptive", 9.4), ("adaptive", 3.8)):
+                for n in (8, 1, 64):  # out of order: sorted by the count
+                    f.write(f"412,{mode},{n},{t1 / n},63.9,{63.9 / (t1 / n)}\n")
+        val = figures.Validation(self.dir)
+        curves = figures.gaudet_speedup(val)
+        self.assertEqual(list(curves), ["412"])
+        self.assertEqual(sorted(curves["412"]), ["adaptive", "direct", "non-adaptive"])
+        ns, ys = curves["412"]["direct"]
+        np.testing.assert_allclose(ns, [1, 8, 64])
+        np.testing.assert_allclose(ys, [63.9 / 3.5, 8 * 63.9 / 3.5, 64 * 63.9 / 3.5])
+        out = os.path.join(self.dir, "speedup.png")
+        r = run_script("figures.py", self.dir, out, "--figure", "speedup")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(os.path.join(self.dir, "gaudet-speedup.csv"), "w") as f:
+            f.write("scene,pert_count\n412,1\n")
+        r = run_script("figures.py", self.dir, out, "--figure", "speedup")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("gaudet-speedup.csv: expected the columns", r.stderr)
 
     def make_validation(self, with_gaudet):
         rows = [g_row("V8b", "Fig. 2-18, analytic model: minimum", "seed 000 L654", 14.3, 14.31),
                 g_row("VAX3", "T_i recovered", "seed 001 L317", 429, 429.0),
                 g_row("VAX4", "T_s recovered", "seed 001 L318", 710, 710.0)]
         if with_gaudet:
-            rows.append(g_row("G6-10q", "processing per ray, quad tree (412)", "seed 001 L1026",
-                              523.9, 510.0))
+            rows += gaudet_rows()
         with open(os.path.join(self.dir, "validation.json"), "w") as f:
             json.dump({"rows": rows}, f)
         with open(os.path.join(self.dir, "fig2-18.csv"), "w") as f:
@@ -328,8 +497,8 @@ class FiguresTest(unittest.TestCase, PngMixin):
         self.assertAlmostEqual(points[0][0], 10)
         self.assertAlmostEqual(points[0][1], 0.710 + 10 * 0.429)  # ms per ray
         self.assertEqual(rec, {"t_i_us": 429.0, "t_s_us": 710.0})
-        fig610, _ = figures.gaudet_points(val.rows)
-        self.assertEqual(fig610, {("quad", "processing"): 510.0})
+        self.assertEqual(figures.gaudet_fig610(val)["quad"], {"processing": 505.0,
+                                                               "latency": 13.66})
 
     def test_command_line_draws_what_there_is(self):
         self.make_validation(with_gaudet=False)
@@ -338,9 +507,10 @@ class FiguresTest(unittest.TestCase, PngMixin):
         r = run_script("figures.py", self.dir, out, "--each", each)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGoodPng(out, 800, 800)
-        # No cubes runs: Fig 2-19 is skipped with a note; the Gaudet tables are drawn from the
-        # thesis alone.
+        # No cubes runs and no gaudet-speedup.csv: Fig 2-19 and the speed-up curves are skipped
+        # with a note; the Gaudet tables are drawn from the thesis alone.
         self.assertIn("fig2-19: no data", r.stderr)
+        self.assertIn("speedup: no data", r.stderr)
         drawn = sorted(os.listdir(each))
         self.assertEqual(drawn, ["fig2-18.png", "fig2-21.png", "fig6-10.png", "fig6-11.png",
                                  "summary.png", "vax.png"])
@@ -358,7 +528,8 @@ class RealRunTest(unittest.TestCase, PngMixin):
         out = tempfile.mkdtemp(prefix="rtsim-analysis-run-")
         try:
             r = subprocess.run([os.environ["RTSIM_BINARY"], "run", "--width", "16", "--height",
-                                "16", "--trace", "perfetto", "-q", "--out", out],
+                                "16", "--trace", "perfetto", "--latency-probe", "-q", "--out",
+                                out],
                                capture_output=True, text=True, timeout=300)
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(os.path.join(out, "stats.json")) as f:
@@ -377,8 +548,16 @@ class RealRunTest(unittest.TestCase, PngMixin):
             trace_busy = float(np.sum(busy["peripheral.pipeline"]) * (tedges[1] - tedges[0]))
             self.assertAlmostEqual(trace_busy, stats["modules"]["peripheral.pipeline"]["busy_s"],
                                    delta=0.01 * stats["modules"]["peripheral.pipeline"]["busy_s"])
+            # The probe's breakdown as drawn adds up to the end-to-end mean, which is the mean
+            # of ray_latency_s (the same rays over the same window).
+            series = latency_breakdown.breakdown_series(stats)
+            drawn = sum(sum(series[p]) for p in latency_breakdown.PARTS)
+            drawn += series["unattributed_s"]
+            self.assertAlmostEqual(drawn, stats["ray_latency_s"]["mean"],
+                                   delta=1e-9 * stats["ray_latency_s"]["mean"])
             for script, args in (("utilisation_timeline.py", [out]),
-                                 ("latency_histogram.py", [os.path.join(out, "stats.json")])):
+                                 ("latency_histogram.py", [os.path.join(out, "stats.json")]),
+                                 ("latency_breakdown.py", [out])):
                 png = os.path.join(out, script.replace(".py", ".png"))
                 r = run_script(script, *args, png)
                 self.assertEqual(r.returncode, 0, r.stderr)

@@ -1,7 +1,8 @@
 // `rtsim run --report`: report.html is one self-contained page (pictures embedded as base64
 // PNG), staged with the other outputs, with plots drawn by analysis/ when Debian's python3 and
 // matplotlib are there and a note instead when they are not; and it opens in headless
-// Chromium (Debian's chromium package) with every picture decoded and no console message.
+// Chromium (Debian's chromium package) with every picture decoded and no console message. A run
+// with --latency-probe gains the "Where a ray spends its time" table and plot.
 #include "app/report.hpp"
 
 #include <gtest/gtest.h>
@@ -53,7 +54,17 @@ std::string chromium() {
 
 const char* kRunArgs =
     "run --machine ullner-peripheral --scene builtin:ullner-cubes --width 32 --height 32 "
-    "-p peripheral.grid.divisions=4 --trace perfetto --report -q";
+    "-p peripheral.grid.divisions=4 --trace perfetto --latency-probe --report -q";
+
+/// The <table> that follows `heading` (an <h2>), or "" if there is none.
+std::string table_after(const std::string& html, const std::string& heading) {
+  const std::size_t h = html.find("<h2>" + heading + "</h2>");
+  if (h == std::string::npos) return "";
+  const std::size_t t = html.find("<table>", h);
+  const std::size_t next = html.find("<h2>", h + 4);
+  if (t == std::string::npos || t > next) return "";
+  return html.substr(t, html.find("</table>", t) - t);
+}
 
 }  // namespace
 
@@ -75,9 +86,10 @@ TEST(Report, RunWritesASelfContainedPageWithImagePlotsAndParameters) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ASSERT_TRUE(fs::exists(dir / "report.html"));
   const std::string html = read_file(dir / "report.html");
-  // The frame, the utilisation timeline and the latency histogram, each a real PNG inline.
+  // The frame, the utilisation timeline, the latency histogram and the latency breakdown, each
+  // a real PNG inline.
   const auto images = image_data(html);
-  ASSERT_EQ(images.size(), 3u) << html.substr(0, 2000);
+  ASSERT_EQ(images.size(), 4u) << html.substr(0, 2000);
   for (const auto& b64 : images) {
     EXPECT_EQ(b64.rfind("iVBORw0KGgo", 0), 0u);  // base64 of the PNG signature
     EXPECT_GT(b64.size(), 1000u);
@@ -87,6 +99,25 @@ TEST(Report, RunWritesASelfContainedPageWithImagePlotsAndParameters) {
   EXPECT_NE(html.find("simulated frame time"), std::string::npos);
   EXPECT_NE(html.find("ray latency"), std::string::npos);
   EXPECT_NE(html.find("peripheral.pipeline"), std::string::npos);
+  // --latency-probe: the breakdown table, stages as a ray meets them, then its plot.
+  const std::string probe = table_after(html, "Where a ray spends its time");
+  ASSERT_FALSE(probe.empty()) << "no latency breakdown table";
+  EXPECT_NE(probe.find("<th>queueing</th><th>service</th><th>transfer</th><th>total</th>"
+                       "<th>share</th>"),
+            std::string::npos)
+      << probe;
+  std::size_t last = 0;
+  for (const char* stage : {"peripheral.ray_queue", "peripheral.aux", "peripheral.pipeline",
+                            "host.result_queue", "unattributed", "end to end (mean)"}) {
+    const std::size_t at = probe.find("<tr><td>" + std::string(stage) + "</td>");
+    ASSERT_NE(at, std::string::npos) << stage << " in " << probe;
+    EXPECT_GT(at, last) << stage << " out of order";
+    last = at;
+  }
+  EXPECT_NE(probe.find("0 (rounding"), std::string::npos) << probe;  // nothing unattributed
+  const std::size_t plot = html.find("alt=\"where a ray spends its time\"");
+  EXPECT_NE(plot, std::string::npos);
+  EXPECT_GT(plot, html.find("<h2>Where a ray spends its time</h2>"));
   // Parameters with where they were set and their documented source.
   EXPECT_NE(html.find("<tr class=\"set\"><td>peripheral.grid.divisions</td><td>4</td>"),
             std::string::npos);
@@ -119,6 +150,20 @@ TEST(Report, WithoutPythonThePageSaysWhyThereAreNoPlots) {
   EXPECT_NE(html.find("Plots are missing"), std::string::npos);
   EXPECT_NE(html.find("/nonexistent/python3"), std::string::npos);
   EXPECT_NE(html.find("simulated frame time"), std::string::npos);
+  EXPECT_EQ(html.find("Where a ray spends its time"), std::string::npos);  // no --latency-probe
+  fs::remove_all(dir);
+  // With the probe the table needs no Python; only its plot is missing, with a note.
+  ASSERT_EQ(std::system((cmd.substr(0, cmd.find(" --report")) + " --latency-probe" +
+                         cmd.substr(cmd.find(" --report")))
+                            .c_str()),
+            0);
+  const std::string probed = read_file(dir / "report.html");
+  EXPECT_EQ(image_data(probed).size(), 1u);
+  EXPECT_NE(table_after(probed, "Where a ray spends its time").find("<tr><td>vax</td>"),
+            std::string::npos);
+  const std::size_t section = probed.find("<h2>Where a ray spends its time</h2>");
+  ASSERT_NE(section, std::string::npos);
+  EXPECT_NE(probed.find("Plots are missing", section), std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -141,10 +186,12 @@ TEST(Report, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) {
   ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(log);
   const std::string html = read_file(dom);
   const auto images = image_data(html);
-  ASSERT_EQ(images.size(), 3u) << html.substr(0, 2000);
+  ASSERT_EQ(images.size(), 4u) << html.substr(0, 2000);
   for (const auto& b64 : images) EXPECT_GT(b64.size(), 1000u);
-  // Set by the page once loaded: every <img> decoded (naturalWidth > 0).
-  EXPECT_NE(html.find("data-images-decoded=\"3\""), std::string::npos) << html.substr(0, 500);
+  // Set by the page once loaded: every <img> decoded (naturalWidth > 0), the latency
+  // breakdown's plot among them.
+  EXPECT_NE(html.find("data-images-decoded=\"4\""), std::string::npos) << html.substr(0, 500);
+  EXPECT_NE(html.find("alt=\"where a ray spends its time\""), std::string::npos);
   // Chromium logs every console message (console.log, console.error, uncaught exceptions) as
   // ":CONSOLE" lines; the page writes to the console only when something is wrong.
   const std::string messages = read_file(log);

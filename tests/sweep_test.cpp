@@ -423,8 +423,7 @@ TEST(ResultsTable, OneRowPerPointWithSweptValuesStatsAndFailures) {
 }
 
 TEST(SweepExamples, ConfigsSweepsParse) {
-  // Fig. 2-18 is checked whole (its machine exists); gaudet-pert may not be built yet, so its
-  // example is only read and counted.
+  // Both examples are checked whole: names, values and scenes, as `rtsim sweep` would.
   const std::string dir = std::string(RTSIM_SOURCE_DIR) + "/configs/sweeps/";
   const SweepFile fig = read_sweep_file(dir + "fig2-18-grid.toml");
   const auto points = expand_points(fig);
@@ -434,9 +433,12 @@ TEST(SweepExamples, ConfigsSweepsParse) {
   EXPECT_NO_THROW(check_sweep(fig, points));
 
   const SweepFile gaudet = read_sweep_file(dir + "gaudet-pert-speedup.toml");
-  EXPECT_EQ(gaudet.point_count(), 3u * 7u);
+  EXPECT_EQ(gaudet.point_count(), 3u * 3u * 7u);  // scenes x broadcast modes x PERT counts
   EXPECT_EQ(texts(gaudet.axes.back().members.at(0)),
             (Strings{"1", "2", "4", "8", "16", "32", "64"}));
+  EXPECT_EQ(texts(gaudet.axes.at(1).members.at(0)),
+            (Strings{"direct", "non-adaptive", "adaptive"}));
   EXPECT_EQ(texts(gaudet.axes.front().members.at(0)),
             (Strings{"builtin:npp-412", "builtin:npp-816", "builtin:npp-820"}));
+  EXPECT_NO_THROW(check_sweep(gaudet, expand_points(gaudet)));
 }

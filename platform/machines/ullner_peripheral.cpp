@@ -4,6 +4,7 @@
 #include <systemc>
 
 #include "common/input_error.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -223,10 +224,13 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   begin_simulation(r);
   MachineTrace trace(opts);
   tasks::ShadeTask shade(scene, twin.settings.shade);
+  // One journey per ray from the host putting it into the ray queue to task 2 taking its
+  // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
+  modules::LatencyProbe probe(opts.latency_probe);
   ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters(),
-                                trace);
+                                trace, probe);
   ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc, opts,
-                    trace, *twin.geometry);
+                    trace, *twin.geometry, probe);
   host.load_out.bind(peripheral.parameters.socket);
   peripheral.set_ray_queue_depth_handle(host.ray_queue_depth_handle());
   host.ray_out.bind(peripheral.rays.socket);
@@ -281,6 +285,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
   res.stats["modules"] = stats.to_json(frame_time);
   res.stats["ray_latency_s"] = host.latency().to_json();
+  if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
   // What the hardware did: every polygon address fed to the pipe is an intersection.
   res.stats["intersection_tests"] = peripheral.pipeline().issued();
 

@@ -7,6 +7,7 @@
 #include "firmware/tasks/ray_tree.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
@@ -30,7 +31,8 @@ class VaxHost : public sc_core::sc_module {
   VaxHost(sc_core::sc_module_name name, const scenes::Scene& scene, const Tracer& tracer,
           functional::FrameState& frame, const functional::RenderSettings& settings,
           sc_core::sc_time ray_time, sc_core::sc_time test_time, sc_core::sc_time box_time,
-          bool brute_force, std::uint64_t objects, const RunOptions& opts, MachineTrace& trace)
+          bool brute_force, std::uint64_t objects, const RunOptions& opts, MachineTrace& trace,
+          modules::LatencyProbe& probe)
       : sc_core::sc_module(name),
         scene_(scene),
         tracer_(tracer),
@@ -43,7 +45,9 @@ class VaxHost : public sc_core::sc_module {
         objects_(objects),
         opts_(opts),
         trace_(trace),
-        busy_signal_(trace.declare_busy("vax")) {
+        busy_signal_(trace.declare_busy("vax")),
+        probe_(probe),
+        probe_vax_(probe.stage(this->name())) {
     SC_THREAD(run);
   }
 
@@ -82,9 +86,13 @@ class VaxHost : public sc_core::sc_module {
             trace_.slice("vax", "ray", clock.now(), cost,
                          {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
             timeline_.add(clock.now(), cost);
+            // The whole of a ray's latency is the VAX working on it: one process, no queue.
+            const auto journey = probe_.begin(clock.now());
+            probe_.add(journey, probe_vax_, modules::LatencyPart::kService, cost);
             clock.advance(cost);
             busy_ += cost;
             latency_.add(cost);
+            probe_.end(journey, clock.now());
             if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
           });
     }
@@ -103,6 +111,8 @@ class VaxHost : public sc_core::sc_module {
   const RunOptions& opts_;
   MachineTrace& trace_;
   int busy_signal_;
+  modules::LatencyProbe& probe_;
+  int probe_vax_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
   modules::BusyTimeline timeline_;
@@ -164,10 +174,11 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   const std::uint64_t objects = scene.primitives.size();
   begin_simulation(r);
   MachineTrace trace(opts);
+  modules::LatencyProbe probe(opts.latency_probe);
   VaxHost host(
       "vax", scene, *twin.tracer, frame, twin.settings, from_ps(r.get_time_ps("vax.ray_time")),
       from_ps(r.get_time_ps("vax.intersection_time")), from_ps(r.get_time_ps("vax.box_test_time")),
-      r.get_string("vax.search") == "brute-force", objects, opts, trace);
+      r.get_string("vax.search") == "brute-force", objects, opts, trace, probe);
   sc_core::sc_start();
   trace.close();
 
@@ -180,6 +191,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   stats.module("vax").values["rays"] = static_cast<double>(frame.counters().total_rays());
   res.stats["modules"] = stats.to_json(host.frame_time());
   res.stats["ray_latency_s"] = host.latency().to_json();
+  if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
   const bool brute = r.get_string("vax.search") == "brute-force";
   if (brute) res.stats["intersection_tests"] = frame.counters().total_rays() * objects;

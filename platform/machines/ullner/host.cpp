@@ -19,7 +19,7 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
            const shading::ShadeParams& shade, functional::FrameState& frame,
            const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
            const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace,
-           const functional::SceneGeometry& geometry)
+           const functional::SceneGeometry& geometry, modules::LatencyProbe& probe)
     : sc_core::sc_module(name),
       ray_out("ray_out"),
       load_out("load_out"),
@@ -36,6 +36,8 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
       busy_signal_(trace.declare_busy("host")),
       ray_queue_depth_(trace.declare_depth("peripheral.ray_queue")),
       result_queue_depth_(trace.declare_depth("host.result_queue")),
+      probe_(probe),
+      probe_result_queue_(probe.stage(results.name())),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
       // at the peripheral's arithmetic rate (L584).
       lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
@@ -66,6 +68,8 @@ void Host::send(RayRequest req) {
   req.id = next_id_++;
   // The host only sends when the queue has room, so the ray enters it now.
   req.sent = clock_.now();
+  // The latency window opens here, as ray_latency_s's does.
+  req.journey = probe_.begin(req.sent);
   modules::send_message(ray_out, req, clock_.now(), RayRequest::kWireBytes);
   trace_.depth(ray_queue_depth_, static_cast<int>(ray_queue_.size()), req.sent);
   ++outstanding_;
@@ -117,6 +121,11 @@ void Host::run() {
       --outstanding_;
       ++results_processed_;
       latency_.add(taken - res.request.sent);
+      // From the answer leaving the peripheral (waiting for room in a full result queue
+      // included) until task 2 takes it: the result queue. The window closes here.
+      probe_.add(res.request.journey, probe_result_queue_, modules::LatencyPart::kQueueing,
+                 taken - res.answered);
+      probe_.end(res.request.journey, taken);
       const shading::TracedRay& r = res.request.ray;
       frame_.counters().count_ray(r.kind);
       if (res.request.first_sample) frame_.record_primary(r.pixel, res.found, res.hit);
@@ -131,7 +140,11 @@ void Host::run() {
       clock_.advance(t);
       trace_.busy(busy_signal_, false);
       busy_ += t;
-      for (const auto& s : spawned) backlog_.push_back(RayRequest{s, 0, {}, false});
+      for (const auto& s : spawned) {
+        RayRequest req;
+        req.ray = s;
+        backlog_.push_back(req);
+      }
       backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
       if (opts_.progress && (results_processed_ & 1023) == 0)
         opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
@@ -148,7 +161,8 @@ void Host::run() {
     // Task 1: generate a vision ray while otherwise idle.
     if (!vision.done() && room) {
       int sample = 0;
-      RayRequest req{vision.next(sample), 0, {}, false};
+      RayRequest req;
+      req.ray = vision.next(sample);
       req.first_sample = sample == 0;
       const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
       trace_.busy(busy_signal_, true);

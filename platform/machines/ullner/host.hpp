@@ -10,6 +10,7 @@
 #include <systemc>
 
 #include "firmware/tasks/shade_task.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
@@ -33,7 +34,8 @@ class Host : public sc_core::sc_module {
   Host(sc_core::sc_module_name name, const scenes::Scene& scene, const shading::ShadeParams& shade,
        functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
        const HostConfig& host, const PeripheralConfig& peripheral, const RunOptions& opts,
-       MachineTrace& trace, const functional::SceneGeometry& geometry);
+       MachineTrace& trace, const functional::SceneGeometry& geometry,
+       modules::LatencyProbe& probe);
 
   /// From the end of the scene load to the host having the last answer.
   sc_core::sc_time frame_time() const { return frame_time_; }
@@ -66,6 +68,8 @@ class Host : public sc_core::sc_module {
   int busy_signal_;
   int ray_queue_depth_;
   int result_queue_depth_;
+  modules::LatencyProbe& probe_;
+  int probe_result_queue_;  ///< host.result_queue
 
   modules::LocalClock clock_;
   modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension

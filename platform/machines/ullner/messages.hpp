@@ -5,6 +5,7 @@
 
 #include "firmware/hit.hpp"
 #include "firmware/shading/traced_ray.hpp"
+#include "modules/latency_probe.hpp"
 
 namespace rtsim::platform::ullner {
 
@@ -19,6 +20,8 @@ struct RayRequest {
   std::uint64_t id = 0;
   sc_core::sc_time sent;      ///< when it entered the ray queue (for the latency probe)
   bool first_sample = false;  ///< sample 0 of a primary ray: its answer fills the AOVs
+  /// The ray's journey for `--latency-probe` (kNoJourney when the probe is off).
+  modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
   /// On the wire: r0 (3 words), r1 (3 words), shadow flag (1 word).
   static constexpr unsigned kWireBytes = 7 * 4;
 };
@@ -29,6 +32,7 @@ struct RayResult {
   bool found = false;
   Hit hit;
   sc_core::sc_time service_start;  ///< when the peripheral began on this ray
+  sc_core::sc_time answered;       ///< when the answer left the closest-hit selection
   /// On the wire: flag, id, p_r (3), u, v, t.
   static constexpr unsigned kWireBytes = 8 * 4;
 };

@@ -9,7 +9,8 @@ using modules::times;
 
 Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
-                       const PeripheralConfig& config, TraceCounters& counters, MachineTrace& trace)
+                       const PeripheralConfig& config, TraceCounters& counters, MachineTrace& trace,
+                       modules::LatencyProbe& probe)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
       parameters("parameter_memories", polygons * kParameterWords, kParameterWords,
@@ -22,7 +23,13 @@ Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
       counters_(counters),
       trace_(trace),
       busy_signal_(trace.declare_busy("peripheral")),
-      pipe_(config.intersect_interval, config.pipeline_stages) {
+      pipe_(config.intersect_interval, config.pipeline_stages),
+      probe_(probe) {
+  // Stages named by their stats.json module names, in the order a ray meets them.
+  probe_ray_queue_ = probe.stage(rays.name());
+  if (config.grid_divisions > 0) probe_aux_ = probe.stage(std::string(this->name()) + ".aux");
+  probe_memories_ = probe.stage(parameters.name());
+  probe_pipeline_ = probe.stage(std::string(this->name()) + ".pipeline");
   SC_THREAD(run);
 }
 
@@ -42,6 +49,9 @@ void Peripheral::run() {
     clock_.catch_up(taken);
     trace_.depth(ray_queue_depth_, static_cast<int>(rays.fifo.size()), taken);
     ++rays_;
+    const auto journey = req.journey;
+    using modules::LatencyPart;
+    probe_.add(journey, probe_ray_queue_, LatencyPart::kQueueing, taken - req.sent);
 
     // The answer (firmware), and what it took.
     TraceCounters before = counters_;
@@ -70,6 +80,13 @@ void Peripheral::run() {
       // Fetch: one polygon a cycle, in step with the pipe, a fetch stage ahead of it.
       parameters.account_line_reads(n, start);
       done = batch.done + times(stage, config_.select_stages);
+      // Latency: waiting for the pipe (none: this thread takes a ray only when the pipe can
+      // accept its first polygon), the fetch stage(s) ahead of the first issue, then the
+      // polygons, the pipe's depth and the closest-hit selection.
+      probe_.add(journey, probe_pipeline_, LatencyPart::kQueueing, start - taken);
+      probe_.add(journey, probe_memories_, LatencyPart::kService,
+                 times(stage, config_.fetch_stages));
+      probe_.add(journey, probe_pipeline_, LatencyPart::kService, done - batch.first_issue);
       trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
                    batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", n}});
       clock_.catch_up(batch.next_free - times(stage, config_.fetch_stages));
@@ -86,6 +103,17 @@ void Peripheral::run() {
       // Fetch: in step with the pipe, a fetch stage ahead of it.
       parameters.account_line_reads(tests, batch.first_issue - times(stage, config_.fetch_stages));
       done = batch.done + times(stage, config_.select_stages);
+      // Latency: waiting for the auxiliary processor, its walk and address indirection, the
+      // fetch stage(s), waiting for the pipe, then the polygons, the pipe's depth and the
+      // closest-hit selection.
+      const sc_core::sc_time fed = start + walk + feed;
+      probe_.add(journey, probe_aux_, LatencyPart::kQueueing, start - taken);
+      probe_.add(journey, probe_aux_, LatencyPart::kService,
+                 walk + times(stage, config_.indirection_stages));
+      probe_.add(journey, probe_memories_, LatencyPart::kService,
+                 times(stage, config_.fetch_stages));
+      probe_.add(journey, probe_pipeline_, LatencyPart::kQueueing, batch.first_issue - fed);
+      probe_.add(journey, probe_pipeline_, LatencyPart::kService, done - batch.first_issue);
       aux_free_ = std::max(start + walk, batch.next_free - feed);
       aux_busy_ += aux_free_ - start;
       aux_timeline_.add(start, aux_free_ - start);
@@ -101,6 +129,7 @@ void Peripheral::run() {
     }
     service_total_ += done - start;
     res.service_start = start;
+    res.answered = done;
     modules::send_message(result_out, res, done, RayResult::kWireBytes);
   }
 }

@@ -17,6 +17,7 @@
 
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
@@ -38,7 +39,7 @@ class Peripheral : public sc_core::sc_module {
   SC_HAS_PROCESS(Peripheral);
   Peripheral(sc_core::sc_module_name name, const Tracer& tracer, const tasks::ShadeTask& shade,
              std::uint64_t polygons, const PeripheralConfig& config, TraceCounters& counters,
-             MachineTrace& trace);
+             MachineTrace& trace, modules::LatencyProbe& probe);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
   /// The trace handle of the ray queue's depth (declared by the host, written here too).
@@ -66,6 +67,9 @@ class Peripheral : public sc_core::sc_module {
   int ray_queue_depth_ = -1;
   modules::LocalClock clock_;
   modules::PipelinedUnit pipe_;
+  /// `--latency-probe`: the stages a ray meets here, in order (aux only with the grid).
+  modules::LatencyProbe& probe_;
+  int probe_ray_queue_ = -1, probe_aux_ = -1, probe_memories_ = -1, probe_pipeline_ = -1;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
   modules::BusyTimeline aux_timeline_;
