@@ -137,7 +137,7 @@ void BroadcastProcessor::run() {
     if (!hitters_.empty()) {
       const sc_core::sc_time start = strobe + timing_.id_slot;
       const sc_core::sc_time arrival = start + packet_time(s);
-      for (BusInterface* b : hitters_) b->capture(s.id, arrival);
+      for (BusInterface* b : hitters_) b->capture(s.id, start, arrival);
       ++stats_.hit_packets;
       stats_.captures += hitters_.size();
       stats_.hit_packet_time += packet_time(s);

@@ -44,9 +44,9 @@ class BusInterface final : public PacketPort {
   // Bus side (the Broadcast Processor's sync strobe at `t`).
   /// Some valid register holds `id` (valid at `t`) but no buffer is free: counted as a miss.
   bool hit(std::uint32_t id, const sc_core::sc_time& t);
-  /// The packet `id` streams into a free buffer; its last word is in at `arrival`. The
-  /// register that asked for it is freed on receipt (L912).
-  void capture(std::uint32_t id, const sc_core::sc_time& arrival);
+  /// The packet `id` streams into a free buffer from `start` (the bus starts sending it); its
+  /// last word is in at `arrival`. The register that asked for it is freed on receipt (L912).
+  void capture(std::uint32_t id, const sc_core::sc_time& start, const sc_core::sc_time& arrival);
 
   std::uint64_t requests() const { return requests_; }
   std::uint64_t packets_received() const { return received_; }
@@ -65,7 +65,8 @@ class BusInterface final : public PacketPort {
   struct Buffer {
     BufferState state = BufferState::kFree;
     std::uint32_t id = 0;
-    sc_core::sc_time at = sc_core::SC_ZERO_TIME;  ///< free from / arrival
+    sc_core::sc_time at = sc_core::SC_ZERO_TIME;     ///< free from / arrival
+    sc_core::sc_time start = sc_core::SC_ZERO_TIME;  ///< its transfer began (filled)
   };
   int free_buffer(const sc_core::sc_time& t) const;
 

@@ -17,7 +17,7 @@ class LocalDataSet final : public PacketPort {
 
   bool request(std::uint32_t id, const sc_core::sc_time& t) override {
     if (pending(id)) return true;
-    ready_.push_back({id, t + first_access_, static_cast<int>(ready_.size())});
+    ready_.push_back({id, t + first_access_, t, static_cast<int>(ready_.size())});
     changed_.notify(sc_core::SC_ZERO_TIME);
     return true;
   }

@@ -21,6 +21,9 @@ namespace rtsim::modules {
 struct ReceivedPacket {
   std::uint32_t id = 0;
   sc_core::sc_time arrival = sc_core::SC_ZERO_TIME;  ///< its last word is in the buffer
+  /// When its transfer began: the bus started sending it (overhead, then words), or the memory
+  /// access began (LocalDataSet). arrival - transfer_start is its transfer time.
+  sc_core::sc_time transfer_start = sc_core::SC_ZERO_TIME;
   int buffer = -1;
 };
 

@@ -17,6 +17,7 @@
 #include "platform/machines/gaudet/data_sets.hpp"
 #include "platform/machines/gaudet/expected_latency.hpp"
 #include "platform/machines/gaudet/prim_processor.hpp"
+#include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/gaudet/shade_processor.hpp"
 #include "platform/machines/gaudet/shell_processor.hpp"
 #include "platform/machines/machine_support.hpp"
@@ -450,6 +451,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                               static_cast<std::uint64_t>(frame.spp());
   shared.opts = &opts;
 
+  // --latency-probe: every ray's journey around its ring (ray_probe.hpp).
+  gaudet::RayProbe probe(opts.latency_probe);
   PertPlatform p;
   const gaudet::ProcessorConfig* pcfg[] = {&cfg.shade, &cfg.shell, &cfg.prim};
   if (cfg.broadcasting()) {
@@ -491,6 +494,9 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
     auto& sh = *p.shade.back();
     auto& se = *p.shell.back();
     auto& pr = *p.prim.back();
+    sh.set_probe(probe);
+    se.set_probe(probe);
+    pr.set_probe(probe);
     sh.out.bind(se.input.socket);
     sh.set_output_queue(se.input.fifo);
     se.out.bind(pr.input.socket);
@@ -523,6 +529,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   RunResult res;
   res.simulated_time_s = frame_time.to_seconds();
   res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time);
+  if (opts.latency_probe) res.stats["latency_probe"] = probe.probe().to_json();
   res.image = frame.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
   if (opts.progress)

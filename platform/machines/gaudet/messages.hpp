@@ -11,6 +11,7 @@
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/hit.hpp"
 #include "firmware/shading/traced_ray.hpp"
+#include "modules/latency_probe.hpp"
 
 namespace rtsim::platform::gaudet {
 
@@ -22,6 +23,10 @@ struct RayTicket {
   double t_min = 0.0;         ///< the search range is (t_min, ray.t_max)
   bool first_sample = false;  ///< sample 0 of a primary ray: its answer fills the AOVs
   sc_core::sc_time sent;      ///< when the ShadeProcessor sent it (ray latency)
+  /// --latency-probe (ray_probe.hpp): the ray's journey, kNoJourney when not probed, and the
+  /// time up to which its journey is accounted.
+  modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
+  sc_core::sc_time accounted_to;
 };
 
 /// SHADE_TO_SHELL (Fig. 4-9, L744-L749): ray_type, pixel_index, factor, ray.

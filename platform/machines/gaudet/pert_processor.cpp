@@ -2,11 +2,20 @@
 
 namespace rtsim::platform::gaudet {
 
+namespace {
+/// Where processors not given a probe record: nowhere (its rays get no journey).
+RayProbe& disabled_probe() {
+  static RayProbe p(false);
+  return p;
+}
+}  // namespace
+
 PertProcessor::PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
                              MachineTrace& trace)
     : sc_core::sc_module(name),
       timing_(timing),
       trace_(trace),
+      probe_(&disabled_probe()),
       track_(this->name()),
       busy_signal_(trace.declare_busy(this->name())) {}
 

@@ -16,6 +16,7 @@
 #include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/processor_timing.hpp"
+#include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/machine_trace.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -41,6 +42,8 @@ class PertProcessor : public sc_core::sc_module {
   const modules::BusyTimeline& timeline() const { return timeline_; }
   /// Elaboration: the event that starts the frame (the control processor's).
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
+  /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
+  void set_probe(RayProbe& p) { probe_ = &p; }
 
  protected:
   PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
@@ -56,12 +59,24 @@ class PertProcessor : public sc_core::sc_module {
   void begin_frame();
   /// Accounts time lost blocked in a put (pipeline wait) up to `t`.
   void blocked_until(const sc_core::sc_time& t);
+  /// compute() for ray `t` at `stage` (--latency-probe): the gap since the ray's cursor is
+  /// queueing at `stage` (unless the caller attributed it otherwise first), the compute service.
+  void compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
+    if (t.journey == modules::LatencyProbe::kNoJourney) {
+      compute(c, what);
+      return;
+    }
+    probe_->to(t, stage, RayProbe::Part::kQueueing, clock_.now());
+    compute(c, what);
+    probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
+  }
 
   modules::LocalClock clock_;
   modules::ProcessorTiming timing_;
   MachineTrace& trace_;
   TimeSplit split_;
   modules::BusyTimeline timeline_;
+  RayProbe* probe_;
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;

@@ -20,16 +20,19 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::She
   SC_THREAD(run);
 }
 
-void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k) {
+void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k, RayTicket& t) {
   if (k >= msg.leaf_shells.size() || asked_[k]) return;
-  compute(tasks::kAskPacketCost, "ask");
+  compute_for(t, Stage::kPrim, tasks::kAskPacketCost, "ask");
   asked_[k] = port_.request(msg.leaf_shells[k].child_index, clock_.now());
 }
 
 void PrimProcessor::serve(ShellToPrim& msg) {
-  compute(tasks::words_cost(msg.words()), "ray");
-  const shading::TracedRay& r = msg.ticket.ray;
   PrimToShade res{msg.ticket, false, {}};
+  RayTicket& t = res.ticket;  // the ray's journey goes on in the answer
+  // Until now (taken) the ray waited in the input queue.
+  probe_->to(t, Stage::kShellToPrim, RayProbe::Part::kQueueing, clock_.now());
+  compute_for(t, Stage::kPrim, tasks::words_cost(msg.words()), "ray");
+  const shading::TracedRay& r = msg.ticket.ray;
   // The answer, as the twin computes it (same search, same kernels).
   TraceCounters c;
   accel::ShellTraversalStats st;
@@ -46,8 +49,8 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   asked_.assign(n, false);
   if (k > 0) ++rays_with_packets_;
   const sc_core::sc_time asked_first = clock_.now();
-  ask(msg, 0);
-  ask(msg, 1);
+  ask(msg, 0, t);
+  ask(msg, 1, t);
   std::uint64_t tests_done = 0;
   for (std::size_t j = 0; j < k; ++j) {
     const std::uint32_t id = msg.leaf_shells[j].child_index;
@@ -55,7 +58,9 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     while (!(p = port_.take(clock_.now(), id))) {
       if (!asked_[j]) {
         if (port_.register_free(clock_.now())) {
-          ask(msg, j);
+          // Till now the ray waited for an ID register.
+          probe_->to(t, Stage::kPrimBus, RayProbe::Part::kQueueing, clock_.now());
+          ask(msg, j, t);
           continue;
         }
         // Registers free as packets arrive.
@@ -76,9 +81,10 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     Cost work =
         tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost + tasks::kStopTestCost;
     for (std::size_t q = 0; q < tests; ++q) work += test_cost_[slots[q]];
-    compute(work, "primitive tests");
+    probe_->packet_gap(t, Stage::kPrim, Stage::kPrimBus, *p, clock_.now());
+    compute_for(t, Stage::kPrim, work, "primitive tests");
     port_.release(*p, clock_.now());
-    if (j + 1 < k) ask(msg, j + 2);
+    if (j + 1 < k) ask(msg, j + 2, t);
   }
   // Withdraw what the search no longer needs.
   for (std::size_t e = k; e < n; ++e) {
@@ -86,8 +92,10 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     port_.cancel(msg.leaf_shells[e].child_index, clock_.now());
     ++cancelled_;
   }
-  if (res.found) compute(tasks::kHitInfoCost, "hit info");
-  compute(tasks::words_cost(PrimToShade::kWords), "send");
+  if (res.found) compute_for(t, Stage::kPrim, tasks::kHitInfoCost, "hit info");
+  // From the end of the send until the ShadeProcessor takes it, the answer is in (or, while
+  // the queue is full, blocked before) queue.prim_to_shade.
+  compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
   ++split_.rays;
   blocked_until(modules::send_message(out, res, clock_.now(), PrimToShade::kWords * 4));
 }

@@ -52,8 +52,9 @@ class PrimProcessor : public PertProcessor {
  private:
   void run();
   void serve(ShellToPrim& msg);
-  /// Asks for leaf shell `k` of the list; keeps it for later if no register is free.
-  void ask(const ShellToPrim& msg, std::size_t k);
+  /// Asks for leaf shell `k` of the list (for ray `t`, --latency-probe); keeps it for later if
+  /// no register is free.
+  void ask(const ShellToPrim& msg, std::size_t k, RayTicket& t);
 
   const functional::ShellSearch& search_;
   const std::vector<std::uint32_t>& packet_words_;

@@ -66,10 +66,13 @@ void ShadeProcessor::shade(const PrimToShade& msg) {
 }
 
 void ShadeProcessor::receive(PrimToShade msg) {
-  compute(tasks::words_cost(PrimToShade::kWords), "receive");
-  const RayTicket& t = msg.ticket;
+  RayTicket& t = msg.ticket;
+  // From the PrimProcessor's send to here the answer waited in the queue.
+  probe_->to(t, Stage::kPrimToShade, RayProbe::Part::kQueueing, clock_.now());
+  compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
   shared_.frame->counters().count_ray(t.ray.kind);
   shared_.latency.add(clock_.now() - t.sent);
+  probe_->end(t, clock_.now());
   if (t.first_sample) shared_.frame->record_primary(t.ray.pixel, msg.found, msg.hit);
   if (!msg.found || t.ray.kind == RayKind::Shadow) {
     shade(msg);  // no surface to look up: light reached or blocked, or the background
@@ -119,6 +122,7 @@ void ShadeProcessor::run() {
       compute(tasks::words_cost(ShadeToShell::kWords), "send");
       t.id = next_id_++;
       t.sent = clock_.now();
+      probe_->begin(t, t.sent);
       ShadeToShell msg{t};
       modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
       continue;
@@ -139,6 +143,7 @@ void ShadeProcessor::run() {
       t.t_min = task_.t_min(t.ray);
       t.id = next_id_++;
       t.sent = clock_.now();
+      probe_->begin(t, t.sent);
       ShadeToShell msg{t};
       modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
       continue;

@@ -19,7 +19,8 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellT
 }
 
 void ShellProcessor::ask(std::uint32_t packet, int search) {
-  compute(tasks::kAskPacketCost, "ask");
+  compute_for(searches_[static_cast<std::size_t>(search)].ticket, Stage::kShell,
+              tasks::kAskPacketCost, "ask");
   auto& w = waiting_[packet];
   w.push_back(search);
   if (w.size() > 1) return;  // already asked for by another ray
@@ -39,7 +40,10 @@ void ShellProcessor::begin(ShadeToShell msg) {
   s.outstanding = 0;
   const Ray& ray = s.ticket.ray.ray;
   s.inv_dir = Vec3(1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z);
-  compute(tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
+  // Until now (taken) the ray waited in the input queue.
+  probe_->to(s.ticket, Stage::kShadeToShell, RayProbe::Part::kQueueing, clock_.now());
+  compute_for(s.ticket, Stage::kShell,
+              tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
   if (!accel::shell_search_possible(tree_, ray, s.ticket.t_min, s.ticket.ray.t_max)) {
     finish(slot);
     return;
@@ -50,12 +54,19 @@ void ShellProcessor::begin(ShadeToShell msg) {
 
 void ShellProcessor::process(const modules::ReceivedPacket& p) {
   ++packets_;
+  const sc_core::sc_time read_start = clock_.now();
   compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
+  const sc_core::sc_time read_end = clock_.now();
   const auto node = waiting_.extract(p.id);
   if (!node.empty()) {
-    for (const int slot : node.mapped()) {
+    const std::size_t sharing = node.mapped().size();
+    for (std::size_t i = 0; i < sharing; ++i) {
+      const int slot = node.mapped()[i];
       Search& s = searches_[static_cast<std::size_t>(slot)];
       ++packet_uses_;
+      // The packet was read once for every ray waiting for it: each gets its share.
+      probe_->packet_gap(s.ticket, Stage::kShell, Stage::kShellBus, p, read_start);
+      probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
       // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
       // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
       for (const accel::Shell& shell : tree_.shell_packet(p.id)) {
@@ -64,8 +75,10 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
                               s.ticket.ray.t_max, s.leaves, children_);
         ++box_tests_;
-        compute(accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),
-                "box test");
+        compute_for(
+            s.ticket, Stage::kShell,
+            accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),
+            "box test");
         s.outstanding += static_cast<int>(children_.size());
         for (const std::uint32_t c : children_) ask(c, slot);
       }
@@ -77,7 +90,7 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
 
 void ShellProcessor::finish(int slot) {
   Search& s = searches_[static_cast<std::size_t>(slot)];
-  compute(tasks::leaf_shell_sort_cost(s.leaves.size()), "sort");
+  compute_for(s.ticket, Stage::kShell, tasks::leaf_shell_sort_cost(s.leaves.size()), "sort");
   accel::sort_leaf_shell_list(s.leaves);
   leaf_shells_ += s.leaves.size();
   if (s.leaves.size() > accel::kLeafShellListCapacity) ++over_capacity_;
@@ -95,7 +108,11 @@ void ShellProcessor::run() {
       ShellToPrim msg{s.ticket, std::move(s.leaves)};
       s.leaves = {};
       s.active = false;
-      compute(tasks::words_cost(msg.words()), "send");
+      // Ready since its sort: until the queue had room it waited for the queue, then for
+      // this processor.
+      if (const auto room = out_queue_->next_room_time())
+        probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
+      compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
       modules::send_message(out, msg, clock_.now(), msg.words() * 4);
       ++split_.rays;
       continue;
@@ -106,7 +123,16 @@ void ShellProcessor::run() {
     }
     if (!overflow_.empty() && port_.register_free(now)) {
       const std::uint32_t id = overflow_.back();
+      const sc_core::sc_time ask_start = clock_.now();
       compute(tasks::kAskPacketCost, "ask");
+      // Asked for every ray waiting for the ID, which till now waited for an ID register.
+      if (const auto w = waiting_.find(id); w != waiting_.end()) {
+        for (std::size_t i = 0; i < w->second.size(); ++i) {
+          RayTicket& t = searches_[static_cast<std::size_t>(w->second[i])].ticket;
+          probe_->to(t, Stage::kShellBus, RayProbe::Part::kQueueing, ask_start);
+          probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w->second.size());
+        }
+      }
       if (port_.request(id, clock_.now())) overflow_.pop_back();
       continue;
     }
