@@ -212,17 +212,15 @@ TEST(GaudetLatencyProbe, PrimBusTimeGrowsWithoutAdaptiveBroadcasting) {
   EXPECT_GT(direct["transfer_s"].get<double>(), 0.0);
 }
 
-// Where the model is pushed (temporal decoupling, one ID register, one Shell buffer, queues of
-// one, more rays in flight, more PERTs, random broadcast order) the journeys still tile the
-// window: the cursor rule does not rely on the processors running in global time order.
-// (Not pert.prim.bic.buffers=1: the PrimProcessor's prefetch of two packets then deadlocks,
-// in main as well — reported to the lead.)
+// Where the model is pushed (temporal decoupling, one ID register, one buffer, queues of one,
+// more rays in flight, more PERTs, random broadcast order) the journeys still tile the window:
+// the cursor rule does not rely on the processors running in global time order.
 TEST(GaudetLatencyProbe, JourneysStayTiledUnderStress) {
   const std::vector<Sim> runs = {
       {{"quantum=10 us", "broadcast.order=random"}, true},
       {{"pert_count=3", "pert.shell.bic.id_registers=1", "pert.prim.bic.id_registers=1",
-        "pert.shell.bic.buffers=1", "pert.queue.shade_to_shell=1", "pert.queue.shell_to_prim=1",
-        "pert.queue.prim_to_shade=1"},
+        "pert.shell.bic.buffers=1", "pert.prim.bic.buffers=1", "pert.queue.shade_to_shell=1",
+        "pert.queue.shell_to_prim=1", "pert.queue.prim_to_shade=1"},
        true},
       {{"pert.shade.rays_in_flight=16", "pert.shell.rays_in_flight=16",
         "broadcast.mode=non-adaptive", "quantum=1 us"},

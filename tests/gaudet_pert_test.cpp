@@ -45,6 +45,10 @@ TEST(GaudetPert, ImageEqualsTheFunctionalTwinForAnyPertCountModeOrderAndQuantum)
       "-p pert_count=2 -p broadcast.order=random --quantum \"10 us\"",
       "-p pert_count=7 -p pert.shell.bic.id_registers=1 -p pert.prim.bic.id_registers=1 "
       "-p pert.shade.bic.id_registers=1 -p pert.queue.shell_to_prim=1",
+      // One buffer each: the PrimProcessor then asks one packet ahead, not two (a second
+      // packet arriving first would take the only buffer for ever).
+      "-p pert_count=2 -p pert.shell.bic.buffers=1 -p pert.prim.bic.buffers=1 "
+      "-p pert.shade.bic.buffers=1 -p broadcast.order=random",
   };
   int i = 0;
   for (const auto& v : variants) {

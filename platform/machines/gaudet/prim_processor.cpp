@@ -16,6 +16,10 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::She
       packet_words_(packet_words),
       test_cost_(test_cost),
       port_(port),
+      // At most two IDs ahead (L910, L1056), and no more than it has buffers: packets come in
+      // broadcast order, not t order, so with one buffer a second packet could take the only
+      // buffer while the ray waits for the first, for ever.
+      ahead_(std::max<std::size_t>(1, std::min<std::size_t>(2, config.buffers))),
       counters_(counters) {
   SC_THREAD(run);
 }
@@ -49,8 +53,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   asked_.assign(n, false);
   if (k > 0) ++rays_with_packets_;
   const sc_core::sc_time asked_first = clock_.now();
-  ask(msg, 0, t);
-  ask(msg, 1, t);
+  for (std::size_t a = 0; a < ahead_; ++a) ask(msg, a, t);
   std::uint64_t tests_done = 0;
   for (std::size_t j = 0; j < k; ++j) {
     const std::uint32_t id = msg.leaf_shells[j].child_index;
@@ -84,7 +87,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     probe_->packet_gap(t, Stage::kPrim, Stage::kPrimBus, *p, clock_.now());
     compute_for(t, Stage::kPrim, work, "primitive tests");
     port_.release(*p, clock_.now());
-    if (j + 1 < k) ask(msg, j + 2, t);
+    if (j + 1 < k) ask(msg, j + ahead_, t);
   }
   // Withdraw what the search no longer needs.
   for (std::size_t e = k; e < n; ++e) {

@@ -60,6 +60,7 @@ class PrimProcessor : public PertProcessor {
   const std::vector<std::uint32_t>& packet_words_;
   const std::vector<Cost>& test_cost_;  ///< by primitive slot: the PERT's own test
   modules::PacketPort& port_;
+  std::size_t ahead_;  ///< IDs asked for ahead of the packet being tested
   TraceCounters& counters_;
 
   std::vector<bool> asked_;  ///< per list entry of the current ray
