@@ -10,9 +10,11 @@ std::uint64_t ceil_div(std::uint64_t a, std::uint64_t b) { return a / b + (a % b
 }  // namespace
 
 void BusyTimeline::merge_pairs() {
-  std::vector<std::uint64_t> merged((busy_.size() + 1) / 2, 0);
-  for (std::size_t i = 0; i < busy_.size(); ++i) merged[i / 2] += busy_[i];
-  busy_ = std::move(merged);
+  // In place: bin i/2 takes bins i and i+1 (no allocation; this runs once per doubling of
+  // the recorded span, on up to kMaxBins bins).
+  const std::size_t n = busy_.size();
+  for (std::size_t i = 0; i < n; i += 2) busy_[i / 2] = busy_[i] + (i + 1 < n ? busy_[i + 1] : 0);
+  busy_.resize((n + 1) / 2);
   width_ *= 2;
 }
 
