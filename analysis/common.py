@@ -38,6 +38,16 @@ def read_json(path):
         raise InputProblem(f"{path}:{e.lineno}: not JSON: {e.msg}")
 
 
+def read_stats(path):
+    """stats.json of a run, given the file or the run's folder: (path read, the object)."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "stats.json")
+    stats = read_json(path)
+    if not isinstance(stats, dict):
+        raise InputProblem(f"{path}: expected a JSON object (stats.json)")
+    return path, stats
+
+
 def flatten(obj, prefix="", out=None):
     """{"a": {"b": 1}} -> {"a.b": 1}. Lists are kept as values."""
     if out is None:

@@ -118,10 +118,7 @@ def main(argv):
     ap.add_argument("out", help="PNG to write")
     ap.add_argument("--title", default=None)
     args = ap.parse_args(argv)
-    path = os.path.join(args.input, "stats.json") if os.path.isdir(args.input) else args.input
-    stats = common.read_json(path)
-    if not isinstance(stats, dict):
-        raise common.InputProblem(f"{path}: expected a JSON object (stats.json)")
+    _, stats = common.read_stats(args.input)
     series = breakdown_series(stats)
     title = args.title or (f"Where a ray spends its time: {stats.get('machine', '?')} on "
                            f"{stats.get('scene', '?')} ({series['rays']} rays)")

@@ -73,10 +73,7 @@ def main(argv):
     ap.add_argument("--linear", action="store_true", help="linear latency axis")
     ap.add_argument("--title", default=None)
     args = ap.parse_args(argv)
-    path = os.path.join(args.input, "stats.json") if os.path.isdir(args.input) else args.input
-    stats = common.read_json(path)
-    if not isinstance(stats, dict):
-        raise common.InputProblem(f"{path}: expected a JSON object (stats.json)")
+    _, stats = common.read_stats(args.input)
     edges, counts, marks = histogram_series(stats)
     count = int(stats["ray_latency_s"].get("count", sum(counts)))
     title = args.title or (f"Ray latency: {stats.get('machine', '?')} on "

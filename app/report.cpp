@@ -274,11 +274,9 @@ void HtmlReport::write(const fs::path& path) const {
   if (!f) throw std::runtime_error("cannot write " + path.string());
 }
 
-// ---- The run report --------------------------------------------------------------------------
+// ---- Numbers as the pages show them ----------------------------------------------------------
 
-namespace {
-
-std::string number(double v, int digits = 4) {
+std::string format_number(double v, int digits) {
   if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
   char buf[64];
   if (v == std::round(v) && std::abs(v) < 1e15)
@@ -288,15 +286,22 @@ std::string number(double v, int digits = 4) {
   return buf;
 }
 
-/// Seconds with a unit that reads well: "346 ms", "14.3 µs".
-std::string seconds(double s) {
+std::string format_seconds(double s) {
   const double a = std::abs(s);
+  if (!std::isfinite(s)) return format_number(s);
   if (a == 0.0) return "0 s";
-  if (a >= 1.0) return number(s, 5) + " s";
-  if (a >= 1e-3) return number(s * 1e3, 4) + " ms";
-  if (a >= 1e-6) return number(s * 1e6, 4) + " µs";
-  return number(s * 1e9, 4) + " ns";
+  if (a >= 1.0) return format_number(s, 5) + " s";
+  if (a >= 1e-3) return format_number(s * 1e3, 4) + " ms";
+  if (a >= 1e-6) return format_number(s * 1e6, 4) + " µs";
+  return format_number(s * 1e9, 4) + " ns";
 }
+
+// ---- The run report --------------------------------------------------------------------------
+
+namespace {
+
+std::string number(double v, int digits = 4) { return format_number(v, digits); }
+std::string seconds(double s) { return format_seconds(s); }
 
 std::string value_text(const json& v) {
   if (v.is_string()) return v.get<std::string>();

@@ -78,6 +78,11 @@ class HtmlReport {
   int images_ = 0;
 };
 
+/// A number as the pages show it: integers whole, others to `digits` significant digits.
+std::string format_number(double v, int digits = 4);
+/// Seconds with a unit that reads well: "346 ms", "14.3 µs".
+std::string format_seconds(double s);
+
 /// Standard base64 (RFC 4648) of `bytes`.
 std::string base64(const std::string& bytes);
 /// `s` with & < > " ' escaped for HTML text and attribute values.

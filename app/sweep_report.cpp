@@ -45,26 +45,8 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-std::string number(double v, int digits = 4) {
-  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  char buf[64];
-  if (v == std::round(v) && std::abs(v) < 1e15)
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-  else
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
-
-/// Seconds with a unit that reads well: "346 ms", "14.3 µs".
-std::string seconds(double s) {
-  const double a = std::abs(s);
-  if (!std::isfinite(s)) return number(s);
-  if (a == 0.0) return "0 s";
-  if (a >= 1.0) return number(s, 5) + " s";
-  if (a >= 1e-3) return number(s * 1e3, 4) + " ms";
-  if (a >= 1e-6) return number(s * 1e6, 4) + " µs";
-  return number(s * 1e9, 4) + " ns";
-}
+std::string number(double v, int digits = 4) { return format_number(v, digits); }
+std::string seconds(double s) { return format_seconds(s); }
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;

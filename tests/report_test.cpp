@@ -9,48 +9,20 @@
 
 #include <cstdlib>
 
+#include "tests/report_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
+using rtsim::test::chromium;
+using rtsim::test::count;
+using rtsim::test::image_data;
+using rtsim::test::matplotlib_available;
+using rtsim::test::open_headless;
 using rtsim::test::read_file;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 
 namespace {
-
-int count(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
-/// The base64 data of the page's <img> elements (found by hand: std::regex recurses per
-/// character and overflows the stack on 100 kB of base64).
-std::vector<std::string> image_data(const std::string& html) {
-  std::vector<std::string> out;
-  const std::string prefix = "src=\"data:image/png;base64,";
-  for (std::size_t p = html.find("<img"); p != std::string::npos; p = html.find("<img", p + 1)) {
-    const std::size_t end_tag = html.find('>', p);
-    const std::size_t src = html.find(prefix, p);
-    if (src == std::string::npos || src > end_tag) {
-      out.emplace_back();  // an <img> without inline PNG data
-      continue;
-    }
-    const std::size_t begin = src + prefix.size();
-    out.push_back(html.substr(begin, html.find('"', begin) - begin));
-  }
-  return out;
-}
-
-bool matplotlib_available() {
-  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy, pandas' >/dev/null 2>&1") == 0;
-}
-
-std::string chromium() {
-  for (const char* p : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
-    if (fs::exists(p)) return p;
-  return "";
-}
 
 const char* kRunArgs =
     "run --machine ullner-peripheral --scene builtin:ullner-cubes --width 32 --height 32 "
@@ -174,17 +146,9 @@ TEST(Report, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) {
   const auto dir = scratch_dir("report-chromium");
   const auto r = run_rtsim(std::string(kRunArgs) + " --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const fs::path page = fs::absolute(dir / "report.html");
-  const fs::path dom = dir / "dom.html", log = dir / "chromium.log";
-  // --virtual-time-budget lets the load event (and the page's check of its pictures) run
-  // before the DOM is dumped; a profile of its own keeps parallel runs apart.
-  const std::string cmd = "timeout 120 " + browser +
-                          " --headless --disable-gpu --no-sandbox --enable-logging=stderr "
-                          "--v=0 --virtual-time-budget=10000 --user-data-dir=" +
-                          (dir / "profile").string() + " --dump-dom file://" + page.string() +
-                          " >" + dom.string() + " 2>" + log.string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(log);
-  const std::string html = read_file(dom);
+  const auto view = open_headless(browser, dir / "report.html", dir);
+  ASSERT_EQ(view.exit_code, 0) << view.console;
+  const std::string& html = view.dom;
   const auto images = image_data(html);
   ASSERT_EQ(images.size(), 4u) << html.substr(0, 2000);
   for (const auto& b64 : images) EXPECT_GT(b64.size(), 1000u);
@@ -194,7 +158,6 @@ TEST(Report, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) {
   EXPECT_NE(html.find("alt=\"where a ray spends its time\""), std::string::npos);
   // Chromium logs every console message (console.log, console.error, uncaught exceptions) as
   // ":CONSOLE" lines; the page writes to the console only when something is wrong.
-  const std::string messages = read_file(log);
-  EXPECT_EQ(messages.find(":CONSOLE"), std::string::npos) << messages;
+  EXPECT_EQ(view.console.find(":CONSOLE"), std::string::npos) << view.console;
   fs::remove_all(dir);
 }

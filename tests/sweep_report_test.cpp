@@ -12,49 +12,21 @@
 
 #include <fstream>
 
+#include "tests/report_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
+using rtsim::test::chromium;
+using rtsim::test::count;
+using rtsim::test::image_data;
+using rtsim::test::matplotlib_available;
+using rtsim::test::open_headless;
 using rtsim::test::read_file;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using Json = nlohmann::ordered_json;
 
 namespace {
-
-int count(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
-/// The base64 data of the page's <img> elements, in page order (found by hand: std::regex
-/// recurses per character and overflows the stack on long base64).
-std::vector<std::string> image_data(const std::string& html) {
-  std::vector<std::string> out;
-  const std::string prefix = "src=\"data:image/png;base64,";
-  for (std::size_t p = html.find("<img"); p != std::string::npos; p = html.find("<img", p + 1)) {
-    const std::size_t end_tag = html.find('>', p);
-    const std::size_t src = html.find(prefix, p);
-    if (src == std::string::npos || src > end_tag) {
-      out.emplace_back();
-      continue;
-    }
-    const std::size_t begin = src + prefix.size();
-    out.push_back(html.substr(begin, html.find('"', begin) - begin));
-  }
-  return out;
-}
-
-bool matplotlib_available() {
-  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy, pandas' >/dev/null 2>&1") == 0;
-}
-
-std::string chromium() {
-  for (const char* p : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
-    if (fs::exists(p)) return p;
-  return "";
-}
 
 // Three tiny points of the peripheral (16x16, primary rays only): about a second each.
 constexpr const char* kGridSweep =
@@ -207,22 +179,13 @@ TEST_F(SweepReport, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) 
   if (browser.empty()) GTEST_SKIP() << "chromium is not installed (Debian package chromium)";
   if (!matplotlib_available()) GTEST_SKIP() << "no /usr/bin/python3 with matplotlib";
   ASSERT_EQ(result_->exit_code, 0) << result_->output;
-  const fs::path page = fs::absolute(*dir_ / "out" / "report.html");
-  const fs::path dom = *dir_ / "dom.html", log = *dir_ / "chromium.log";
-  // As tests/report_test.cpp: the load event runs within the virtual time budget, a profile of
-  // its own keeps parallel runs apart.
-  const std::string cmd = "timeout 120 " + browser +
-                          " --headless --disable-gpu --no-sandbox --enable-logging=stderr "
-                          "--v=0 --virtual-time-budget=10000 --user-data-dir=" +
-                          (*dir_ / "profile").string() + " --dump-dom file://" + page.string() +
-                          " >" + dom.string() + " 2>" + log.string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(log);
-  const std::string html = read_file(dom);
+  const auto view = open_headless(browser, *dir_ / "out" / "report.html", *dir_);
+  ASSERT_EQ(view.exit_code, 0) << view.console;
+  const std::string& html = view.dom;
   ASSERT_EQ(image_data(html).size(), 8u) << html.substr(0, 2000);
   // Set by the page once loaded: every <img> decoded (naturalWidth > 0).
   EXPECT_NE(html.find("data-images-decoded=\"8\""), std::string::npos) << html.substr(0, 500);
-  const std::string messages = read_file(log);
-  EXPECT_EQ(messages.find(":CONSOLE"), std::string::npos) << messages;
+  EXPECT_EQ(view.console.find(":CONSOLE"), std::string::npos) << view.console;
 }
 
 TEST(SweepReportFailures, FailedPointIsListedAndResumingCoversEveryPoint) {
