@@ -12,6 +12,7 @@
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
 #include "firmware/accel/uniform_grid.hpp"
+#include "tests/kernel_test_support.hpp"
 
 namespace {
 
@@ -23,25 +24,6 @@ struct Sphere {
   double r;
 };
 
-double hit_sphere(const Sphere& s, const Ray& ray, double t_min, double t_max) {
-  const Vec3 oc = ray.origin - s.c;
-  const double b = glm::dot(oc, ray.direction);
-  const double c = glm::dot(oc, oc) - s.r * s.r;
-  const double disc = b * b - c;
-  if (disc < 0.0) return kInfinity;
-  const double q = std::sqrt(disc);
-  if (const double t = -b - q; t > t_min && t < t_max) return t;
-  if (const double t = -b + q; t > t_min && t < t_max) return t;
-  return kInfinity;
-}
-
-Bounds box_of(const Vec3& lo, const Vec3& hi) {
-  Bounds b;
-  b.lo = lo;
-  b.hi = hi;
-  return b;
-}
-
 std::vector<Bounds> random_boxes(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -50,7 +32,7 @@ std::vector<Bounds> random_boxes(std::size_t n, std::uint64_t seed) {
   for (Bounds& b : out) {
     const Vec3 c(u(rng), u(rng), u(rng));
     const Vec3 h(size * u(rng), size * u(rng), size * u(rng));
-    b = box_of(c - h, c + h);
+    b = Bounds{c - h, c + h};
   }
   return out;
 }
@@ -70,7 +52,7 @@ std::vector<Ray> random_rays(std::size_t n, std::uint64_t seed) {
 void BM_GridBuild(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const std::vector<Bounds> boxes = random_boxes(n, 1);
-  const Bounds scene = box_of(Vec3(0.0), Vec3(1.0));
+  const Bounds scene = Bounds{Vec3(0.0), Vec3(1.0)};
   const GridDivisions d = choose_divisions(scene, n);
   for (auto _ : state) {
     UniformGrid g(boxes, scene, d);
@@ -85,7 +67,7 @@ BENCHMARK(BM_GridBuild)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::
 void BM_DdaSteps(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const auto variant = static_cast<DdaVariant>(state.range(1));
-  const UniformGrid g({}, box_of(Vec3(0.0), Vec3(1.0)), {n, n, n});
+  const UniformGrid g({}, Bounds{Vec3(0.0), Vec3(1.0)}, {n, n, n});
   const Dda dda(g, variant);
   const std::vector<Ray> rays = random_rays(4096, 2);
   std::uint64_t steps = 0, cells = 0;
@@ -124,7 +106,7 @@ ClusterScene cluster_scene(int pp) {
     for (int i = 0; i < pp; ++i) {
       const Sphere sp{centre + 1.5 * Vec3(u(rng), u(rng), u(rng)), rad(rng)};
       s.spheres.push_back(sp);
-      s.bounds.push_back(box_of(sp.c - Vec3(sp.r), sp.c + Vec3(sp.r)));
+      s.bounds.push_back(Bounds{sp.c - Vec3(sp.r), sp.c + Vec3(sp.r)});
       s.cluster.push_back(static_cast<std::uint32_t>(c));
     }
   }
@@ -152,7 +134,7 @@ void BM_ShellTreeClosest(benchmark::State& state) {
     const ShellHit h = trav.closest_hit(
         ray, 1e-9, kInfinity,
         [&](std::uint32_t slot, double t0, double t1) {
-          return hit_sphere(s.spheres[slot], ray, t0, t1);
+          return rtsim::testing::sphere_root(s.spheres[slot].c, s.spheres[slot].r, ray, t0, t1);
         },
         stats);
     benchmark::DoNotOptimize(h);
@@ -196,7 +178,7 @@ void BM_GridClosest(benchmark::State& state) {
     const GridHit h = grid_closest_hit(
         dda, ray, 1e-9, kInfinity,
         [&](std::uint32_t slot, double t0, double t1) {
-          return hit_sphere(s.spheres[slot], ray, t0, t1);
+          return rtsim::testing::sphere_root(s.spheres[slot].c, s.spheres[slot].r, ray, t0, t1);
         },
         stats);
     benchmark::DoNotOptimize(h);

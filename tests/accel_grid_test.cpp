@@ -13,45 +13,26 @@
 #include "firmware/accel/grid_divisions.hpp"
 #include "firmware/accel/grid_traversal.hpp"
 #include "firmware/accel/uniform_grid.hpp"
+#include "tests/kernel_test_support.hpp"
 
 namespace rtsim::accel {
 namespace {
-
-Bounds box_of(const Vec3& lo, const Vec3& hi) {
-  Bounds b;
-  b.lo = lo;
-  b.hi = hi;
-  return b;
-}
 
 struct Sphere {
   Vec3 c;
   double r;
 };
 
-/// Smallest t of the ray/sphere intersection in (t_min, t_max), +inf if none.
-double hit_sphere(const Sphere& s, const Ray& ray, double t_min, double t_max) {
-  const Vec3 oc = ray.origin - s.c;
-  const double b = glm::dot(oc, ray.direction);
-  const double c = glm::dot(oc, oc) - s.r * s.r;
-  const double disc = b * b - c;
-  if (disc < 0.0) return kInfinity;
-  const double q = std::sqrt(disc);
-  if (const double t = -b - q; t > t_min && t < t_max) return t;
-  if (const double t = -b + q; t > t_min && t < t_max) return t;
-  return kInfinity;
-}
-
 TEST(AccelGrid, SubvolumeListsMatchBruteForceOverlap) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.0, 0.6);
-  const Bounds scene = box_of(Vec3(-4.0, -1.0, -2.0), Vec3(4.0, 3.0, 0.5));
+  const Bounds scene = Bounds{Vec3(-4.0, -1.0, -2.0), Vec3(4.0, 3.0, 0.5)};
   const GridDivisions n{9, 5, 3};
   std::vector<Bounds> prims;
   for (int i = 0; i < 500; ++i) {
     const Vec3 c(4.5 * u(rng), 1.0 + 2.2 * u(rng), -0.75 + 1.5 * u(rng));
     const Vec3 h(size(rng), size(rng), size(rng));
-    prims.push_back(box_of(c - h, c + h));
+    prims.push_back(Bounds{c - h, c + h});
   }
   const UniformGrid g(prims, scene, n);
   EXPECT_EQ(g.divisions(), n);
@@ -85,13 +66,13 @@ TEST(AccelGrid, SubvolumeListsMatchBruteForceOverlap) {
 }
 
 TEST(AccelGrid, BoundsOnAPlaneGoToBothSidesAndBadBoundsAreSkipped) {
-  const Bounds scene = box_of(Vec3(0.0), Vec3(4.0, 4.0, 4.0));
+  const Bounds scene = Bounds{Vec3(0.0), Vec3(4.0, 4.0, 4.0)};
   std::vector<Bounds> prims = {
-      box_of(Vec3(0.5, 0.5, 0.5), Vec3(1.0, 0.6, 0.6)),  // ends on the x = 1 plane
+      Bounds{Vec3(0.5, 0.5, 0.5), Vec3(1.0, 0.6, 0.6)},  // ends on the x = 1 plane
       Bounds{},                                          // empty
-      box_of(Vec3(std::nan(""), 0.0, 0.0), Vec3(1.0)),   // not finite
-      box_of(Vec3(10.0), Vec3(11.0)),                    // outside the scene
-      box_of(Vec3(-1.0), Vec3(0.2)),                     // partly outside: clipped
+      Bounds{Vec3(std::nan(""), 0.0, 0.0), Vec3(1.0)},   // not finite
+      Bounds{Vec3(10.0), Vec3(11.0)},                    // outside the scene
+      Bounds{Vec3(-1.0), Vec3(0.2)},                     // partly outside: clipped
   };
   const UniformGrid g(prims, scene, {4, 4, 4});
   EXPECT_EQ(g.skipped_count(), 3u);
@@ -100,7 +81,7 @@ TEST(AccelGrid, BoundsOnAPlaneGoToBothSidesAndBadBoundsAreSkipped) {
   EXPECT_EQ(g.cell({1, 0, 0})[0], 0u);
   EXPECT_TRUE(g.cell({2, 0, 0}).empty());
   // A flat scene (all in z = 0) still gets cells of positive width.
-  const std::vector<Bounds> quad = {box_of(Vec3(0.0), Vec3(1.0, 1.0, 0.0))};
+  const std::vector<Bounds> quad = {Bounds{Vec3(0.0), Vec3(1.0, 1.0, 0.0)}};
   const UniformGrid flat(quad, quad[0], {2, 2, 1});
   EXPECT_GT(flat.cell_size().z, 0.0);
   EXPECT_EQ(flat.cell({1, 1, 0}).size(), 1u);
@@ -123,14 +104,14 @@ TEST(AccelGrid, UllnerModelGivesElevenDivisionsForAThousandPolygons) {
   EXPECT_NEAR(m.time_per_ray_us(11, 1000.0), 14.3, 0.05);
   EXPECT_NEAR(m.density(), kUllnerGridDensity, 1e-6);
   // The automatic divisions reproduce it for a cube, and follow the box's aspect otherwise.
-  const Bounds cube = box_of(Vec3(0.0), Vec3(1.0));
+  const Bounds cube = Bounds{Vec3(0.0), Vec3(1.0)};
   EXPECT_EQ(choose_divisions(cube, 1000), (GridDivisions{11, 11, 11}));
-  const GridDivisions slab = choose_divisions(box_of(Vec3(0.0), Vec3(4.0, 2.0, 1.0)), 1000);
+  const GridDivisions slab = choose_divisions(Bounds{Vec3(0.0), Vec3(4.0, 2.0, 1.0)}, 1000);
   std::printf("[ grid ] 1000 polygons in a 4x2x1 box: %dx%dx%d\n", slab.x, slab.y, slab.z);
   EXPECT_NEAR(static_cast<double>(slab.x) / slab.z, 4.0, 0.6);
   EXPECT_NEAR(static_cast<double>(slab.y) / slab.z, 2.0, 0.4);
   EXPECT_NEAR(static_cast<double>(slab.cells()), std::pow(kUllnerGridDensity, 3) * 1000, 400.0);
-  const GridDivisions flat = choose_divisions(box_of(Vec3(0.0), Vec3(1.0, 1.0, 0.0)), 1000);
+  const GridDivisions flat = choose_divisions(Bounds{Vec3(0.0), Vec3(1.0, 1.0, 0.0)}, 1000);
   EXPECT_EQ(flat.z, 1);
   EXPECT_EQ(flat.x, 11);
   EXPECT_EQ(choose_divisions(cube, 0), (GridDivisions{1, 1, 1}));
@@ -146,9 +127,9 @@ TEST(AccelGrid, AMillionPolygonsFitInLittleMemory) {
   for (Bounds& b : prims) {
     const Vec3 c(u(rng), u(rng), u(rng));
     const Vec3 h(0.005 * u(rng), 0.005 * u(rng), 0.005 * u(rng));
-    b = box_of(c - h, c + h);
+    b = Bounds{c - h, c + h};
   }
-  const Bounds scene = box_of(Vec3(0.0), Vec3(1.0));
+  const Bounds scene = Bounds{Vec3(0.0), Vec3(1.0)};
   const GridDivisions n = choose_divisions(scene, prims.size());
   const auto start = std::chrono::steady_clock::now();
   const UniformGrid g(prims, scene, n);
@@ -174,7 +155,7 @@ TEST(AccelGrid, AuxiliaryProcessorSearchFindsTheClosestHit) {
   for (int i = 0; i < 400; ++i) {
     const Sphere s{Vec3(3.0 * u(rng), 2.0 * u(rng), 1.0 * u(rng)), rad(rng)};
     spheres.push_back(s);
-    bounds.push_back(box_of(s.c - Vec3(s.r), s.c + Vec3(s.r)));
+    bounds.push_back(Bounds{s.c - Vec3(s.r), s.c + Vec3(s.r)});
   }
   Bounds scene;
   for (const Bounds& b : bounds) scene.extend(b);
@@ -190,14 +171,15 @@ TEST(AccelGrid, AuxiliaryProcessorSearchFindsTheClosestHit) {
     double brute_t = kInfinity;
     int brute_id = -1;
     for (std::size_t i = 0; i < spheres.size(); ++i) {
-      const double t = hit_sphere(spheres[i], ray, 1e-9, std::min(brute_t, t_max));
+      const double t = rtsim::testing::sphere_root(spheres[i].c, spheres[i].r, ray, 1e-9,
+                                                   std::min(brute_t, t_max));
       if (t < brute_t) {
         brute_t = t;
         brute_id = static_cast<int>(i);
       }
     }
     auto test = [&](std::uint32_t slot, double t0, double t1) {
-      return hit_sphere(spheres[slot], ray, t0, t1);
+      return rtsim::testing::sphere_root(spheres[slot].c, spheres[slot].r, ray, t0, t1);
     };
     const GridHit h = grid_closest_hit(dda, ray, 1e-9, t_max, test, stats);
     EXPECT_EQ(h.prim, brute_id);

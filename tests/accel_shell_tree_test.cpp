@@ -15,22 +15,10 @@
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
 #include "scenes/scene.hpp"
+#include "tests/kernel_test_support.hpp"
 
 namespace rtsim::accel {
 namespace {
-
-/// Smallest t of the ray/sphere intersection in (t_min, t_max), +inf if none.
-double hit_sphere(const scenes::Sphere& s, const Ray& ray, double t_min, double t_max) {
-  const Vec3 oc = ray.origin - s.center;
-  const double b = glm::dot(oc, ray.direction);
-  const double c = glm::dot(oc, oc) - s.radius * s.radius;
-  const double disc = b * b - c;
-  if (disc < 0.0) return kInfinity;
-  const double q = std::sqrt(disc);
-  if (const double t = -b - q; t > t_min && t < t_max) return t;
-  if (const double t = -b + q; t > t_min && t < t_max) return t;
-  return kInfinity;
-}
 
 /// An npp-like scene: 64 clusters of pp randomly placed spheres (seed 001 L970), cluster
 /// centres random in a 20-unit cube, spheres within 1.5 units of their centre.
@@ -188,14 +176,16 @@ void search_against_brute_force(const scenes::Scene& s, const ShellTree& t,
     double brute_t = kInfinity;
     int brute_id = -1;
     for (std::size_t i = 0; i < s.spheres.size(); ++i) {
-      const double th = hit_sphere(s.spheres[i], ray, 1e-9, brute_t);
+      const double th =
+          rtsim::testing::sphere_root(s.spheres[i].center, s.spheres[i].radius, ray, 1e-9, brute_t);
       if (th < brute_t) {
         brute_t = th;
         brute_id = static_cast<int>(i);
       }
     }
     auto test = [&](std::uint32_t slot, double t0, double t1) {
-      return hit_sphere(s.spheres[slot], ray, t0, t1);
+      return rtsim::testing::sphere_root(s.spheres[slot].center, s.spheres[slot].radius, ray, t0,
+                                         t1);
     };
     const ShellHit h = trav.closest_hit(ray, 1e-9, kInfinity, test, tally.closest);
     ++tally.rays;
@@ -288,7 +278,7 @@ TEST(AccelShellTree, OverlappingShellsOfFig42) {
   ShellTraversalStats st;
   const Ray ray{Vec3(0.0), Vec3(1.0, 0.0, 0.0)};
   auto test = [&](std::uint32_t slot, double t0, double t1) {
-    return hit_sphere(s.spheres[slot], ray, t0, t1);
+    return rtsim::testing::sphere_root(s.spheres[slot].center, s.spheres[slot].radius, ray, t0, t1);
   };
   const ShellHit h = trav.closest_hit(ray, 0.0, kInfinity, test, st);
   ASSERT_EQ(trav.leaf_shell_list().size(), 2u);
@@ -324,7 +314,7 @@ TEST(AccelShellTree, LeafShellListCapacityIsCounted) {
   // Miss every sphere but cross every box: along a box edge line, just inside.
   const Ray ray{Vec3(-5.0, 0.49, 0.49), Vec3(1.0, 0.0, 0.0)};
   auto test = [&](std::uint32_t slot, double t0, double t1) {
-    return hit_sphere(s.spheres[slot], ray, t0, t1);
+    return rtsim::testing::sphere_root(s.spheres[slot].center, s.spheres[slot].radius, ray, t0, t1);
   };
   EXPECT_FALSE(trav.closest_hit(ray, 0.0, kInfinity, test, st).valid());
   EXPECT_EQ(st.leaf_shells_sorted, 80u);

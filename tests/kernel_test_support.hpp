@@ -1,5 +1,6 @@
 #pragma once
-// Small helpers shared by the kernel tests: deterministic random rays and hit sanity checks.
+// Small helpers shared by the kernel and acceleration tests (and bench/accel_bench.cpp):
+// deterministic random rays, a plain ray/sphere root and hit sanity checks.
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -9,6 +10,22 @@
 #include "firmware/ray.hpp"
 
 namespace rtsim::testing {
+
+/// Smallest t of the ray/sphere intersection in (t_min, t_max), +inf if none: the plain
+/// quadratic (unit direction), an oracle for the acceleration structures' tests and benchmarks
+/// independent of the firmware's SphereKernel.
+inline double sphere_root(const Vec3& centre, double radius, const Ray& ray, double t_min,
+                          double t_max) {
+  const Vec3 oc = ray.origin - centre;
+  const double b = glm::dot(oc, ray.direction);
+  const double c = glm::dot(oc, oc) - radius * radius;
+  const double disc = b * b - c;
+  if (disc < 0.0) return kInfinity;
+  const double q = std::sqrt(disc);
+  if (const double t = -b - q; t > t_min && t < t_max) return t;
+  if (const double t = -b + q; t > t_min && t < t_max) return t;
+  return kInfinity;
+}
 
 /// Deterministic source of random geometry (fixed seed per test, so failures reproduce).
 class RandomGeometry {
