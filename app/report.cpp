@@ -300,13 +300,10 @@ std::string format_seconds(double s) {
 
 namespace {
 
-std::string number(double v, int digits = 4) { return format_number(v, digits); }
-std::string seconds(double s) { return format_seconds(s); }
-
 std::string value_text(const json& v) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number()) return number(v.get<double>(), 6);
+  if (v.is_number()) return format_number(v.get<double>(), 6);
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_null()) return "-";
   std::string s = v.dump();
@@ -399,12 +396,13 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
   std::vector<std::pair<std::string, std::string>> head;
   head.emplace_back("machine", machine);
   head.emplace_back("scene", scene);
-  head.emplace_back("image", number(num(stats, "width")) + " x " + number(num(stats, "height")) +
-                                 ", " + number(num(stats, "spp")) + " sample(s) per pixel");
+  head.emplace_back("image", format_number(num(stats, "width")) + " x " +
+                                 format_number(num(stats, "height")) + ", " +
+                                 format_number(num(stats, "spp")) + " sample(s) per pixel");
   if (const double t = num(stats, "simulated_time_s"); std::isfinite(t))
-    head.emplace_back("simulated frame time", seconds(t));
+    head.emplace_back("simulated frame time", format_seconds(t));
   if (const double t = num(stats, "wall_time_s"); std::isfinite(t))
-    head.emplace_back("wall time", seconds(t));
+    head.emplace_back("wall time", format_seconds(t));
   if (const json* rays = find(stats, "rays"); rays && rays->is_object()) {
     std::string by_kind;
     for (const char* k : {"primary", "shadow", "reflected", "refracted"})
@@ -412,14 +410,14 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     head.emplace_back("rays", value_text((*rays)["total"]) + " (" + by_kind + ")");
   }
   if (const double v = num(stats, "intersection_tests"); std::isfinite(v))
-    head.emplace_back("intersection tests", number(v));
+    head.emplace_back("intersection tests", format_number(v));
   if (const double v = num(stats, "overhead_ratio"); std::isfinite(v))
-    head.emplace_back("overhead (wall / functional wall)", number(v));
+    head.emplace_back("overhead (wall / functional wall)", format_number(v));
   if (const json* lat = find(stats, "ray_latency_s"); lat && lat->is_object())
-    head.emplace_back("ray latency", "mean " + seconds(num(*lat, "mean")) + ", p50 " +
-                                         seconds(num(*lat, "p50")) + ", p99 " +
-                                         seconds(num(*lat, "p99")) + ", max " +
-                                         seconds(num(*lat, "max")) + " (" +
+    head.emplace_back("ray latency", "mean " + format_seconds(num(*lat, "mean")) + ", p50 " +
+                                         format_seconds(num(*lat, "p50")) + ", p99 " +
+                                         format_seconds(num(*lat, "p99")) + ", max " +
+                                         format_seconds(num(*lat, "max")) + " (" +
                                          value_text((*lat)["count"]) + " rays)");
   page.heading("Headline");
   page.key_values(head);
@@ -487,20 +485,22 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     }
     for (const std::string& name : order)
       if (const json& st = (*stages)[name]; st.is_object())
-        rows.push_back(
-            {name, seconds(num(st, "queueing_s", 0.0)), seconds(num(st, "service_s", 0.0)),
-             seconds(num(st, "transfer_s", 0.0)), seconds(num(st, "total_s", 0.0)),
-             number(100.0 * num(st, "share", 0.0), 4) + " %", seconds(num(st, "p99_s", 0.0))});
+        rows.push_back({name, format_seconds(num(st, "queueing_s", 0.0)),
+                        format_seconds(num(st, "service_s", 0.0)),
+                        format_seconds(num(st, "transfer_s", 0.0)),
+                        format_seconds(num(st, "total_s", 0.0)),
+                        format_number(100.0 * num(st, "share", 0.0), 4) + " %",
+                        format_seconds(num(st, "p99_s", 0.0))});
     // Below 1e-9 of the mean the rest is the rounding of summing the parts: say so.
     const double rest_share = mean > 0 ? rest / mean : 0.0;
     if (std::abs(rest_share) < 1e-9)
-      rows.push_back(
-          {"unattributed", "", "", "", "0 (rounding: " + number(rest_share, 2) + ")", "0 %", ""});
+      rows.push_back({"unattributed", "", "", "",
+                      "0 (rounding: " + format_number(rest_share, 2) + ")", "0 %", ""});
     else
-      rows.push_back(
-          {"unattributed", "", "", "", seconds(rest), number(100.0 * rest_share, 4) + " %", ""});
-    rows.push_back({"end to end (mean)", "", "", "", seconds(mean), "100 %",
-                    e2e && e2e->is_object() ? seconds(num(*e2e, "p99", 0.0)) : ""});
+      rows.push_back({"unattributed", "", "", "", format_seconds(rest),
+                      format_number(100.0 * rest_share, 4) + " %", ""});
+    rows.push_back({"end to end (mean)", "", "", "", format_seconds(mean), "100 %",
+                    e2e && e2e->is_object() ? format_seconds(num(*e2e, "p99", 0.0)) : ""});
     page.table({"stage", "queueing", "service", "transfer", "total", "share", "p99 of total"},
                rows);
     const fs::path png = tools.scratch_dir / "latency_breakdown.png";
@@ -528,9 +528,10 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
       std::string queue;
       if (const json* q = find(m, "queue"))
         queue = "capacity " + value_text((*q)["capacity"]) + ", mean " +
-                number(num(*q, "mean_occupancy"), 4) + ", max " + value_text((*q)["max_occupancy"]);
-      rows.push_back({name, seconds(num(m, "busy_s", 0.0)),
-                      number(100.0 * num(m, "utilization", 0.0), 4) + " %", queue, other});
+                format_number(num(*q, "mean_occupancy"), 4) + ", max " +
+                value_text((*q)["max_occupancy"]);
+      rows.push_back({name, format_seconds(num(m, "busy_s", 0.0)),
+                      format_number(100.0 * num(m, "utilization", 0.0), 4) + " %", queue, other});
     }
     page.table({"module", "busy", "utilisation", "queue occupancy", "counts"}, rows);
   }

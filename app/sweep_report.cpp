@@ -45,9 +45,6 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-std::string number(double v, int digits = 4) { return format_number(v, digits); }
-std::string seconds(double s) { return format_seconds(s); }
-
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -74,7 +71,8 @@ std::string cell_text(const Json& v, const std::string& column) {
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   // Seconds: "simulated_time_s", "ray_latency_s.mean".
   const bool secs = ends_with(column, "_s") || column.find("_s.") != std::string::npos;
-  if (v.is_number()) return secs ? seconds(v.get<double>()) : number(v.get<double>(), 4);
+  if (v.is_number())
+    return secs ? format_seconds(v.get<double>()) : format_number(v.get<double>(), 4);
   return v.dump();
 }
 
@@ -382,7 +380,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
       "points", std::to_string(points.size()) + ": " + std::to_string(points.size() - failed) +
                     " ok, " + std::to_string(failed) + " failed; " + std::to_string(in.run_now) +
                     " run now, " + std::to_string(points.size() - in.run_now) + " done before");
-  head.emplace_back("this run", seconds(in.wall_s) + " wall" +
+  head.emplace_back("this run", format_seconds(in.wall_s) + " wall" +
                                     (in.ranks > 0 ? ", " + std::to_string(in.ranks) + " MPI ranks"
                                                   : std::string()));
   head.emplace_back("outputs", "results.csv, results.jsonl, points/NNNN/ (beside this page)");
