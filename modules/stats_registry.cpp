@@ -26,6 +26,23 @@ nlohmann::ordered_json StatsRegistry::to_json(const sc_core::sc_time& frame_time
   return out;
 }
 
+namespace {
+/// Nearest-rank percentile of `s` by selection (no full sort: runs record millions of rays);
+/// reorders `s`.
+double nearest_rank(std::vector<double>& s, double p) {
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(s.size())));
+  const std::size_t k = std::min(s.size() - 1, rank == 0 ? 0 : rank - 1);
+  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(k), s.end());
+  return s[k];
+}
+}  // namespace
+
+double LatencyRecorder::percentile(double p) const {
+  if (samples_.empty()) return 0.0;
+  std::vector<double> s = samples_;
+  return nearest_rank(s, p);
+}
+
 nlohmann::ordered_json LatencyRecorder::to_json() const {
   nlohmann::ordered_json j;
   j["count"] = samples_.size();
@@ -41,13 +58,7 @@ nlohmann::ordered_json LatencyRecorder::to_json() const {
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
-  // Nearest-rank percentiles by selection (no full sort: runs record millions of rays).
-  auto pct = [&](double p) {
-    const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(s.size())));
-    const std::size_t k = std::min(s.size() - 1, rank == 0 ? 0 : rank - 1);
-    std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(k), s.end());
-    return s[k];
-  };
+  auto pct = [&s](double p) { return nearest_rank(s, p); };
   j["mean"] = static_cast<double>(sum / static_cast<long double>(s.size()));
   j["p50"] = pct(0.50);
   j["p99"] = pct(0.99);

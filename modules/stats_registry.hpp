@@ -45,6 +45,8 @@ class LatencyRecorder {
   void add(const sc_core::sc_time& t) { samples_.push_back(t.to_seconds()); }
   void add_seconds(double s) { samples_.push_back(s); }
   std::size_t count() const { return samples_.size(); }
+  /// Nearest-rank percentile `p` in [0, 1] in seconds; 0 with no samples.
+  double percentile(double p) const;
   /// {count, mean, p50, p99, max, histogram: {edges_s, counts}} (log-spaced buckets).
   nlohmann::ordered_json to_json() const;
 
