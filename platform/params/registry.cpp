@@ -11,6 +11,7 @@
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
+#include "platform/params/toml_leaves.hpp"
 #include "platform/params/units.hpp"
 
 namespace rtsim::params {
@@ -209,21 +210,6 @@ ParamValue from_toml(const Param& p, const toml::node& node) {
   reject(p, describe(node));
 }
 
-// Every value in the document with its dotted name: `[a.b] c = 1` and `a.b.c = 1` both give
-// "a.b.c". Tables (including inline ones) are walked; anything else is a leaf.
-void collect_leaves(const toml::table& table, const std::string& prefix,
-                    std::vector<std::pair<std::string, const toml::node*>>& out) {
-  for (const auto& [key, node] : table) {
-    std::string name =
-        prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
-    if (const auto* sub = node.as_table()) {
-      collect_leaves(*sub, name, out);
-    } else {
-      out.emplace_back(std::move(name), &node);
-    }
-  }
-}
-
 bool valid_name(std::string_view name) {
   bool segment_empty = true;
   for (char ch : name) {
@@ -343,12 +329,7 @@ void ParamRegistry::load_toml_string(std::string_view text, const std::string& o
   } catch (const toml::parse_error& e) {
     throw InputError(origin, e.source().begin.line, std::string(e.description()));
   }
-  std::vector<std::pair<std::string, const toml::node*>> leaves;
-  collect_leaves(root, "", leaves);
-  // toml++ keeps keys sorted; report the first problem in file order instead.
-  std::stable_sort(leaves.begin(), leaves.end(), [](const auto& a, const auto& b) {
-    return a.second->source().begin < b.second->source().begin;
-  });
+  const TomlLeaves leaves = toml_leaves_in_file_order(root);
 
   // Check everything before changing anything, so a bad file leaves the registry as it was.
   std::vector<std::pair<Param*, ParamValue>> updates;

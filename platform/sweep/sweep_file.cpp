@@ -13,6 +13,7 @@
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
+#include "platform/params/toml_leaves.hpp"
 
 namespace rtsim::sweep {
 
@@ -428,27 +429,9 @@ void Reader::read_configs(const toml::node& node, SweepFile& out) const {
   }
 }
 
-// Every value of [params] with its dotted name: `[params.shade] max_depth = 0` and
-// `"shade.max_depth" = 0` are the same (as in config files).
-void collect_leaves(const toml::table& table, const std::string& prefix,
-                    std::vector<std::pair<std::string, const toml::node*>>& out) {
-  for (const auto& [key, node] : table) {
-    std::string name =
-        prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
-    if (const auto* sub = node.as_table()) {
-      collect_leaves(*sub, name, out);
-    } else {
-      out.emplace_back(std::move(name), &node);
-    }
-  }
-}
-
 void Reader::read_params(const toml::table& params, SweepFile& out) {
-  std::vector<std::pair<std::string, const toml::node*>> leaves;
-  collect_leaves(params, "", leaves);
-  std::stable_sort(leaves.begin(), leaves.end(), [](const auto& a, const auto& b) {
-    return a.second->source().begin < b.second->source().begin;
-  });
+  // `[params.shade] max_depth = 0` and `"shade.max_depth" = 0` are the same (as in configs).
+  const params::TomlLeaves leaves = params::toml_leaves_in_file_order(params);
   for (const auto& [name, node] : leaves) {
     const std::size_t line = line_of(*node);
     if (is_run_option(name))
