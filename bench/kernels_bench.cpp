@@ -33,11 +33,12 @@ std::vector<Ray> rays_towards(Rng& r, double spread) {
   return rays;
 }
 
-template <typename Kernel>
-void run(benchmark::State& state, const std::vector<Kernel>& prims, const std::vector<Ray>& rays) {
+/// Every ray against every primitive; `RayT` is a Ray or a kernel's prepared ray.
+template <typename Kernel, typename RayT>
+void run(benchmark::State& state, const std::vector<Kernel>& prims, const std::vector<RayT>& rays) {
   std::int64_t hits = 0;
   for (auto _ : state) {
-    for (const Ray& ray : rays) {
+    for (const RayT& ray : rays) {
       for (const Kernel& k : prims) {
         SurfaceHit h;
         hits += k.intersect(ray, 1e-9, kInfinity, h);
@@ -78,19 +79,7 @@ void BM_TrianglePreparedRay(benchmark::State& state) {
   const auto prims = triangles<T>(r);
   std::vector<ShearedRay<T>> rays;
   for (const Ray& ray : rays_towards(r, 0.8)) rays.push_back(ShearedRay<T>::make(ray));
-  std::int64_t hits = 0;
-  for (auto _ : state) {
-    for (const auto& ray : rays) {
-      for (const auto& k : prims) {
-        SurfaceHit h;
-        hits += k.intersect(ray, 1e-9, kInfinity, h);
-        benchmark::DoNotOptimize(h);
-      }
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * kRays * kPrims);
-  state.counters["hit_rate"] =
-      double(hits) / double(state.iterations() * std::int64_t(kRays) * kPrims);
+  run(state, prims, rays);
 }
 BENCHMARK(BM_TrianglePreparedRay<double>);
 BENCHMARK(BM_TrianglePreparedRay<float>);
