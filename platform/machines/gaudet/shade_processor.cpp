@@ -87,6 +87,14 @@ void ShadeProcessor::receive(PrimToShade msg) {
   if (!port_.request(id, clock_.now())) unasked_.push_back(id);
 }
 
+void ShadeProcessor::send(RayTicket& t) {
+  t.id = next_id_++;
+  t.sent = clock_.now();  // ray_latency_s and the probe's journey start here
+  probe_->begin(t, t.sent);
+  ShadeToShell msg{t};
+  modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
+}
+
 void ShadeProcessor::run() {
   begin_frame();
   bool vision_left = true;
@@ -120,11 +128,7 @@ void ShadeProcessor::run() {
       RayTicket t = backlog_.front();
       backlog_.pop_front();
       compute(tasks::words_cost(ShadeToShell::kWords), "send");
-      t.id = next_id_++;
-      t.sent = clock_.now();
-      probe_->begin(t, t.sent);
-      ShadeToShell msg{t};
-      modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
+      send(t);
       continue;
     }
     if (room && vision_left && !free_trees_.empty()) {
@@ -141,11 +145,7 @@ void ShadeProcessor::run() {
       outstanding_[t.tree] = 1;
       t.first_sample = sample == 0;
       t.t_min = task_.t_min(t.ray);
-      t.id = next_id_++;
-      t.sent = clock_.now();
-      probe_->begin(t, t.sent);
-      ShadeToShell msg{t};
-      modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
+      send(t);
       continue;
     }
     if (!vision_left && trees_in_flight_ == 0) break;

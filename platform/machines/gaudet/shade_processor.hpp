@@ -74,6 +74,9 @@ class ShadeProcessor : public PertProcessor {
   /// Shading of one answer (its SHADE packet, if it needs one, is in).
   void shade(const PrimToShade& msg);
   void receive(PrimToShade msg);
+  /// Numbers the ray, stamps its send time and puts it in the queue to the ShellProcessor (the
+  /// send's cost is charged by the caller, with whatever else the step costs).
+  void send(RayTicket& t);
   bool next_initial_ray(shading::TracedRay& ray, int& sample);
 
   int pert_, pert_count_;
