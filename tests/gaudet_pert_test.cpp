@@ -17,6 +17,7 @@
 
 namespace fs = std::filesystem;
 using rtsim::test::read_file;
+using rtsim::test::read_json;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using sc_core::SC_NS;
@@ -30,8 +31,6 @@ fs::path run_ok(const std::string& tag, const std::string& args) {
   EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
   return dir;
 }
-
-nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
 
 }  // namespace
 

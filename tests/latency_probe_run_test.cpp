@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 /// Keys in file order: the probe lists its stages in the order a ray meets them.
 using json = nlohmann::ordered_json;
 using rtsim::test::read_file;
+using rtsim::test::read_json;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using rtsim::test::shared_path;
@@ -28,8 +29,6 @@ namespace {
 /// latency per ray). 1e-12 leaves room for that and catches a forgotten stage: the smallest
 /// real part on these runs (one fetch stage, 333 ns) is 1e-4 of the mean.
 constexpr double kUnattributedTolerance = 1e-12;
-
-json read_json(const fs::path& p) { return json::parse(read_file(p)); }
 
 struct Run {
   fs::path dir;

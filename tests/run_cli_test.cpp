@@ -10,13 +10,12 @@
 namespace fs = std::filesystem;
 using rtsim::test::compare_images;
 using rtsim::test::read_file;
+using rtsim::test::read_json;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using rtsim::test::shared_path;
 
 namespace {
-
-nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
 
 fs::path run_ok(const std::string& tag, const std::string& args) {
   const auto dir = scratch_dir(tag);

@@ -13,6 +13,7 @@
 
 namespace fs = std::filesystem;
 using rtsim::test::read_file;
+using rtsim::test::read_jsonl;
 using rtsim::test::scratch_dir;
 
 namespace {
@@ -37,15 +38,6 @@ rtsim::test::CommandResult run_mpi(const std::string& args) {
   return r;
 }
 #endif
-
-std::vector<Json> read_jsonl(const fs::path& p) {
-  std::vector<Json> rows;
-  std::istringstream in(read_file(p));
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty()) rows.push_back(Json::parse(line));
-  return rows;
-}
 
 // The table without its wall-clock cells.
 std::vector<Json> without_wall_clock(std::vector<Json> rows) {

@@ -13,6 +13,7 @@
 
 namespace fs = std::filesystem;
 using rtsim::test::read_file;
+using rtsim::test::read_jsonl;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 
@@ -23,15 +24,6 @@ using Json = nlohmann::ordered_json;
 // builtin:ullner-sheets-1000 holds 968 quadrilaterals (two sheets cut to the modelling space).
 constexpr int kSheetQuads = 968;
 constexpr int kRays = 16 * 12;  // primary rays only (shade.max_depth = 0)
-
-std::vector<Json> read_jsonl(const fs::path& p) {
-  std::vector<Json> rows;
-  std::istringstream in(read_file(p));
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty()) rows.push_back(Json::parse(line));
-  return rows;
-}
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

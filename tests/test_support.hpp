@@ -11,8 +11,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace rtsim::test {
 
@@ -40,6 +42,21 @@ inline std::string read_file(const std::filesystem::path& p) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+/// A JSON file (stats.json, validation.json), keys in file order.
+inline nlohmann::ordered_json read_json(const std::filesystem::path& p) {
+  return nlohmann::ordered_json::parse(read_file(p));
+}
+
+/// A JSON-lines file (a sweep's results.jsonl): one object per non-empty line.
+inline std::vector<nlohmann::ordered_json> read_jsonl(const std::filesystem::path& p) {
+  std::vector<nlohmann::ordered_json> rows;
+  std::istringstream in(read_file(p));
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) rows.push_back(nlohmann::ordered_json::parse(line));
+  return rows;
 }
 
 inline std::string shared_path(const std::string& rel) {
