@@ -6,8 +6,7 @@ namespace rtsim::app {
 
 params::ParamRegistry build_registry(const ConfigArgs& args, const platform::Machine* machine) {
   params::ParamRegistry registry;
-  platform::declare_common_params(registry);
-  if (machine) machine->declare_params(registry);
+  platform::declare_params_of(machine, registry);
   for (const auto& file : args.config_files) registry.load_toml_file(file);
   for (const auto& assignment : args.overrides) {
     try {

@@ -49,7 +49,9 @@ class Machine {
   virtual ~Machine() = default;
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
-  /// Declares the machine's parameters (with defaults citing the seed) in `registry`.
+  /// Declares every parameter the machine reads (with defaults citing the seed) in `registry`,
+  /// and no other: the render parameters its twin reads and `quantum` through
+  /// declare_common_params. What is not declared cannot be set (declare_params_of).
   virtual void declare_params(params::ParamRegistry& registry) const = 0;
   /// Converts the scene as the machine would store it; throws InputError for scenes the
   /// machine cannot hold (with what and why).
@@ -66,7 +68,13 @@ const std::vector<const Machine*>& machines();
 /// The machine called `name`, or InputError naming the closest ones.
 const Machine& find_machine(const std::string& name);
 
-/// Declares `quantum` (global TLM quantum) and the render/shade parameters every machine uses.
-void declare_common_params(params::ParamRegistry& registry);
+/// Declares `quantum` (global TLM quantum) and the render/shade parameters of `use`: those the
+/// machine's functional twin reads.
+void declare_common_params(params::ParamRegistry& registry, const functional::RenderParamUse& use);
+
+/// Declares the parameters `machine` reads (nullptr: the functional renderer's, `rtsim render`
+/// without --machine) and tells the registry the names only others read, so that setting one of
+/// those says it is not used instead of being accepted and ignored.
+void declare_params_of(const Machine* machine, params::ParamRegistry& registry);
 
 }  // namespace rtsim::platform

@@ -34,8 +34,7 @@ struct Sim {
 int simulate(const Sim& run, const fs::path& out) {
   const auto& machine = rtsim::platform::find_machine("gaudet-pert");
   rtsim::params::ParamRegistry registry;
-  rtsim::platform::declare_common_params(registry);
-  machine.declare_params(registry);
+  rtsim::platform::declare_params_of(&machine, registry);
   registry.apply_override("pert_count=2");
   for (const auto& o : run.overrides) registry.apply_override(o);
   auto scene = rtsim::app::load_scene_with_seed("builtin:npp-412", registry);

@@ -207,8 +207,8 @@ TEST(SweepCheck, EveryBadInputNamesTheLineAndWhatWasExpected) {
       {"parameter of another machine",
        "machine = [\"ullner-peripheral\", \"vax-750\"]\nscene = \"builtin:default\"\n" + axis +
            "param = \"peripheral.grid.divisions\"\nvalues = [1]\n",
-       "4: on machine 'vax-750': unknown parameter 'peripheral.grid.divisions'; did you mean "
-       "'render.grid.divisions'?"},
+       "4: on machine 'vax-750': parameter 'peripheral.grid.divisions' is not used by vax-750 "
+       "(it would change nothing); did you mean 'render.grid.divisions'?"},
       {"unknown machine",
        "machine = [\"vax-750\", \"ullner-periferal\"]\nscene = \"builtin:default\"\n",
        "1: unknown machine 'ullner-periferal'; did you mean 'ullner-peripheral'?"},

@@ -27,7 +27,22 @@ struct RenderSettings {
   shading::ShadeParams shade;
 };
 
-void declare_render_params(params::ParamRegistry& registry);
+/// Which optional groups of render parameters a functional twin reads. A machine declares only
+/// what its twin reads, so setting another (say render.grid.divisions on a machine whose grid is
+/// its own) is an error rather than a silent no-op. render.spp, scene.seed and shade.* are read
+/// by every twin and always declared.
+struct RenderParamUse {
+  bool accel = true;           ///< render.accel, render.grid.divisions: the structure's choice
+  bool shells = true;          ///< render.shells.*: the box-shell hierarchy's shape
+  bool polygon_kernel = true;  ///< render.polygon_kernel
+  bool bezier = true;          ///< bezier.iterations (scenes with patches)
+};
+
+/// Declares the render and shading parameters of `use` (all of them by default: the functional
+/// renderer's own set).
+void declare_render_params(params::ParamRegistry& registry, const RenderParamUse& use = {});
+/// Reads the declared ones; an undeclared group keeps RenderSettings' default (the machine that
+/// left it out sets that field itself).
 RenderSettings read_render_settings(const params::ParamRegistry& registry);
 
 }  // namespace rtsim::functional

@@ -282,6 +282,10 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
 }  // namespace
 
 void GaudetPert::declare_params(params::ParamRegistry& r) const {
+  // Its twin always searches Gaudet's box-shell hierarchy (render.shells.* shape it) with the
+  // triangle kernel, and holds spheres and polygons only.
+  declare_common_params(r,
+                        {.accel = false, .shells = true, .polygon_kernel = false, .bezier = false});
   declare_count(r, "pert_count", "1", "1", "1024", "PERTs",
                 "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
                 "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)");

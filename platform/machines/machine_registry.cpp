@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <set>
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
@@ -36,8 +37,8 @@ const Machine& find_machine(const std::string& name) {
   throw InputError("--machine", 0, msg);
 }
 
-void declare_common_params(params::ParamRegistry& r) {
-  functional::declare_render_params(r);
+void declare_common_params(params::ParamRegistry& r, const functional::RenderParamUse& use) {
+  functional::declare_render_params(r, use);
   r.declare({.name = "quantum",
              .kind = params::ParamKind::kTime,
              .default_value = "0 s",
@@ -48,6 +49,47 @@ void declare_common_params(params::ParamRegistry& r) {
                             "order); larger values run faster at a measured frame-time error "
                             "(docs/quantum.md)",
              .source = "assumption: TLM-2.0 loosely-timed coding style"});
+}
+
+}  // namespace rtsim::platform
+
+namespace rtsim::platform {
+namespace {
+
+/// Every parameter name some user declares: the functional renderer and each machine.
+const std::vector<std::string>& all_param_names() {
+  static const std::vector<std::string> names = [] {
+    std::set<std::string> all;
+    const auto add = [&all](const params::ParamRegistry& r) {
+      for (const auto& e : r.list()) all.insert(e.name);
+    };
+    params::ParamRegistry functional_only;
+    functional::declare_render_params(functional_only);
+    add(functional_only);
+    for (const Machine* m : machines()) {
+      params::ParamRegistry r;
+      m->declare_params(r);
+      add(r);
+    }
+    return std::vector<std::string>(all.begin(), all.end());
+  }();
+  return names;
+}
+
+}  // namespace
+
+void declare_params_of(const Machine* machine, params::ParamRegistry& registry) {
+  if (machine)
+    machine->declare_params(registry);
+  else
+    functional::declare_render_params(registry);
+  std::vector<std::string> elsewhere;
+  for (const auto& name : all_param_names())
+    if (!registry.contains(name)) elsewhere.push_back(name);
+  registry.set_user(
+      machine ? machine->name() : "the functional renderer",
+      machine ? "rtsim list params --machine " + machine->name() : "rtsim list params",
+      std::move(elsewhere));
 }
 
 }  // namespace rtsim::platform

@@ -44,6 +44,11 @@ PeripheralConfig read_peripheral(const params::ParamRegistry& r) {
 }  // namespace
 
 void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
+  // Its twin searches with the peripheral's own grid (peripheral.grid.*) and Ullner's quad
+  // kernel, and holds polygons only: no render.accel, render.grid, render.shells,
+  // render.polygon_kernel or bezier parameter is read.
+  declare_common_params(
+      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
   declare_processor_params(
       r, "host",
       {.clock = "5 MHz",

@@ -122,6 +122,8 @@ class VaxHost : public sc_core::sc_module {
 }  // namespace
 
 void Vax750::declare_params(params::ParamRegistry& r) const {
+  // The VAX runs the ordinary software ray tracer: every render parameter is read.
+  declare_common_params(r, {});
   r.declare({.name = "vax.intersection_time",
              .kind = params::ParamKind::kTime,
              .default_value = "429 us",

@@ -287,6 +287,14 @@ void ParamRegistry::declare(ParamSpec spec) {
 
 bool ParamRegistry::contains(std::string_view name) const { return params_.contains(name); }
 
+void ParamRegistry::set_user(std::string user, std::string listing,
+                             std::vector<std::string> names_used_elsewhere) {
+  user_ = std::move(user);
+  listing_ = std::move(listing);
+  used_elsewhere_ = std::move(names_used_elsewhere);
+  std::sort(used_elsewhere_.begin(), used_elsewhere_.end());
+}
+
 Param& ParamRegistry::find_for_input(std::string_view name, const std::string& file,
                                      std::size_t line) {
   if (auto it = params_.find(name); it != params_.end()) return it->second;
@@ -295,9 +303,14 @@ Param& ParamRegistry::find_for_input(std::string_view name, const std::string& f
   for (const auto& entry : params_) names.push_back(entry.first);
   std::vector<std::string> near = closest_names(name, names);
   for (auto& n : near) n = "'" + n + "'";
-  std::string message = "unknown parameter '" + std::string(name) + "'; ";
-  message += near.empty() ? "`rtsim list params` lists them all"
-                          : "did you mean " + join(near, " or ") + "?";
+  const bool elsewhere =
+      std::binary_search(used_elsewhere_.begin(), used_elsewhere_.end(), name, std::less<>());
+  std::string message = elsewhere ? "parameter '" + std::string(name) + "' is not used by " +
+                                        user_ + " (it would change nothing); "
+                                  : "unknown parameter '" + std::string(name) + "'; ";
+  message += near.empty()
+                 ? "`" + listing_ + (elsewhere ? "` lists what it uses" : "` lists them all")
+                 : "did you mean " + join(near, " or ") + "?";
   throw InputError(file, line, message);
 }
 
@@ -311,7 +324,15 @@ const Param& ParamRegistry::find(std::string_view name, ParamKind kind) const {
                            std::string(kind_name(it->second.spec.kind)) + ", read as " +
                            std::string(kind_name(kind)));
   }
+  it->second.read = true;
   return it->second;
+}
+
+std::vector<std::string> ParamRegistry::unread() const {
+  std::vector<std::string> out;
+  for (const auto& [name, p] : params_)
+    if (!p.read) out.push_back(name);
+  return out;
 }
 
 void ParamRegistry::load_toml_file(const std::string& path) {

@@ -72,6 +72,7 @@ struct Param {
   std::optional<ParamValue> min{};
   std::optional<ParamValue> max{};
   std::string where_set = "default";
+  mutable bool read = false;  ///< a getter asked for it (unread())
 };
 }  // namespace detail
 
@@ -83,6 +84,14 @@ class ParamRegistry {
   void declare(ParamSpec spec);
 
   bool contains(std::string_view name) const;
+
+  /// Who reads this registry ("ullner-peripheral", "the functional renderer") and the names that
+  /// exist elsewhere (another machine, the functional renderer) but that it does not read.
+  /// Setting one of those from a config file or -p is an InputError saying it is not used, with
+  /// the closest names that are (or `listing`, the command that lists them): a value nobody
+  /// reads must not pass for a setting.
+  void set_user(std::string user, std::string listing,
+                std::vector<std::string> names_used_elsewhere);
   std::size_t size() const { return params_.size(); }
 
   /// Layers a TOML config on top. Nested tables and dotted keys are the same name:
@@ -112,11 +121,18 @@ class ParamRegistry {
   /// Every parameter, sorted by name.
   std::vector<ParamEntry> list() const;
 
+  /// The declared parameters no getter has read yet, sorted. After a run, a machine that
+  /// declares only what it reads leaves this empty (tests/unused_param_test.cpp checks it).
+  std::vector<std::string> unread() const;
+
  private:
   const detail::Param& find(std::string_view name, ParamKind kind) const;
   detail::Param& find_for_input(std::string_view name, const std::string& file, std::size_t line);
 
   std::map<std::string, detail::Param, std::less<>> params_;
+  std::string user_;
+  std::string listing_ = "rtsim list params";
+  std::vector<std::string> used_elsewhere_;  ///< sorted
 };
 
 }  // namespace rtsim::params

@@ -31,8 +31,7 @@ void check_sweep(const SweepFile& file, const std::vector<Point>& points,
       throw InputError(file.origin, machine.value.line, e.message());
     }
     params::ParamRegistry r;
-    platform::declare_common_params(r);
-    m->declare_params(r);
+    platform::declare_params_of(m, r);
     for (const auto& [config, line] : file.configs) r.load_toml_file(config.string());
     return registries.emplace(machine.value.text, std::move(r)).first->second;
   };
