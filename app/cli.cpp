@@ -129,6 +129,12 @@ int run_cli(int argc, char** argv) {
                 "has its answer) broken down by stage (module or queue) into queueing, service "
                 "and transfer time: stats.json `latency_probe` (docs/stats.md); with --report, "
                 "a \"Where a ray spends its time\" section");
+  run->add_option("--fault", runa.faults,
+                  "Corrupt a word on its way into a memory, MEMORY:WORD:XOR (e.g. "
+                  "peripheral.parameter_memories:3:0x80000000 flips the sign of polygon 0's "
+                  "d_p): the word is stored XORed with the mask. Repeatable. The answers come "
+                  "from the memories' words, so the image shows it; stats.json `faults` says how "
+                  "often each was applied (docs/stats.md)");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "
                 "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "

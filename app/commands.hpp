@@ -34,8 +34,9 @@ struct RunArgs {
   std::vector<std::string> traces;  ///< vcd, perfetto
   std::string quantum;              ///< "" keeps the parameter `quantum`
   bool overhead = false;
-  bool report = false;         ///< also write report.html
-  bool latency_probe = false;  ///< stats.json latency_probe: per-ray time by stage and part
+  bool report = false;              ///< also write report.html
+  bool latency_probe = false;       ///< stats.json latency_probe: per-ray time by stage and part
+  std::vector<std::string> faults;  ///< MEMORY:WORD:XOR, each a corrupted word
   bool quiet = false;
   ConfigArgs config;
 };

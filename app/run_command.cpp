@@ -1,4 +1,5 @@
 // `rtsim run`: a timed machine model (SystemC) renders one frame.
+#include <charconv>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -38,7 +39,35 @@ std::string command_line(const RunArgs& a) {
   for (const auto& v : a.aovs) s += " --aov " + v;
   if (a.overhead) s += " --overhead";
   if (a.latency_probe) s += " --latency-probe";
+  for (const auto& f : a.faults) s += " --fault " + quoted(f);
   return s + " --report --out " + quoted(a.out_dir);
+}
+
+/// --fault MEMORY:WORD:XOR (WORD decimal, XOR decimal or 0x hex, non-zero, 32 bits).
+platform::MemoryFault parse_fault(const std::string& text) {
+  const auto bad = [&text](const std::string& why) {
+    return InputError("--fault " + text, 0,
+                      why +
+                          "; expected MEMORY:WORD:XOR, e.g. "
+                          "peripheral.parameter_memories:3:0x80000000");
+  };
+  const std::size_t a = text.find(':');
+  const std::size_t b = a == std::string::npos ? a : text.find(':', a + 1);
+  if (b == std::string::npos || text.find(':', b + 1) != std::string::npos)
+    throw bad("three fields separated by ':'");
+  platform::MemoryFault f;
+  f.memory = text.substr(0, a);
+  const std::string word = text.substr(a + 1, b - a - 1), mask = text.substr(b + 1);
+  const auto [wp, we] = std::from_chars(word.data(), word.data() + word.size(), f.word);
+  if (f.memory.empty() || word.empty() || we != std::errc() || wp != word.data() + word.size())
+    throw bad("WORD must be a word index (0, 1, ...)");
+  const bool hex = mask.size() > 2 && mask[0] == '0' && (mask[1] == 'x' || mask[1] == 'X');
+  const char* first = mask.data() + (hex ? 2 : 0);
+  const auto [mp, me] =
+      std::from_chars(first, mask.data() + mask.size(), f.xor_mask, hex ? 16 : 10);
+  if (mask.empty() || me != std::errc() || mp != mask.data() + mask.size() || f.xor_mask == 0)
+    throw bad("XOR must be a non-zero 32-bit mask (decimal or 0x hex)");
+  return f;
 }
 
 }  // namespace
@@ -56,11 +85,12 @@ int run_run(const RunArgs& args) {
       throw InputError("--quantum " + args.quantum, 0, e.message());
     }
   }
+  platform::RunOptions opts;
+  for (const auto& f : args.faults) opts.faults.push_back(parse_fault(f));
   scenes::Scene scene = load_scene_with_seed(args.scene, registry);
   platform::FunctionalTwin twin = machine.make_twin(scene, registry);
 
   OutputSet out(args.out_dir);
-  platform::RunOptions opts;
   opts.width = args.width;
   opts.height = args.height;
   opts.aov_id = wants_aov(args.aovs, "id");

@@ -1,5 +1,8 @@
 #include "modules/broadcast_processor.hpp"
 
+#include <algorithm>
+#include <span>
+
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -29,10 +32,12 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
   std::uint32_t max_id = 0;
   for (std::size_t i = 0; i < ids; ++i) {
     const std::size_t at = i * entry_words;
-    slots_.push_back(Slot{mem.at(at), mem.at(at + 2)});
+    slots_.push_back(Slot{mem.at(at), mem.at(at + 2), mem.at(at + 1)});
     max_id = std::max(max_id, mem.at(at));
   }
   demand_.assign(slots_.empty() ? 0 : max_id + 1, 0);
+  listed_.assign(demand_.size(), false);
+  for (const Slot& s : slots_) listed_[s.id] = true;
   idle_cycle_ = timing_.loop_reset;
   idle_cycle_packets_ = idle_cycle_words_ = 0;
   for (const Slot& s : slots_) {
@@ -53,7 +58,9 @@ sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
 }
 
 void BroadcastProcessor::demand(std::uint32_t id, int delta) {
-  if (id >= demand_.size()) return;  // an ID this data set does not have: never broadcast
+  // An ID the ID list does not hold (only with a corrupted memory) is never broadcast: its
+  // requester waits for ever, and the loop must not spin through cycles looking for it.
+  if (id >= demand_.size() || !listed_[id]) return;
   demand_[id] += delta;
   total_demand_ += delta;
 }
@@ -137,7 +144,12 @@ void BroadcastProcessor::run() {
     if (!hitters_.empty()) {
       const sc_core::sc_time start = strobe + timing_.id_slot;
       const sc_core::sc_time arrival = start + packet_time(s);
-      for (BusInterface* b : hitters_) b->capture(s.id, start, arrival);
+      // The packet's words as the memory holds them (an entry pointing past the end sends
+      // what there is).
+      const std::span<const std::uint32_t> mem(memory.contents());
+      const std::size_t first = std::min<std::size_t>(s.address, mem.size());
+      const auto words = mem.subspan(first, std::min<std::size_t>(s.words, mem.size() - first));
+      for (BusInterface* b : hitters_) b->capture(s.id, start, arrival, words);
       ++stats_.hit_packets;
       stats_.captures += hitters_.size();
       stats_.hit_packet_time += packet_time(s);

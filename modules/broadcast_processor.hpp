@@ -83,6 +83,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   struct Slot {
     std::uint32_t id = 0;
     std::uint32_t words = 0;
+    std::uint32_t address = 0;  ///< of the packet's first word in memory
   };
   struct Cursor {
     std::size_t pos = 0;
@@ -99,7 +100,8 @@ class BroadcastProcessor : public sc_core::sc_module {
   bool adaptive_;
   std::vector<BusInterface*> bics_;
   std::vector<Slot> slots_;
-  std::vector<int> demand_;  ///< by ID: valid registers holding it, over all BICs
+  std::vector<int> demand_;   ///< by ID: valid registers holding it, over all BICs
+  std::vector<bool> listed_;  ///< by ID: the ID list holds it
   long total_demand_ = 0;
   sc_core::sc_time idle_cycle_ = sc_core::SC_ZERO_TIME;  ///< one cycle with nothing wanted
   std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;

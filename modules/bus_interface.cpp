@@ -76,7 +76,7 @@ std::optional<ReceivedPacket> BusInterface::take(const sc_core::sc_time& t,
   if (pick < 0) return std::nullopt;
   Buffer& b = buffers_[static_cast<std::size_t>(pick)];
   b.state = BufferState::kInUse;
-  return ReceivedPacket{b.id, b.at, b.start, pick};
+  return ReceivedPacket{b.id, b.at, b.start, pick, b.words};
 }
 
 void BusInterface::release(const ReceivedPacket& p, const sc_core::sc_time& t) {
@@ -106,10 +106,15 @@ bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
 }
 
 void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
-                           const sc_core::sc_time& arrival) {
+                           const sc_core::sc_time& arrival, std::span<const std::uint32_t> words) {
   const int i = free_buffer(sc_core::sc_time_stamp());
   if (i < 0) return;  // hit() said otherwise: cannot happen
-  buffers_[static_cast<std::size_t>(i)] = Buffer{BufferState::kFilled, id, arrival, start};
+  Buffer& b = buffers_[static_cast<std::size_t>(i)];
+  b.state = BufferState::kFilled;
+  b.id = id;
+  b.at = arrival;
+  b.start = start;
+  b.words.assign(words.begin(), words.end());
   ++received_;
   for (Register& r : registers_) {
     if (!r.valid || r.id != id) continue;

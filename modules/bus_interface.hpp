@@ -13,6 +13,7 @@
 // Every register and buffer carries the time from which its state holds, so a processor that
 // runs ahead of simulated time cannot make the bus see a request before its time.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <systemc>
 #include <vector>
@@ -46,7 +47,9 @@ class BusInterface final : public PacketPort {
   bool hit(std::uint32_t id, const sc_core::sc_time& t);
   /// The packet `id` streams into a free buffer from `start` (the bus starts sending it); its
   /// last word is in at `arrival`. The register that asked for it is freed on receipt (L912).
-  void capture(std::uint32_t id, const sc_core::sc_time& start, const sc_core::sc_time& arrival);
+  /// `words`: the packet as the bus carried it, copied into the buffer.
+  void capture(std::uint32_t id, const sc_core::sc_time& start, const sc_core::sc_time& arrival,
+               std::span<const std::uint32_t> words);
 
   std::uint64_t requests() const { return requests_; }
   std::uint64_t packets_received() const { return received_; }
@@ -67,6 +70,7 @@ class BusInterface final : public PacketPort {
     std::uint32_t id = 0;
     sc_core::sc_time at = sc_core::SC_ZERO_TIME;     ///< free from / arrival
     sc_core::sc_time start = sc_core::SC_ZERO_TIME;  ///< its transfer began (filled)
+    std::vector<std::uint32_t> words;                ///< the FIFO's contents (filled)
   };
   int free_buffer(const sc_core::sc_time& t) const;
 

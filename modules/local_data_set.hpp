@@ -5,6 +5,8 @@
 // cycle each (L863), which the processor charges as it reads them. No registers to run out of,
 // no buffers to fill: the floor that broadcasting is measured against.
 #include <algorithm>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "modules/packet_port.hpp"
@@ -13,11 +15,28 @@ namespace rtsim::modules {
 
 class LocalDataSet final : public PacketPort {
  public:
-  explicit LocalDataSet(sc_core::sc_time first_access) : first_access_(first_access) {}
+  /// `memory`: the data set as a Broadcast Processor's memory holds it (an ID list of `ids`
+  /// entries of `entry_words` words, {ID, address, size}, then the packets); one image serves
+  /// every processor (each holds the same copy) and must outlive this port.
+  LocalDataSet(sc_core::sc_time first_access, std::span<const std::uint32_t> memory,
+               std::size_t ids, std::uint32_t entry_words)
+      : first_access_(first_access), memory_(memory) {
+    for (std::size_t i = 0; i < ids; ++i) {
+      const std::uint32_t id = memory[i * entry_words];
+      if (id >= packets_.size()) packets_.resize(std::size_t{id} + 1);
+      packets_[id] = {memory[i * entry_words + 1], memory[i * entry_words + 2]};
+    }
+  }
 
   bool request(std::uint32_t id, const sc_core::sc_time& t) override {
     if (pending(id)) return true;
-    ready_.push_back({id, t + first_access_, t, static_cast<int>(ready_.size())});
+    ReceivedPacket p{id, t + first_access_, t, static_cast<int>(ready_.size())};
+    if (id < packets_.size()) {
+      const auto [address, size] = packets_[id];
+      const std::size_t first = std::min<std::size_t>(address, memory_.size());
+      p.words = memory_.subspan(first, std::min<std::size_t>(size, memory_.size() - first));
+    }
+    ready_.push_back(p);
     changed_.notify(sc_core::SC_ZERO_TIME);
     return true;
   }
@@ -53,6 +72,8 @@ class LocalDataSet final : public PacketPort {
 
  private:
   sc_core::sc_time first_access_;
+  std::span<const std::uint32_t> memory_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> packets_;  ///< by ID: address, size
   std::vector<ReceivedPacket> ready_;
   sc_core::sc_event changed_;
 };

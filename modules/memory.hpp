@@ -36,6 +36,20 @@ class Memory : public sc_core::sc_module {
   }
 
   const std::vector<std::uint32_t>& contents() const { return data_; }
+  std::size_t size_words() const { return data_.size(); }
+
+  /// A fault in the load path (`rtsim run --fault`): whenever word `word` is written, it is
+  /// stored XORed with `xor_mask`, as if the transfer had been corrupted in flight. The model's
+  /// answers come from what the memory holds, so the fault shows wherever the word is used.
+  struct Fault {
+    std::uint64_t word = 0;
+    std::uint32_t xor_mask = 0;
+    std::uint64_t applied = 0;  ///< writes it corrupted
+  };
+  void inject_fault(std::uint64_t word, std::uint32_t xor_mask) {
+    faults_.push_back({word, xor_mask, 0});
+  }
+  const std::vector<Fault>& faults() const { return faults_; }
   std::uint64_t words_written() const { return words_written_; }
   std::uint64_t lines_read() const { return lines_read_; }
   sc_core::sc_time write_busy() const { return write_busy_; }
@@ -73,6 +87,11 @@ class Memory : public sc_core::sc_module {
     }
     if (gp.is_write()) {
       std::memcpy(&data_[first], gp.get_data_ptr(), len);
+      for (auto& f : faults_) {
+        if (f.word < first || f.word >= first + words) continue;
+        data_[f.word] ^= f.xor_mask;
+        ++f.applied;
+      }
       words_written_ += words;
       const sc_core::sc_time t = times(write_word_time_, words);
       write_busy_ += t;
@@ -94,6 +113,7 @@ class Memory : public sc_core::sc_module {
   sc_core::sc_time write_busy_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time read_busy_ = sc_core::SC_ZERO_TIME;
   BusyTimeline read_timeline_;
+  std::vector<Fault> faults_;
 };
 
 }  // namespace rtsim::modules

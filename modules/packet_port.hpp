@@ -6,13 +6,15 @@
 //  * LocalDataSet (local_data_set.hpp): the "direct memory" baseline, every processor holding
 //    the whole data set in its own memory (L806, L1103) — a packet is there when asked for.
 // The processor reads a packet's words at one cycle a word in both cases (FIFO read, L924;
-// streamed memory, L863) and charges that itself.
+// streamed memory, L863) and charges that itself. The words travel with the packet: a word
+// corrupted in a Broadcast Processor's memory reaches every processor that captures it.
 //
 // Times are absolute. A processor may run ahead of simulated time (temporal decoupling); every
 // request and release is stamped with the processor's local time, and the broadcast side
 // honours a stamp only from that time on, so the outcome does not depend on who ran ahead.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <systemc>
 
 namespace rtsim::modules {
@@ -25,6 +27,9 @@ struct ReceivedPacket {
   /// access began (LocalDataSet). arrival - transfer_start is its transfer time.
   sc_core::sc_time transfer_start = sc_core::SC_ZERO_TIME;
   int buffer = -1;
+  /// The packet's words as they arrived (the BIC's FIFO buffer, or the processor's own memory):
+  /// what the processor computes on. Valid until release().
+  std::span<const std::uint32_t> words{};
 };
 
 class PacketPort {

@@ -26,6 +26,14 @@ struct FunctionalTwin {
   functional::RenderSettings settings;
 };
 
+/// A word corrupted on its way into one of a machine's memories (`rtsim run --fault
+/// MEMORY:WORD:XOR`): the memory by its hierarchical name, the word's index, the bits flipped.
+struct MemoryFault {
+  std::string memory;
+  std::uint64_t word = 0;
+  std::uint32_t xor_mask = 0;
+};
+
 struct RunOptions {
   int width = 0;  ///< 0: the scene's
   int height = 0;
@@ -35,6 +43,7 @@ struct RunOptions {
   std::filesystem::path perfetto_path;  ///< empty: no Perfetto trace
   std::size_t perfetto_max_events = 2'000'000;
   bool latency_probe = false;
+  std::vector<MemoryFault> faults;
   std::function<void(long, long)> progress;  ///< (rays finished, rays expected so far)
 };
 

@@ -11,15 +11,24 @@
 #include <string>
 
 #include "firmware/geometry/convex_quads.hpp"
+#include "firmware/kernels/ullner_quad_words.hpp"
 #include "tests/ullner_quad_reference.hpp"
 
 namespace rtsim {
 namespace {
 
 using kernels::intersect;
+using kernels::kUllnerFlagsWord;
+using kernels::kUllnerFlagUParallel;
+using kernels::kUllnerFlagVParallel;
+using kernels::kUllnerParamCount;
+using kernels::kUllnerParamNames;
+using kernels::kUllnerStoredWords;
+using kernels::load_words;
 using kernels::QuadFamily;
 using kernels::QuadParam;
 using kernels::QuadRejection;
+using kernels::store_words;
 using kernels::UllnerQuadKernel;
 using kernels::UllnerQuadParams;
 using quadtest::Quad;
@@ -433,14 +442,17 @@ TEST(UllnerQuadKernel, AdapterFillsHitAndInterpolatesCornerNormals) {
     const Ray ray{o, glm::normalize(target - o)};
     SurfaceHit h;
     ASSERT_TRUE(k->intersect(ray, 1e-9, kInfinity, h));
-    EXPECT_NEAR(h.t, glm::length(target - o), 1e-12);  // t is a distance
-    EXPECT_NEAR(h.u, u, 1e-12);
-    EXPECT_NEAR(h.v, v, 1e-12);
+    EXPECT_NEAR(h.t, glm::length(target - o), 1e-12);  // t is a distance (plane z = 0 exact)
+    // The kernel's parameters are stored as singles, as the peripheral's memories hold them
+    // (ullner_quad_words.hpp): u and v carry their rounding, ~1e-7 of the quad.
+    constexpr double kSingleParams = 1e-6;
+    EXPECT_NEAR(h.u, u, kSingleParams);
+    EXPECT_NEAR(h.v, v, kSingleParams);
     EXPECT_EQ(h.geometric_normal, Vec3(0, 0, 1));  // CCW p00, p10, p11, p01 about +z
     // L452-L456: bilinear interpolation of the corner normals, then normalised.
     const Vec3 expect = glm::normalize((1 - u) * (1 - v) * normals[0] + u * (1 - v) * normals[1] +
                                        u * v * normals[2] + (1 - u) * v * normals[3]);
-    EXPECT_NEAR(glm::length(h.shading_normal - expect), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(h.shading_normal - expect), 0.0, kSingleParams);
     SurfaceHit hf;
     ASSERT_TRUE(flat->intersect(ray, 1e-9, kInfinity, hf));
     EXPECT_EQ(hf.shading_normal, hf.geometric_normal);
@@ -681,6 +693,38 @@ TEST(ConvexQuads, TriangleListMergedIntoQuads) {
   const auto folded = geometry::convert_triangles_to_quads(fv, {{{0, 1, 2}}, {{0, 2, 3}}});
   EXPECT_EQ(folded.size(), 2u);
   for (const auto& q : folded) EXPECT_TRUE(q.triangle);
+}
+
+TEST(UllnerQuadWords, TheKernelComputesOnWhatTheMemoriesHold) {
+  // A quad with a parallel family (u) and a quadratic one (v), so both flag kinds are set.
+  const Vec3 p00(0.1, 0.2, 0.3), p10(2.1, 0.2, 0.3), p11(2.6, 2.2, 0.3), p01(0.1, 1.7, 0.3);
+  const auto k = UllnerQuadKernel::from(p00, p10, p11, p01);
+  const auto exact = UllnerQuadParams<double>::precompute(p00, p10, p11, p01);
+  ASSERT_TRUE(k && exact);
+  std::array<std::uint32_t, kUllnerStoredWords> line{};
+  store_words(*exact, line);
+  const auto loaded = load_words(line);
+  // The kernel's parameters are the words, widened: what the peripheral's fetch stage reads.
+  for (std::size_t i = 0; i < kUllnerParamCount; ++i) {
+    EXPECT_EQ(k->params.word[i], loaded.word[i]) << kUllnerParamNames[i];
+    EXPECT_EQ(loaded.word[i], static_cast<double>(static_cast<float>(exact->word[i])));
+  }
+  EXPECT_EQ(loaded.u_parallel, exact->u_parallel);
+  EXPECT_EQ(loaded.v_parallel, exact->v_parallel);
+  EXPECT_EQ(loaded.u_plus_root, exact->u_plus_root);
+  EXPECT_EQ(loaded.v_plus_root, exact->v_plus_root);
+  EXPECT_EQ(loaded.u_pole_b, k->params.u_pole_b);
+  // Storing again gives the same words (the rounding happens once).
+  std::array<std::uint32_t, kUllnerStoredWords> again{};
+  store_words(k->params, again);
+  EXPECT_EQ(line, again);
+  // Every decision comes from the words: flipping the branch flags changes the answer.
+  const Ray ray{Vec3(1.0, 1.0, 5.0), Vec3(0, 0, -1)};
+  SurfaceHit h, hc;
+  ASSERT_TRUE(k->intersect_with(loaded, ray, 0.0, kInfinity, h));
+  line[kUllnerFlagsWord] ^= kUllnerFlagUParallel | kUllnerFlagVParallel;
+  const bool hit_corrupt = k->intersect_with(load_words(line), ray, 0.0, kInfinity, hc);
+  EXPECT_TRUE(!hit_corrupt || hc.u != h.u || hc.v != h.v);
 }
 
 }  // namespace

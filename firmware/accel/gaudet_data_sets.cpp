@@ -47,6 +47,25 @@ void encode_shell(const Shell& s, const RecordWords& words, std::vector<std::uin
   w.finish();                                           // struct shell *next: implicit
 }
 
+Shell decode_shell(std::span<const std::uint32_t> record) {
+  if (record.size() < 8) throw std::invalid_argument("a SHELL record needs 8 words");
+  const auto single = [&record](std::size_t i) {
+    return static_cast<double>(std::bit_cast<float>(record[i]));
+  };
+  Shell s;
+  s.leaf = record[0] != 0;
+  s.child_index = record[1];
+  s.box.hi = Vec3(single(2), single(3), single(4));
+  s.box.lo = Vec3(single(5), single(6), single(7));
+  return s;
+}
+
+Bounds stored_shell_box(const Bounds& box) {
+  std::vector<std::uint32_t> record;
+  encode_shell(Shell{false, 0, box}, RecordWords{}, record);
+  return decode_shell(record).box;
+}
+
 void encode_shade(const scenes::Material& m, const RecordWords& words,
                   std::vector<std::uint32_t>& out) {
   RecordWriter w(out, words.shade, "SHADE");

@@ -74,6 +74,11 @@ using PrimEncoder = std::function<void(std::uint32_t slot, std::vector<std::uint
 /// SHELL record: leaf, child_index, max[3], min[3] (Fig. 4-3 field order); the box is rounded
 /// outward to single precision so the stored shell still encloses its contents.
 void encode_shell(const Shell& s, const RecordWords& words, std::vector<std::uint32_t>& out);
+/// The SHELL at the start of `record` (at least 8 words), as encode_shell wrote it: what a
+/// ShellProcessor reads out of a packet.
+Shell decode_shell(std::span<const std::uint32_t> record);
+/// `box` as a SHELL record stores it: decode_shell(encode_shell(box)).box.
+Bounds stored_shell_box(const Bounds& box);
 /// SHADE record from an NFF material: k_s = Ks, k_d = Kd, n = round(shine), reflectance = the
 /// colour, transmittance = (T, T, T) (NFF's T is one number; Gaudet's is RGB).
 void encode_shade(const scenes::Material& m, const RecordWords& words,

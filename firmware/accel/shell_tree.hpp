@@ -85,6 +85,13 @@ class ShellTree {
   }
   /// Every shell except the root, packet after packet.
   std::span<const Shell> shells() const { return shells_; }
+  /// Replaces every shell's box by `stored(box)`: the box as a machine's memory holds it (a
+  /// PERT's SHELL records keep it in singles rounded outward), so that a search on this tree
+  /// and a search on the stored records see the same boxes.
+  template <class Stored>
+  void store_boxes(Stored&& stored) {
+    for (Shell& s : shells_) s.box = stored(s.box);
+  }
 
   ShellTreeCounts counts() const {
     return {shells_.size(), shell_packet_count(), prims_.size(), prim_packet_count()};

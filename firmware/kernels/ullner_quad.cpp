@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "firmware/kernels/ullner_quad_words.hpp"
+
 namespace rtsim::kernels {
 
 std::string_view to_string(QuadRejection r) {
@@ -300,7 +302,7 @@ std::optional<UllnerQuadKernel> UllnerQuadKernel::from(const Vec3& p00, const Ve
   why = pre.rejection;
   if (!pre.params) return std::nullopt;
   UllnerQuadKernel k;
-  k.params = *pre.params;
+  k.params = as_stored(*pre.params);
   k.box.extend(p00);
   k.box.extend(p10);
   k.box.extend(p11);
@@ -328,15 +330,15 @@ std::optional<UllnerQuadKernel> UllnerQuadKernel::from(const Vec3& p00, const Ve
   return k;
 }
 
-bool UllnerQuadKernel::intersect(const Ray& ray, double t_min, double t_max,
-                                 SurfaceHit& hit) const {
+bool UllnerQuadKernel::intersect_with(const UllnerQuadParams<double>& P, const Ray& ray,
+                                      double t_min, double t_max, SurfaceHit& hit) const {
   const auto r =
-      kernels::intersect(params, UllnerRay<double>::make(ray.origin, ray.direction), t_min, t_max);
+      kernels::intersect(P, UllnerRay<double>::make(ray.origin, ray.direction), t_min, t_max);
   if (!r.hit()) return false;
   hit.t = r.t;
   hit.u = r.u;
   hit.v = r.v;
-  hit.geometric_normal = params.n_p();
+  hit.geometric_normal = P.n_p();
   hit.shading_normal = hit.geometric_normal;
   if (has_corner_normals) {
     // L452-L456: interpolate, then normalise ("must be normalized before it can be used").

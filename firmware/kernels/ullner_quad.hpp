@@ -415,6 +415,8 @@ inline constexpr Cost kUllnerQuadPreparedTestCost{
 /// ray direction (so t is a distance), u/v, unit geometric normal n_p and the Phong-interpolated
 /// shading normal of the corner normals (seed 000 L452-L456).
 struct UllnerQuadKernel {
+  /// As the peripheral stores them: rounded through its 32-bit words (ullner_quad_words.hpp,
+  /// seed 000 L582), so a machine that reads them back computes exactly what this kernel does.
   UllnerQuadParams<double> params;
   Bounds box;
   /// Normal-interpolation coefficients n_r = nrm_a uv + nrm_b u + nrm_c v + nrm_d (L454; named
@@ -432,7 +434,13 @@ struct UllnerQuadKernel {
                                               const Vec3& p01, const Vec3* corner_normals,
                                               QuadRejection& why);
 
-  bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const;
+  bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {
+    return intersect_with(params, ray, t_min, t_max, hit);
+  }
+  /// The same test on parameters `P` read back from a machine's memories; the shading normal is
+  /// interpolated from this kernel's corner normals (the host's copy, seed 000 L452-L456).
+  bool intersect_with(const UllnerQuadParams<double>& P, const Ray& ray, double t_min, double t_max,
+                      SurfaceHit& hit) const;
   Bounds bounds() const { return box; }
   Vec3 geometric_normal() const { return params.n_p(); }
 

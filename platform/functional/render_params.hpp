@@ -20,6 +20,9 @@ struct RenderSettings {
   PolygonKernel polygon_kernel = PolygonKernel::Triangle;
   int grid_divisions = 0;       ///< per axis; 0 = chosen from the primitive count
   bool dda_as_printed = false;  ///< Appendix B exactly as printed (machines' fidelity option)
+  /// Shell boxes as a PERT's SHELL records hold them (singles rounded outward), so the twin
+  /// searches the boxes gaudet-pert's ShellProcessors read out of their packets.
+  bool shell_boxes_as_stored = false;
   int shell_branching = 4;
   int shell_leaf_size = 8;
   int bezier_iterations = 10;

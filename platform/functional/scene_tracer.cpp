@@ -3,37 +3,54 @@
 #include <sstream>
 
 #include "firmware/accel/dda.hpp"
+#include "firmware/accel/gaudet_data_sets.hpp"
 #include "firmware/accel/grid_divisions.hpp"
 #include "firmware/accel/grid_traversal.hpp"
 #include "firmware/accel/uniform_grid.hpp"
 
 namespace rtsim::functional {
+
+bool test_shape(const SceneGeometry& g, std::uint32_t slot, const Ray& ray, double t_min,
+                double t_max, SurfaceHit& out, TraceCounters& c) {
+  ++c.intersection_tests;
+  return std::visit(
+      [&](const auto& s) {
+        using Kernel = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<Kernel, PatchShape>) {
+          // Wang's loop stops early when no subpatch survives: count the work it did.
+          kernels::WangCounters wc;
+          const bool hit = s.intersect(ray, t_min, t_max, out, &wc);
+          c.patch_subdivisions += wc.subdivisions;
+          c.cost += kernels::wang_cost(wc);
+          return hit;
+        } else {
+          c.cost += Kernel::kTestCost;
+          return s.intersect(ray, t_min, t_max, out);
+        }
+      },
+      g.shapes[slot].shape);
+}
+
+void fill_hit(const SceneGeometry& g, std::uint32_t slot, const SurfaceHit& s, Hit& hit) {
+  hit.surface = s;
+  hit.prim_id = g.shapes[slot].prim_id;
+  hit.material = g.shapes[slot].material;
+}
+
 namespace {
 
 /// Runs the kernel of one shape and counts the test.
 class ShapeTester {
  public:
-  explicit ShapeTester(const SceneGeometry& g) : g_(&g) {}
+  /// `machine_test`: a machine's own test of a candidate (its kernels on the words in its
+  /// memories), or nullptr for the kernels of `g`.
+  ShapeTester(const SceneGeometry& g, const CandidateTest* machine_test)
+      : g_(&g), machine_test_(machine_test) {}
 
   bool test(std::uint32_t slot, const Ray& ray, double t_min, double t_max, SurfaceHit& out,
             TraceCounters& c) const {
-    ++c.intersection_tests;
-    return std::visit(
-        [&](const auto& s) {
-          using Kernel = std::decay_t<decltype(s)>;
-          if constexpr (std::is_same_v<Kernel, PatchShape>) {
-            // Wang's loop stops early when no subpatch survives: count the work it did.
-            kernels::WangCounters wc;
-            const bool hit = s.intersect(ray, t_min, t_max, out, &wc);
-            c.patch_subdivisions += wc.subdivisions;
-            c.cost += kernels::wang_cost(wc);
-            return hit;
-          } else {
-            c.cost += Kernel::kTestCost;
-            return s.intersect(ray, t_min, t_max, out);
-          }
-        },
-        g_->shapes[slot].shape);
+    if (machine_test_) return machine_test_->test(slot, ray, t_min, t_max, out, c);
+    return test_shape(*g_, slot, ray, t_min, t_max, out, c);
   }
 
   /// The per-candidate callback of the grid and shell traversals (their PrimTest): tests shape
@@ -61,21 +78,20 @@ class ShapeTester {
   }
 
   void fill(Hit& hit, std::uint32_t slot, const SurfaceHit& s) const {
-    hit.surface = s;
-    hit.prim_id = g_->shapes[slot].prim_id;
-    hit.material = g_->shapes[slot].material;
+    fill_hit(*g_, slot, s, hit);
   }
 
   std::size_t size() const { return g_->shapes.size(); }
 
  private:
   const SceneGeometry* g_;
+  const CandidateTest* machine_test_;
 };
 
 /// Every ray tests every shape.
 class BruteForceTracer final : public Tracer {
  public:
-  explicit BruteForceTracer(const SceneGeometry& g) : tester_(g) {}
+  explicit BruteForceTracer(ShapeTester tester) : tester_(tester) {}
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
@@ -106,9 +122,9 @@ class BruteForceTracer final : public Tracer {
 /// Ullner's subvolumes walked by the corrected Appendix B DDA.
 class GridTracer final : public Tracer {
  public:
-  GridTracer(const SceneGeometry& g, const Bounds& box, accel::GridDivisions n,
+  GridTracer(const SceneGeometry& g, ShapeTester tester, const Bounds& box, accel::GridDivisions n,
              accel::DdaVariant variant)
-      : tester_(g), grid_(g.bounds, box, n), dda_(grid_, variant) {}
+      : tester_(tester), grid_(g.bounds, box, n), dda_(grid_, variant) {}
 
   const accel::UniformGrid& grid() const { return grid_; }
 
@@ -144,7 +160,8 @@ class GridTracer final : public Tracer {
 /// Gaudet's box-shell hierarchy searched as the Shell and Prim tasks do.
 class ShellTracer final : public ShellSearch {
  public:
-  ShellTracer(const SceneGeometry& g, accel::ShellTree tree) : tester_(g), tree_(std::move(tree)) {}
+  ShellTracer(ShapeTester tester, accel::ShellTree tree)
+      : tester_(tester), tree_(std::move(tree)) {}
 
   const accel::ShellTree& tree() const override { return tree_; }
 
@@ -187,12 +204,14 @@ class ShellTracer final : public ShellSearch {
 }  // namespace
 
 std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene,
-                                    const RenderSettings& settings) {
+                                    const RenderSettings& settings,
+                                    const CandidateTest* machine_test) {
+  const ShapeTester tester(g, machine_test);
   std::ostringstream desc;
   if (g.shapes.empty() || settings.accel == AccelKind::None) {
     desc << "none: every ray tests all " << g.shapes.size() << " shapes";
     g.accel_description = desc.str();
-    return std::make_unique<BruteForceTracer>(g);
+    return std::make_unique<BruteForceTracer>(tester);
   }
   if (settings.accel == AccelKind::Grid) {
     accel::GridDivisions n{settings.grid_divisions, settings.grid_divisions,
@@ -203,7 +222,7 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
     if (!scene.modelling_space.empty()) box.extend(scene.modelling_space);
     if (settings.grid_divisions == 0) n = accel::choose_divisions(box, g.shapes.size());
     auto tracer = std::make_unique<GridTracer>(
-        g, box, n,
+        g, tester, box, n,
         settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
     const auto& grid = tracer->grid();
     desc << "grid " << n.x << "x" << n.y << "x" << n.z
@@ -225,11 +244,12 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
   } else {
     tree = accel::ShellTree::build(g.bounds, settings.shell_branching, settings.shell_leaf_size);
   }
+  if (settings.shell_boxes_as_stored) tree.store_boxes(accel::stored_shell_box);
   const auto counts = tree.counts();
   desc << "shells: " << counts.shells << " shells in " << counts.shell_packets << " shell packets, "
        << counts.prims << " primitives in " << counts.prim_packets << " primitive packets";
   g.accel_description = desc.str();
-  return std::make_unique<ShellTracer>(g, std::move(tree));
+  return std::make_unique<ShellTracer>(tester, std::move(tree));
 }
 
 }  // namespace rtsim::functional

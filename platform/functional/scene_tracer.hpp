@@ -6,6 +6,7 @@
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
 #include "firmware/tracer.hpp"
+#include "platform/functional/candidate_test.hpp"
 #include "platform/functional/render_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "scenes/scene.hpp"
@@ -26,9 +27,19 @@ class ShellSearch : public Tracer {
                        accel::ShellTraversalStats& stats) const = 0;
 };
 
+/// Tests shape `slot` of `geometry` with its kernel over (t_min, t_max), counting the test and
+/// its cost: every search's candidate test, also for a machine that runs the search itself.
+bool test_shape(const SceneGeometry& geometry, std::uint32_t slot, const Ray& ray, double t_min,
+                double t_max, SurfaceHit& out, TraceCounters& counters);
+/// `hit` for a hit `s` on shape `slot`: the surface, the scene primitive and its material.
+void fill_hit(const SceneGeometry& geometry, std::uint32_t slot, const SurfaceHit& s, Hit& hit);
+
 /// Builds the tracer chosen by settings.accel over `geometry` (which must outlive it) and
-/// writes a one-line description of the structure into geometry.accel_description.
+/// writes a one-line description of the structure into geometry.accel_description. With a
+/// `machine_test` (which must outlive the tracer) the search tests its candidates with that
+/// instead of the geometry's kernels: a machine's search on its own memories.
 std::unique_ptr<Tracer> make_tracer(SceneGeometry& geometry, const scenes::Scene& scene,
-                                    const RenderSettings& settings);
+                                    const RenderSettings& settings,
+                                    const CandidateTest* machine_test = nullptr);
 
 }  // namespace rtsim::functional

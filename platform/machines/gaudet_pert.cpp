@@ -145,7 +145,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
   std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
-  std::uint64_t mismatches = 0, rays_with_packets = 0, backlog_peak = 0;
+  std::uint64_t rejected = 0, rays_with_packets = 0, backlog_peak = 0;
   sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packet_count = 0;
   const sc_core::sc_time end = p.control->load_time() + frame;
@@ -171,10 +171,10 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     overflow_peak = std::max(overflow_peak, sh.overflow_peak());
     leaf_shells += sh.leaf_shells();
     over_capacity += sh.rays_over_capacity();
+    rejected += sh.records_rejected();
     const auto& pr = *p.prim[u];
     prim_packets += pr.packets_processed();
     cancelled += pr.packets_cancelled();
-    mismatches += pr.list_mismatches();
     rays_with_packets += pr.rays_with_packets();
     first_packet_total += pr.first_packet_latency_total();
     first_packet_count += pr.first_packets();
@@ -247,11 +247,11 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   g["shell"]["leaf_shells_per_ray"] = static_cast<double>(leaf_shells) / shell_rays;
   g["shell"]["rays_over_list_capacity"] = over_capacity;
   g["shell"]["overflow_peak"] = overflow_peak;
+  g["shell"]["records_rejected"] = rejected;
   g["prim"] = split_json(totals[2]);
   const double prim_rays = static_cast<double>(std::max<std::uint64_t>(totals[2].rays, 1));
   g["prim"]["packets_per_ray"] = static_cast<double>(prim_packets) / prim_rays;
   g["prim"]["packets_cancelled"] = cancelled;
-  g["prim"]["list_mismatches"] = mismatches;
   g["prim"]["rays_with_packets"] = rays_with_packets;
   const double fp_mean =
       first_packet_count ? first_packet_total.to_seconds() / static_cast<double>(first_packet_count)
@@ -414,6 +414,7 @@ FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRe
   auto settings = functional::read_render_settings(r);
   settings.accel = functional::AccelKind::Shells;  // the PERT's search is Gaudet's
   settings.polygon_kernel = functional::PolygonKernel::Triangle;
+  settings.shell_boxes_as_stored = true;  // what the ShellProcessors read out of their packets
   return make_functional_twin(scene, settings);
 }
 
@@ -428,9 +429,10 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
   const accel::ShellTree& tree = search->tree();
   gaudet::PertDataSets sets;
+  const accel::RecordWords words = read_words(r);
   try {
-    sets = gaudet::make_pert_data_sets(tree, *twin.geometry, scene, read_words(r), cfg.order,
-                                       cfg.order_seed);
+    sets =
+        gaudet::make_pert_data_sets(tree, *twin.geometry, scene, words, cfg.order, cfg.order_seed);
   } catch (const std::invalid_argument& e) {
     throw InputError(scene.name, 0, std::string("gaudet-pert: ") + e.what());
   }
@@ -481,7 +483,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
         p.buses[static_cast<std::size_t>(b)]->attach(*bic);
         p.ports.push_back(std::move(bic));
       } else {
-        p.ports.push_back(std::make_unique<modules::LocalDataSet>(cfg.first_access));
+        p.ports.push_back(std::make_unique<modules::LocalDataSet>(
+            cfg.first_access, set_of[b]->memory, set_of[b]->order.size(), words.id_list_entry));
       }
     }
     auto& ports = p.ports;
@@ -490,11 +493,11 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
         (pert + "_shade").c_str(), i, cfg.pert_count, shared, *ports[base], cfg.shade,
         cfg.prim_to_shade_depth, trace));
     p.shell.push_back(std::make_unique<gaudet::ShellProcessor>(
-        (pert + "_shell").c_str(), tree, sets.shell.packet_words, *ports[base + 1], cfg.shell,
-        cfg.shade_to_shell_depth, trace));
+        (pert + "_shell").c_str(), tree, sets.shell.packet_words, words.shell, *ports[base + 1],
+        cfg.shell, cfg.shade_to_shell_depth, frame.counters(), trace));
     p.prim.push_back(std::make_unique<gaudet::PrimProcessor>(
-        (pert + "_prim").c_str(), *search, sets.prim.packet_words, test_cost, *ports[base + 2],
-        cfg.prim, cfg.shell_to_prim_depth, frame.counters(), trace));
+        (pert + "_prim").c_str(), tree, *twin.geometry, sets.prim.packet_words, test_cost,
+        *ports[base + 2], cfg.prim, cfg.shell_to_prim_depth, frame.counters(), trace));
     auto& sh = *p.shade.back();
     auto& se = *p.shell.back();
     auto& pr = *p.prim.back();
@@ -520,6 +523,11 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const std::uint64_t globals = 12 + 6 * scene.lights.size();
   p.control = std::make_unique<gaudet::ControlProcessor>("control", cfg, buses, loaded, globals,
                                                          shade_ptrs);
+  // The ShellProcessors test the SHELL records their packets carry: a fault in the Shell bus's
+  // memory reaches the image. (The PRIM and SHADE records are not yet read from their words.)
+  std::vector<modules::Memory*> memories;
+  if (cfg.broadcasting()) memories.push_back(&p.buses[1]->memory);
+  inject_faults(name(), opts.faults, memories);
   for (auto& s : p.shell) s->set_frame_start(p.control->frame_start());
   for (auto& s : p.prim) s->set_frame_start(p.control->frame_start());
 
@@ -528,11 +536,25 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                                           sc_core::SC_DO_NOTHING);
   sc_core::sc_start();
   trace.close();
+  // The simulation ends when nothing is left to happen. With every ray answered that is the end
+  // of the frame; otherwise some processor waits for a packet that never comes (a corrupted
+  // memory: an ID list entry pointing at no packet) and the image is not a frame.
+  if (shared.initial_rays_done != shared.initial_rays_total) {
+    const std::string what =
+        "gaudet-pert stopped with work outstanding: " + std::to_string(shared.initial_rays_done) +
+        " of " + std::to_string(shared.initial_rays_total) +
+        " initial rays answered; a processor waits for a packet its bus never broadcasts";
+    // With a fault injected that is the experiment's outcome (an ID list entry corrupted);
+    // without one it is a fault of the model.
+    if (!opts.faults.empty()) throw InputError("--fault", 0, what + " (the injected fault)");
+    throw std::logic_error(what);
+  }
 
   const sc_core::sc_time frame_time = p.control->frame_time();
   RunResult res;
   res.simulated_time_s = frame_time.to_seconds();
   res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time);
+  if (!opts.faults.empty()) res.stats["faults"] = faults_json(memories);
   if (opts.latency_probe) res.stats["latency_probe"] = probe.probe().to_json();
   res.image = frame.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());

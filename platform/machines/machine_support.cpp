@@ -3,6 +3,8 @@
 #include <systemc>
 #include <tlm>
 
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/auto_view.hpp"
 #include "platform/functional/scene_tracer.hpp"
@@ -21,6 +23,46 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
 
 void begin_simulation(const params::ParamRegistry& r) {
   tlm::tlm_global_quantum::instance().set(modules::from_ps(r.get_time_ps("quantum")));
+}
+
+void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
+                   const std::vector<modules::Memory*>& memories) {
+  for (const auto& f : faults) {
+    const std::string arg = "--fault " + f.memory + ":" + std::to_string(f.word);
+    modules::Memory* target = nullptr;
+    std::vector<std::string_view> names;
+    for (auto* m : memories) {
+      names.emplace_back(m->name());
+      if (f.memory == m->name()) target = m;
+    }
+    if (!target) {
+      std::string msg = machine + " has no memory '" + f.memory + "' whose words its answers use";
+      const auto near = closest_names(f.memory, names);
+      if (!near.empty()) msg += "; did you mean '" + near.front() + "'?";
+      if (names.empty())
+        msg += " (it has none: its answers are not computed from the words of a modelled memory)";
+      else if (near.empty())
+        msg += " (it has: " + std::string(names.front()) + (names.size() > 1 ? ", ..." : "") + ")";
+      throw InputError(arg, 0, msg);
+    }
+    if (f.word >= target->size_words())
+      throw InputError(arg, 0,
+                       f.memory + " holds " + std::to_string(target->size_words()) +
+                           " words on this scene (0 to " +
+                           std::to_string(target->size_words() - 1) + ")");
+    target->inject_fault(f.word, f.xor_mask);
+  }
+}
+
+nlohmann::ordered_json faults_json(const std::vector<modules::Memory*>& memories) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto* m : memories)
+    for (const auto& f : m->faults())
+      out.push_back({{"memory", m->name()},
+                     {"word", f.word},
+                     {"xor_mask", f.xor_mask},
+                     {"applied", f.applied}});
+  return out;
 }
 
 }  // namespace rtsim::platform

@@ -1,5 +1,6 @@
 #pragma once
 // Pieces every machine model shares.
+#include "modules/memory.hpp"
 #include "platform/machine.hpp"
 
 namespace rtsim::platform {
@@ -9,5 +10,13 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
 
 /// Sets the global TLM quantum from the parameter `quantum`. Call before building modules.
 void begin_simulation(const params::ParamRegistry& registry);
+
+/// Elaboration: injects `faults` into the named ones of `memories` (the memories whose words
+/// the machine's answers are computed from). A fault naming another memory, or a word past the
+/// memory's end, is an InputError ("--fault ..."): nothing has run yet.
+void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
+                   const std::vector<modules::Memory*>& memories);
+/// stats.json `faults`: [{memory, word, xor_mask, applied}] (empty: none injected).
+nlohmann::ordered_json faults_json(const std::vector<modules::Memory*>& memories);
 
 }  // namespace rtsim::platform

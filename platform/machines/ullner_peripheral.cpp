@@ -232,8 +232,10 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   // One journey per ray from the host putting it into the ray queue to task 2 taking its
   // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
   modules::LatencyProbe probe(opts.latency_probe);
-  ullner::Peripheral peripheral("peripheral", *twin.tracer, shade, quads, pc, frame.counters(),
-                                trace, probe);
+  // The peripheral searches its own memories; the twin's tracer only checks afterwards.
+  ullner::Peripheral peripheral("peripheral", *twin.geometry, scene, twin.settings, shade, quads,
+                                pc, frame.counters(), trace, probe);
+  inject_faults(name(), opts.faults, {&peripheral.parameters});
   ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc, opts,
                     trace, *twin.geometry, probe);
   host.load_out.bind(peripheral.parameters.socket);
@@ -291,6 +293,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   res.stats["modules"] = stats.to_json(frame_time);
   res.stats["ray_latency_s"] = host.latency().to_json();
   if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
+  if (!opts.faults.empty()) res.stats["faults"] = faults_json({&peripheral.parameters});
   // What the hardware did: every polygon address fed to the pipe is an intersection.
   res.stats["intersection_tests"] = peripheral.pipeline().issued();
 

@@ -175,6 +175,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
   const std::uint64_t objects = scene.primitives.size();
   begin_simulation(r);
+  inject_faults(name(), opts.faults, {});  // its answers come from no memory words
   MachineTrace trace(opts);
   modules::LatencyProbe probe(opts.latency_probe);
   VaxHost host(

@@ -4,7 +4,8 @@
 
 namespace rtsim::platform::gaudet {
 
-PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
+PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+                             const functional::SceneGeometry& geometry,
                              const std::vector<std::uint32_t>& packet_words,
                              const std::vector<Cost>& test_cost, modules::PacketPort& port,
                              const ProcessorConfig& config, std::size_t input_depth,
@@ -12,7 +13,8 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const functional::She
     : PertProcessor(name, config.timing, trace),
       input("input", input_depth),
       out("out"),
-      search_(search),
+      tree_(tree),
+      geometry_(geometry),
       packet_words_(packet_words),
       test_cost_(test_cost),
       port_(port),
@@ -37,25 +39,22 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   probe_->to(t, Stage::kShellToPrim, RayProbe::Part::kQueueing, clock_.now());
   compute_for(t, Stage::kPrim, tasks::words_cost(msg.words()), "ray");
   const shading::TracedRay& r = msg.ticket.ray;
-  // The answer, as the twin computes it (same search, same kernels).
-  TraceCounters c;
-  accel::ShellTraversalStats st;
-  res.found = r.kind == RayKind::Shadow
-                  ? search_.any_hit(r.ray, msg.ticket.t_min, r.t_max, c, st)
-                  : search_.closest_hit(r.ray, msg.ticket.t_min, r.t_max, res.hit, c, st);
-  counters_ += c;
-  if (st.leaf_shells_sorted != msg.leaf_shells.size()) ++list_mismatches_;
-  const std::size_t n = msg.leaf_shells.size();
-  const std::size_t k = std::min<std::size_t>(st.leaf_shells_tested, n);
-  prim_tests_ += st.prim_tests;
+  const bool light = r.kind == RayKind::Shadow;  // any hit will do (L776)
+  const double t_min = msg.ticket.t_min;
+  double best_t = r.t_max;
+  std::int64_t best_slot = -1;
+  SurfaceHit best;
 
-  // Play the packets that search needed through the BIC, in t order (Fig. 4-12).
+  // PrimTask (Fig. 4-12) over the leaf shells the message carried, in t order, a packet at a
+  // time through the BIC; `ahead_` IDs are asked for ahead of the packet being tested.
+  const std::size_t n = msg.leaf_shells.size();
   asked_.assign(n, false);
-  if (k > 0) ++rays_with_packets_;
+  if (n > 0) ++rays_with_packets_;
   const sc_core::sc_time asked_first = clock_.now();
   for (std::size_t a = 0; a < ahead_; ++a) ask(msg, a, t);
-  std::uint64_t tests_done = 0;
-  for (std::size_t j = 0; j < k; ++j) {
+  std::size_t k = 0;  // packets tested
+  for (bool done = n == 0; !done; ++k) {
+    const std::size_t j = k;
     const std::uint32_t id = msg.leaf_shells[j].child_index;
     std::optional<modules::ReceivedPacket> p;
     while (!(p = port_.take(clock_.now(), id))) {
@@ -78,16 +77,29 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     }
     ++packets_;
     // The primitives are tested in packet order; a light ray stops at its first hit.
-    const auto slots = search_.tree().prim_packet(id);
-    const std::uint64_t tests = std::min<std::uint64_t>(slots.size(), st.prim_tests - tests_done);
-    tests_done += tests;
     Cost work =
         tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost + tasks::kStopTestCost;
-    for (std::size_t q = 0; q < tests; ++q) work += test_cost_[slots[q]];
+    for (const std::uint32_t slot : tree_.prim_packet(id)) {
+      ++prim_tests_;
+      work += test_cost_[slot];
+      SurfaceHit s;
+      if (!functional::test_shape(geometry_, slot, r.ray, t_min, best_t, s, counters_)) continue;
+      best_t = light ? best_t : s.t;
+      best_slot = slot;
+      best = s;
+      if (light) break;
+    }
     probe_->packet_gap(t, Stage::kPrim, Stage::kPrimBus, *p, clock_.now());
     compute_for(t, Stage::kPrim, work, "primitive tests");
     port_.release(*p, clock_.now());
-    if (j + 1 < k) ask(msg, j + ahead_, t);
+    // Stop rule (L646-L648): the nearest hit so far is closer than the next leaf shell.
+    done = j + 1 == n || (best_slot >= 0 && (light || best_t < msg.leaf_shells[j + 1].t));
+    if (!done) ask(msg, j + ahead_, t);
+  }
+  res.found = best_slot >= 0;
+  if (res.found) {
+    functional::fill_hit(geometry_, static_cast<std::uint32_t>(best_slot), best, res.hit);
+    if (!light) ++counters_.hits;
   }
   // Withdraw what the search no longer needs.
   for (std::size_t e = k; e < n; ++e) {

@@ -9,10 +9,13 @@
 // light ray at the first hit (L776), and withdraws the request it no longer needs. Then it
 // computes the point and normal and sends PRIM_TO_SHADE.
 //
-// The answer (which primitive, where) is computed functionally by the machine's twin — the
-// same search, the same kernels — so the image equals `rtsim render`; the processor plays the
-// packets that search needed through the bus and charges its own firmware's tests for the
-// primitives it tested (tasks::kPertSphereTestCost, kPertTriangleTestCost).
+// The answer is the processor's own: it runs PrimTask (accel/shell_traversal.hpp's rules) over
+// the LeafShellList the SHELL_TO_PRIM message carried, so what the ShellProcessor found -- from
+// the SHELL records in its packets -- decides what is tested; the machine's twin only checks
+// the image afterwards. It charges its own firmware's tests for the primitives it tested
+// (tasks::kPertSphereTestCost, kPertTriangleTestCost). Not yet from the packet words: the
+// primitives of a PRIM packet are tested with the host's copy of their kernels (the twin's
+// geometry), found by the packet's ID.
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <vector>
@@ -32,7 +35,8 @@ class PrimProcessor : public PertProcessor {
   tlm_utils::simple_initiator_socket<PrimProcessor> out;
 
   SC_HAS_PROCESS(PrimProcessor);
-  PrimProcessor(sc_core::sc_module_name name, const functional::ShellSearch& search,
+  PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+                const functional::SceneGeometry& geometry,
                 const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
                 modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
                 TraceCounters& counters, MachineTrace& trace);
@@ -45,9 +49,6 @@ class PrimProcessor : public PertProcessor {
   std::uint64_t first_packets() const { return first_packets_; }
   /// Rays that needed at least one packet.
   std::uint64_t rays_with_packets() const { return rays_with_packets_; }
-  /// Rays whose LeafShellList from the ShellProcessor differs in length from the twin's (a
-  /// consistency check of the model: must be 0).
-  std::uint64_t list_mismatches() const { return list_mismatches_; }
 
  private:
   void run();
@@ -56,7 +57,8 @@ class PrimProcessor : public PertProcessor {
   /// no register is free.
   void ask(const ShellToPrim& msg, std::size_t k, RayTicket& t);
 
-  const functional::ShellSearch& search_;
+  const accel::ShellTree& tree_;
+  const functional::SceneGeometry& geometry_;
   const std::vector<std::uint32_t>& packet_words_;
   const std::vector<Cost>& test_cost_;  ///< by primitive slot: the PERT's own test
   modules::PacketPort& port_;
@@ -65,7 +67,6 @@ class PrimProcessor : public PertProcessor {
 
   std::vector<bool> asked_;  ///< per list entry of the current ray
   std::uint64_t packets_ = 0, cancelled_ = 0, prim_tests_ = 0, rays_with_packets_ = 0;
-  std::uint64_t list_mismatches_ = 0;
   sc_core::sc_time first_packet_total_ = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packets_ = 0;
 };

@@ -1,19 +1,23 @@
 #include "platform/machines/gaudet/shell_processor.hpp"
 
+#include "firmware/accel/gaudet_data_sets.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
 
 namespace rtsim::platform::gaudet {
 
 ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
                                const std::vector<std::uint32_t>& packet_words,
-                               modules::PacketPort& port, const ProcessorConfig& config,
-                               std::size_t input_depth, MachineTrace& trace)
+                               std::uint32_t record_words, modules::PacketPort& port,
+                               const ProcessorConfig& config, std::size_t input_depth,
+                               TraceCounters& counters, MachineTrace& trace)
     : PertProcessor(name, config.timing, trace),
       input("input", input_depth),
       out("out"),
       tree_(tree),
       packet_words_(packet_words),
+      record_words_(std::max<std::uint32_t>(record_words, 8)),
       port_(port),
+      counters_(counters),
       searches_(std::max<std::size_t>(config.rays_in_flight, 1)) {
   SC_THREAD(run);
 }
@@ -69,12 +73,19 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
       probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
       // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
       // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
-      for (const accel::Shell& shell : tree_.shell_packet(p.id)) {
+      for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
+        const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
+        if (shell.child_index >=
+            (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count())) {
+          ++rejected_;
+          continue;
+        }
         children_.clear();
         const std::size_t before = s.leaves.size();
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
                               s.ticket.ray.t_max, s.leaves, children_);
         ++box_tests_;
+        ++counters_.box_tests;
         compute_for(
             s.ticket, Stage::kShell,
             accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),

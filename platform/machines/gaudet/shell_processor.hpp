@@ -9,6 +9,11 @@
 // list (L734) and send it. The processor keeps up to `rays_in_flight` rays at a time and stores
 // IDs "continually": when no ID register is free it stacks the ID in its own memory until one
 // is (L910). A packet several rays wait for is caught once and tested for each of them.
+//
+// The SHELLs tested are the records in the packet's words as the BIC received them
+// (accel::decode_shell): a word corrupted in the Shell bus's memory changes the search. A
+// record that points outside the data sets (a child or PRIM packet that does not exist) is
+// dropped and counted, so a corrupted memory cannot hang the machine.
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <deque>
@@ -30,9 +35,12 @@ class ShellProcessor : public PertProcessor {
   tlm_utils::simple_initiator_socket<ShellProcessor> out;
 
   SC_HAS_PROCESS(ShellProcessor);
+  /// `tree`: what the control processor knows of the data sets (how many SHELL and PRIM
+  /// packets there are); `record_words`: words per SHELL record.
   ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
-                 const std::vector<std::uint32_t>& packet_words, modules::PacketPort& port,
-                 const ProcessorConfig& config, std::size_t input_depth, MachineTrace& trace);
+                 const std::vector<std::uint32_t>& packet_words, std::uint32_t record_words,
+                 modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
+                 TraceCounters& counters, MachineTrace& trace);
 
   /// Elaboration: the queue `out` feeds (to see whether it has room).
   void set_output_queue(const modules::TimedFifo<ShellToPrim>& q) { out_queue_ = &q; }
@@ -43,6 +51,8 @@ class ShellProcessor : public PertProcessor {
   std::uint64_t overflow_peak() const { return overflow_peak_; }
   std::uint64_t leaf_shells() const { return leaf_shells_; }
   std::uint64_t rays_over_capacity() const { return over_capacity_; }
+  /// SHELL records dropped because they point at no packet (only with corrupted memories).
+  std::uint64_t records_rejected() const { return rejected_; }
 
  private:
   struct Search {
@@ -60,7 +70,9 @@ class ShellProcessor : public PertProcessor {
 
   const accel::ShellTree& tree_;
   const std::vector<std::uint32_t>& packet_words_;
+  std::uint32_t record_words_;
   modules::PacketPort& port_;
+  TraceCounters& counters_;
   const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
 
   std::vector<Search> searches_;
@@ -69,7 +81,7 @@ class ShellProcessor : public PertProcessor {
   std::deque<int> done_;                 ///< searches whose list is ready to send
   std::vector<std::uint32_t> children_;
   std::uint64_t box_tests_ = 0, packets_ = 0, packet_uses_ = 0, overflow_peak_ = 0;
-  std::uint64_t leaf_shells_ = 0, over_capacity_ = 0;
+  std::uint64_t leaf_shells_ = 0, over_capacity_ = 0, rejected_ = 0;
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -9,10 +9,6 @@
 
 namespace rtsim::platform::ullner {
 
-/// Words a polygon occupies in the parameter memories: "twenty polygon parameters, each
-/// 32-bits wide" (seed 000 L544, L891).
-inline constexpr unsigned kParameterWords = 20;
-
 /// TraceRay: r0, r1 and the shadow mark (L468, L472); the host keeps the rest of the ray's
 /// state with it here for convenience (it never reaches the peripheral's arithmetic).
 struct RayRequest {

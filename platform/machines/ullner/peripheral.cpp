@@ -2,21 +2,24 @@
 
 #include "firmware/tasks/ray_tree.hpp"
 #include "modules/sim_time.hpp"
+#include "platform/functional/scene_tracer.hpp"
 
 namespace rtsim::platform::ullner {
 
 using modules::times;
 
-Peripheral::Peripheral(sc_core::sc_module_name name, const Tracer& tracer,
+Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
+                       const scenes::Scene& scene, const functional::RenderSettings& settings,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
                        const PeripheralConfig& config, TraceCounters& counters, MachineTrace& trace,
                        modules::LatencyProbe& probe)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
-      parameters("parameter_memories", polygons * kParameterWords, kParameterWords,
-                 config.load_word_time, config.intersect_interval),
+      parameters("parameter_memories", polygons * kernels::kUllnerStoredWords,
+                 kernels::kUllnerStoredWords, config.load_word_time, config.intersect_interval),
       result_out("result_out"),
-      tracer_(tracer),
+      memory_test_(parameters, geometry),
+      search_(functional::make_tracer(geometry, scene, settings, &memory_test_)),
       shade_(shade),
       polygons_(polygons),
       config_(config),
@@ -57,7 +60,7 @@ void Peripheral::run() {
     TraceCounters before = counters_;
     RayResult res;
     res.request = req;
-    res.found = tasks::trace_one(tracer_, shade_, req.ray, res.hit, counters_);
+    res.found = tasks::trace_one(*search_, shade_, req.ray, res.hit, counters_);
     const std::uint64_t tests = counters_.intersection_tests - before.intersection_tests;
     const std::uint64_t cells = counters_.cells_visited - before.cells_visited;
     const std::uint64_t steps = counters_.dda_steps - before.dda_steps;

@@ -3,8 +3,10 @@
 // parameter memories, the intersection pipeline, closest-hit selection with validity bits, and
 // (optionally) the grid auxiliary processor in front of it (L592-L596).
 //
-// The answer for each ray is computed by the firmware (the machine's functional twin, so the
-// image is the same bit for bit); the time is computed from what the hardware does for it:
+// The answer for each ray comes from the parameter memories: the search (brute force, or the
+// auxiliary processor's grid walk) tests each candidate polygon on the words the fetch stage
+// reads out of line k (parameter_memory_test.hpp), as the host loaded them; the functional twin
+// only checks the image afterwards. The time is computed from what the hardware does for it:
 //  * brute force: every polygon streams through the pipe, one per intersect interval
 //    (L482, L588); shadow rays stream them all too unless peripheral.shadow_early_exit;
 //  * grid: the auxiliary processor steps t_d per subvolume visited (L654) and feeds the pipe
@@ -13,6 +15,7 @@
 // follow the previous ray's without a gap (the pipe is never flushed, L522-L528).
 #include <tlm_utils/simple_initiator_socket.h>
 
+#include <memory>
 #include <systemc>
 
 #include "firmware/tasks/shade_task.hpp"
@@ -25,6 +28,7 @@
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner/config.hpp"
 #include "platform/machines/ullner/messages.hpp"
+#include "platform/machines/ullner/parameter_memory_test.hpp"
 
 namespace rtsim::platform::ullner {
 
@@ -37,9 +41,13 @@ class Peripheral : public sc_core::sc_module {
   tlm_utils::simple_initiator_socket<Peripheral> result_out;  ///< to the host's result queue
 
   SC_HAS_PROCESS(Peripheral);
-  Peripheral(sc_core::sc_module_name name, const Tracer& tracer, const tasks::ShadeTask& shade,
-             std::uint64_t polygons, const PeripheralConfig& config, TraceCounters& counters,
-             MachineTrace& trace, modules::LatencyProbe& probe);
+  /// `geometry`, `scene`, `settings`: the host's copy of the scene and the search structure's
+  /// settings (the grid the auxiliary processor walks; the candidates' parameters are read from
+  /// `parameters`).
+  Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
+             const scenes::Scene& scene, const functional::RenderSettings& settings,
+             const tasks::ShadeTask& shade, std::uint64_t polygons, const PeripheralConfig& config,
+             TraceCounters& counters, MachineTrace& trace, modules::LatencyProbe& probe);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
   /// The trace handle of the ray queue's depth (declared by the host, written here too).
@@ -57,7 +65,8 @@ class Peripheral : public sc_core::sc_module {
  private:
   void run();
 
-  const Tracer& tracer_;
+  ParameterMemoryTest memory_test_;  ///< the pipe's test of a polygon, on `parameters`' words
+  std::unique_ptr<Tracer> search_;   ///< the grid walk or brute force, testing with memory_test_
   const tasks::ShadeTask& shade_;
   std::uint64_t polygons_;
   PeripheralConfig config_;
