@@ -235,6 +235,22 @@ TEST(PerfettoTrace, EventsBeyondTheLimitAreDroppedAndCounted) {
   EXPECT_EQ(t["otherData"]["rtsim_max_events"], 3);
 }
 
+TEST(PerfettoTrace, NoLimitByDefaultAndOtherDataCarriesTheRunsKeys) {
+  const auto dir = fresh_dir("perfetto-all");
+  const auto path = dir / "trace.json";
+  PerfettoTrace trace(path, 0);  // 0: every event
+  const int a = trace.track("a");
+  for (int i = 0; i < 10'000; ++i) trace.slice(a, "s", i * 1e-6, 1e-6);
+  trace.other_data("rtsim_window_s", "[0,1]");
+  trace.close();
+  EXPECT_EQ(trace.events_written(), 10'000u);
+  EXPECT_EQ(trace.events_dropped(), 0u);
+  const json t = parse_trace(path);
+  EXPECT_EQ(events_of(t, "X").size(), 10'000u);
+  EXPECT_EQ(t["otherData"]["rtsim_max_events"], 0);
+  EXPECT_EQ(t["otherData"]["rtsim_window_s"], json::array({0, 1}));
+}
+
 TEST(PerfettoTrace, NamesAreEscaped) {
   const auto dir = fresh_dir("perfetto-escape");
   const auto path = dir / "trace.json";
