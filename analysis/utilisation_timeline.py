@@ -11,8 +11,9 @@ From a Perfetto/Chrome JSON trace (`rtsim run --trace perfetto`): each module's 
 gives its busy fraction per window, as its time-weighted mean; each queue's depth counter
 (NAME.depth) its time-weighted mean depth. A track with slices ("X" events) but no busy counter
 (a trace from elsewhere) gives the fraction of each window covered by the union of its slices.
-The time range is the trace's window (otherData rtsim_window_s, written by rtsim), else from the
-first to the last event.
+The time range is the frame (otherData rtsim_stats_interval_s, written by rtsim) for a trace of
+the whole run, the trace's window (rtsim_window_s) for one narrowed by --trace-window, else from
+the first to the last event.
 
 From stats.json: `modules.NAME.utilization_windows` {begin_s, window_s, values}, which
 `rtsim run` records for every timed module in 100 windows of the frame (docs/stats.md). No
@@ -132,9 +133,15 @@ def busy_from_trace(trace, windows=100, window_s=None, modules=None):
             lo, hi = min(lo, ts), max(hi, ts)
     if not slices and not counters:
         raise common.InputProblem("the trace has no slices or counters")
-    window = trace.get("otherData", {}).get("rtsim_window_s")
+    other = trace.get("otherData", {})
+    window = other.get("rtsim_window_s")
+    frame = other.get("rtsim_stats_interval_s")
     if window and float(window[1]) > float(window[0]):
         lo, hi = float(window[0]), float(window[1])
+        # A trace of the whole run is drawn over the frame, as stats.json's windows are (the
+        # scene load before it would only dilute the first window).
+        if frame and lo == 0.0 and hi >= float(frame[1]) and float(frame[1]) > float(frame[0]):
+            lo, hi = float(frame[0]), float(frame[1])
     edges = _edges(lo, hi, windows, window_s)
     pattern = re.compile(modules) if modules else None
     busy = {}

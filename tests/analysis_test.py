@@ -225,12 +225,19 @@ class UtilisationTimelineTest(unittest.TestCase, PngMixin):
             {"name": "bus.busy", "ph": "C", "ts": 30.0, "pid": 1, "tid": 2, "args": {"value": 0}},
             {"name": "bus.busy", "ph": "C", "ts": 80.0, "pid": 1, "tid": 2, "args": {"value": 0}},
         ]
-        trace["otherData"] = {"rtsim_window_s": [0.0, 80e-6]}
+        trace["otherData"] = {"rtsim_window_s": [10e-6, 90e-6]}  # --trace-window
+        edges, busy, depth = utilisation_timeline.busy_from_trace(trace, windows=4)
+        np.testing.assert_allclose(edges, [10e-6, 30e-6, 50e-6, 70e-6, 90e-6], atol=1e-15)
+        np.testing.assert_allclose(busy["bus"], [1.0, 0.0, 0.0, 0.0], atol=1e-9)
+        np.testing.assert_allclose(busy["cpu"], [0.25, 0.25, 0.0, 0.0], atol=1e-9)  # slices
+        self.assertNotIn("bus.busy", depth)
+        np.testing.assert_allclose(depth["q.depth"], [3.0, 2.0, 0.0, 0.0], atol=1e-9)
+        # A trace of the whole run (from 0) is drawn over the frame.
+        trace["otherData"] = {"rtsim_window_s": [0.0, 90e-6],
+                              "rtsim_stats_interval_s": [0.0, 80e-6]}
         edges, busy, depth = utilisation_timeline.busy_from_trace(trace, windows=4)
         np.testing.assert_allclose(edges, [0, 20e-6, 40e-6, 60e-6, 80e-6], atol=1e-15)
         np.testing.assert_allclose(busy["bus"], [1.0, 0.5, 0.0, 0.0], atol=1e-9)
-        np.testing.assert_allclose(busy["cpu"], [0.5, 0.25, 0.0, 0.0], atol=1e-9)  # slices
-        self.assertNotIn("bus.busy", depth)
         np.testing.assert_allclose(depth["q.depth"], [2.0, 4.0, 0.0, 0.0], atol=1e-9)
 
     def test_windows_from_stats_json(self):
