@@ -6,11 +6,14 @@ time window, and the mean depth of each queue.
     python3 analysis/utilisation_timeline.py out/run/stats.json util.png
     python3 analysis/utilisation_timeline.py out/run util.png     # trace.json if there, else stats.json
 
-From a Perfetto/Chrome JSON trace (`rtsim run --trace perfetto`): every track that has slices
-("X" events: a module's busy intervals, named by module hierarchy) gives its busy fraction per
-window (the union of its slices, so overlapping slices count once); every counter ("C" events,
-NAME.depth for queues) gives its time-weighted mean per window. The time range is from the
-first to the last event of the trace.
+From a Perfetto/Chrome JSON trace (`rtsim run --trace perfetto`): each module's busy counter
+("C" events NAME.busy: the level of the very busy intervals stats.json's busy_s is summed from)
+gives its busy fraction per window, as its time-weighted mean; each queue's depth counter
+(NAME.depth) its time-weighted mean depth. A track with slices ("X" events) but no busy counter
+(a trace from elsewhere) gives the fraction of each window covered by the union of its slices.
+The time range is the frame (otherData rtsim_stats_interval_s, written by rtsim) for a trace of
+the whole run, the trace's window (rtsim_window_s) for one narrowed by --trace-window, else from
+the first to the last event.
 
 From stats.json: `modules.NAME.utilization_windows` {begin_s, window_s, values}, which
 `rtsim run` records for every timed module in 100 windows of the frame (docs/stats.md). No
@@ -130,21 +133,38 @@ def busy_from_trace(trace, windows=100, window_s=None, modules=None):
             lo, hi = min(lo, ts), max(hi, ts)
     if not slices and not counters:
         raise common.InputProblem("the trace has no slices or counters")
+    other = trace.get("otherData", {})
+    window = other.get("rtsim_window_s")
+    frame = other.get("rtsim_stats_interval_s")
+    if window and float(window[1]) > float(window[0]):
+        lo, hi = float(window[0]), float(window[1])
+        # A trace of the whole run is drawn over the frame, as stats.json's windows are (the
+        # scene load before it would only dilute the first window).
+        if frame and lo == 0.0 and hi >= float(frame[1]) and float(frame[1]) > float(frame[0]):
+            lo, hi = float(frame[0]), float(frame[1])
     edges = _edges(lo, hi, windows, window_s)
     pattern = re.compile(modules) if modules else None
     busy = {}
+    depth = {}
+    for name, pts in sorted(counters.items()):
+        a = np.array(pts, dtype=float)
+        if name.endswith(".busy"):
+            module = name[:-len(".busy")]
+            if not (pattern and not pattern.search(module)):
+                busy[module] = _mean_level_in_windows(a[:, 0], a[:, 1], edges)
+            continue
+        if pattern and not pattern.search(name):
+            continue
+        depth[name] = _mean_level_in_windows(a[:, 0], a[:, 1], edges)
     for key, iv in sorted(slices.items(), key=lambda kv: str(names.get(kv[0], kv[0]))):
         name = names.get(key) or f"pid {key[0]} tid {key[1]}"
+        if name in busy or (name + ".busy") in counters:
+            continue  # the busy counter is the module's busy time; slices are its transactions
         if pattern and not pattern.search(name):
             continue
         a = np.array(iv, dtype=float)
         busy[name] = _busy_in_windows(a[:, 0], a[:, 1], edges) / np.diff(edges)
-    depth = {}
-    for name, pts in sorted(counters.items()):
-        if pattern and not pattern.search(name):
-            continue
-        a = np.array(pts, dtype=float)
-        depth[name] = _mean_level_in_windows(a[:, 0], a[:, 1], edges)
+    busy = dict(sorted(busy.items()))
     return edges, busy, depth
 
 

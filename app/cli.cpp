@@ -115,10 +115,39 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   add_image_options(run, runa.width, runa.height, runa.aovs);
   run->add_option("--trace", runa.traces,
-                  "Traces, comma-separated: vcd (signals for GTKWave: busy flags, queue depths) "
-                  "and perfetto (transactions as Chrome trace events, ui.perfetto.dev)")
+                  "Traces, comma-separated: vcd (signals for GTKWave: every module's busy level "
+                  "and every queue's depth, by stats.json names) and perfetto (the same signals "
+                  "as counters, and transactions as slices: Chrome trace events for "
+                  "ui.perfetto.dev). Their time-weighted means are stats.json's utilisation and "
+                  "mean occupancy; every event is written (see --trace-window, --trace-modules, "
+                  "--trace-max-events)")
       ->delimiter(',')
       ->check(CLI::IsMember({"vcd", "perfetto"}));
+  run->add_option("--trace-window", runa.trace_window,
+                  "Trace only simulated time T0..T1: \"T0,T1\", times with a unit (\"10 ms,20 "
+                  "ms\") or plain seconds, on the traces' own time axis (the frame starts after "
+                  "the scene load: stats.json trace.stats_interval_s). Default: all of time")
+      ->type_name("T0,T1");
+  run->add_option("--trace-modules", runa.trace_modules,
+                  "Trace only the modules whose stats.json name matches a shell pattern "
+                  "(comma-separated; '*' also matches dots: \"pert0*\", \"*queue*\", "
+                  "\"host,peripheral.pipeline\"). Default: every module")
+      ->type_name("GLOB")
+      ->delimiter(',');
+  run->add_option("--trace-max-events", runa.trace_max_events,
+                  "Write at most N events to each trace file (Perfetto events, VCD value "
+                  "changes); what is dropped is printed and counted in stats.json `trace`. "
+                  "Default 0: every event")
+      ->type_name("N")
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            // Checked before conversion: an unsigned conversion would wrap "-3" around.
+            const bool digits = !v.empty() && v.size() <= 18 &&
+                                v.find_first_not_of("0123456789") == std::string::npos;
+            return digits ? std::string()
+                          : "\"" + v + "\" is not 0 (no limit) or a number of events";
+          },
+          ""));
   run->add_option("--quantum", runa.quantum,
                   "Global TLM quantum, e.g. \"10 us\" (parameter `quantum`; 0 is the reference)");
   run->add_flag("--overhead", runa.overhead,

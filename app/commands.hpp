@@ -31,8 +31,11 @@ struct RunArgs {
   int width = 0;
   int height = 0;
   std::vector<std::string> aovs;
-  std::vector<std::string> traces;  ///< vcd, perfetto
-  std::string quantum;              ///< "" keeps the parameter `quantum`
+  std::vector<std::string> traces;         ///< vcd, perfetto
+  std::string trace_window;                ///< "T0,T1"; "": all of time
+  std::vector<std::string> trace_modules;  ///< patterns on module names; none: all
+  std::size_t trace_max_events = 0;        ///< per trace file; 0: every event
+  std::string quantum;                     ///< "" keeps the parameter `quantum`
   bool overhead = false;
   bool report = false;              ///< also write report.html
   bool latency_probe = false;       ///< stats.json latency_probe: per-ray time by stage and part

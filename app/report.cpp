@@ -16,6 +16,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/trace_options.hpp"
+
 extern char** environ;
 
 namespace rtsim::app {
@@ -376,6 +378,33 @@ const std::set<std::string> kShownKeys = {"tool",
                                           "overhead_ratio",
                                           "functional_image_identical"};
 
+/// What the traces hold (stats.json `trace`), and any event they lost, where it cannot be missed.
+void write_trace_section(HtmlReport& page, const json& stats) {
+  const json* t = find(stats, "trace");
+  if (!t || !t->is_object()) return;
+  page.heading("Traces");
+  std::vector<std::pair<std::string, std::string>> rows;
+  const json& w = (*t)["window_s"];
+  rows.emplace_back("simulated time traced", format_seconds(w[0].get<double>()) + " to " +
+                                                 format_seconds(w[1].get<double>()));
+  std::string mods;
+  for (const auto& m : (*t)["modules"]) mods += (mods.empty() ? "" : ", ") + m.get<std::string>();
+  rows.emplace_back("modules", mods.empty() ? "all" : mods);
+  rows.emplace_back("signals (busy levels, queue depths)", value_text((*t)["signals"]));
+  if (const json* p = find(*t, "perfetto"))
+    rows.emplace_back(str(*p, "file"), value_text((*p)["events_written"]) + " events written, " +
+                                           value_text((*p)["events_dropped"]) + " dropped");
+  if (const json* v = find(*t, "vcd"))
+    rows.emplace_back(str(*v, "file"), value_text((*v)["changes_written"]) +
+                                           " value changes written, " +
+                                           value_text((*v)["changes_dropped"]) + " dropped");
+  const auto cap = (*t).value("max_events", std::size_t{0});
+  rows.emplace_back("event cap (--trace-max-events)",
+                    cap == 0 ? std::string("none") : std::to_string(cap) + " per file");
+  page.key_values(rows);
+  for (const std::string& warning : trace_warnings(stats)) page.note(warning);
+}
+
 }  // namespace
 
 void write_run_report(const RunReportInputs& in, const fs::path& out_html,
@@ -421,6 +450,7 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
                                          value_text((*lat)["count"]) + " rays)");
   page.heading("Headline");
   page.key_values(head);
+  write_trace_section(page, stats);
 
   if (!in.image_png.empty() && fs::exists(in.image_png)) {
     page.heading("Image");
@@ -431,7 +461,10 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
   page.heading("Utilisation and latency");
   std::vector<std::string> problems;
   fs::create_directories(tools.scratch_dir);
-  const bool trace = !in.trace_json.empty() && fs::exists(in.trace_json);
+  // The trace's signals are stats.json's numbers over time; a trace narrowed to a window or to
+  // some modules, or cut at a cap, cannot draw the whole frame, so stats.json's windows do.
+  const bool trace =
+      !in.trace_json.empty() && fs::exists(in.trace_json) && trace_is_complete(stats);
   if (trace || has_windows(stats)) {
     const fs::path png = tools.scratch_dir / "utilisation.png";
     const auto r = run_analysis_script(
@@ -439,8 +472,9 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
         {trace ? in.trace_json.string() : in.stats_json.string(), png.string()});
     if (r.ok)
       page.image(png, "utilisation over time",
-                 trace ? "Busy fraction of each traced module and mean queue depths per window "
-                         "(from trace.json; analysis/utilisation_timeline.py)"
+                 trace ? "Busy fraction of each module and mean queue depths per window "
+                         "(from trace.json's busy and depth counters, the sources of stats.json's "
+                         "utilisation and occupancy; analysis/utilisation_timeline.py)"
                        : "Busy fraction of each module per window of the frame (stats.json "
                          "utilization_windows; analysis/utilisation_timeline.py)");
     else

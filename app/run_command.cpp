@@ -13,6 +13,7 @@
 #include "app/report.hpp"
 #include "app/scene_input.hpp"
 #include "app/stats_json.hpp"
+#include "app/trace_options.hpp"
 #include "common/input_error.hpp"
 #include "platform/machine.hpp"
 
@@ -36,6 +37,9 @@ std::string command_line(const RunArgs& a) {
   for (const auto& p : a.config.overrides) s += " -p " + quoted(p);
   if (!a.quantum.empty()) s += " --quantum " + quoted(a.quantum);
   for (const auto& t : a.traces) s += " --trace " + t;
+  if (!a.trace_window.empty()) s += " --trace-window " + quoted(a.trace_window);
+  for (const auto& m : a.trace_modules) s += " --trace-modules " + quoted(m);
+  if (a.trace_max_events != 0) s += " --trace-max-events " + std::to_string(a.trace_max_events);
   for (const auto& v : a.aovs) s += " --aov " + v;
   if (a.overhead) s += " --overhead";
   if (a.latency_probe) s += " --latency-probe";
@@ -87,6 +91,12 @@ int run_run(const RunArgs& args) {
   }
   platform::RunOptions opts;
   for (const auto& f : args.faults) opts.faults.push_back(parse_fault(f));
+  const modules::TraceFilter trace_filter =
+      trace_filter_from(args.trace_window, args.trace_modules);
+  if (args.traces.empty() &&
+      (!args.trace_window.empty() || !args.trace_modules.empty() || args.trace_max_events != 0))
+    throw InputError("--trace-window/--trace-modules/--trace-max-events", 0,
+                     "narrow a trace, so they need --trace vcd and/or --trace perfetto");
   scenes::Scene scene = load_scene_with_seed(args.scene, registry);
   platform::FunctionalTwin twin = machine.make_twin(scene, registry);
 
@@ -96,6 +106,8 @@ int run_run(const RunArgs& args) {
   opts.aov_id = wants_aov(args.aovs, "id");
   opts.aov_depth = wants_aov(args.aovs, "depth");
   opts.latency_probe = args.latency_probe;
+  opts.trace_filter = trace_filter;
+  opts.trace_max_events = args.trace_max_events;
   for (const auto& t : args.traces) {
     if (t == "vcd") opts.vcd_path = out.stage("trace.vcd");
     if (t == "perfetto") opts.perfetto_path = out.stage("trace.json");
@@ -126,6 +138,11 @@ int run_run(const RunArgs& args) {
     else
       stats[key] = value;
   }
+
+  // A trace that lost events says so wherever the numbers are read: here, stats.json `trace`,
+  // the report.
+  for (const std::string& warning : trace_warnings(nlohmann::json(stats)))
+    std::cerr << "rtsim: warning: " << warning << "\n";
 
   stage_images(out, result.image);
   {

@@ -23,6 +23,12 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
   const std::uint64_t d = duration.value();
   if (d == 0) return;
   const std::uint64_t e = s + d;
+  if (keep_) {
+    if (!intervals_.empty() && intervals_.back().end == s)
+      intervals_.back().end = e;
+    else
+      intervals_.push_back({s, e});
+  }
   if (busy_.empty()) {
     origin_ = first_ = s;
     last_ = e;
@@ -49,6 +55,19 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
     const std::uint64_t hi = std::min<std::uint64_t>(b, (i + 1) * width_);
     busy_[i] += hi - lo;
   }
+}
+
+std::vector<LevelChange> BusyTimeline::level_changes() const {
+  std::vector<std::uint64_t> starts, ends;
+  starts.reserve(intervals_.size());
+  ends.reserve(intervals_.size());
+  for (const Interval& i : intervals_) {
+    starts.push_back(i.start);
+    ends.push_back(i.end);
+  }
+  std::sort(starts.begin(), starts.end());
+  std::sort(ends.begin(), ends.end());
+  return modules::level_changes(starts, ends);
 }
 
 sc_core::sc_time BusyTimeline::total() const {

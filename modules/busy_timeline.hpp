@@ -10,9 +10,18 @@
 // over the part of the bin between the first start and the last end recorded), an error of at
 // most one bin width per boundary. The span is at least kMaxBins / 2 bins wide once it has
 // grown, so with 100 windows that is < 1.3% of a window.
+//
+// While a trace is written (a KeepIntervals object is alive when the timeline is made) it also
+// keeps every interval as recorded, so the traces' busy signals are these very intervals, the
+// ones busy_s and the windows are summed from (16 bytes an interval; an interval that starts
+// where the previous one ended extends it). Timelines are members deep inside the modules, and a
+// run has one trace setting: a scoped switch reaches them without threading a flag through
+// every constructor.
 #include <cstdint>
 #include <systemc>
 #include <vector>
+
+#include "modules/level_steps.hpp"
 
 namespace rtsim::modules {
 
@@ -28,6 +37,18 @@ class BusyTimeline {
   /// Bins kept at most; 16384 x 8 bytes = 128 KiB a module at most.
   static constexpr std::size_t kMaxBins = 16384;
 
+  /// While one is alive, timelines made keep their intervals (for traces). Not nestable
+  /// across threads; SystemC runs one simulation per process anyway.
+  class KeepIntervals {
+   public:
+    KeepIntervals() { ++keeping_; }
+    ~KeepIntervals() { --keeping_; }
+    KeepIntervals(const KeepIntervals&) = delete;
+    KeepIntervals& operator=(const KeepIntervals&) = delete;
+  };
+
+  BusyTimeline() : keep_(keeping_ > 0) {}
+
   /// The module was busy over [start, start + duration). Intervals may come in any order;
   /// overlapping intervals add (a pipelined unit records its issue slots, which never overlap).
   void add(const sc_core::sc_time& start, const sc_core::sc_time& duration);
@@ -41,8 +62,21 @@ class BusyTimeline {
   std::uint64_t bin_width_ticks() const { return width_; }
   std::size_t bins() const { return busy_.size(); }
 
+  /// Whether the intervals are kept (made while a KeepIntervals was alive).
+  bool keeps_intervals() const { return keep_; }
+  /// The number of intervals in progress over time (0 and 1 unless intervals overlap), from
+  /// the kept intervals; empty if they were not kept.
+  std::vector<LevelChange> level_changes() const;
+
  private:
+  struct Interval {
+    std::uint64_t start;
+    std::uint64_t end;
+  };
+  inline static int keeping_ = 0;
   void merge_pairs();
+  bool keep_ = false;
+  std::vector<Interval> intervals_;
   std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
   std::uint64_t width_ = 1;   ///< ticks per bin
   std::uint64_t first_ = 0;   ///< earliest start recorded

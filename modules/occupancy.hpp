@@ -3,11 +3,14 @@
 // are sorted and merged at the end: they are usually in time order already, but a producer may
 // stamp a put earlier than its previous one (Ullner's peripheral sends the answer of a ray with
 // no intersections before the previous ray's leaves the pipe), and the threads may record them
-// out of global time order when temporally decoupled.
+// out of global time order when temporally decoupled. The walk over them (downs first at equal
+// times) is modules/level_steps.hpp, shared with the traces' depth signals.
 #include <algorithm>
 #include <cstdint>
 #include <systemc>
 #include <vector>
+
+#include "modules/level_steps.hpp"
 
 namespace rtsim::modules {
 
@@ -30,30 +33,30 @@ class Occupancy {
     long level = 0;
     std::uint64_t last = b;
     long double area = 0;
-    auto step = [&](std::uint64_t t, int delta) {
+    const std::vector<std::uint64_t> puts = sorted(puts_), gets = sorted(gets_);
+    walk_level_steps(puts, gets, [&](std::uint64_t t, int delta) {
       t = std::clamp(t, b, e);
       area += static_cast<long double>(level) * static_cast<long double>(t - last);
       last = t;
       level += delta;
       s.max = std::max(s.max, static_cast<int>(level));
-    };
-    std::vector<std::uint64_t> puts = puts_, gets = gets_;
-    std::sort(puts.begin(), puts.end());
-    std::sort(gets.begin(), gets.end());
-    // At equal times gets go first, so a slot handed over at one instant is not counted twice.
-    std::size_t p = 0, g = 0;
-    while (p < puts.size() || g < gets.size()) {
-      if (g < gets.size() && (p == puts.size() || gets[g] <= puts[p]))
-        step(gets[g++], -1);
-      else
-        step(puts[p++], +1);
-    }
+    });
     area += static_cast<long double>(level) * static_cast<long double>(e - last);
     s.mean = static_cast<double>(area / static_cast<long double>(e - b));
     return s;
   }
 
+  /// The depth over time, for traces: the same steps summarize() integrates.
+  std::vector<LevelChange> depth_changes() const {
+    return level_changes(sorted(puts_), sorted(gets_));
+  }
+
  private:
+  static std::vector<std::uint64_t> sorted(std::vector<std::uint64_t> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  }
+
   std::vector<std::uint64_t> puts_;
   std::vector<std::uint64_t> gets_;
 };

@@ -5,6 +5,25 @@
 
 namespace rtsim::modules {
 
+ModuleStats& StatsRegistry::busy_module(const std::string& name, const sc_core::sc_time& busy,
+                                        const BusyTimeline& timeline) {
+  ModuleStats& m = modules_[name];
+  m.busy = busy;
+  m.windows = timeline.windows(begin_, end_, kUtilizationWindows);
+  m.busy_source = &timeline;
+  return m;
+}
+
+ModuleStats& StatsRegistry::queue(const std::string& name, const Occupancy& occupancy,
+                                  std::size_t capacity) {
+  ModuleStats& m = modules_[name];
+  m.has_occupancy = true;
+  m.capacity = capacity;
+  m.occupancy = occupancy.summarize(begin_, end_);
+  m.occupancy_source = &occupancy;
+  return m;
+}
+
 nlohmann::ordered_json StatsRegistry::to_json(const sc_core::sc_time& frame_time) const {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   const double frame = frame_time.to_seconds();

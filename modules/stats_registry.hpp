@@ -2,6 +2,10 @@
 // The stats registry every module reports into (after gem5's): per module, by hierarchical
 // name, its busy time and named values; queues add their occupancy. Dumped into stats.json
 // under "modules" with utilisation = busy time / frame time.
+//
+// It also remembers where a module's busy time and a queue's occupancy came from (the
+// BusyTimeline, the Occupancy), so the traces' busy and depth signals are drawn from the same
+// objects under the same names (platform/machines/machine_trace.hpp).
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,6 +24,10 @@ struct ModuleStats {
   std::size_t capacity = 0;  ///< queues: depth
   /// Busy fraction per window of the frame (BusyTimeline::windows); empty values: not recorded.
   UtilizationWindows windows{};
+  /// What the busy time and the occupancy were summarised from (for traces); may be null.
+  /// They must outlive the registry's use by the traces.
+  const BusyTimeline* busy_source = nullptr;
+  const Occupancy* occupancy_source = nullptr;
 };
 
 /// Windows a frame is cut into for `utilization_windows`: enough to see phases (fill, steady
@@ -28,7 +36,22 @@ inline constexpr std::size_t kUtilizationWindows = 100;
 
 class StatsRegistry {
  public:
+  StatsRegistry() = default;
+  /// The frame: occupancy means and utilisation windows are taken over [begin, end].
+  StatsRegistry(const sc_core::sc_time& begin, const sc_core::sc_time& end)
+      : begin_(begin), end_(end) {}
+
   ModuleStats& module(const std::string& name) { return modules_[name]; }
+  /// A module that was busy `busy` in total, over the intervals of `timeline`: sets busy,
+  /// utilisation windows of the frame, and the source of its trace's busy signal.
+  ModuleStats& busy_module(const std::string& name, const sc_core::sc_time& busy,
+                           const BusyTimeline& timeline);
+  /// A queue of `capacity` entries: its occupancy over the frame, and the source of its trace's
+  /// depth signal.
+  ModuleStats& queue(const std::string& name, const Occupancy& occupancy, std::size_t capacity);
+
+  const sc_core::sc_time& begin() const { return begin_; }
+  const sc_core::sc_time& end() const { return end_; }
   const std::map<std::string, ModuleStats>& modules() const { return modules_; }
 
   /// {name: {busy_s, utilization, ...values, queue: {capacity, mean_occupancy, max_occupancy},
@@ -37,6 +60,8 @@ class StatsRegistry {
 
  private:
   std::map<std::string, ModuleStats> modules_;
+  sc_core::sc_time begin_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time end_ = sc_core::SC_ZERO_TIME;
 };
 
 /// Per-ray latencies: exact percentiles over all samples (8 bytes a ray).

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "firmware/tracer.hpp"
+#include "modules/trace/trace_filter.hpp"
 #include "platform/functional/functional_renderer.hpp"
 #include "platform/functional/render_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
@@ -41,7 +42,11 @@ struct RunOptions {
   bool aov_depth = false;
   std::filesystem::path vcd_path;       ///< empty: no VCD trace
   std::filesystem::path perfetto_path;  ///< empty: no Perfetto trace
-  std::size_t perfetto_max_events = 2'000'000;
+  /// At most this many events in each trace file (Perfetto events, VCD value changes); 0: every
+  /// event. What a cap drops is counted in stats.json `trace` and printed.
+  std::size_t trace_max_events = 0;
+  /// --trace-window, --trace-modules: what the traces keep (default: everything).
+  modules::TraceFilter trace_filter{};
   bool latency_probe = false;
   std::vector<MemoryFault> faults;
   std::function<void(long, long)> progress;  ///< (rays finished, rays expected so far)

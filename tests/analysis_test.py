@@ -216,6 +216,30 @@ class UtilisationTimelineTest(unittest.TestCase, PngMixin):
         self.assertEqual(list(busy), ["bus"])
         np.testing.assert_allclose(busy["bus"], [0.5, 0.5], atol=1e-9)
 
+    def test_busy_counters_are_the_busy_time_and_the_window_the_range(self):
+        # rtsim's traces: a module's busy level as a counter NAME.busy (its slices are only its
+        # transactions) and the range the trace covers in otherData.
+        trace = make_trace()
+        trace["traceEvents"] += [
+            {"name": "bus.busy", "ph": "C", "ts": 0.0, "pid": 1, "tid": 2, "args": {"value": 1}},
+            {"name": "bus.busy", "ph": "C", "ts": 30.0, "pid": 1, "tid": 2, "args": {"value": 0}},
+            {"name": "bus.busy", "ph": "C", "ts": 80.0, "pid": 1, "tid": 2, "args": {"value": 0}},
+        ]
+        trace["otherData"] = {"rtsim_window_s": [10e-6, 90e-6]}  # --trace-window
+        edges, busy, depth = utilisation_timeline.busy_from_trace(trace, windows=4)
+        np.testing.assert_allclose(edges, [10e-6, 30e-6, 50e-6, 70e-6, 90e-6], atol=1e-15)
+        np.testing.assert_allclose(busy["bus"], [1.0, 0.0, 0.0, 0.0], atol=1e-9)
+        np.testing.assert_allclose(busy["cpu"], [0.25, 0.25, 0.0, 0.0], atol=1e-9)  # slices
+        self.assertNotIn("bus.busy", depth)
+        np.testing.assert_allclose(depth["q.depth"], [3.0, 2.0, 0.0, 0.0], atol=1e-9)
+        # A trace of the whole run (from 0) is drawn over the frame.
+        trace["otherData"] = {"rtsim_window_s": [0.0, 90e-6],
+                              "rtsim_stats_interval_s": [0.0, 80e-6]}
+        edges, busy, depth = utilisation_timeline.busy_from_trace(trace, windows=4)
+        np.testing.assert_allclose(edges, [0, 20e-6, 40e-6, 60e-6, 80e-6], atol=1e-15)
+        np.testing.assert_allclose(busy["bus"], [1.0, 0.5, 0.0, 0.0], atol=1e-9)
+        np.testing.assert_allclose(depth["q.depth"], [2.0, 4.0, 0.0, 0.0], atol=1e-9)
+
     def test_windows_from_stats_json(self):
         stats = {"machine": "m", "scene": "s", "modules": {
             "host": {"busy_s": 1.0, "utilization_windows": {
@@ -544,10 +568,15 @@ class RealRunTest(unittest.TestCase, PngMixin):
             tedges, busy, depth = utilisation_timeline.busy_from_trace(
                 utilisation_timeline.load(os.path.join(out, "trace.json"))[1], windows=100)
             self.assertIn("peripheral.ray_queue.depth", depth)
-            # The pipeline's slices are its busy intervals: the same busy time as stats.json.
-            trace_busy = float(np.sum(busy["peripheral.pipeline"]) * (tedges[1] - tedges[0]))
-            self.assertAlmostEqual(trace_busy, stats["modules"]["peripheral.pipeline"]["busy_s"],
-                                   delta=0.01 * stats["modules"]["peripheral.pipeline"]["busy_s"])
+            # Every module's busy counter is its busy intervals: the same busy time as
+            # stats.json, over the window the trace covers (from 0 to the end of the frame).
+            for name, m in stats["modules"].items():
+                if "queue" in m:
+                    self.assertIn(name + ".depth", depth)
+                    continue
+                trace_busy = float(np.sum(busy[name]) * (tedges[1] - tedges[0]))
+                self.assertAlmostEqual(trace_busy, m["busy_s"], delta=1e-9 * m["busy_s"] + 1e-15,
+                                       msg=name)
             # The probe's breakdown as drawn adds up to the end-to-end mean, which is the mean
             # of ray_latency_s (the same rays over the same window).
             series = latency_breakdown.breakdown_series(stats)

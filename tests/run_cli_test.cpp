@@ -181,8 +181,9 @@ TEST(RunCli, TracesOpenAsPerfettoJsonAndVcd) {
   for (const char* track : {"host", "peripheral.pipeline", "peripheral.aux"})
     EXPECT_GT(slices[track], 0) << track;
   const std::string vcd = read_file(dir / "trace.vcd");
-  EXPECT_NE(vcd.find("$var wire    1"), std::string::npos);
-  EXPECT_NE(vcd.find("busy"), std::string::npos);
-  EXPECT_NE(vcd.find("depth"), std::string::npos);
+  EXPECT_NE(vcd.find("$var wire 1"), std::string::npos);
+  // stats.json's module names as scopes: the host's busy flag, the peripheral's ray queue.
+  EXPECT_NE(vcd.find("$scope module host $end\n$var wire 1 ! busy $end"), std::string::npos);
+  EXPECT_NE(vcd.find("$scope module ray_queue $end\n$var integer 32"), std::string::npos);
   EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
 }

@@ -1,5 +1,6 @@
 // BusyTimeline: busy intervals kept in a bounded number of bins and resampled into windows of
-// the frame (stats.json `utilization_windows`). Plain arithmetic on sc_time, no simulation.
+// the frame (stats.json `utilization_windows`); the level steps, occupancy and kept intervals
+// the traces' signals are drawn from. Plain arithmetic on sc_time, no simulation.
 #include <gtest/gtest.h>
 
 #include <numeric>
@@ -107,4 +108,92 @@ TEST(Occupancy, PutsStampedOutOfOrderGiveTheTimeWeightedMean) {
   const auto s = q.summarize(ps(0), ps(40));
   EXPECT_DOUBLE_EQ(s.mean, 35.0 / 40.0);
   EXPECT_EQ(s.max, 2);
+}
+
+// --- the traces' signals come from the same objects -------------------------------------------
+
+TEST(LevelSteps, DownsGoFirstAndEachTimeGivesOneNetChange) {
+  using rtsim::modules::LevelChange;
+  // Up at 1, 3, 3; down at 3 (a hand-over: no spike to 3), 5, 9.
+  const auto c = rtsim::modules::level_changes({1, 3, 3}, {3, 5, 9});
+  ASSERT_EQ(c.size(), 4u);
+  const std::vector<std::pair<std::uint64_t, long>> want = {{1, 1}, {3, 2}, {5, 1}, {9, 0}};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(c[i].t, want[i].first);
+    EXPECT_EQ(c[i].level, want[i].second);
+  }
+  // A put and a get at the same time of an empty queue: no change at all.
+  EXPECT_TRUE(rtsim::modules::level_changes({4}, {4}).empty());
+}
+
+TEST(Occupancy, DepthChangesIntegrateToTheSummary) {
+  rtsim::modules::Occupancy q;
+  for (std::uint64_t t : {10, 5, 12, 12, 30}) q.put(ps(t));
+  for (std::uint64_t t : {20, 12, 31, 35, 40}) q.got(ps(t));
+  const auto s = q.summarize(ps(0), ps(50));
+  long double area = 0;
+  long level = 0, max = 0;
+  std::uint64_t last = 0;
+  for (const auto& c : q.depth_changes()) {
+    area += static_cast<long double>(level) * static_cast<long double>(c.t - last);
+    last = c.t;
+    level = c.level;
+    max = std::max(max, level);
+  }
+  area += static_cast<long double>(level) * static_cast<long double>(50 - last);
+  EXPECT_EQ(level, 0);
+  EXPECT_DOUBLE_EQ(static_cast<double>(area / 50), s.mean);
+  EXPECT_EQ(max, s.max);
+}
+
+TEST(BusyTimeline, KeepsItsIntervalsOnlyWhileATraceAsksAndTheyAddUpToTheTotal) {
+  BusyTimeline plain;
+  EXPECT_FALSE(plain.keeps_intervals());
+  plain.add(ps(0), ps(5));
+  EXPECT_TRUE(plain.level_changes().empty());
+  {
+    BusyTimeline::KeepIntervals keep;
+    BusyTimeline t;
+    EXPECT_TRUE(t.keeps_intervals());
+    t.add(ps(10), ps(5));  // [10, 15)
+    t.add(ps(15), ps(5));  // back to back: [10, 20) is one busy stretch
+    t.add(ps(30), ps(10));
+    t.add(ps(35), ps(10));  // overlapping: level 2 over [35, 40)
+    t.add(ps(2), ps(3));    // earlier than the rest
+    const auto c = t.level_changes();
+    const std::vector<std::pair<std::uint64_t, long>> want = {{2, 1},  {5, 0},  {10, 1}, {20, 0},
+                                                              {30, 1}, {35, 2}, {40, 1}, {45, 0}};
+    ASSERT_EQ(c.size(), want.size());
+    std::uint64_t busy = 0, last = 0;
+    long level = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      EXPECT_EQ(c[i].t, want[i].first);
+      EXPECT_EQ(c[i].level, want[i].second);
+      busy += static_cast<std::uint64_t>(level) * (c[i].t - last);
+      last = c[i].t;
+      level = c[i].level;
+    }
+    EXPECT_EQ(busy, t.total().value());
+  }
+  EXPECT_FALSE(BusyTimeline().keeps_intervals());
+}
+
+TEST(StatsRegistry, BusyModulesAndQueuesRememberTheirSources) {
+  BusyTimeline t;
+  t.add(ps(100), ps(400));
+  rtsim::modules::Occupancy q;
+  q.put(ps(100));
+  q.got(ps(300));
+  rtsim::modules::StatsRegistry reg(ps(100), ps(1100));
+  auto& m = reg.busy_module("unit", ps(400), t);
+  EXPECT_EQ(m.busy_source, &t);
+  EXPECT_EQ(m.windows.values.size(), rtsim::modules::kUtilizationWindows);
+  EXPECT_DOUBLE_EQ(m.windows.begin_s, 100e-12);
+  auto& qs = reg.queue("unit.queue", q, 4);
+  EXPECT_EQ(qs.occupancy_source, &q);
+  EXPECT_TRUE(qs.has_occupancy);
+  EXPECT_EQ(qs.capacity, 4u);
+  EXPECT_DOUBLE_EQ(qs.occupancy.mean, 200.0 / 1000.0);
+  EXPECT_EQ(reg.begin(), ps(100));
+  EXPECT_EQ(reg.end(), ps(1100));
 }

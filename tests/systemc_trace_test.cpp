@@ -1,7 +1,7 @@
 // Trace writers: the Perfetto/Chrome JSON trace (tracks, metadata, times, arguments, dropped
-// events, escaping, determinism, streaming) and the VCD signal trace (header, $var lines, value
-// changes at the simulated times). Scenarios that call sc_start run in a forked child (one
-// SystemC simulation per process, tests/systemc_test_support.hpp).
+// events, escaping, determinism, streaming) and the VCD signal trace (header, scopes, $var
+// lines, value changes at the simulated times, windows, the cap). Scenarios that call sc_start run
+// in a forked child (one SystemC simulation per process, tests/systemc_test_support.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -235,6 +235,22 @@ TEST(PerfettoTrace, EventsBeyondTheLimitAreDroppedAndCounted) {
   EXPECT_EQ(t["otherData"]["rtsim_max_events"], 3);
 }
 
+TEST(PerfettoTrace, NoLimitByDefaultAndOtherDataCarriesTheRunsKeys) {
+  const auto dir = fresh_dir("perfetto-all");
+  const auto path = dir / "trace.json";
+  PerfettoTrace trace(path, 0);  // 0: every event
+  const int a = trace.track("a");
+  for (int i = 0; i < 10'000; ++i) trace.slice(a, "s", i * 1e-6, 1e-6);
+  trace.other_data("rtsim_window_s", "[0,1]");
+  trace.close();
+  EXPECT_EQ(trace.events_written(), 10'000u);
+  EXPECT_EQ(trace.events_dropped(), 0u);
+  const json t = parse_trace(path);
+  EXPECT_EQ(events_of(t, "X").size(), 10'000u);
+  EXPECT_EQ(t["otherData"]["rtsim_max_events"], 0);
+  EXPECT_EQ(t["otherData"]["rtsim_window_s"], json::array({0, 1}));
+}
+
 TEST(PerfettoTrace, NamesAreEscaped) {
   const auto dir = fresh_dir("perfetto-escape");
   const auto path = dir / "trace.json";
@@ -316,10 +332,8 @@ TEST(PerfettoTrace, AbandonLeavesNoFile) {
 
 // --- traces from a running simulation --------------------------------------------------------
 
-/// A unit that takes jobs from a queue: busy for kJob per job, the queue drained at kArrivals.
+/// A unit that takes 2 jobs from a queue at 10 ns, 15 ns each, and traces them.
 struct Unit : sc_core::sc_module {
-  sc_core::sc_signal<bool> busy{"busy"};
-  sc_core::sc_signal<int> depth{"depth"};
   PerfettoTrace* trace = nullptr;
   int track = -1;
   SC_HAS_PROCESS(Unit);
@@ -329,90 +343,138 @@ struct Unit : sc_core::sc_module {
     using sc_core::sc_time;
     // t = 10 ns: 2 jobs arrive; each takes 15 ns; idle from 40 ns.
     wait(sc_time(10, SC_NS));
-    depth.write(2);
     for (int job = 0; job < 2; ++job) {
-      busy.write(true);
       const sc_time start = sc_core::sc_time_stamp();
       if (trace) trace->counter(track, "depth", start, 2 - job);
       wait(sc_time(15, SC_NS));
-      depth.write(1 - job);
       if (trace) trace->slice(track, "job", start, sc_time(15, SC_NS), {{"job", job}});
     }
-    busy.write(false);
     if (trace) trace->counter(track, "depth", sc_core::sc_time_stamp(), 0);
   }
 };
 
-TEST(SystemCTrace, VcdHasHeaderVarsAndValueChangesAtSimulatedTimes) {
-  const auto dir = fresh_dir("vcd");
-  const auto vcd_path = dir / "signals.vcd";
-  ASSERT_EQ(run_in_child([&] {
-              struct Top : sc_core::sc_module {
-                Unit unit{"unit"};
-                sc_core::sc_signal<bool> late{"late"};  // never traced
-                explicit Top(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
-              } top("top");
-              VcdTrace vcd(dir / "signals");  // ".vcd" appended
-              EXPECT_EQ(vcd.path(), vcd_path);
-              vcd.trace_busy(top.unit.busy, top.unit.busy.name());
-              vcd.trace_queue_depth(top.unit.depth, top.unit.depth.name());
-              sc_core::sc_start();
-              EXPECT_EQ(sc_core::sc_time_stamp(), sc_core::sc_time(40, sc_core::SC_NS));
-              // Too late to add a signal now.
-              EXPECT_THROW(vcd.trace_busy(top.late, "top.late"), std::logic_error);
-              vcd.close();  // writes the final step (advances time by 1 ps)
-              EXPECT_EQ(sc_core::sc_time_stamp(), sc_core::sc_time(40'001, sc_core::SC_PS));
-              vcd.close();  // idempotent
-              return 0;
-            }),
-            0);
-  const std::string vcd = read_file(vcd_path);
-  ASSERT_FALSE(vcd.empty());
-  EXPECT_NE(vcd.find("$timescale"), std::string::npos);
-  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$timescale\s+1 ps\s+\$end)")));
-  EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
-  // The dotted names became scopes top / unit.
-  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$scope module top \$end)")));
-  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$scope module unit \$end)")));
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(vcd, m, std::regex(R"(\$var wire\s+1\s+(\S+)\s+busy\s+\$end)")));
-  const std::string busy_id = m[1];
-  ASSERT_TRUE(std::regex_search(
-      vcd, m, std::regex(R"(\$var wire\s+32\s+(\S+)\s+depth(\s+\[31:0\])?\s+\$end)")));
-  const std::string depth_id = m[1];
-  // Initial values, then the value changes per time stamp (ps).
-  EXPECT_TRUE(std::regex_search(
-      vcd, std::regex("\\$dumpvars\\s+0" + busy_id + "\\s+b0 " + depth_id + "\\s+\\$end")));
+// --- VCD --------------------------------------------------------------------------------------
+
+/// The value changes after $enddefinitions, by time stamp (ps), and the time stamps in order.
+struct VcdDump {
   std::map<long long, std::vector<std::string>> changes;
+  std::vector<long long> stamps;
+};
+
+VcdDump parse_vcd(const std::string& vcd) {
+  VcdDump d;
   long long now = -1;
   std::istringstream lines(vcd.substr(vcd.find("$enddefinitions")));
   for (std::string line; std::getline(lines, line);) {
     if (!line.empty() && line[0] == '#') {
       now = std::stoll(line.substr(1));
+      d.stamps.push_back(now);
+      d.changes[now];
     } else if (now >= 0 && !line.empty() && line[0] != '$') {
-      changes[now].push_back(line);
+      d.changes[now].push_back(line);
     }
   }
-  auto has = [&](long long t, const std::string& change) {
-    const auto& v = changes[t];
-    return std::find(v.begin(), v.end(), change) != v.end();
-  };
-  const auto bits = [](int v) {
-    std::string s;
-    for (int b = 31; b >= 0; --b) s += ((v >> b) & 1) ? '1' : '0';
-    const auto first = s.find('1');
-    return "b" + (first == std::string::npos ? std::string("0") : s.substr(first));
-  };
-  EXPECT_TRUE(has(10'000, "1" + busy_id)) << "busy rises at 10 ns";
-  EXPECT_TRUE(has(10'000, bits(2) + " " + depth_id));
-  EXPECT_TRUE(has(25'000, bits(1) + " " + depth_id));
-  EXPECT_TRUE(has(40'000, bits(0) + " " + depth_id));
-  EXPECT_TRUE(has(40'000, "0" + busy_id)) << "busy falls at 40 ns";
-  // Nothing changes between the events.
-  for (const auto& [t, v] : changes) {
-    EXPECT_TRUE(t == 10'000 || t == 25'000 || t == 40'000 || (t == 40'001 && v.empty()))
-        << "change at " << t;
+  return d;
+}
+
+/// A unit busy over [10, 25) and [25, 40) ns (back to back: one rise, one fall) whose queue holds
+/// 2, then 1, then 0 entries.
+void add_unit_signals(VcdTrace& vcd) {
+  vcd.signal("top.unit.busy", {{10'000, 1}, {40'000, 0}});
+  vcd.signal("top.unit.queue.depth", {{10'000, 2}, {25'000, 1}, {40'000, 0}},
+             VcdTrace::Kind::kCount);
+}
+
+TEST(VcdTrace, HasHeaderScopesAndValueChangesAtSimulatedTimes) {
+  const auto dir = fresh_dir("vcd");
+  const auto path = dir / "signals.vcd";
+  {
+    VcdTrace vcd(path);
+    add_unit_signals(vcd);
+    EXPECT_FALSE(std::filesystem::exists(path)) << "written at close()";
+    vcd.close(0, 50'000);
+    vcd.close(0, 60'000);  // idempotent
+    EXPECT_EQ(vcd.changes_written(), 5u);
+    EXPECT_EQ(vcd.changes_dropped(), 0u);
   }
+  const std::string vcd = read_file(path);
+  ASSERT_FALSE(vcd.empty());
+  EXPECT_TRUE(std::regex_search(vcd, std::regex(R"(\$timescale 1 ps \$end)")));
+  // The dotted names became scopes top / unit / queue.
+  EXPECT_NE(vcd.find("$scope module top $end\n$scope module unit $end\n$var wire 1 ! busy $end\n"
+                     "$scope module queue $end\n$var integer 32 \" depth $end\n$upscope $end\n"
+                     "$upscope $end\n$upscope $end\n$enddefinitions $end\n"),
+            std::string::npos)
+      << vcd;
+  EXPECT_NE(vcd.find("#0\n$dumpvars\n0!\nb0 \"\n$end\n"), std::string::npos) << vcd;
+  const VcdDump d = parse_vcd(vcd);
+  EXPECT_EQ(d.stamps, (std::vector<long long>{0, 10'000, 25'000, 40'000, 50'000}));
+  EXPECT_EQ(d.changes.at(10'000), (std::vector<std::string>{"1!", "b10 \""}));
+  EXPECT_EQ(d.changes.at(25'000), (std::vector<std::string>{"b1 \""}));
+  EXPECT_EQ(d.changes.at(40'000), (std::vector<std::string>{"0!", "b0 \""}));
+  EXPECT_TRUE(d.changes.at(50'000).empty()) << "the end of the dump, values held to there";
+}
+
+TEST(VcdTrace, WindowStartsWithTheValuesThenAndCapDropsAndCounts) {
+  const auto dir = fresh_dir("vcd-window");
+  {
+    VcdTrace vcd(dir / "w.vcd");
+    add_unit_signals(vcd);
+    vcd.close(20'000, 30'000);
+    EXPECT_EQ(vcd.changes_written(), 1u);  // depth 1 at 25 ns
+  }
+  std::string text = read_file(dir / "w.vcd");
+  EXPECT_NE(text.find("#20000\n$dumpvars\n1!\nb10 \"\n$end\n"), std::string::npos) << text;
+  VcdDump d = parse_vcd(text);
+  EXPECT_EQ(d.stamps, (std::vector<long long>{20'000, 25'000, 30'000}));
+  {
+    VcdTrace vcd(dir / "cap.vcd");
+    add_unit_signals(vcd);
+    vcd.close(0, 50'000, 3);
+    EXPECT_EQ(vcd.changes_written(), 3u);
+    EXPECT_EQ(vcd.changes_dropped(), 2u);
+  }
+  d = parse_vcd(read_file(dir / "cap.vcd"));
+  EXPECT_EQ(d.stamps, (std::vector<long long>{0, 10'000, 25'000}))
+      << "a dump cut short ends at its last change";
+}
+
+TEST(VcdTrace, LevelsAbove1AreIntegersAndIdentifiersArePrintable) {
+  const auto dir = fresh_dir("vcd-int");
+  {
+    VcdTrace vcd(dir / "i.vcd");
+    vcd.signal("a.busy", {{5, 2}, {7, 0}});  // overlapping intervals
+    vcd.close(0, 10);
+  }
+  EXPECT_NE(read_file(dir / "i.vcd").find("$var integer 32 ! busy $end"), std::string::npos);
+  EXPECT_EQ(vcd_identifier(0), "!");
+  EXPECT_EQ(vcd_identifier(93), "~");
+  EXPECT_EQ(vcd_identifier(94), "!\"");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < 20'000; ++i) {
+    const std::string id = vcd_identifier(i);
+    for (char c : id) EXPECT_TRUE(c >= '!' && c <= '~');
+    ids.insert(id);
+  }
+  EXPECT_EQ(ids.size(), 20'000u);
+}
+
+TEST(VcdTrace, MisuseIsReportedAndAbandonLeavesNoFile) {
+  const auto dir = fresh_dir("vcd-misuse");
+  VcdTrace vcd(dir / "m.vcd");
+  EXPECT_THROW(vcd.signal("a..busy", {}), std::invalid_argument);
+  EXPECT_THROW(vcd.signal("", {}), std::invalid_argument);
+  EXPECT_THROW(vcd.signal("a.busy", {{5, 1}, {4, 0}}), std::invalid_argument);
+  vcd.signal("a.busy", {});
+  EXPECT_THROW(vcd.signal("a.busy", {}), std::invalid_argument);
+  vcd.abandon();
+  vcd.close(0, 1);  // no-op after abandon
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  {
+    VcdTrace unclosed(dir / "u.vcd");
+    unclosed.signal("a.busy", {{1, 1}});
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir)) << "a trace never closed is no file";
 }
 
 TEST(SystemCTrace, PerfettoSlicesFromARunningSimulation) {

@@ -226,7 +226,7 @@ int PerfettoTrace::track(std::string_view hierarchical_name) {
 }
 
 bool PerfettoTrace::admit() {
-  if (!open_ || written_ >= max_events_) {
+  if (!open_ || (max_events_ != 0 && written_ >= max_events_)) {
     ++dropped_;
     return false;
   }
@@ -333,13 +333,19 @@ void PerfettoTrace::counter(int track, std::string_view name, const sc_core::sc_
   write_counter(track, name, us_of(t), value);
 }
 
+void PerfettoTrace::other_data(std::string_view key, std::string json_value) {
+  other_data_.emplace_back(std::string(key), std::move(json_value));
+}
+
 void PerfettoTrace::close() {
   if (!open_) return;
   open_ = false;
   // "otherData" is the format's place for free-form metadata about the trace as a whole.
   out_ << "\n],\n\"displayTimeUnit\":\"ns\",\n\"otherData\":{\"rtsim_events_written\":" << written_
-       << ",\"rtsim_events_dropped\":" << dropped_ << ",\"rtsim_max_events\":" << max_events_
-       << "}}\n";
+       << ",\"rtsim_events_dropped\":" << dropped_ << ",\"rtsim_max_events\":" << max_events_;
+  for (const auto& [key, json] : other_data_)
+    out_ << ',' << perfetto_json_string(key) << ':' << json;
+  out_ << "}}\n";
   out_.close();
   if (!out_) throw std::runtime_error("error writing trace file " + partial_path_.string());
   std::error_code ec;

@@ -11,9 +11,11 @@
 //   ("ph":"M"), so the tracks appear in the order they were created.
 // - Times are simulated seconds (double) or sc_core::sc_time; the file holds microseconds with
 //   six decimals (picoseconds), as JSON numbers. sc_time values are written exactly.
-// - At most `max_events` slice/instant/counter events are written; later ones are counted and
-//   dropped. Metadata events do not count. close() writes the dropped count into "otherData"
-//   ({"rtsim_events_written":N,"rtsim_events_dropped":D,"rtsim_max_events":M}).
+// - Every event is written unless `max_events` is not 0: then at most that many
+//   slice/instant/counter events are written and later ones are counted and dropped. Metadata
+//   events do not count. close() writes the counts into "otherData"
+//   ({"rtsim_events_written":N,"rtsim_events_dropped":D,"rtsim_max_events":M}, M = 0: no limit),
+//   with whatever other_data() added.
 // - The file is written as PATH.partial and renamed to PATH by close() (also from the
 //   destructor); abandon() deletes it instead, so a failed run leaves no half-written trace.
 // - Deterministic: the same calls give the same bytes (no wall-clock stamps, locale-free
@@ -29,6 +31,7 @@
 #include <string_view>
 #include <systemc>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace rtsim::modules {
@@ -47,6 +50,7 @@ class PerfettoTrace {
   };
 
   /// Opens PATH.partial for writing (throws std::runtime_error naming the path if it cannot).
+  /// max_events 0: no limit.
   PerfettoTrace(std::filesystem::path path, std::size_t max_events);
   ~PerfettoTrace();
   PerfettoTrace(const PerfettoTrace&) = delete;
@@ -75,6 +79,9 @@ class PerfettoTrace {
   /// is the argument "value".
   void counter(int track, std::string_view name, double t_s, double value);
   void counter(int track, std::string_view name, const sc_core::sc_time& t, double value);
+
+  /// A key of "otherData", written by close(): `json_value` is JSON text (not checked).
+  void other_data(std::string_view key, std::string json_value);
 
   /// Writes the end of the file and renames it to its final path. Idempotent.
   void close();
@@ -121,6 +128,7 @@ class PerfettoTrace {
   std::map<std::string, int, std::less<>> track_of_name_;
   std::map<std::string, int, std::less<>> pid_of_process_;
   std::string scratch_;
+  std::vector<std::pair<std::string, std::string>> other_data_;
 };
 
 /// Time formatting used by PerfettoTrace, exposed for tests: seconds -> microseconds with six

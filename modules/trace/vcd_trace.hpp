@@ -1,52 +1,81 @@
 #pragma once
-// Signal traces for GTKWave: a thin owner of one SystemC VCD file (sc_create_vcd_trace_file),
-// time unit 1 ps, closed in the destructor. Modules register their busy flags
-// (sc_signal<bool>) and queue depths (sc_signal<int>) by hierarchical name; SystemC's VCD writer
-// turns the dots of a name into nested scopes ("peripheral.pipeline.busy" is signal "busy" in
-// scope peripheral/pipeline).
+// Signal traces for GTKWave: a Value Change Dump (IEEE 1364 §18) of level signals (busy flags,
+// queue depths) named by dotted hierarchical names, which become nested scopes
+// ("peripheral.ray_queue.depth" is signal "depth" in scope peripheral/ray_queue).
 //
-// SystemC allows tracing only before the simulation starts: registering after the first
-// sc_start is std::logic_error here (SystemC itself would only warn and drop the signal).
-// SystemC writes nothing if the file is closed before any simulation cycle ran.
+// Written by hand rather than by SystemC's sc_trace: SystemC samples signals at delta cycles, so
+// with temporal decoupling an edge is written when the writing thread synchronises (late) and
+// two edges between synchronisations are lost. Here a signal is given whole, as the time-sorted
+// value changes the statistics were computed from, and close() merges all signals into one
+// time-ordered dump. Memory: the changes of every signal until close().
 //
-// SystemC writes a time step's values only when a later trace cycle runs. close() therefore
-// advances a run that ended by starvation (status SC_PAUSED, no pending activity) by one
-// time-resolution step (1 ps) before closing, so the last step's changes are in the file; read
-// sc_time_stamp() before closing. After sc_stop() SystemC cannot run again and the values of the
-// final time step are lost: end runs by starvation (or sc_start(until) past the last change).
+// - Time unit: SystemC's time resolution (1 ps by default), so every simulated time is exact;
+//   times are sc_time ticks.
+// - A level (busy) whose values are only 0 and 1 is a 1-bit wire, any other signal (a count,
+//   such as a queue depth, or a level that reached 2) a 32-bit integer.
+// - close(from, to, max_changes): the dump covers [from, to]: the values at `from` as $dumpvars,
+//   the changes after it up to `to`, and a last time stamp `to` so a viewer draws the values up
+//   to there. At most max_changes value changes are written (0: no limit); the rest are counted
+//   in dropped() (the dump then ends at the last change written).
+// - The file is written as PATH.partial and renamed to PATH; abandon() (and the destructor of an
+//   unclosed trace) deletes it instead, so a failed run leaves no half-written trace.
+// - Deterministic: the same signals give the same bytes (no date, no wall clock).
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
-#include <systemc>
+#include <vector>
+
+#include "modules/level_steps.hpp"
 
 namespace rtsim::modules {
 
 class VcdTrace {
  public:
-  /// Creates PATH (".vcd" is appended when PATH does not end in it, as SystemC does).
-  explicit VcdTrace(const std::filesystem::path& path);
+  /// The file to write at close(); nothing is written before.
+  explicit VcdTrace(std::filesystem::path path);
   ~VcdTrace();
   VcdTrace(const VcdTrace&) = delete;
   VcdTrace& operator=(const VcdTrace&) = delete;
 
-  /// A module's busy flag, e.g. trace_busy(busy_, name() + std::string(".busy")).
-  void trace_busy(const sc_core::sc_signal<bool>& busy, const std::string& hierarchical_name);
-  /// A queue's depth (number of entries).
-  void trace_queue_depth(const sc_core::sc_signal_in_if<int>& depth,
-                         const std::string& hierarchical_name);
+  /// kLevel: a flag, drawn as a wire while it is only 0 or 1; kCount: always a number.
+  enum class Kind { kLevel, kCount };
 
-  /// The file, for other sc_trace overloads; owned by this object.
-  sc_core::sc_trace_file* file() const { return file_; }
-  /// The file's path, ".vcd" included.
+  /// A signal: its dotted hierarchical name and its value changes in time order (the value is 0
+  /// before the first). An empty name, an empty scope segment, a repeated name or changes out of
+  /// time order are std::invalid_argument (programming errors).
+  void signal(const std::string& hierarchical_name, std::vector<LevelChange> changes,
+              Kind kind = Kind::kLevel);
+
+  /// Writes the file (see above) and renames it into place. Throws std::runtime_error naming the
+  /// path if it cannot be written. Idempotent.
+  void close(std::uint64_t from, std::uint64_t to, std::size_t max_changes = 0);
+  /// Deletes the partial file instead. Idempotent; no-op after close().
+  void abandon();
+
   const std::filesystem::path& path() const { return path_; }
-  /// Closes the file now (idempotent; the destructor calls it). See above: may advance simulated
-  /// time by one resolution step.
-  void close();
+  std::size_t changes_written() const { return written_; }  ///< excluding the initial values
+  std::size_t changes_dropped() const { return dropped_; }
+  std::size_t signal_count() const { return signals_.size(); }
 
  private:
-  void check_can_trace(const std::string& hierarchical_name) const;
+  struct Signal {
+    std::string name;  ///< dotted
+    std::vector<LevelChange> changes;
+    Kind kind;
+  };
+  void write(std::ostream& out, std::uint64_t from, std::uint64_t to, std::size_t max_changes);
 
   std::filesystem::path path_;
-  sc_core::sc_trace_file* file_ = nullptr;
+  std::vector<Signal> signals_;
+  bool done_ = false;
+  std::size_t written_ = 0;
+  std::size_t dropped_ = 0;
 };
+
+/// The short identifier VCD gives signal number `index` (printable ASCII, base 94), for tests.
+std::string vcd_identifier(std::size_t index);
+/// The $timescale of SystemC's time resolution ("1 ps", "100 fs", ...).
+std::string vcd_timescale();
 
 }  // namespace rtsim::modules

@@ -137,18 +137,19 @@ const char* order_name(BroadcastOrder o) {
                                         : "breadth";
 }
 
+/// stats.json's machine keys; `stats` (the registry over the frame) receives the modules, and
+/// is kept by the caller for the traces.
 nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTree& tree,
                                     const gaudet::PertDataSets& sets, const PertPlatform& p,
-                                    gaudet::ShadeShared& shared, const sc_core::sc_time& frame) {
+                                    gaudet::ShadeShared& shared, const sc_core::sc_time& frame,
+                                    modules::StatsRegistry& stats) {
   nlohmann::ordered_json out;
-  modules::StatsRegistry stats;
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
   std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
   std::uint64_t rejected = 0, rays_with_packets = 0, backlog_peak = 0;
   sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packet_count = 0;
-  const sc_core::sc_time end = p.control->load_time() + frame;
   for (int i = 0; i < cfg.pert_count; ++i) {
     const auto u = static_cast<std::size_t>(i);
     const std::string pert = "pert" + std::to_string(i);
@@ -156,10 +157,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     for (int k = 0; k < 3; ++k) {
       const gaudet::TimeSplit& t = procs[k]->split();
       totals[k] += t;
-      auto& m = stats.module(pert + "." + kKinds[k]);
-      m.busy = t.processing;
-      m.windows =
-          procs[k]->timeline().windows(p.control->load_time(), end, modules::kUtilizationWindows);
+      auto& m = stats.busy_module(pert + "." + kKinds[k], t.processing, procs[k]->timeline());
       m.values["rays"] = static_cast<double>(t.rays);
       m.values["latency_s"] = t.latency.to_seconds();
       m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
@@ -187,12 +185,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
         {"queue.shade_to_shell", &p.shell[u]->input.fifo.occupancy(), cfg.shade_to_shell_depth},
         {"queue.shell_to_prim", &p.prim[u]->input.fifo.occupancy(), cfg.shell_to_prim_depth},
         {"queue.prim_to_shade", &p.shade[u]->input.fifo.occupancy(), cfg.prim_to_shade_depth}};
-    for (const auto& q : queues) {
-      auto& m = stats.module(pert + "." + q.name);
-      m.has_occupancy = true;
-      m.capacity = q.depth;
-      m.occupancy = q.occ->summarize(p.control->load_time(), end);
-    }
+    for (const auto& q : queues) stats.queue(pert + "." + q.name, *q.occ, q.depth);
   }
   nlohmann::ordered_json buses = nlohmann::ordered_json::object();
   const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
@@ -201,9 +194,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     const auto& s = bp.stats();
     // Bus utilisation: the share of the frame the bus carried packet words (IDs go by
     // whether or not anyone listens).
-    auto& m = stats.module(std::string(kKinds[b]) + "_bus");
-    m.busy = s.packet_time;
-    m.windows = bp.timeline().windows(p.control->load_time(), end, modules::kUtilizationWindows);
+    auto& m = stats.busy_module(std::string(kKinds[b]) + "_bus", s.packet_time, bp.timeline());
     m.values["ids"] = static_cast<double>(s.ids);
     m.values["cycles"] = static_cast<double>(s.cycles);
     m.values["packets"] = static_cast<double>(s.packets);
@@ -504,6 +495,9 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
     sh.set_probe(probe);
     se.set_probe(probe);
     pr.set_probe(probe);
+    sh.set_stats_name(pert + "." + kKinds[0]);
+    se.set_stats_name(pert + "." + kKinds[1]);
+    pr.set_stats_name(pert + "." + kKinds[2]);
     sh.out.bind(se.input.socket);
     sh.set_output_queue(se.input.fifo);
     se.out.bind(pr.input.socket);
@@ -535,7 +529,6 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
                                           sc_core::SC_DO_NOTHING);
   sc_core::sc_start();
-  trace.close();
   // The simulation ends when nothing is left to happen. With every ray answered that is the end
   // of the frame; otherwise some processor waits for a packet that never comes (a corrupted
   // memory: an ID list entry pointing at no packet) and the image is not a frame.
@@ -553,9 +546,11 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = p.control->frame_time();
   RunResult res;
   res.simulated_time_s = frame_time.to_seconds();
-  res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time);
+  modules::StatsRegistry stats(p.control->load_time(), p.control->load_time() + frame_time);
+  res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time, stats);
   if (!opts.faults.empty()) res.stats["faults"] = faults_json(memories);
   if (opts.latency_probe) res.stats["latency_probe"] = probe.probe().to_json();
+  if (trace.on()) res.stats["trace"] = trace.finish(stats);
   res.image = frame.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
   if (opts.progress)

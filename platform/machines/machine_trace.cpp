@@ -1,39 +1,122 @@
 #include "platform/machines/machine_trace.hpp"
 
+#include <algorithm>
+#include <vector>
+
 namespace rtsim::platform {
 
-MachineTrace::MachineTrace(const RunOptions& opts) {
+namespace {
+
+double seconds_of(std::uint64_t ticks) {
+  return sc_core::sc_time::from_value(static_cast<sc_core::sc_time::value_type>(ticks))
+      .to_seconds();
+}
+
+sc_core::sc_time time_of(std::uint64_t ticks) {
+  return sc_core::sc_time::from_value(static_cast<sc_core::sc_time::value_type>(ticks));
+}
+
+constexpr const char* kBusy = "busy";
+constexpr const char* kDepth = "depth";
+
+struct Signal {
+  std::string module;  ///< stats.json name
+  const char* what;    ///< "busy" or "depth"
+  std::vector<modules::LevelChange> changes;
+};
+
+}  // namespace
+
+MachineTrace::MachineTrace(const RunOptions& opts)
+    : filter_(opts.trace_filter), max_events_(opts.trace_max_events) {
   if (!opts.perfetto_path.empty())
-    perfetto_ =
-        std::make_unique<modules::PerfettoTrace>(opts.perfetto_path, opts.perfetto_max_events);
+    perfetto_ = std::make_unique<modules::PerfettoTrace>(opts.perfetto_path, max_events_);
   if (!opts.vcd_path.empty()) vcd_ = std::make_unique<modules::VcdTrace>(opts.vcd_path);
+  if (on()) keep_intervals_.emplace();
 }
 
-int MachineTrace::declare_busy(const std::string& module) {
-  if (!vcd_) return -1;
-  busy_.push_back(
-      std::make_unique<sc_core::sc_signal<bool>>(sc_core::sc_gen_unique_name("busy"), false));
-  vcd_->trace_busy(*busy_.back(), module + ".busy");
-  return static_cast<int>(busy_.size()) - 1;
+MachineTrace::~MachineTrace() {
+  if (perfetto_) perfetto_->abandon();
+  if (vcd_) vcd_->abandon();
 }
 
-int MachineTrace::declare_depth(const std::string& queue) {
-  if (!vcd_ && !perfetto_) return -1;
-  depth_.push_back(std::make_unique<DepthSignal>(sc_core::sc_gen_unique_name("depth"), 0));
-  if (vcd_) vcd_->trace_queue_depth(*depth_.back(), queue + ".depth");
-  depth_track_.push_back(perfetto_ ? perfetto_->track(queue) : -1);
-  depth_name_.push_back("depth");
-  return static_cast<int>(depth_.size()) - 1;
+bool MachineTrace::keeps(std::string_view module, const sc_core::sc_time& start,
+                         const sc_core::sc_time& duration) {
+  if (!filter_.keeps_time(start.value(), duration.value())) return false;
+  if (filter_.modules.empty()) return true;
+  auto it = module_kept_.find(module);
+  if (it == module_kept_.end())
+    it = module_kept_.emplace(std::string(module), filter_.keeps_module(module)).first;
+  return it->second;
 }
 
-void MachineTrace::write_depth(std::size_t h, int value, const sc_core::sc_time& t) {
-  if (vcd_) depth_[h]->write(value);
-  if (perfetto_) perfetto_->counter(depth_track_[h], depth_name_[h], t, value);
-}
+nlohmann::ordered_json MachineTrace::finish(const modules::StatsRegistry& stats) {
+  if (!on()) return nullptr;
+  // The signals, from the sources of stats.json's numbers, by stats.json's names.
+  std::vector<Signal> signals;
+  std::uint64_t last = stats.end().value();
+  for (const auto& [name, m] : stats.modules()) {
+    if (!filter_.keeps_module(name)) continue;
+    if (m.busy_source && m.busy_source->keeps_intervals())
+      signals.push_back({name, kBusy, m.busy_source->level_changes()});
+    if (m.occupancy_source) signals.push_back({name, kDepth, m.occupancy_source->depth_changes()});
+  }
+  for (const Signal& s : signals)
+    if (!s.changes.empty()) last = std::max(last, s.changes.back().t);
+  // What the traces cover: the window asked for, else from time 0 to the end of the frame (or
+  // of the last change, if a module was still busy after it).
+  const std::uint64_t from = std::min(filter_.from, last);
+  const std::uint64_t to = std::max(from, std::min(filter_.to, last));
 
-void MachineTrace::close() {
-  if (vcd_) vcd_->close();
+  if (perfetto_) {
+    for (const Signal& s : signals) {
+      const int track = perfetto_->track(s.module);
+      // The value at `from`, every change after it up to `to`, and the value at `to`, so the
+      // counter is drawn (and integrates) over the whole window.
+      long level = 0;
+      std::size_t i = 0;
+      for (; i < s.changes.size() && s.changes[i].t <= from; ++i) level = s.changes[i].level;
+      perfetto_->counter(track, s.what, time_of(from), static_cast<double>(level));
+      for (; i < s.changes.size() && s.changes[i].t <= to; ++i) {
+        level = s.changes[i].level;
+        perfetto_->counter(track, s.what, time_of(s.changes[i].t), static_cast<double>(level));
+      }
+      if (to > from) perfetto_->counter(track, s.what, time_of(to), static_cast<double>(level));
+    }
+    const auto pair = [](double a, double b) { return nlohmann::json::array({a, b}).dump(); };
+    perfetto_->other_data("rtsim_window_s", pair(seconds_of(from), seconds_of(to)));
+    perfetto_->other_data("rtsim_stats_interval_s",
+                          pair(stats.begin().to_seconds(), stats.end().to_seconds()));
+    perfetto_->other_data("rtsim_modules", nlohmann::json(filter_.modules).dump());
+  }
+  if (vcd_) {
+    for (Signal& s : signals) {
+      std::string name = s.module;  // appends: see vcd_trace.cpp on GCC 12's -Wrestrict
+      name += '.';
+      name += s.what;
+      vcd_->signal(
+          name, std::move(s.changes),
+          s.what == kDepth ? modules::VcdTrace::Kind::kCount : modules::VcdTrace::Kind::kLevel);
+    }
+    vcd_->close(from, to, max_events_);
+  }
   if (perfetto_) perfetto_->close();
+
+  nlohmann::ordered_json j;
+  j["window_s"] = {seconds_of(from), seconds_of(to)};
+  j["stats_interval_s"] = {stats.begin().to_seconds(), stats.end().to_seconds()};
+  j["modules"] = filter_.modules;
+  j["max_events"] = max_events_;
+  j["signals"] = signals.size();
+  if (perfetto_)
+    j["perfetto"] = {{"file", perfetto_->path().filename().string()},
+                     {"events_written", perfetto_->events_written()},
+                     {"events_dropped", perfetto_->events_dropped()}};
+  if (vcd_)
+    j["vcd"] = {{"file", vcd_->path().filename().string()},
+                {"changes_written", vcd_->changes_written()},
+                {"changes_dropped", vcd_->changes_dropped()}};
+  return j;
 }
 
 }  // namespace rtsim::platform

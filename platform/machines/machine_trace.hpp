@@ -1,16 +1,31 @@
 #pragma once
-// The traces of one run, as a machine's modules emit them: Perfetto slices and counters
-// (transactions on tracks named by module hierarchy) and VCD signals (busy flags, queue
-// depths) for GTKWave. Either may be off; every call is then a cheap no-op.
+// The traces of one run: Perfetto (Chrome JSON) and VCD, either or both or neither.
 //
-// VCD signals are written at the writing thread's synchronisation points, so with a quantum q
-// their edges may be up to q late; at quantum 0 (the reference) they are exact.
+// Two kinds of content, both named by the module names of stats.json:
+//  * transactions: Perfetto slices a module emits as it works (slice(): a ray in the pipeline, a
+//    packet on a bus), streamed to the file during the simulation;
+//  * signals: each module's busy level and each queue's depth, written by finish() after the
+//    simulation from the very objects stats.json was summarised from (the StatsRegistry's
+//    BusyTimeline and Occupancy sources): VCD variables NAME.busy / NAME.depth, and Perfetto
+//    counters of the same names. Their time-weighted means over the frame are stats.json's
+//    utilisation and mean occupancy (tests/trace_agreement_test.cpp).
+//
+// Every event is written unless the run narrows the traces (RunOptions::trace_filter: a window of
+// simulated time, module name patterns) or caps them (RunOptions::trace_max_events, per file).
+// What a cap dropped is counted in the files, in the `trace` object finish() returns for
+// stats.json, and printed by `rtsim run`.
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <systemc>
-#include <vector>
 
+#include "modules/busy_timeline.hpp"
+#include "modules/stats_registry.hpp"
 #include "modules/trace/perfetto_trace.hpp"
+#include "modules/trace/trace_filter.hpp"
 #include "modules/trace/vcd_trace.hpp"
 #include "platform/machine.hpp"
 
@@ -18,41 +33,41 @@ namespace rtsim::platform {
 
 class MachineTrace {
  public:
+  /// Opens the traces RunOptions asks for. Make it before the modules: while it lives, their
+  /// busy timelines keep the intervals the busy signals are drawn from.
   explicit MachineTrace(const RunOptions& opts);
+  /// A trace that was not finished (the run failed) leaves no file.
+  ~MachineTrace();
+  MachineTrace(const MachineTrace&) = delete;
+  MachineTrace& operator=(const MachineTrace&) = delete;
 
+  bool on() const { return perfetto_ != nullptr || vcd_ != nullptr; }
   bool perfetto_on() const { return perfetto_ != nullptr; }
 
-  /// Elaboration only: a busy flag / a queue depth signal, returning its handle.
-  int declare_busy(const std::string& module);
-  int declare_depth(const std::string& queue);
-
-  /// Simulation: set a busy flag; set a queue depth (also a Perfetto counter at `t`).
-  void busy(int handle, bool value) {
-    if (handle >= 0) busy_[static_cast<std::size_t>(handle)]->write(value);
-  }
-  void depth(int handle, int value, const sc_core::sc_time& t) {
-    if (handle >= 0) write_depth(static_cast<std::size_t>(handle), value, t);
-  }
-
-  /// A Perfetto slice on the track of `module` (tracks are created on first use).
+  /// A Perfetto slice on the track of `module` (a stats.json module name; tracks are created on
+  /// first use), unless the filter leaves it out.
   void slice(std::string_view module, std::string_view name, const sc_core::sc_time& start,
              const sc_core::sc_time& duration,
              std::initializer_list<modules::PerfettoTrace::Arg> args = {}) {
-    if (perfetto_) perfetto_->slice(perfetto_->track(module), name, start, duration, args);
+    if (perfetto_ && keeps(module, start, duration))
+      perfetto_->slice(perfetto_->track(module), name, start, duration, args);
   }
 
-  /// Ends the traces (the VCD file may need one more resolution step: call after sc_start).
-  void close();
+  /// After the simulation, with the run's statistics: writes the busy and depth signals of every
+  /// module of `stats` the filter keeps, closes the files and returns stats.json's `trace`
+  /// object (null when no trace was asked for). Call once.
+  nlohmann::ordered_json finish(const modules::StatsRegistry& stats);
 
  private:
-  void write_depth(std::size_t h, int value, const sc_core::sc_time& t);
-  using DepthSignal = sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS>;
+  bool keeps(std::string_view module, const sc_core::sc_time& start,
+             const sc_core::sc_time& duration);
+
+  modules::TraceFilter filter_;
+  std::size_t max_events_ = 0;
+  std::optional<modules::BusyTimeline::KeepIntervals> keep_intervals_;
   std::unique_ptr<modules::PerfettoTrace> perfetto_;
   std::unique_ptr<modules::VcdTrace> vcd_;
-  std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> busy_;
-  std::vector<std::unique_ptr<DepthSignal>> depth_;
-  std::vector<int> depth_track_;
-  std::vector<std::string> depth_name_;
+  std::map<std::string, bool, std::less<>> module_kept_;  ///< the filter's answer, per name
 };
 
 }  // namespace rtsim::platform

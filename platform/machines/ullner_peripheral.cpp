@@ -239,54 +239,36 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc, opts,
                     trace, *twin.geometry, probe);
   host.load_out.bind(peripheral.parameters.socket);
-  peripheral.set_ray_queue_depth_handle(host.ray_queue_depth_handle());
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);
   sc_core::sc_start();
-  trace.close();
 
   const sc_core::sc_time frame_time = host.frame_time();
   RunResult res;
   res.simulated_time_s = frame_time.to_seconds();
-  modules::StatsRegistry stats;
-  auto& hs = stats.module("host");
-  hs.busy = host.busy();
-  // Utilisation over time, in windows of the frame (after the scene load).
-  const auto windows = [&](const modules::BusyTimeline& t) {
-    return t.windows(host.load_time(), host.load_time() + frame_time, modules::kUtilizationWindows);
-  };
-  hs.windows = windows(host.timeline());
+  // Utilisation over time and queue occupancy over the frame (after the scene load).
+  modules::StatsRegistry stats(host.load_time(), host.load_time() + frame_time);
+  auto& hs = stats.busy_module("host", host.busy(), host.timeline());
   hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
   hs.values["results_processed"] = static_cast<double>(host.results_processed());
   hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
-  auto& rq = stats.module("peripheral.ray_queue");
-  rq.has_occupancy = true;
-  rq.capacity = pc.ray_queue_depth;
-  const sc_core::sc_time frame_end = host.load_time() + frame_time;
-  rq.occupancy = peripheral.rays.fifo.occupancy().summarize(host.load_time(), frame_end);
-  auto& hq = stats.module("host.result_queue");
-  hq.has_occupancy = true;
-  hq.capacity = pc.result_queue_depth;
-  hq.occupancy = host.results.fifo.occupancy().summarize(host.load_time(), frame_end);
-  auto& ps = stats.module("peripheral.pipeline");
-  ps.busy = peripheral.pipeline().busy();
-  ps.windows = windows(peripheral.pipeline().timeline());
+  stats.queue("peripheral.ray_queue", peripheral.rays.fifo.occupancy(), pc.ray_queue_depth);
+  stats.queue("host.result_queue", host.results.fifo.occupancy(), pc.result_queue_depth);
+  auto& ps = stats.busy_module("peripheral.pipeline", peripheral.pipeline().busy(),
+                               peripheral.pipeline().timeline());
   ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());
   ps.values["stages"] = pc.pipeline_stages;
-  auto& ls = stats.module("peripheral.lighting");
-  ls.busy = host.lighting_unit().busy();
-  ls.windows = windows(host.lighting_unit().timeline());
+  auto& ls = stats.busy_module("peripheral.lighting", host.lighting_unit().busy(),
+                               host.lighting_unit().timeline());
   ls.values["inner_products"] = static_cast<double>(host.lighting_unit().issued());
   if (pc.grid_divisions > 0) {
-    auto& as = stats.module("peripheral.aux");
-    as.busy = peripheral.aux_busy();
-    as.windows = windows(peripheral.aux_timeline());
+    auto& as =
+        stats.busy_module("peripheral.aux", peripheral.aux_busy(), peripheral.aux_timeline());
     as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
     as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
   }
-  auto& ms = stats.module("peripheral.parameter_memories");
-  ms.busy = peripheral.parameters.read_busy();
-  ms.windows = windows(peripheral.parameters.read_timeline());
+  auto& ms = stats.busy_module("peripheral.parameter_memories", peripheral.parameters.read_busy(),
+                               peripheral.parameters.read_timeline());
   ms.values["polygons"] = static_cast<double>(quads);
   ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
   ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
@@ -316,6 +298,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
                               : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};
+  if (trace.on()) res.stats["trace"] = trace.finish(stats);
   res.image =
       frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return res;

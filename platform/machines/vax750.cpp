@@ -45,7 +45,6 @@ class VaxHost : public sc_core::sc_module {
         objects_(objects),
         opts_(opts),
         trace_(trace),
-        busy_signal_(trace.declare_busy("vax")),
         probe_(probe),
         probe_vax_(probe.stage(this->name())) {
     SC_THREAD(run);
@@ -64,7 +63,6 @@ class VaxHost : public sc_core::sc_module {
     tasks::ShadeTask shade(scene_, settings_.shade);
     std::vector<TracedRay> stack, spawned;
     long rays = 0;
-    trace_.busy(busy_signal_, true);
     std::uint64_t tests_seen = 0, boxes_seen = 0;
     while (!vision.done()) {
       int sample = 0;
@@ -98,7 +96,6 @@ class VaxHost : public sc_core::sc_module {
     }
     frame_time_ = clock.now();
     clock.sync();
-    trace_.busy(busy_signal_, false);
   }
 
   const scenes::Scene& scene_;
@@ -110,7 +107,6 @@ class VaxHost : public sc_core::sc_module {
   std::uint64_t objects_;
   const RunOptions& opts_;
   MachineTrace& trace_;
-  int busy_signal_;
   modules::LatencyProbe& probe_;
   int probe_vax_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
@@ -183,15 +179,12 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
       from_ps(r.get_time_ps("vax.intersection_time")), from_ps(r.get_time_ps("vax.box_test_time")),
       r.get_string("vax.search") == "brute-force", objects, opts, trace, probe);
   sc_core::sc_start();
-  trace.close();
 
   RunResult res;
   res.simulated_time_s = host.frame_time().to_seconds();
-  modules::StatsRegistry stats;
-  stats.module("vax").busy = host.busy();
-  stats.module("vax").windows = host.timeline().windows(sc_core::SC_ZERO_TIME, host.frame_time(),
-                                                        modules::kUtilizationWindows);
-  stats.module("vax").values["rays"] = static_cast<double>(frame.counters().total_rays());
+  modules::StatsRegistry stats(sc_core::SC_ZERO_TIME, host.frame_time());
+  stats.busy_module("vax", host.busy(), host.timeline()).values["rays"] =
+      static_cast<double>(frame.counters().total_rays());
   res.stats["modules"] = stats.to_json(host.frame_time());
   res.stats["ray_latency_s"] = host.latency().to_json();
   if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
@@ -207,6 +200,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
        brute ? static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)
              : static_cast<double>(frame.counters().intersection_tests)},
       {"box_tests_charged", brute ? 0.0 : static_cast<double>(frame.counters().box_tests)}};
+  if (trace.on()) res.stats["trace"] = trace.finish(stats);
   res.image =
       frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return res;

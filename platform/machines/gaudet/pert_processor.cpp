@@ -16,17 +16,14 @@ PertProcessor::PertProcessor(sc_core::sc_module_name name, const modules::Proces
       timing_(timing),
       trace_(trace),
       probe_(&disabled_probe()),
-      track_(this->name()),
-      busy_signal_(trace.declare_busy(this->name())) {}
+      track_(this->name()) {}
 
 void PertProcessor::compute(const Cost& c, std::string_view what) {
   const sc_core::sc_time t = timing_.time_for(c);
   if (t == sc_core::SC_ZERO_TIME) return;
-  trace_.busy(busy_signal_, true);
   trace_.slice(track_, what, clock_.now(), t);
   timeline_.add(clock_.now(), t);
   clock_.advance(t);
-  trace_.busy(busy_signal_, false);
   split_.processing += t;
 }
 

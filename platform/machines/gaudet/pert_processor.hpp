@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <systemc>
+#include <utility>
 
 #include "firmware/cost.hpp"
 #include "modules/busy_timeline.hpp"
@@ -44,6 +45,10 @@ class PertProcessor : public sc_core::sc_module {
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
   /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
   void set_probe(RayProbe& p) { probe_ = &p; }
+  /// Elaboration: the name stats.json knows it by ("pert0.shade"), which its trace track takes
+  /// too. SystemC names cannot hold a dot, and the PERT is no module of its own, so its SystemC
+  /// name ("pert0_shade") differs (default: the SystemC name).
+  void set_stats_name(std::string name) { track_ = std::move(name); }
 
  protected:
   PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
@@ -81,7 +86,6 @@ class PertProcessor : public sc_core::sc_module {
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
   std::string track_;
-  int busy_signal_;
 };
 
 }  // namespace rtsim::platform::gaudet

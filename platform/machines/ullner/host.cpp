@@ -34,9 +34,6 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
       opts_(opts),
       trace_(trace),
       geometry_(geometry),
-      busy_signal_(trace.declare_busy("host")),
-      ray_queue_depth_(trace.declare_depth("peripheral.ray_queue")),
-      result_queue_depth_(trace.declare_depth("host.result_queue")),
       probe_(probe),
       probe_result_queue_(probe.stage(results.name())),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
@@ -63,6 +60,7 @@ sc_core::sc_time Host::result_time(const Cost& c) {
 
 void Host::send(RayRequest req) {
   const sc_core::sc_time cost = host_.timing.time_for(kSendCost);
+  trace_.slice("host", "send", clock_.now(), cost);
   timeline_.add(clock_.now(), cost);
   clock_.advance(cost);
   busy_ += cost;
@@ -72,7 +70,6 @@ void Host::send(RayRequest req) {
   // The latency window opens here, as ray_latency_s's does.
   req.journey = probe_.begin(req.sent);
   modules::send_message(ray_out, req, clock_.now(), RayRequest::kWireBytes);
-  trace_.depth(ray_queue_depth_, static_cast<int>(ray_queue_.size()), req.sent);
   ++outstanding_;
 }
 
@@ -128,16 +125,13 @@ void Host::run() {
       const shading::TracedRay& r = res.request.ray;
       frame_.counters().count_ray(r.kind);
       if (res.request.first_sample) frame_.record_primary(r.pixel, res.found, res.hit);
-      trace_.depth(result_queue_depth_, static_cast<int>(results.fifo.size()), taken);
       const Cost c = shade.on_result(r, res.found, res.hit, frame_.fb(), spawned);
       frame_.counters().cost += c;
       const sc_core::sc_time t = result_time(c);
-      trace_.busy(busy_signal_, true);
       trace_.slice("host", "result", clock_.now(), t,
                    {{"ray", res.request.id}, {"spawned", spawned.size()}});
       timeline_.add(clock_.now(), t);
       clock_.advance(t);
-      trace_.busy(busy_signal_, false);
       busy_ += t;
       for (const auto& s : spawned) {
         RayRequest req;
@@ -164,11 +158,9 @@ void Host::run() {
       req.ray = vision.next(sample);
       req.first_sample = sample == 0;
       const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
-      trace_.busy(busy_signal_, true);
       trace_.slice("host", "vision ray", clock_.now(), t, {{"pixel", req.ray.pixel}});
       timeline_.add(clock_.now(), t);
       clock_.advance(t);
-      trace_.busy(busy_signal_, false);
       busy_ += t;
       ++vision_rays_;
       send(req);

@@ -47,7 +47,6 @@ class Host : public sc_core::sc_module {
   std::uint64_t vision_rays() const { return vision_rays_; }
   std::uint64_t results_processed() const { return results_processed_; }
   std::uint64_t backlog_peak() const { return backlog_peak_; }
-  int ray_queue_depth_handle() const { return ray_queue_depth_; }
 
  private:
   void run();
@@ -65,9 +64,6 @@ class Host : public sc_core::sc_module {
   MachineTrace& trace_;
   const functional::SceneGeometry& geometry_;
   sc_core::sc_time frame_start_ = sc_core::SC_ZERO_TIME;
-  int busy_signal_;
-  int ray_queue_depth_;
-  int result_queue_depth_;
   modules::LatencyProbe& probe_;
   int probe_result_queue_;  ///< host.result_queue
 

@@ -25,7 +25,6 @@ Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& 
       config_(config),
       counters_(counters),
       trace_(trace),
-      busy_signal_(trace.declare_busy("peripheral")),
       pipe_(config.intersect_interval, config.pipeline_stages),
       probe_(probe) {
   // Stages named by their stats.json module names, in the order a ray meets them.
@@ -42,15 +41,12 @@ void Peripheral::run() {
   for (;;) {
     if (rays.fifo.empty()) {
       clock_.sync();
-      trace_.busy(busy_signal_, false);
       while (rays.fifo.empty()) sc_core::wait(rays.fifo.put_event());
       clock_.resync();
-      trace_.busy(busy_signal_, true);
     }
     sc_core::sc_time taken;
     RayRequest req = rays.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);
-    trace_.depth(ray_queue_depth_, static_cast<int>(rays.fifo.size()), taken);
     ++rays_;
     const auto journey = req.journey;
     using modules::LatencyPart;
@@ -120,6 +116,10 @@ void Peripheral::run() {
       aux_free_ = std::max(start + walk, batch.next_free - feed);
       aux_busy_ += aux_free_ - start;
       aux_timeline_.add(start, aux_free_ - start);
+      // The aux's busy interval (its busy signal), and the walk nested in it.
+      if (aux_free_ > start)
+        trace_.slice("peripheral.aux", "ray", start, aux_free_ - start,
+                     {{"ray", req.id}, {"subvolumes", cells}, {"polygons", tests}});
       if (walk > sc_core::SC_ZERO_TIME)
         trace_.slice("peripheral.aux", "walk", start, walk,
                      {{"ray", req.id}, {"subvolumes", cells}});

@@ -50,8 +50,6 @@ class Peripheral : public sc_core::sc_module {
              TraceCounters& counters, MachineTrace& trace, modules::LatencyProbe& probe);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
-  /// The trace handle of the ray queue's depth (declared by the host, written here too).
-  void set_ray_queue_depth_handle(int h) { ray_queue_depth_ = h; }
   sc_core::sc_time aux_busy() const { return aux_busy_; }
   const modules::BusyTimeline& aux_timeline() const { return aux_timeline_; }
   std::uint64_t rays_served() const { return rays_; }
@@ -72,8 +70,6 @@ class Peripheral : public sc_core::sc_module {
   PeripheralConfig config_;
   TraceCounters& counters_;
   MachineTrace& trace_;
-  int busy_signal_;
-  int ray_queue_depth_ = -1;
   modules::LocalClock clock_;
   modules::PipelinedUnit pipe_;
   /// `--latency-probe`: the stages a ray meets here, in order (aux only with the grid).
