@@ -27,6 +27,7 @@
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet/data_sets.hpp"
+#include "tests/machine_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -47,37 +48,19 @@ struct Frame {
 Frame simulate(const std::string& machine_name, const std::string& scene_name,
                const std::vector<std::string>& overrides,
                const std::vector<rtsim::platform::MemoryFault>& faults, const fs::path& out) {
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::alarm(120);
-    int code = 3;
-    try {
-      const auto& machine = rtsim::platform::find_machine(machine_name);
-      rtsim::params::ParamRegistry registry;
-      rtsim::platform::declare_params_of(&machine, registry);
-      for (const auto& o : overrides) registry.apply_override(o);
-      auto scene = rtsim::app::load_scene_with_seed(scene_name, registry);
-      auto twin = machine.make_twin(scene, registry);
-      rtsim::platform::RunOptions opts;
-      opts.width = kSize;
-      opts.height = kSize;
-      opts.faults = faults;
-      const auto res = machine.run(scene, twin, registry, opts);
-      std::ofstream f(out, std::ios::binary);
-      f.write(reinterpret_cast<const char*>(res.image.rgb.data()),
-              static_cast<std::streamsize>(res.image.rgb.size() * sizeof(float)));
-      code = f ? 0 : 4;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "simulation: %s\n", e.what());
-    }
-    std::fflush(nullptr);
-    ::_exit(code);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
   Frame frame;
-  frame.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  frame.ok = rtsim::test::run_in_child([&] {
+               auto m = rtsim::test::prepare_machine(machine_name, scene_name, overrides);
+               rtsim::platform::RunOptions opts;
+               opts.width = kSize;
+               opts.height = kSize;
+               opts.faults = faults;
+               const auto res = m->machine->run(m->scene, m->twin, m->registry, opts);
+               std::ofstream f(out, std::ios::binary);
+               f.write(reinterpret_cast<const char*>(res.image.rgb.data()),
+                       static_cast<std::streamsize>(res.image.rgb.size() * sizeof(float)));
+               return f ? 0 : 4;
+             }) == 0;
   if (frame.ok) {
     const std::string bytes = rtsim::test::read_file(out);
     frame.rgb.resize(bytes.size() / sizeof(float));
@@ -89,12 +72,9 @@ Frame simulate(const std::string& machine_name, const std::string& scene_name,
 /// The slot (line of the parameter memories) of the polygon the centre pixel's ray hits, from
 /// the twin (no simulation); -1 if it hits nothing.
 long centre_slot() {
-  const auto& machine = rtsim::platform::find_machine("ullner-peripheral");
-  rtsim::params::ParamRegistry registry;
-  rtsim::platform::declare_params_of(&machine, registry);
-  auto scene = rtsim::app::load_scene_with_seed(kScene, registry);
-  auto twin = machine.make_twin(scene, registry);
-  rtsim::shading::PinholeCamera camera(scene.camera, kSize, kSize);
+  auto m = rtsim::test::prepare_machine("ullner-peripheral", kScene);
+  const auto& twin = m->twin;
+  rtsim::shading::PinholeCamera camera(m->scene.camera, kSize, kSize);
   const rtsim::Ray ray = camera.primary(kSize / 2 + 0.5, kSize / 2 + 0.5);
   rtsim::Hit hit;
   rtsim::TraceCounters counters;
@@ -150,11 +130,9 @@ TEST(DataPath, GaudetShellBusMemoryWordChangesTheImage) {
   // that shell's subtree.
   const fs::path dir = rtsim::test::scratch_dir("data-path-gaudet");
   fs::create_directories(dir);
-  const auto& machine = rtsim::platform::find_machine("gaudet-pert");
-  rtsim::params::ParamRegistry registry;
-  rtsim::platform::declare_params_of(&machine, registry);
-  auto scene = rtsim::app::load_scene_with_seed("builtin:npp-412", registry);
-  auto twin = machine.make_twin(scene, registry);
+  auto m = rtsim::test::prepare_machine("gaudet-pert", "builtin:npp-412");
+  const auto& twin = m->twin;
+  const auto& scene = m->scene;
   const auto* search = dynamic_cast<const rtsim::functional::ShellSearch*>(twin.tracer.get());
   ASSERT_NE(search, nullptr);
   const auto sets = rtsim::platform::gaudet::make_pert_data_sets(

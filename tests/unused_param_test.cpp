@@ -16,6 +16,7 @@
 
 #include "app/scene_input.hpp"
 #include "platform/machine.hpp"
+#include "tests/machine_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -27,33 +28,16 @@ namespace {
 /// never read, one per line, to `out`. Returns the child's exit code.
 int unread_after_run(const std::string& machine_name, const std::string& scene_name,
                      const fs::path& out) {
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::alarm(120);
-    int code = 3;
-    try {
-      const auto& machine = rtsim::platform::find_machine(machine_name);
-      rtsim::params::ParamRegistry registry;
-      rtsim::platform::declare_params_of(&machine, registry);
-      auto scene = rtsim::app::load_scene_with_seed(scene_name, registry);
-      auto twin = machine.make_twin(scene, registry);
-      rtsim::platform::RunOptions opts;
-      opts.width = 8;
-      opts.height = 8;
-      (void)machine.run(scene, twin, registry, opts);
-      std::ofstream f(out);
-      for (const auto& name : registry.unread()) f << name << "\n";
-      code = f ? 0 : 4;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: %s\n", machine_name.c_str(), e.what());
-    }
-    std::fflush(nullptr);
-    ::_exit(code);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return rtsim::test::run_in_child([&] {
+    auto m = rtsim::test::prepare_machine(machine_name, scene_name);
+    rtsim::platform::RunOptions opts;
+    opts.width = 8;
+    opts.height = 8;
+    (void)m->machine->run(m->scene, m->twin, m->registry, opts);
+    std::ofstream f(out);
+    for (const auto& name : m->registry.unread()) f << name << "\n";
+    return f ? 0 : 4;
+  });
 }
 
 TEST(UnusedParams, EveryMachineReadsEveryParameterItDeclares) {
