@@ -6,6 +6,8 @@
 //    pixel changes, while with no fault the image equals the functional twin's.
 //  * gaudet-pert: the ShellProcessors box-test the SHELL records in the packets their BICs
 //    caught; emptying the box of the first SHELL in the Shell bus's memory hides its subtree.
+//    The PrimProcessors test the PRIM records of theirs: a sphere whose radius word is
+//    corrupted to a huge value is hit by every ray that reaches its leaf shell.
 //    A corrupted ID list stalls the machine: the run says so (exit 2), writing nothing.
 //  * `rtsim run --fault` names a memory and a word; a memory the machine does not have, or a
 //    word past its end, is bad input (exit 2).
@@ -159,6 +161,24 @@ TEST(DataPath, GaudetShellBusMemoryWordChangesTheImage) {
       "pixels changed\n",
       static_cast<unsigned long long>(word), lo, hi, changed, kSize * kSize);
   EXPECT_GT(changed, 0u);
+
+  // The first PRIM record of packet 0 in the Prim bus's memory, a sphere: raising its radius's
+  // exponent by 128 makes it enclose the whole scene, so every ray that reaches its leaf shell
+  // (the boxes still cull) hits it.
+  ASSERT_EQ(sets.prim.memory.at(0), 0u);
+  const std::uint32_t prim_address = sets.prim.memory.at(1);
+  ASSERT_EQ(sets.prim.memory.at(prim_address + 2),
+            static_cast<std::uint32_t>(rtsim::accel::PrimType::Sphere));
+  const std::uint64_t radius_word = prim_address + 6;  // prim_id, surface, type, centre[3], radius
+  const Frame big = simulate("gaudet-pert", "builtin:npp-412", two,
+                             {{"prim_bus.memory", radius_word, 0x40000000u}}, dir / "big.bin");
+  ASSERT_TRUE(big.ok);
+  const std::size_t changed_prim = pixels_differing(clean, big);
+  std::printf(
+      "prim_bus.memory word %llu (radius of the first sphere) corrupted: %zu of %d pixels "
+      "changed\n",
+      static_cast<unsigned long long>(radius_word), changed_prim, kSize * kSize);
+  EXPECT_GT(changed_prim, 0u);
   fs::remove_all(dir);
 }
 

@@ -60,6 +60,41 @@ Shell decode_shell(std::span<const std::uint32_t> record) {
   return s;
 }
 
+std::size_t decode_prim(std::span<const std::uint32_t> words, const RecordWords& rw,
+                        PrimRecord& out) {
+  const auto single = [&words](std::size_t i) {
+    return static_cast<double>(std::bit_cast<float>(words[i]));
+  };
+  const std::size_t h = rw.prim_header;
+  if (words.size() < std::max<std::size_t>(h, 3)) return 0;
+  out.prim_id = words[0];
+  out.surface_index = words[1];
+  out.vertices.clear();
+  if (words[2] == static_cast<std::uint32_t>(PrimType::Sphere)) {
+    const std::size_t size = h + rw.sphere;
+    if (rw.sphere < 4 || words.size() < size) return 0;
+    out.type = PrimType::Sphere;
+    out.center = Vec3(single(3), single(4), single(5));
+    out.radius = single(6);
+    return size;
+  }
+  if (words[2] == static_cast<std::uint32_t>(PrimType::Polygon)) {
+    if (words.size() < 4) return 0;
+    const std::uint32_t count = words[3] & 0x7fffffffu;
+    const bool normals = (words[3] & 0x80000000u) != 0;
+    const std::size_t size = h + rw.polygon_fixed + std::size_t{count} * rw.polygon_per_vertex +
+                             (normals ? std::size_t{count} * rw.polygon_per_normal : 0);
+    if (count < 3 || rw.polygon_per_vertex < 3 || words.size() < size ||
+        words.size() < 4 + 3 * std::size_t{count})
+      return 0;
+    out.type = PrimType::Polygon;
+    for (std::uint32_t v = 0; v < count; ++v)
+      out.vertices.emplace_back(single(4 + 3 * v), single(5 + 3 * v), single(6 + 3 * v));
+    return size;
+  }
+  return 0;
+}
+
 Bounds stored_shell_box(const Bounds& box) {
   std::vector<std::uint32_t> record;
   encode_shell(Shell{false, 0, box}, RecordWords{}, record);

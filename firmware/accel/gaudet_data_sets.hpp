@@ -79,6 +79,22 @@ void encode_shell(const Shell& s, const RecordWords& words, std::vector<std::uin
 Shell decode_shell(std::span<const std::uint32_t> record);
 /// `box` as a SHELL record stores it: decode_shell(encode_shell(box)).box.
 Bounds stored_shell_box(const Bounds& box);
+
+/// A PRIM record as a PrimProcessor reads it: prim_id, surface_index, type, then the PTYPE's
+/// fields in order (a sphere's centre and radius; a polygon's vertex count, bit 31 set when
+/// vertex normals follow the vertices, and its vertices).
+struct PrimRecord {
+  std::uint32_t prim_id = 0;
+  std::uint32_t surface_index = 0;
+  PrimType type = PrimType::Sphere;
+  Vec3 center{0.0};
+  double radius = 0.0;
+  std::vector<Vec3> vertices{};
+};
+/// Decodes the PRIM record at the start of `words` into `out` and returns its size in words
+/// (the configured size of its type), or 0 if it is not a sphere or polygon record that fits.
+std::size_t decode_prim(std::span<const std::uint32_t> words, const RecordWords& record_words,
+                        PrimRecord& out);
 /// SHADE record from an NFF material: k_s = Ks, k_d = Kd, n = round(shine), reflectance = the
 /// colour, transmittance = (T, T, T) (NFF's T is one number; Gaudet's is RGB).
 void encode_shade(const scenes::Material& m, const RecordWords& words,

@@ -23,6 +23,10 @@ struct RenderSettings {
   /// Shell boxes as a PERT's SHELL records hold them (singles rounded outward), so the twin
   /// searches the boxes gaudet-pert's ShellProcessors read out of their packets.
   bool shell_boxes_as_stored = false;
+  /// Spheres and triangles as a PERT's PRIM records hold them (centre, radius and vertices in
+  /// singles), so the twin tests the primitives gaudet-pert's PrimProcessors read out of their
+  /// packets. Vertex normals stay in double: they are the host's, not in the records.
+  bool prims_as_stored = false;
   int shell_branching = 4;
   int shell_leaf_size = 8;
   int bezier_iterations = 10;

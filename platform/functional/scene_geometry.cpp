@@ -10,6 +10,13 @@ namespace rtsim::functional {
 
 namespace {
 
+/// `v` rounded to the nearest singles, as a machine's 32-bit records hold it.
+Vec3 as_single(const Vec3& v) {
+  return Vec3(static_cast<double>(static_cast<float>(v.x)),
+              static_cast<double>(static_cast<float>(v.y)),
+              static_cast<double>(static_cast<float>(v.z)));
+}
+
 /// Ullner's machines store convex quadrilaterals: split the polygon into convex quads (and
 /// triangles given as quads with two equal vertices) and precompute each one's 20 parameters.
 template <class Add, class Note>
@@ -50,8 +57,7 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
   ConversionReport& report = g.report;
   auto add = [&g](Shape shape, std::size_t prim_id, std::uint32_t material) {
     const Bounds b = std::visit([](const auto& s) { return s.bounds(); }, shape);
-    g.shapes.push_back(
-        ShapeRecord{std::move(shape), static_cast<std::int32_t>(prim_id), material});
+    g.shapes.push_back(ShapeRecord{std::move(shape), static_cast<std::int32_t>(prim_id), material});
     g.bounds.push_back(b);
     g.scene_bounds.extend(b);
   };
@@ -69,7 +75,12 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
     switch (p.kind) {
       case scenes::PrimitiveKind::Sphere: {
         std::string why;
-        if (auto k = kernels::SphereKernel::from(scene.spheres[p.index], &why)) {
+        scenes::Sphere sphere = scene.spheres[p.index];
+        if (settings.prims_as_stored) {
+          sphere.center = as_single(sphere.center);
+          sphere.radius = static_cast<double>(static_cast<float>(sphere.radius));
+        }
+        if (auto k = kernels::SphereKernel::from(sphere, &why)) {
           add(*k, id, p.material);
           ++report.spheres;
         } else {
@@ -113,9 +124,12 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
               if (glm::dot(n[c], ng) < 0.0) n[c] = -n[c];
             }
           }
-          if (auto k =
-                  kernels::TriangleKernel::from(poly.vertices[t[0]], poly.vertices[t[1]],
-                                                poly.vertices[t[2]], has_normals ? n : nullptr)) {
+          const auto vertex = [&](int c) {
+            const Vec3& q = poly.vertices[t[static_cast<std::size_t>(c)]];
+            return settings.prims_as_stored ? as_single(q) : q;
+          };
+          const Vec3 v[3] = {vertex(0), vertex(1), vertex(2)};
+          if (auto k = kernels::TriangleKernel::from(v[0], v[1], v[2], has_normals ? n : nullptr)) {
             add(*k, id, p.material);
             ++made;
           }

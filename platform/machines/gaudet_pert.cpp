@@ -147,7 +147,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
   std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
-  std::uint64_t rejected = 0, rays_with_packets = 0, backlog_peak = 0;
+  std::uint64_t rejected = 0, prim_rejected = 0, rays_with_packets = 0, backlog_peak = 0;
   sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packet_count = 0;
   for (int i = 0; i < cfg.pert_count; ++i) {
@@ -170,6 +170,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     leaf_shells += sh.leaf_shells();
     over_capacity += sh.rays_over_capacity();
     rejected += sh.records_rejected();
+    prim_rejected += p.prim[u]->records_rejected();
     const auto& pr = *p.prim[u];
     prim_packets += pr.packets_processed();
     cancelled += pr.packets_cancelled();
@@ -244,6 +245,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   g["prim"]["packets_per_ray"] = static_cast<double>(prim_packets) / prim_rays;
   g["prim"]["packets_cancelled"] = cancelled;
   g["prim"]["rays_with_packets"] = rays_with_packets;
+  g["prim"]["records_rejected"] = prim_rejected;
   const double fp_mean =
       first_packet_count ? first_packet_total.to_seconds() / static_cast<double>(first_packet_count)
                          : 0.0;
@@ -406,6 +408,7 @@ FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRe
   settings.accel = functional::AccelKind::Shells;  // the PERT's search is Gaudet's
   settings.polygon_kernel = functional::PolygonKernel::Triangle;
   settings.shell_boxes_as_stored = true;  // what the ShellProcessors read out of their packets
+  settings.prims_as_stored = true;        // what the PrimProcessors read out of theirs
   return make_functional_twin(scene, settings);
 }
 
@@ -487,7 +490,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
         (pert + "_shell").c_str(), tree, sets.shell.packet_words, words.shell, *ports[base + 1],
         cfg.shell, cfg.shade_to_shell_depth, frame.counters(), trace));
     p.prim.push_back(std::make_unique<gaudet::PrimProcessor>(
-        (pert + "_prim").c_str(), tree, *twin.geometry, sets.prim.packet_words, test_cost,
+        (pert + "_prim").c_str(), tree, *twin.geometry, words, sets.prim.packet_words, test_cost,
         *ports[base + 2], cfg.prim, cfg.shell_to_prim_depth, frame.counters(), trace));
     auto& sh = *p.shade.back();
     auto& se = *p.shell.back();
@@ -517,10 +520,11 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const std::uint64_t globals = 12 + 6 * scene.lights.size();
   p.control = std::make_unique<gaudet::ControlProcessor>("control", cfg, buses, loaded, globals,
                                                          shade_ptrs);
-  // The ShellProcessors test the SHELL records their packets carry: a fault in the Shell bus's
-  // memory reaches the image. (The PRIM and SHADE records are not yet read from their words.)
+  // The Shell and Prim processors test the SHELL and PRIM records their packets carry: a fault
+  // in those buses' memories reaches the image. (The SHADE records are not yet read from their
+  // words.)
   std::vector<modules::Memory*> memories;
-  if (cfg.broadcasting()) memories.push_back(&p.buses[1]->memory);
+  if (cfg.broadcasting()) memories = {&p.buses[1]->memory, &p.buses[2]->memory};
   inject_faults(name(), opts.faults, memories);
   for (auto& s : p.shell) s->set_frame_start(p.control->frame_start());
   for (auto& s : p.prim) s->set_frame_start(p.control->frame_start());

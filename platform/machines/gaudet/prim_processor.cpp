@@ -1,11 +1,14 @@
 #include "platform/machines/gaudet/prim_processor.hpp"
 
+#include "firmware/kernels/sphere.hpp"
+#include "firmware/kernels/triangle.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
 
 namespace rtsim::platform::gaudet {
 
 PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
                              const functional::SceneGeometry& geometry,
+                             const accel::RecordWords& record_words,
                              const std::vector<std::uint32_t>& packet_words,
                              const std::vector<Cost>& test_cost, modules::PacketPort& port,
                              const ProcessorConfig& config, std::size_t input_depth,
@@ -15,6 +18,7 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const accel::ShellTre
       out("out"),
       tree_(tree),
       geometry_(geometry),
+      record_words_(record_words),
       packet_words_(packet_words),
       test_cost_(test_cost),
       port_(port),
@@ -30,6 +34,23 @@ void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k, RayTicket& t) {
   if (k >= msg.leaf_shells.size() || asked_[k]) return;
   compute_for(t, Stage::kPrim, tasks::kAskPacketCost, "ask");
   asked_[k] = port_.request(msg.leaf_shells[k].child_index, clock_.now());
+}
+
+bool PrimProcessor::test_record(const accel::PrimRecord& rec, const Ray& ray, double t_min,
+                                double t_max, SurfaceHit& out) {
+  ++counters_.intersection_tests;
+  if (rec.type == accel::PrimType::Sphere) {
+    counters_.cost += kernels::SphereKernel::kTestCost;
+    const auto k = kernels::SphereKernel::from(scenes::Sphere{rec.center, rec.radius});
+    return k && k->intersect(ray, t_min, t_max, out);
+  }
+  counters_.cost += kernels::TriangleKernel::kTestCost;
+  // The PERT's polygons are the twin's triangles (data_sets.hpp); a longer vertex list is not
+  // one this PrimProcessor's firmware tests.
+  if (rec.vertices.size() != 3) return false;
+  const auto k =
+      kernels::TriangleKernel::from(rec.vertices[0], rec.vertices[1], rec.vertices[2], nullptr);
+  return k && k->intersect(ray, t_min, t_max, out);
 }
 
 void PrimProcessor::serve(ShellToPrim& msg) {
@@ -79,11 +100,23 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     // The primitives are tested in packet order; a light ray stops at its first hit.
     Cost work =
         tasks::words_cost(packet_words_[id]) + tasks::kPacketBookkeepingCost + tasks::kStopTestCost;
-    for (const std::uint32_t slot : tree_.prim_packet(id)) {
+    accel::PrimRecord rec;
+    for (std::size_t at = 0; at < p->words.size();) {
+      const std::size_t size = accel::decode_prim(p->words.subspan(at), record_words_, rec);
+      if (size == 0) {
+        ++rejected_;  // the rest of the packet cannot be read
+        break;
+      }
+      at += size;
+      if (rec.prim_id >= test_cost_.size()) {
+        ++rejected_;  // no such primitive: its hit could not be reported
+        continue;
+      }
+      const std::uint32_t slot = rec.prim_id;
       ++prim_tests_;
       work += test_cost_[slot];
       SurfaceHit s;
-      if (!functional::test_shape(geometry_, slot, r.ray, t_min, best_t, s, counters_)) continue;
+      if (!test_record(rec, r.ray, t_min, best_t, s)) continue;
       best_t = light ? best_t : s.t;
       best_slot = slot;
       best = s;
@@ -98,7 +131,16 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   }
   res.found = best_slot >= 0;
   if (res.found) {
-    functional::fill_hit(geometry_, static_cast<std::uint32_t>(best_slot), best, res.hit);
+    // Hit info (point, normals): the record gave t and the geometric normal; the vertex
+    // normals are the host's (not in the records), so the shading normal comes from its copy of
+    // the primitive when that copy hits at the same t -- always, unless a word was corrupted.
+    const auto slot = static_cast<std::uint32_t>(best_slot);
+    SurfaceHit host;
+    TraceCounters uncounted;
+    if (functional::test_shape(geometry_, slot, r.ray, t_min, kInfinity, host, uncounted) &&
+        host.t == best.t)
+      best = host;
+    functional::fill_hit(geometry_, slot, best, res.hit);
     if (!light) ++counters_.hits;
   }
   // Withdraw what the search no longer needs.

@@ -12,14 +12,17 @@
 // The answer is the processor's own: it runs PrimTask (accel/shell_traversal.hpp's rules) over
 // the LeafShellList the SHELL_TO_PRIM message carried, so what the ShellProcessor found -- from
 // the SHELL records in its packets -- decides what is tested; the machine's twin only checks
-// the image afterwards. It charges its own firmware's tests for the primitives it tested
-// (tasks::kPertSphereTestCost, kPertTriangleTestCost). Not yet from the packet words: the
-// primitives of a PRIM packet are tested with the host's copy of their kernels (the twin's
-// geometry), found by the packet's ID.
+// the image afterwards. The primitives it tests are the PRIM records in the packet's words as
+// its BIC received them (accel::decode_prim: spheres, and triangles as 3-vertex polygons, in
+// singles); the twin holds the same rounded primitives (RenderSettings::prims_as_stored). It
+// charges its own firmware's tests for the primitives it tested (tasks::kPertSphereTestCost,
+// kPertTriangleTestCost). A record it cannot read, or that names no primitive, is dropped and
+// counted (records_rejected: only with a corrupted memory).
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <vector>
 
+#include "firmware/accel/gaudet_data_sets.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/packet_port.hpp"
 #include "platform/functional/scene_tracer.hpp"
@@ -35,8 +38,10 @@ class PrimProcessor : public PertProcessor {
   tlm_utils::simple_initiator_socket<PrimProcessor> out;
 
   SC_HAS_PROCESS(PrimProcessor);
+  /// `geometry`: the host's copy of the primitives (slot numbers, materials, vertex normals);
+  /// `record_words`: the PRIM records' sizes.
   PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
-                const functional::SceneGeometry& geometry,
+                const functional::SceneGeometry& geometry, const accel::RecordWords& record_words,
                 const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
                 modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
                 TraceCounters& counters, MachineTrace& trace);
@@ -49,6 +54,8 @@ class PrimProcessor : public PertProcessor {
   std::uint64_t first_packets() const { return first_packets_; }
   /// Rays that needed at least one packet.
   std::uint64_t rays_with_packets() const { return rays_with_packets_; }
+  /// PRIM records dropped: unreadable, or naming no primitive (only with corrupted memories).
+  std::uint64_t records_rejected() const { return rejected_; }
 
  private:
   void run();
@@ -56,9 +63,13 @@ class PrimProcessor : public PertProcessor {
   /// Asks for leaf shell `k` of the list (for ray `t`, --latency-probe); keeps it for later if
   /// no register is free.
   void ask(const ShellToPrim& msg, std::size_t k, RayTicket& t);
+  /// The firmware's test of one decoded primitive (counted in counters_).
+  bool test_record(const accel::PrimRecord& rec, const Ray& ray, double t_min, double t_max,
+                   SurfaceHit& out);
 
   const accel::ShellTree& tree_;
   const functional::SceneGeometry& geometry_;
+  accel::RecordWords record_words_;
   const std::vector<std::uint32_t>& packet_words_;
   const std::vector<Cost>& test_cost_;  ///< by primitive slot: the PERT's own test
   modules::PacketPort& port_;
@@ -67,6 +78,7 @@ class PrimProcessor : public PertProcessor {
 
   std::vector<bool> asked_;  ///< per list entry of the current ray
   std::uint64_t packets_ = 0, cancelled_ = 0, prim_tests_ = 0, rays_with_packets_ = 0;
+  std::uint64_t rejected_ = 0;
   sc_core::sc_time first_packet_total_ = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packets_ = 0;
 };
