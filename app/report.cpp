@@ -383,13 +383,16 @@ void write_trace_section(HtmlReport& page, const json& stats) {
   const json* t = find(stats, "trace");
   if (!t || !t->is_object()) return;
   page.heading("Traces");
+  // Reserved: without it GCC 12 -O3 warns (-Warray-bounds, a false positive) on the first
+  // emplace_back into an empty vector, depending on where the source tree lies.
   std::vector<std::pair<std::string, std::string>> rows;
+  rows.reserve(8);
   const json& w = (*t)["window_s"];
   rows.emplace_back("simulated time traced", format_seconds(w[0].get<double>()) + " to " +
                                                  format_seconds(w[1].get<double>()));
   std::string mods;
   for (const auto& m : (*t)["modules"]) mods += (mods.empty() ? "" : ", ") + m.get<std::string>();
-  rows.emplace_back("modules", mods.empty() ? "all" : mods);
+  rows.emplace_back(std::string("modules"), mods.empty() ? std::string("all") : mods);
   rows.emplace_back("signals (busy levels, queue depths)", value_text((*t)["signals"]));
   if (const json* p = find(*t, "perfetto"))
     rows.emplace_back(str(*p, "file"), value_text((*p)["events_written"]) + " events written, " +
