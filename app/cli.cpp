@@ -163,7 +163,10 @@ int run_cli(int argc, char** argv) {
                   "peripheral.parameter_memories:3:0x80000000 flips the sign of polygon 0's "
                   "d_p): the word is stored XORed with the mask. Repeatable. The answers come "
                   "from the memories' words, so the image shows it; stats.json `faults` says how "
-                  "often each was applied (docs/stats.md)");
+                  "often each was applied (docs/stats.md). Memories: "
+                  "peripheral.parameter_memories (ullner-peripheral, 25 words a polygon), "
+                  "shell_bus.memory and prim_bus.memory (gaudet-pert when broadcasting: the ID "
+                  "list, 3 words an entry, then the packets)");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "
                 "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "
