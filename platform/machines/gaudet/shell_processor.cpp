@@ -63,6 +63,15 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
   const sc_core::sc_time read_end = clock_.now();
   const auto node = waiting_.extract(p.id);
   if (!node.empty()) {
+    // The packet's SHELL records, read once for every ray waiting for it (as its words were).
+    shells_.clear();
+    for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
+      const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
+      if (shell.child_index < (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count()))
+        shells_.push_back(shell);
+      else
+        ++rejected_;
+    }
     const std::size_t sharing = node.mapped().size();
     for (std::size_t i = 0; i < sharing; ++i) {
       const int slot = node.mapped()[i];
@@ -73,13 +82,7 @@ void ShellProcessor::process(const modules::ReceivedPacket& p) {
       probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
       // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
       // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
-      for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
-        const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
-        if (shell.child_index >=
-            (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count())) {
-          ++rejected_;
-          continue;
-        }
+      for (const accel::Shell& shell : shells_) {
         children_.clear();
         const std::size_t before = s.leaves.size();
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,

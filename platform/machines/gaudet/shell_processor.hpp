@@ -51,7 +51,8 @@ class ShellProcessor : public PertProcessor {
   std::uint64_t overflow_peak() const { return overflow_peak_; }
   std::uint64_t leaf_shells() const { return leaf_shells_; }
   std::uint64_t rays_over_capacity() const { return over_capacity_; }
-  /// SHELL records dropped because they point at no packet (only with corrupted memories).
+  /// SHELL records dropped because they point at no packet (only with corrupted memories),
+  /// once per packet caught.
   std::uint64_t records_rejected() const { return rejected_; }
 
  private:
@@ -80,6 +81,7 @@ class ShellProcessor : public PertProcessor {
   std::vector<std::uint32_t> overflow_;  ///< IDs stacked in memory, no register free (L910)
   std::deque<int> done_;                 ///< searches whose list is ready to send
   std::vector<std::uint32_t> children_;
+  std::vector<accel::Shell> shells_;  ///< the records of the packet being processed
   std::uint64_t box_tests_ = 0, packets_ = 0, packet_uses_ = 0, overflow_peak_ = 0;
   std::uint64_t leaf_shells_ = 0, over_capacity_ = 0, rejected_ = 0;
 };
