@@ -16,6 +16,7 @@ params::ParamRegistry build_registry(const ConfigArgs& args, const platform::Mac
       throw InputError("-p " + assignment, 0, e.message());
     }
   }
+  registry.check_instances();
   return registry;
 }
 

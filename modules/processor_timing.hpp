@@ -1,11 +1,13 @@
 #pragma once
 // How a processor turns the cost a firmware task reports (DESIGN.md: floating-point ops, memory
-// words, instructions) into time: cycles per operation class at a clock. The machines declare
-// the parameters under the processor's hierarchical name (platform/processor_params.hpp).
+// words, instructions) into time: cycles per operation class at a clock. A processor declares
+// them under its own name (`clock`, `cycles.fp_mul`: pert.shade.clock, host.cycles.fp_mul).
+// Used by gaudet-pert's Shade, Shell and Prim processors and ullner-peripheral's host.
 #include <string>
 #include <systemc>
 
 #include "firmware/cost.hpp"
+#include "modules/module_params.hpp"
 
 namespace rtsim::modules {
 
@@ -21,5 +23,17 @@ struct ProcessorTiming {
     return sc_core::sc_time::from_value(cycle.value() * cycles_for(c));
   }
 };
+
+/// A machine preset's defaults for one processor's parameters, with where they come from.
+struct ProcessorDefaults {
+  std::string clock;  ///< e.g. "5 MHz"
+  int fp_add, fp_mul, fp_div, fp_sqrt, mem_word, instruction;
+  std::string source;  ///< seed line or "assumption: ..."
+};
+
+/// Declares `clock` and `cycles.*` under the processor's path.
+void declare_processor_params(const ParamDecls& processor, const ProcessorDefaults& d);
+/// Reads them back for one processor instance.
+ProcessorTiming read_processor_timing(const ModuleParams& processor);
 
 }  // namespace rtsim::modules

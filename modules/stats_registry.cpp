@@ -29,8 +29,11 @@ nlohmann::ordered_json StatsRegistry::to_json(const sc_core::sc_time& frame_time
   const double frame = frame_time.to_seconds();
   for (const auto& [name, m] : modules_) {
     nlohmann::ordered_json j;
-    j["busy_s"] = m.busy.to_seconds();
-    j["utilization"] = frame > 0 ? m.busy.to_seconds() / frame : 0.0;
+    // A group of counters only (a BIC's) has no busy time to report.
+    if (m.busy_source || m.has_occupancy || m.busy > sc_core::SC_ZERO_TIME) {
+      j["busy_s"] = m.busy.to_seconds();
+      j["utilization"] = frame > 0 ? m.busy.to_seconds() / frame : 0.0;
+    }
     for (const auto& [k, v] : m.values) j[k] = v;
     if (m.has_occupancy)
       j["queue"] = {{"capacity", m.capacity},

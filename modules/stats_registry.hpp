@@ -41,6 +41,7 @@ class StatsRegistry {
   StatsRegistry(const sc_core::sc_time& begin, const sc_core::sc_time& end)
       : begin_(begin), end_(end) {}
 
+  /// A module's group: counters and figures only, unless busy_module or queue adds to it.
   ModuleStats& module(const std::string& name) { return modules_[name]; }
   /// A module that was busy `busy` in total, over the intervals of `timeline`: sets busy,
   /// utilisation windows of the frame, and the source of its trace's busy signal.

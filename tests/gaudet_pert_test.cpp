@@ -6,11 +6,12 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <cmath>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "modules/broadcast_processor.hpp"
-#include "modules/bus_interface.hpp"
+#include "platform/machines/gaudet/broadcast_processor.hpp"
+#include "platform/machines/gaudet/bus_interface.hpp"
 #include "platform/machines/gaudet/expected_latency.hpp"
 #include "tests/systemc_test_support.hpp"
 #include "tests/test_support.hpp"
@@ -139,10 +140,17 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
   // Three packets of 2, 5 and 1 words; ID list in memory as the control processor lays it out.
   for (const bool adaptive : {true, false}) {
     EXPECT_EQ(rtsim::test::run_in_child([adaptive] {
-                using namespace rtsim::modules;
-                BroadcastTiming t;  // 1000 / 800 / 400 / 400 ns (seed 001 L959-L962)
-                BroadcastProcessor bp("bp", 64, sc_time(0, SC_NS), t, adaptive);
-                BusInterface bic("bic", 4, 1);  // one buffer: a second packet must wait
+                using namespace rtsim::platform::gaudet;
+                using rtsim::modules::ModuleParams;
+                using rtsim::modules::ParamDecls;
+                // The bus's declared defaults: 1000 / 800 / 400 / 400 ns (seed 001 L959-L962).
+                rtsim::params::ParamRegistry r;
+                BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
+                BusInterface::declare_params(
+                    ParamDecls(r, "bic"), {.value = "4", .description = "test", .source = "test"});
+                r.apply_override("bic.buffers=1");  // one buffer: a second packet must wait
+                BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), adaptive);
+                BusInterface bic(ModuleParams(r, "bic"));
                 bp.attach(bic);
                 const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
                 struct Driver : sc_core::sc_module {
@@ -233,4 +241,35 @@ TEST(ExpectedLatency, GaudetsFormula) {
   EXPECT_NEAR(expected_average_latency_s(in), ref, 1e-12);
   std::cout << "eal(n=8, p/r=1.45, mct=64.4us, apt=34.4us) = "
             << expected_average_latency_s(in) * 1e6 << " us\n";
+}
+
+TEST(GaudetPert, ClassNamesSetEveryPertAndInstanceNamesOne) {
+  // DESIGN.md "Configuration": pert.shell.bic.id_registers sets every PERT's BIC, the
+  // instance's name one PERT's; the module reads its own under its SystemC name.
+  const std::string base =
+      "run --machine gaudet-pert --scene builtin:npp-412 --width 16 --height 16 -p pert_count=2";
+  auto frame = [&](const std::string& tag, const std::string& extra) {
+    const auto stats = read_json(run_ok(tag, base + extra) / "stats.json");
+    return stats["simulated_time_s"].get<double>();
+  };
+  const double plain = frame("gp-inst-0", "");
+  const double one = frame("gp-inst-1", " -p pert1.shell.bic.id_registers=1");
+  const double all = frame("gp-inst-2", " -p pert.shell.bic.id_registers=1");
+  const double both =
+      frame("gp-inst-3", " -p pert.shell.bic.id_registers=1 -p pert1.shell.bic.id_registers=8");
+  std::cout << "frame time: default " << plain << " s, pert1 only " << one << " s, every PERT "
+            << all << " s, every PERT but pert1 " << both << " s\n";
+  EXPECT_NE(one, plain);
+  EXPECT_NE(one, all);
+  EXPECT_NE(both, all);
+  // The stats name the modules as the parameters do.
+  const auto stats = read_json(run_ok("gp-inst-4", base) / "stats.json");
+  for (const char* m : {"pert1.shell", "pert1.shell.bic", "pert1.queue.shell_to_prim", "shell_bus"})
+    EXPECT_TRUE(stats["modules"].contains(m)) << m;
+  EXPECT_GT(stats["modules"]["pert0.shell.bic"]["requests"].get<double>(), 0.0);
+  // An instance the run does not build is bad input.
+  const auto dir = scratch_dir("gp-inst-bad");
+  const auto bad = run_rtsim(base + " -p pert2.shell.clock=4MHz -q --out " + dir.string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("pert_count is 2"), std::string::npos) << bad.output;
 }

@@ -474,6 +474,80 @@ TEST(ParamRegistry, MisuseByCodeIsALogicErrorNotInputError) {
   EXPECT_EQ(declare_error({.name = "x_1.y2", .default_value = "1"}), "no error");
 }
 
+// DESIGN.md "Configuration": a class name sets every instance, an instance name one, and the
+// more specific wins; an instance the run does not build is an error, not a silent no-op.
+ParamRegistry make_family_registry() {
+  ParamRegistry r;
+  r.declare({.name = "pert_count", .kind = ParamKind::kInt, .default_value = "2", .min = "1"});
+  r.declare({.name = "pert.shell.clock",
+             .kind = ParamKind::kFrequency,
+             .default_value = "5 MHz",
+             .per_instance = true});
+  r.declare({.name = "pert.mode", .kind = ParamKind::kString, .default_value = "a"});
+  r.declare({.name = "broadcast.word_time",
+             .kind = ParamKind::kTime,
+             .default_value = "400 ns",
+             .per_instance = true});
+  r.declare_family({.cls = "pert", .count_param = "pert_count"});
+  r.declare_family({.cls = "broadcast", .members = {"shade_bus", "shell_bus"}});
+  return r;
+}
+
+TEST(ParamRegistry, AnInstanceNameSetsOneInstanceAndWinsOverItsClass) {
+  ParamRegistry r = make_family_registry();
+  r.load_toml_string("[pert1.shell]\nclock = \"4 MHz\"\n[pert.shell]\nclock = \"6 MHz\"\n",
+                     "m.toml");
+  r.apply_override("shell_bus.word_time=500 ns");
+  EXPECT_DOUBLE_EQ(r.get_frequency_hz("pert0.shell.clock"), 6e6);  // the class's
+  EXPECT_DOUBLE_EQ(r.get_frequency_hz("pert1.shell.clock"), 4e6);  // its own
+  EXPECT_EQ(r.where_set("pert1.shell.clock"), "m.toml:2");
+  EXPECT_EQ(r.where_set("pert0.shell.clock"), "m.toml:4");
+  EXPECT_EQ(r.get_time_ps("shell_bus.word_time"), 500'000);
+  EXPECT_EQ(r.get_time_ps("shade_bus.word_time"), 400'000);
+  // Listed once per class, plus each instance value that was set.
+  std::vector<std::string> names;
+  for (const auto& e : r.list()) names.push_back(e.name);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"broadcast.word_time", "pert.mode", "pert.shell.clock",
+                                      "pert1.shell.clock", "pert_count", "shell_bus.word_time"}));
+  EXPECT_NO_THROW(r.check_instances());
+  // Reading an instance counts as reading its class.
+  EXPECT_EQ(r.unread(), (std::vector<std::string>{"pert.mode", "pert_count"}));
+}
+
+TEST(ParamRegistry, InstanceNamesOnlyWhereTheClassAllowsThem) {
+  ParamRegistry r = make_family_registry();
+  // Not per instance, not a member, not a number, a leading zero: unknown names.
+  for (const char* bad : {"pert1.mode=b", "prim_bus.word_time=1 us", "pertx.shell.clock=1 MHz",
+                          "pert01.shell.clock=1 MHz"}) {
+    try {
+      r.apply_override(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("unknown parameter"), std::string::npos) << e.what();
+    }
+  }
+  // A bad value for an instance is reported like any other, and changes nothing.
+  EXPECT_THROW(r.apply_override("pert1.shell.clock=fast"), InputError);
+  EXPECT_DOUBLE_EQ(r.get_frequency_hz("pert1.shell.clock"), 5e6);
+}
+
+TEST(ParamRegistry, AnInstanceTheRunDoesNotBuildIsAnError) {
+  ParamRegistry r = make_family_registry();
+  r.apply_override("pert2.shell.clock=4 MHz");
+  try {
+    r.check_instances();
+    ADD_FAILURE() << "pert2 with pert_count = 2 was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    std::cout << m << "\n";
+    EXPECT_NE(m.find("pert2"), std::string::npos) << m;
+    EXPECT_NE(m.find("pert_count is 2"), std::string::npos) << m;
+  }
+  r.apply_override("pert_count=3");
+  EXPECT_NO_THROW(r.check_instances());
+}
+
 TEST(Suggest, EditDistanceCountsAdjacentSwapsAsOne) {
   EXPECT_EQ(edit_distance("", "abc"), 3u);
   EXPECT_EQ(edit_distance("abc", "abc"), 0u);

@@ -7,8 +7,6 @@
 #include "common/input_error.hpp"
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
-#include "modules/bus_interface.hpp"
-#include "modules/local_data_set.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -16,18 +14,17 @@
 #include "platform/machines/gaudet/control_processor.hpp"
 #include "platform/machines/gaudet/data_sets.hpp"
 #include "platform/machines/gaudet/expected_latency.hpp"
+#include "platform/machines/gaudet/pert.hpp"
 #include "platform/machines/gaudet/prim_processor.hpp"
 #include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/gaudet/shade_processor.hpp"
 #include "platform/machines/gaudet/shell_processor.hpp"
 #include "platform/machines/machine_support.hpp"
-#include "platform/processor_params.hpp"
 
 namespace rtsim::platform {
 
 using gaudet::BroadcastMode;
 using gaudet::BroadcastOrder;
-using gaudet::PertConfig;
 using modules::from_ps;
 using params::ParamKind;
 
@@ -48,70 +45,15 @@ accel::RecordWords read_words(const params::ParamRegistry& r) {
   return w;
 }
 
-PertConfig read_config(const params::ParamRegistry& r) {
-  PertConfig c;
-  c.pert_count = static_cast<int>(r.get_int("pert_count"));
-  const std::string& mode = r.get_string("broadcast.mode");
-  c.mode = mode == "direct"         ? BroadcastMode::kDirect
-           : mode == "non-adaptive" ? BroadcastMode::kNonAdaptive
-                                    : BroadcastMode::kAdaptive;
-  const std::string& order = r.get_string("broadcast.order");
-  c.order = order == "depth"    ? BroadcastOrder::kDepth
-            : order == "random" ? BroadcastOrder::kRandom
-                                : BroadcastOrder::kBreadth;
-  c.order_seed = static_cast<std::uint64_t>(r.get_int("broadcast.random_seed"));
-  c.bus.id_slot = from_ps(r.get_time_ps("broadcast.id_time"));
-  c.bus.packet_overhead = from_ps(r.get_time_ps("broadcast.packet_overhead"));
-  c.bus.word_time = from_ps(r.get_time_ps("broadcast.word_time"));
-  c.bus.loop_reset = from_ps(r.get_time_ps("broadcast.loop_reset"));
-  c.load_word_time = from_ps(r.get_time_ps("control.load_word_time"));
-  c.first_access = from_ps(r.get_time_ps("pert.memory.first_access"));
-  gaudet::ProcessorConfig* p[] = {&c.shade, &c.shell, &c.prim};
-  for (int i = 0; i < 3; ++i) {
-    const std::string k = std::string("pert.") + kKinds[i];
-    p[i]->timing = read_processor_timing(r, k);
-    p[i]->id_registers = static_cast<std::size_t>(r.get_int(k + ".bic.id_registers"));
-    p[i]->buffers = static_cast<std::size_t>(r.get_int(k + ".bic.buffers"));
-  }
-  c.shade.rays_in_flight = static_cast<std::size_t>(r.get_int("pert.shade.rays_in_flight"));
-  c.shell.rays_in_flight = static_cast<std::size_t>(r.get_int("pert.shell.rays_in_flight"));
-  c.prim.rays_in_flight = 1;
-  c.shade_to_shell_depth = static_cast<std::size_t>(r.get_int("pert.queue.shade_to_shell"));
-  c.shell_to_prim_depth = static_cast<std::size_t>(r.get_int("pert.queue.shell_to_prim"));
-  c.prim_to_shade_depth = static_cast<std::size_t>(r.get_int("pert.queue.prim_to_shade"));
-  return c;
-}
-
-void declare_time(params::ParamRegistry& r, std::string name, std::string value,
-                  std::string description, std::string source) {
-  r.declare({.name = std::move(name),
-             .kind = ParamKind::kTime,
-             .default_value = std::move(value),
-             .min = "0 s",
-             .description = std::move(description),
-             .source = std::move(source)});
-}
-
-void declare_count(params::ParamRegistry& r, std::string name, std::string value, std::string min,
-                   std::string max, std::string unit, std::string description, std::string source) {
-  r.declare({.name = std::move(name),
-             .kind = ParamKind::kInt,
-             .default_value = std::move(value),
-             .min = std::move(min),
-             .max = std::move(max),
-             .unit = std::move(unit),
-             .description = std::move(description),
-             .source = std::move(source)});
-}
-
 /// Everything of one run: the modules, built in elaboration order.
 struct PertPlatform {
-  std::vector<std::unique_ptr<modules::PacketPort>> ports;  // 3 per PERT: shade, shell, prim
-  std::vector<std::unique_ptr<modules::BroadcastProcessor>> buses;  // shade, shell, prim
-  std::vector<std::unique_ptr<gaudet::ShadeProcessor>> shade;
-  std::vector<std::unique_ptr<gaudet::ShellProcessor>> shell;
-  std::vector<std::unique_ptr<gaudet::PrimProcessor>> prim;
+  BroadcastMode mode = BroadcastMode::kAdaptive;
+  BroadcastOrder order = BroadcastOrder::kBreadth;
+  std::vector<std::unique_ptr<gaudet::BroadcastProcessor>> buses;  // shade, shell, prim
+  std::vector<std::unique_ptr<gaudet::Pert>> perts;
   std::unique_ptr<gaudet::ControlProcessor> control;
+
+  bool broadcasting() const { return mode != BroadcastMode::kDirect; }
 };
 
 nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
@@ -125,24 +67,11 @@ nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
           {"pipeline_wait_s", t.pipeline_wait.to_seconds()}};
 }
 
-const char* mode_name(BroadcastMode m) {
-  return m == BroadcastMode::kDirect        ? "direct"
-         : m == BroadcastMode::kNonAdaptive ? "non-adaptive"
-                                            : "adaptive";
-}
-
-const char* order_name(BroadcastOrder o) {
-  return o == BroadcastOrder::kDepth    ? "depth"
-         : o == BroadcastOrder::kRandom ? "random"
-                                        : "breadth";
-}
-
 /// stats.json's machine keys; `stats` (the registry over the frame) receives the modules, and
 /// is kept by the caller for the traces.
-nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTree& tree,
-                                    const gaudet::PertDataSets& sets, const PertPlatform& p,
-                                    gaudet::ShadeShared& shared, const sc_core::sc_time& frame,
-                                    modules::StatsRegistry& stats) {
+nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::PertDataSets& sets,
+                                    const PertPlatform& p, gaudet::ShadeShared& shared,
+                                    const sc_core::sc_time& frame, modules::StatsRegistry& stats) {
   nlohmann::ordered_json out;
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
@@ -150,19 +79,26 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
   std::uint64_t rejected = 0, prim_rejected = 0, rays_with_packets = 0, backlog_peak = 0;
   sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
   std::uint64_t first_packet_count = 0;
-  for (int i = 0; i < cfg.pert_count; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    const std::string pert = "pert" + std::to_string(i);
-    const gaudet::PertProcessor* procs[] = {p.shade[u].get(), p.shell[u].get(), p.prim[u].get()};
+  for (const auto& pert : p.perts) {
+    const gaudet::PertProcessor* procs[] = {pert->shade.get(), pert->shell.get(), pert->prim.get()};
     for (int k = 0; k < 3; ++k) {
       const gaudet::TimeSplit& t = procs[k]->split();
       totals[k] += t;
-      auto& m = stats.busy_module(pert + "." + kKinds[k], t.processing, procs[k]->timeline());
+      auto& m = stats.busy_module(procs[k]->name(), t.processing, procs[k]->timeline());
       m.values["rays"] = static_cast<double>(t.rays);
       m.values["latency_s"] = t.latency.to_seconds();
       m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
+      // Its Bus Interface Controller's counters (none for direct memory).
+      if (const auto* bic = dynamic_cast<const gaudet::BusInterface*>(pert->ports[k].get())) {
+        auto& b = stats.module(bic->name());
+        b.values["requests"] = static_cast<double>(bic->requests());
+        b.values["packets_received"] = static_cast<double>(bic->packets_received());
+        b.values["missed_no_buffer"] = static_cast<double>(bic->missed_no_buffer());
+        b.values["register_full"] = static_cast<double>(bic->register_full());
+        b.values["registers_in_use_peak"] = static_cast<double>(bic->registers_in_use_peak());
+      }
     }
-    const auto& sh = *p.shell[u];
+    const auto& sh = *pert->shell;
     box_tests += sh.box_tests();
     shell_packets += sh.packets_processed();
     shell_uses += sh.packet_uses();
@@ -170,23 +106,16 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     leaf_shells += sh.leaf_shells();
     over_capacity += sh.rays_over_capacity();
     rejected += sh.records_rejected();
-    prim_rejected += p.prim[u]->records_rejected();
-    const auto& pr = *p.prim[u];
+    prim_rejected += pert->prim->records_rejected();
+    const auto& pr = *pert->prim;
     prim_packets += pr.packets_processed();
     cancelled += pr.packets_cancelled();
     rays_with_packets += pr.rays_with_packets();
     first_packet_total += pr.first_packet_latency_total();
     first_packet_count += pr.first_packets();
-    backlog_peak = std::max(backlog_peak, p.shade[u]->backlog_peak());
-    struct {
-      const char* name;
-      const modules::Occupancy* occ;
-      std::size_t depth;
-    } queues[] = {
-        {"queue.shade_to_shell", &p.shell[u]->input.fifo.occupancy(), cfg.shade_to_shell_depth},
-        {"queue.shell_to_prim", &p.prim[u]->input.fifo.occupancy(), cfg.shell_to_prim_depth},
-        {"queue.prim_to_shade", &p.shade[u]->input.fifo.occupancy(), cfg.prim_to_shade_depth}};
-    for (const auto& q : queues) stats.queue(pert + "." + q.name, *q.occ, q.depth);
+    backlog_peak = std::max(backlog_peak, pert->shade->backlog_peak());
+    for (const auto& q : pert->queues())
+      stats.queue(std::string(pert->name()) + "." + q.name, *q.occupancy, q.depth);
   }
   nlohmann::ordered_json buses = nlohmann::ordered_json::object();
   const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
@@ -195,7 +124,7 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
     const auto& s = bp.stats();
     // Bus utilisation: the share of the frame the bus carried packet words (IDs go by
     // whether or not anyone listens).
-    auto& m = stats.busy_module(std::string(kKinds[b]) + "_bus", s.packet_time, bp.timeline());
+    auto& m = stats.busy_module(bp.name(), s.packet_time, bp.timeline());
     m.values["ids"] = static_cast<double>(s.ids);
     m.values["cycles"] = static_cast<double>(s.cycles);
     m.values["packets"] = static_cast<double>(s.packets);
@@ -224,9 +153,9 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
                         {"prims", counts.prims},
                         {"prim_packets", counts.prim_packets}};
   nlohmann::ordered_json g;
-  g["pert_count"] = cfg.pert_count;
-  g["broadcast_mode"] = mode_name(cfg.mode);
-  g["broadcast_order"] = order_name(cfg.order);
+  g["pert_count"] = p.perts.size();
+  g["broadcast_mode"] = gaudet::mode_name(p.mode);
+  g["broadcast_order"] = gaudet::order_name(p.order);
   g["load_time_s"] = p.control->load_time().to_seconds();
   g["words_loaded"] = p.control->words_loaded();
   g["shade"] = split_json(totals[0]);
@@ -250,10 +179,10 @@ nlohmann::ordered_json gaudet_stats(const PertConfig& cfg, const accel::ShellTre
       first_packet_count ? first_packet_total.to_seconds() / static_cast<double>(first_packet_count)
                          : 0.0;
   g["prim"]["first_packet_latency_s"] = fp_mean;
-  if (cfg.broadcasting()) {
+  if (p.broadcasting()) {
     const auto& s = p.buses[2]->stats();
     gaudet::EalInputs in;
-    in.n = cfg.pert_count;
+    in.n = static_cast<int>(p.perts.size());
     in.p = static_cast<double>(prim_packets);
     in.r = static_cast<double>(rays_with_packets);
     in.mct_s = p.buses[2]->minimum_cycle().to_seconds();
@@ -279,114 +208,56 @@ void GaudetPert::declare_params(params::ParamRegistry& r) const {
   // triangle kernel, and holds spheres and polygons only.
   declare_common_params(r,
                         {.accel = false, .shells = true, .polygon_kernel = false, .bezier = false});
-  declare_count(r, "pert_count", "1", "1", "1024", "PERTs",
+  // The machine's own: how many PERTs, how the data sets reach them, the words of their
+  // records. Every module declares its own below (DESIGN.md "Configuration").
+  const modules::ParamDecls machine(r, "", /*per_instance=*/false);
+  machine.count("pert_count", "1", "1", "1024", "PERTs",
                 "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
                 "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)");
-  r.declare({.name = "broadcast.mode",
-             .kind = ParamKind::kString,
-             .default_value = "adaptive",
-             .allowed = {"adaptive", "non-adaptive", "direct"},
-             .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
-                            "non-adaptive: every packet every cycle; direct: no broadcast, "
-                            "every processor holds its whole data set",
-             .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
-  r.declare({.name = "broadcast.order",
-             .kind = ParamKind::kString,
-             .default_value = "breadth",
-             .allowed = {"breadth", "depth", "random"},
-             .description = "Order of the ID lists: SHELL packets breadth-first or depth-first "
-                            "over the hierarchy, or every data set shuffled",
-             .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
-  declare_count(r, "broadcast.random_seed", "1985", "0", "9223372036854775807", "",
+  machine.declare(
+      {.name = "broadcast.mode",
+       .kind = ParamKind::kString,
+       .default_value = "adaptive",
+       .allowed = {"adaptive", "non-adaptive", "direct"},
+       .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
+                      "non-adaptive: every packet every cycle; direct: no broadcast, "
+                      "every processor holds its whole data set",
+       .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
+  machine.declare({.name = "broadcast.order",
+                   .kind = ParamKind::kString,
+                   .default_value = "breadth",
+                   .allowed = {"breadth", "depth", "random"},
+                   .description = "Order of the ID lists: SHELL packets breadth-first or "
+                                  "depth-first over the hierarchy, or every data set shuffled",
+                   .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
+  machine.count("broadcast.random_seed", "1985", "0", "9223372036854775807", "",
                 "Seed of the shuffle of broadcast.order = random",
                 "assumption: the thesis does not say how its random order was drawn");
-  declare_time(r, "broadcast.id_time", "1000 ns",
-               "Broadcast Processor: time to broadcast an ID and sample the hit line",
-               "seed 001 L959");
-  declare_time(r, "broadcast.packet_overhead", "800 ns",
-               "Broadcast Processor: overhead of sending a packet", "seed 001 L960");
-  declare_time(r, "broadcast.word_time", "400 ns",
-               "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
-               "seed 001 L883, L961");
-  declare_time(r, "broadcast.loop_reset", "400 ns",
-               "Broadcast Processor: time to reset the loop at the end of the ID list",
-               "seed 001 L962");
-  declare_time(r, "control.load_word_time", "400 ns",
-               "Control processor: time to download one word into a BP or PERT memory (before "
-               "the frame; not part of the frame time)",
-               "assumption: one bus word time (L883); the thesis gives no load rate");
-  declare_time(r, "pert.memory.first_access", "200 ns",
-               "Direct memory: first-access latency of a packet in a processor's own memory "
-               "(later words stream at one cycle each)",
-               "assumption: one SJ16 cycle; seed 001 L863 gives only the streamed rate");
-  const char* words_src =
+  const std::string words_src =
       "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); "
       "the thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
-  declare_count(r, "data.words.id_list_entry", "3", "3", "64", "words",
-                "Words of an ID list entry {ID, address, size}",
-                "seed 001 L877; " + std::string(words_src));
-  declare_count(r, "data.words.shell", "8", "8", "64", "words",
-                "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
-  declare_count(r, "data.words.prim_header", "3", "3", "64", "words",
-                "Words of a PRIM record's header: prim_id, surface_index, type", words_src);
-  declare_count(r, "data.words.sphere", "4", "4", "64", "words",
-                "Words of a sphere's PTYPE: centre[3], radius", words_src);
-  declare_count(r, "data.words.polygon_fixed", "1", "1", "64", "words",
-                "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
-  declare_count(r, "data.words.polygon_vertex", "3", "3", "64", "words", "Words per polygon vertex",
-                words_src);
-  declare_count(r, "data.words.shade", "9", "9", "64", "words",
-                "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]",
-                words_src);
-  // The three processors: SJ16 at 5 MHz with a Weitek FPU; the per-operation costs are
-  // calibrated on Fig. 6-10 (docs/machines.md, docs/validation.md).
-  for (const char* k : kKinds) {
-    const std::string p = std::string("pert.") + k;
-    declare_processor_params(
-        r, p,
-        {.clock = "5 MHz",
-         .fp_add = 9,
-         .fp_mul = 9,
-         .fp_div = 15,
-         .fp_sqrt = 30,
-         .mem_word = 1,
-         .instruction = 1,
-         .source = "seed 001 L951 (5 MHz SJ16), L859 (Weitek FPU > 2.78 Mflops), L863 and L924 "
-                   "(one cycle a streamed or FIFO word); cycles per FP operation calibrated on "
-                   "Fig. 6-10 (L1025-L1030), same for the three processors (same hardware)"});
-    declare_count(r, p + ".bic.buffers", "2", "1", "64", "buffers",
-                  "FIFO packet buffers of the " + std::string(k) + " processor's BIC",
-                  "seed 001 L924 (double buffer)");
-  }
-  declare_count(r, "pert.shade.bic.id_registers", "4", "1", "4096", "registers",
-                "ID registers of the ShadeProcessor's BIC",
-                "assumption: \"multiple\" (L910); Shade puts at most one ID per ray");
-  declare_count(r, "pert.shell.bic.id_registers", "8", "1", "4096", "registers",
-                "ID registers of the ShellProcessor's BIC (more IDs wait in its memory)",
-                "assumption: \"multiple\" (L910); Shell stores IDs continually and stacks the "
-                "overflow in its own memory");
-  declare_count(r, "pert.prim.bic.id_registers", "2", "1", "4096", "registers",
-                "ID registers of the PrimProcessor's BIC",
-                "seed 001 L910, L1056 (the PrimProcessor uses at most two)");
-  declare_count(r, "pert.shade.rays_in_flight", "4", "1", "100000", "initial rays",
-                "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every ray "
-                "it spawns)",
-                "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
-                "(L738-L742) but a pipeline of three needs several in flight; see "
-                "docs/machines.md");
-  declare_count(r, "pert.shell.rays_in_flight", "4", "1", "100000", "rays",
-                "Rays a ShellProcessor searches at a time",
-                "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
-                "docs/machines.md");
-  declare_count(r, "pert.queue.shade_to_shell", "4", "1", "100000", "messages",
-                "Queue depth ShadeProcessor -> ShellProcessor",
-                "assumption: queues inside a PERT are not described (note 001 §2.1)");
-  declare_count(r, "pert.queue.shell_to_prim", "4", "1", "100000", "messages",
-                "Queue depth ShellProcessor -> PrimProcessor",
-                "assumption: queues inside a PERT are not described (note 001 §2.1)");
-  declare_count(r, "pert.queue.prim_to_shade", "4", "1", "100000", "messages",
-                "Queue depth PrimProcessor -> ShadeProcessor",
-                "assumption: queues inside a PERT are not described (note 001 §2.1)");
+  const modules::ParamDecls words(r, "data.words", /*per_instance=*/false);
+  words.count("id_list_entry", "3", "3", "64", "words",
+              "Words of an ID list entry {ID, address, size}", "seed 001 L877; " + words_src);
+  words.count("shell", "8", "8", "64", "words",
+              "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
+  words.count("prim_header", "3", "3", "64", "words",
+              "Words of a PRIM record's header: prim_id, surface_index, type", words_src);
+  words.count("sphere", "4", "4", "64", "words", "Words of a sphere's PTYPE: centre[3], radius",
+              words_src);
+  words.count("polygon_fixed", "1", "1", "64", "words",
+              "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
+  words.count("polygon_vertex", "3", "3", "64", "words", "Words per polygon vertex", words_src);
+  words.count("shade", "9", "9", "64", "words",
+              "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]", words_src);
+
+  // The module tree: the buses (every bus's timing set by broadcast.*, one bus's by its name),
+  // the control processor and the PERTs (pert.* sets every PERT's, pert3.* one's).
+  r.declare_family({.cls = "broadcast", .members = {"shade_bus", "shell_bus", "prim_bus"}});
+  gaudet::BroadcastProcessor::declare_params(machine.sub("broadcast"));
+  gaudet::ControlProcessor::declare_params(machine.sub("control"));
+  r.declare_family({.cls = "pert", .count_param = "pert_count"});
+  gaudet::Pert::declare_params(machine.sub("pert"));
 }
 
 FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
@@ -418,15 +289,18 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const int w = opts.width > 0 ? opts.width : scene.camera.width;
   const int h = opts.height > 0 ? opts.height : scene.camera.height;
   functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
-  const PertConfig cfg = read_config(r);
+  PertPlatform p;
+  p.mode = gaudet::broadcast_mode(r.get_string("broadcast.mode"));
+  p.order = gaudet::broadcast_order(r.get_string("broadcast.order"));
+  const int pert_count = static_cast<int>(r.get_int("pert_count"));
+  const auto order_seed = static_cast<std::uint64_t>(r.get_int("broadcast.random_seed"));
   const auto* search = dynamic_cast<const functional::ShellSearch*>(twin.tracer.get());
   if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
   const accel::ShellTree& tree = search->tree();
   gaudet::PertDataSets sets;
   const accel::RecordWords words = read_words(r);
   try {
-    sets =
-        gaudet::make_pert_data_sets(tree, *twin.geometry, scene, words, cfg.order, cfg.order_seed);
+    sets = gaudet::make_pert_data_sets(tree, *twin.geometry, scene, words, p.order, order_seed);
   } catch (const std::invalid_argument& e) {
     throw InputError(scene.name, 0, std::string("gaudet-pert: ") + e.what());
   }
@@ -453,81 +327,55 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
 
   // --latency-probe: every ray's journey around its ring (ray_probe.hpp).
   gaudet::RayProbe probe(opts.latency_probe);
-  PertPlatform p;
-  const gaudet::ProcessorConfig* pcfg[] = {&cfg.shade, &cfg.shell, &cfg.prim};
-  if (cfg.broadcasting()) {
+  if (p.broadcasting()) {
+    const sc_core::sc_time load_word_time =
+        gaudet::ControlProcessor::load_word_time(modules::ModuleParams(r, "control"));
     for (int b = 0; b < 3; ++b) {
-      auto bp = std::make_unique<modules::BroadcastProcessor>(
-          (std::string(kKinds[b]) + "_bus").c_str(), set_of[b]->memory.size(), cfg.load_word_time,
-          cfg.bus, cfg.mode == BroadcastMode::kAdaptive);
-      const std::string track = bp->name();
-      bp->on_packet = [&trace, track](std::uint32_t id, sc_core::sc_time start,
-                                      sc_core::sc_time dur, std::size_t captures) {
-        trace.slice(track, "packet", start, dur, {{"id", id}, {"captures", captures}});
+      const std::string bus_name = std::string(kKinds[b]) + "_bus";
+      auto bp = std::make_unique<gaudet::BroadcastProcessor>(
+          bus_name.c_str(), modules::ModuleParams(r, bus_name), set_of[b]->memory.size(),
+          load_word_time, p.mode == BroadcastMode::kAdaptive);
+      bp->on_packet = [&trace, bus_name](std::uint32_t id, sc_core::sc_time start,
+                                         sc_core::sc_time dur, std::size_t captures) {
+        trace.slice(bus_name, "packet", start, dur, {{"id", id}, {"captures", captures}});
       };
       p.buses.push_back(std::move(bp));
     }
   }
-  for (int i = 0; i < cfg.pert_count; ++i) {
-    const std::string pert = "pert" + std::to_string(i);
-    for (int b = 0; b < 3; ++b) {
-      if (cfg.broadcasting()) {
-        auto bic = std::make_unique<modules::BusInterface>(pert + "." + kKinds[b] + ".bic",
-                                                           pcfg[b]->id_registers, pcfg[b]->buffers);
-        p.buses[static_cast<std::size_t>(b)]->attach(*bic);
-        p.ports.push_back(std::move(bic));
-      } else {
-        p.ports.push_back(std::make_unique<modules::LocalDataSet>(
-            cfg.first_access, set_of[b]->memory, set_of[b]->order.size(), words.id_list_entry));
-      }
-    }
-    auto& ports = p.ports;
-    const std::size_t base = ports.size() - 3;
-    p.shade.push_back(std::make_unique<gaudet::ShadeProcessor>(
-        (pert + "_shade").c_str(), i, cfg.pert_count, shared, *ports[base], cfg.shade,
-        cfg.prim_to_shade_depth, trace));
-    p.shell.push_back(std::make_unique<gaudet::ShellProcessor>(
-        (pert + "_shell").c_str(), tree, sets.shell.packet_words, words.shell, *ports[base + 1],
-        cfg.shell, cfg.shade_to_shell_depth, frame.counters(), trace));
-    p.prim.push_back(std::make_unique<gaudet::PrimProcessor>(
-        (pert + "_prim").c_str(), tree, *twin.geometry, words, sets.prim.packet_words, test_cost,
-        *ports[base + 2], cfg.prim, cfg.shell_to_prim_depth, frame.counters(), trace));
-    auto& sh = *p.shade.back();
-    auto& se = *p.shell.back();
-    auto& pr = *p.prim.back();
-    sh.set_probe(probe);
-    se.set_probe(probe);
-    pr.set_probe(probe);
-    sh.set_stats_name(pert + "." + kKinds[0]);
-    se.set_stats_name(pert + "." + kKinds[1]);
-    pr.set_stats_name(pert + "." + kKinds[2]);
-    sh.out.bind(se.input.socket);
-    sh.set_output_queue(se.input.fifo);
-    se.out.bind(pr.input.socket);
-    se.set_output_queue(pr.input.fifo);
-    pr.out.bind(sh.input.socket);
-  }
-  std::vector<modules::BroadcastProcessor*> buses;
-  std::vector<const gaudet::DataSetImage*> loaded;
-  for (int b = 0; b < 3; ++b) {
-    if (cfg.broadcasting()) buses.push_back(p.buses[static_cast<std::size_t>(b)].get());
-    loaded.push_back(set_of[b]);
-  }
+  gaudet::PertContext context{.registry = r,
+                              .pert_count = pert_count,
+                              .shade = shared,
+                              .tree = tree,
+                              .geometry = *twin.geometry,
+                              .words = words,
+                              .sets = sets,
+                              .test_cost = test_cost,
+                              .buses = {},
+                              .counters = frame.counters(),
+                              .trace = trace,
+                              .probe = probe};
+  for (auto& bp : p.buses) context.buses.push_back(bp.get());
+  for (int i = 0; i < pert_count; ++i)
+    p.perts.push_back(
+        std::make_unique<gaudet::Pert>(("pert" + std::to_string(i)).c_str(), i, context));
+  const std::vector<const gaudet::DataSetImage*> loaded(std::begin(set_of), std::end(set_of));
   std::vector<gaudet::ShadeProcessor*> shade_ptrs;
-  for (auto& s : p.shade) shade_ptrs.push_back(s.get());
+  for (auto& pert : p.perts) shade_ptrs.push_back(pert->shade.get());
   // Globals for spawning rays (L928): the camera (eye, look, up, angle, resolution: 12 words),
   // and per light its position and intensity (6 words).
   const std::uint64_t globals = 12 + 6 * scene.lights.size();
-  p.control = std::make_unique<gaudet::ControlProcessor>("control", cfg, buses, loaded, globals,
-                                                         shade_ptrs);
+  p.control = std::make_unique<gaudet::ControlProcessor>("control", r, context.buses, loaded,
+                                                         globals, shade_ptrs);
   // The Shell and Prim processors test the SHELL and PRIM records their packets carry: a fault
   // in those buses' memories reaches the image. (The SHADE records are not yet read from their
   // words.)
   std::vector<modules::Memory*> memories;
-  if (cfg.broadcasting()) memories = {&p.buses[1]->memory, &p.buses[2]->memory};
+  if (p.broadcasting()) memories = {&p.buses[1]->memory, &p.buses[2]->memory};
   inject_faults(name(), opts.faults, memories);
-  for (auto& s : p.shell) s->set_frame_start(p.control->frame_start());
-  for (auto& s : p.prim) s->set_frame_start(p.control->frame_start());
+  for (auto& pert : p.perts) {
+    pert->shell->set_frame_start(p.control->frame_start());
+    pert->prim->set_frame_start(p.control->frame_start());
+  }
 
   // The control processor ends the frame with sc_stop(): that is no news.
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
@@ -551,7 +399,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   RunResult res;
   res.simulated_time_s = frame_time.to_seconds();
   modules::StatsRegistry stats(p.control->load_time(), p.control->load_time() + frame_time);
-  res.stats = gaudet_stats(cfg, tree, sets, p, shared, frame_time, stats);
+  res.stats = gaudet_stats(tree, sets, p, shared, frame_time, stats);
   if (!opts.faults.empty()) res.stats["faults"] = faults_json(memories);
   if (opts.latency_probe) res.stats["latency_probe"] = probe.probe().to_json();
   if (trace.on()) res.stats["trace"] = trace.finish(stats);

@@ -11,37 +11,10 @@
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/ullner/host.hpp"
 #include "platform/machines/ullner/peripheral.hpp"
-#include "platform/processor_params.hpp"
 
 namespace rtsim::platform {
 
 using params::ParamKind;
-using ullner::HostConfig;
-using ullner::PeripheralConfig;
-
-namespace {
-
-PeripheralConfig read_peripheral(const params::ParamRegistry& r) {
-  PeripheralConfig c;
-  c.intersect_interval = modules::from_ps(r.get_time_ps("peripheral.intersect_interval"));
-  c.adder_stages = static_cast<unsigned>(r.get_int("peripheral.adder_stages"));
-  c.pipeline_stages = PeripheralConfig::stages_for_adder(c.adder_stages);
-  c.fetch_stages = static_cast<unsigned>(r.get_int("peripheral.fetch_stages"));
-  c.select_stages = static_cast<unsigned>(r.get_int("peripheral.select_stages"));
-  c.ray_queue_depth = static_cast<std::size_t>(r.get_int("peripheral.ray_queue_depth"));
-  c.result_queue_depth = static_cast<std::size_t>(r.get_int("host.result_queue_depth"));
-  c.shadow_early_exit = r.get_bool("peripheral.shadow_early_exit");
-  c.grid_divisions = static_cast<int>(r.get_int("peripheral.grid.divisions"));
-  c.step_time = modules::from_ps(r.get_time_ps("peripheral.grid.step_time"));
-  c.indirection_stages = static_cast<unsigned>(r.get_int("peripheral.grid.indirection_stages"));
-  c.lighting = r.get_bool("peripheral.lighting.enabled");
-  c.rsqrt_stages = static_cast<unsigned>(r.get_int("peripheral.lighting.rsqrt_stages"));
-  c.load_word_time = modules::from_ps(r.get_time_ps("peripheral.memory.load_word_time"));
-  c.memory_polygons = static_cast<std::uint64_t>(r.get_int("peripheral.memory.polygons"));
-  return c;
-}
-
-}  // namespace
 
 void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
   // Its twin searches with the peripheral's own grid (peripheral.grid.*) and Ullner's quad
@@ -49,130 +22,9 @@ void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
   // render.polygon_kernel or bezier parameter is read.
   declare_common_params(
       r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
-  declare_processor_params(
-      r, "host",
-      {.clock = "5 MHz",
-       .fp_add = 6,
-       .fp_mul = 8,
-       .fp_div = 20,
-       .fp_sqrt = 60,
-       .mem_word = 2,
-       .instruction = 2,
-       .source = "assumption: the thesis gives no host costs (seed 000 L476); a VAX-11/780-class "
-                 "\"medium-sized host\" (L462) with floating-point accelerator"});
-  r.declare({.name = "host.result_queue_depth",
-             .kind = ParamKind::kInt,
-             .default_value = "16",
-             .min = "1",
-             .max = "1000000",
-             .unit = "results",
-             .description = "Depth of the result queue from the peripheral to the host",
-             .source = "assumption: queue depths are not given (seed 000 L476)"});
-  r.declare({.name = "peripheral.intersect_interval",
-             .kind = ParamKind::kTime,
-             .default_value = "333.333 ns",
-             .min = "1 ps",
-             .description = "Issue interval (= stage time) of the intersection pipeline: one "
-                            "ray/polygon intersection per interval",
-             .source = "seed 000 L584, L588 (three results every microsecond)"});
-  r.declare({.name = "peripheral.adder_stages",
-             .kind = ParamKind::kInt,
-             .default_value = "1",
-             .min = "1",
-             .max = "3",
-             .unit = "stages",
-             .description = "Pipeline stages of one floating-point addition (1 or 3); sets the "
-                            "physical depth 17 or 33 and the latency 5.6 or 11 us",
-             .source = "seed 000 L572-L578 (Fig. 2-17), L588"});
-  r.declare({.name = "peripheral.fetch_stages",
-             .kind = ParamKind::kInt,
-             .default_value = "1",
-             .min = "0",
-             .max = "16",
-             .unit = "stages",
-             .description = "Stages of polygon fetch from the 20 parameter memories",
-             .source = "assumption: one memory cycle reads a whole polygon (seed 000 L544)"});
-  r.declare({.name = "peripheral.select_stages",
-             .kind = ParamKind::kInt,
-             .default_value = "1",
-             .min = "0",
-             .max = "16",
-             .unit = "stages",
-             .description = "Stages of the closest-intersection selection (Fig. 2-11 stage 3)",
-             .source = "assumption: one compare-and-keep stage (seed 000 L484)"});
-  r.declare({.name = "peripheral.ray_queue_depth",
-             .kind = ParamKind::kInt,
-             .default_value = "16",
-             .min = "1",
-             .max = "1000000",
-             .unit = "rays",
-             .description = "Depth of the ray queue from the host to the peripheral",
-             .source = "assumption: queue depths are not given (seed 000 L476)"});
-  r.declare({.name = "peripheral.shadow_early_exit",
-             .kind = ParamKind::kBool,
-             .default_value = "false",
-             .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
-             .source = "assumption: the thesis does not say how the shadow-ray saving is "
-                       "realised without subdivision (seed 000 L472; note §7.6)"});
-  r.declare({.name = "peripheral.grid.divisions",
-             .kind = ParamKind::kInt,
-             .default_value = "0",
-             .min = "0",
-             .max = "1024",
-             .unit = "per axis",
-             .description = "Subvolumes per axis of the grid auxiliary processor; 0 = none "
-                            "(brute force)",
-             .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)"});
-  r.declare({.name = "peripheral.grid.dda",
-             .kind = ParamKind::kString,
-             .default_value = "corrected",
-             .allowed = {"corrected", "as-printed"},
-             .description = "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly "
-                            "as printed (wrong; for fidelity experiments)",
-             .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
-  r.declare({.name = "peripheral.grid.step_time",
-             .kind = ParamKind::kTime,
-             .default_value = "1 us",
-             .min = "0 s",
-             .description = "t_d: time to step to the next subvolume",
-             .source = "seed 000 L654"});
-  r.declare({.name = "peripheral.grid.indirection_stages",
-             .kind = ParamKind::kInt,
-             .default_value = "1",
-             .min = "0",
-             .max = "16",
-             .unit = "stages",
-             .description = "Extra pipeline stage(s) of the subvolume address indirection",
-             .source = "seed 000 L596 (\"yet another pipeline stage\")"});
-  r.declare({.name = "peripheral.lighting.enabled",
-             .kind = ParamKind::kBool,
-             .default_value = "true",
-             .description = "Lighting extension: the host's vector arithmetic runs on the "
-                            "inner-product and reciprocal-square-root devices",
-             .source = "seed 000 L548-L566"});
-  r.declare({.name = "peripheral.lighting.rsqrt_stages",
-             .kind = ParamKind::kInt,
-             .default_value = "2",
-             .min = "1",
-             .max = "16",
-             .unit = "stages",
-             .description = "Stages of the reciprocal-square-root device",
-             .source = "assumption: as the square root of Fig. 2-17 (seed 000 L576)"});
-  r.declare({.name = "peripheral.memory.polygons",
-             .kind = ParamKind::kInt,
-             .default_value = "1048576",
-             .min = "1",
-             .max = "100000000",
-             .unit = "polygons",
-             .description = "Capacity of the 20 parameter memories",
-             .source = "assumption: a million polygons (seed 000 note §7.5 S7)"});
-  r.declare({.name = "peripheral.memory.load_word_time",
-             .kind = ParamKind::kTime,
-             .default_value = "1 us",
-             .min = "0 s",
-             .description = "Time to load one 32-bit parameter word through the dual-ported "
-                            "load path (before the frame; not part of the frame time)",
-             .source = "assumption: \"the port need not be fast\" (seed 000 L544)"});
+  // The module tree: the host and its peripheral, each declaring its own.
+  ullner::Host::declare_params(modules::ParamDecls(r, "host"));
+  ullner::Peripheral::declare_params(modules::ParamDecls(r, "peripheral"));
 }
 
 FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
@@ -219,9 +71,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   const int w = opts.width > 0 ? opts.width : scene.camera.width;
   const int h = opts.height > 0 ? opts.height : scene.camera.height;
   functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
-  PeripheralConfig pc = read_peripheral(r);
-  HostConfig hc;
-  hc.timing = read_processor_timing(r, "host");
+  ullner::PeripheralSettings pc =
+      ullner::Peripheral::read_settings(modules::ModuleParams(r, "peripheral"));
   const std::uint64_t quads = twin.geometry->shapes.size();
   pc.modelling_space = twin.geometry->scene_bounds;
   if (!scene.modelling_space.empty()) pc.modelling_space.extend(scene.modelling_space);
@@ -236,7 +87,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ullner::Peripheral peripheral("peripheral", *twin.geometry, scene, twin.settings, shade, quads,
                                 pc, frame.counters(), trace, probe);
   inject_faults(name(), opts.faults, {&peripheral.parameters});
-  ullner::Host host("host", scene, twin.settings.shade, frame, peripheral.rays.fifo, hc, pc, opts,
+  ullner::Host host("host", r, scene, twin.settings.shade, frame, peripheral.rays.fifo, pc, opts,
                     trace, *twin.geometry, probe);
   host.load_out.bind(peripheral.parameters.socket);
   host.ray_out.bind(peripheral.rays.socket);
@@ -253,7 +104,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   hs.values["results_processed"] = static_cast<double>(host.results_processed());
   hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
   stats.queue("peripheral.ray_queue", peripheral.rays.fifo.occupancy(), pc.ray_queue_depth);
-  stats.queue("host.result_queue", host.results.fifo.occupancy(), pc.result_queue_depth);
+  stats.queue("host.result_queue", host.results.fifo.occupancy(), host.results.fifo.capacity());
   auto& ps = stats.busy_module("peripheral.pipeline", peripheral.pipeline().busy(),
                                peripheral.pipeline().timeline());
   ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());

@@ -9,6 +9,7 @@
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/latency_probe.hpp"
 #include "modules/local_clock.hpp"
+#include "modules/module_params.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -27,21 +28,59 @@ using shading::TracedRay;
 /// plus T_i for each object of the scene (brute force).
 class VaxHost : public sc_core::sc_module {
  public:
+  /// Its parameters under `vax`: T_i, T_s, the search it runs and T_b.
+  static void declare_params(const modules::ParamDecls& vax) {
+    vax.declare({.name = "intersection_time",
+                 .kind = params::ParamKind::kTime,
+                 .default_value = "429 us",
+                 .min = "0 s",
+                 .description = "T_i: average time of one ray/object intersection calculation on "
+                                "the VAX-11/750 with FPU",
+                 .source = "seed 001 L317"});
+    vax.declare({.name = "ray_time",
+                 .kind = params::ParamKind::kTime,
+                 .default_value = "710 us",
+                 .min = "0 s",
+                 .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
+                 .source = "seed 001 L318"});
+    vax.declare({.name = "search",
+                 .kind = params::ParamKind::kString,
+                 .default_value = "brute-force",
+                 .allowed = {"brute-force", "shells"},
+                 .description =
+                     "brute-force: every ray pays T_i for every object (the cost model of "
+                     "seed 001 L320-L326); shells: the sequential C renderer with Gaudet's "
+                     "box-shell hierarchy, paying T_i per primitive tested and "
+                     "vax.box_test_time per shell box tested (the baseline of the PERT "
+                     "speed-ups, L964)",
+                 .source = "seed 001 L320-L326, L964"});
+    vax.declare({.name = "box_test_time",
+                 .kind = params::ParamKind::kTime,
+                 .default_value = "429 us",
+                 .min = "0 s",
+                 .description = "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
+                                "= shells)",
+                 .source = "assumption: the thesis measured only T_i, the average intersection "
+                           "calculation (L317); a slab test costs about as many floating-point "
+                           "operations as a sphere test, so T_b = T_i"});
+  }
+
   SC_HAS_PROCESS(VaxHost);
-  VaxHost(sc_core::sc_module_name name, const scenes::Scene& scene, const Tracer& tracer,
-          functional::FrameState& frame, const functional::RenderSettings& settings,
-          sc_core::sc_time ray_time, sc_core::sc_time test_time, sc_core::sc_time box_time,
-          bool brute_force, std::uint64_t objects, const RunOptions& opts, MachineTrace& trace,
-          modules::LatencyProbe& probe)
+  /// Reads its parameters under its name.
+  VaxHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+          const scenes::Scene& scene, const Tracer& tracer, functional::FrameState& frame,
+          const functional::RenderSettings& settings, std::uint64_t objects, const RunOptions& opts,
+          MachineTrace& trace, modules::LatencyProbe& probe)
       : sc_core::sc_module(name),
         scene_(scene),
         tracer_(tracer),
         frame_(frame),
         settings_(settings),
-        ray_time_(ray_time),
-        test_time_(test_time),
-        box_time_(box_time),
-        brute_force_(brute_force),
+        params_(registry, this->name()),
+        ray_time_(params_.get_time("ray_time")),
+        test_time_(params_.get_time("intersection_time")),
+        box_time_(params_.get_time("box_test_time")),
+        brute_force_(params_.get_string("search") == "brute-force"),
         objects_(objects),
         opts_(opts),
         trace_(trace),
@@ -102,6 +141,7 @@ class VaxHost : public sc_core::sc_module {
   const Tracer& tracer_;
   functional::FrameState& frame_;
   const functional::RenderSettings& settings_;
+  modules::ModuleParams params_;
   sc_core::sc_time ray_time_, test_time_, box_time_;
   bool brute_force_;
   std::uint64_t objects_;
@@ -120,38 +160,8 @@ class VaxHost : public sc_core::sc_module {
 void Vax750::declare_params(params::ParamRegistry& r) const {
   // The VAX runs the ordinary software ray tracer: every render parameter is read.
   declare_common_params(r, {});
-  r.declare({.name = "vax.intersection_time",
-             .kind = params::ParamKind::kTime,
-             .default_value = "429 us",
-             .min = "0 s",
-             .description = "T_i: average time of one ray/object intersection calculation on "
-                            "the VAX-11/750 with FPU",
-             .source = "seed 001 L317"});
-  r.declare({.name = "vax.ray_time",
-             .kind = params::ParamKind::kTime,
-             .default_value = "710 us",
-             .min = "0 s",
-             .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
-             .source = "seed 001 L318"});
-  r.declare({.name = "vax.search",
-             .kind = params::ParamKind::kString,
-             .default_value = "brute-force",
-             .allowed = {"brute-force", "shells"},
-             .description = "brute-force: every ray pays T_i for every object (the cost model of "
-                            "seed 001 L320-L326); shells: the sequential C renderer with Gaudet's "
-                            "box-shell hierarchy, paying T_i per primitive tested and "
-                            "vax.box_test_time per shell box tested (the baseline of the PERT "
-                            "speed-ups, L964)",
-             .source = "seed 001 L320-L326, L964"});
-  r.declare({.name = "vax.box_test_time",
-             .kind = params::ParamKind::kTime,
-             .default_value = "429 us",
-             .min = "0 s",
-             .description = "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
-                            "= shells)",
-             .source = "assumption: the thesis measured only T_i, the average intersection "
-                       "calculation (L317); a slab test costs about as many floating-point "
-                       "operations as a sphere test, so T_b = T_i"});
+  // The VAX host, its only module, declares its own.
+  VaxHost::declare_params(modules::ParamDecls(r, "vax"));
 }
 
 FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
@@ -174,10 +184,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   inject_faults(name(), opts.faults, {});  // its answers come from no memory words
   MachineTrace trace(opts);
   modules::LatencyProbe probe(opts.latency_probe);
-  VaxHost host(
-      "vax", scene, *twin.tracer, frame, twin.settings, from_ps(r.get_time_ps("vax.ray_time")),
-      from_ps(r.get_time_ps("vax.intersection_time")), from_ps(r.get_time_ps("vax.box_test_time")),
-      r.get_string("vax.search") == "brute-force", objects, opts, trace, probe);
+  VaxHost host("vax", r, scene, *twin.tracer, frame, twin.settings, objects, opts, trace, probe);
   sc_core::sc_start();
 
   RunResult res;

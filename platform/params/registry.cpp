@@ -287,6 +287,66 @@ void ParamRegistry::declare(ParamSpec spec) {
 
 bool ParamRegistry::contains(std::string_view name) const { return params_.contains(name); }
 
+void ParamRegistry::declare_family(InstanceFamily family) {
+  if (!valid_name(family.cls) || family.cls.find('.') != std::string::npos)
+    throw std::logic_error("declaring family '" + family.cls + "': the class is one segment");
+  if (family.members.empty() == family.count_param.empty())
+    throw std::logic_error("declaring family '" + family.cls +
+                           "': give its members or the parameter counting them");
+  families_.push_back(std::move(family));
+}
+
+std::string ParamRegistry::class_of(std::string_view name) const {
+  const std::size_t dot = name.find('.');
+  if (dot == std::string_view::npos) return {};
+  const std::string_view first = name.substr(0, dot);
+  for (const auto& f : families_) {
+    bool member = false;
+    if (f.members.empty()) {
+      const std::string_view index = first.substr(std::min(first.size(), f.cls.size()));
+      member =
+          first.starts_with(f.cls) && !index.empty() && index.size() <= 9 &&
+          std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+          (index == "0" || index[0] != '0');
+    } else {
+      member = std::find(f.members.begin(), f.members.end(), first) != f.members.end();
+    }
+    if (!member) continue;
+    std::string cls = f.cls + std::string(name.substr(dot));
+    const auto it = params_.find(cls);
+    if (it != params_.end() && it->second.spec.per_instance && it->second.instance_of.empty())
+      return cls;
+  }
+  return {};
+}
+
+const Param* ParamRegistry::resolve(std::string_view name) const {
+  const auto it = params_.find(name);
+  if (it != params_.end() && (it->second.instance_of.empty() || it->second.where_set != "default"))
+    return &it->second;
+  const std::string cls = class_of(name);
+  if (cls.empty()) return nullptr;
+  return &params_.find(cls)->second;
+}
+
+void ParamRegistry::check_instances() const {
+  for (const auto& [name, p] : params_) {
+    if (p.instance_of.empty() || p.where_set == "default") continue;
+    for (const auto& f : families_) {
+      if (f.count_param.empty() || !name.starts_with(f.cls)) continue;
+      const std::string_view first = std::string_view(name).substr(0, name.find('.'));
+      const auto index = std::stoll(std::string(first.substr(f.cls.size())));
+      const auto count = std::get<std::int64_t>(params_.at(f.count_param).value);
+      if (index < count) continue;
+      throw InputError(p.where_set == "-p" ? "-p " + name : p.where_set, 0,
+                       "'" + name + "' sets " + std::string(first) +
+                           ", which this run does not build: " + f.count_param + " is " +
+                           std::to_string(count) + " (" + f.cls + "0.." + f.cls +
+                           std::to_string(count - 1) + ")");
+    }
+  }
+}
+
 void ParamRegistry::set_user(std::string user, std::string listing,
                              std::vector<std::string> names_used_elsewhere) {
   user_ = std::move(user);
@@ -298,6 +358,15 @@ void ParamRegistry::set_user(std::string user, std::string listing,
 Param& ParamRegistry::find_for_input(std::string_view name, const std::string& file,
                                      std::size_t line) {
   if (auto it = params_.find(name); it != params_.end()) return it->second;
+  // One instance's value of a class parameter: kept beside it, read in its place.
+  if (const std::string cls = class_of(name); !cls.empty()) {
+    Param p = params_.at(cls);
+    p.spec.name = std::string(name);
+    p.instance_of = cls;
+    p.where_set = "default";  // until the caller sets it
+    p.read = false;
+    return params_.emplace(std::string(name), std::move(p)).first->second;
+  }
   std::vector<std::string_view> names;
   names.reserve(params_.size());
   for (const auto& entry : params_) names.push_back(entry.first);
@@ -315,23 +384,23 @@ Param& ParamRegistry::find_for_input(std::string_view name, const std::string& f
 }
 
 const Param& ParamRegistry::find(std::string_view name, ParamKind kind) const {
-  const auto it = params_.find(name);
-  if (it == params_.end()) {
-    throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
-  }
-  if (it->second.spec.kind != kind) {
+  const Param* p = resolve(name);
+  if (!p) throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
+  if (p->spec.kind != kind) {
     throw std::logic_error("parameter '" + std::string(name) + "' is declared as " +
-                           std::string(kind_name(it->second.spec.kind)) + ", read as " +
+                           std::string(kind_name(p->spec.kind)) + ", read as " +
                            std::string(kind_name(kind)));
   }
-  it->second.read = true;
-  return it->second;
+  p->read = true;
+  // An instance's value read stands for its class parameter too (unread()).
+  if (!p->instance_of.empty()) params_.at(p->instance_of).read = true;
+  return *p;
 }
 
 std::vector<std::string> ParamRegistry::unread() const {
   std::vector<std::string> out;
   for (const auto& [name, p] : params_)
-    if (!p.read) out.push_back(name);
+    if (!p.read && p.instance_of.empty()) out.push_back(name);
   return out;
 }
 
@@ -420,16 +489,16 @@ double ParamRegistry::get_data_size_bits(std::string_view name) const {
 }
 
 const std::string& ParamRegistry::where_set(std::string_view name) const {
-  const auto it = params_.find(name);
-  if (it == params_.end())
-    throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
-  return it->second.where_set;
+  const Param* p = resolve(name);
+  if (!p) throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
+  return p->where_set;
 }
 
 std::vector<ParamEntry> ParamRegistry::list() const {
   std::vector<ParamEntry> out;
   out.reserve(params_.size());
   for (const auto& [name, p] : params_) {
+    if (!p.instance_of.empty() && p.where_set == "default") continue;  // never set
     const ParamKind kind = p.spec.kind;
     const auto unit_class = unit_class_of(kind);
     out.push_back({.name = name,
@@ -440,7 +509,8 @@ std::vector<ParamEntry> ParamRegistry::list() const {
                    .unit = unit_class ? std::string(base_unit(*unit_class)) : p.spec.unit,
                    .description = p.spec.description,
                    .source = p.spec.source,
-                   .where_set = p.where_set});
+                   .where_set = p.where_set,
+                   .instance_of = p.instance_of});
   }
   return out;
 }

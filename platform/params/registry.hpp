@@ -48,6 +48,21 @@ struct ParamSpec {
   std::string unit{};                  ///< int/double only: what is counted ("pixels", "words")
   std::string description{};
   std::string source{};  ///< "seed 000 L654" or "assumption: <why>"
+  /// The name's first segment is a class of modules (declare_family): the parameter may also be
+  /// set for one instance, whose name replaces the class ("pert3.shell.bic.id_registers" beside
+  /// "pert.shell.bic.id_registers"); the instance's value wins.
+  bool per_instance = false;
+};
+
+/// Modules of one class that share its parameters (DESIGN.md "Configuration"): a parameter
+/// declared under the class ("pert.shell.clock") sets every instance, an instance's name
+/// ("pert3.shell.clock") sets that one only.
+struct InstanceFamily {
+  std::string cls{};  ///< the class's first name segment: "pert", "broadcast"
+  /// Named instances ("shade_bus", "shell_bus"); empty: numbered ones, cls0, cls1, ...
+  std::vector<std::string> members{};
+  /// Numbered instances: the int parameter that says how many are built ("pert_count").
+  std::string count_param{};
 };
 
 /// One row of `rtsim list params` and of the parameter snapshot in stats.json.
@@ -60,7 +75,8 @@ struct ParamEntry {
   std::string unit{};          ///< the declared unit; for unit kinds the SI base unit ("s")
   std::string description{};
   std::string source{};
-  std::string where_set{};  ///< "default", "FILE:LINE" or "-p"
+  std::string where_set{};    ///< "default", "FILE:LINE" or "-p"
+  std::string instance_of{};  ///< an instance's own value: the class parameter it overrides
 };
 
 namespace detail {
@@ -73,6 +89,7 @@ struct Param {
   std::optional<ParamValue> max{};
   std::string where_set = "default";
   mutable bool read = false;  ///< a getter asked for it (unread())
+  std::string instance_of{};  ///< an instance's own value: the class parameter's name
 };
 }  // namespace detail
 
@@ -84,6 +101,12 @@ class ParamRegistry {
   void declare(ParamSpec spec);
 
   bool contains(std::string_view name) const;
+
+  /// Declares a class of modules whose per_instance parameters may be set per instance.
+  void declare_family(InstanceFamily family);
+  /// After every layer is applied: InputError for a value set on a numbered instance the run
+  /// does not build (pert5.* with pert_count = 4), naming where it was set.
+  void check_instances() const;
 
   /// Who reads this registry ("ullner-peripheral", "the functional renderer") and the names that
   /// exist elsewhere (another machine, the functional renderer) but that it does not read.
@@ -105,7 +128,8 @@ class ParamRegistry {
   /// `-p name=value`: the value is read by the parameter's kind; it may be quoted ('x' or "x").
   void apply_override(std::string_view assignment);
 
-  // Typed getters. std::logic_error if the name is undeclared or has another kind.
+  // Typed getters. std::logic_error if the name is undeclared or has another kind. An instance's
+  // name ("pert3.shell.clock") gives its own value if one was set, else its class's.
   std::int64_t get_int(std::string_view name) const;
   double get_double(std::string_view name) const;
   bool get_bool(std::string_view name) const;
@@ -118,7 +142,7 @@ class ParamRegistry {
   /// "default", "FILE:LINE" or "-p".
   const std::string& where_set(std::string_view name) const;
 
-  /// Every parameter, sorted by name.
+  /// Every parameter, sorted by name: each class parameter once, and the instance values set.
   std::vector<ParamEntry> list() const;
 
   /// The declared parameters no getter has read yet, sorted. After a run, a machine that
@@ -127,12 +151,17 @@ class ParamRegistry {
 
  private:
   const detail::Param& find(std::string_view name, ParamKind kind) const;
+  /// The value `name` reads: its own, an instance's set value, or its class's; nullptr if none.
+  const detail::Param* resolve(std::string_view name) const;
+  /// The class parameter `name` is an instance of ("pert3.x" -> "pert.x"), or "".
+  std::string class_of(std::string_view name) const;
   detail::Param& find_for_input(std::string_view name, const std::string& file, std::size_t line);
 
   std::map<std::string, detail::Param, std::less<>> params_;
   std::string user_;
   std::string listing_ = "rtsim list params";
   std::vector<std::string> used_elsewhere_;  ///< sorted
+  std::vector<InstanceFamily> families_;
 };
 
 }  // namespace rtsim::params

@@ -12,13 +12,25 @@ namespace {
 constexpr std::size_t kLoadBurstWords = 256;
 }  // namespace
 
-ControlProcessor::ControlProcessor(sc_core::sc_module_name name, const PertConfig& config,
-                                   std::vector<modules::BroadcastProcessor*> buses,
+void ControlProcessor::declare_params(const modules::ParamDecls& control) {
+  control.time("load_word_time", "400 ns",
+               "Control processor: time to download one word into a BP or PERT memory (before "
+               "the frame; not part of the frame time)",
+               "assumption: one bus word time (L883); the thesis gives no load rate");
+}
+
+sc_core::sc_time ControlProcessor::load_word_time(const modules::ModuleParams& control) {
+  return control.get_time("load_word_time");
+}
+
+ControlProcessor::ControlProcessor(sc_core::sc_module_name name,
+                                   const params::ParamRegistry& registry,
+                                   std::vector<BroadcastProcessor*> buses,
                                    std::vector<const DataSetImage*> sets,
                                    std::uint64_t globals_words,
                                    std::vector<ShadeProcessor*> shade_processors)
     : sc_core::sc_module(name),
-      config_(config),
+      load_word_time_(load_word_time(modules::ModuleParams(registry, this->name()))),
       buses_(std::move(buses)),
       sets_(std::move(sets)),
       globals_words_(globals_words),
@@ -34,7 +46,7 @@ ControlProcessor::ControlProcessor(sc_core::sc_module_name name, const PertConfi
 
 void ControlProcessor::run() {
   sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
-  if (config_.broadcasting()) {
+  if (!buses_.empty()) {
     // Each data set into its Broadcast Processor's memory, a burst at a time.
     for (std::size_t b = 0; b < buses_.size(); ++b) {
       const auto& mem = sets_[b]->memory;
@@ -57,14 +69,14 @@ void ControlProcessor::run() {
     // Direct memory: every PERT processor gets its whole data set (L806).
     std::uint64_t words = 0;
     for (const DataSetImage* s : sets_) words += s->memory.size();
-    words *= static_cast<std::uint64_t>(config_.pert_count);
+    words *= shade_.size();  // every PERT
     words_loaded_ += words;
-    delay += modules::times(config_.load_word_time, words);
+    delay += modules::times(load_word_time_, words);
   }
   // The ray-spawn globals to every ShadeProcessor.
-  const std::uint64_t g = globals_words_ * static_cast<std::uint64_t>(config_.pert_count);
+  const std::uint64_t g = globals_words_ * shade_.size();
   words_loaded_ += g;
-  delay += modules::times(config_.load_word_time, g);
+  delay += modules::times(load_word_time_, g);
   sc_core::wait(delay);
   load_time_ = sc_core::sc_time_stamp();
   for (std::size_t b = 0; b < buses_.size(); ++b)

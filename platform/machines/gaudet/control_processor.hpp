@@ -9,7 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "modules/broadcast_processor.hpp"
+#include "modules/module_params.hpp"
+#include "platform/machines/gaudet/broadcast_processor.hpp"
 #include "platform/machines/gaudet/data_sets.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -18,13 +19,17 @@ class ShadeProcessor;
 
 class ControlProcessor : public sc_core::sc_module {
  public:
+  /// Its parameters under `control`: the download rate.
+  static void declare_params(const modules::ParamDecls& control);
+  /// Its download rate, which the memories it loads are timed by (read before it is built).
+  static sc_core::sc_time load_word_time(const modules::ModuleParams& control);
+
   SC_HAS_PROCESS(ControlProcessor);
   /// `buses`: the Shade, Shell and Prim broadcasters (empty for the direct-memory baseline);
   /// `sets` the matching images; `globals_words` what each ShadeProcessor is sent.
-  ControlProcessor(sc_core::sc_module_name name, const PertConfig& config,
-                   std::vector<modules::BroadcastProcessor*> buses,
-                   std::vector<const DataSetImage*> sets, std::uint64_t globals_words,
-                   std::vector<ShadeProcessor*> shade_processors);
+  ControlProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                   std::vector<BroadcastProcessor*> buses, std::vector<const DataSetImage*> sets,
+                   std::uint64_t globals_words, std::vector<ShadeProcessor*> shade_processors);
 
   /// Notified when the frame starts (after the downloads).
   const sc_core::sc_event& frame_start() const { return start_; }
@@ -35,8 +40,8 @@ class ControlProcessor : public sc_core::sc_module {
  private:
   void run();
 
-  PertConfig config_;
-  std::vector<modules::BroadcastProcessor*> buses_;
+  sc_core::sc_time load_word_time_;
+  std::vector<BroadcastProcessor*> buses_;
   std::vector<const DataSetImage*> sets_;
   std::uint64_t globals_words_;
   std::vector<ShadeProcessor*> shade_;

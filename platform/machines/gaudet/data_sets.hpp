@@ -7,7 +7,7 @@
 
 #include "firmware/accel/gaudet_data_sets.hpp"
 #include "platform/functional/scene_geometry.hpp"
-#include "platform/machines/gaudet/config.hpp"
+#include "platform/machines/gaudet/broadcast_mode.hpp"
 
 namespace rtsim::platform::gaudet {
 

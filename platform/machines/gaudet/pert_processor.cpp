@@ -10,10 +10,30 @@ RayProbe& disabled_probe() {
 }
 }  // namespace
 
-PertProcessor::PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
+void PertProcessor::declare_params(const modules::ParamDecls& processor,
+                                   const BusInterface::IdRegisters& id_registers) {
+  // An SJ16 at 5 MHz with a Weitek FPU; the per-operation costs are calibrated on Fig. 6-10
+  // (docs/machines.md, docs/validation.md).
+  modules::declare_processor_params(
+      processor,
+      {.clock = "5 MHz",
+       .fp_add = 9,
+       .fp_mul = 9,
+       .fp_div = 15,
+       .fp_sqrt = 30,
+       .mem_word = 1,
+       .instruction = 1,
+       .source = "seed 001 L951 (5 MHz SJ16), L859 (Weitek FPU > 2.78 Mflops), L863 and L924 "
+                 "(one cycle a streamed or FIFO word); cycles per FP operation calibrated on "
+                 "Fig. 6-10 (L1025-L1030), same for the three processors (same hardware)"});
+  BusInterface::declare_params(processor.sub("bic"), id_registers);
+}
+
+PertProcessor::PertProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                              MachineTrace& trace)
     : sc_core::sc_module(name),
-      timing_(timing),
+      params_(registry, this->name()),
+      timing_(modules::read_processor_timing(params_)),
       trace_(trace),
       probe_(&disabled_probe()),
       track_(this->name()) {}

@@ -16,7 +16,9 @@
 #include "firmware/cost.hpp"
 #include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
+#include "modules/module_params.hpp"
 #include "modules/processor_timing.hpp"
+#include "platform/machines/gaudet/bus_interface.hpp"
 #include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/machine_trace.hpp"
 
@@ -38,6 +40,11 @@ struct TimeSplit {
 
 class PertProcessor : public sc_core::sc_module {
  public:
+  /// The parameters every kind has, under `processor` ("pert.shade"): the SJ16's clock and
+  /// cycles per operation (the same hardware in all three, L853-L863) and its BIC's.
+  static void declare_params(const modules::ParamDecls& processor,
+                             const BusInterface::IdRegisters& id_registers);
+
   const TimeSplit& split() const { return split_; }
   /// When it computed (TimeSplit::processing over time), for utilisation windows.
   const modules::BusyTimeline& timeline() const { return timeline_; }
@@ -45,13 +52,10 @@ class PertProcessor : public sc_core::sc_module {
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
   /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
   void set_probe(RayProbe& p) { probe_ = &p; }
-  /// Elaboration: the name stats.json knows it by ("pert0.shade"), which its trace track takes
-  /// too. SystemC names cannot hold a dot, and the PERT is no module of its own, so its SystemC
-  /// name ("pert0_shade") differs (default: the SystemC name).
-  void set_stats_name(std::string name) { track_ = std::move(name); }
 
  protected:
-  PertProcessor(sc_core::sc_module_name name, const modules::ProcessorTiming& timing,
+  /// Reads its parameters under its hierarchical name ("pert0.shade").
+  PertProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                 MachineTrace& trace);
 
   /// Spends the time of `c` computing (a Perfetto slice named `what` on this processor).
@@ -76,6 +80,7 @@ class PertProcessor : public sc_core::sc_module {
     probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
   }
 
+  modules::ModuleParams params_;  ///< its own parameters, under its name
   modules::LocalClock clock_;
   modules::ProcessorTiming timing_;
   MachineTrace& trace_;
@@ -85,7 +90,7 @@ class PertProcessor : public sc_core::sc_module {
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
-  std::string track_;
+  std::string track_;  ///< its trace track: its name
 };
 
 }  // namespace rtsim::platform::gaudet

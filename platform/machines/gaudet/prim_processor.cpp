@@ -6,14 +6,21 @@
 
 namespace rtsim::platform::gaudet {
 
-PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+void PrimProcessor::declare_params(const modules::ParamDecls& prim) {
+  PertProcessor::declare_params(prim, {.value = "2",
+                                       .description = "ID registers of the PrimProcessor's BIC",
+                                       .source = "seed 001 L910, L1056 (the PrimProcessor uses at "
+                                                 "most two)"});
+}
+
+PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                             const accel::ShellTree& tree,
                              const functional::SceneGeometry& geometry,
                              const accel::RecordWords& record_words,
                              const std::vector<std::uint32_t>& packet_words,
-                             const std::vector<Cost>& test_cost, modules::PacketPort& port,
-                             const ProcessorConfig& config, std::size_t input_depth,
-                             TraceCounters& counters, MachineTrace& trace)
-    : PertProcessor(name, config.timing, trace),
+                             const std::vector<Cost>& test_cost, PacketPort& port,
+                             std::size_t input_depth, TraceCounters& counters, MachineTrace& trace)
+    : PertProcessor(name, registry, trace),
       input("input", input_depth),
       out("out"),
       tree_(tree),
@@ -25,7 +32,8 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const accel::ShellTre
       // At most two IDs ahead (L910, L1056), and no more than it has buffers: packets come in
       // broadcast order, not t order, so with one buffer a second packet could take the only
       // buffer while the ray waits for the first, for ever.
-      ahead_(std::max<std::size_t>(1, std::min<std::size_t>(2, config.buffers))),
+      ahead_(std::max<std::size_t>(
+          1, std::min<std::size_t>(2, params_.sub("bic").get_count("buffers")))),
       counters_(counters) {
   SC_THREAD(run);
 }
@@ -77,7 +85,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   for (bool done = n == 0; !done; ++k) {
     const std::size_t j = k;
     const std::uint32_t id = msg.leaf_shells[j].child_index;
-    std::optional<modules::ReceivedPacket> p;
+    std::optional<ReceivedPacket> p;
     while (!(p = port_.take(clock_.now(), id))) {
       if (!asked_[j]) {
         if (port_.register_free(clock_.now())) {

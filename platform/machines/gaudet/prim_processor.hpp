@@ -24,10 +24,9 @@
 
 #include "firmware/accel/gaudet_data_sets.hpp"
 #include "modules/message_channel.hpp"
-#include "modules/packet_port.hpp"
 #include "platform/functional/scene_tracer.hpp"
-#include "platform/machines/gaudet/config.hpp"
 #include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 #include "platform/machines/gaudet/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -40,11 +39,14 @@ class PrimProcessor : public PertProcessor {
   SC_HAS_PROCESS(PrimProcessor);
   /// `geometry`: the host's copy of the primitives (slot numbers, materials, vertex normals);
   /// `record_words`: the PRIM records' sizes.
-  PrimProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
-                const functional::SceneGeometry& geometry, const accel::RecordWords& record_words,
+  PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                const accel::ShellTree& tree, const functional::SceneGeometry& geometry,
+                const accel::RecordWords& record_words,
                 const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
-                modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
-                TraceCounters& counters, MachineTrace& trace);
+                PacketPort& port, std::size_t input_depth, TraceCounters& counters,
+                MachineTrace& trace);
+  /// Its parameters under `prim` ("pert.prim").
+  static void declare_params(const modules::ParamDecls& prim);
 
   std::uint64_t packets_processed() const { return packets_; }
   std::uint64_t packets_cancelled() const { return cancelled_; }
@@ -72,7 +74,7 @@ class PrimProcessor : public PertProcessor {
   accel::RecordWords record_words_;
   const std::vector<std::uint32_t>& packet_words_;
   const std::vector<Cost>& test_cost_;  ///< by primitive slot: the PERT's own test
-  modules::PacketPort& port_;
+  PacketPort& port_;
   std::size_t ahead_;  ///< IDs asked for ahead of the packet being tested
   TraceCounters& counters_;
 

@@ -30,8 +30,8 @@
 #include <systemc>
 
 #include "modules/latency_probe.hpp"
-#include "modules/packet_port.hpp"
 #include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 
 namespace rtsim::platform::gaudet {
 
@@ -77,7 +77,7 @@ class RayProbe {
 
   /// The gap before work on packet `p` starting at `start`: queueing at `bus` until the
   /// packet's transfer started, transfer at `bus` until it arrived, then queueing at `proc`.
-  void packet_gap(RayTicket& t, Stage proc, Stage bus, const modules::ReceivedPacket& p,
+  void packet_gap(RayTicket& t, Stage proc, Stage bus, const ReceivedPacket& p,
                   const sc_core::sc_time& start) {
     if (t.journey == modules::LatencyProbe::kNoJourney) return;
     account(t, bus, Part::kQueueing, p.transfer_start);

@@ -4,11 +4,23 @@
 
 namespace rtsim::platform::gaudet {
 
-ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, int pert, int pert_count,
-                               ShadeShared& shared, modules::PacketPort& port,
-                               const ProcessorConfig& config, std::size_t input_depth,
-                               MachineTrace& trace)
-    : PertProcessor(name, config.timing, trace),
+void ShadeProcessor::declare_params(const modules::ParamDecls& shade) {
+  PertProcessor::declare_params(
+      shade, {.value = "4",
+              .description = "ID registers of the ShadeProcessor's BIC",
+              .source = "assumption: \"multiple\" (L910); Shade puts at most one ID per ray"});
+  shade.count("rays_in_flight", "4", "1", "100000", "initial rays",
+              "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every ray "
+              "it spawns)",
+              "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
+              "(L738-L742) but a pipeline of three needs several in flight; see "
+              "docs/machines.md");
+}
+
+ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                               int pert, int pert_count, ShadeShared& shared, PacketPort& port,
+                               std::size_t input_depth, MachineTrace& trace)
+    : PertProcessor(name, registry, trace),
       input("input", input_depth),
       out("out"),
       pert_(pert),
@@ -17,7 +29,7 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, int pert, int pert_
       port_(port),
       task_(*shared.scene, shared.shade),
       y_(pert),
-      outstanding_(std::max<std::size_t>(config.rays_in_flight, 1), 0) {
+      outstanding_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1), 0) {
   for (std::size_t i = outstanding_.size(); i-- > 0;)
     free_trees_.push_back(static_cast<std::uint32_t>(i));
   SC_THREAD(run);

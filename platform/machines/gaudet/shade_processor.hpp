@@ -25,12 +25,11 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/message_channel.hpp"
-#include "modules/packet_port.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
-#include "platform/machines/gaudet/config.hpp"
 #include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 #include "platform/machines/gaudet/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -53,9 +52,12 @@ class ShadeProcessor : public PertProcessor {
   modules::MessageQueue<PrimToShade> input;
   tlm_utils::simple_initiator_socket<ShadeProcessor> out;
 
+  /// Its parameters under `shade` ("pert.shade").
+  static void declare_params(const modules::ParamDecls& shade);
+
   SC_HAS_PROCESS(ShadeProcessor);
-  ShadeProcessor(sc_core::sc_module_name name, int pert, int pert_count, ShadeShared& shared,
-                 modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
+  ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry, int pert,
+                 int pert_count, ShadeShared& shared, PacketPort& port, std::size_t input_depth,
                  MachineTrace& trace);
 
   void set_output_queue(const modules::TimedFifo<ShadeToShell>& q) { out_queue_ = &q; }
@@ -81,7 +83,7 @@ class ShadeProcessor : public PertProcessor {
 
   int pert_, pert_count_;
   ShadeShared& shared_;
-  modules::PacketPort& port_;
+  PacketPort& port_;
   const modules::TimedFifo<ShadeToShell>* out_queue_ = nullptr;
   sc_core::sc_event* done_event_ = nullptr;
 

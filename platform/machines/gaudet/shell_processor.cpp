@@ -5,12 +5,26 @@
 
 namespace rtsim::platform::gaudet {
 
-ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
+void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
+  PertProcessor::declare_params(
+      shell, {.value = "8",
+              .description = "ID registers of the ShellProcessor's BIC (more IDs wait in its "
+                             "memory)",
+              .source = "assumption: \"multiple\" (L910); Shell stores IDs continually and "
+                        "stacks the overflow in its own memory"});
+  shell.count("rays_in_flight", "4", "1", "100000", "rays",
+              "Rays a ShellProcessor searches at a time",
+              "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
+              "docs/machines.md");
+}
+
+ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                               const accel::ShellTree& tree,
                                const std::vector<std::uint32_t>& packet_words,
-                               std::uint32_t record_words, modules::PacketPort& port,
-                               const ProcessorConfig& config, std::size_t input_depth,
-                               TraceCounters& counters, MachineTrace& trace)
-    : PertProcessor(name, config.timing, trace),
+                               std::uint32_t record_words, PacketPort& port,
+                               std::size_t input_depth, TraceCounters& counters,
+                               MachineTrace& trace)
+    : PertProcessor(name, registry, trace),
       input("input", input_depth),
       out("out"),
       tree_(tree),
@@ -18,7 +32,7 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const accel::ShellT
       record_words_(std::max<std::uint32_t>(record_words, 8)),
       port_(port),
       counters_(counters),
-      searches_(std::max<std::size_t>(config.rays_in_flight, 1)) {
+      searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
   SC_THREAD(run);
 }
 
@@ -56,7 +70,7 @@ void ShellProcessor::begin(ShadeToShell msg) {
   ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
 }
 
-void ShellProcessor::process(const modules::ReceivedPacket& p) {
+void ShellProcessor::process(const ReceivedPacket& p) {
   ++packets_;
   const sc_core::sc_time read_start = clock_.now();
   compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");

@@ -22,9 +22,8 @@
 
 #include "firmware/accel/shell_traversal.hpp"
 #include "modules/message_channel.hpp"
-#include "modules/packet_port.hpp"
-#include "platform/machines/gaudet/config.hpp"
 #include "platform/machines/gaudet/messages.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 #include "platform/machines/gaudet/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -37,10 +36,12 @@ class ShellProcessor : public PertProcessor {
   SC_HAS_PROCESS(ShellProcessor);
   /// `tree`: what the control processor knows of the data sets (how many SHELL and PRIM
   /// packets there are); `record_words`: words per SHELL record.
-  ShellProcessor(sc_core::sc_module_name name, const accel::ShellTree& tree,
-                 const std::vector<std::uint32_t>& packet_words, std::uint32_t record_words,
-                 modules::PacketPort& port, const ProcessorConfig& config, std::size_t input_depth,
+  ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                 const accel::ShellTree& tree, const std::vector<std::uint32_t>& packet_words,
+                 std::uint32_t record_words, PacketPort& port, std::size_t input_depth,
                  TraceCounters& counters, MachineTrace& trace);
+  /// Its parameters under `shell` ("pert.shell").
+  static void declare_params(const modules::ParamDecls& shell);
 
   /// Elaboration: the queue `out` feeds (to see whether it has room).
   void set_output_queue(const modules::TimedFifo<ShellToPrim>& q) { out_queue_ = &q; }
@@ -65,14 +66,14 @@ class ShellProcessor : public PertProcessor {
   };
   void run();
   void begin(ShadeToShell msg);
-  void process(const modules::ReceivedPacket& p);
+  void process(const ReceivedPacket& p);
   void ask(std::uint32_t packet, int search);
   void finish(int search);
 
   const accel::ShellTree& tree_;
   const std::vector<std::uint32_t>& packet_words_;
   std::uint32_t record_words_;
-  modules::PacketPort& port_;
+  PacketPort& port_;
   TraceCounters& counters_;
   const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
 

@@ -16,20 +16,44 @@ namespace {
 constexpr Cost kSendCost{.mem_words = RayRequest::kWireBytes / 4, .instructions = 4};
 }  // namespace
 
-Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
-           const shading::ShadeParams& shade, functional::FrameState& frame,
-           const modules::TimedFifo<RayRequest>& ray_queue, const HostConfig& host,
-           const PeripheralConfig& peripheral, const RunOptions& opts, MachineTrace& trace,
+void Host::declare_params(const modules::ParamDecls& host) {
+  using params::ParamKind;
+  modules::declare_processor_params(
+      host,
+      {.clock = "5 MHz",
+       .fp_add = 6,
+       .fp_mul = 8,
+       .fp_div = 20,
+       .fp_sqrt = 60,
+       .mem_word = 2,
+       .instruction = 2,
+       .source = "assumption: the thesis gives no host costs (seed 000 L476); a VAX-11/780-class "
+                 "\"medium-sized host\" (L462) with floating-point accelerator"});
+  host.declare({.name = "result_queue_depth",
+                .kind = ParamKind::kInt,
+                .default_value = "16",
+                .min = "1",
+                .max = "1000000",
+                .unit = "results",
+                .description = "Depth of the result queue from the peripheral to the host",
+                .source = "assumption: queue depths are not given (seed 000 L476)"});
+}
+
+Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+           const scenes::Scene& scene, const shading::ShadeParams& shade,
+           functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
+           const PeripheralSettings& peripheral, const RunOptions& opts, MachineTrace& trace,
            const functional::SceneGeometry& geometry, modules::LatencyProbe& probe)
     : sc_core::sc_module(name),
       ray_out("ray_out"),
       load_out("load_out"),
-      results("result_queue", peripheral.result_queue_depth),
+      results("result_queue",
+              modules::ModuleParams(registry, this->name()).get_count("result_queue_depth")),
       scene_(scene),
       shade_params_(shade),
       frame_(frame),
       ray_queue_(ray_queue),
-      host_(host),
+      timing_(modules::read_processor_timing(modules::ModuleParams(registry, this->name()))),
       peripheral_(peripheral),
       opts_(opts),
       trace_(trace),
@@ -43,13 +67,13 @@ Host::Host(sc_core::sc_module_name name, const scenes::Scene& scene,
 }
 
 sc_core::sc_time Host::result_time(const Cost& c) {
-  if (!peripheral_.lighting) return host_.timing.time_for(c);
+  if (!peripheral_.lighting) return timing_.time_for(c);
   // With the lighting extension the host only controls and moves data (L566); the vector
   // arithmetic runs on the inner-product device, 3 multiplies per inner product (L564), and
   // each normalisation through the reciprocal-square-root device.
   Cost control = c;
   control.fp_add = control.fp_mul = control.fp_div = control.fp_sqrt = 0;
-  const sc_core::sc_time host_part = host_.timing.time_for(control);
+  const sc_core::sc_time host_part = timing_.time_for(control);
   const std::uint64_t inner_products = (c.fp_mul + 2) / 3;
   const sc_core::sc_time start = clock_.now() + host_part;
   auto batch = lighting_.issue(inner_products, start);
@@ -59,7 +83,7 @@ sc_core::sc_time Host::result_time(const Cost& c) {
 }
 
 void Host::send(RayRequest req) {
-  const sc_core::sc_time cost = host_.timing.time_for(kSendCost);
+  const sc_core::sc_time cost = timing_.time_for(kSendCost);
   trace_.slice("host", "send", clock_.now(), cost);
   timeline_.add(clock_.now(), cost);
   clock_.advance(cost);
@@ -157,7 +181,7 @@ void Host::run() {
       RayRequest req;
       req.ray = vision.next(sample);
       req.first_sample = sample == 0;
-      const sc_core::sc_time t = host_.timing.time_for(tasks::VisionRayTask::kCost);
+      const sc_core::sc_time t = timing_.time_for(tasks::VisionRayTask::kCost);
       trace_.slice("host", "vision ray", clock_.now(), t, {{"pixel", req.ray.pixel}});
       timeline_.add(clock_.now(), t);
       clock_.advance(t);

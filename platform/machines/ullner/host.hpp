@@ -14,13 +14,14 @@
 #include "modules/local_clock.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
+#include "modules/processor_timing.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/machine_trace.hpp"
-#include "platform/machines/ullner/config.hpp"
 #include "platform/machines/ullner/messages.hpp"
+#include "platform/machines/ullner/peripheral_settings.hpp"
 
 namespace rtsim::platform::ullner {
 
@@ -30,11 +31,16 @@ class Host : public sc_core::sc_module {
   tlm_utils::simple_initiator_socket<Host> load_out;  ///< to the parameter memories' load port
   modules::MessageQueue<RayResult> results;           ///< the result queue
 
+  /// Its parameters under `host`: its processor's clock and cycles, its result queue.
+  static void declare_params(const modules::ParamDecls& host);
+
   SC_HAS_PROCESS(Host);
-  Host(sc_core::sc_module_name name, const scenes::Scene& scene, const shading::ShadeParams& shade,
-       functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
-       const HostConfig& host, const PeripheralConfig& peripheral, const RunOptions& opts,
-       MachineTrace& trace, const functional::SceneGeometry& geometry,
+  /// Reads its own parameters under its name; `peripheral`: the peripheral's settings (the
+  /// lighting devices it computes on).
+  Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+       const scenes::Scene& scene, const shading::ShadeParams& shade, functional::FrameState& frame,
+       const modules::TimedFifo<RayRequest>& ray_queue, const PeripheralSettings& peripheral,
+       const RunOptions& opts, MachineTrace& trace, const functional::SceneGeometry& geometry,
        modules::LatencyProbe& probe);
 
   /// From the end of the scene load to the host having the last answer.
@@ -58,8 +64,8 @@ class Host : public sc_core::sc_module {
   shading::ShadeParams shade_params_;
   functional::FrameState& frame_;
   const modules::TimedFifo<RayRequest>& ray_queue_;
-  HostConfig host_;
-  PeripheralConfig peripheral_;
+  modules::ProcessorTiming timing_;  ///< its processor's
+  PeripheralSettings peripheral_;
   const RunOptions& opts_;
   MachineTrace& trace_;
   const functional::SceneGeometry& geometry_;

@@ -7,12 +7,147 @@
 namespace rtsim::platform::ullner {
 
 using modules::times;
+using params::ParamKind;
+
+void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
+  peripheral.declare({.name = "intersect_interval",
+                      .kind = ParamKind::kTime,
+                      .default_value = "333.333 ns",
+                      .min = "1 ps",
+                      .description =
+                          "Issue interval (= stage time) of the intersection pipeline: one "
+                          "ray/polygon intersection per interval",
+                      .source = "seed 000 L584, L588 (three results every microsecond)"});
+  peripheral.declare({.name = "adder_stages",
+                      .kind = ParamKind::kInt,
+                      .default_value = "1",
+                      .min = "1",
+                      .max = "3",
+                      .unit = "stages",
+                      .description =
+                          "Pipeline stages of one floating-point addition (1 or 3); sets the "
+                          "physical depth 17 or 33 and the latency 5.6 or 11 us",
+                      .source = "seed 000 L572-L578 (Fig. 2-17), L588"});
+  peripheral.declare(
+      {.name = "fetch_stages",
+       .kind = ParamKind::kInt,
+       .default_value = "1",
+       .min = "0",
+       .max = "16",
+       .unit = "stages",
+       .description = "Stages of polygon fetch from the 20 parameter memories",
+       .source = "assumption: one memory cycle reads a whole polygon (seed 000 L544)"});
+  peripheral.declare(
+      {.name = "select_stages",
+       .kind = ParamKind::kInt,
+       .default_value = "1",
+       .min = "0",
+       .max = "16",
+       .unit = "stages",
+       .description = "Stages of the closest-intersection selection (Fig. 2-11 stage 3)",
+       .source = "assumption: one compare-and-keep stage (seed 000 L484)"});
+  peripheral.declare({.name = "ray_queue_depth",
+                      .kind = ParamKind::kInt,
+                      .default_value = "16",
+                      .min = "1",
+                      .max = "1000000",
+                      .unit = "rays",
+                      .description = "Depth of the ray queue from the host to the peripheral",
+                      .source = "assumption: queue depths are not given (seed 000 L476)"});
+  peripheral.declare(
+      {.name = "shadow_early_exit",
+       .kind = ParamKind::kBool,
+       .default_value = "false",
+       .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
+       .source = "assumption: the thesis does not say how the shadow-ray saving is "
+                 "realised without subdivision (seed 000 L472; note §7.6)"});
+  peripheral.declare({.name = "grid.divisions",
+                      .kind = ParamKind::kInt,
+                      .default_value = "0",
+                      .min = "0",
+                      .max = "1024",
+                      .unit = "per axis",
+                      .description =
+                          "Subvolumes per axis of the grid auxiliary processor; 0 = none "
+                          "(brute force)",
+                      .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)"});
+  peripheral.declare({.name = "grid.dda",
+                      .kind = ParamKind::kString,
+                      .default_value = "corrected",
+                      .allowed = {"corrected", "as-printed"},
+                      .description =
+                          "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly "
+                          "as printed (wrong; for fidelity experiments)",
+                      .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
+  peripheral.declare({.name = "grid.step_time",
+                      .kind = ParamKind::kTime,
+                      .default_value = "1 us",
+                      .min = "0 s",
+                      .description = "t_d: time to step to the next subvolume",
+                      .source = "seed 000 L654"});
+  peripheral.declare({.name = "grid.indirection_stages",
+                      .kind = ParamKind::kInt,
+                      .default_value = "1",
+                      .min = "0",
+                      .max = "16",
+                      .unit = "stages",
+                      .description = "Extra pipeline stage(s) of the subvolume address indirection",
+                      .source = "seed 000 L596 (\"yet another pipeline stage\")"});
+  peripheral.declare({.name = "lighting.enabled",
+                      .kind = ParamKind::kBool,
+                      .default_value = "true",
+                      .description = "Lighting extension: the host's vector arithmetic runs on the "
+                                     "inner-product and reciprocal-square-root devices",
+                      .source = "seed 000 L548-L566"});
+  peripheral.declare({.name = "lighting.rsqrt_stages",
+                      .kind = ParamKind::kInt,
+                      .default_value = "2",
+                      .min = "1",
+                      .max = "16",
+                      .unit = "stages",
+                      .description = "Stages of the reciprocal-square-root device",
+                      .source = "assumption: as the square root of Fig. 2-17 (seed 000 L576)"});
+  peripheral.declare({.name = "memory.polygons",
+                      .kind = ParamKind::kInt,
+                      .default_value = "1048576",
+                      .min = "1",
+                      .max = "100000000",
+                      .unit = "polygons",
+                      .description = "Capacity of the 20 parameter memories",
+                      .source = "assumption: a million polygons (seed 000 note §7.5 S7)"});
+  peripheral.declare({.name = "memory.load_word_time",
+                      .kind = ParamKind::kTime,
+                      .default_value = "1 us",
+                      .min = "0 s",
+                      .description =
+                          "Time to load one 32-bit parameter word through the dual-ported "
+                          "load path (before the frame; not part of the frame time)",
+                      .source = "assumption: \"the port need not be fast\" (seed 000 L544)"});
+}
+
+PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
+  PeripheralSettings c;
+  c.intersect_interval = p.get_time("intersect_interval");
+  c.adder_stages = static_cast<unsigned>(p.get_int("adder_stages"));
+  c.pipeline_stages = PeripheralSettings::stages_for_adder(c.adder_stages);
+  c.fetch_stages = static_cast<unsigned>(p.get_int("fetch_stages"));
+  c.select_stages = static_cast<unsigned>(p.get_int("select_stages"));
+  c.ray_queue_depth = p.get_count("ray_queue_depth");
+  c.shadow_early_exit = p.get_bool("shadow_early_exit");
+  c.grid_divisions = static_cast<int>(p.get_int("grid.divisions"));
+  c.step_time = p.get_time("grid.step_time");
+  c.indirection_stages = static_cast<unsigned>(p.get_int("grid.indirection_stages"));
+  c.lighting = p.get_bool("lighting.enabled");
+  c.rsqrt_stages = static_cast<unsigned>(p.get_int("lighting.rsqrt_stages"));
+  c.load_word_time = p.get_time("memory.load_word_time");
+  return c;
+}
 
 Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
                        const scenes::Scene& scene, const functional::RenderSettings& settings,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
-                       const PeripheralConfig& config, TraceCounters& counters, MachineTrace& trace,
-                       modules::LatencyProbe& probe)
+                       const PeripheralSettings& config, TraceCounters& counters,
+                       MachineTrace& trace, modules::LatencyProbe& probe)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
       parameters("parameter_memories", polygons * kernels::kUllnerStoredWords,

@@ -24,11 +24,12 @@
 #include "modules/local_clock.hpp"
 #include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
+#include "modules/module_params.hpp"
 #include "modules/pipelined_unit.hpp"
 #include "platform/machines/machine_trace.hpp"
-#include "platform/machines/ullner/config.hpp"
 #include "platform/machines/ullner/messages.hpp"
 #include "platform/machines/ullner/parameter_memory_test.hpp"
+#include "platform/machines/ullner/peripheral_settings.hpp"
 
 namespace rtsim::platform::ullner {
 
@@ -40,14 +41,21 @@ class Peripheral : public sc_core::sc_module {
   modules::Memory parameters;
   tlm_utils::simple_initiator_socket<Peripheral> result_out;  ///< to the host's result queue
 
+  /// Its parameters, under `peripheral` (the pipeline, the grid auxiliary processor, the
+  /// lighting devices, the parameter memories).
+  static void declare_params(const modules::ParamDecls& peripheral);
+  /// Their values, read once (the modelling space is the scene's: left empty).
+  static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
+
   SC_HAS_PROCESS(Peripheral);
   /// `geometry`, `scene`, `settings`: the host's copy of the scene and the search structure's
   /// settings (the grid the auxiliary processor walks; the candidates' parameters are read from
   /// `parameters`).
   Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
              const scenes::Scene& scene, const functional::RenderSettings& settings,
-             const tasks::ShadeTask& shade, std::uint64_t polygons, const PeripheralConfig& config,
-             TraceCounters& counters, MachineTrace& trace, modules::LatencyProbe& probe);
+             const tasks::ShadeTask& shade, std::uint64_t polygons,
+             const PeripheralSettings& config, TraceCounters& counters, MachineTrace& trace,
+             modules::LatencyProbe& probe);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
   sc_core::sc_time aux_busy() const { return aux_busy_; }
@@ -67,7 +75,7 @@ class Peripheral : public sc_core::sc_module {
   std::unique_ptr<Tracer> search_;   ///< the grid walk or brute force, testing with memory_test_
   const tasks::ShadeTask& shade_;
   std::uint64_t polygons_;
-  PeripheralConfig config_;
+  PeripheralSettings config_;
   TraceCounters& counters_;
   MachineTrace& trace_;
   modules::LocalClock clock_;

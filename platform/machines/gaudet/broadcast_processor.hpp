@@ -27,27 +27,32 @@
 #include <systemc>
 #include <vector>
 
-#include "modules/bus_interface.hpp"
 #include "modules/busy_timeline.hpp"
 #include "modules/memory.hpp"
+#include "modules/module_params.hpp"
+#include "platform/machines/gaudet/bus_interface.hpp"
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
+/// The loop's timings, read from the bus's parameters (declare_params).
 struct BroadcastTiming {
-  sc_core::sc_time id_slot = sc_core::sc_time(1000, sc_core::SC_NS);         ///< L959
-  sc_core::sc_time packet_overhead = sc_core::sc_time(800, sc_core::SC_NS);  ///< L960
-  sc_core::sc_time word_time = sc_core::sc_time(400, sc_core::SC_NS);        ///< L961
-  sc_core::sc_time loop_reset = sc_core::sc_time(400, sc_core::SC_NS);       ///< L962
+  sc_core::sc_time id_slot, packet_overhead, word_time, loop_reset;
 };
 
 class BroadcastProcessor : public sc_core::sc_module {
  public:
   /// The data set's memory module; the control processor loads it through memory.socket.
-  Memory memory;
+  modules::Memory memory;
+
+  /// Its parameters, under `bus` ("broadcast": every bus; "shell_bus": one): the timings of
+  /// the loop (L957-L962).
+  static void declare_params(const modules::ParamDecls& bus);
 
   SC_HAS_PROCESS(BroadcastProcessor);
-  BroadcastProcessor(sc_core::sc_module_name name, std::size_t memory_words,
-                     sc_core::sc_time load_word_time, const BroadcastTiming& timing, bool adaptive);
+  /// `params`: its own (ModuleParams under its name); `load_word_time` the control processor's
+  /// download rate into its memory.
+  BroadcastProcessor(sc_core::sc_module_name name, const modules::ModuleParams& params,
+                     std::size_t memory_words, sc_core::sc_time load_word_time, bool adaptive);
 
   /// Elaboration: a BIC listening on this bus.
   void attach(BusInterface& bic);
@@ -71,7 +76,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   };
   const Stats& stats() const { return stats_; }
   /// When the bus carried packet words (Stats::packet_time over time), for utilisation windows.
-  const BusyTimeline& timeline() const { return timeline_; }
+  const modules::BusyTimeline& timeline() const { return timeline_; }
   /// Called for every packet some BIC captures (traces): id, start, duration, captures.
   std::function<void(std::uint32_t, sc_core::sc_time, sc_core::sc_time, std::size_t)> on_packet;
 
@@ -109,8 +114,8 @@ class BroadcastProcessor : public sc_core::sc_module {
   sc_core::sc_event start_;
   sc_core::sc_event wake_;
   Stats stats_;
-  BusyTimeline timeline_;
+  modules::BusyTimeline timeline_;
   std::vector<BusInterface*> hitters_;
 };
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet

@@ -18,15 +18,24 @@
 #include <systemc>
 #include <vector>
 
-#include "modules/packet_port.hpp"
+#include "modules/module_params.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
 class BroadcastProcessor;
 
 class BusInterface final : public PacketPort {
  public:
-  BusInterface(std::string name, std::size_t id_registers, std::size_t buffers);
+  /// How many ID registers a processor's BIC has by default, and why (the thesis says
+  /// "multiple", L910: each processor's preset chooses).
+  struct IdRegisters {
+    std::string value, description, source;
+  };
+  /// Its parameters under `bic` ("pert.shell.bic"): `id_registers` and `buffers`.
+  static void declare_params(const modules::ParamDecls& bic, const IdRegisters& id_registers);
+  /// `params`: its own, under its name ("pert0.shell.bic").
+  explicit BusInterface(const modules::ModuleParams& params);
 
   const std::string& name() const { return name_; }
 
@@ -86,4 +95,4 @@ class BusInterface final : public PacketPort {
   std::size_t peak_registers_ = 0;
 };
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet

@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "modules/packet_port.hpp"
+#include "platform/machines/gaudet/packet_port.hpp"
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
 class LocalDataSet final : public PacketPort {
  public:
@@ -78,4 +78,4 @@ class LocalDataSet final : public PacketPort {
   sc_core::sc_event changed_;
 };
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet

@@ -17,7 +17,7 @@
 #include <span>
 #include <systemc>
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
 /// A packet that has arrived in one of the port's buffers.
 struct ReceivedPacket {
@@ -62,4 +62,4 @@ class PacketPort {
   virtual const sc_core::sc_event& changed_event() const = 0;
 };
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet

@@ -1,15 +1,28 @@
-#include "modules/bus_interface.hpp"
+#include "platform/machines/gaudet/bus_interface.hpp"
 
 #include <algorithm>
 
-#include "modules/broadcast_processor.hpp"
+#include "platform/machines/gaudet/broadcast_processor.hpp"
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
-BusInterface::BusInterface(std::string name, std::size_t id_registers, std::size_t buffers)
-    : name_(std::move(name)),
-      registers_(std::max<std::size_t>(id_registers, 1)),
-      buffers_(std::max<std::size_t>(buffers, 1)) {}
+void BusInterface::declare_params(const modules::ParamDecls& bic, const IdRegisters& id_registers) {
+  // The processor's kind, for the descriptions: "pert.shell.bic" -> "shell".
+  const std::string& path = bic.path();
+  const std::size_t end = path.rfind('.');
+  const std::size_t begin = path.rfind('.', end - 1) + 1;
+  const std::string kind = path.substr(begin, end - begin);
+  bic.count("buffers", "2", "1", "64", "buffers",
+            "FIFO packet buffers of the " + kind + " processor's BIC",
+            "seed 001 L924 (double buffer)");
+  bic.count("id_registers", id_registers.value, "1", "4096", "registers", id_registers.description,
+            id_registers.source);
+}
+
+BusInterface::BusInterface(const modules::ModuleParams& params)
+    : name_(params.path()),
+      registers_(std::max<std::size_t>(params.get_count("id_registers"), 1)),
+      buffers_(std::max<std::size_t>(params.get_count("buffers"), 1)) {}
 
 bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
   if (pending(id)) return true;  // the comparator matches it once for everyone who wants it
@@ -125,4 +138,4 @@ void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
   changed_.notify(sc_core::SC_ZERO_TIME);
 }
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet

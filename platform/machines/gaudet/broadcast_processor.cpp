@@ -1,20 +1,36 @@
-#include "modules/broadcast_processor.hpp"
+#include "platform/machines/gaudet/broadcast_processor.hpp"
 
 #include <algorithm>
 #include <span>
 
 #include "modules/sim_time.hpp"
 
-namespace rtsim::modules {
+namespace rtsim::platform::gaudet {
 
-BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name, std::size_t memory_words,
-                                       sc_core::sc_time load_word_time,
-                                       const BroadcastTiming& timing, bool adaptive)
+void BroadcastProcessor::declare_params(const modules::ParamDecls& bus) {
+  bus.time("id_time", "1000 ns",
+           "Broadcast Processor: time to broadcast an ID and sample the hit line", "seed 001 L959");
+  bus.time("packet_overhead", "800 ns", "Broadcast Processor: overhead of sending a packet",
+           "seed 001 L960");
+  bus.time("word_time", "400 ns", "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
+           "seed 001 L883, L961");
+  bus.time("loop_reset", "400 ns",
+           "Broadcast Processor: time to reset the loop at the end of the ID list",
+           "seed 001 L962");
+}
+
+BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
+                                       const modules::ModuleParams& params,
+                                       std::size_t memory_words, sc_core::sc_time load_word_time,
+                                       bool adaptive)
     : sc_core::sc_module(name),
       // The BP streams its memory (L875): the loop's timings already include the reads, so a
       // read costs no extra time here.
       memory("memory", memory_words, 1, load_word_time, sc_core::SC_ZERO_TIME),
-      timing_(timing),
+      timing_{.id_slot = params.get_time("id_time"),
+              .packet_overhead = params.get_time("packet_overhead"),
+              .word_time = params.get_time("word_time"),
+              .loop_reset = params.get_time("loop_reset")},
       adaptive_(adaptive) {
   SC_THREAD(run);
 }
@@ -54,7 +70,7 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
 }
 
 sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
-  return times(timing_.id_slot, slots_.size()) + timing_.loop_reset;
+  return modules::times(timing_.id_slot, slots_.size()) + timing_.loop_reset;
 }
 
 void BroadcastProcessor::demand(std::uint32_t id, int delta) {
@@ -66,7 +82,7 @@ void BroadcastProcessor::demand(std::uint32_t id, int delta) {
 }
 
 sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
-  return timing_.packet_overhead + times(timing_.word_time, s.words);
+  return timing_.packet_overhead + modules::times(timing_.word_time, s.words);
 }
 
 void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
@@ -100,13 +116,13 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
     const sc_core::sc_time sent_per_cycle = idle_cycle_ - minimum_cycle();
     if (sent_per_cycle > sc_core::SC_ZERO_TIME)
       for (std::uint64_t i = 0; i < k; ++i)
-        timeline_.add(cursor_.t + times(idle_cycle_, i), sent_per_cycle);
-    cursor_.t += times(idle_cycle_, k);
+        timeline_.add(cursor_.t + modules::times(idle_cycle_, i), sent_per_cycle);
+    cursor_.t += modules::times(idle_cycle_, k);
     stats_.cycles += k;
     stats_.ids += k * slots_.size();
     stats_.packets += k * idle_cycle_packets_;
     stats_.packet_words += k * idle_cycle_words_;
-    stats_.packet_time += times(idle_cycle_ - minimum_cycle(), k);
+    stats_.packet_time += modules::times(idle_cycle_ - minimum_cycle(), k);
   }
   while (cursor_.t < t) pass(cursor_, !adaptive_, true);
 }
@@ -161,4 +177,4 @@ void BroadcastProcessor::run() {
   }
 }
 
-}  // namespace rtsim::modules
+}  // namespace rtsim::platform::gaudet
