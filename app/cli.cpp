@@ -244,6 +244,18 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   add_config_options(l, list.config);
 
+  DescribeArgs da;
+  auto* d = app.add_subcommand(
+      "describe",
+      "Print a machine's module tree: each module with its parameters and statistics, and the "
+      "connections between modules; with --out, also a block diagram (DOT, and SVG if Graphviz "
+      "is installed)");
+  d->add_option("machine", da.machine, "The machine (`rtsim list machines`)")->required();
+  d->add_option("--scene", da.scene,
+                "The scene the machine is built for (default: a small one it can hold)");
+  d->add_option("--out", da.out_dir, "Write MACHINE.dot and MACHINE.svg into this folder");
+  add_config_options(d, da.config);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -254,6 +266,7 @@ int run_cli(int argc, char** argv) {
   try {
     if (r->parsed()) return run_render(render);
     if (l->parsed()) return run_list(list);
+    if (d->parsed()) return run_describe(da);
     if (run->parsed()) return run_run(runa);
     if (validate->parsed()) return run_validate(va);
     if (sweep->parsed()) return run_sweep(sw);

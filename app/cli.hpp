@@ -1,5 +1,5 @@
 #pragma once
-// The `rtsim` command line: subcommands render, run, sweep, validate, list.
+// The `rtsim` command line: subcommands render, run, sweep, validate, list, describe.
 // Exit status: 0 success, 1 internal failure, 2 bad input (scene, config, parameter, usage).
 
 namespace rtsim::app {

@@ -51,6 +51,13 @@ struct ListArgs {
   ConfigArgs config;
 };
 
+struct DescribeArgs {
+  std::string machine;
+  std::string scene;    ///< "": the machine's sample scene
+  std::string out_dir;  ///< "": text only; else MACHINE.dot and MACHINE.svg here
+  ConfigArgs config;
+};
+
 struct ValidateArgs {
   bool quick = false;
   int jobs = 1;
@@ -81,6 +88,7 @@ inline bool wants_aov(const std::vector<std::string>& aovs, const std::string& n
 int run_render(const RenderArgs& args);
 int run_validate(const ValidateArgs& args);
 int run_list(const ListArgs& args);
+int run_describe(const DescribeArgs& args);
 int run_run(const RunArgs& args);
 int run_sweep(const SweepArgs& args);
 

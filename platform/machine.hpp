@@ -63,6 +63,8 @@ class Machine {
   virtual ~Machine() = default;
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
+  /// A small scene it can hold, which `rtsim describe` builds the module tree for.
+  virtual std::string sample_scene() const = 0;
   /// Declares every parameter the machine reads (with defaults citing the seed) in `registry`,
   /// and no other: the render parameters its twin reads and `quantum` through
   /// declare_common_params. What is not declared cannot be set (declare_params_of).

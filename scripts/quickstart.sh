@@ -19,6 +19,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy python3-pandas
+  graphviz
 )
 # Only the tests need these: headless Chromium opens report.html (tests/report_test.cpp).
 test_packages=(chromium)

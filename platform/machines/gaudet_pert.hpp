@@ -15,6 +15,7 @@ class GaudetPert final : public Machine {
     return "Gaudet's multi-PERT machine: N rings of Shade/Shell/Prim processors fed by three "
            "broadcast buses (seed 001, SFU 1985)";
   }
+  std::string sample_scene() const override { return "builtin:npp-412"; }
   void declare_params(params::ParamRegistry& registry) const override;
   FunctionalTwin make_twin(scenes::Scene& scene,
                            const params::ParamRegistry& registry) const override;

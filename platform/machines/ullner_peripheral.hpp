@@ -18,6 +18,7 @@ class UllnerPeripheral final : public Machine {
            "intersection pipeline, lighting extension and optional grid auxiliary processor "
            "(seed 000 §2.3)";
   }
+  std::string sample_scene() const override { return "builtin:ullner-cubes"; }
   void declare_params(params::ParamRegistry& registry) const override;
   FunctionalTwin make_twin(scenes::Scene& scene,
                            const params::ParamRegistry& registry) const override;

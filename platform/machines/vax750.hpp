@@ -15,6 +15,7 @@ class Vax750 final : public Machine {
     return "DEC VAX-11/750 + FPU running the sequential ray tracer: Gaudet's baseline "
            "(429 us per intersection, 710 us per ray; seed 001 L317-L318)";
   }
+  std::string sample_scene() const override { return "builtin:npp-412"; }
   void declare_params(params::ParamRegistry& registry) const override;
   FunctionalTwin make_twin(scenes::Scene& scene,
                            const params::ParamRegistry& registry) const override;

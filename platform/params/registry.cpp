@@ -296,22 +296,29 @@ void ParamRegistry::declare_family(InstanceFamily family) {
   families_.push_back(std::move(family));
 }
 
+std::string ParamRegistry::class_path(std::string_view path) const {
+  const std::size_t dot = std::min(path.find('.'), path.size());
+  const std::string_view first = path.substr(0, dot);
+  for (const auto& f : families_)
+    if (is_member(f, first)) return f.cls + std::string(path.substr(dot));
+  return std::string(path);
+}
+
+bool ParamRegistry::is_member(const InstanceFamily& f, std::string_view first) {
+  if (!f.members.empty())
+    return std::find(f.members.begin(), f.members.end(), first) != f.members.end();
+  const std::string_view index = first.substr(std::min(first.size(), f.cls.size()));
+  return first.starts_with(f.cls) && !index.empty() && index.size() <= 9 &&
+         std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+         (index == "0" || index[0] != '0');
+}
+
 std::string ParamRegistry::class_of(std::string_view name) const {
   const std::size_t dot = name.find('.');
   if (dot == std::string_view::npos) return {};
   const std::string_view first = name.substr(0, dot);
   for (const auto& f : families_) {
-    bool member = false;
-    if (f.members.empty()) {
-      const std::string_view index = first.substr(std::min(first.size(), f.cls.size()));
-      member =
-          first.starts_with(f.cls) && !index.empty() && index.size() <= 9 &&
-          std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
-          (index == "0" || index[0] != '0');
-    } else {
-      member = std::find(f.members.begin(), f.members.end(), first) != f.members.end();
-    }
-    if (!member) continue;
+    if (!is_member(f, first)) continue;
     std::string cls = f.cls + std::string(name.substr(dot));
     const auto it = params_.find(cls);
     if (it != params_.end() && it->second.spec.per_instance && it->second.instance_of.empty())
@@ -510,7 +517,8 @@ std::vector<ParamEntry> ParamRegistry::list() const {
                    .description = p.spec.description,
                    .source = p.spec.source,
                    .where_set = p.where_set,
-                   .instance_of = p.instance_of});
+                   .instance_of = p.instance_of,
+                   .per_instance = p.spec.per_instance});
   }
   return out;
 }

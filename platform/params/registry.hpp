@@ -77,6 +77,7 @@ struct ParamEntry {
   std::string source{};
   std::string where_set{};    ///< "default", "FILE:LINE" or "-p"
   std::string instance_of{};  ///< an instance's own value: the class parameter it overrides
+  bool per_instance = false;  ///< a module's (ParamSpec::per_instance)
 };
 
 namespace detail {
@@ -102,6 +103,9 @@ class ParamRegistry {
 
   bool contains(std::string_view name) const;
 
+  /// The class path of a module's instance path ("pert3.shell" -> "pert.shell", "shell_bus" ->
+  /// "broadcast"); the path itself if its first segment is no family's member.
+  std::string class_path(std::string_view path) const;
   /// Declares a class of modules whose per_instance parameters may be set per instance.
   void declare_family(InstanceFamily family);
   /// After every layer is applied: InputError for a value set on a numbered instance the run
@@ -153,6 +157,7 @@ class ParamRegistry {
   const detail::Param& find(std::string_view name, ParamKind kind) const;
   /// The value `name` reads: its own, an instance's set value, or its class's; nullptr if none.
   const detail::Param* resolve(std::string_view name) const;
+  static bool is_member(const InstanceFamily& f, std::string_view first_segment);
   /// The class parameter `name` is an instance of ("pert3.x" -> "pert.x"), or "".
   std::string class_of(std::string_view name) const;
   detail::Param& find_for_input(std::string_view name, const std::string& file, std::size_t line);

@@ -4,6 +4,7 @@
 #include <span>
 
 #include "modules/sim_time.hpp"
+#include "modules/wiring.hpp"
 
 namespace rtsim::platform::gaudet {
 
@@ -36,6 +37,7 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
 }
 
 void BroadcastProcessor::attach(BusInterface& bic) {
+  modules::connect(name(), bic.name(), "broadcast");
   bic.bus_ = this;
   bics_.push_back(&bic);
 }

@@ -1,0 +1,257 @@
+// `rtsim describe MACHINE`: the machine's module tree — each module with the parameters that set
+// it and the statistics it reports — and its connections, as text and as a block diagram (DOT,
+// and SVG when Graphviz's `dot` is installed). Architects look at the structure before they read
+// numbers.
+//
+// The tree is the machine's own, not a description kept beside it: the machine is built for a
+// small frame of its sample scene (or --scene), the SystemC hierarchy and the socket bindings
+// are read at the end of elaboration, and the frame is run so that every statistics group the
+// machine reports (stats.json `modules`) is known. Groups that are no SystemC module (a BIC, a
+// queue inside a processor, the pipeline of the peripheral) hang under their parent's name.
+#include <cxxabi.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <systemc>
+#include <typeinfo>
+
+#include "app/commands.hpp"
+#include "app/configuration.hpp"
+#include "app/scene_input.hpp"
+#include "common/input_error.hpp"
+#include "modules/wiring.hpp"
+#include "platform/machine.hpp"
+
+namespace rtsim::app {
+
+namespace {
+
+/// "rtsim::platform::gaudet::ShellProcessor" -> "ShellProcessor"; templates keep their name.
+std::string type_name(const sc_core::sc_object& o) {
+  int status = 0;
+  const char* mangled = typeid(o).name();
+  std::unique_ptr<char, void (*)(void*)> d(abi::__cxa_demangle(mangled, nullptr, nullptr, &status),
+                                           std::free);
+  std::string n = status == 0 && d ? d.get() : mangled;
+  const std::size_t lt = n.find('<');
+  const std::size_t colon = n.rfind("::", lt == std::string::npos ? n.size() : lt);
+  n = colon == std::string::npos ? n : n.substr(colon + 2);
+  if (const auto t = n.find('<'); t != std::string::npos) n = n.substr(0, t);
+  return n;
+}
+
+struct Node {
+  std::string type;  ///< C++ class; "" for a statistics group that is no SystemC module
+  std::vector<std::string> stats;
+  std::vector<const params::ParamEntry*> params;
+};
+
+/// Reads the SystemC hierarchy and the TLM bindings at the end of elaboration.
+class TreeReader : public sc_core::sc_module {
+ public:
+  std::map<std::string, Node> nodes;
+  std::set<std::tuple<std::string, std::string, std::string>> edges;  ///< from, to, what
+
+  explicit TreeReader(const sc_core::sc_module_name& name) : sc_core::sc_module(name) {}
+
+ private:
+  void end_of_elaboration() override {
+    std::map<const sc_core::sc_interface*, std::string> exported;  // interface -> its module
+    std::vector<std::pair<std::string, const sc_core::sc_interface*>> bound;
+    std::vector<const sc_core::sc_object*> todo;
+    for (const auto* o : sc_core::sc_get_top_level_objects())
+      if (o != this) todo.push_back(o);
+    while (!todo.empty()) {
+      const sc_core::sc_object* o = todo.back();
+      todo.pop_back();
+      const std::string owner = o->get_parent_object() ? o->get_parent_object()->name() : "";
+      if (dynamic_cast<const sc_core::sc_module*>(o)) {
+        nodes[o->name()].type = type_name(*o);
+      } else if (const auto* p = dynamic_cast<const sc_core::sc_port_base*>(o)) {
+        // Initiator to target only (a target socket's backward port points the other way).
+        if (std::string_view(o->kind()) == "tlm_initiator_socket")
+          if (auto* i = const_cast<sc_core::sc_port_base*>(p)->get_interface())
+            bound.emplace_back(owner, i);
+      } else if (const auto* e = dynamic_cast<const sc_core::sc_export_base*>(o)) {
+        if (std::string_view(o->kind()) == "tlm_target_socket")
+          if (auto* i = const_cast<sc_core::sc_export_base*>(e)->get_interface())
+            exported[i] = owner;
+      }
+      for (const auto* c : o->get_child_objects()) todo.push_back(c);
+    }
+    for (const auto& [from, i] : bound)
+      if (const auto it = exported.find(i); it != exported.end())
+        edges.emplace(from, it->second, "TLM");
+    for (const auto& c : modules::wiring()) edges.emplace(c.from, c.to, c.what);
+  }
+};
+
+std::string parent_of(const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  return dot == std::string::npos ? "" : name.substr(0, dot);
+}
+
+std::string leaf_of(const std::string& name) { return name.substr(name.rfind('.') + 1); }
+
+std::string dot_id(const std::string& name) { return "\"" + name + "\""; }
+
+std::string dot_escape(std::string s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_describe(const DescribeArgs& args) {
+  const platform::Machine& machine = platform::find_machine(args.machine);
+  auto registry = build_registry(args.config, &machine);
+  const std::string scene_spec = args.scene.empty() ? machine.sample_scene() : args.scene;
+  scenes::Scene scene = load_scene_with_seed(scene_spec, registry);
+  platform::FunctionalTwin twin = machine.make_twin(scene, registry);
+
+  TreeReader reader("rtsim_describe");
+  platform::RunOptions opts;
+  opts.width = 4;  // a frame just large enough that every module works
+  opts.height = 4;
+  const platform::RunResult result = machine.run(scene, twin, registry, opts);
+  std::map<std::string, Node> nodes = reader.nodes;
+  if (result.stats.contains("modules"))
+    for (const auto& [name, group] : result.stats["modules"].items()) {
+      Node& n = nodes[name];
+      for (const auto& [key, value] : group.items())
+        if (key != "utilization_windows") n.stats.push_back(key);
+    }
+  // Every node's ancestors exist (a statistics group's parent may be no module: "pert0.queue").
+  for (auto it = nodes.begin(); it != nodes.end(); ++it)
+    for (std::string p = parent_of(it->first); !p.empty(); p = parent_of(p)) nodes[p];
+  // Each parameter belongs to the deepest module whose class path holds it (pert.shell.clock:
+  // pert0.shell's, for every PERT); the rest are the machine's own.
+  const std::vector<params::ParamEntry> entries = registry.list();
+  std::vector<const params::ParamEntry*> machine_params;
+  std::map<std::string, std::string> class_paths;  // module -> class path
+  for (const auto& [name, n] : nodes) class_paths[name] = registry.class_path(name);
+  for (const auto& e : entries) {
+    if (!e.instance_of.empty()) continue;  // an instance's value: shown with its class's
+    std::string best;
+    if (!e.per_instance) {  // the machine's own (pert_count, broadcast.mode, render.*)
+      machine_params.push_back(&e);
+      continue;
+    }
+    // The deepest class path that holds it; of equal instances the first (pert0 for pert.*).
+    std::size_t best_len = 0;
+    for (const auto& [name, cls] : class_paths) {
+      if (!e.name.starts_with(cls + ".") || cls.size() <= best_len) continue;
+      best = name;
+      best_len = cls.size();
+    }
+    if (best.empty())
+      machine_params.push_back(&e);
+    else
+      nodes[best].params.push_back(&e);
+  }
+
+  // Text: the tree, indented by depth.
+  std::ostringstream text;
+  text << machine.name() << ": " << machine.description() << "\n";
+  text << "Module tree (built for " << scene_spec
+       << "); parameters by the name that sets every instance, with their values; "
+          "statistics as stats.json `modules` reports them.\n\n";
+  for (const auto& [name, n] : nodes) {
+    const std::size_t depth = static_cast<std::size_t>(std::count(name.begin(), name.end(), '.'));
+    const std::string indent(2 * depth, ' ');
+    text << indent << leaf_of(name) << "  [" << (n.type.empty() ? "statistics group" : n.type)
+         << "]  " << name << "\n";
+    for (const auto* p : n.params)
+      text << indent << "    param " << p->name << " = " << p->value_text << "\n";
+    if (!n.stats.empty()) {
+      text << indent << "    stats";
+      for (const auto& s : n.stats) text << " " << s;
+      text << "\n";
+    }
+  }
+  text << "\nMachine parameters:";
+  for (const auto* p : machine_params) text << " " << p->name;
+  text << "\n\nConnections:\n";
+  for (const auto& [from, to, what] : reader.edges)
+    text << "  " << from << " -> " << to << "  (" << what << ")\n";
+  std::cout << text.str();
+
+  if (args.out_dir.empty()) return 0;
+  // DOT: a cluster per module with children, a box per module without.
+  std::ostringstream dot;
+  dot << "digraph " << dot_id(machine.name()) << " {\n  rankdir=LR;\n  compound=true;\n"
+      << "  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n"
+      << "  label=\"" << dot_escape(machine.name() + ": " + machine.description())
+      << "\";\n  labelloc=t;\n";
+  std::set<std::string> has_children;
+  for (const auto& [name, n] : nodes)
+    if (!parent_of(name).empty()) has_children.insert(parent_of(name));
+  std::function<void(const std::string&, int)> emit = [&](const std::string& name, int depth) {
+    const Node& n = nodes.at(name);
+    const std::string pad(2 * static_cast<std::size_t>(depth) + 2, ' ');
+    // DOT's "\n" breaks a label's line; the parts are escaped first.
+    std::string label =
+        dot_escape(leaf_of(name)) + "\\n" + (n.type.empty() ? "(statistics)" : n.type);
+    for (const auto* p : n.params)
+      label +=
+          "\\n" + dot_escape(p->name.substr(class_paths[name].size() + 1) + " = " + p->value_text);
+    if (has_children.contains(name)) {
+      dot << pad << "subgraph " << dot_id("cluster_" + name) << " {\n"
+          << pad << "  label=\"" << label << "\";\n"
+          << pad << "  style=rounded;\n"
+          << pad << "  " << dot_id(name) << " [shape=point, style=invis];\n";
+      for (const auto& [child, c] : nodes)
+        if (parent_of(child) == name) emit(child, depth + 1);
+      dot << pad << "}\n";
+    } else {
+      dot << pad << dot_id(name) << " [label=\"" << label << "\""
+          << (n.type.empty() ? ", style=\"rounded,dashed\"" : "") << "];\n";
+    }
+  };
+  for (const auto& [name, n] : nodes)
+    if (parent_of(name).empty()) emit(name, 0);
+  for (const auto& [from, to, what] : reader.edges) {
+    if (!nodes.contains(from) || !nodes.contains(to)) continue;
+    dot << "  " << dot_id(from) << " -> " << dot_id(to) << " [label=\"" << what << "\"";
+    if (has_children.contains(from)) dot << ", ltail=" << dot_id("cluster_" + from);
+    if (has_children.contains(to)) dot << ", lhead=" << dot_id("cluster_" + to);
+    dot << ", fontsize=8];\n";
+  }
+  dot << "}\n";
+
+  namespace fs = std::filesystem;
+  fs::create_directories(args.out_dir);
+  const fs::path dot_path = fs::path(args.out_dir) / (machine.name() + ".dot");
+  const fs::path svg_path = fs::path(args.out_dir) / (machine.name() + ".svg");
+  {
+    std::ofstream f(dot_path.string() + ".tmp", std::ios::binary);
+    f << dot.str();
+    if (!f) throw std::runtime_error("cannot write " + dot_path.string());
+  }
+  fs::rename(dot_path.string() + ".tmp", dot_path);
+  std::cerr << "wrote " << dot_path.string() << "\n";
+  const std::string cmd =
+      "dot -Tsvg -o '" + svg_path.string() + ".tmp' '" + dot_path.string() + "' 2>/dev/null";
+  if (std::system("command -v dot >/dev/null 2>&1") != 0) {
+    std::cerr << "no SVG: Graphviz's `dot` is not installed (Debian: apt install graphviz)\n";
+    return 0;
+  }
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("dot failed on " + dot_path.string());
+  fs::rename(svg_path.string() + ".tmp", svg_path);
+  std::cerr << "wrote " << svg_path.string() << "\n";
+  return 0;
+}
+
+}  // namespace rtsim::app
