@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "tests/test_support.hpp"
@@ -85,6 +86,25 @@ INSTANTIATE_TEST_SUITE_P(Machines, Describe,
                              if (ch == '-') ch = '_';
                            return n;
                          });
+
+TEST(Describe, EveryMachineIsCovered) {
+  const auto r = run_rtsim("list machines");
+  ASSERT_EQ(r.exit_code, 0);
+  std::size_t machines = 0;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ", 0) != 0) continue;  // machines are the indented lines
+    std::istringstream words(line);
+    std::string name;
+    words >> name;
+    if (name == "(none)") continue;  // the functional renderer
+    bool covered = false;
+    for (const char* m : {"gaudet-pert", "ullner-peripheral", "vax-750"}) covered |= name == m;
+    EXPECT_TRUE(covered) << name << " has no case in Machines/Describe";
+    ++machines;
+  }
+  EXPECT_EQ(machines, 3u);
+}
 
 TEST(Describe, ConnectionsFollowTheWiring) {
   const auto d = run_rtsim("describe gaudet-pert -p pert_count=2");

@@ -19,6 +19,7 @@
 #include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/gaudet/shade_processor.hpp"
 #include "platform/machines/gaudet/shell_processor.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform {
@@ -67,11 +68,11 @@ nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
           {"pipeline_wait_s", t.pipeline_wait.to_seconds()}};
 }
 
-/// stats.json's machine keys; `stats` (the registry over the frame) receives the modules, and
-/// is kept by the caller for the traces.
+/// stats.json's machine keys (scene_stats, gaudet); `stats` (the registry over the frame)
+/// receives the modules.
 nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::PertDataSets& sets,
-                                    const PertPlatform& p, gaudet::ShadeShared& shared,
-                                    const sc_core::sc_time& frame, modules::StatsRegistry& stats) {
+                                    const PertPlatform& p, const sc_core::sc_time& frame,
+                                    modules::StatsRegistry& stats) {
   nlohmann::ordered_json out;
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
@@ -145,8 +146,6 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
         {"utilization",
          frame > sc_core::SC_ZERO_TIME ? s.packet_time.to_seconds() / frame.to_seconds() : 0.0}};
   }
-  out["modules"] = stats.to_json(frame);
-  out["ray_latency_s"] = shared.latency.to_json();
   const auto counts = tree.counts();
   out["scene_stats"] = {{"shells", counts.shells},
                         {"shell_packets", counts.shell_packets},
@@ -285,10 +284,10 @@ FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRe
 
 RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                           const params::ParamRegistry& r, const RunOptions& opts) const {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const int w = opts.width > 0 ? opts.width : scene.camera.width;
-  const int h = opts.height > 0 ? opts.height : scene.camera.height;
-  functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  MachineTrace& trace = run.trace();
+  const int w = run.width(), h = run.height();
   PertPlatform p;
   p.mode = gaudet::broadcast_mode(r.get_string("broadcast.mode"));
   p.order = gaudet::broadcast_order(r.get_string("broadcast.order"));
@@ -312,8 +311,6 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                             ? tasks::kPertSphereTestCost
                             : tasks::kPertTriangleTestCost);
 
-  begin_simulation(r);
-  MachineTrace trace(opts);
   shading::PinholeCamera camera(scene.camera, w, h);
   gaudet::ShadeShared shared;
   shared.scene = &scene;
@@ -326,7 +323,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   shared.opts = &opts;
 
   // --latency-probe: every ray's journey around its ring (ray_probe.hpp).
-  gaudet::RayProbe probe(opts.latency_probe);
+  gaudet::RayProbe probe(run.probe());
   if (p.broadcasting()) {
     const sc_core::sc_time load_word_time =
         gaudet::ControlProcessor::load_word_time(modules::ModuleParams(r, "control"));
@@ -377,10 +374,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
     pert->prim->set_frame_start(p.control->frame_start());
   }
 
-  // The control processor ends the frame with sc_stop(): that is no news.
-  sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
-                                          sc_core::SC_DO_NOTHING);
-  sc_core::sc_start();
+  run.simulate();
   // The simulation ends when nothing is left to happen. With every ray answered that is the end
   // of the frame; otherwise some processor waits for a packet that never comes (a corrupted
   // memory: an ID list entry pointing at no packet) and the image is not a frame.
@@ -396,19 +390,12 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   }
 
   const sc_core::sc_time frame_time = p.control->frame_time();
-  RunResult res;
-  res.simulated_time_s = frame_time.to_seconds();
-  modules::StatsRegistry stats(p.control->load_time(), p.control->load_time() + frame_time);
-  res.stats = gaudet_stats(tree, sets, p, shared, frame_time, stats);
-  if (!opts.faults.empty()) res.stats["faults"] = faults_json(memories);
-  if (opts.latency_probe) res.stats["latency_probe"] = probe.probe().to_json();
-  if (trace.on()) res.stats["trace"] = trace.finish(stats);
-  res.image = frame.finish(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+  modules::StatsRegistry& stats = run.stats(p.control->load_time(), frame_time);
+  run.machine_stats() = gaudet_stats(tree, sets, p, frame_time, stats);
   if (opts.progress)
     opts.progress(static_cast<long>(shared.initial_rays_done),
                   static_cast<long>(shared.initial_rays_total));
-  return res;
+  return run.finish(shared.latency, memories);
 }
 
 }  // namespace rtsim::platform

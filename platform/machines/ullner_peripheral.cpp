@@ -8,6 +8,7 @@
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/ullner/host.hpp"
 #include "platform/machines/ullner/peripheral.hpp"
@@ -67,22 +68,19 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
 
 RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
                                 const params::ParamRegistry& r, const RunOptions& opts) const {
-  const auto start = std::chrono::steady_clock::now();
-  const int w = opts.width > 0 ? opts.width : scene.camera.width;
-  const int h = opts.height > 0 ? opts.height : scene.camera.height;
-  functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  MachineTrace& trace = run.trace();
   ullner::PeripheralSettings pc =
       ullner::Peripheral::read_settings(modules::ModuleParams(r, "peripheral"));
   const std::uint64_t quads = twin.geometry->shapes.size();
   pc.modelling_space = twin.geometry->scene_bounds;
   if (!scene.modelling_space.empty()) pc.modelling_space.extend(scene.modelling_space);
 
-  begin_simulation(r);
-  MachineTrace trace(opts);
   tasks::ShadeTask shade(scene, twin.settings.shade);
   // One journey per ray from the host putting it into the ray queue to task 2 taking its
   // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
-  modules::LatencyProbe probe(opts.latency_probe);
+  modules::LatencyProbe& probe = run.probe();
   // The peripheral searches its own memories; the twin's tracer only checks afterwards.
   ullner::Peripheral peripheral("peripheral", *twin.geometry, scene, twin.settings, shade, quads,
                                 pc, frame.counters(), trace, probe);
@@ -92,13 +90,11 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   host.load_out.bind(peripheral.parameters.socket);
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);
-  sc_core::sc_start();
+  run.simulate();
 
   const sc_core::sc_time frame_time = host.frame_time();
-  RunResult res;
-  res.simulated_time_s = frame_time.to_seconds();
   // Utilisation over time and queue occupancy over the frame (after the scene load).
-  modules::StatsRegistry stats(host.load_time(), host.load_time() + frame_time);
+  modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
   auto& hs = stats.busy_module("host", host.busy(), host.timeline());
   hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
   hs.values["results_processed"] = static_cast<double>(host.results_processed());
@@ -123,17 +119,14 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ms.values["polygons"] = static_cast<double>(quads);
   ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
   ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
-  res.stats["modules"] = stats.to_json(frame_time);
-  res.stats["ray_latency_s"] = host.latency().to_json();
-  if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
-  if (!opts.faults.empty()) res.stats["faults"] = faults_json({&peripheral.parameters});
+  nlohmann::ordered_json& res = run.machine_stats();
   // What the hardware did: every polygon address fed to the pipe is an intersection.
-  res.stats["intersection_tests"] = peripheral.pipeline().issued();
+  res["intersection_tests"] = peripheral.pipeline().issued();
 
   const double rays = static_cast<double>(std::max<std::uint64_t>(peripheral.rays_served(), 1));
   const double issued = static_cast<double>(peripheral.pipeline().issued());
   const double extent = functional::scene_extent(pc.modelling_space);
-  res.stats["peripheral"] = {
+  res["peripheral"] = {
       {"polygons", quads},
       {"intersect_interval_s",
        issued > 0 ? peripheral.pipeline().busy().to_seconds() / issued : 0.0},
@@ -149,10 +142,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
                               : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};
-  if (trace.on()) res.stats["trace"] = trace.finish(stats);
-  res.image =
-      frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  return res;
+  return run.finish(host.latency(), {&peripheral.parameters});
 }
 
 }  // namespace rtsim::platform

@@ -14,6 +14,7 @@
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_tracer.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/machine_trace.hpp"
 
@@ -175,30 +176,22 @@ FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegist
 
 RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& r,
                       const RunOptions& opts) const {
-  const auto start = std::chrono::steady_clock::now();
-  const int w = opts.width > 0 ? opts.width : scene.camera.width;
-  const int h = opts.height > 0 ? opts.height : scene.camera.height;
-  functional::FrameState frame(w, h, twin.settings.spp, opts.aov_id, opts.aov_depth);
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
   const std::uint64_t objects = scene.primitives.size();
-  begin_simulation(r);
+  VaxHost host("vax", r, scene, *twin.tracer, frame, twin.settings, objects, opts, run.trace(),
+               run.probe());
   inject_faults(name(), opts.faults, {});  // its answers come from no memory words
-  MachineTrace trace(opts);
-  modules::LatencyProbe probe(opts.latency_probe);
-  VaxHost host("vax", r, scene, *twin.tracer, frame, twin.settings, objects, opts, trace, probe);
-  sc_core::sc_start();
+  run.simulate();
 
-  RunResult res;
-  res.simulated_time_s = host.frame_time().to_seconds();
-  modules::StatsRegistry stats(sc_core::SC_ZERO_TIME, host.frame_time());
+  modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, host.frame_time());
   stats.busy_module("vax", host.busy(), host.timeline()).values["rays"] =
       static_cast<double>(frame.counters().total_rays());
-  res.stats["modules"] = stats.to_json(host.frame_time());
-  res.stats["ray_latency_s"] = host.latency().to_json();
-  if (probe.enabled()) res.stats["latency_probe"] = probe.to_json();
+  nlohmann::ordered_json& res = run.machine_stats();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
   const bool brute = r.get_string("vax.search") == "brute-force";
-  if (brute) res.stats["intersection_tests"] = frame.counters().total_rays() * objects;
-  res.stats["vax"] = {
+  if (brute) res["intersection_tests"] = frame.counters().total_rays() * objects;
+  res["vax"] = {
       {"objects", objects},
       {"intersection_time_s", r.get_time_s("vax.intersection_time")},
       {"ray_time_s", r.get_time_s("vax.ray_time")},
@@ -207,10 +200,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
        brute ? static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)
              : static_cast<double>(frame.counters().intersection_tests)},
       {"box_tests_charged", brute ? 0.0 : static_cast<double>(frame.counters().box_tests)}};
-  if (trace.on()) res.stats["trace"] = trace.finish(stats);
-  res.image =
-      frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  return res;
+  return run.finish(host.latency(), {});
 }
 
 }  // namespace rtsim::platform

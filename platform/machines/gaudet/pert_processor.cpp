@@ -5,7 +5,8 @@ namespace rtsim::platform::gaudet {
 namespace {
 /// Where processors not given a probe record: nowhere (its rays get no journey).
 RayProbe& disabled_probe() {
-  static RayProbe p(false);
+  static modules::LatencyProbe disabled(false);
+  static RayProbe p(disabled);
   return p;
 }
 }  // namespace

@@ -2,7 +2,7 @@
 
 namespace rtsim::platform::gaudet {
 
-RayProbe::RayProbe(bool enabled) : probe_(enabled) {
+RayProbe::RayProbe(modules::LatencyProbe& probe) : probe_(probe) {
   // Named in the order a ray meets them: the probe reports them in this order.
   static constexpr const char* kNames[] = {"queue.shade_to_shell", "shell", "shell_bus",
                                            "queue.shell_to_prim",  "prim",  "prim_bus",

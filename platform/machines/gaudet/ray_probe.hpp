@@ -50,7 +50,8 @@ class RayProbe {
  public:
   using Part = modules::LatencyPart;
 
-  explicit RayProbe(bool enabled);
+  /// Names the ring's stages in `probe` (the run's --latency-probe; first, so they come first).
+  explicit RayProbe(modules::LatencyProbe& probe);
 
   modules::LatencyProbe& probe() { return probe_; }
   const modules::LatencyProbe& probe() const { return probe_; }
@@ -99,7 +100,7 @@ class RayProbe {
   void shared_share(RayTicket& t, Stage proc, const sc_core::sc_time& start,
                     const sc_core::sc_time& end, std::size_t i, std::size_t k);
 
-  modules::LatencyProbe probe_;
+  modules::LatencyProbe& probe_;
   int stage_[8];  ///< LatencyProbe stage index of each Stage
 };
 

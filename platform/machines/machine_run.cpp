@@ -1,0 +1,53 @@
+#include "platform/machines/machine_run.hpp"
+
+#include "platform/machines/machine_support.hpp"
+
+namespace rtsim::platform {
+
+namespace {
+int or_default(int asked, int scene) { return asked > 0 ? asked : scene; }
+}  // namespace
+
+MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const FunctionalTwin& twin,
+                       const params::ParamRegistry& registry, const RunOptions& opts)
+    : wall_start_(std::chrono::steady_clock::now()),
+      machine_(std::move(machine)),
+      opts_(opts),
+      width_(or_default(opts.width, scene.camera.width)),
+      height_(or_default(opts.height, scene.camera.height)),
+      frame_(width_, height_, twin.settings.spp, opts.aov_id, opts.aov_depth),
+      // The quantum is set before anything is built (the trace is the first member to be).
+      trace_((begin_simulation(registry), opts)),
+      probe_(opts.latency_probe) {}
+
+void MachineRun::simulate() {
+  sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
+                                          sc_core::SC_DO_NOTHING);
+  sc_core::sc_start();
+}
+
+modules::StatsRegistry& MachineRun::stats(const sc_core::sc_time& begin,
+                                          const sc_core::sc_time& frame_time) {
+  frame_time_ = frame_time;
+  result_.simulated_time_s = frame_time.to_seconds();
+  return stats_.emplace(begin, begin + frame_time);
+}
+
+RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
+                             const std::vector<modules::Memory*>& fault_memories) {
+  if (!stats_) throw std::logic_error(machine_ + ": finish() before stats()");
+  // The machine's keys first were added by the machine; the common ones lead.
+  nlohmann::ordered_json out;
+  out["modules"] = stats_->to_json(frame_time_);
+  out["ray_latency_s"] = ray_latency.to_json();
+  for (auto& [key, value] : result_.stats.items()) out[key] = std::move(value);
+  if (probe_.enabled()) out["latency_probe"] = probe_.to_json();
+  if (!opts_.faults.empty()) out["faults"] = faults_json(fault_memories);
+  if (trace_.on()) out["trace"] = trace_.finish(*stats_);
+  result_.stats = std::move(out);
+  result_.image = frame_.finish(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
+  return std::move(result_);
+}
+
+}  // namespace rtsim::platform

@@ -1,0 +1,74 @@
+#pragma once
+// The run skeleton every machine shares (DESIGN.md "The three layers": written once): the frame
+// buffer, the traces, the latency probe, the simulation, the statistics and the image. A
+// machine's run() is then only what is its own:
+//
+//   MachineRun run(name(), scene, twin, registry, opts);     // frame, traces, quantum, probe
+//   ... build the module tree (run.frame(), run.trace(), run.probe()) ...
+//   inject_faults(name(), opts.faults, memories);
+//   run.simulate();                                         // sc_start
+//   modules::StatsRegistry& stats = run.stats(frame_begin, frame_time);
+//   ... stats.busy_module(...), stats.queue(...), machine keys into run.result().stats ...
+//   return run.finish(ray_latency, memories);               // modules, latency, trace, image
+//
+// Used by vax-750, ullner-peripheral and gaudet-pert.
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "modules/latency_probe.hpp"
+#include "modules/memory.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/machine.hpp"
+#include "platform/machines/machine_trace.hpp"
+
+namespace rtsim::platform {
+
+class MachineRun {
+ public:
+  /// Starts the wall clock, sizes the frame (RunOptions, else the scene's camera), sets the TLM
+  /// quantum and opens the traces: before any module is built.
+  MachineRun(std::string machine, const scenes::Scene& scene, const FunctionalTwin& twin,
+             const params::ParamRegistry& registry, const RunOptions& opts);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  functional::FrameState& frame() { return frame_; }
+  MachineTrace& trace() { return trace_; }
+  /// --latency-probe (disabled unless asked for): one journey per ray, stages named as modules.
+  modules::LatencyProbe& probe() { return probe_; }
+  const RunOptions& options() const { return opts_; }
+
+  /// Runs the simulation until nothing is left to happen (a machine ends its frame with
+  /// sc_stop(), which is no news).
+  void simulate();
+
+  /// After simulate(): the statistics of the frame [begin, begin + frame_time] (the time before
+  /// `begin` is the scene load), which the machine fills with its modules.
+  modules::StatsRegistry& stats(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time);
+
+  /// What the machine adds to stats.json besides its modules (its headline keys).
+  nlohmann::ordered_json& machine_stats() { return result_.stats; }
+
+  /// The rest of stats.json — `modules`, `ray_latency_s`, `latency_probe`, `faults`, `trace` —
+  /// and the image, with the wall time of the whole run.
+  RunResult finish(const modules::LatencyRecorder& ray_latency,
+                   const std::vector<modules::Memory*>& fault_memories);
+
+ private:
+  std::chrono::steady_clock::time_point wall_start_;
+  std::string machine_;
+  const RunOptions& opts_;
+  int width_, height_;
+  functional::FrameState frame_;
+  MachineTrace trace_;
+  modules::LatencyProbe probe_;
+  std::optional<modules::StatsRegistry> stats_;
+  sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
+  RunResult result_;
+};
+
+}  // namespace rtsim::platform
