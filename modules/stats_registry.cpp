@@ -14,6 +14,15 @@ ModuleStats& StatsRegistry::busy_module(const std::string& name, const sc_core::
   return m;
 }
 
+ModuleStats& StatsRegistry::processor(const Processor& p) {
+  const Processor::Accounts& a = p.accounts();
+  ModuleStats& m = busy_module(p.name(), a.busy, p.timeline());
+  m.values["waiting_for_data_s"] = a.waiting_for_data.to_seconds();
+  m.values["waiting_for_work_s"] = a.waiting_for_work.to_seconds();
+  m.values["blocked_s"] = a.blocked.to_seconds();
+  return m;
+}
+
 ModuleStats& StatsRegistry::queue(const std::string& name, const Occupancy& occupancy,
                                   std::size_t capacity) {
   ModuleStats& m = modules_[name];

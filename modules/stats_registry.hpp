@@ -13,6 +13,7 @@
 
 #include "modules/busy_timeline.hpp"
 #include "modules/occupancy.hpp"
+#include "modules/processor.hpp"
 
 namespace rtsim::modules {
 
@@ -47,6 +48,9 @@ class StatsRegistry {
   /// utilisation windows of the frame, and the source of its trace's busy signal.
   ModuleStats& busy_module(const std::string& name, const sc_core::sc_time& busy,
                            const BusyTimeline& timeline);
+  /// A kit processor: busy_module under its name, with where its other time went
+  /// (`waiting_for_data_s`, `waiting_for_work_s`, `blocked_s`).
+  ModuleStats& processor(const Processor& p);
   /// A queue of `capacity` entries: its occupancy over the frame, and the source of its trace's
   /// depth signal.
   ModuleStats& queue(const std::string& name, const Occupancy& occupancy, std::size_t capacity);

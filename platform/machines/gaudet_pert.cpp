@@ -85,7 +85,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
     for (int k = 0; k < 3; ++k) {
       const gaudet::TimeSplit& t = procs[k]->split();
       totals[k] += t;
-      auto& m = stats.busy_module(procs[k]->name(), t.processing, procs[k]->timeline());
+      auto& m = stats.processor(*procs[k]);
       m.values["rays"] = static_cast<double>(t.rays);
       m.values["latency_s"] = t.latency.to_seconds();
       m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();

@@ -23,6 +23,7 @@
 #include <systemc>
 
 #include "modules/busy_timeline.hpp"
+#include "modules/slice_sink.hpp"
 #include "modules/stats_registry.hpp"
 #include "modules/trace/perfetto_trace.hpp"
 #include "modules/trace/trace_filter.hpp"
@@ -31,13 +32,13 @@
 
 namespace rtsim::platform {
 
-class MachineTrace {
+class MachineTrace final : public modules::SliceSink {
  public:
   /// Opens the traces RunOptions asks for. Make it before the modules: while it lives, their
   /// busy timelines keep the intervals the busy signals are drawn from.
   explicit MachineTrace(const RunOptions& opts);
   /// A trace that was not finished (the run failed) leaves no file.
-  ~MachineTrace();
+  ~MachineTrace() override;
   MachineTrace(const MachineTrace&) = delete;
   MachineTrace& operator=(const MachineTrace&) = delete;
 
@@ -48,7 +49,7 @@ class MachineTrace {
   /// first use), unless the filter leaves it out.
   void slice(std::string_view module, std::string_view name, const sc_core::sc_time& start,
              const sc_core::sc_time& duration,
-             std::initializer_list<modules::PerfettoTrace::Arg> args = {}) {
+             std::initializer_list<modules::PerfettoTrace::Arg> args = {}) override {
     if (perfetto_ && keeps(module, start, duration))
       perfetto_->slice(perfetto_->track(module), name, start, duration, args);
   }

@@ -95,7 +95,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = host.frame_time();
   // Utilisation over time and queue occupancy over the frame (after the scene load).
   modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
-  auto& hs = stats.busy_module("host", host.busy(), host.timeline());
+  auto& hs = stats.processor(host);
   hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
   hs.values["results_processed"] = static_cast<double>(host.results_processed());
   hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());

@@ -8,8 +8,8 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/latency_probe.hpp"
-#include "modules/local_clock.hpp"
 #include "modules/module_params.hpp"
+#include "modules/processor.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -27,7 +27,7 @@ using shading::TracedRay;
 
 /// The VAX running the whole ray tracer in one process: each ray costs T_s to spawn and shade
 /// plus T_i for each object of the scene (brute force).
-class VaxHost : public sc_core::sc_module {
+class VaxHost : public modules::Processor {
  public:
   /// Its parameters under `vax`: T_i, T_s, the search it runs and T_b.
   static void declare_params(const modules::ParamDecls& vax) {
@@ -72,7 +72,7 @@ class VaxHost : public sc_core::sc_module {
           const scenes::Scene& scene, const Tracer& tracer, functional::FrameState& frame,
           const functional::RenderSettings& settings, std::uint64_t objects, const RunOptions& opts,
           MachineTrace& trace, modules::LatencyProbe& probe)
-      : sc_core::sc_module(name),
+      : modules::Processor(name, trace),
         scene_(scene),
         tracer_(tracer),
         frame_(frame),
@@ -84,20 +84,17 @@ class VaxHost : public sc_core::sc_module {
         brute_force_(params_.get_string("search") == "brute-force"),
         objects_(objects),
         opts_(opts),
-        trace_(trace),
         probe_(probe),
         probe_vax_(probe.stage(this->name())) {
     SC_THREAD(run);
   }
 
   sc_core::sc_time frame_time() const { return frame_time_; }
-  sc_core::sc_time busy() const { return busy_; }
-  const modules::BusyTimeline& timeline() const { return timeline_; }
+  sc_core::sc_time busy() const { return accounts().busy; }
   const modules::LatencyRecorder& latency() const { return latency_; }
 
  private:
   void run() {
-    modules::LocalClock clock;
     shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
     tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
     tasks::ShadeTask shade(scene_, settings_.shade);
@@ -121,21 +118,17 @@ class VaxHost : public sc_core::sc_module {
                                    times(box_time_, c.box_tests - boxes_seen);
             tests_seen = c.intersection_tests;
             boxes_seen = c.box_tests;
-            trace_.slice("vax", "ray", clock.now(), cost,
-                         {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
-            timeline_.add(clock.now(), cost);
             // The whole of a ray's latency is the VAX working on it: one process, no queue.
-            const auto journey = probe_.begin(clock.now());
+            const auto journey = probe_.begin(clock_.now());
             probe_.add(journey, probe_vax_, modules::LatencyPart::kService, cost);
-            clock.advance(cost);
-            busy_ += cost;
+            compute_for(cost, "ray", {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
             latency_.add(cost);
-            probe_.end(journey, clock.now());
+            probe_.end(journey, clock_.now());
             if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
           });
     }
-    frame_time_ = clock.now();
-    clock.sync();
+    frame_time_ = clock_.now();
+    clock_.sync();
   }
 
   const scenes::Scene& scene_;
@@ -147,12 +140,9 @@ class VaxHost : public sc_core::sc_module {
   bool brute_force_;
   std::uint64_t objects_;
   const RunOptions& opts_;
-  MachineTrace& trace_;
   modules::LatencyProbe& probe_;
   int probe_vax_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
-  modules::BusyTimeline timeline_;
   modules::LatencyRecorder latency_;
 };
 
@@ -185,8 +175,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   run.simulate();
 
   modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, host.frame_time());
-  stats.busy_module("vax", host.busy(), host.timeline()).values["rays"] =
-      static_cast<double>(frame.counters().total_rays());
+  stats.processor(host).values["rays"] = static_cast<double>(frame.counters().total_rays());
   nlohmann::ordered_json& res = run.machine_stats();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
   const bool brute = r.get_string("vax.search") == "brute-force";

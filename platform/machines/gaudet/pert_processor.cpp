@@ -30,48 +30,15 @@ void PertProcessor::declare_params(const modules::ParamDecls& processor,
   BusInterface::declare_params(processor.sub("bic"), id_registers);
 }
 
-PertProcessor::PertProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                             MachineTrace& trace)
-    : sc_core::sc_module(name),
-      params_(registry, this->name()),
-      timing_(modules::read_processor_timing(params_)),
-      trace_(trace),
-      probe_(&disabled_probe()),
-      track_(this->name()) {}
-
-void PertProcessor::compute(const Cost& c, std::string_view what) {
-  const sc_core::sc_time t = timing_.time_for(c);
-  if (t == sc_core::SC_ZERO_TIME) return;
-  trace_.slice(track_, what, clock_.now(), t);
-  timeline_.add(clock_.now(), t);
-  clock_.advance(t);
-  split_.processing += t;
-}
-
-void PertProcessor::idle(std::optional<sc_core::sc_time> until,
-                         const sc_core::sc_event_or_list& events, bool for_bus) {
-  const sc_core::sc_time before = clock_.now();
-  clock_.sync();
-  const sc_core::sc_time g = sc_core::sc_time_stamp();
-  // A time already reached is something the caller cannot act on yet: wait for a change.
-  if (until && *until > g)
-    sc_core::wait(*until - g, events);
-  else
-    sc_core::wait(events);
-  clock_.resync();
-  const sc_core::sc_time spent = clock_.now() - before;
-  (for_bus ? split_.latency : split_.pipeline_wait) += spent;
+PertProcessor::PertProcessor(const sc_core::sc_module_name& name,
+                             const params::ParamRegistry& registry, MachineTrace& trace)
+    : modules::Processor(name, trace), params_(registry, this->name()), probe_(&disabled_probe()) {
+  set_timing(modules::read_processor_timing(params_));
 }
 
 void PertProcessor::begin_frame() {
   if (frame_start_) sc_core::wait(*frame_start_);
   clock_.resync();
-}
-
-void PertProcessor::blocked_until(const sc_core::sc_time& t) {
-  if (t <= clock_.now()) return;
-  split_.pipeline_wait += t - clock_.now();
-  clock_.catch_up(t);
 }
 
 }  // namespace rtsim::platform::gaudet

@@ -14,10 +14,8 @@
 #include <utility>
 
 #include "firmware/cost.hpp"
-#include "modules/busy_timeline.hpp"
-#include "modules/local_clock.hpp"
 #include "modules/module_params.hpp"
-#include "modules/processor_timing.hpp"
+#include "modules/processor.hpp"
 #include "platform/machines/gaudet/bus_interface.hpp"
 #include "platform/machines/gaudet/ray_probe.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -38,16 +36,22 @@ struct TimeSplit {
   }
 };
 
-class PertProcessor : public sc_core::sc_module {
+class PertProcessor : public modules::Processor {
  public:
   /// The parameters every kind has, under `processor` ("pert.shade"): the SJ16's clock and
   /// cycles per operation (the same hardware in all three, L853-L863) and its BIC's.
   static void declare_params(const modules::ParamDecls& processor,
                              const BusInterface::IdRegisters& id_registers);
 
-  const TimeSplit& split() const { return split_; }
-  /// When it computed (TimeSplit::processing over time), for utilisation windows.
-  const modules::BusyTimeline& timeline() const { return timeline_; }
+  /// Its time in Gaudet's terms (L1045): processing = busy; latency = waiting for broadcast
+  /// data; pipeline wait = waiting for work or for room in the next stage's queue.
+  TimeSplit split() const {
+    const auto& a = accounts();
+    return {.processing = a.busy,
+            .latency = a.waiting_for_data,
+            .pipeline_wait = a.waiting_for_work + a.blocked,
+            .rays = rays_};
+  }
   /// Elaboration: the event that starts the frame (the control processor's).
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
   /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
@@ -55,19 +59,17 @@ class PertProcessor : public sc_core::sc_module {
 
  protected:
   /// Reads its parameters under its hierarchical name ("pert0.shade").
-  PertProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+  PertProcessor(const sc_core::sc_module_name& name, const params::ParamRegistry& registry,
                 MachineTrace& trace);
 
-  /// Spends the time of `c` computing (a Perfetto slice named `what` on this processor).
-  void compute(const Cost& c, std::string_view what);
   /// Waits until `until` (if known) or until one of `events` fires, whichever comes first.
   /// The time counts as latency if `for_bus`, else as pipeline wait.
   void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
-            bool for_bus);
+            bool for_bus) {
+    Processor::idle(until, events, for_bus ? Wait::kData : Wait::kWork);
+  }
   /// Waits for the frame to start.
   void begin_frame();
-  /// Accounts time lost blocked in a put (pipeline wait) up to `t`.
-  void blocked_until(const sc_core::sc_time& t);
   /// compute() for ray `t` at `stage` (--latency-probe): the gap since the ray's cursor is
   /// queueing at `stage` (unless the caller attributed it otherwise first), the compute service.
   void compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
@@ -79,18 +81,14 @@ class PertProcessor : public sc_core::sc_module {
     compute(c, what);
     probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
   }
+  using Processor::compute_for;
 
   modules::ModuleParams params_;  ///< its own parameters, under its name
-  modules::LocalClock clock_;
-  modules::ProcessorTiming timing_;
-  MachineTrace& trace_;
-  TimeSplit split_;
-  modules::BusyTimeline timeline_;
   RayProbe* probe_;
+  std::uint64_t rays_ = 0;  ///< rays this processor finished its part of
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
-  std::string track_;  ///< its trace track: its name
 };
 
 }  // namespace rtsim::platform::gaudet

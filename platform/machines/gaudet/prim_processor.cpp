@@ -161,7 +161,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   // From the end of the send until the ShadeProcessor takes it, the answer is in (or, while
   // the queue is full, blocked before) queue.prim_to_shade.
   compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
-  ++split_.rays;
+  ++rays_;
   blocked_until(modules::send_message(out, res, clock_.now(), PrimToShade::kWords * 4));
 }
 

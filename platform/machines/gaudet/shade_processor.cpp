@@ -55,7 +55,7 @@ void ShadeProcessor::shade(const PrimToShade& msg) {
   const Cost c = task_.on_result(t.ray, msg.found, msg.hit, shared_.frame->fb(), spawned_);
   shared_.frame->counters().cost += c;
   compute(c, "shade");
-  ++split_.rays;
+  ++rays_;
   for (const auto& s : spawned_) {
     RayTicket child;
     child.ray = s;

@@ -142,7 +142,7 @@ void ShellProcessor::run() {
         probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
       compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
       modules::send_message(out, msg, clock_.now(), msg.words() * 4);
-      ++split_.rays;
+      ++rays_;
       continue;
     }
     if (auto p = port_.take(now)) {

@@ -44,7 +44,7 @@ Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
            functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
            const PeripheralSettings& peripheral, const RunOptions& opts, MachineTrace& trace,
            const functional::SceneGeometry& geometry, modules::LatencyProbe& probe)
-    : sc_core::sc_module(name),
+    : modules::Processor(name, trace),
       ray_out("ray_out"),
       load_out("load_out"),
       results("result_queue",
@@ -53,27 +53,26 @@ Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
       shade_params_(shade),
       frame_(frame),
       ray_queue_(ray_queue),
-      timing_(modules::read_processor_timing(modules::ModuleParams(registry, this->name()))),
       peripheral_(peripheral),
       opts_(opts),
-      trace_(trace),
       geometry_(geometry),
       probe_(probe),
       probe_result_queue_(probe.stage(results.name())),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
       // at the peripheral's arithmetic rate (L584).
       lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
+  set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
   SC_THREAD(run);
 }
 
 sc_core::sc_time Host::result_time(const Cost& c) {
-  if (!peripheral_.lighting) return timing_.time_for(c);
+  if (!peripheral_.lighting) return timing().time_for(c);
   // With the lighting extension the host only controls and moves data (L566); the vector
   // arithmetic runs on the inner-product device, 3 multiplies per inner product (L564), and
   // each normalisation through the reciprocal-square-root device.
   Cost control = c;
   control.fp_add = control.fp_mul = control.fp_div = control.fp_sqrt = 0;
-  const sc_core::sc_time host_part = timing_.time_for(control);
+  const sc_core::sc_time host_part = timing().time_for(control);
   const std::uint64_t inner_products = (c.fp_mul + 2) / 3;
   const sc_core::sc_time start = clock_.now() + host_part;
   auto batch = lighting_.issue(inner_products, start);
@@ -83,11 +82,8 @@ sc_core::sc_time Host::result_time(const Cost& c) {
 }
 
 void Host::send(RayRequest req) {
-  const sc_core::sc_time cost = timing_.time_for(kSendCost);
-  trace_.slice("host", "send", clock_.now(), cost);
-  timeline_.add(clock_.now(), cost);
-  clock_.advance(cost);
-  busy_ += cost;
+  const sc_core::sc_time cost = timing().time_for(kSendCost);
+  compute_for(cost, "send");
   req.id = next_id_++;
   // The host only sends when the queue has room, so the ray enters it now.
   req.sent = clock_.now();
@@ -152,11 +148,7 @@ void Host::run() {
       const Cost c = shade.on_result(r, res.found, res.hit, frame_.fb(), spawned);
       frame_.counters().cost += c;
       const sc_core::sc_time t = result_time(c);
-      trace_.slice("host", "result", clock_.now(), t,
-                   {{"ray", res.request.id}, {"spawned", spawned.size()}});
-      timeline_.add(clock_.now(), t);
-      clock_.advance(t);
-      busy_ += t;
+      compute_for(t, "result", {{"ray", res.request.id}, {"spawned", spawned.size()}});
       for (const auto& s : spawned) {
         RayRequest req;
         req.ray = s;
@@ -181,11 +173,8 @@ void Host::run() {
       RayRequest req;
       req.ray = vision.next(sample);
       req.first_sample = sample == 0;
-      const sc_core::sc_time t = timing_.time_for(tasks::VisionRayTask::kCost);
-      trace_.slice("host", "vision ray", clock_.now(), t, {{"pixel", req.ray.pixel}});
-      timeline_.add(clock_.now(), t);
-      clock_.advance(t);
-      busy_ += t;
+      const sc_core::sc_time t = timing().time_for(tasks::VisionRayTask::kCost);
+      compute_for(t, "vision ray", {{"pixel", req.ray.pixel}});
       ++vision_rays_;
       send(req);
       continue;
@@ -193,21 +182,26 @@ void Host::run() {
     if (outstanding_ == 0 && backlog_.empty() && vision.done()) break;
     // Idle: move to the next event already known (a result stamped ahead of us, a slot the
     // peripheral frees ahead of us), else wait in global time for the peripheral.
+    // Waiting for room in the ray queue is being blocked on output; waiting for a result is
+    // waiting for data (the answers it asked for).
     const bool want_send = !backlog_.empty() || !vision.done();
     std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
+    bool next_is_room = false;
     if (want_send) {
       const auto room_at = ray_queue_.next_room_time();
-      if (room_at && (!next || *room_at < *next)) next = room_at;
+      if (room_at && (!next || *room_at < *next)) {
+        next = room_at;
+        next_is_room = true;
+      }
     }
     if (next && *next > now) {
       if (want_send && !ray_queue_.next_room_time()) {
         // The ray queue may free a slot before then: wake at whichever comes first.
-        clock_.sync();
-        sc_core::wait(*next - sc_core::sc_time_stamp(),
-                      results.fifo.put_event() | ray_queue_.get_event());
-        clock_.resync();
+        idle(*next, results.fifo.put_event() | ray_queue_.get_event(), Wait::kData);
+      } else if (next_is_room) {
+        blocked_until(*next);
       } else {
-        clock_.catch_up(*next);
+        idle_until(*next, Wait::kData);
       }
       continue;
     }
@@ -218,6 +212,7 @@ void Host::run() {
     else
       sc_core::wait(results.fifo.put_event());
     clock_.resync();
+    waited_since(now, Wait::kData);
   }
   frame_time_ = clock_.now() - frame_start_;
   clock_.sync();

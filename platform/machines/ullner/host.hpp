@@ -11,9 +11,9 @@
 
 #include "firmware/tasks/shade_task.hpp"
 #include "modules/latency_probe.hpp"
-#include "modules/local_clock.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
+#include "modules/processor.hpp"
 #include "modules/processor_timing.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -25,7 +25,7 @@
 
 namespace rtsim::platform::ullner {
 
-class Host : public sc_core::sc_module {
+class Host : public modules::Processor {
  public:
   tlm_utils::simple_initiator_socket<Host> ray_out;   ///< to the peripheral's ray queue
   tlm_utils::simple_initiator_socket<Host> load_out;  ///< to the parameter memories' load port
@@ -46,8 +46,7 @@ class Host : public sc_core::sc_module {
   /// From the end of the scene load to the host having the last answer.
   sc_core::sc_time frame_time() const { return frame_time_; }
   sc_core::sc_time load_time() const { return frame_start_; }
-  sc_core::sc_time busy() const { return busy_; }
-  const modules::BusyTimeline& timeline() const { return timeline_; }
+  sc_core::sc_time busy() const { return accounts().busy; }
   const modules::LatencyRecorder& latency() const { return latency_; }
   const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
   std::uint64_t vision_rays() const { return vision_rays_; }
@@ -64,16 +63,13 @@ class Host : public sc_core::sc_module {
   shading::ShadeParams shade_params_;
   functional::FrameState& frame_;
   const modules::TimedFifo<RayRequest>& ray_queue_;
-  modules::ProcessorTiming timing_;  ///< its processor's
   PeripheralSettings peripheral_;
   const RunOptions& opts_;
-  MachineTrace& trace_;
   const functional::SceneGeometry& geometry_;
   sc_core::sc_time frame_start_ = sc_core::SC_ZERO_TIME;
   modules::LatencyProbe& probe_;
   int probe_result_queue_;  ///< host.result_queue
 
-  modules::LocalClock clock_;
   modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension
   std::deque<RayRequest> backlog_;
   std::uint64_t next_id_ = 0;
@@ -82,8 +78,6 @@ class Host : public sc_core::sc_module {
   std::uint64_t results_processed_ = 0;
   std::uint64_t backlog_peak_ = 0;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
-  modules::BusyTimeline timeline_;
   modules::LatencyRecorder latency_;
 };
 

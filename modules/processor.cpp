@@ -1,0 +1,43 @@
+#include "modules/processor.hpp"
+
+namespace rtsim::modules {
+
+Processor::Processor(const sc_core::sc_module_name& name, SliceSink& trace)
+    : sc_core::sc_module(name), trace_(trace), track_(this->name()) {}
+
+void Processor::compute_for(const sc_core::sc_time& t, std::string_view what,
+                            std::initializer_list<PerfettoTrace::Arg> args) {
+  if (t == sc_core::SC_ZERO_TIME) return;
+  trace_.slice(track_, what, clock_.now(), t, args);
+  timeline_.add(clock_.now(), t);
+  clock_.advance(t);
+  accounts_.busy += t;
+}
+
+void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
+                     Wait why) {
+  const sc_core::sc_time before = clock_.now();
+  clock_.sync();
+  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  // A time already reached is something the caller cannot act on yet: wait for a change.
+  if (until && *until > g)
+    sc_core::wait(*until - g, events);
+  else
+    sc_core::wait(events);
+  clock_.resync();
+  account(why) += clock_.now() - before;
+}
+
+void Processor::idle_until(const sc_core::sc_time& t, Wait why) {
+  if (t <= clock_.now()) return;
+  account(why) += t - clock_.now();
+  clock_.catch_up(t);
+}
+
+void Processor::blocked_until(const sc_core::sc_time& t) {
+  if (t <= clock_.now()) return;
+  accounts_.blocked += t - clock_.now();
+  clock_.catch_up(t);
+}
+
+}  // namespace rtsim::modules

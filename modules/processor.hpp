@@ -1,0 +1,91 @@
+#pragma once
+// A processor of the kit (DESIGN.md "The three layers"): a SystemC module whose thread runs a
+// firmware task's handlers. The task reports what a handler cost in machine-neutral units
+// (firmware/cost.hpp) and never reads a clock; the processor turns the cost into time (its clock
+// and cycles per operation class, ProcessorTiming) or takes a time the machine computed, and
+// accounts where its time went:
+//   busy      computing (its utilisation; the busy signal of its traces),
+//   waiting   for data it asked for (a packet on a bus, an answer) or for work to arrive,
+//   blocked   on output: the next stage's queue had no room.
+// It keeps its own local time (temporal decoupling, LocalClock) and records each computation as
+// a Perfetto slice on its track and in its BusyTimeline (the source of stats.json's busy time
+// and the traces' busy signal alike).
+//
+// Used by gaudet-pert's Shade, Shell and Prim processors, ullner-peripheral's host and vax-750's
+// host; the next machines' engines and nodes are processors too.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <systemc>
+
+#include "firmware/cost.hpp"
+#include "modules/busy_timeline.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/processor_timing.hpp"
+#include "modules/slice_sink.hpp"
+
+namespace rtsim::modules {
+
+class Processor : public sc_core::sc_module {
+ public:
+  /// Why a processor is idle.
+  enum class Wait {
+    kData,  ///< for data it asked for (a packet, an answer)
+    kWork,  ///< for work to arrive
+  };
+  struct Accounts {
+    sc_core::sc_time busy = sc_core::SC_ZERO_TIME;
+    sc_core::sc_time waiting_for_data = sc_core::SC_ZERO_TIME;
+    sc_core::sc_time waiting_for_work = sc_core::SC_ZERO_TIME;
+    sc_core::sc_time blocked = sc_core::SC_ZERO_TIME;
+  };
+
+  const Accounts& accounts() const { return accounts_; }
+  /// When it computed, for utilisation windows and the traces' busy signal.
+  const BusyTimeline& timeline() const { return timeline_; }
+  /// Its local time (absolute).
+  sc_core::sc_time now() const { return clock_.now(); }
+
+ protected:
+  /// Its reported costs become time by `timing` (set_timing; a processor that is given times
+  /// needs none).
+  Processor(const sc_core::sc_module_name& name, SliceSink& trace);
+  /// Elaboration: how its costs become time (read from its parameters once it has its name).
+  void set_timing(const ProcessorTiming& timing) { timing_ = timing; }
+
+  /// Spends the time `c` costs computing: a slice `what` on its track.
+  void compute(const Cost& c, std::string_view what,
+               std::initializer_list<PerfettoTrace::Arg> args = {}) {
+    compute_for(timing_.time_for(c), what, args);
+  }
+  /// Spends `t` computing (a time the machine worked out itself).
+  void compute_for(const sc_core::sc_time& t, std::string_view what,
+                   std::initializer_list<PerfettoTrace::Arg> args = {});
+  /// Idle until `until` (if known) or until one of `events` fires, whichever comes first.
+  void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
+            Wait why);
+  /// Idle until `t`, a time already known (a message stamped ahead of it).
+  void idle_until(const sc_core::sc_time& t, Wait why);
+  /// After waiting on events itself: the time since `since` (its local time then) was idle.
+  void waited_since(const sc_core::sc_time& since, Wait why) {
+    if (clock_.now() > since) account(why) += clock_.now() - since;
+  }
+  /// Blocked on output until `t` (a put into a full queue was accepted at t).
+  void blocked_until(const sc_core::sc_time& t);
+
+  const ProcessorTiming& timing() const { return timing_; }
+
+  LocalClock clock_;
+  SliceSink& trace_;
+
+ private:
+  sc_core::sc_time& account(Wait why) {
+    return why == Wait::kData ? accounts_.waiting_for_data : accounts_.waiting_for_work;
+  }
+  ProcessorTiming timing_;
+  Accounts accounts_;
+  BusyTimeline timeline_;
+  std::string track_;  ///< its trace track: its hierarchical name
+};
+
+}  // namespace rtsim::modules
