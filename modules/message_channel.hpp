@@ -1,11 +1,16 @@
 #pragma once
-// Message passing over TLM-2.0: the initiator sends a message object by b_transport with its
+// Message passing over TLM-2.0: the initiator sends a typed message by b_transport with its
 // local time offset as the annotated delay (loosely-timed style); the target queues it in a
 // TimedFifo stamped with sc_time_stamp() + delay, blocking the caller while the FIFO is full
 // (back-pressure), and returns the delay actually incurred.
+//
+// The message travels as a typed TLM extension (MessageExtension<T>), never as bytes cast back
+// to a type; the payload's data length is the message's size on the hardware, ceil(bits / 8),
+// which the Link in front of the queue (modules/link.hpp) charges. Used by every machine.
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
+#include <cstdint>
 #include <string>
 #include <systemc>
 #include <tlm>
@@ -13,6 +18,21 @@
 #include "modules/timed_fifo.hpp"
 
 namespace rtsim::modules {
+
+/// A message of type T riding on a generic payload.
+template <class T>
+class MessageExtension : public tlm::tlm_extension<MessageExtension<T>> {
+ public:
+  explicit MessageExtension(T* message = nullptr) : message_(message) {}
+  T* message() const { return message_; }
+  tlm::tlm_extension_base* clone() const override { return new MessageExtension(message_); }
+  void copy_from(const tlm::tlm_extension_base& other) override {
+    message_ = static_cast<const MessageExtension&>(other).message_;
+  }
+
+ private:
+  T* message_;
+};
 
 /// The receiving end: a target socket in front of a bounded FIFO of T.
 template <class T>
@@ -28,32 +48,41 @@ class MessageQueue : public sc_core::sc_module {
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-    T* msg = reinterpret_cast<T*>(gp.get_data_ptr());
-    const sc_core::sc_time stamp = fifo.put(*msg, sc_core::sc_time_stamp() + delay);
+    const auto* ext = gp.get_extension<MessageExtension<T>>();
+    if (!ext || !ext->message()) {
+      gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+      return;
+    }
+    const sc_core::sc_time stamp = fifo.put(*ext->message(), sc_core::sc_time_stamp() + delay);
     const sc_core::sc_time now = sc_core::sc_time_stamp();
     delay = stamp > now ? stamp - now : sc_core::SC_ZERO_TIME;
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
 };
 
-/// Send `msg` through `socket` at absolute local time `t`; returns the absolute time it was
-/// accepted (later than t if the receiving FIFO was full). `wire_bytes` is the size of the
-/// message on the hardware link (for statistics and traces).
+/// Puts `msg` into the queue behind `socket` at absolute time `t` (when it arrives there: after
+/// its Link, if it crossed one); returns the absolute time it was accepted (later than t if the
+/// FIFO was full). `bits`: its size on the hardware.
 template <class Socket, class T>
 sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
-                              unsigned wire_bytes) {
+                              std::uint64_t bits) {
+  MessageExtension<T> ext(&msg);
   tlm::tlm_generic_payload gp;
   gp.set_command(tlm::TLM_WRITE_COMMAND);
   gp.set_address(0);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(&msg));
-  gp.set_data_length(wire_bytes);
-  gp.set_streaming_width(wire_bytes);
+  gp.set_data_ptr(nullptr);
+  gp.set_data_length(static_cast<unsigned>((bits + 7) / 8));
+  gp.set_streaming_width(static_cast<unsigned>((bits + 7) / 8));
   gp.set_byte_enable_ptr(nullptr);
   gp.set_dmi_allowed(false);
+  gp.set_extension(&ext);
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   sc_core::sc_time delay = t > now ? t - now : sc_core::SC_ZERO_TIME;
   socket->b_transport(gp, delay);
+  gp.clear_extension(&ext);
+  if (gp.is_response_error())
+    SC_REPORT_ERROR("rtsim/message", "a message reached a queue of another type");
   return sc_core::sc_time_stamp() + delay;
 }
 

@@ -64,6 +64,9 @@ const std::string& ModuleParams::get_string(std::string_view name) const {
 sc_core::sc_time ModuleParams::get_time(std::string_view name) const {
   return from_ps(registry_->get_time_ps(full(name)));
 }
+double ModuleParams::get_bitrate_bps(std::string_view name) const {
+  return registry_->get_bitrate_bps(full(name));
+}
 double ModuleParams::get_frequency_hz(std::string_view name) const {
   return registry_->get_frequency_hz(full(name));
 }

@@ -63,6 +63,7 @@ class ModuleParams {
   /// Exact in picoseconds (the simulation's resolution).
   sc_core::sc_time get_time(std::string_view name) const;
   double get_frequency_hz(std::string_view name) const;
+  double get_bitrate_bps(std::string_view name) const;
 
  private:
   std::string full(std::string_view name) const;

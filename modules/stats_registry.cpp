@@ -23,6 +23,14 @@ ModuleStats& StatsRegistry::processor(const Processor& p) {
   return m;
 }
 
+ModuleStats& StatsRegistry::link(const Link& l) {
+  ModuleStats& m = busy_module(l.name(), l.busy(), l.timeline());
+  m.values["messages"] = static_cast<double>(l.messages());
+  m.values["bits"] = static_cast<double>(l.bits());
+  m.values["waited_s"] = l.waited().to_seconds();
+  return m;
+}
+
 ModuleStats& StatsRegistry::queue(const std::string& name, const Occupancy& occupancy,
                                   std::size_t capacity) {
   ModuleStats& m = modules_[name];

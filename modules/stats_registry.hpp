@@ -12,6 +12,7 @@
 #include <systemc>
 
 #include "modules/busy_timeline.hpp"
+#include "modules/link.hpp"
 #include "modules/occupancy.hpp"
 #include "modules/processor.hpp"
 
@@ -51,6 +52,9 @@ class StatsRegistry {
   /// A kit processor: busy_module under its name, with where its other time went
   /// (`waiting_for_data_s`, `waiting_for_work_s`, `blocked_s`).
   ModuleStats& processor(const Processor& p);
+  /// A kit link: busy while it carries bits, with `messages`, `bits` and `waited_s` (messages
+  /// waiting for it to be free).
+  ModuleStats& link(const Link& l);
   /// A queue of `capacity` entries: its occupancy over the frame, and the source of its trace's
   /// depth signal.
   ModuleStats& queue(const std::string& name, const Occupancy& occupancy, std::size_t capacity);

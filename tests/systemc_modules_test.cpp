@@ -152,7 +152,7 @@ struct Sender : sc_core::sc_module {
     LocalClock c;
     for (int i = 0; i < 6; ++i) {
       Message m{i};
-      accepted.push_back(send_message(out, m, c.now(), sizeof(Message)));
+      accepted.push_back(send_message(out, m, c.now(), 8 * sizeof(Message)));
       c.catch_up(accepted.back());
       c.advance(sc_time(1, SC_NS));
     }

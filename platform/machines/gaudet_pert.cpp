@@ -117,6 +117,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
     backlog_peak = std::max(backlog_peak, pert->shade->backlog_peak());
     for (const auto& q : pert->queues())
       stats.queue(std::string(pert->name()) + "." + q.name, *q.occupancy, q.depth);
+    for (const auto& link : pert->links) stats.link(*link);
   }
   nlohmann::ordered_json buses = nlohmann::ordered_json::object();
   const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};

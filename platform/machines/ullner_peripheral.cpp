@@ -81,9 +81,11 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   // One journey per ray from the host putting it into the ray queue to task 2 taking its
   // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
   modules::LatencyProbe& probe = run.probe();
+  // A ray meets the host's ray link first (the probe lists stages in the order they are named).
+  probe.stage("host.ray_link");
   // The peripheral searches its own memories; the twin's tracer only checks afterwards.
   ullner::Peripheral peripheral("peripheral", *twin.geometry, scene, twin.settings, shade, quads,
-                                pc, frame.counters(), trace, probe);
+                                pc, frame.counters(), trace, probe, r);
   inject_faults(name(), opts.faults, {&peripheral.parameters});
   ullner::Host host("host", r, scene, twin.settings.shade, frame, peripheral.rays.fifo, pc, opts,
                     trace, *twin.geometry, probe);
@@ -114,6 +116,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
     as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
     as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
   }
+  stats.link(host.ray_link());
+  stats.link(peripheral.result_link());
   auto& ms = stats.busy_module("peripheral.parameter_memories", peripheral.parameters.read_busy(),
                                peripheral.parameters.read_timeline());
   ms.values["polygons"] = static_cast<double>(quads);

@@ -22,6 +22,17 @@ void Pert::declare_params(const modules::ParamDecls& pert) {
              "Queue depth ShellProcessor -> PrimProcessor", queue_src);
   pert.count("queue.prim_to_shade", "4", "1", "100000", "messages",
              "Queue depth PrimProcessor -> ShadeProcessor", queue_src);
+  // The links the messages cross into those queues: FIFOs a 32-bit word wide, written a word
+  // per cycle, so a message arrives as its sender writes its last word.
+  for (const char* link : kLinks)
+    modules::Link::declare_params(
+        pert.sub("link").sub(link),
+        {.latency = "0 s",
+         .lanes = "32",
+         .bit_rate = "5 Mbit/s",
+         .source = "seed 001 L924 (FIFO words one per cycle), L951 (5 MHz); assumption: no "
+                   "flight time beyond the words (queues inside a PERT are not described, "
+                   "note 001 §2.1)"});
 }
 
 Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
@@ -50,6 +61,11 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   prim = std::make_unique<PrimProcessor>(
       "prim", c.registry, c.tree, c.geometry, c.words, c.sets.prim.packet_words, c.test_cost,
       *ports[2], params.get_count("queue.shell_to_prim"), c.counters, c.trace);
+  for (std::size_t k = 0; k < 3; ++k)
+    links[k] = std::make_unique<modules::Link>(params.sub("link").sub(kLinks[k]));
+  shade->set_output_link(*links[0]);
+  shell->set_output_link(*links[1]);
+  prim->set_output_link(*links[2]);
   shade->set_probe(c.probe);
   shell->set_probe(c.probe);
   prim->set_probe(c.probe);

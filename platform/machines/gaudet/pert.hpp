@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "firmware/cost.hpp"
+#include "modules/link.hpp"
 #include "modules/module_params.hpp"
 #include "platform/machines/gaudet/broadcast_processor.hpp"
 #include "platform/machines/gaudet/data_sets.hpp"
@@ -54,6 +55,11 @@ class Pert : public sc_core::sc_module {
     std::size_t depth;
   };
   std::array<Queue, 3> queues() const;
+
+  /// The ring's links, in front of those queues: shade_to_shell, shell_to_prim, prim_to_shade
+  /// (pert0.link.shade_to_shell, ...).
+  static constexpr const char* kLinks[] = {"shade_to_shell", "shell_to_prim", "prim_to_shade"};
+  std::array<std::unique_ptr<modules::Link>, 3> links;
 
   /// Shade, Shell and Prim: each processor's port to its data set.
   std::array<std::unique_ptr<PacketPort>, 3> ports;

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "firmware/cost.hpp"
+#include "modules/link.hpp"
 #include "modules/module_params.hpp"
 #include "modules/processor.hpp"
 #include "platform/machines/gaudet/bus_interface.hpp"
@@ -56,6 +57,9 @@ class PertProcessor : public modules::Processor {
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
   /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
   void set_probe(RayProbe& p) { probe_ = &p; }
+  /// Elaboration: the link its messages cross to the next processor's queue (none: they arrive
+  /// as soon as they are written).
+  void set_output_link(modules::Link& link) { out_link_ = &link; }
 
  protected:
   /// Reads its parameters under its hierarchical name ("pert0.shade").
@@ -83,12 +87,24 @@ class PertProcessor : public modules::Processor {
   }
   using Processor::compute_for;
 
+  /// A message of `words` 32-bit words that the processor wrote into its output FIFO since
+  /// `since` (until now) crosses the ring link: when it arrives at the next queue.
+  sc_core::sc_time over_link(unsigned words, const sc_core::sc_time& since) {
+    if (!out_link_) return clock_.now();
+    return out_link_->transfer(std::uint64_t{32} * words, since, clock_.now());
+  }
+  /// How long after leaving the sender a message arrives (0 without a link).
+  sc_core::sc_time link_latency() const {
+    return out_link_ ? out_link_->latency() : sc_core::SC_ZERO_TIME;
+  }
+
   modules::ModuleParams params_;  ///< its own parameters, under its name
   RayProbe* probe_;
   std::uint64_t rays_ = 0;  ///< rays this processor finished its part of
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
+  modules::Link* out_link_ = nullptr;
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -160,9 +160,13 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   if (res.found) compute_for(t, Stage::kPrim, tasks::kHitInfoCost, "hit info");
   // From the end of the send until the ShadeProcessor takes it, the answer is in (or, while
   // the queue is full, blocked before) queue.prim_to_shade.
+  const sc_core::sc_time since = clock_.now();
   compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
   ++rays_;
-  blocked_until(modules::send_message(out, res, clock_.now(), PrimToShade::kWords * 4));
+  // Blocked until the queue took it, less its flight on the link.
+  blocked_until(modules::send_message(out, res, over_link(PrimToShade::kWords, since),
+                                      std::uint64_t{32} * PrimToShade::kWords) -
+                link_latency());
 }
 
 void PrimProcessor::run() {

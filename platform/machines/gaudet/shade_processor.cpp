@@ -99,12 +99,13 @@ void ShadeProcessor::receive(PrimToShade msg) {
   if (!port_.request(id, clock_.now())) unasked_.push_back(id);
 }
 
-void ShadeProcessor::send(RayTicket& t) {
+void ShadeProcessor::send(RayTicket& t, const sc_core::sc_time& since) {
   t.id = next_id_++;
   t.sent = clock_.now();  // ray_latency_s and the probe's journey start here
   probe_->begin(t, t.sent);
   ShadeToShell msg{t};
-  modules::send_message(out, msg, clock_.now(), ShadeToShell::kWords * 4);
+  modules::send_message(out, msg, over_link(ShadeToShell::kWords, since),
+                        std::uint64_t{32} * ShadeToShell::kWords);
 }
 
 void ShadeProcessor::run() {
@@ -139,8 +140,9 @@ void ShadeProcessor::run() {
     if (room && !backlog_.empty()) {
       RayTicket t = backlog_.front();
       backlog_.pop_front();
+      const sc_core::sc_time since = clock_.now();
       compute(tasks::words_cost(ShadeToShell::kWords), "send");
-      send(t);
+      send(t, since);
       continue;
     }
     if (room && vision_left && !free_trees_.empty()) {
@@ -150,6 +152,7 @@ void ShadeProcessor::run() {
         vision_left = false;
         continue;
       }
+      const sc_core::sc_time since = clock_.now();
       compute(tasks::VisionRayTask::kCost + tasks::words_cost(ShadeToShell::kWords), "spawn");
       t.tree = free_trees_.back();
       free_trees_.pop_back();
@@ -157,7 +160,7 @@ void ShadeProcessor::run() {
       outstanding_[t.tree] = 1;
       t.first_sample = sample == 0;
       t.t_min = task_.t_min(t.ray);
-      send(t);
+      send(t, since);
       continue;
     }
     if (!vision_left && trees_in_flight_ == 0) break;

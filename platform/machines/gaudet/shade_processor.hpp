@@ -76,9 +76,10 @@ class ShadeProcessor : public PertProcessor {
   /// Shading of one answer (its SHADE packet, if it needs one, is in).
   void shade(const PrimToShade& msg);
   void receive(PrimToShade msg);
-  /// Numbers the ray, stamps its send time and puts it in the queue to the ShellProcessor (the
-  /// send's cost is charged by the caller, with whatever else the step costs).
-  void send(RayTicket& t);
+  /// Numbers the ray, stamps its send time and puts it in the queue to the ShellProcessor, over
+  /// the ring link (the send's cost, the words written since `since`, is charged by the caller,
+  /// with whatever else the step costs).
+  void send(RayTicket& t, const sc_core::sc_time& since);
   bool next_initial_ray(shading::TracedRay& ray, int& sample);
 
   int pert_, pert_count_;

@@ -140,8 +140,10 @@ void ShellProcessor::run() {
       // this processor.
       if (const auto room = out_queue_->next_room_time())
         probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
+      const sc_core::sc_time since = clock_.now();
       compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
-      modules::send_message(out, msg, clock_.now(), msg.words() * 4);
+      modules::send_message(out, msg, over_link(msg.words(), since),
+                            std::uint64_t{32} * msg.words());
       ++rays_;
       continue;
     }

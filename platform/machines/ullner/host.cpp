@@ -13,7 +13,7 @@ using modules::times;
 
 namespace {
 /// Formatting one ray request into the queue: 7 words written, a few instructions.
-constexpr Cost kSendCost{.mem_words = RayRequest::kWireBytes / 4, .instructions = 4};
+constexpr Cost kSendCost{.mem_words = RayRequest::kWords, .instructions = 4};
 }  // namespace
 
 void Host::declare_params(const modules::ParamDecls& host) {
@@ -37,6 +37,13 @@ void Host::declare_params(const modules::ParamDecls& host) {
                 .unit = "results",
                 .description = "Depth of the result queue from the peripheral to the host",
                 .source = "assumption: queue depths are not given (seed 000 L476)"});
+  modules::Link::declare_params(
+      host.sub("ray_link"),
+      {.latency = "0 s",
+       .lanes = "32",
+       .bit_rate = "3 Mbit/s",
+       .source = "assumption: the thesis gives no host interface (seed 000 L476); a word-wide "
+                 "path at the peripheral's stage rate, one word per 1/3 us (L584)"});
 }
 
 Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
@@ -58,6 +65,8 @@ Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
       geometry_(geometry),
       probe_(probe),
       probe_result_queue_(probe.stage(results.name())),
+      ray_link_(modules::ModuleParams(registry, std::string(this->name()) + ".ray_link")),
+      probe_ray_link_(probe.stage(ray_link_.name())),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
       // at the peripheral's arithmetic rate (L584).
       lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
@@ -83,13 +92,17 @@ sc_core::sc_time Host::result_time(const Cost& c) {
 
 void Host::send(RayRequest req) {
   const sc_core::sc_time cost = timing().time_for(kSendCost);
+  const sc_core::sc_time since = clock_.now();
   compute_for(cost, "send");
   req.id = next_id_++;
-  // The host only sends when the queue has room, so the ray enters it now.
   req.sent = clock_.now();
-  // The latency window opens here, as ray_latency_s's does.
+  // The latency window opens here, as ray_latency_s's does. The words cross the ray link as the
+  // host writes them; the ray is in the queue when the last one arrives (the host only sends
+  // when the queue has room).
   req.journey = probe_.begin(req.sent);
-  modules::send_message(ray_out, req, clock_.now(), RayRequest::kWireBytes);
+  req.arrived = ray_link_.transfer(RayRequest::kWireBits, since, req.sent);
+  probe_.add(req.journey, probe_ray_link_, modules::LatencyPart::kTransfer, req.arrived - req.sent);
+  modules::send_message(ray_out, req, req.arrived, RayRequest::kWireBits);
   ++outstanding_;
 }
 
@@ -140,7 +153,7 @@ void Host::run() {
       // From the answer leaving the peripheral (waiting for room in a full result queue
       // included) until task 2 takes it: the result queue. The window closes here.
       probe_.add(res.request.journey, probe_result_queue_, modules::LatencyPart::kQueueing,
-                 taken - res.answered);
+                 taken - res.arrived);
       probe_.end(res.request.journey, taken);
       const shading::TracedRay& r = res.request.ray;
       frame_.counters().count_ray(r.kind);

@@ -11,6 +11,7 @@
 
 #include "firmware/tasks/shade_task.hpp"
 #include "modules/latency_probe.hpp"
+#include "modules/link.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/pipelined_unit.hpp"
 #include "modules/processor.hpp"
@@ -49,6 +50,7 @@ class Host : public modules::Processor {
   sc_core::sc_time busy() const { return accounts().busy; }
   const modules::LatencyRecorder& latency() const { return latency_; }
   const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
+  const modules::Link& ray_link() const { return ray_link_; }
   std::uint64_t vision_rays() const { return vision_rays_; }
   std::uint64_t results_processed() const { return results_processed_; }
   std::uint64_t backlog_peak() const { return backlog_peak_; }
@@ -69,6 +71,8 @@ class Host : public modules::Processor {
   sc_core::sc_time frame_start_ = sc_core::SC_ZERO_TIME;
   modules::LatencyProbe& probe_;
   int probe_result_queue_;  ///< host.result_queue
+  modules::Link ray_link_;  ///< host -> the peripheral's ray queue
+  int probe_ray_link_;
 
   modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension
   std::deque<RayRequest> backlog_;

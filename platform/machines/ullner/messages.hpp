@@ -14,12 +14,14 @@ namespace rtsim::platform::ullner {
 struct RayRequest {
   shading::TracedRay ray;
   std::uint64_t id = 0;
-  sc_core::sc_time sent;      ///< when it entered the ray queue (for the latency probe)
+  sc_core::sc_time sent;      ///< when the host sent it (ray latency and the probe start here)
+  sc_core::sc_time arrived;   ///< when it reached the ray queue (over the ray link)
   bool first_sample = false;  ///< sample 0 of a primary ray: its answer fills the AOVs
   /// The ray's journey for `--latency-probe` (kNoJourney when the probe is off).
   modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
   /// On the wire: r0 (3 words), r1 (3 words), shadow flag (1 word).
-  static constexpr unsigned kWireBytes = 7 * 4;
+  static constexpr unsigned kWords = 7;
+  static constexpr std::uint64_t kWireBits = 32 * kWords;
 };
 
 /// RayResult: hit flag, closest polygon id, p_r, (u, v), t (L468-L470).
@@ -29,8 +31,9 @@ struct RayResult {
   Hit hit;
   sc_core::sc_time service_start;  ///< when the peripheral began on this ray
   sc_core::sc_time answered;       ///< when the answer left the closest-hit selection
+  sc_core::sc_time arrived;        ///< when it reached the result queue (over the result link)
   /// On the wire: flag, id, p_r (3), u, v, t.
-  static constexpr unsigned kWireBytes = 8 * 4;
+  static constexpr std::uint64_t kWireBits = 32 * 8;
 };
 
 }  // namespace rtsim::platform::ullner

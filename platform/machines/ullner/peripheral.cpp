@@ -123,6 +123,13 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
                           "Time to load one 32-bit parameter word through the dual-ported "
                           "load path (before the frame; not part of the frame time)",
                       .source = "assumption: \"the port need not be fast\" (seed 000 L544)"});
+  modules::Link::declare_params(
+      peripheral.sub("result_link"),
+      {.latency = "0 s",
+       .lanes = "32",
+       .bit_rate = "3 Mbit/s",
+       .source = "assumption: the thesis gives no path for queue 2 (seed 000 L474-L476); a "
+                 "word-wide path at the pipeline's stage rate, one word per 1/3 us (L584)"});
 }
 
 PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
@@ -147,7 +154,8 @@ Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& 
                        const scenes::Scene& scene, const functional::RenderSettings& settings,
                        const tasks::ShadeTask& shade, std::uint64_t polygons,
                        const PeripheralSettings& config, TraceCounters& counters,
-                       MachineTrace& trace, modules::LatencyProbe& probe)
+                       MachineTrace& trace, modules::LatencyProbe& probe,
+                       const params::ParamRegistry& registry)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
       parameters("parameter_memories", polygons * kernels::kUllnerStoredWords,
@@ -161,12 +169,14 @@ Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& 
       counters_(counters),
       trace_(trace),
       pipe_(config.intersect_interval, config.pipeline_stages),
-      probe_(probe) {
+      probe_(probe),
+      result_link_(modules::ModuleParams(registry, std::string(this->name()) + ".result_link")) {
   // Stages named by their stats.json module names, in the order a ray meets them.
   probe_ray_queue_ = probe.stage(rays.name());
   if (config.grid_divisions > 0) probe_aux_ = probe.stage(std::string(this->name()) + ".aux");
   probe_memories_ = probe.stage(parameters.name());
   probe_pipeline_ = probe.stage(std::string(this->name()) + ".pipeline");
+  probe_result_link_ = probe.stage(result_link_.name());
   SC_THREAD(run);
 }
 
@@ -185,7 +195,7 @@ void Peripheral::run() {
     ++rays_;
     const auto journey = req.journey;
     using modules::LatencyPart;
-    probe_.add(journey, probe_ray_queue_, LatencyPart::kQueueing, taken - req.sent);
+    probe_.add(journey, probe_ray_queue_, LatencyPart::kQueueing, taken - req.arrived);
 
     // The answer (firmware), and what it took.
     TraceCounters before = counters_;
@@ -268,7 +278,10 @@ void Peripheral::run() {
     service_total_ += done - start;
     res.service_start = start;
     res.answered = done;
-    modules::send_message(result_out, res, done, RayResult::kWireBytes);
+    // The answer crosses the result link into the host's result queue.
+    res.arrived = result_link_.transfer(RayResult::kWireBits, done);
+    probe_.add(journey, probe_result_link_, LatencyPart::kTransfer, res.arrived - done);
+    modules::send_message(result_out, res, res.arrived, RayResult::kWireBits);
   }
 }
 

@@ -21,6 +21,7 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
 #include "modules/latency_probe.hpp"
+#include "modules/link.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
@@ -55,9 +56,10 @@ class Peripheral : public sc_core::sc_module {
              const scenes::Scene& scene, const functional::RenderSettings& settings,
              const tasks::ShadeTask& shade, std::uint64_t polygons,
              const PeripheralSettings& config, TraceCounters& counters, MachineTrace& trace,
-             modules::LatencyProbe& probe);
+             modules::LatencyProbe& probe, const params::ParamRegistry& registry);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
+  const modules::Link& result_link() const { return result_link_; }
   sc_core::sc_time aux_busy() const { return aux_busy_; }
   const modules::BusyTimeline& aux_timeline() const { return aux_timeline_; }
   std::uint64_t rays_served() const { return rays_; }
@@ -83,6 +85,8 @@ class Peripheral : public sc_core::sc_module {
   /// `--latency-probe`: the stages a ray meets here, in order (aux only with the grid).
   modules::LatencyProbe& probe_;
   int probe_ray_queue_ = -1, probe_aux_ = -1, probe_memories_ = -1, probe_pipeline_ = -1;
+  modules::Link result_link_;  ///< the answers into the host's result queue
+  int probe_result_link_ = -1;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
   modules::BusyTimeline aux_timeline_;

@@ -1,0 +1,72 @@
+#pragma once
+// A point-to-point link of the kit (DESIGN.md "The three layers"): a message of b bits handed to
+// it at time t starts when the link is free, occupies it for the serialisation time
+//     ceil(b / lanes) bit times,   bit time = 1 / bit_rate   (one bit per lane per bit time)
+// and arrives `latency` after its last bit left. A bit-serial wire (lanes 1), a word-parallel
+// bus (lanes 32) and a network hop are the same class with other parameters. A message that
+// finds the link busy waits (back-pressure on its sender: the time is counted); a sender that
+// produces the words more slowly than the link carries them holds the link until its last word
+// is written (the message cannot arrive before it exists).
+//
+// Used by gaudet-pert (the queues of a PERT's ring) and ullner-peripheral (host <-> peripheral);
+// the ray-tracing pipeline's 13 bit-serial wires (seed 000 L727-L733) and the array's node links
+// are links too.
+#include <cstdint>
+#include <string>
+#include <systemc>
+
+#include "modules/busy_timeline.hpp"
+#include "modules/module_params.hpp"
+
+namespace rtsim::modules {
+
+class Link {
+ public:
+  /// A machine preset's defaults for one link, with where they come from.
+  struct Defaults {
+    std::string latency;   ///< "0 s"
+    std::string lanes;     ///< "32"
+    std::string bit_rate;  ///< "5 Mbit/s" (per lane)
+    std::string source;
+  };
+  /// Declares `latency`, `lanes` and `bit_rate` under the link's path.
+  static void declare_params(const ParamDecls& link, const Defaults& d);
+
+  /// Reads its parameters under `params` (its name: "pert0.link.shade_to_shell").
+  explicit Link(const ModuleParams& params);
+
+  const std::string& name() const { return name_; }
+  const sc_core::sc_time& latency() const { return latency_; }
+  /// Serialisation time of `bits`.
+  sc_core::sc_time serialisation(std::uint64_t bits) const;
+
+  /// A message of `bits` whose first word is ready at `start` and whose last word is written
+  /// by `written` (its sender's own pace; = start if it was ready at once): returns when its
+  /// last bit arrives at the far end. Messages are carried in the order they are handed over.
+  sc_core::sc_time transfer(std::uint64_t bits, const sc_core::sc_time& start,
+                            const sc_core::sc_time& written);
+  sc_core::sc_time transfer(std::uint64_t bits, const sc_core::sc_time& start) {
+    return transfer(bits, start, start);
+  }
+
+  std::uint64_t messages() const { return messages_; }
+  std::uint64_t bits() const { return bits_; }
+  /// Time it carried bits (its utilisation) and when.
+  sc_core::sc_time busy() const { return busy_; }
+  const BusyTimeline& timeline() const { return timeline_; }
+  /// Time messages waited for the link to be free (back-pressure).
+  sc_core::sc_time waited() const { return waited_; }
+
+ private:
+  std::string name_;
+  sc_core::sc_time latency_;
+  std::uint64_t lanes_;
+  sc_core::sc_time bit_time_;
+  sc_core::sc_time free_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t messages_ = 0, bits_ = 0;
+  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time waited_ = sc_core::SC_ZERO_TIME;
+  BusyTimeline timeline_;
+};
+
+}  // namespace rtsim::modules
