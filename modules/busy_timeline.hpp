@@ -17,6 +17,7 @@
 // where the previous one ended extends it). Timelines are members deep inside the modules, and a
 // run has one trace setting: a scoped switch reaches them without threading a flag through
 // every constructor.
+// Used by every machine (each busy module: processors, pipelines, buses, links).
 #include <cstdint>
 #include <systemc>
 #include <vector>

@@ -11,6 +11,7 @@
 // `unattributed_s`, so a stage a machine forgot to report shows up instead of hiding.
 //
 // Disabled (the default) every call is one branch: a machine calls the probe unconditionally.
+// Used by every machine (vax-750, ullner-peripheral, gaudet-pert).
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>

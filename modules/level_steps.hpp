@@ -6,6 +6,7 @@
 //
 // At equal times the downs go first: a slot handed over at one instant is not counted twice, and
 // back-to-back busy intervals do not show a level of 2 where one ends and the next begins.
+// Used by the traces and statistics of every machine.
 #include <algorithm>
 #include <cstdint>
 #include <vector>

@@ -5,6 +5,7 @@
 // thread synchronises at every advance and every interaction happens in global time order.
 // Unlike tlm_utils::tlm_quantumkeeper this clock is absolute, so timestamps carried by messages
 // (see TimedFifo) compare directly with it.
+// Used by every processor (modules::Processor) and ullner-peripheral's peripheral.
 #include <algorithm>
 #include <systemc>
 #include <tlm>

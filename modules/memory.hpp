@@ -6,6 +6,8 @@
 // "one cycle reads a whole polygon", seed 000 L544). Streams the model only needs to time (a
 // pipeline fetching every polygon for every ray) are charged with account_line_reads(), which
 // advances the same counters without moving data.
+// Used by ullner-peripheral (the parameter memories) and gaudet-pert (the Broadcast Processors'
+// memories); the array's node memories next.
 #include <tlm_utils/simple_target_socket.h>
 
 #include <cstdint>

@@ -5,6 +5,7 @@
 // no intersections before the previous ray's leaves the pipe), and the threads may record them
 // out of global time order when temporally decoupled. The walk over them (downs first at equal
 // times) is modules/level_steps.hpp, shared with the traces' depth signals.
+// Used by every queue (TimedFifo) of every machine.
 #include <algorithm>
 #include <cstdint>
 #include <systemc>

@@ -2,6 +2,8 @@
 // A pipelined arithmetic unit (Ullner's intersection pipeline, an inner-product unit): items
 // enter one per issue interval and leave `stages` stage times later. Time advances by
 // arithmetic, never by one event per item (DESIGN.md "Timing rules").
+// Used by ullner-peripheral (the intersection pipeline, the lighting unit); the ray-tracing
+// pipeline and Wang's Bezier pipeline next.
 #include <algorithm>
 #include <cstdint>
 #include <systemc>

@@ -1,6 +1,7 @@
 #pragma once
 // Time helpers. SystemC's time resolution is 1 ps (its default); every delay parameter is a
 // whole number of picoseconds (platform/params checks it), so sums and multiples are exact.
+// Used by every machine.
 #include <cstdint>
 #include <systemc>
 

@@ -6,6 +6,7 @@
 // It also remembers where a module's busy time and a queue's occupancy came from (the
 // BusyTimeline, the Occupancy), so the traces' busy and depth signals are drawn from the same
 // objects under the same names (platform/machines/machine_trace.hpp).
+// Used by every machine (MachineRun).
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -7,6 +7,7 @@
 // a larger quantum buys speed with.
 //
 // Blocking calls wait() on an event, so they must be called from an SC_THREAD.
+// Used by every machine's queues (MessageQueue).
 #include <cstdint>
 #include <deque>
 #include <optional>

@@ -21,6 +21,7 @@
 // - Deterministic: the same calls give the same bytes (no wall-clock stamps, locale-free
 //   number formatting). Events may be out of time order (temporally decoupled initiators); the
 //   format allows it and the viewers sort.
+// Used by every machine (MachineTrace).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

@@ -4,6 +4,7 @@
 // names (the names of stats.json's `modules`). Everything passes by default, so a trace is
 // complete unless asked otherwise; events left out this way were not asked for, so they are not
 // counted as dropped.
+// Used by every machine (MachineTrace).
 #include <fnmatch.h>
 
 #include <cstdint>

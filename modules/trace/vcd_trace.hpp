@@ -20,6 +20,7 @@
 // - The file is written as PATH.partial and renamed to PATH; abandon() (and the destructor of an
 //   unclosed trace) deletes it instead, so a failed run leaves no half-written trace.
 // - Deterministic: the same signals give the same bytes (no date, no wall clock).
+// Used by every machine (MachineTrace).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
