@@ -25,15 +25,20 @@ class ParameterMemoryTest final : public functional::CandidateTest {
   /// `memory`: the parameter memories (one line of kUllnerStoredWords per polygon);
   /// `geometry`: the host's copy of the scene, for the corner normals.
   ParameterMemoryTest(const modules::Memory& memory, const functional::SceneGeometry& geometry)
-      : memory_(memory), geometry_(geometry) {}
+      : memory_(memory) {
+    // Each slot's host copy by pointer, in a compact array: a candidate's test then touches
+    // its decoded line only, not the (large) shape record, until it hits (the corner normals).
+    host_copies_.reserve(geometry.shapes.size());
+    for (const auto& shape : geometry.shapes)
+      host_copies_.push_back(std::get_if<kernels::UllnerQuadKernel>(&shape.shape));
+  }
 
   bool test(std::uint32_t slot, const Ray& ray, double t_min, double t_max, SurfaceHit& out,
             TraceCounters& counters) const override {
     ++counters.intersection_tests;
     counters.cost += kernels::UllnerQuadKernel::kTestCost;
-    const auto& host_copy = std::get<kernels::UllnerQuadKernel>(geometry_.shapes[slot].shape);
     if (memory_.words_written() != decoded_after_) decode();
-    return host_copy.intersect_with(decoded_[slot], ray, t_min, t_max, out);
+    return host_copies_[slot]->intersect_with(decoded_[slot], ray, t_min, t_max, out);
   }
 
  private:
@@ -52,7 +57,7 @@ class ParameterMemoryTest final : public functional::CandidateTest {
   mutable std::vector<kernels::UllnerQuadParams<double>> decoded_;
   /// words_written() when decoded_ was made (none yet: every count differs from this).
   mutable std::uint64_t decoded_after_ = ~std::uint64_t{0};
-  const functional::SceneGeometry& geometry_;
+  std::vector<const kernels::UllnerQuadKernel*> host_copies_;  ///< by slot
 };
 
 }  // namespace rtsim::platform::ullner
