@@ -124,9 +124,16 @@ class GridTracer final : public Tracer {
  public:
   GridTracer(const SceneGeometry& g, ShapeTester tester, const Bounds& box, accel::GridDivisions n,
              accel::DdaVariant variant)
-      : tester_(tester), grid_(g.bounds, box, n), dda_(grid_, variant) {}
+      : GridTracer(tester, std::make_shared<const accel::UniformGrid>(g.bounds, box, n), variant) {}
+  /// Another search over the same grid (a machine's, testing on its own memories).
+  GridTracer(ShapeTester tester, std::shared_ptr<const accel::UniformGrid> grid,
+             accel::DdaVariant variant)
+      : tester_(tester), grid_(std::move(grid)), variant_(variant), dda_(*grid_, variant) {}
 
-  const accel::UniformGrid& grid() const { return grid_; }
+  const accel::UniformGrid& grid() const { return *grid_; }
+  std::unique_ptr<Tracer> sharing_grid(ShapeTester tester) const {
+    return std::make_unique<GridTracer>(tester, grid_, variant_);
+  }
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
@@ -153,7 +160,8 @@ class GridTracer final : public Tracer {
     c.cells_visited += st.cells_visited;
   }
   ShapeTester tester_;
-  accel::UniformGrid grid_;
+  std::shared_ptr<const accel::UniformGrid> grid_;  ///< shared with the twin's search
+  accel::DdaVariant variant_;
   accel::Dda dda_;
 };
 
@@ -202,6 +210,15 @@ class ShellTracer final : public ShellSearch {
 };
 
 }  // namespace
+
+std::unique_ptr<Tracer> make_tracer_sharing(const Tracer& twin, const SceneGeometry& g,
+                                            const CandidateTest* machine_test) {
+  const ShapeTester tester(g, machine_test);
+  if (const auto* grid = dynamic_cast<const GridTracer*>(&twin)) return grid->sharing_grid(tester);
+  if (dynamic_cast<const BruteForceTracer*>(&twin))
+    return std::make_unique<BruteForceTracer>(tester);
+  throw std::logic_error("make_tracer_sharing: only the grid and brute force are shared");
+}
 
 std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene,
                                     const RenderSettings& settings,

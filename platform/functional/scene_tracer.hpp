@@ -42,4 +42,10 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& geometry, const scenes::Scene
                                     const RenderSettings& settings,
                                     const CandidateTest* machine_test = nullptr);
 
+/// The same search as `twin` (a tracer make_tracer built over `g`: the grid or brute force),
+/// over the same structure (the grid is shared, not rebuilt), testing its candidates with
+/// `machine_test`: the peripheral's search on its parameter memories. Both must outlive it.
+std::unique_ptr<Tracer> make_tracer_sharing(const Tracer& twin, const SceneGeometry& g,
+                                            const CandidateTest* machine_test);
+
 }  // namespace rtsim::functional

@@ -84,8 +84,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   // A ray meets the host's ray link first (the probe lists stages in the order they are named).
   probe.stage("host.ray_link");
   // The peripheral searches its own memories; the twin's tracer only checks afterwards.
-  ullner::Peripheral peripheral("peripheral", *twin.geometry, scene, twin.settings, shade, quads,
-                                pc, frame.counters(), trace, probe, r);
+  ullner::Peripheral peripheral("peripheral", *twin.geometry, *twin.tracer, shade, quads, pc,
+                                frame.counters(), trace, probe, r);
   inject_faults(name(), opts.faults, {&peripheral.parameters});
   ullner::Host host("host", r, scene, twin.settings.shade, frame, peripheral.rays.fifo, pc, opts,
                     trace, *twin.geometry, probe);

@@ -151,10 +151,9 @@ PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
 }
 
 Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
-                       const scenes::Scene& scene, const functional::RenderSettings& settings,
-                       const tasks::ShadeTask& shade, std::uint64_t polygons,
-                       const PeripheralSettings& config, TraceCounters& counters,
-                       MachineTrace& trace, modules::LatencyProbe& probe,
+                       const Tracer& twin_search, const tasks::ShadeTask& shade,
+                       std::uint64_t polygons, const PeripheralSettings& config,
+                       TraceCounters& counters, MachineTrace& trace, modules::LatencyProbe& probe,
                        const params::ParamRegistry& registry)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
@@ -162,7 +161,7 @@ Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& 
                  kernels::kUllnerStoredWords, config.load_word_time, config.intersect_interval),
       result_out("result_out"),
       memory_test_(parameters, geometry),
-      search_(functional::make_tracer(geometry, scene, settings, &memory_test_)),
+      search_(functional::make_tracer_sharing(twin_search, geometry, &memory_test_)),
       shade_(shade),
       polygons_(polygons),
       config_(config),

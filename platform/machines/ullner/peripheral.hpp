@@ -49,12 +49,11 @@ class Peripheral : public sc_core::sc_module {
   static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
 
   SC_HAS_PROCESS(Peripheral);
-  /// `geometry`, `scene`, `settings`: the host's copy of the scene and the search structure's
-  /// settings (the grid the auxiliary processor walks; the candidates' parameters are read from
-  /// `parameters`).
+  /// `geometry`: the host's copy of the scene; `twin_search`: the twin's search over it, whose
+  /// grid the auxiliary processor walks (shared, not built twice; the candidates' parameters
+  /// are read from `parameters`).
   Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
-             const scenes::Scene& scene, const functional::RenderSettings& settings,
-             const tasks::ShadeTask& shade, std::uint64_t polygons,
+             const Tracer& twin_search, const tasks::ShadeTask& shade, std::uint64_t polygons,
              const PeripheralSettings& config, TraceCounters& counters, MachineTrace& trace,
              modules::LatencyProbe& probe, const params::ParamRegistry& registry);
 
