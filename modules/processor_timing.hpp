@@ -11,9 +11,11 @@
 
 namespace rtsim::modules {
 
+/// The values of a processor's parameters (read_processor_timing); zero until they are read:
+/// the defaults are the machine preset's, where the processor declares them.
 struct ProcessorTiming {
-  sc_core::sc_time cycle = sc_core::sc_time(1, sc_core::SC_NS);
-  std::uint64_t fp_add = 1, fp_mul = 1, fp_div = 1, fp_sqrt = 1, mem_word = 1, instruction = 1;
+  sc_core::sc_time cycle = sc_core::SC_ZERO_TIME;
+  std::uint64_t fp_add = 0, fp_mul = 0, fp_div = 0, fp_sqrt = 0, mem_word = 0, instruction = 0;
 
   std::uint64_t cycles_for(const Cost& c) const {
     return c.fp_add * fp_add + c.fp_mul * fp_mul + c.fp_div * fp_div + c.fp_sqrt * fp_sqrt +

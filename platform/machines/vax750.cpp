@@ -31,19 +31,12 @@ class VaxHost : public modules::Processor {
  public:
   /// Its parameters under `vax`: T_i, T_s, the search it runs and T_b.
   static void declare_params(const modules::ParamDecls& vax) {
-    vax.declare({.name = "intersection_time",
-                 .kind = params::ParamKind::kTime,
-                 .default_value = "429 us",
-                 .min = "0 s",
-                 .description = "T_i: average time of one ray/object intersection calculation on "
-                                "the VAX-11/750 with FPU",
-                 .source = "seed 001 L317"});
-    vax.declare({.name = "ray_time",
-                 .kind = params::ParamKind::kTime,
-                 .default_value = "710 us",
-                 .min = "0 s",
-                 .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
-                 .source = "seed 001 L318"});
+    vax.time("intersection_time", "429 us",
+             "T_i: average time of one ray/object intersection calculation on "
+             "the VAX-11/750 with FPU",
+             "seed 001 L317");
+    vax.time("ray_time", "710 us",
+             "T_s: average time to spawn (and shade) one ray on the VAX-11/750", "seed 001 L318");
     vax.declare({.name = "search",
                  .kind = params::ParamKind::kString,
                  .default_value = "brute-force",
@@ -55,15 +48,12 @@ class VaxHost : public modules::Processor {
                      "vax.box_test_time per shell box tested (the baseline of the PERT "
                      "speed-ups, L964)",
                  .source = "seed 001 L320-L326, L964"});
-    vax.declare({.name = "box_test_time",
-                 .kind = params::ParamKind::kTime,
-                 .default_value = "429 us",
-                 .min = "0 s",
-                 .description = "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
-                                "= shells)",
-                 .source = "assumption: the thesis measured only T_i, the average intersection "
-                           "calculation (L317); a slab test costs about as many floating-point "
-                           "operations as a sphere test, so T_b = T_i"});
+    vax.time("box_test_time", "429 us",
+             "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
+             "= shells)",
+             "assumption: the thesis measured only T_i, the average intersection "
+             "calculation (L317); a slab test costs about as many floating-point "
+             "operations as a sphere test, so T_b = T_i");
   }
 
   SC_HAS_PROCESS(VaxHost);

@@ -29,14 +29,9 @@ void Host::declare_params(const modules::ParamDecls& host) {
        .instruction = 2,
        .source = "assumption: the thesis gives no host costs (seed 000 L476); a VAX-11/780-class "
                  "\"medium-sized host\" (L462) with floating-point accelerator"});
-  host.declare({.name = "result_queue_depth",
-                .kind = ParamKind::kInt,
-                .default_value = "16",
-                .min = "1",
-                .max = "1000000",
-                .unit = "results",
-                .description = "Depth of the result queue from the peripheral to the host",
-                .source = "assumption: queue depths are not given (seed 000 L476)"});
+  host.count("result_queue_depth", "16", "1", "1000000", "results",
+             "Depth of the result queue from the peripheral to the host",
+             "assumption: queue depths are not given (seed 000 L476)");
   modules::Link::declare_params(
       host.sub("ray_link"),
       {.latency = "0 s",

@@ -18,16 +18,10 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
                           "Issue interval (= stage time) of the intersection pipeline: one "
                           "ray/polygon intersection per interval",
                       .source = "seed 000 L584, L588 (three results every microsecond)"});
-  peripheral.declare({.name = "adder_stages",
-                      .kind = ParamKind::kInt,
-                      .default_value = "1",
-                      .min = "1",
-                      .max = "3",
-                      .unit = "stages",
-                      .description =
-                          "Pipeline stages of one floating-point addition (1 or 3); sets the "
-                          "physical depth 17 or 33 and the latency 5.6 or 11 us",
-                      .source = "seed 000 L572-L578 (Fig. 2-17), L588"});
+  peripheral.count("adder_stages", "1", "1", "3", "stages",
+                   "Pipeline stages of one floating-point addition (1 or 3); sets the "
+                   "physical depth 17 or 33 and the latency 5.6 or 11 us",
+                   "seed 000 L572-L578 (Fig. 2-17), L588");
   peripheral.declare(
       {.name = "fetch_stages",
        .kind = ParamKind::kInt,
@@ -46,14 +40,9 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
        .unit = "stages",
        .description = "Stages of the closest-intersection selection (Fig. 2-11 stage 3)",
        .source = "assumption: one compare-and-keep stage (seed 000 L484)"});
-  peripheral.declare({.name = "ray_queue_depth",
-                      .kind = ParamKind::kInt,
-                      .default_value = "16",
-                      .min = "1",
-                      .max = "1000000",
-                      .unit = "rays",
-                      .description = "Depth of the ray queue from the host to the peripheral",
-                      .source = "assumption: queue depths are not given (seed 000 L476)"});
+  peripheral.count("ray_queue_depth", "16", "1", "1000000", "rays",
+                   "Depth of the ray queue from the host to the peripheral",
+                   "assumption: queue depths are not given (seed 000 L476)");
   peripheral.declare(
       {.name = "shadow_early_exit",
        .kind = ParamKind::kBool,
@@ -61,16 +50,10 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
        .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
        .source = "assumption: the thesis does not say how the shadow-ray saving is "
                  "realised without subdivision (seed 000 L472; note §7.6)"});
-  peripheral.declare({.name = "grid.divisions",
-                      .kind = ParamKind::kInt,
-                      .default_value = "0",
-                      .min = "0",
-                      .max = "1024",
-                      .unit = "per axis",
-                      .description =
-                          "Subvolumes per axis of the grid auxiliary processor; 0 = none "
-                          "(brute force)",
-                      .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)"});
+  peripheral.count("grid.divisions", "0", "0", "1024", "per axis",
+                   "Subvolumes per axis of the grid auxiliary processor; 0 = none "
+                   "(brute force)",
+                   "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)");
   peripheral.declare({.name = "grid.dda",
                       .kind = ParamKind::kString,
                       .default_value = "corrected",
@@ -79,50 +62,27 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
                           "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly "
                           "as printed (wrong; for fidelity experiments)",
                       .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
-  peripheral.declare({.name = "grid.step_time",
-                      .kind = ParamKind::kTime,
-                      .default_value = "1 us",
-                      .min = "0 s",
-                      .description = "t_d: time to step to the next subvolume",
-                      .source = "seed 000 L654"});
-  peripheral.declare({.name = "grid.indirection_stages",
-                      .kind = ParamKind::kInt,
-                      .default_value = "1",
-                      .min = "0",
-                      .max = "16",
-                      .unit = "stages",
-                      .description = "Extra pipeline stage(s) of the subvolume address indirection",
-                      .source = "seed 000 L596 (\"yet another pipeline stage\")"});
+  peripheral.time("grid.step_time", "1 us", "t_d: time to step to the next subvolume",
+                  "seed 000 L654");
+  peripheral.count("grid.indirection_stages", "1", "0", "16", "stages",
+                   "Extra pipeline stage(s) of the subvolume address indirection",
+                   "seed 000 L596 (\"yet another pipeline stage\")");
   peripheral.declare({.name = "lighting.enabled",
                       .kind = ParamKind::kBool,
                       .default_value = "true",
                       .description = "Lighting extension: the host's vector arithmetic runs on the "
                                      "inner-product and reciprocal-square-root devices",
                       .source = "seed 000 L548-L566"});
-  peripheral.declare({.name = "lighting.rsqrt_stages",
-                      .kind = ParamKind::kInt,
-                      .default_value = "2",
-                      .min = "1",
-                      .max = "16",
-                      .unit = "stages",
-                      .description = "Stages of the reciprocal-square-root device",
-                      .source = "assumption: as the square root of Fig. 2-17 (seed 000 L576)"});
-  peripheral.declare({.name = "memory.polygons",
-                      .kind = ParamKind::kInt,
-                      .default_value = "1048576",
-                      .min = "1",
-                      .max = "100000000",
-                      .unit = "polygons",
-                      .description = "Capacity of the 20 parameter memories",
-                      .source = "assumption: a million polygons (seed 000 note §7.5 S7)"});
-  peripheral.declare({.name = "memory.load_word_time",
-                      .kind = ParamKind::kTime,
-                      .default_value = "1 us",
-                      .min = "0 s",
-                      .description =
-                          "Time to load one 32-bit parameter word through the dual-ported "
-                          "load path (before the frame; not part of the frame time)",
-                      .source = "assumption: \"the port need not be fast\" (seed 000 L544)"});
+  peripheral.count("lighting.rsqrt_stages", "2", "1", "16", "stages",
+                   "Stages of the reciprocal-square-root device",
+                   "assumption: as the square root of Fig. 2-17 (seed 000 L576)");
+  peripheral.count("memory.polygons", "1048576", "1", "100000000", "polygons",
+                   "Capacity of the 20 parameter memories",
+                   "assumption: a million polygons (seed 000 note §7.5 S7)");
+  peripheral.time("memory.load_word_time", "1 us",
+                  "Time to load one 32-bit parameter word through the dual-ported "
+                  "load path (before the frame; not part of the frame time)",
+                  "assumption: \"the port need not be fast\" (seed 000 L544)");
   modules::Link::declare_params(
       peripheral.sub("result_link"),
       {.latency = "0 s",
