@@ -79,7 +79,7 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
 
   RenderArgs render;
-  render.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  render.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
   auto* r = app.add_subcommand(
       "render",
       "Render a scene with the functional renderer: the firmware kernels and shading\n"
@@ -95,9 +95,11 @@ int run_cli(int argc, char** argv) {
   add_image_options(r, render.width, render.height, render.aovs);
   r->add_option("--spp", render.spp, "Samples per pixel (default: render.spp, 1)")
       ->check(CLI::Range(1, 4096));
-  r->add_option("--threads", render.threads, "Worker threads (the image does not depend on it)")
+  r->add_option("--threads", render.threads,
+                "Worker threads, 1 to 256 (the image does not depend on it; if the system "
+                "cannot start them all, the render uses those it could and says so)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1024));
+      ->check(CLI::Range(1, 256));
   r->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
   add_config_options(r, render.config);
 

@@ -43,13 +43,17 @@ int run_render(const RenderArgs& args) {
   ProgressBar bar(args.quiet ? std::string() : "render");
   if (!args.quiet) opts.progress = [&bar](int done, int total) { bar.update(done, total); };
   const auto result = functional::render(scene, *tracer, opts);
+  if (result.threads < opts.threads)
+    std::cerr << "rtsim: warning: the system would start only " << result.threads << " of the "
+              << opts.threads << " worker threads asked for; rendered with " << result.threads
+              << " (the image does not depend on it)\n";
 
   OutputSet out(args.out_dir);
   stage_images(out, result);
   {
     std::ofstream stats(out.stage("stats.json"));
     stats << frame_stats_json("render", machine ? machine->name() : "functional", scene, geometry,
-                              registry, settings, result, opts.threads, -1.0)
+                              registry, settings, result, result.threads, -1.0)
                  .dump(2)
           << "\n";
     if (!stats) throw std::runtime_error("cannot write stats.json");

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <system_error>
 #include <thread>
 
 #include "firmware/shading/camera.hpp"
@@ -54,14 +55,22 @@ RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const Rend
   };
 
   std::vector<std::thread> pool;
-  for (int t = 1; t < thread_count; ++t) pool.emplace_back(worker, t);
+  for (int t = 1; t < thread_count; ++t) {
+    try {
+      pool.emplace_back(worker, t);
+    } catch (const std::system_error&) {
+      break;  // out of threads or memory for their stacks: render with those that started
+    }
+  }
   worker(0);
   for (auto& th : pool) th.join();
   if (opts.progress) opts.progress(h, h);
 
   for (const auto& c : per_thread) frame.counters() += c;
-  return frame.finish(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  RenderResult result =
+      frame.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  result.threads = 1 + static_cast<int>(pool.size());
+  return result;
 }
 
 }  // namespace rtsim::functional

@@ -34,6 +34,9 @@ struct RenderResult {
   std::vector<float> depth;  ///< width*height, primary hit distance or +inf
   TraceCounters counters;
   double wall_time_s = 0.0;
+  /// Worker threads that ran: fewer than RenderOptions::threads when the system would not create
+  /// more (the rows are shared out dynamically, so the image is the same).
+  int threads = 1;
 };
 
 RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts);
