@@ -7,6 +7,8 @@
 #include <fstream>
 #include <system_error>
 
+#include "common/input_file.hpp"
+
 namespace rtsim::scenes {
 
 namespace {
@@ -33,28 +35,7 @@ std::string_view strip_plus(std::string_view token) {
 }  // namespace
 
 std::string read_scene_file(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    throw InputError(path, 0, "cannot open scene file: no such file");
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw InputError(path, 0, "cannot open scene file: not a regular file");
-  }
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path, 0, cat("cannot open scene file: ", ec.message()));
-  if (size > kMaxSceneFileBytes) {
-    throw InputError(path, 0,
-                     cat("scene file is ", size, " bytes, more than the limit of ",
-                         kMaxSceneFileBytes, " (kMaxSceneFileBytes)"));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open scene file: permission denied or unreadable");
-  std::string text(static_cast<std::size_t>(size), '\0');
-  in.read(text.data(), static_cast<std::streamsize>(size));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (in.bad()) throw InputError(path, 0, "cannot open scene file: read error");
-  return text;
+  return read_input_file(path, "scene file", kMaxSceneFileBytes, "kMaxSceneFileBytes");
 }
 
 LineCursor::LineCursor(std::string_view text, std::string file)

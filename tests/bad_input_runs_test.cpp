@@ -81,4 +81,39 @@ TEST(BadInputRuns, AllDegenerateScenesAreRejectedByThePertWithTheReason) {
   fs::remove_all(dir);
 }
 
+// Defect 6: config and sweep files had no guard against files that are not regular: /dev/zero
+// grew to 4.3 GB and died with bad_alloc, a FIFO hung. They are refused before any read, as
+// scene files are (exit 2). The FIFO is opened by nobody else: a read would block for ever, so
+// `timeout` turns a regression into a failure instead of a hung suite.
+TEST(BadInputRuns, ConfigAndSweepFilesMustBeRegularFiles) {
+  const fs::path dir = scratch_dir("nonregular");
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "fifo";
+  ASSERT_EQ(run_shell("mkfifo " + fifo.string()).exit_code, 0);
+  const std::string rtsim = "timeout 20 " + std::string(RTSIM_BINARY);
+  for (const std::string& file : {std::string("/dev/zero"), fifo.string()}) {
+    for (const std::string& args :
+         {"list params --machine vax-750 --config " + file, "sweep " + file + " --list"}) {
+      const auto r = run_shell(rtsim + " " + args);
+      EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+      EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// Defect 7: one parameter set twice in a config file (a quoted dotted key, then a table) was
+// accepted, the later value silently winning. Both lines are named, exit 2.
+TEST(BadInputRuns, AParameterSetTwiceInAConfigFileIsRejected) {
+  const fs::path dir = scratch_dir("duplicate");
+  fs::create_directories(dir);
+  const fs::path config = dir / "twice.toml";
+  { std::ofstream(config) << "\"vax.ray_time\" = \"400 ns\"\n[vax]\nray_time = \"500 ns\"\n"; }
+  const auto r = run_rtsim("list params --machine vax-750 --config " + config.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(config.string() + ":3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("line 1"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -257,7 +257,7 @@ TEST(ParamRegistry, TomlSyntaxErrorsGiveTheLine) {
   const InputError missing = input_error_of([&] { r.load_toml_file(kDataDir + "absent.toml"); });
   EXPECT_EQ(missing.file(), kDataDir + "absent.toml");
   EXPECT_EQ(missing.line(), 0u);
-  EXPECT_EQ(missing.message(), "cannot open config file");
+  EXPECT_EQ(missing.message(), "cannot open config file: no such file");
 
   EXPECT_EQ(toml_error("a = 1\na = 2\n").line(), 2u);  // redefinition is a TOML error
 }

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "common/suggest.hpp"
 #include "platform/params/toml_leaves.hpp"
 #include "platform/params/units.hpp"
@@ -412,11 +413,8 @@ std::vector<std::string> ParamRegistry::unread() const {
 }
 
 void ParamRegistry::load_toml_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open config file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  load_toml_string(text.str(), path);
+  load_toml_string(read_input_file(path, "config file", kMaxConfigFileBytes, "kMaxConfigFileBytes"),
+                   path);
 }
 
 void ParamRegistry::load_toml_string(std::string_view text, const std::string& origin) {
@@ -427,6 +425,17 @@ void ParamRegistry::load_toml_string(std::string_view text, const std::string& o
     throw InputError(origin, e.source().begin.line, std::string(e.description()));
   }
   const TomlLeaves leaves = toml_leaves_in_file_order(root);
+  // One parameter set twice in one file (a quoted dotted key and a table, say): which one was
+  // meant is not for us to guess.
+  std::map<std::string_view, std::size_t> first_line;
+  for (const auto& [name, node] : leaves) {
+    const std::size_t line = node->source().begin.line;
+    const auto [it, fresh] = first_line.emplace(name, line);
+    if (!fresh)
+      throw InputError(origin, line,
+                       "parameter '" + name + "' is set twice in this file, here and on line " +
+                           std::to_string(it->second) + "; keep one");
+  }
 
   // Check everything before changing anything, so a bad file leaves the registry as it was.
   std::vector<std::pair<Param*, ParamValue>> updates;

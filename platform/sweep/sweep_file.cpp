@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "common/suggest.hpp"
 #include "platform/params/toml_leaves.hpp"
 
@@ -556,13 +557,11 @@ SweepFile parse_sweep(std::string_view text, const std::string& origin, const fs
 }
 
 SweepFile read_sweep_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open sweep file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text =
+      read_input_file(path, "sweep file", kMaxConfigFileBytes, "kMaxConfigFileBytes");
   std::error_code ec;
   const fs::path dir = fs::absolute(fs::path(path), ec).parent_path();
-  return parse_sweep(text.str(), path, dir);
+  return parse_sweep(text, path, dir);
 }
 
 }  // namespace rtsim::sweep
