@@ -116,4 +116,37 @@ TEST(BadInputRuns, AParameterSetTwiceInAConfigFileIsRejected) {
   fs::remove_all(dir);
 }
 
+// Defect 4: grid limits the parameter check accepted, then "internal error", exit 1. The
+// divisions' bounds are now the grid's real limit (645^3 < 2^28 subvolumes), and a scene whose
+// subvolume references outgrow the grid's 32-bit offsets is bad input with what to change.
+TEST(BadInputRuns, GridLimitsAreTheParametersBoundsAndTooBigAScene) {
+  const fs::path dir = scratch_dir("grid-limits");
+  fs::create_directories(dir);
+  const auto over = run_rtsim(
+      "render --scene builtin:default -p render.accel=grid "
+      "-p render.grid.divisions=646 -q --out " +
+      (dir / "a").string());
+  EXPECT_EQ(over.exit_code, 2) << over.output;
+  EXPECT_NE(over.output.find("from 0 to 645"), std::string::npos) << over.output;
+  const auto periph = run_rtsim(
+      "run --machine ullner-peripheral -p peripheral.grid.divisions=1024 "
+      "-q --out " +
+      (dir / "b").string());
+  EXPECT_EQ(periph.exit_code, 2) << periph.output;
+  // 60,000 identical spheres: every one in every subvolume of the grid chosen for 60,000.
+  const fs::path scene = dir / "same-sphere.nff";
+  {
+    std::ofstream f(scene);
+    f << "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n"
+         "l 1 1 1\nf 1 0 0 1 0 0 0 0\n";
+    for (int i = 0; i < 60000; ++i) f << "s 0 0 0 1\n";
+  }
+  const auto big = run_rtsim("render --scene " + scene.string() +
+                             " -p render.accel=grid -q --out " + (dir / "c").string());
+  EXPECT_EQ(big.exit_code, 2) << big.output;
+  EXPECT_NE(big.output.find("32-bit offsets"), std::string::npos) << big.output;
+  EXPECT_FALSE(fs::exists(dir / "c"));
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -17,7 +17,15 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
   twin.geometry = std::make_unique<functional::SceneGeometry>(functional::convert_scene(scene, s));
   if (!scene.has_camera) functional::frame_automatically(scene, twin.geometry->scene_bounds);
   twin.settings.shade.scene_extent = functional::scene_extent(twin.geometry->scene_bounds);
-  twin.tracer = functional::make_tracer(*twin.geometry, scene, twin.settings);
+  try {
+    twin.tracer = functional::make_tracer(*twin.geometry, scene, twin.settings);
+  } catch (const std::length_error& e) {
+    // The search structure cannot hold this scene at these settings (the grid's subvolume
+    // references outgrow its 32-bit offsets): bad input, with what to change.
+    throw InputError(scene.name, 0,
+                     std::string("the acceleration structure cannot hold this scene: ") + e.what() +
+                         ", or search without a grid");
+  }
   return twin;
 }
 
