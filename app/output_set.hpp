@@ -9,6 +9,10 @@
 
 namespace rtsim::app {
 
+/// The checks every command makes of its --out before any work: not empty, not the filesystem
+/// root, not an existing non-folder. InputError ("--out DIR: why", exit 2) otherwise.
+void check_output_folder(const std::filesystem::path& dir);
+
 class OutputSet {
  public:
   explicit OutputSet(std::filesystem::path dir);

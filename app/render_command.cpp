@@ -32,6 +32,8 @@ int run_render(const RenderArgs& args) {
   const auto& geometry = *twin.geometry;
   const auto& tracer = twin.tracer;
 
+  // The output folder is checked (and made) before the render: a bad --out costs no work.
+  OutputSet out(args.out_dir);
   functional::RenderOptions opts;
   opts.width = args.width;
   opts.height = args.height;
@@ -48,7 +50,6 @@ int run_render(const RenderArgs& args) {
               << opts.threads << " worker threads asked for; rendered with " << result.threads
               << " (the image does not depend on it)\n";
 
-  OutputSet out(args.out_dir);
   stage_images(out, result);
   {
     std::ofstream stats(out.stage("stats.json"));

@@ -98,6 +98,15 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   const fs::path out = out_dir_of(args);
   const fs::path points_dir = out / "points";
   const std::size_t n = plan.points.size();
+  check_output_folder(out);
+  {
+    std::error_code ec;
+    fs::create_directories(points_dir, ec);
+    if (ec || !fs::is_directory(points_dir, ec))
+      throw InputError("--out " + out.string(), 0,
+                       "cannot create " + points_dir.string() + ": " +
+                           (ec ? ec.message() : std::string("not a folder")));
+  }
 
   std::vector<sweep::PointOutcome> outcomes(n);
   std::vector<validation::RunRequest> requests;

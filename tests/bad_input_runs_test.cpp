@@ -149,4 +149,47 @@ TEST(BadInputRuns, GridLimitsAreTheParametersBoundsAndTooBigAScene) {
   fs::remove_all(dir);
 }
 
+// Defect 5: with out/stats.json a non-empty folder and an old image.png in out/, a render
+// replaced image.png and image.exr, then failed on stats.json (exit 1): a half-written set.
+// Every destination is checked before the first file moves; nothing is replaced, exit 2.
+TEST(BadInputRuns, AnOutputSetThatCannotBeCompletedReplacesNothing) {
+  const fs::path dir = scratch_dir("half-written");
+  fs::create_directories(dir / "stats.json" / "inside");
+  { std::ofstream(dir / "image.png") << "old"; }
+  const auto r =
+      run_rtsim("render --scene builtin:default --width 8 --height 8 -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("nothing was replaced"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(dir / "image.png"), "old");
+  EXPECT_FALSE(fs::exists(dir / "image.exr"));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().rfind(".rtsim-partial", 0), std::string::npos)
+        << "the staging folder is removed";
+  fs::remove_all(dir);
+}
+
+// Defect 10: output paths that cannot be used were "internal error", exit 1, found after the
+// whole render. They are bad input, exit 2, found before any work: --out naming a file, the
+// filesystem root, and sweep --out naming a file.
+TEST(BadInputRuns, UnusableOutputPathsAreBadInputFoundFirst) {
+  const fs::path dir = scratch_dir("out-paths");
+  fs::create_directories(dir);
+  const fs::path file = dir / "a-file";
+  { std::ofstream(file) << "x"; }
+  for (const std::string& args :
+       {"render --scene builtin:default --width 8 --height 8 -q --out " + file.string(),
+        "run --machine vax-750 --scene builtin:npp-412 --width 4 --height 4 -q --out " +
+            file.string(),
+        std::string("render --scene builtin:default --width 8 --height 8 -q --out /"),
+        "sweep " + std::string(RTSIM_TEST_DATA_DIR) + "/../../configs/sweeps/fig2-18-grid.toml" +
+            " -q --out " + file.string()}) {
+    const auto r = run_rtsim(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(read_file(file), "x");
+  fs::remove_all(dir);
+}
+
 }  // namespace
