@@ -76,7 +76,8 @@ class NffParser {
       }
     }
     if (scene_.primitives.empty()) {
-      cursor_.fail(0, "no primitives in scene file (expected at least one s, c, p or pp)");
+      cursor_.fail(cursor_.last_line_number(),
+                   "no primitives in scene file by its end (expected at least one s, c, p or pp)");
     }
     return std::move(scene_);
   }

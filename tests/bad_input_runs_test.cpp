@@ -192,4 +192,31 @@ TEST(BadInputRuns, UnusableOutputPathsAreBadInputFoundFirst) {
   fs::remove_all(dir);
 }
 
+// The minor ones: "no primitives" had no line; "+1 us" was rejected in parameters though scene
+// files accept +1; builtin:ullner-random-0 said "unknown builtin scene" instead of the range.
+TEST(BadInputRuns, MinorMessagesSayWhereAndWhat) {
+  const fs::path dir = scratch_dir("minor");
+  fs::create_directories(dir);
+  const fs::path scene = dir / "empty.nff";
+  {
+    std::ofstream(scene) << "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\n"
+                            "resolution 8 8\n";
+  }
+  const auto empty =
+      run_rtsim("render --scene " + scene.string() + " -q --out " + (dir / "a").string());
+  EXPECT_EQ(empty.exit_code, 2) << empty.output;
+  EXPECT_NE(empty.output.find(scene.string() + ":7: no primitives"), std::string::npos)
+      << empty.output;
+  const auto plus = run_rtsim(
+      "run --machine vax-750 --scene builtin:npp-412 --width 4 --height 4 "
+      "-p \"vax.ray_time=+710 us\" -q --out " +
+      (dir / "b").string());
+  EXPECT_EQ(plus.exit_code, 0) << plus.output;
+  const auto zero =
+      run_rtsim("render --scene builtin:ullner-random-0 -q --out " + (dir / "c").string());
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("takes N from 4 to"), std::string::npos) << zero.output;
+  fs::remove_all(dir);
+}
+
 }  // namespace

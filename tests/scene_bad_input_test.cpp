@@ -142,9 +142,9 @@ const std::vector<BadCase>& nff_cases() {
       {"v\nfrom 0 0 5\nfrom 0 0 6\n", 3, "duplicate 'from' in the view block (first at line 2)"},
       {kView + kView + "s 0 0 0 1\n", 8, "second view block 'v' (the first is at line 1)"},
       // Nothing to render.
-      {"", 0, "no primitives in scene file"},
-      {"# just a comment\n\n", 0, "no primitives in scene file"},
-      {kView + "l 1 1 1\n", 0, "no primitives"},
+      {"", 0, "no primitives in scene file"},  // no line to name
+      {"# just a comment\n\n", 2, "no primitives in scene file"},
+      {kView + "l 1 1 1\n", 8, "no primitives"},
   };
   return cases;
 }

@@ -125,7 +125,9 @@ std::string expectation(const Param& p) {
 
 // Reads text written as in a config file or on the command line (already unquoted).
 ParamValue parse_text(const Param& p, std::string_view text) {
-  const char* first = text.data();
+  // A leading '+' on a number is accepted, as in scene files; std::from_chars does not take it.
+  const bool plus = text.size() >= 2 && text[0] == '+' && text[1] != '-' && text[1] != '+';
+  const char* first = text.data() + (plus ? 1 : 0);
   const char* last = text.data() + text.size();
   switch (p.spec.kind) {
     case ParamKind::kInt: {

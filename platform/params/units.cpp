@@ -164,7 +164,10 @@ Quantity parse_quantity(std::string_view text, UnitClass expected) {
   };
 
   double number = 0.0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), number);
+  // A leading '+' is accepted, as in scene files ("+1 us"); std::from_chars does not take it.
+  const std::string_view digits =
+      s.size() >= 2 && s[0] == '+' && s[1] != '-' && s[1] != '+' ? s.substr(1) : s;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
   if (ec == std::errc::invalid_argument) fail(quoted(s) + " is not a number");
   if (ec == std::errc::result_out_of_range) fail(quoted(s) + " is out of range");
   if (!std::isfinite(number)) fail(quoted(s) + " is not a finite number");

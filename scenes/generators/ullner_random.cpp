@@ -86,7 +86,8 @@ std::optional<std::size_t> parse_ullner_random_name(std::string_view name) {
   const std::string_view digits = name.substr(kUllnerRandomPrefix.size());
   // At most 9 digits: no overflow, and anything longer is out of range anyway (reported as such
   // by the caller through the value 10^9).
-  if (digits.empty() || digits[0] == '0') return std::nullopt;
+  // "0" is a number (out of range, which the caller says); "007" is no name.
+  if (digits.empty() || (digits.size() > 1 && digits[0] == '0')) return std::nullopt;
   std::size_t n = 0;
   for (std::size_t i = 0; i < digits.size(); ++i) {
     const char c = digits[i];
