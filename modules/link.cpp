@@ -38,7 +38,7 @@ sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& star
                                 const sc_core::sc_time& written) {
   const sc_core::sc_time begin = std::max(start, free_);
   waited_ += begin - start;
-  const sc_core::sc_time done = std::max(begin + serialisation(bits), written);
+  const sc_core::sc_time done = std::max(plus(begin, serialisation(bits)), written);
   if (done > begin) {
     timeline_.add(begin, done - begin);
     busy_ += done - begin;
@@ -46,7 +46,7 @@ sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& star
   free_ = done;
   ++messages_;
   bits_ += bits;
-  return done + latency_;
+  return plus(done, latency_);
 }
 
 }  // namespace rtsim::modules

@@ -10,6 +10,8 @@
 #include <systemc>
 #include <tlm>
 
+#include "modules/sim_time.hpp"
+
 namespace rtsim::modules {
 
 class LocalClock {
@@ -19,7 +21,7 @@ class LocalClock {
 
   /// Spend `d` of local time; synchronise if the thread is a quantum ahead.
   void advance(const sc_core::sc_time& d) {
-    local_ += d;
+    local_ = plus(local_, d);
     if (local_ - sc_core::sc_time_stamp() >= tlm::tlm_global_quantum::instance().get()) sync();
   }
 

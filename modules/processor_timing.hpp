@@ -8,6 +8,7 @@
 
 #include "firmware/cost.hpp"
 #include "modules/module_params.hpp"
+#include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
 
@@ -21,9 +22,7 @@ struct ProcessorTiming {
     return c.fp_add * fp_add + c.fp_mul * fp_mul + c.fp_div * fp_div + c.fp_sqrt * fp_sqrt +
            c.mem_words * mem_word + c.instructions * instruction;
   }
-  sc_core::sc_time time_for(const Cost& c) const {
-    return sc_core::sc_time::from_value(cycle.value() * cycles_for(c));
-  }
+  sc_core::sc_time time_for(const Cost& c) const { return times(cycle, cycles_for(c)); }
 };
 
 /// A machine preset's defaults for one processor's parameters, with where they come from.

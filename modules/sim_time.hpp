@@ -1,15 +1,42 @@
 #pragma once
 // Time helpers. SystemC's time resolution is 1 ps (its default); every delay parameter is a
 // whole number of picoseconds (platform/params checks it), so sums and multiples are exact.
-// Used by every machine.
+//
+// Simulated time is a 64-bit count of picoseconds: it ends 2^64 ps (about 213 days) after the
+// start. The kit's time arithmetic (times, plus, LocalClock) throws TimeOverflow where it would
+// pass that end, instead of wrapping round to a small, wrong number; MachineRun turns it into
+// bad input (the parameters made the frame too long). Used by every machine.
 #include <cstdint>
+#include <stdexcept>
 #include <systemc>
 
 namespace rtsim::modules {
 
+class TimeOverflow : public std::overflow_error {
+ public:
+  TimeOverflow()
+      : std::overflow_error(
+            "simulated time passed 2^64 ps (about 213 days), the end of SystemC's time") {}
+};
+
+/// Records that simulated time overflowed (SystemC may wrap the exception thrown from a
+/// process into its own report) and throws TimeOverflow.
+[[noreturn]] void time_overflow();
+/// Whether time_overflow() was called in this process.
+bool time_overflowed();
+
 /// n x t, exactly (integer picoseconds; sc_time * double would round through a double).
 inline sc_core::sc_time times(const sc_core::sc_time& t, std::uint64_t n) {
-  return sc_core::sc_time::from_value(t.value() * n);
+  sc_core::sc_time::value_type v = 0;
+  if (__builtin_mul_overflow(t.value(), n, &v)) time_overflow();
+  return sc_core::sc_time::from_value(v);
+}
+
+/// a + b, exactly, or TimeOverflow.
+inline sc_core::sc_time plus(const sc_core::sc_time& a, const sc_core::sc_time& b) {
+  sc_core::sc_time::value_type v = 0;
+  if (__builtin_add_overflow(a.value(), b.value(), &v)) time_overflow();
+  return sc_core::sc_time::from_value(v);
 }
 
 inline sc_core::sc_time from_ps(std::int64_t ps) {

@@ -219,4 +219,34 @@ TEST(BadInputRuns, MinorMessagesSayWhereAndWhat) {
   fs::remove_all(dir);
 }
 
+// Defect 2: simulated time wrapped silently past 2^64 ps (213 days): vax-750 with
+// vax.ray_time = 1e6 s reported 1.355e7 s instead of 3.2e7 s, exit 0. Time arithmetic now stops
+// at the end of SystemC's time and the run exits 2 saying so, with no output; just below the
+// end the frame time is exact.
+TEST(BadInputRuns, SimulatedTimeNeverWraps) {
+  const fs::path dir = scratch_dir("time-wrap");
+  for (const std::string& args :
+       {std::string("run --machine vax-750 --scene builtin:npp-412 --width 4 --height 4 "
+                    "-p \"vax.ray_time=1e6 s\""),
+        std::string("run --machine ullner-peripheral --scene builtin:ullner-cubes "
+                    "-p \"host.clock=1 Hz\""),
+        std::string("run --machine gaudet-pert --scene builtin:npp-412 --width 4 --height 4 "
+                    "-p \"control.load_word_time=1e6 s\"")}) {
+    const auto r = run_rtsim(args + " -q --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("2^64 ps"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+  }
+  // 16 rays of 1e5 s + 16 x 768 objects x 429 us: 1,600,005.27 s, well inside the range.
+  const auto ok = run_rtsim(
+      "run --machine vax-750 --scene builtin:npp-412 --width 4 --height 4 "
+      "-p \"vax.ray_time=1e5 s\" -q --out " +
+      (dir / "ok").string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const auto stats = rtsim::test::read_json(dir / "ok" / "stats.json");
+  const double rays = stats["rays"]["total"].get<double>();
+  EXPECT_NEAR(stats["simulated_time_s"].get<double>(), rays * (1e5 + 768 * 429e-6), 1e-3);
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -1,5 +1,7 @@
 #include "platform/machines/machine_run.hpp"
 
+#include "common/input_error.hpp"
+#include "modules/sim_time.hpp"
 #include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform {
@@ -23,7 +25,18 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
 void MachineRun::simulate() {
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
                                           sc_core::SC_DO_NOTHING);
-  sc_core::sc_start();
+  try {
+    sc_core::sc_start();
+  } catch (...) {
+    // SystemC hands an exception from a process back as its own report: the flag says whether
+    // it was simulated time running out (the parameters' doing: bad input, not a fault).
+    if (modules::time_overflowed())
+      throw InputError(machine_, 0,
+                       std::string(modules::TimeOverflow().what()) +
+                           ": the frame these parameters describe is longer than the simulator "
+                           "can count; shorten the times, the scene or the image");
+    throw;
+  }
 }
 
 modules::StatsRegistry& MachineRun::stats(const sc_core::sc_time& begin,

@@ -22,6 +22,7 @@ namespace rtsim::platform {
 namespace {
 
 using modules::from_ps;
+using modules::plus;
 using modules::times;
 using shading::TracedRay;
 
@@ -103,9 +104,10 @@ class VaxHost : public modules::Processor {
             // Shells: T_s + T_i per primitive test + T_b per box test.
             const auto& c = frame_.counters();
             const sc_core::sc_time cost =
-                brute_force_ ? ray_time_ + times(test_time_, objects_)
-                             : ray_time_ + times(test_time_, c.intersection_tests - tests_seen) +
-                                   times(box_time_, c.box_tests - boxes_seen);
+                brute_force_
+                    ? plus(ray_time_, times(test_time_, objects_))
+                    : plus(plus(ray_time_, times(test_time_, c.intersection_tests - tests_seen)),
+                           times(box_time_, c.box_tests - boxes_seen));
             tests_seen = c.intersection_tests;
             boxes_seen = c.box_tests;
             // The whole of a ray's latency is the VAX working on it: one process, no queue.

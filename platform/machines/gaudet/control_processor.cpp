@@ -71,12 +71,12 @@ void ControlProcessor::run() {
     for (const DataSetImage* s : sets_) words += s->memory.size();
     words *= shade_.size();  // every PERT
     words_loaded_ += words;
-    delay += modules::times(load_word_time_, words);
+    delay = modules::plus(delay, modules::times(load_word_time_, words));
   }
   // The ray-spawn globals to every ShadeProcessor.
   const std::uint64_t g = globals_words_ * shade_.size();
   words_loaded_ += g;
-  delay += modules::times(load_word_time_, g);
+  delay = modules::plus(delay, modules::times(load_word_time_, g));
   sc_core::wait(delay);
   load_time_ = sc_core::sc_time_stamp();
   for (std::size_t b = 0; b < buses_.size(); ++b)
