@@ -15,20 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 using rtsim::test::read_file;
 using rtsim::test::run_rtsim;
+using rtsim::test::run_shell;
 using rtsim::test::scratch_dir;
-
-/// Runs `shell` (a /bin/sh command line) and returns its exit status and output.
-rtsim::test::CommandResult run_shell(const std::string& shell) {
-  rtsim::test::CommandResult r;
-  FILE* pipe = ::popen((shell + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 // Defect 1: when threads cannot be created (here: too little address space for their stacks),
 // the render aborted with "terminate called without an active exception". It now renders with

@@ -25,17 +25,8 @@ rtsim::test::CommandResult run_mpi(const std::string& args) {
   // OpenMPI refuses to run as root (CI containers) unless told twice.
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-  const std::string cmd =
-      std::string(RTSIM_MPIEXEC) + " -np 2 --oversubscribe " + RTSIM_BINARY + " " + args + " 2>&1";
-  rtsim::test::CommandResult r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rtsim::test::run_shell(std::string(RTSIM_MPIEXEC) + " -np 2 --oversubscribe " +
+                                RTSIM_BINARY + " " + args);
 }
 #endif
 

@@ -23,9 +23,9 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Run the rtsim binary with `args` (shell-quoted by the caller where needed).
-inline CommandResult run_rtsim(const std::string& args) {
-  const std::string cmd = std::string(RTSIM_BINARY) + " " + args + " 2>&1";
+/// Run `command` through /bin/sh, stdout and stderr together.
+inline CommandResult run_shell(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
   CommandResult r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -35,6 +35,11 @@ inline CommandResult run_rtsim(const std::string& args) {
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Run the rtsim binary with `args` (shell-quoted by the caller where needed).
+inline CommandResult run_rtsim(const std::string& args) {
+  return run_shell(std::string(RTSIM_BINARY) + " " + args);
 }
 
 inline std::string read_file(const std::filesystem::path& p) {
