@@ -237,4 +237,34 @@ TEST(BadInputRuns, SimulatedTimeNeverWraps) {
   fs::remove_all(dir);
 }
 
+// Defect 8 (in part): sweep range arithmetic. A step of 1e-300 said "-9223372036854775808
+// values" (a float-to-integer overflow); integer ranges near 2^63 were rounded through doubles;
+// a log range from 1e-308 to 1e308 computed inf. Now: the count is said as counted, integers
+// beyond 2^53 (where doubles stop counting exactly) are refused, and log ranges interpolate in
+// logarithms.
+TEST(BadInputRuns, SweepRangesCountWhatTheyCanRepresent) {
+  const fs::path dir = scratch_dir("sweep-ranges");
+  fs::create_directories(dir);
+  auto list = [&](const std::string& param, const std::string& range) {
+    const fs::path file = dir / "sweep.toml";
+    {
+      std::ofstream(file) << "machine = \"vax-750\"\nscene = \"builtin:npp-412\"\n[[axes]]\n"
+                          << "param = \"" << param << "\"\nrange = " << range << "\n";
+    }
+    return run_shell("timeout 20 " + std::string(RTSIM_BINARY) + " sweep " + file.string() +
+                     " --list");
+  };
+  const auto tiny = list("shade.ambient", "{ start = 0.0, stop = 1.0, step = 1e-300 }");
+  EXPECT_EQ(tiny.exit_code, 2) << tiny.output;
+  EXPECT_NE(tiny.output.find("e+299 values, more than 100000"), std::string::npos) << tiny.output;
+  const auto huge = list("scene.seed", "{ start = 0, stop = 9223372036854775807, step = 1 }");
+  EXPECT_EQ(huge.exit_code, 2) << huge.output;
+  EXPECT_NE(huge.output.find("at most 2^53"), std::string::npos) << huge.output;
+  const auto wide =
+      list("shade.ambient", "{ start = 1e-308, stop = 1e308, count = 3, scale = \"log\" }");
+  EXPECT_EQ(wide.output.find("inf"), std::string::npos) << wide.output;
+  EXPECT_NE(wide.output.find("1e+308"), std::string::npos) << wide.output;
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -26,6 +26,8 @@ using Json = nlohmann::ordered_json;
 
 // The largest image side `rtsim run` takes (its --width/--height check).
 constexpr std::int64_t kMaxImageSide = 16384;
+/// Largest integer a range may name: doubles count every integer up to 2^53 exactly.
+constexpr std::int64_t kMaxExactInteger = std::int64_t{1} << 53;
 
 std::size_t line_of(const toml::node& node) { return node.source().begin.line; }
 
@@ -172,7 +174,15 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
       if (required) fail(line, where + " needs '" + key + "'");
       return std::nullopt;
     }
-    if (const auto* i = node->as_integer()) return static_cast<double>(i->get());
+    if (const auto* i = node->as_integer()) {
+      // Ranges count in doubles, which hold every integer up to 2^53 exactly and no more.
+      if (i->get() > kMaxExactInteger || i->get() < -kMaxExactInteger)
+        fail(line_of(*node),
+             where + ": '" + key + "' is " + std::to_string(i->get()) +
+                 "; integer ranges reach at most 2^53 = " + std::to_string(kMaxExactInteger) +
+                 " either way (list the values instead)");
+      return static_cast<double>(i->get());
+    }
     if (const auto* f = node->as_floating_point(); f && std::isfinite(f->get())) {
       integers = false;
       return f->get();
@@ -212,7 +222,9 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
         raw.push_back(stop);
       } else {
         const double t = static_cast<double>(k) / static_cast<double>(*count - 1);
-        raw.push_back(start * std::pow(stop / start, t));  // equal ratios between neighbours
+        // Equal ratios between neighbours, in logarithms: stop / start itself may overflow
+        // (1e-308 to 1e308).
+        raw.push_back(std::exp(std::log(start) + t * (std::log(stop) - std::log(start))));
       }
     }
   } else if (count) {
@@ -228,6 +240,13 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
     if (span < 0)
       fail(line, where + ": step " + exact_text(s) + " goes away from stop " + exact_text(stop) +
                      " (from start " + exact_text(start) + ")");
+    // Too many values (or more than a double counts: a step of 1e-300) is said as such, before
+    // the count is turned into an integer.
+    if (!(span < static_cast<double>(kMaxPoints)))
+      fail(line, where + " has " +
+                     (span < 1e18 ? std::to_string(static_cast<long long>(std::floor(span)) + 1)
+                                  : exact_text(std::floor(span) + 1)) +
+                     " values, more than " + std::to_string(kMaxPoints) + "; use a larger step");
     // A step that lands on stop within rounding includes it.
     const double n = std::floor(span + 1e-9) + 1;
     if (n > static_cast<double>(kMaxPoints))
