@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "common/input_file.hpp"
+#include "common/leading_plus.hpp"
 
 namespace rtsim::scenes {
 
@@ -22,14 +23,6 @@ std::string hex_byte(unsigned char c) {
   char buf[8];
   std::snprintf(buf, sizeof buf, "0x%02X", static_cast<unsigned>(c));
   return buf;
-}
-
-/// A leading '+' is valid in a scene file but std::from_chars does not accept it.
-std::string_view strip_plus(std::string_view token) {
-  if (token.size() >= 2 && token[0] == '+' && token[1] != '-' && token[1] != '+') {
-    return token.substr(1);
-  }
-  return token;
 }
 
 }  // namespace
@@ -130,7 +123,7 @@ namespace {
 enum class NumberStatus { kOk, kNotANumber, kOutOfRange, kNotFinite, kTooLarge };
 
 NumberStatus try_parse_double(std::string_view token, double& value) {
-  const std::string_view t = strip_plus(token);
+  const std::string_view t = strip_leading_plus(token);
   const auto [ptr, ec] =
       std::from_chars(t.data(), t.data() + t.size(), value, std::chars_format::general);
   if (ec == std::errc::result_out_of_range) return NumberStatus::kOutOfRange;
@@ -169,7 +162,7 @@ double parse_number(const LineCursor& cursor, const SceneLine& line, std::string
 
 std::int64_t parse_integer(const LineCursor& cursor, const SceneLine& line, std::string_view token,
                            std::string_view what) {
-  const std::string_view t = strip_plus(token);
+  const std::string_view t = strip_leading_plus(token);
   std::int64_t value = 0;
   const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value, 10);
   if (ec == std::errc::result_out_of_range) {

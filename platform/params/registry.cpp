@@ -11,6 +11,7 @@
 
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
+#include "common/leading_plus.hpp"
 #include "common/suggest.hpp"
 #include "platform/params/toml_leaves.hpp"
 #include "platform/params/units.hpp"
@@ -125,9 +126,8 @@ std::string expectation(const Param& p) {
 
 // Reads text written as in a config file or on the command line (already unquoted).
 ParamValue parse_text(const Param& p, std::string_view text) {
-  // A leading '+' on a number is accepted, as in scene files; std::from_chars does not take it.
-  const bool plus = text.size() >= 2 && text[0] == '+' && text[1] != '-' && text[1] != '+';
-  const char* first = text.data() + (plus ? 1 : 0);
+  const std::string_view number = strip_leading_plus(text);  // "+1", as in scene files
+  const char* first = number.data();
   const char* last = text.data() + text.size();
   switch (p.spec.kind) {
     case ParamKind::kInt: {

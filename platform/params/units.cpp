@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/leading_plus.hpp"
+
 namespace rtsim::params {
 namespace {
 
@@ -164,9 +166,7 @@ Quantity parse_quantity(std::string_view text, UnitClass expected) {
   };
 
   double number = 0.0;
-  // A leading '+' is accepted, as in scene files ("+1 us"); std::from_chars does not take it.
-  const std::string_view digits =
-      s.size() >= 2 && s[0] == '+' && s[1] != '-' && s[1] != '+' ? s.substr(1) : s;
+  const std::string_view digits = strip_leading_plus(s);  // "+1 us", as in scene files
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
   if (ec == std::errc::invalid_argument) fail(quoted(s) + " is not a number");
   if (ec == std::errc::result_out_of_range) fail(quoted(s) + " is out of range");
