@@ -342,9 +342,10 @@ const Param* ParamRegistry::resolve(std::string_view name) const {
 void ParamRegistry::check_instances() const {
   for (const auto& [name, p] : params_) {
     if (p.instance_of.empty() || p.where_set == "default") continue;
+    const std::string_view first = std::string_view(name).substr(0, name.find('.'));
     for (const auto& f : families_) {
-      if (f.count_param.empty() || !name.starts_with(f.cls)) continue;
-      const std::string_view first = std::string_view(name).substr(0, name.find('.'));
+      // The numbered family this instance belongs to (the same membership test as its reads).
+      if (f.count_param.empty() || !is_member(f, first)) continue;
       const auto index = std::stoll(std::string(first.substr(f.cls.size())));
       const auto count = std::get<std::int64_t>(params_.at(f.count_param).value);
       if (index < count) continue;
