@@ -81,10 +81,7 @@ INSTANTIATE_TEST_SUITE_P(Machines, Describe,
                                          Case{"ullner-peripheral", "builtin:ullner-cubes"},
                                          Case{"vax-750", "builtin:npp-412"}),
                          [](const testing::TestParamInfo<Case>& i) {
-                           std::string n = i.param.machine;
-                           for (char& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
+                           return rtsim::test::gtest_param_name(i.param.machine);
                          });
 
 TEST(Describe, EveryMachineIsCovered) {

@@ -72,8 +72,5 @@ TEST_P(GoldenImage, MatchesReviewedImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GoldenImage, ::testing::ValuesIn(cases()), [](const auto& info) {
-  std::string n = info.param.name;
-  for (auto& ch : n)
-    if (ch == '-') ch = '_';
-  return n;
+  return rtsim::test::gtest_param_name(info.param.name);
 });

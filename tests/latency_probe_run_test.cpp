@@ -6,9 +6,8 @@
 // moves the way a what-if says it must (a deeper ray queue, a slower host).
 #include <gtest/gtest.h>
 
-#include <iterator>
-
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 

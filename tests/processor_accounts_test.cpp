@@ -26,8 +26,8 @@ class ProcessorAccounts : public testing::TestWithParam<Case> {};
 TEST_P(ProcessorAccounts, AddUpToTheFrame) {
   const Case c = GetParam();
   const auto dir = scratch_dir(std::string("accounts-") + c.machine);
-  const auto r = run_rtsim(std::string("run --machine ") + c.machine + " " + c.args +
-                           " -q --out " + dir.string());
+  const auto r = run_rtsim(std::string("run --machine ") + c.machine + " " + c.args + " -q --out " +
+                           dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto stats = nlohmann::json::parse(read_file(dir / "stats.json"));
   const double frame = stats.at("simulated_time_s").get<double>();
@@ -37,8 +37,8 @@ TEST_P(ProcessorAccounts, AddUpToTheFrame) {
     ++processors;
     const double sum = m.at("busy_s").get<double>() + m.at("waiting_for_data_s").get<double>() +
                        m.at("waiting_for_work_s").get<double>() + m.at("blocked_s").get<double>();
-    std::cout << c.machine << " " << name << ": busy + waiting + blocked = " << sum
-              << " s, frame " << frame << " s\n";
+    std::cout << c.machine << " " << name << ": busy + waiting + blocked = " << sum << " s, frame "
+              << frame << " s\n";
     EXPECT_LE(sum, frame * (1 + 1e-9)) << name;
     if (name == c.whole_frame) {
       EXPECT_NEAR(sum, frame, 1e-9 * frame) << name;
@@ -52,13 +52,9 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(
         Case{"vax-750", "--scene builtin:npp-412 --width 16 --height 16", "vax"},
         Case{"ullner-peripheral", "--scene builtin:ullner-cubes --width 24 --height 24", "host"},
-        Case{"gaudet-pert", "--scene builtin:npp-412 --width 16 --height 16 -p pert_count=2",
-             ""}),
+        Case{"gaudet-pert", "--scene builtin:npp-412 --width 16 --height 16 -p pert_count=2", ""}),
     [](const testing::TestParamInfo<Case>& i) {
-      std::string n = i.param.machine;
-      for (char& ch : n)
-        if (ch == '-') ch = '_';
-      return n;
+      return rtsim::test::gtest_param_name(i.param.machine);
     });
 
 }  // namespace

@@ -68,6 +68,13 @@ inline std::string shared_path(const std::string& rel) {
   return std::string(RTSIM_SHARED_DIR) + "/" + rel;
 }
 
+/// A name (a machine's, a scene's) as a GoogleTest parameter name: "gaudet-pert" -> "gaudet_pert".
+inline std::string gtest_param_name(std::string name) {
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
+
 /// A fresh, empty folder under the build tree for one test's outputs.
 /// The process id keeps tests that CTest runs in parallel out of each other's way.
 inline std::filesystem::path scratch_dir(const std::string& name) {
