@@ -237,11 +237,11 @@ TEST(BadInputRuns, SimulatedTimeNeverWraps) {
   fs::remove_all(dir);
 }
 
-// Defect 8 (in part): sweep range arithmetic. A step of 1e-300 said "-9223372036854775808
-// values" (a float-to-integer overflow); integer ranges near 2^63 were rounded through doubles;
-// a log range from 1e-308 to 1e308 computed inf. Now: the count is said as counted, integers
-// beyond 2^53 (where doubles stop counting exactly) are refused, and log ranges interpolate in
-// logarithms.
+// Defect 8: sweep range arithmetic. A step of 1e-300 said "-9223372036854775808 values" (a
+// float-to-integer overflow); integer ranges near 2^63 were rounded through doubles and named
+// values not in the file; a log range from 1e-308 to 1e308 computed inf. Now: the count is said as
+// counted, integer ranges count and step in integers (exact to 2^63), and log ranges interpolate
+// in logarithms.
 TEST(BadInputRuns, SweepRangesCountWhatTheyCanRepresent) {
   const fs::path dir = scratch_dir("sweep-ranges");
   fs::create_directories(dir);
@@ -259,7 +259,35 @@ TEST(BadInputRuns, SweepRangesCountWhatTheyCanRepresent) {
   EXPECT_NE(tiny.output.find("e+299 values, more than 100000"), std::string::npos) << tiny.output;
   const auto huge = list("scene.seed", "{ start = 0, stop = 9223372036854775807, step = 1 }");
   EXPECT_EQ(huge.exit_code, 2) << huge.output;
-  EXPECT_NE(huge.output.find("at most 2^53"), std::string::npos) << huge.output;
+  EXPECT_NE(huge.output.find("has 9223372036854775808 values, more than 100000"), std::string::npos)
+      << huge.output;
+  // Near 2^63: exactly the values the range names, each once.
+  const auto top =
+      list("scene.seed", "{ start = 9223372036854775800, stop = 9223372036854775807, step = 3 }");
+  EXPECT_EQ(top.exit_code, 0) << top.output;
+  for (const char* v : {"9223372036854775800", "9223372036854775803", "9223372036854775806"})
+    EXPECT_NE(top.output.find(v), std::string::npos) << v << "\n" << top.output;
+  EXPECT_EQ(top.output.find("9223372036854775807"), std::string::npos) << top.output;
+  EXPECT_EQ(top.output.find("9223372036854775808"), std::string::npos) << top.output;
+  const auto spread =
+      list("scene.seed", "{ start = 9223372036854775000, stop = 9223372036854775807, count = 4 }");
+  EXPECT_EQ(spread.exit_code, 0) << spread.output;
+  for (const char* v :
+       {"9223372036854775000", "9223372036854775269", "9223372036854775538", "9223372036854775807"})
+    EXPECT_NE(spread.output.find(v), std::string::npos) << v << "\n" << spread.output;
+  // One value written two ways is one point: compared as values, not as texts.
+  {
+    const fs::path file = dir / "twice.toml";
+    std::ofstream(file) << "machine = \"vax-750\"\nscene = \"builtin:npp-412\"\n[[axes]]\n"
+                        << "param = \"vax.ray_time\"\nvalues = [\"1 us\", \"2 us\", \"1000 ns\"]\n";
+  }
+  const auto twice = run_shell("timeout 20 " + std::string(RTSIM_BINARY) + " sweep " +
+                               (dir / "twice.toml").string() + " --list");
+  EXPECT_EQ(twice.exit_code, 2) << twice.output;
+  EXPECT_NE(
+      twice.output.find("twice.toml:5: the axis of 'vax.ray_time' lists '1000 ns' and '1 us'"),
+      std::string::npos)
+      << twice.output;
   const auto wide =
       list("shade.ambient", "{ start = 1e-308, stop = 1e308, count = 3, scale = \"log\" }");
   EXPECT_EQ(wide.output.find("inf"), std::string::npos) << wide.output;

@@ -507,6 +507,12 @@ double ParamRegistry::get_data_size_bits(std::string_view name) const {
   return std::get<double>(find(name, ParamKind::kDataSize).value);
 }
 
+std::string ParamRegistry::value_text(std::string_view name) const {
+  const Param* p = resolve(name);
+  if (!p) throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
+  return format_value(p->spec.kind, p->value);
+}
+
 const std::string& ParamRegistry::where_set(std::string_view name) const {
   const Param* p = resolve(name);
   if (!p) throw std::logic_error("undeclared parameter '" + std::string(name) + "'");

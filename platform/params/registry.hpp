@@ -144,6 +144,9 @@ class ParamRegistry {
   double get_bitrate_bps(std::string_view name) const;
   double get_data_size_bits(std::string_view name) const;
   /// "default", "FILE:LINE" or "-p".
+  /// The value `name` reads, written as list() writes it: one text per value, so "1 us" and
+  /// "1000 ns" give the same text (a sweep compares its points by it).
+  std::string value_text(std::string_view name) const;
   const std::string& where_set(std::string_view name) const;
 
   /// Every parameter, sorted by name: each class parameter once, and the instance values set.

@@ -61,6 +61,26 @@ void check_sweep(const SweepFile& file, const std::vector<Point>& points,
     if (scene_seen.insert(scene->value.text).second) scene_list.push_back(scene);
   }
 
+  // A plain axis names each value once, compared as values: ["1 us", "1000 ns"] would run one
+  // point twice. (Its texts were compared when the file was read.)
+  for (const Axis& axis : file.axes) {
+    if (axis.members.size() != 1 || is_run_option(axis.members.front().name)) continue;
+    const AxisMember& m = axis.members.front();
+    for (auto& [machine, registry] : registries) {
+      if (!registry.contains(m.name)) continue;
+      std::map<std::string, const Value*> seen;
+      for (const Value& v : m.values) {
+        registry.apply_override(m.name + "=" + v.text);
+        const auto [it, inserted] = seen.emplace(registry.value_text(m.name), &v);
+        if (!inserted)
+          throw InputError(file.origin, v.line,
+                           "the axis of " + in_quotes(m.name) + " lists " + in_quotes(v.text) +
+                               " and " + in_quotes(it->second->text) + ", one value (" + it->first +
+                               ") twice");
+      }
+    }
+  }
+
   if (!options.load_scenes) return;
   for (const Setting* scene : scene_list) {
     const std::string& text = scene->value.text;

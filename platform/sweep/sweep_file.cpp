@@ -26,7 +26,8 @@ using Json = nlohmann::ordered_json;
 
 // The largest image side `rtsim run` takes (its --width/--height check).
 constexpr std::int64_t kMaxImageSide = 16384;
-/// Largest integer a range may name: doubles count every integer up to 2^53 exactly.
+/// Largest integer a log range may name: its points are computed in doubles, which hold every
+/// integer up to 2^53 exactly.
 constexpr std::int64_t kMaxExactInteger = std::int64_t{1} << 53;
 
 std::size_t line_of(const toml::node& node) { return node.source().begin.line; }
@@ -88,6 +89,10 @@ class Reader {
                   const std::string& where) const;
   Value scalar(const toml::node& node, const std::string& what) const;
   std::vector<Value> range_values(const toml::table& range, const std::string& name) const;
+  std::vector<std::int64_t> integer_range(std::int64_t start, std::int64_t stop,
+                                          std::optional<std::int64_t> step,
+                                          std::optional<std::int64_t> count, std::size_t line,
+                                          const std::string& where) const;
   AxisMember member(const toml::table& table, const std::string& where) const;
   void check_run_option_values(const AxisMember& m) const;
   void check_run_option_value(const std::string& name, const Value& v) const;
@@ -166,32 +171,27 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
   }
   const bool log = scale == "log";
 
-  // start and stop: numbers; all integers (with an integer step) give integer values.
-  bool integers = true;
-  const auto number = [&](const char* key, bool required) -> std::optional<double> {
+  // start, stop and step: numbers. When all are integers the range is counted and generated in
+  // integers, so every int64 value is exact; otherwise in doubles.
+  struct Bound {
+    double real = 0.0;
+    std::optional<std::int64_t> integer{};
+  };
+  const auto number = [&](const char* key, bool required) -> std::optional<Bound> {
     const toml::node* node = range.get(key);
     if (!node) {
       if (required) fail(line, where + " needs '" + key + "'");
       return std::nullopt;
     }
-    if (const auto* i = node->as_integer()) {
-      // Ranges count in doubles, which hold every integer up to 2^53 exactly and no more.
-      if (i->get() > kMaxExactInteger || i->get() < -kMaxExactInteger)
-        fail(line_of(*node),
-             where + ": '" + key + "' is " + std::to_string(i->get()) +
-                 "; integer ranges reach at most 2^53 = " + std::to_string(kMaxExactInteger) +
-                 " either way (list the values instead)");
-      return static_cast<double>(i->get());
-    }
-    if (const auto* f = node->as_floating_point(); f && std::isfinite(f->get())) {
-      integers = false;
-      return f->get();
-    }
+    if (const auto* i = node->as_integer()) return Bound{static_cast<double>(i->get()), i->get()};
+    if (const auto* f = node->as_floating_point(); f && std::isfinite(f->get()))
+      return Bound{f->get(), std::nullopt};
     fail(line_of(*node), where + ": '" + key + "' must be a number; got " + describe(*node));
   };
-  const double start = *number("start", true);
-  const double stop = *number("stop", true);
-  const std::optional<double> step = number("step", false);
+  const Bound start = *number("start", true);
+  const Bound stop = *number("stop", true);
+  const std::optional<Bound> step = number("step", false);
+  const bool integers = start.integer && stop.integer && (!step || step->integer);
 
   std::optional<std::int64_t> count;
   if (const auto* node = range.get("count")) {
@@ -209,37 +209,48 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
            where + ": 'unit' must be a unit such as \"ns\"; got " + describe(*node));
     unit = s->get();
   }
+  if (log && step) fail(line, where + ": a log range takes 'count', not 'step'");
+  if (!log && count && step) fail(line, where + ": give 'step' or 'count', not both");
 
   std::vector<double> raw;
-  if (log) {
-    if (step) fail(line, where + ": a log range takes 'count', not 'step'");
+  std::vector<std::int64_t> raw_integers;
+  if (integers && !log) {
+    raw_integers =
+        integer_range(*start.integer, *stop.integer,
+                      step ? step->integer : std::optional<std::int64_t>{}, count, line, where);
+  } else if (log) {
     if (!count) fail(line, where + ": a log range needs 'count'");
-    if (!(start > 0 && stop > 0)) fail(line, where + ": a log range needs start and stop above 0");
+    if (!(start.real > 0 && stop.real > 0))
+      fail(line, where + ": a log range needs start and stop above 0");
+    if (integers && std::max(start.real, stop.real) > static_cast<double>(kMaxExactInteger))
+      fail(line, where + ": an integer log range reaches at most 2^53 = " +
+                     std::to_string(kMaxExactInteger) + " (its points are computed in doubles)");
     for (std::int64_t k = 0; k < *count; ++k) {
       if (k == 0) {
-        raw.push_back(start);
+        raw.push_back(start.real);
       } else if (k == *count - 1) {
-        raw.push_back(stop);
+        raw.push_back(stop.real);
       } else {
         const double t = static_cast<double>(k) / static_cast<double>(*count - 1);
         // Equal ratios between neighbours, in logarithms: stop / start itself may overflow
         // (1e-308 to 1e308).
-        raw.push_back(std::exp(std::log(start) + t * (std::log(stop) - std::log(start))));
+        raw.push_back(
+            std::exp(std::log(start.real) + t * (std::log(stop.real) - std::log(start.real))));
       }
     }
   } else if (count) {
-    if (step) fail(line, where + ": give 'step' or 'count', not both");
     for (std::int64_t k = 0; k < *count; ++k) {
       const double t = *count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(*count - 1);
-      raw.push_back(k == *count - 1 && *count > 1 ? stop : start + (stop - start) * t);
+      raw.push_back(k == *count - 1 && *count > 1 ? stop.real
+                                                  : start.real + (stop.real - start.real) * t);
     }
   } else {
-    const double s = step.value_or(1.0);  // {start = 1, stop = 30} is 1, 2, ..., 30
+    const double s = step ? step->real : 1.0;  // {start = 0.5, stop = 3.5} is 0.5, 1.5, ...
     if (s == 0) fail(line, where + ": 'step' must not be 0");
-    const double span = (stop - start) / s;
+    const double span = (stop.real - start.real) / s;
     if (span < 0)
-      fail(line, where + ": step " + exact_text(s) + " goes away from stop " + exact_text(stop) +
-                     " (from start " + exact_text(start) + ")");
+      fail(line, where + ": step " + exact_text(s) + " goes away from stop " +
+                     exact_text(stop.real) + " (from start " + exact_text(start.real) + ")");
     // Too many values (or more than a double counts: a step of 1e-300) is said as such, before
     // the count is turned into an integer.
     if (!(span < static_cast<double>(kMaxPoints)))
@@ -253,20 +264,22 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
       fail(line, where + " has " + std::to_string(static_cast<long long>(n)) +
                      " values, more than " + std::to_string(kMaxPoints));
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
-      raw.push_back(start + static_cast<double>(k) * s);
+      raw.push_back(start.real + static_cast<double>(k) * s);
   }
+  // Integer log ranges round each point to the nearest integer.
+  if (integers && log)
+    for (double x : raw) raw_integers.push_back(static_cast<std::int64_t>(std::llround(x)));
 
   std::vector<Value> values;
-  for (double x : raw) {
+  const std::size_t n = integers ? raw_integers.size() : raw.size();
+  for (std::size_t k = 0; k < n; ++k) {
     Value v;
     v.line = line;
     if (integers) {
-      // Integer ranges round to the nearest integer.
-      const auto i = static_cast<std::int64_t>(std::llround(x));
-      v.text = std::to_string(i);
-      v.json = i;
+      v.text = std::to_string(raw_integers[k]);
+      v.json = raw_integers[k];
     } else {
-      const double t = tidy(x);
+      const double t = tidy(raw[k]);
       v.text = exact_text(t);
       v.json = t;
     }
@@ -279,6 +292,49 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
     values.push_back(std::move(v));
   }
   return values;
+}
+
+// An all-integer linear range, counted and generated in 128-bit integers: every int64 start, stop
+// and step is exact, and no count or value can overflow (|stop - start| < 2^64, k <= kMaxPoints).
+std::vector<std::int64_t> Reader::integer_range(std::int64_t start, std::int64_t stop,
+                                                std::optional<std::int64_t> step,
+                                                std::optional<std::int64_t> count, std::size_t line,
+                                                const std::string& where) const {
+  __extension__ typedef __int128 Wide;  // GCC and clang; -Wpedantic knows no __int128
+  const auto text = [](Wide v) {        // v >= 0
+    std::string digits;
+    do {
+      digits.insert(digits.begin(), static_cast<char>('0' + static_cast<int>(v % 10)));
+      v /= 10;
+    } while (v > 0);
+    return digits;
+  };
+  const Wide span = Wide{stop} - Wide{start};
+  std::vector<std::int64_t> out;
+  if (count) {
+    // Point k is start + span * k / (count - 1), rounded half away from zero as llround rounds.
+    const Wide den = *count > 1 ? *count - 1 : 1;
+    for (std::int64_t k = 0; k < *count; ++k) {
+      const Wide num = Wide{start} * den + span * k;
+      Wide q = num / den;
+      const Wide r = num % den;
+      if (2 * (r < 0 ? -r : r) >= den) q += num < 0 ? -1 : 1;
+      out.push_back(static_cast<std::int64_t>(q));
+    }
+    return out;
+  }
+  const std::int64_t s = step.value_or(1);  // {start = 1, stop = 30} is 1, 2, ..., 30
+  if (s == 0) fail(line, where + ": 'step' must not be 0");
+  if (span != 0 && (span < 0) != (s < 0))
+    fail(line, where + ": step " + std::to_string(s) + " goes away from stop " +
+                   std::to_string(stop) + " (from start " + std::to_string(start) + ")");
+  const Wide n = span / s + 1;  // span and step have one sign: the quotient is the floor
+  if (n > static_cast<Wide>(kMaxPoints)) {
+    fail(line, where + " has " + text(n) + " values, more than " + std::to_string(kMaxPoints) +
+                   "; use a larger step");
+  }
+  for (Wide k = 0; k < n; ++k) out.push_back(static_cast<std::int64_t>(Wide{start} + k * s));
+  return out;
 }
 
 void Reader::check_run_option_value(const std::string& name, const Value& v) const {
