@@ -47,8 +47,10 @@
 namespace rtsim::scenes {
 
 /// Most vertices one `p`/`pp` polygon may declare. Far above any real polygon (SPD's largest
-/// are a few hundred); a bound so an absurd count fails before allocation.
-inline constexpr std::int64_t kMaxPolygonVertices = 1'000'000;
+/// are a few hundred); a bound so an absurd count fails before allocation, and so triangulation
+/// ends in seconds: the hardest shapes measured (a comb, a double spiral) take about 9 s at
+/// 100,000 vertices (docs/bad-input.md); ear clipping is quadratic at worst.
+inline constexpr std::int64_t kMaxPolygonVertices = 100'000;
 
 /// Largest image width or height a `resolution` line may ask for.
 inline constexpr std::int64_t kMaxNffResolution = 16384;

@@ -86,7 +86,7 @@ const std::vector<BadCase>& nff_cases() {
       {"p -5\n", 1, "polygon needs at least 3 vertices, got '-5'"},
       {"p 4.0\n", 1, "expected an integer for polygon vertex count, got '4.0'"},
       {"p 2000000\n0 0 0\n", 1,
-       "polygon vertex count 2000000 exceeds the limit of 1000000 (kMaxPolygonVertices)"},
+       "polygon vertex count 2000000 exceeds the limit of 100000 (kMaxPolygonVertices)"},
       {"p 1000000\n0 0 0\n1 0 0\n0 1 0\n", 1,
        "polygon declares 1000000 vertices but the file has only 3 lines left"},
       // Truncation.

@@ -264,6 +264,33 @@ TEST(Triangulate, ManyVertexCircles) {
   check(reversed(star(500, 0.9)), pl, "star 1000 clockwise");
 }
 
+// Issue 11, defect 9: a polygon of the reader's largest size (kMaxPolygonVertices) took minutes,
+// because every ear was tested against every vertex. Ears are now tested against the vertices a
+// grid puts near them; the work (vertices looked at per polygon vertex) is bounded here, so a
+// return to quadratic work fails without timing anything.
+TEST(Triangulate, EarTestsStayNearLinearOnLongPolygons) {
+  constexpr int kVertices = 100000;  // scenes::kMaxPolygonVertices
+  RandomGeometry g(46);
+  const Placement pl = random_placement(g, 3.0, 1.0);
+  // Half the star's corners are reflex. (A comb of long thin teeth still costs ~n/10 tests per
+  // vertex: ear clipping stays quadratic at worst, which is why kMaxPolygonVertices is 100,000.)
+  const std::vector<std::pair<std::string, Shape>> shapes = {{"circle", circle(kVertices)},
+                                                             {"star", star(kVertices / 2, 0.5)}};
+  for (const auto& [name, shape] : shapes) {
+    std::vector<Vec3> vertices;
+    for (const V2 p : shape) vertices.push_back(pl(p));
+    const TriangulationResult r = triangulate_polygon(vertices);
+    ASSERT_TRUE(r.ok()) << name << ": " << r.reason;
+    EXPECT_FALSE(r.not_simple) << name;
+    EXPECT_EQ(r.triangles.size(), vertices.size() - 2) << name;
+    const double per_vertex =
+        static_cast<double>(r.ear_vertex_tests) / static_cast<double>(vertices.size());
+    std::printf("%s of %zu vertices: %.3g vertex tests per vertex\n", name.c_str(), vertices.size(),
+                per_vertex);
+    EXPECT_LT(per_vertex, 1000.0) << name;  // testing every vertex would be ~5e4
+  }
+}
+
 TEST(Triangulate, FarFromOriginAndTinyOrHuge) {
   RandomGeometry g(45);
   check(star(9, 0.3), random_placement(g, 1e6, 1.0), "star at 1e6");

@@ -45,6 +45,10 @@ class EarClipper {
       next_[i] = (i + 1) % n;
     }
     remaining_ = n;
+    alive_.assign(n, true);
+    sine_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) sine_[i] = corner_sine(i);
+    build_grid();
   }
 
   void run(TriangulationResult& out) {
@@ -73,7 +77,8 @@ class EarClipper {
       i = force(i, out);
       misses = 0;
     }
-    if (remaining_ == 3 && corner_sine(i) > kCollinearRelativeSine) clip(i, out);
+    if (remaining_ == 3 && sine_[i] > kCollinearRelativeSine) clip(i, out);
+    out.ear_vertex_tests = vertex_tests_;
   }
 
  private:
@@ -100,7 +105,7 @@ class EarClipper {
     double best_sine = -2.0;
     std::size_t j = i;
     for (std::size_t k = 0; k < remaining_; ++k, j = next_[j]) {
-      const double s = corner_sine(j);
+      const double s = sine_[j];
       if (s > best_sine) {
         best_sine = s;
         best = j;
@@ -124,7 +129,7 @@ class EarClipper {
       if (!is_ear(j)) continue;
       const P2 a = p_[prev_[j]], b = p_[j], c = p_[next_[j]];
       // For a triangle the turn sines at its corners are the sines of its interior angles.
-      const double quality = std::min({corner_sine(j), turn_sine(b, c, a), turn_sine(c, a, b)});
+      const double quality = std::min({sine_[j], turn_sine(b, c, a), turn_sine(c, a, b)});
       if (quality > best_quality) {
         best_quality = quality;
         best = j;
@@ -139,27 +144,173 @@ class EarClipper {
     return l > 0.0 ? cross(e1, e2) / l : 0.0;
   }
 
-  bool inside_or_on(P2 a, P2 b, P2 c, P2 q) const {
+  /// An ear (a, b, c) under test, with each edge's containment slack times its length worked out
+  /// once for all the vertices tested against it.
+  struct Ear {
+    std::size_t ia, i, ic;
+    P2 a, b, c;
+    double ab, bc, ca;  ///< -slack * |edge|
+  };
+
+  Ear ear_at(std::size_t i) const {
     const double slack = kEarContainmentRelative * diameter_;
+    Ear e{prev_[i], i, next_[i], p_[prev_[i]], p_[i], p_[next_[i]], 0.0, 0.0, 0.0};
+    e.ab = -slack * length(e.b - e.a);
+    e.bc = -slack * length(e.c - e.b);
+    e.ca = -slack * length(e.a - e.c);
+    return e;
+  }
+
+  static bool inside_or_on(const Ear& e, P2 q) {
     // cross(edge, q - start) = |edge| * signed distance of q from the edge (positive inside).
-    return cross(b - a, q - a) >= -slack * length(b - a) &&
-           cross(c - b, q - b) >= -slack * length(c - b) &&
-           cross(a - c, q - c) >= -slack * length(a - c);
+    return cross(e.b - e.a, q - e.a) >= e.ab && cross(e.c - e.b, q - e.b) >= e.bc &&
+           cross(e.a - e.c, q - e.c) >= e.ca;
+  }
+
+  /// Vertex j blocks the ear: a remaining vertex other than the ear's corners that is not
+  /// strictly convex and lies inside or on it.
+  bool blocks(std::size_t j, const Ear& e) const {
+    ++vertex_tests_;
+    if (!alive_[j] || j == e.ia || j == e.i || j == e.ic) return false;
+    if (sine_[j] > kCollinearRelativeSine) return false;
+    const P2 q = p_[j];
+    if (same(q, e.a) || same(q, e.b) || same(q, e.c)) return false;
+    return inside_or_on(e, q);
   }
 
   bool is_ear(std::size_t i) const {
-    if (corner_sine(i) <= kCollinearRelativeSine) return false;  // reflex or flat
-    const std::size_t ia = prev_[i], ic = next_[i];
-    const P2 a = p_[ia], b = p_[i], c = p_[ic];
+    if (sine_[i] <= kCollinearRelativeSine) return false;  // reflex or flat
+    const Ear e = ear_at(i);
     // Only a vertex that is not strictly convex can lie inside an ear of a simple polygon; a
-    // vertex at the same place as a corner (a polygon touching itself) does not block it.
-    for (std::size_t j = next_[ic]; j != ia; j = next_[j]) {
-      if (corner_sine(j) > kCollinearRelativeSine) continue;
-      const P2 q = p_[j];
-      if (same(q, a) || same(q, b) || same(q, c)) continue;
-      if (inside_or_on(a, b, c, q)) return false;
+    // vertex at the same place as a corner (a polygon touching itself) does not block it. The
+    // grid gives the vertices near the ear: those in the cells that the ear, grown by the
+    // containment slack, covers.
+    double lo_x = 0.0, lo_y = 0.0, hi_x = 0.0, hi_y = 0.0;
+    if (!slack_bounds(e.a, e.b, e.c, lo_x, lo_y, hi_x, hi_y)) {
+      for (std::size_t j = next_[e.ic]; j != e.ia; j = next_[j]) {
+        if (blocks(j, e)) return false;
+      }
+      return true;
+    }
+    const std::size_t x0 = cell_x(lo_x), x1 = cell_x(hi_x);
+    const std::size_t y0 = cell_y(lo_y), y1 = cell_y(hi_y);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > remaining_) {  // a large ear: the list is shorter
+      for (std::size_t j = next_[e.ic]; j != e.ia; j = next_[j]) {
+        if (blocks(j, e)) return false;
+      }
+      return true;
+    }
+    for (std::size_t y = y0; y <= y1; ++y) {
+      for (std::size_t x = x0; x <= x1; ++x) {
+        const std::size_t cell = y * cells_x_ + x;
+        for (std::size_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+          if (blocks(cell_vertex_[k], e)) return false;
+        }
+      }
+    }
+    for (const std::size_t j : late_blockers_) {
+      if (blocks(j, e)) return false;
     }
     return true;
+  }
+
+  /// Bounds of every point inside_or_on(a, b, c, .) accepts: the triangle with each edge moved
+  /// out by the slack is the triangle scaled about its incentre by (r + slack) / r, r the
+  /// inradius. False when the triangle is too thin for that to bound anything usefully.
+  bool slack_bounds(P2 a, P2 b, P2 c, double& lo_x, double& lo_y, double& hi_x,
+                    double& hi_y) const {
+    const double la = length(c - b), lb = length(a - c), lc = length(b - a);
+    const double perimeter = la + lb + lc;
+    const double twice_area = cross(b - a, c - a);
+    if (!(perimeter > 0.0) || !(twice_area > 0.0)) return false;
+    const double r = twice_area / perimeter;
+    const double slack = kEarContainmentRelative * diameter_;
+    const double scale = (r + slack) / r;
+    if (!(scale < kMaxSlackScale)) return false;
+    const P2 centre{(la * a.x + lb * b.x + lc * c.x) / perimeter,
+                    (la * a.y + lb * b.y + lc * c.y) / perimeter};
+    lo_x = hi_x = centre.x;
+    lo_y = hi_y = centre.y;
+    for (const P2 v : {a, b, c}) {
+      const double x = centre.x + (v.x - centre.x) * scale;
+      const double y = centre.y + (v.y - centre.y) * scale;
+      lo_x = std::min(lo_x, x);
+      hi_x = std::max(hi_x, x);
+      lo_y = std::min(lo_y, y);
+      hi_y = std::max(hi_y, y);
+    }
+    // Rounding in the tests and in these bounds: a margin far above it, far below any ear.
+    const double margin = slack + kGridMarginRelative * diameter_;
+    lo_x -= margin;
+    lo_y -= margin;
+    hi_x += margin;
+    hi_y += margin;
+    return true;
+  }
+
+  /// The grid of the remaining vertices that may block an ear (those not strictly convex; a
+  /// convex corner stays convex as ears are clipped, and one that does not joins late_blockers_):
+  /// about one remaining vertex per cell, over the polygon's projected bounding box. Rebuilt
+  /// from the remaining vertices each time half of them have been clipped, so clipped vertices do
+  /// not pile up in it (O(n) in all).
+  void build_grid() {
+    if (cell_start_.empty()) {
+      grid_lo_ = grid_hi_ = p_[0];
+      for (const P2 q : p_) {
+        grid_lo_.x = std::min(grid_lo_.x, q.x);
+        grid_lo_.y = std::min(grid_lo_.y, q.y);
+        grid_hi_.x = std::max(grid_hi_.x, q.x);
+        grid_hi_.y = std::max(grid_hi_.y, q.y);
+      }
+      in_grid_.assign(p_.size(), false);
+    }
+    // Square cells, about as many as remaining vertices (a long thin polygon gets a long thin
+    // grid, not long thin cells).
+    const double w = grid_hi_.x - grid_lo_.x, h = grid_hi_.y - grid_lo_.y;
+    const double n = static_cast<double>(remaining_);
+    const double cell = std::sqrt(std::max(w * h, std::max(w, h) * std::max(w, h) / n) / n);
+    const auto cells_along = [&](double extent) {
+      return cell > 0.0 ? static_cast<std::size_t>(std::clamp(std::ceil(extent / cell), 1.0, n))
+                        : std::size_t{1};
+    };
+    cells_x_ = cells_along(w);
+    cells_y_ = cells_along(h);
+    inv_cell_x_ = w > 0.0 ? static_cast<double>(cells_x_) / w : 0.0;
+    inv_cell_y_ = h > 0.0 ? static_cast<double>(cells_y_) / h : 0.0;
+    cell_start_.assign(cells_x_ * cells_y_ + 1, 0);
+    late_blockers_.clear();
+    std::vector<std::pair<std::size_t, std::size_t>> entries;  // (cell, vertex)
+    std::size_t j = head_;
+    for (std::size_t k = 0; k < remaining_; ++k, j = next_[j]) {
+      in_grid_[j] = sine_[j] <= kCollinearRelativeSine;
+      if (!in_grid_[j]) continue;
+      entries.emplace_back(cell_y(p_[j].y) * cells_x_ + cell_x(p_[j].x), j);
+      ++cell_start_[entries.back().first + 1];
+    }
+    for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) cell_start_[c + 1] += cell_start_[c];
+    cell_vertex_.resize(entries.size());
+    std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (const auto& [cell, vertex] : entries) cell_vertex_[fill[cell]++] = vertex;
+    grid_remaining_ = remaining_;
+  }
+
+  /// Recomputes a corner whose neighbour was unlinked; a corner that turns non-convex and is not
+  /// in the grid is tested with every ear from now on.
+  void update_corner(std::size_t j) {
+    sine_[j] = corner_sine(j);
+    if (sine_[j] <= kCollinearRelativeSine && !in_grid_[j]) {
+      in_grid_[j] = true;
+      late_blockers_.push_back(j);
+    }
+  }
+
+  std::size_t cell_x(double x) const { return cell_index(x, grid_lo_.x, inv_cell_x_, cells_x_); }
+  std::size_t cell_y(double y) const { return cell_index(y, grid_lo_.y, inv_cell_y_, cells_y_); }
+  static std::size_t cell_index(double v, double lo, double inv, std::size_t cells) {
+    const double f = (v - lo) * inv;
+    if (!(f > 0.0)) return 0;
+    if (f >= static_cast<double>(cells)) return cells - 1;
+    return static_cast<std::size_t>(f);
   }
 
   void clip(std::size_t i, TriangulationResult& out) {
@@ -169,14 +320,40 @@ class EarClipper {
 
   void unlink(std::size_t i) {
     if (i == head_) head_ = next_[i];  // the list runs in input order: next is the next lowest
-    next_[prev_[i]] = next_[i];
-    prev_[next_[i]] = prev_[i];
+    const std::size_t a = prev_[i], c = next_[i];
+    next_[a] = c;
+    prev_[c] = a;
+    alive_[i] = false;
     --remaining_;
+    // Only the neighbours' corners changed.
+    update_corner(a);
+    update_corner(c);
+    if (remaining_ >= kMinGridRebuild && 2 * remaining_ < grid_remaining_) build_grid();
   }
+
+  /// An ear whose slack-grown bounds are this many times its own is thin enough to test against
+  /// every vertex instead (the grid would not narrow the search).
+  static constexpr double kMaxSlackScale = 1e3;
+  /// Margin of the grid search beyond the slack, relative to the diameter: above the rounding of
+  /// the bounds (~1e-15), far below any ear.
+  static constexpr double kGridMarginRelative = 1e-9;
+  /// Below this many remaining vertices the grid is not rebuilt any more.
+  static constexpr std::size_t kMinGridRebuild = 64;
 
   std::vector<P2> p_;
   std::vector<std::uint32_t> id_;
   std::vector<std::size_t> prev_, next_;
+  std::vector<bool> alive_;
+  std::vector<double> sine_;  ///< corner_sine of each remaining vertex, kept current by unlink()
+  // The vertex grid: cell c holds cell_vertex_[cell_start_[c] .. cell_start_[c + 1]).
+  P2 grid_lo_{}, grid_hi_{};
+  std::size_t cells_x_ = 1, cells_y_ = 1;
+  double inv_cell_x_ = 0.0, inv_cell_y_ = 0.0;
+  std::vector<std::size_t> cell_start_, cell_vertex_;
+  mutable std::size_t vertex_tests_ = 0;    ///< TriangulationResult::ear_vertex_tests
+  std::size_t grid_remaining_ = 0;          ///< remaining_ when the grid was last built
+  std::vector<bool> in_grid_;               ///< in the grid or in late_blockers_
+  std::vector<std::size_t> late_blockers_;  ///< turned non-convex after the grid was built
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::size_t remaining_ = 0;
   std::size_t head_ = 0;  ///< the remaining vertex that comes first in the input
