@@ -87,8 +87,8 @@ const std::vector<BadCase>& nff_cases() {
       {"p 4.0\n", 1, "expected an integer for polygon vertex count, got '4.0'"},
       {"p 2000000\n0 0 0\n", 1,
        "polygon vertex count 2000000 exceeds the limit of 100000 (kMaxPolygonVertices)"},
-      {"p 1000000\n0 0 0\n1 0 0\n0 1 0\n", 1,
-       "polygon declares 1000000 vertices but the file has only 3 lines left"},
+      {"p 100000\n0 0 0\n1 0 0\n0 1 0\n", 1,
+       "polygon declares 100000 vertices but the file has only 3 lines left"},
       // Truncation.
       {"p 4\n0 0 0\n1 0 0\n", 1, "polygon declares 4 vertices but the file has only 2 lines left"},
       {"p 4\n0 0 0\n1 0 0\n#\n#\n", 1,
