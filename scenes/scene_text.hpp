@@ -7,7 +7,6 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
-#include <vector>
 
 #include "common/input_error.hpp"
 #include "scenes/scene_tokens.hpp"
@@ -74,71 +73,5 @@ double parse_number(const TokenCursor& cursor, const SceneToken& token, std::str
 /// caller's.
 std::int64_t parse_integer(const TokenCursor& cursor, const SceneToken& token,
                            std::string_view what);
-
-// --- Line-oriented reading, until the .bpt reader reads tokens too ----------------------------
-
-/// One line with content: its 1-based number and its whitespace-separated tokens (views into the
-/// text given to the LineCursor, which must outlive the Line).
-struct SceneLine {
-  std::size_t number = 0;
-  std::vector<std::string_view> tokens;
-  /// The line's text without the end-of-line characters, for messages.
-  std::string_view text;
-};
-
-/// Walks the lines of a scene text. Blank lines and comment lines (first non-blank character
-/// '#') are skipped. Separators are space, tab and carriage return (so CRLF files read). The
-/// constructor scans the whole text once: any other control byte anywhere, or a non-ASCII byte
-/// outside a comment, is an InputError at its line and column (scene files are plain text; this
-/// catches binary garbage before any declared count is looked at).
-class LineCursor {
- public:
-  LineCursor(std::string_view text, std::string file);
-
-  /// The next line with content; false at end of text.
-  bool next(SceneLine& out);
-  /// Steps back over the line last returned by next() (one level only).
-  void unread();
-
-  /// Upper bound on the number of lines with content still to come. Used to reject a declared
-  /// count before allocating for it.
-  std::size_t lines_left() const { return total_lines_ - lines_consumed_; }
-  /// Number of the last line of the text (for messages about a file that ends too early).
-  std::size_t last_line_number() const { return total_lines_; }
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void fail(std::size_t line, const std::string& message) const;
-
- private:
-  std::string_view text_;
-  std::string file_;
-  std::size_t total_lines_ = 0;
-  // Position after the last line returned by next(), and before it (for unread()).
-  std::size_t pos_ = 0;
-  std::size_t line_no_ = 0;
-  std::size_t prev_pos_ = 0;
-  std::size_t prev_line_no_ = 0;
-  std::size_t lines_consumed_ = 0;
-  std::size_t prev_lines_consumed_ = 0;
-};
-
-/// Parses a decimal floating-point number (optional sign, fraction, exponent) with
-/// std::from_chars. Rejects anything but the whole token, NaN, infinity and values outside the
-/// range of a double (overflow and underflow) and magnitudes above kMaxSceneNumberMagnitude. `what`
-/// names the quantity for the message.
-double parse_number(const LineCursor& cursor, const SceneLine& line, std::string_view token,
-                    std::string_view what);
-
-/// Parses a decimal integer (optional sign) with std::from_chars; rejects fractions, exponents and
-/// values outside int64. Range checks are the caller's.
-std::int64_t parse_integer(const LineCursor& cursor, const SceneLine& line, std::string_view token,
-                           std::string_view what);
-
-/// Parses tokens[first...] as exactly `count` numbers into out[0..count). Messages:
-///   "expected 4 numbers for sphere centre and radius, got 3"
-///   "expected 4 numbers for sphere centre and radius, got 5 (unexpected trailing 'x')"
-///   "expected a number for sphere centre and radius, value 2 is 'abc'"
-void parse_numbers(const LineCursor& cursor, const SceneLine& line, std::size_t first,
-                   std::size_t count, std::string_view what, double* out);
 
 }  // namespace rtsim::scenes
