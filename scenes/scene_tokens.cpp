@@ -10,13 +10,14 @@ namespace rtsim::scenes {
 
 namespace {
 
-/// What a byte is to the tokenizer.
+/// What a byte is to the tokenizer. The two classes a token is made of come first, so "inside a
+/// token" is one comparison (<= kHash).
 enum ByteClass : unsigned char {
   kWordByte,  // part of a token (printable ASCII but '#')
+  kHash,      // '#': a comment when it starts a token, else part of the token
   kBlank,     // space, tab
   kLineFeed,  // '\n'
   kReturn,    // '\r': a line end of its own unless "\r\n"
-  kHash,      // '#': a comment when it starts a token
   kControl,   // any other control byte, and DEL
   kNonAscii,  // 0x80..0xFF: allowed in comments only
 };
@@ -37,11 +38,10 @@ constexpr std::array<ByteClass, 256> kByteClass = make_byte_classes();
 
 ByteClass byte_class(char c) { return kByteClass[static_cast<unsigned char>(c)]; }
 
-/// Separators between tokens: blanks and line ends.
-bool is_separator(char c) {
-  const ByteClass k = byte_class(c);
-  return k == kBlank || k == kLineFeed || k == kReturn;
-}
+/// A byte that continues a token.
+bool in_token(char c) { return byte_class(c) <= kHash; }
+
+bool is_line_end(char c) { return c == '\n' || c == '\r'; }
 
 constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
@@ -71,58 +71,60 @@ void TokenCursor::scan_all() {
   const std::size_t n = text_.size();
   std::size_t line = 1;
   std::size_t line_start = pos_;
-  bool in_token = false;
-  bool in_comment = false;
-  for (std::size_t i = pos_; i < n; ++i) {
+  const auto fail_byte = [&](std::size_t i) {
+    const auto c = static_cast<unsigned char>(p[i]);
+    const std::size_t column = i - line_start + 1;
+    if (byte_class(p[i]) == kControl) {
+      fail(line, cat("non-printable byte ", hex_byte(c), " at column ", column,
+                     "; scene files are plain text"));
+    }
+    const bool utf16 = i == 0 && n >= 2 &&
+                       ((p[0] == '\xFF' && p[1] == '\xFE') || (p[0] == '\xFE' && p[1] == '\xFF'));
+    fail(line, cat("non-ASCII byte ", hex_byte(c), " at column ", column,
+                   " outside a comment; scene files are plain ASCII text",
+                   utf16 ? " (this file starts with a UTF-16 byte-order mark: save it as ASCII or "
+                           "UTF-8)"
+                         : ""));
+  };
+  std::size_t i = pos_;
+  while (i < n) {
     switch (byte_class(p[i])) {
       case kWordByte:
-        if (!in_token && !in_comment) {
-          in_token = true;
-          ++total_tokens_;
+        ++total_tokens_;
+        while (++i < n && in_token(p[i])) {
         }
         break;
       case kBlank:
-        in_token = false;
+        ++i;
         break;
       case kLineFeed:
+        ++i;
         ++line;
-        line_start = i + 1;
-        in_token = in_comment = false;
+        line_start = i;
         break;
       case kReturn:
-        in_token = false;
-        if (i + 1 < n && p[i + 1] == '\n') break;  // "\r\n": the '\n' ends the line
+        ++i;
+        if (i < n && p[i] == '\n') ++i;
         ++line;
-        line_start = i + 1;
-        in_comment = false;
+        line_start = i;
         break;
-      case kHash:
-        if (!in_token && !in_comment) in_comment = true;
-        break;
-      case kControl:
-        fail(line, cat("non-printable byte ", hex_byte(static_cast<unsigned char>(p[i])),
-                       " at column ", i - line_start + 1, "; scene files are plain text"));
-      case kNonAscii:
-        if (in_comment) break;
-        {
-          const bool utf16 =
-              i == 0 && n >= 2 &&
-              ((p[0] == '\xFF' && p[1] == '\xFE') || (p[0] == '\xFE' && p[1] == '\xFF'));
-          fail(line,
-               cat("non-ASCII byte ", hex_byte(static_cast<unsigned char>(p[i])), " at column ",
-                   i - line_start + 1, " outside a comment; scene files are plain ASCII text",
-                   utf16 ? " (this file starts with a UTF-16 byte-order mark: save it as "
-                           "ASCII or UTF-8)"
-                         : ""));
+      case kHash:  // a comment: any byte but a control byte, up to the line end
+        while (++i < n && !is_line_end(p[i])) {
+          if (byte_class(p[i]) == kControl) fail_byte(i);
         }
+        break;
+      default:
+        fail_byte(i);
     }
   }
   // A last line without a line end still counts.
-  const bool open_last_line = n > pos_ && p[n - 1] != '\n' && p[n - 1] != '\r';
+  const bool open_last_line = n > pos_ && !is_line_end(p[n - 1]);
   total_lines_ = (line - 1) + (open_last_line ? 1 : 0);
 }
 
 void TokenCursor::advance() {
+  // The text passed scan_all(): outside comments there are only token bytes, blanks and line
+  // ends.
   const char* p = text_.data();
   const std::size_t n = text_.size();
   std::size_t i = pos_;
@@ -143,26 +145,21 @@ void TokenCursor::advance() {
         ++line;
         continue;
       case kHash:
-        while (i < n && p[i] != '\n' && p[i] != '\r') ++i;
+        while (++i < n && !is_line_end(p[i])) {
+        }
         continue;
       default:
         break;
     }
     const std::size_t start = i;
-    while (i < n && !is_separator(p[i])) ++i;
+    while (++i < n && in_token(p[i])) {
+    }
     next_ = SceneToken{text_.substr(start, i - start), line};
     has_next_ = true;
     break;
   }
   pos_ = i;
   line_ = line;
-}
-
-void TokenCursor::skip() {
-  if (!has_next_) return;
-  last_line_ = next_.line;
-  ++consumed_;
-  advance();
 }
 
 std::string_view TokenCursor::rest_of_line(const SceneToken& token) const {

@@ -42,7 +42,12 @@ class TokenCursor {
     return true;
   }
   /// Consumes the token peek() shows (none at the end of the text).
-  void skip();
+  void skip() {
+    if (!has_next_) return;
+    last_line_ = next_.line;
+    ++consumed_;
+    advance();
+  }
 
   /// Tokens not consumed yet: an upper bound on the numbers the file can still give.
   std::size_t tokens_left() const { return total_tokens_ - consumed_; }
