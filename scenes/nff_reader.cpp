@@ -338,8 +338,9 @@ class NffParser {
     }
     Color color{1.0};
     if (extra == 1) {
-      if (d[3] < 0.0)
+      if (d[3] < 0.0) {
         fail(tok[3], cat("light intensity must be >= 0, got ", quote_token(tok[3].text)));
+      }
       color = Color{d[3]};
     } else if (extra == 2) {
       fail(kw, cat("light with 5 numbers is ambiguous; expected 3 (x y z: white), 4 (x y z "
