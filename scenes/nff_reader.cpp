@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <type_traits>
 
 #include "scenes/scene_text.hpp"
 
@@ -29,6 +30,33 @@ int view_key_index(std::string_view t) {
   return -1;
 }
 
+/// A word of the format (a top-level keyword or a view key). Where a number is expected, a
+/// keyword means the numbers ran out; any other token there is a bad number.
+bool is_keyword(std::string_view t) {
+  return !t.empty() && t[0] >= 'a' && t[0] <= 'z' &&
+         (is_top_level_keyword(t) || view_key_index(t) >= 0);
+}
+
+/// Starts like a number: a digit, a sign or a point.
+bool looks_numeric(std::string_view t) {
+  const char c = t.empty() ? '\0' : t[0];
+  return (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.';
+}
+
+/// "1 value", "4 values".
+std::string values_text(std::size_t n) { return cat(n, n == 1 ? " value" : " values"); }
+
+/// The name of a quantity for a message: a string, or a callable that builds it (so the hot path
+/// builds no string).
+template <typename What>
+std::string describe(const What& what) {
+  if constexpr (std::is_invocable_v<const What&>) {
+    return std::string(what());
+  } else {
+    return std::string(what);
+  }
+}
+
 /// Exact bit patterns of a material, so identical `f` lines share one Scene::materials entry.
 using MaterialKey = std::array<std::uint64_t, 8>;
 
@@ -50,30 +78,34 @@ class NffParser {
   }
 
   Scene parse() {
-    SceneLine line;
-    while (cursor_.next(line)) {
-      const std::string_view kw = line.tokens[0];
-      if (kw == "v") {
-        parse_view(line);
-      } else if (kw == "b") {
-        parse_background(line);
-      } else if (kw == "l") {
-        parse_light(line);
-      } else if (kw == "f") {
-        parse_material(line);
-      } else if (kw == "s") {
-        parse_sphere(line);
-      } else if (kw == "c") {
-        parse_cone(line);
-      } else if (kw == "p") {
-        parse_polygon(line, false);
-      } else if (kw == "pp") {
-        parse_polygon(line, true);
-      } else if (view_key_index(kw) >= 0) {
-        fail(line, cat("'", kw, "' outside a view block; it must follow a 'v' line"));
+    SceneToken kw;
+    while (cursor_.next(kw)) {
+      const std::size_t left = cursor_.tokens_left();
+      const std::string_view k = kw.text;
+      if (k == "v") {
+        parse_view(kw);
+      } else if (k == "b") {
+        parse_background(kw);
+      } else if (k == "l") {
+        parse_light(kw);
+      } else if (k == "f") {
+        parse_material(kw);
+      } else if (k == "s") {
+        parse_sphere(kw);
+      } else if (k == "c") {
+        parse_cone(kw);
+      } else if (k == "p") {
+        parse_polygon(kw, false);
+      } else if (k == "pp") {
+        parse_polygon(kw, true);
+      } else if (view_key_index(k) >= 0) {
+        fail(kw, cat("'", k, "' outside a view block; it must follow a 'v'"));
       } else {
-        fail(line, cat("unknown keyword ", quote_token(kw), "; expected one of ", kKeywordList));
+        fail_unexpected(kw);
       }
+      previous_ = kw;
+      previous_values_ = left - cursor_.tokens_left();
+      previous_end_line_ = cursor_.last_line();
     }
     if (scene_.primitives.empty()) {
       cursor_.fail(cursor_.last_line_number(),
@@ -83,26 +115,75 @@ class NffParser {
   }
 
  private:
-  [[noreturn]] void fail(const SceneLine& line, const std::string& message) const {
-    cursor_.fail(line.number, message);
+  [[noreturn]] void fail(const SceneToken& token, const std::string& message) const {
+    cursor_.fail(token.line, message);
   }
 
-  void expect_alone(const SceneLine& line, std::string_view what) const {
-    if (line.tokens.size() != 1) {
-      fail(line, cat("unexpected ", quote_token(line.tokens[1]), " after '", line.tokens[0], "'; ",
-                     what));
+  /// A token where a keyword must be: an unknown word, or a number the entity before it did not
+  /// take.
+  [[noreturn]] void fail_unexpected(const SceneToken& token) const {
+    const std::string after = previous_.line == 0
+                                  ? std::string()
+                                  : cat("'", previous_.text, "' at line ", previous_.line,
+                                        ", which took ", values_text(previous_values_));
+    if (looks_numeric(token.text) && !after.empty()) {
+      fail(token, cat("unexpected ", quote_token(token.text), " after ", after,
+                      "; expected a keyword (one of ", kKeywordList, ")"));
+    }
+    std::string msg =
+        cat("unknown keyword ", quote_token(token.text), "; expected one of ", kKeywordList);
+    if (!after.empty() && token.line == previous_end_line_) msg += cat(" (after ", after, ")");
+    fail(token, msg);
+  }
+
+  /// "keyword 's' at line 5" or "the end of the file": what came where a value was expected.
+  /// The line is left out when it is `line`, the line of the message.
+  static std::string stop_text(const SceneToken* stop, std::size_t line) {
+    if (stop == nullptr) return "the end of the file";
+    return cat("keyword ", quote_token(stop->text),
+               stop->line != line ? cat(" at line ", stop->line) : std::string());
+  }
+
+  /// Missing values of the entity `keyword` starts: reported at the line of the last token the
+  /// entity took (where the user would add what is missing), naming what came instead and, when
+  /// it is elsewhere, the keyword's line. `expected` is "expected N numbers for X, got K".
+  [[noreturn]] void fail_missing(const SceneToken& keyword, const std::string& expected,
+                                 const SceneToken* stop,
+                                 std::string_view before = " before ") const {
+    const std::size_t line = cursor_.last_line();
+    std::string msg = cat(expected, before, stop_text(stop, line));
+    if (keyword.line != line) msg += cat(" ('", keyword.text, "' at line ", keyword.line, ")");
+    cursor_.fail(line, msg);
+  }
+
+  /// Takes `count` numbers for the entity `keyword` starts into out[0..count), their tokens into
+  /// tokens[0..count) when not null. `what` names them for messages (a string or a callable).
+  template <typename What>
+  void take_numbers(const SceneToken& keyword, std::size_t count, double* out, SceneToken* tokens,
+                    const What& what) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const SceneToken* t = cursor_.peek();
+      if (t == nullptr || is_keyword(t->text)) {
+        fail_missing(keyword,
+                     cat("expected ", count, count == 1 ? " number for " : " numbers for ",
+                         describe(what), ", got ", i),
+                     t);
+      }
+      const NumberStatus status = try_parse_number(t->text, out[i]);
+      if (status != NumberStatus::kOk) fail_number(cursor_, *t, status, describe(what), i + 1);
+      if (tokens != nullptr) tokens[i] = *t;
+      cursor_.skip();
     }
   }
 
   Vec3 vec_of(const double* d) const { return Vec3{d[0], d[1], d[2]}; }
 
-  /// rgb[0..3) came from tokens[first_token ...].
-  void require_colour(const SceneLine& line, const double* rgb, std::size_t first_token,
-                      std::string_view what) const {
+  /// rgb[0..3) were read from tokens[0..3).
+  void require_colour(const double* rgb, const SceneToken* tokens, std::string_view what) const {
     for (std::size_t i = 0; i < 3; ++i) {
       if (rgb[i] < 0.0) {
-        fail(line, cat(what, " colour components must be >= 0, got ",
-                       quote_token(line.tokens[first_token + i])));
+        fail(tokens[i],
+             cat(what, " colour components must be >= 0, got ", quote_token(tokens[i].text)));
       }
     }
   }
@@ -112,72 +193,78 @@ class NffParser {
   static Vec3 unit(const Vec3& v) { return glm::normalize(v / max_abs_component(v)); }
 
   // --- v ------------------------------------------------------------------------------------
-  void parse_view(const SceneLine& v_line) {
-    expect_alone(v_line,
-                 "the view parameters (from, at, up, angle, hither, resolution) follow "
-                 "on their own lines");
-    if (view_line_ != 0) {
-      fail(v_line, cat("second view block 'v' (the first is at line ", view_line_, ")"));
-    }
-    view_line_ = v_line.number;
-    std::array<std::size_t, 6> seen_at{};  // line of each view key, 0 when missing
-    Camera& cam = scene_.camera;
-    SceneLine line;
-    while (cursor_.next(line)) {
-      const int key = view_key_index(line.tokens[0]);
-      if (key < 0) {
-        cursor_.unread();
-        break;
-      }
-      const auto k = static_cast<std::size_t>(key);
-      if (seen_at[k] != 0) {
-        fail(line, cat("duplicate '", kViewKeys[k], "' in the view block (first at line ",
-                       seen_at[k], ")"));
-      }
-      seen_at[k] = line.number;
-      double d[3];
-      switch (k) {
-        case 0:
-          parse_numbers(cursor_, line, 1, 3, "view 'from' point", d);
-          cam.from = vec_of(d);
-          break;
-        case 1:
-          parse_numbers(cursor_, line, 1, 3, "view 'at' point", d);
-          cam.at = vec_of(d);
-          break;
-        case 2:
-          parse_numbers(cursor_, line, 1, 3, "view 'up' vector", d);
-          cam.up = vec_of(d);
-          if (cam.up == Vec3{0.0}) fail(line, "view 'up' vector must not be zero");
-          break;
-        case 3:
-          parse_numbers(cursor_, line, 1, 1, "view 'angle' in degrees", d);
-          if (!(d[0] > 0.0 && d[0] < 180.0)) {
-            fail(line, cat("view 'angle' must be between 0 and 180 degrees (exclusive), got ",
-                           quote_token(line.tokens[1])));
-          }
-          cam.angle_deg = d[0];
-          break;
-        case 4:
-          parse_numbers(cursor_, line, 1, 1, "view 'hither' distance", d);
-          if (d[0] < 0.0) {
-            fail(line, cat("view 'hither' must be >= 0, got ", quote_token(line.tokens[1])));
-          }
-          cam.hither = d[0];
-          break;
-        default:
-          parse_resolution(line);
-          break;
-      }
-    }
+  static std::string missing_view_keys(const std::array<std::size_t, 6>& seen_at) {
     std::string missing;
     for (std::size_t k = 0; k < kViewKeys.size(); ++k) {
       if (seen_at[k] == 0) missing += cat(missing.empty() ? "'" : ", '", kViewKeys[k], "'");
     }
-    if (!missing.empty()) {
-      fail(v_line, cat("view block is missing ", missing,
-                       "; expected from, at, up, angle, hither and resolution, each on its own "
-                       "line after 'v'"));
+    return missing;
+  }
+
+  void parse_view(const SceneToken& v) {
+    if (view_line_ != 0) {
+      fail(v, cat("second view block 'v' (the first is at line ", view_line_, ")"));
+    }
+    view_line_ = v.line;
+    std::array<std::size_t, 6> seen_at{};  // line of each view key, 0 when missing
+    std::size_t seen = 0;
+    Camera& cam = scene_.camera;
+    while (const SceneToken* t = cursor_.peek()) {
+      const int key = view_key_index(t->text);
+      if (key < 0) {
+        // The block ends at the next keyword, or after its six keys; anything else is misplaced.
+        if (seen == kViewKeys.size() || is_top_level_keyword(t->text)) break;
+        fail(*t, cat("unexpected ", quote_token(t->text), " in the view block of line ", v.line,
+                     "; expected one of ", missing_view_keys(seen_at)));
+      }
+      SceneToken kt;
+      cursor_.next(kt);
+      const auto k = static_cast<std::size_t>(key);
+      if (seen_at[k] != 0) {
+        fail(kt, cat("duplicate '", kViewKeys[k], "' in the view block (first at line ", seen_at[k],
+                     ")"));
+      }
+      seen_at[k] = kt.line;
+      ++seen;
+      double d[3];
+      SceneToken tok[3];
+      switch (k) {
+        case 0:
+          take_numbers(kt, 3, d, tok, "view 'from' point");
+          cam.from = vec_of(d);
+          break;
+        case 1:
+          take_numbers(kt, 3, d, tok, "view 'at' point");
+          cam.at = vec_of(d);
+          break;
+        case 2:
+          take_numbers(kt, 3, d, tok, "view 'up' vector");
+          cam.up = vec_of(d);
+          if (cam.up == Vec3{0.0}) fail(kt, "view 'up' vector must not be zero");
+          break;
+        case 3:
+          take_numbers(kt, 1, d, tok, "view 'angle' in degrees");
+          if (!(d[0] > 0.0 && d[0] < 180.0)) {
+            fail(tok[0], cat("view 'angle' must be between 0 and 180 degrees (exclusive), got ",
+                             quote_token(tok[0].text)));
+          }
+          cam.angle_deg = d[0];
+          break;
+        case 4:
+          take_numbers(kt, 1, d, tok, "view 'hither' distance");
+          if (d[0] < 0.0) {
+            fail(tok[0], cat("view 'hither' must be >= 0, got ", quote_token(tok[0].text)));
+          }
+          cam.hither = d[0];
+          break;
+        default:
+          parse_resolution(kt);
+          break;
+      }
+    }
+    if (seen != kViewKeys.size()) {
+      fail(v, cat("view block is missing ", missing_view_keys(seen_at),
+                  "; expected from, at, up, angle, hither and resolution after 'v'"));
     }
     const Vec3 dir = cam.at - cam.from;
     if (!is_finite(dir)) {
@@ -197,70 +284,92 @@ class NffParser {
     scene_.has_camera = true;
   }
 
-  void parse_resolution(const SceneLine& line) {
-    if (line.tokens.size() != 3) {
-      std::string msg = cat("expected 2 integers for view 'resolution' (width height), got ",
-                            line.tokens.size() - 1);
-      if (line.tokens.size() > 3)
-        msg += cat(" (unexpected trailing ", quote_token(line.tokens[3]), ")");
-      fail(line, msg);
-    }
+  void parse_resolution(const SceneToken& key) {
     std::int64_t wh[2];
-    for (int i = 0; i < 2; ++i) {
-      wh[i] = parse_integer(cursor_, line, line.tokens[1 + static_cast<std::size_t>(i)],
-                            i == 0 ? "resolution width" : "resolution height");
-      if (wh[i] <= 0 || wh[i] > kMaxNffResolution) {
-        fail(line, cat("resolution ", i == 0 ? "width" : "height", " must be 1..",
-                       kMaxNffResolution, " (kMaxNffResolution), got ",
-                       quote_token(line.tokens[1 + static_cast<std::size_t>(i)])));
+    for (std::size_t i = 0; i < 2; ++i) {
+      const SceneToken* t = cursor_.peek();
+      if (t == nullptr || is_keyword(t->text)) {
+        fail_missing(key, cat("expected 2 integers for view 'resolution' (width height), got ", i),
+                     t);
       }
+      const char* name = i == 0 ? "width" : "height";
+      wh[i] = parse_integer(cursor_, *t, cat("resolution ", name));
+      if (wh[i] <= 0 || wh[i] > kMaxNffResolution) {
+        fail(*t, cat("resolution ", name, " must be 1..", kMaxNffResolution,
+                     " (kMaxNffResolution), got ", quote_token(t->text)));
+      }
+      cursor_.skip();
     }
     scene_.camera.width = static_cast<int>(wh[0]);
     scene_.camera.height = static_cast<int>(wh[1]);
   }
 
   // --- b, l, f ------------------------------------------------------------------------------
-  void parse_background(const SceneLine& line) {
+  void parse_background(const SceneToken& kw) {
     if (background_line_ != 0) {
-      fail(line, cat("second background 'b' (the first is at line ", background_line_, ")"));
+      fail(kw, cat("second background 'b' (the first is at line ", background_line_, ")"));
     }
-    background_line_ = line.number;
+    background_line_ = kw.line;
     double d[3];
-    parse_numbers(cursor_, line, 1, 3, "background colour (r g b)", d);
-    require_colour(line, d, 1, "background");
+    SceneToken tok[3];
+    take_numbers(kw, 3, d, tok, "background colour (r g b)");
+    require_colour(d, tok, "background");
     scene_.background = vec_of(d);
   }
 
-  void parse_light(const SceneLine& line) {
+  /// `l x y z` (white), `l x y z i` (grey of intensity i) or `l x y z r g b`. The optional
+  /// numbers are the tokens up to the next keyword; five numbers in all is ambiguous.
+  void parse_light(const SceneToken& kw) {
     double d[6];
-    const std::size_t n = line.tokens.size() - 1;
-    if (n == 6) {
-      parse_numbers(cursor_, line, 1, 6, "light position and colour (x y z r g b)", d);
-      require_colour(line, d + 3, 4, "light");
-    } else {
-      parse_numbers(cursor_, line, 1, 3, "light position (x y z, optionally r g b)", d);
-      d[3] = d[4] = d[5] = 1.0;
+    SceneToken tok[6];
+    take_numbers(kw, 3, d, tok,
+                 "light position (x y z, then optionally an intensity i or a colour r g b)");
+    std::size_t extra = 0;
+    for (const SceneToken* t = cursor_.peek(); extra < 3 && t != nullptr && !is_keyword(t->text);
+         t = cursor_.peek()) {
+      const NumberStatus status = try_parse_number(t->text, d[3 + extra]);
+      if (status != NumberStatus::kOk) {
+        fail_number(cursor_, *t, status, "light intensity or colour (x y z i or x y z r g b)",
+                    4 + extra);
+      }
+      tok[3 + extra] = *t;
+      cursor_.skip();
+      ++extra;
     }
-    scene_.lights.push_back(Light{vec_of(d), vec_of(d + 3)});
+    Color color{1.0};
+    if (extra == 1) {
+      if (d[3] < 0.0) {
+        fail(tok[3], cat("light intensity must be >= 0, got ", quote_token(tok[3].text)));
+      }
+      color = Color{d[3]};
+    } else if (extra == 2) {
+      fail(kw, cat("light with 5 numbers is ambiguous; expected 3 (x y z: white), 4 (x y z "
+                   "intensity) or 6 (x y z r g b)"));
+    } else if (extra == 3) {
+      require_colour(d + 3, tok + 3, "light");
+      color = vec_of(d + 3);
+    }
+    scene_.lights.push_back(Light{vec_of(d), color});
   }
 
-  void parse_material(const SceneLine& line) {
+  void parse_material(const SceneToken& kw) {
     double d[8];
-    parse_numbers(cursor_, line, 1, 8, "material (r g b Kd Ks Shine T index_of_refraction)", d);
-    require_colour(line, d, 1, "material");
+    SceneToken tok[8];
+    take_numbers(kw, 8, d, tok, "material (r g b Kd Ks Shine T index_of_refraction)");
+    require_colour(d, tok, "material");
     static constexpr std::array<const char*, 5> kNames = {"Kd", "Ks", "Shine", "T",
                                                           "index_of_refraction"};
     for (std::size_t i = 3; i < 7; ++i) {
       if (d[i] < 0.0) {
-        fail(line, cat("material ", kNames[i - 3], " must be >= 0, got ",
-                       quote_token(line.tokens[i + 1])));
+        fail(tok[i],
+             cat("material ", kNames[i - 3], " must be >= 0, got ", quote_token(tok[i].text)));
       }
     }
     if (d[6] > 0.0 && !(d[7] > 0.0)) {
-      fail(line,
+      fail(tok[7],
            cat("material index_of_refraction must be > 0 for a transmissive material (T > 0), "
                "got ",
-               quote_token(line.tokens[8])));
+               quote_token(tok[7].text)));
     }
     pending_material_ = Material{vec_of(d), d[3], d[4], d[5], d[6], d[7]};
     current_material_.reset();
@@ -277,100 +386,87 @@ class NffParser {
     return it->second;
   }
 
-  void add_primitive(PrimitiveKind kind, std::size_t index, const SceneLine& line) {
+  void add_primitive(PrimitiveKind kind, std::size_t index, const SceneToken& kw) {
     if (scene_.primitives.size() >= std::numeric_limits<std::uint32_t>::max()) {
-      fail(line, "too many primitives (more than 2^32 - 1)");
+      fail(kw, "too many primitives (more than 2^32 - 1)");
     }
     scene_.primitives.push_back(Primitive{kind, static_cast<std::uint32_t>(index), material_index(),
-                                          static_cast<std::uint32_t>(line.number)});
+                                          static_cast<std::uint32_t>(kw.line)});
   }
 
   // --- s, c, p, pp --------------------------------------------------------------------------
-  void parse_sphere(const SceneLine& line) {
+  void parse_sphere(const SceneToken& kw) {
     double d[4];
-    parse_numbers(cursor_, line, 1, 4, "sphere centre and radius (x y z r)", d);
+    SceneToken tok[4];
+    take_numbers(kw, 4, d, tok, "sphere centre and radius (x y z r)");
     if (!(d[3] > 0.0)) {
-      fail(line, cat("sphere radius must be > 0, got ", quote_token(line.tokens[4])));
+      fail(tok[3], cat("sphere radius must be > 0, got ", quote_token(tok[3].text)));
     }
     scene_.spheres.push_back(Sphere{vec_of(d), d[3]});
-    add_primitive(PrimitiveKind::Sphere, scene_.spheres.size() - 1, line);
+    add_primitive(PrimitiveKind::Sphere, scene_.spheres.size() - 1, kw);
   }
 
-  void parse_cone(const SceneLine& c_line) {
-    expect_alone(c_line, "the cone's base and apex (x y z r) follow on the next two lines");
-    double d[2][4];
-    static constexpr std::array<const char*, 2> kEnd = {"base", "apex"};
-    for (std::size_t e = 0; e < 2; ++e) {
-      SceneLine line;
-      if (!cursor_.next(line)) {
-        fail(c_line, cat("cone: the file ends before its ", kEnd[e], " line (x y z r)"));
-      }
-      if (is_top_level_keyword(line.tokens[0])) {
-        fail(line, cat("cone at line ", c_line.number, ": expected its ", kEnd[e],
-                       " line (x y z r), got keyword ", quote_token(line.tokens[0])));
-      }
-      parse_numbers(cursor_, line, 0, 4, cat("cone ", kEnd[e], " (x y z r)"), d[e]);
-    }
-    scene_.cones.push_back(Cone{vec_of(d[0]), d[0][3], vec_of(d[1]), d[1][3]});
-    add_primitive(PrimitiveKind::Cone, scene_.cones.size() - 1, c_line);
+  void parse_cone(const SceneToken& kw) {
+    double base[4];
+    double apex[4];
+    take_numbers(kw, 4, base, nullptr, "cone base (x y z r)");
+    take_numbers(kw, 4, apex, nullptr, "cone apex (x y z r)");
+    scene_.cones.push_back(Cone{vec_of(base), base[3], vec_of(apex), apex[3]});
+    add_primitive(PrimitiveKind::Cone, scene_.cones.size() - 1, kw);
   }
 
-  void parse_polygon(const SceneLine& p_line, bool with_normals) {
-    const std::string kw(p_line.tokens[0]);
-    if (p_line.tokens.size() != 2) {
-      std::string msg =
-          cat("expected 1 vertex count after '", kw, "', got ", p_line.tokens.size() - 1);
-      if (p_line.tokens.size() > 2) {
-        msg += cat(" (unexpected trailing ", quote_token(p_line.tokens[2]), ")");
-      }
-      fail(p_line, msg);
+  void parse_polygon(const SceneToken& kw, bool with_normals) {
+    const SceneToken* t = cursor_.peek();
+    if (t == nullptr || is_keyword(t->text)) {
+      fail_missing(kw, cat("expected the vertex count after '", kw.text, "'"), t, ", got ");
     }
-    const std::int64_t count =
-        parse_integer(cursor_, p_line, p_line.tokens[1], "polygon vertex count");
+    const SceneToken count_token = *t;
+    const std::int64_t count = parse_integer(cursor_, count_token, "polygon vertex count");
     if (count < 3) {
-      fail(p_line, cat("polygon needs at least 3 vertices, got ", quote_token(p_line.tokens[1])));
+      fail(count_token,
+           cat("polygon needs at least 3 vertices, got ", quote_token(count_token.text)));
     }
     if (count > kMaxPolygonVertices) {
-      fail(p_line, cat("polygon vertex count ", count, " exceeds the limit of ",
-                       kMaxPolygonVertices, " (kMaxPolygonVertices)"));
+      fail(count_token,
+           cat("polygon vertex count ", count, " exceeds the limit of ", kMaxPolygonVertices,
+               " (kMaxPolygonVertices: larger polygons can take minutes to "
+               "triangulate); split it into smaller polygons"));
     }
+    cursor_.skip();
     const auto n = static_cast<std::size_t>(count);
-    if (n > cursor_.lines_left()) {
-      fail(p_line, cat("polygon declares ", n, " vertices but the file has only ",
-                       cursor_.lines_left(), " lines left"));
+    const std::size_t per_vertex = with_normals ? 6 : 3;
+    // Checked before allocating: every number is one token, so the file must still hold them.
+    if (n * per_vertex > cursor_.tokens_left()) {
+      fail(kw,
+           cat("polygon declares ", n, " vertices (", n * per_vertex,
+               " numbers) but the file has only ", values_text(cursor_.tokens_left()), " left"));
     }
     Polygon poly;
     poly.vertices.reserve(n);
     if (with_normals) poly.normals.reserve(n);
-    const std::size_t per_line = with_normals ? 6 : 3;
-    const std::string layout = with_normals ? "x y z nx ny nz" : "x y z";
+    const std::string_view layout = with_normals ? "x y z nx ny nz" : "x y z";
+    double d[6];
     for (std::size_t i = 0; i < n; ++i) {
-      SceneLine line;
-      if (!cursor_.next(line)) {
-        fail(p_line,
-             cat("polygon declares ", n, " vertices but the file ends after ", i, " vertex lines"));
-      }
-      if (is_top_level_keyword(line.tokens[0])) {
-        fail(line, cat("polygon at line ", p_line.number, " declares ", n, " vertices but only ", i,
-                       " vertex lines follow before keyword ", quote_token(line.tokens[0])));
-      }
-      double d[6];
-      parse_numbers(cursor_, line, 0, per_line,
-                    cat("polygon vertex ", i + 1, " of ", n, " (", layout, ")"), d);
+      take_numbers(kw, per_vertex, d, nullptr,
+                   [&] { return cat("polygon vertex ", i + 1, " of ", n, " (", layout, ")"); });
       poly.vertices.push_back(vec_of(d));
       if (with_normals) poly.normals.push_back(vec_of(d + 3));
     }
     scene_.polygons.push_back(std::move(poly));
-    add_primitive(PrimitiveKind::Polygon, scene_.polygons.size() - 1, p_line);
+    add_primitive(PrimitiveKind::Polygon, scene_.polygons.size() - 1, kw);
   }
 
-  LineCursor cursor_;
+  TokenCursor cursor_;
   Scene scene_;
   std::size_t view_line_ = 0;
   std::size_t background_line_ = 0;
   std::optional<Material> pending_material_;
   std::optional<std::uint32_t> current_material_;
   std::map<MaterialKey, std::uint32_t> material_ids_;
+  // The entity before the current one, for messages about a token it did not take.
+  SceneToken previous_;
+  std::size_t previous_values_ = 0;
+  std::size_t previous_end_line_ = 0;
 };
 
 }  // namespace

@@ -1,8 +1,10 @@
 #pragma once
 // Reader for Eric Haines' Neutral File Format (NFF), the format of the Standard Procedural
-// Databases (SPD). One entity per line:
+// Databases (SPD). The file is a stream of whitespace-separated tokens, read the way the
+// reference NFF readers read it with scanf: each keyword takes exactly the numbers it needs,
+// wherever the line ends fall (docs/scene-formats.md has the full rules and the refused forms).
 //
-//   v                       view block; the six lines below follow, in any order
+//   v                       view block; the six keys below follow, in any order
 //   from x y z              eye
 //   at x y z                look-at point
 //   up x y z                up direction
@@ -10,29 +12,38 @@
 //   hither d                near distance (d >= 0)
 //   resolution w h          image size in pixels (1 .. kMaxNffResolution each)
 //   b r g b                 background colour
-//   l x y z [r g b]         point light, white when no colour is given
+//   l x y z [i | r g b]     point light: white, grey of intensity i, or colour r g b (the
+//                           optional numbers are those before the next keyword; 5 in all is
+//                           ambiguous and refused)
 //   f r g b Kd Ks Shine T ior   material for the primitives that follow
 //   s x y z r               sphere (r > 0)
-//   c                       cone/cylinder; next two lines "x y z r" for base and apex.
+//   c bx by bz br ax ay az ar   cone/cylinder: base point and radius, apex point and radius.
 //                           A negative radius (NFF: seen from inside) is kept as read;
 //                           geometry uses |r|.
-//   p n                     polygon, then n lines "x y z" (3 <= n <= kMaxPolygonVertices)
-//   pp n                    polygon with normals, then n lines "x y z nx ny nz"
-//   # ...                   comment (whole line); blank lines are ignored
+//   p n  x y z ...          polygon: n vertices (3 <= n <= kMaxPolygonVertices)
+//   pp n x y z nx ny nz ... polygon with a normal after each vertex
+//   # ...                   comment: a '#' that starts a token, up to the end of its line
 //
 // Rules (each violation is one rtsim::InputError naming file, line and what was expected):
+// - tokens and lines as in scene_tokens.hpp: "\n", "\r\n" and a lone "\r" end a line; a UTF-8
+//   byte-order mark at the start is skipped; binary bytes are refused.
 // - numbers are parsed with std::from_chars (locale-independent); NaN, infinity, values outside
-//   the double range and trailing characters are errors; so are extra fields on a line.
-// - colours, Kd, Ks, Shine and T must be >= 0; ior must be > 0 when T > 0 (SPD writes ior 0 for
-//   opaque materials, which is kept as read).
+//   the double range and trailing characters are errors. Counts and the resolution are integers,
+//   also when written as a decimal with an integral value ("3.0"); "3.5" is an error.
+// - a keyword where a number is expected is an error naming both; so is a number where a keyword
+//   is expected (an entity given too many numbers).
+// - colours, Kd, Ks, Shine, T and a light's intensity must be >= 0; ior must be > 0 when T > 0
+//   (SPD writes ior 0 for opaque materials, which is kept as read).
 // - a sphere radius must be > 0 (NFF has no inside-out spheres; a zero sphere is a typo).
 // - the camera must be usable: up not zero and not parallel to at - from, from != at.
-// - vertex counts are checked against kMaxPolygonVertices and against the lines left in the file
-//   before anything is allocated.
+// - vertex counts are checked against kMaxPolygonVertices and against the tokens left in the
+//   file before anything is allocated.
 // - a file with no primitive is an error (it is almost certainly not the intended file).
 // - at most one 'v' and one 'b' per file.
 // Degenerate but well-formed geometry (zero-area polygons, repeated vertices, coincident cone
 // ends, zero normals) is kept: conversion for a machine repairs or rejects it with a count.
+//
+// Primitive::source_line is the line of the primitive's keyword.
 //
 // Materials: each distinct `f` used by a primitive becomes one Scene::materials entry (exact
 // duplicates share one entry), in order of first use. Primitives before any `f` get

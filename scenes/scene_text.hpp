@@ -1,15 +1,15 @@
 #pragma once
-// Line-oriented reading of untrusted scene text (NFF, .bpt): splitting into lines and tokens,
-// rejecting binary bytes, and locale-independent number parsing with std::from_chars. Every
-// failure is an rtsim::InputError naming the file and the 1-based line.
+// Reading untrusted scene text (NFF, .bpt): the file itself, messages, and locale-independent
+// number parsing with std::from_chars. The text is walked as tokens by TokenCursor
+// (scene_tokens.hpp). Every failure is an rtsim::InputError naming the file and the 1-based line.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
-#include <vector>
 
 #include "common/input_error.hpp"
+#include "scenes/scene_tokens.hpp"
 
 namespace rtsim::scenes {
 
@@ -25,51 +25,6 @@ inline constexpr double kMaxSceneNumberMagnitude = 1e15;
 /// Reads a whole scene file. Throws InputError(path, 0, "cannot open scene file ...") when the
 /// path is missing, not a regular file, unreadable or larger than kMaxSceneFileBytes.
 std::string read_scene_file(const std::string& path);
-
-/// One line with content: its 1-based number and its whitespace-separated tokens (views into the
-/// text given to the LineCursor, which must outlive the Line).
-struct SceneLine {
-  std::size_t number = 0;
-  std::vector<std::string_view> tokens;
-  /// The line's text without the end-of-line characters, for messages.
-  std::string_view text;
-};
-
-/// Walks the lines of a scene text. Blank lines and comment lines (first non-blank character
-/// '#') are skipped. Separators are space, tab and carriage return (so CRLF files read). The
-/// constructor scans the whole text once: any other control byte anywhere, or a non-ASCII byte
-/// outside a comment, is an InputError at its line and column (scene files are plain text; this
-/// catches binary garbage before any declared count is looked at).
-class LineCursor {
- public:
-  LineCursor(std::string_view text, std::string file);
-
-  /// The next line with content; false at end of text.
-  bool next(SceneLine& out);
-  /// Steps back over the line last returned by next() (one level only).
-  void unread();
-
-  /// Upper bound on the number of lines with content still to come. Used to reject a declared
-  /// count before allocating for it.
-  std::size_t lines_left() const { return total_lines_ - lines_consumed_; }
-  /// Number of the last line of the text (for messages about a file that ends too early).
-  std::size_t last_line_number() const { return total_lines_; }
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void fail(std::size_t line, const std::string& message) const;
-
- private:
-  std::string_view text_;
-  std::string file_;
-  std::size_t total_lines_ = 0;
-  // Position after the last line returned by next(), and before it (for unread()).
-  std::size_t pos_ = 0;
-  std::size_t line_no_ = 0;
-  std::size_t prev_pos_ = 0;
-  std::size_t prev_line_no_ = 0;
-  std::size_t lines_consumed_ = 0;
-  std::size_t prev_lines_consumed_ = 0;
-};
 
 /// Builds a message from strings, string views, C strings and integers. (Also avoids GCC 12's
 /// false -Wrestrict on `"literal" + std::string&&`, GCC bug 105651.)
@@ -92,23 +47,31 @@ std::string cat(const Parts&... parts) {
 /// Quotes a token for a message, shortened to a readable length.
 std::string quote_token(std::string_view token);
 
-/// Parses a decimal floating-point number (optional sign, fraction, exponent) with
-/// std::from_chars. Rejects anything but the whole token, NaN, infinity and values outside the
-/// range of a double (overflow and underflow) and magnitudes above kMaxSceneNumberMagnitude. `what`
-/// names the quantity for the message.
-double parse_number(const LineCursor& cursor, const SceneLine& line, std::string_view token,
-                    std::string_view what);
+/// What try_parse_number found.
+enum class NumberStatus { kOk, kNotANumber, kOutOfRange, kNotFinite, kTooLarge };
 
-/// Parses a decimal integer (optional sign) with std::from_chars; rejects fractions, exponents and
-/// values outside int64. Range checks are the caller's.
-std::int64_t parse_integer(const LineCursor& cursor, const SceneLine& line, std::string_view token,
+/// Parses a whole token as a decimal floating-point number (optional sign, fraction, exponent)
+/// with std::from_chars, without a message: the fast path of the readers, which build a message
+/// only when it fails. Refuses anything but the whole token, NaN, infinity, values outside the
+/// range of a double (overflow and underflow) and magnitudes above kMaxSceneNumberMagnitude.
+NumberStatus try_parse_number(std::string_view token, double& value);
+
+/// The InputError, at the token's line, for a token try_parse_number refused with `status`.
+/// `what` names the quantity; `value_no` > 0 adds " (value N)" to it. Messages:
+///   "expected a number for sphere centre and radius (x y z r) (value 2), got 'abc'"
+///   "'nan' for ... is not a finite number", "number '1e400' for ... is outside the range of a
+///   double", "number '1e16' for ... exceeds the magnitude limit of 1e15 ..."
+[[noreturn]] void fail_number(const TokenCursor& cursor, const SceneToken& token,
+                              NumberStatus status, std::string_view what, std::size_t value_no = 0);
+
+/// try_parse_number, then fail_number when it fails.
+double parse_number(const TokenCursor& cursor, const SceneToken& token, std::string_view what);
+
+/// Parses an integer: decimal digits with an optional sign, or a decimal number with an integral
+/// value ("3.0", "8e0", as programs that print every number as a float write counts). Refuses a
+/// fraction ("3.5"), values outside int64 and what parse_number refuses. Range checks are the
+/// caller's.
+std::int64_t parse_integer(const TokenCursor& cursor, const SceneToken& token,
                            std::string_view what);
-
-/// Parses tokens[first...] as exactly `count` numbers into out[0..count). Messages:
-///   "expected 4 numbers for sphere centre and radius, got 3"
-///   "expected 4 numbers for sphere centre and radius, got 5 (unexpected trailing 'x')"
-///   "expected a number for sphere centre and radius, value 2 is 'abc'"
-void parse_numbers(const LineCursor& cursor, const SceneLine& line, std::size_t first,
-                   std::size_t count, std::string_view what, double* out);
 
 }  // namespace rtsim::scenes

@@ -43,8 +43,10 @@ const std::vector<BadCase>& nff_cases() {
       {"s 1 2 3\n", 1, "expected 4 numbers for sphere centre and radius (x y z r), got 3"},
       {"s 0 0 0 1\ns\n", 2, "expected 4 numbers for sphere centre and radius (x y z r), got 0"},
       {"b 0 0\ns 0 0 0 1\n", 1, "expected 3 numbers for background colour (r g b), got 2"},
-      {"l 1 2\ns 0 0 0 1\n", 1, "expected 3 numbers for light position (x y z, optionally r g b)"},
-      {"l 1 2 3 4\ns 0 0 0 1\n", 1, "got 4 (unexpected trailing '4')"},
+      {"l 1 2\ns 0 0 0 1\n", 1,
+       "expected 3 numbers for light position (x y z, then optionally an intensity i or a colour "
+       "r g b), got 2 before keyword 's' at line 2"},
+      {"l 1 2 3 4 5\ns 0 0 0 1\n", 1, "light with 5 numbers is ambiguous"},
       {"f 1 1 1 0.5 0.5 3 0\ns 0 0 0 1\n", 1,
        "expected 8 numbers for material (r g b Kd Ks Shine T index_of_refraction), got 7"},
       // Unknown keywords.
@@ -52,21 +54,28 @@ const std::vector<BadCase>& nff_cases() {
        "unknown keyword 'sx'; expected one of v, b, l, f, s, c, p, pp, #"},
       {"S 0 0 0 1\n", 1, "unknown keyword 'S'"},
       {"1 2 3\n", 1, "unknown keyword '1'"},
-      {"s 0 0 0 1\nangle 45\n", 2, "'angle' outside a view block; it must follow a 'v' line"},
-      // Trailing garbage.
-      {"s 0 0 0 1 junk\n", 1, "got 5 (unexpected trailing 'junk')"},
+      {"s 0 0 0 1\nangle 45\n", 2, "'angle' outside a view block; it must follow a 'v'"},
+      // Trailing garbage: what an entity does not take must be a keyword.
+      {"s 0 0 0 1 junk\n", 1,
+       "unknown keyword 'junk'; expected one of v, b, l, f, s, c, p, pp, # (after 's' at line 1, "
+       "which took 4 values)"},
+      {"s 0 0 0 1 2\n", 1, "unexpected '2' after 's' at line 1, which took 4 values"},
       {"s 0 0 0 1x\n", 1,
        "expected a number for sphere centre and radius (x y z r) (value 4), "
        "got '1x'"},
-      {"s 0 0 0 1 # a comment is not allowed after data\n", 1, "unexpected trailing '#'"},
+      {"s 0 0 0 1#c\n", 1, "got '1#c'"},  // '#' inside a token is no comment
       {"s 0x10 0 0 1\n", 1, "got '0x10'"},
       {"s 1,5 0 0 1\n", 1, "got '1,5'"},
-      {"p 3\n0 0 0 7\n1 0 0\n0 1 0\n", 2,
-       "expected 3 numbers for polygon vertex 1 of 3 (x y z), got 4 (unexpected trailing '7')"},
-      {"v 1\n", 1, "unexpected '1' after 'v'"},
-      {"c 0 0 0 1\n", 1, "unexpected '0' after 'c'"},
-      {"p 3 3\n", 1, "expected 1 vertex count after 'p', got 2 (unexpected trailing '3')"},
-      {"p\n", 1, "expected 1 vertex count after 'p', got 0"},
+      // A fourth number on a vertex line shifts the vertices; the last number is left over.
+      {"p 3\n0 0 0 7\n1 0 0\n0 1 0\n", 4,
+       "unexpected '0' after 'p' at line 1, which took 10 values"},
+      {"v 1\n", 1,
+       "unexpected '1' in the view block of line 1; expected one of 'from', 'at', 'up', 'angle', "
+       "'hither', 'resolution'"},
+      {"c 0 0 0 1\n", 1,
+       "expected 4 numbers for cone apex (x y z r), got 0 before the end of the file"},
+      {"p 3 3\n", 1, "polygon declares 3 vertices (9 numbers) but the file has only 1 value left"},
+      {"p\n", 1, "expected the vertex count after 'p', got the end of the file"},
       // Non-finite and overflowing numbers.
       {"s 0 nan 0 1\n", 1,
        "'nan' for sphere centre and radius (x y z r) (value 2) is not a finite"},
@@ -84,23 +93,36 @@ const std::vector<BadCase>& nff_cases() {
       // Polygon counts.
       {"p 2\n0 0 0\n1 0 0\n", 1, "polygon needs at least 3 vertices, got '2'"},
       {"p -5\n", 1, "polygon needs at least 3 vertices, got '-5'"},
-      {"p 4.0\n", 1, "expected an integer for polygon vertex count, got '4.0'"},
+      {"p 4.5\n", 1, "expected an integer for polygon vertex count, got '4.5'"},
       {"p 2000000\n0 0 0\n", 1,
-       "polygon vertex count 2000000 exceeds the limit of 100000 (kMaxPolygonVertices)"},
+       "polygon vertex count 2000000 exceeds the limit of 100000 (kMaxPolygonVertices: larger "
+       "polygons can take minutes to triangulate)"},
       {"p 100000\n0 0 0\n1 0 0\n0 1 0\n", 1,
-       "polygon declares 100000 vertices but the file has only 3 lines left"},
+       "polygon declares 100000 vertices (300000 numbers) but the file has only 9 values left"},
       // Truncation.
-      {"p 4\n0 0 0\n1 0 0\n", 1, "polygon declares 4 vertices but the file has only 2 lines left"},
+      // (Counted in tokens: comment lines hold none.)
+      {"p 4\n0 0 0\n1 0 0\n", 1,
+       "polygon declares 4 vertices (12 numbers) but the file has only 6 values left"},
       {"p 4\n0 0 0\n1 0 0\n#\n#\n", 1,
-       "polygon declares 4 vertices but the file ends after 2 vertex lines"},
-      {"p 4\n0 0 0\n1 0 0\n1 1 0\ns 0 0 0 1\n", 5,
-       "polygon at line 1 declares 4 vertices but only 3 vertex lines follow before keyword 's'"},
-      {"pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0\n", 4,
-       "expected 6 numbers for polygon vertex 3 of 3 (x y z nx ny nz), got 3"},
-      {"c\n0 0 0 1\n", 1, "cone: the file ends before its apex line (x y z r)"},
-      {"c\n0 0 0 1\ns 0 0 0 1\n", 3,
-       "cone at line 1: expected its apex line (x y z r), got keyword 's'"},
-      {"c\n0 0 0\n0 0 1 1\n", 2, "expected 4 numbers for cone base (x y z r), got 3"},
+       "polygon declares 4 vertices (12 numbers) but the file has only 6 values left"},
+      {"pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0\n", 1,
+       "polygon declares 3 vertices (18 numbers) but the file has only 15 values left"},
+      // Missing numbers: at the line of the last value the entity took.
+      {"p 4\n0 0 0\n1 0 0\n1 1 0\ns 0 0 0 1\n", 4,
+       "expected 3 numbers for polygon vertex 4 of 4 (x y z), got 0 before keyword 's' at line 5 "
+       "('p' at line 1)"},
+      {"pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0\ns 0 0 0 1\n", 4,
+       "expected 6 numbers for polygon vertex 3 of 3 (x y z nx ny nz), got 3 before keyword 's' at "
+       "line 5 ('pp' at line 1)"},
+      {"c\n0 0 0 1\n", 2,
+       "expected 4 numbers for cone apex (x y z r), got 0 before the end of the file ('c' at line "
+       "1)"},
+      {"c\n0 0 0 1\ns 0 0 0 1\n", 2,
+       "expected 4 numbers for cone apex (x y z r), got 0 before keyword 's' at line 3 ('c' at "
+       "line 1)"},
+      {"c\n0 0 0\n0 0 1 1\n", 3,
+       "expected 4 numbers for cone apex (x y z r), got 3 before the end of the file ('c' at line "
+       "1)"},
       // Binary garbage.
       {"s 0 0 0 1\n\x01\x02garbage\n", 2, "non-printable byte 0x01 at column 1"},
       {std::string("s 0 0\0 0 1\n", 11), 1, "non-printable byte 0x00 at column 6"},
@@ -165,6 +187,7 @@ TEST(SceneBadInput, ValidVariantsOfTheRulesStillParse) {
   // The edges of each rule, on the accepted side.
   EXPECT_NO_THROW(parse_nff("s +1 -0 1e-300 1E+2\n", "ok.nff"));
   EXPECT_NO_THROW(parse_nff("s 1e15 0 0 1\n", "ok.nff"));
+  EXPECT_NO_THROW(parse_nff("s 0 0 0 1 # a comment after data\n", "ok.nff"));
   EXPECT_NO_THROW(parse_nff("p 3\n0 0 0\n0 0 0\n0 0 0\n", "ok.nff"));      // degenerate: kept
   EXPECT_NO_THROW(parse_nff("c\n0 0 0 1\n0 0 0 1\n", "ok.nff"));           // coincident ends: kept
   EXPECT_NO_THROW(parse_nff("f 1 1 1 0 0 0 0 0\ns 0 0 0 1\n", "ok.nff"));  // ior 0, opaque
@@ -175,8 +198,9 @@ TEST(SceneBadInput, ValidVariantsOfTheRulesStillParse) {
 
 TEST(SceneBadInput, FilesAndLoader) {
   const std::string data = RTSIM_TEST_DATA_DIR;
-  expect_input_error([&] { load_scene(data + "/bad-truncated-polygon.nff"); }, 7,
-                     "polygon declares 4 vertices but the file ends after 2 vertex lines");
+  expect_input_error(
+      [&] { load_scene(data + "/bad-truncated-polygon.nff"); }, 7,
+      "polygon declares 4 vertices (12 numbers) but the file has only 6 values left");
   expect_input_error([&] { load_scene(data + "/bad-binary.nff"); }, 3, "non-printable byte");
   expect_input_error([&] { load_scene(data + "/bad-degree.bpt"); }, 2,
                      "only bicubic patches ('3 3') are supported");

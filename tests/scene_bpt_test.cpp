@@ -3,6 +3,7 @@
 
 #include "scene_test_support.hpp"
 #include "scenes/bpt_reader.hpp"
+#include "scenes/scene_text.hpp"
 #include "scenes/scene_writer.hpp"
 
 namespace rtsim::scenes {
@@ -55,34 +56,80 @@ TEST(SceneBpt, CommentsAndBlankLinesAreAllowed) {
   EXPECT_EQ(s.patches[0].at(2, 1), (Vec3{1, 2, 0}));
 }
 
+TEST(SceneBpt, ControlPointsInAnyLayout) {
+  // Count-driven, as the NFF reader: line ends are whitespace like any other.
+  const Scene ref = parse_bpt("1\n" + patch_text(), "ref.bpt");
+  std::string one_line = "1 " + patch_text();
+  for (char& c : one_line) c = c == '\n' ? ' ' : c;
+  std::string two_per_line = "1\n3\n3\n";
+  int k = 0;
+  for (char c : patch_text().substr(4)) {
+    if (c == ' ' || c == '\n') c = (++k % 2 == 0) ? '\n' : ' ';
+    two_per_line += c;
+  }
+  for (const std::string& text :
+       {one_line, two_per_line,
+        "1.0 # patch count\n3.0 3e0 # degrees\n" + patch_text().substr(4)}) {
+    SCOPED_TRACE(text.substr(0, 40));
+    const Scene s = parse_bpt(text, "layout.bpt");
+    expect_scene_sound(s);
+    expect_same_content(ref, s);
+  }
+  EXPECT_EQ(parse_bpt(one_line, "one.bpt").primitives.at(0).source_line, 1u);
+}
+
+TEST(SceneBpt, TeapotWithOtherLineEndsAndLayouts) {
+  const std::string original = read_scene_file(shared_scene("teapot.bpt"));
+  const Scene ref = parse_bpt(original, "teapot.bpt");
+  std::string cr = original;
+  for (char& c : cr) c = c == '\n' ? '\r' : c;
+  std::string flat = original;
+  for (char& c : flat) c = c == '\n' ? ' ' : c;
+  const Scene from_cr = parse_bpt("\xEF\xBB\xBF" + cr, "cr.bpt");
+  const Scene from_flat = parse_bpt(flat + " # all on one line\n", "flat.bpt");
+  expect_same_content(ref, from_cr);
+  expect_same_content(ref, from_flat);
+  for (std::size_t k = 0; k < ref.primitives.size(); ++k) {
+    EXPECT_EQ(from_cr.primitives[k].source_line, ref.primitives[k].source_line);
+    EXPECT_EQ(from_flat.primitives[k].source_line, 1u);
+  }
+}
+
 TEST(SceneBpt, BadInput) {
   auto parse = [](const std::string& text) { return [text] { parse_bpt(text, "bad.bpt"); }; };
   expect_input_error(parse(""), 0, "empty .bpt file");
   expect_input_error(parse("# only a comment\n"), 0, "empty .bpt file");
   expect_input_error(parse("abc\n"), 1, "expected an integer for the patch count, got 'abc'");
   expect_input_error(parse("1.5\n"), 1, "expected an integer for the patch count");
-  expect_input_error(parse("1 2\n"), 1, "expected 1 number (the patch count)");
+  expect_input_error(parse("1 2\n"), 1,
+                     "file declares 1 patch (50 numbers each: the degrees '3 3' and 16 control "
+                     "points x y z) but has only 1 value left");
+  expect_input_error(parse("2.5\n"), 1, "expected an integer for the patch count, got '2.5'");
   expect_input_error(parse("0\n"), 1, "patch count must be 1..1000000 (kMaxBptPatches), got '0'");
   expect_input_error(parse("-4\n"), 1, "patch count must be 1..");
   expect_input_error(parse("2000000\n"), 1, "patch count must be 1..1000000");
   expect_input_error(parse("99999999999999999999999\n"), 1, "far too large");
-  // Count checked against the lines left before anything is allocated.
+  // Count checked against the values left before anything is allocated (comments hold none).
   expect_input_error(parse("999999\n" + patch_text()), 1,
-                     "file declares 999999 patches (17 lines each) but has only 17 lines left");
+                     "file declares 999999 patches (50 numbers each: the degrees '3 3' and 16 "
+                     "control points x y z) but has only 50 values left");
   expect_input_error(parse("1\n" + patch_text(2, 3)), 2,
                      "patch 1 of 1 has degrees '2 3'; only bicubic patches ('3 3') are supported");
-  expect_input_error(parse("1\n3\n" + patch_text().substr(4)), 2,
-                     "expected the degree line '3 3' of patch 1 of 1, got '3'");
-  // A patch with a 17th point: the extra point is read where patch 2's degree line should be.
+  expect_input_error(parse("1\n3\n" + patch_text().substr(4)), 1,
+                     "file declares 1 patch (50 numbers each: the degrees '3 3' and 16 control "
+                     "points x y z) but has only 49 values left");
+  // A patch with a 17th point: its numbers are read as patch 2's degrees.
   expect_input_error(parse("2\n" + patch_text(3, 3, 17) + patch_text()), 19,
-                     "expected the degree line '3 3' of patch 2 of 2, got '0 4 0'");
-  // Truncated inside a patch (comment lines keep the line budget from catching it first).
-  expect_input_error(parse("1\n" + patch_text(3, 3, 15) + "#\n#\n"), 2,
-                     "file ends inside patch 1 of 1 after 15 of its 16 control points");
+                     "patch 2 of 2 has degrees '0 4'; only bicubic patches ('3 3') are supported");
+  // Truncated inside a patch, with comments after: found by the count.
+  expect_input_error(parse("1\n" + patch_text(3, 3, 15) + "# 0 0 0\n#\n"), 1,
+                     "but has only 47 values left");
   expect_input_error(parse("2\n" + patch_text() + std::string(17, '\n')), 1,
-                     "file declares 2 patches but ends after 1");
-  expect_input_error(parse("1\n3 3\n0 0 0\n0 0\n" + patch_text().substr(4 + 6 * 2)), 4,
-                     "expected 3 numbers for control point 2 of 16 of patch 1 of 1, got 2");
+                     "file declares 2 patches (50 numbers each: the degrees '3 3' and 16 control "
+                     "points x y z) but has only 50 values left");
+  expect_input_error(parse("1\n3 3\n0 0 0\n0 0 x\n" + patch_text().substr(4 + 6 * 2)), 4,
+                     "expected a number for control point 2 of 16 of patch 1 of 1 (value 3), got "
+                     "'x'");
   expect_input_error(parse("1\n3 3\n0 0 nan\n" + patch_text().substr(4 + 6)), 3,
                      "'nan' for control point 1 of 16 of patch 1 of 1 (value 3) is not a finite");
   expect_input_error(parse("1\n" + patch_text() + "1 2 3\n"), 19,
