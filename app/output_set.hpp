@@ -2,16 +2,23 @@
 // A set of output files that appears all at once or not at all (DESIGN.md "Outputs": files are
 // written to a temporary name and renamed, so a failed run leaves no half-written output).
 // Files are staged in DIR/.rtsim-partial-PID/ and renamed into DIR by commit(); without a
-// commit the destructor removes the staging folder, and DIR itself if this set created it.
+// commit the destructor removes the staging folder, and DIR itself if this set created it; so
+// does Ctrl-C or SIGTERM (app/interrupt_cleanup.hpp).
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rtsim::app {
 
-/// The checks every command makes of its --out before any work: not empty, not the filesystem
-/// root, not an existing non-folder. InputError ("--out DIR: why", exit 2) otherwise.
+/// The checks `render`, `run` and `sweep` make of their --out before any work: not empty, not the
+/// filesystem root, not an existing non-folder, and an existing folder holds nothing but what
+/// rtsim writes (is_rtsim_output_name). InputError ("--out DIR: why", exit 2) otherwise.
 void check_output_folder(const std::filesystem::path& dir);
+
+/// A file or folder name that `render`, `run` or `sweep` writes into its --out folder.
+bool is_rtsim_output_name(std::string_view name);
 
 class OutputSet {
  public:
@@ -35,6 +42,8 @@ class OutputSet {
   std::vector<std::string> names_;
   bool created_dir_ = false;
   bool committed_ = false;
+  std::vector<std::uint64_t> interrupt_ids_;  ///< app/interrupt_cleanup.hpp registrations
+  void forget_interrupt_paths();
 };
 
 }  // namespace rtsim::app

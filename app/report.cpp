@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "app/trace_options.hpp"
+#include "common/spawn_signals.hpp"
 
 extern char** environ;
 
@@ -97,7 +98,8 @@ ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string&
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const SpawnDefaultSignals attributes;
+  const int rc = posix_spawnp(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
     res.message = "cannot run " + tools.python + ": " + std::strerror(rc);

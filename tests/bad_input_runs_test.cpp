@@ -177,6 +177,64 @@ TEST(BadInputRuns, UnusableOutputPathsAreBadInputFoundFirst) {
     EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
   }
   EXPECT_EQ(read_file(file), "x");
+  // A folder with files rtsim did not write is not the run's to fill.
+  const fs::path theirs = dir / "theirs";
+  fs::create_directories(theirs);
+  { std::ofstream(theirs / "notes.txt") << "mine"; }
+  for (const std::string& command :
+       {std::string("render --scene builtin:default --width 8 --height 8 -q"),
+        std::string("sweep ") + RTSIM_TEST_DATA_DIR +
+            "/../../configs/sweeps/fig2-18-grid.toml -q"}) {
+    const auto r = run_rtsim(command + " --out " + theirs.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("holds files rtsim did not write ('notes.txt')"), std::string::npos)
+        << r.output;
+  }
+  EXPECT_EQ(read_file(theirs / "notes.txt"), "mine");
+  EXPECT_EQ(std::distance(fs::directory_iterator(theirs), fs::directory_iterator()), 1);
+  // A folder an earlier run filled is the run's: it is filled again.
+  const fs::path again = dir / "again";
+  for (int i = 0; i < 2; ++i) {
+    const auto r =
+        run_rtsim("render --scene builtin:default --width 8 --height 8 -q --out " + again.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  fs::remove_all(dir);
+}
+
+// Defect 5 (the rest): Ctrl-C or SIGTERM left the staging folder .rtsim-partial-PID behind, and
+// the output folder the run had created. Both go; the process still ends by the signal.
+TEST(BadInputRuns, AnInterruptedRunLeavesNoPartialOutputs) {
+  const fs::path dir = scratch_dir("interrupt");
+  fs::create_directories(dir);
+  struct Case {
+    std::string signal;
+    std::string args;
+    int status;
+  };
+  for (const Case& c :
+       {Case{"INT", "render --scene builtin:npp-412 --width 512 --height 512 --spp 16 --threads 1",
+             130},
+        Case{"TERM", "run --machine gaudet-pert --scene builtin:npp-412 --width 256 --height 256",
+             143}}) {
+    const fs::path out = dir / ("out-" + c.signal);
+    // Job control on (set -m), so the background job does not start with SIGINT ignored.
+    const std::string script = "set -m; " + std::string(RTSIM_BINARY) + " " + c.args +
+                               " -q --out " + out.string() +
+                               " & pid=$!; for i in $(seq 600); do "
+                               "ls -a " +
+                               out.string() +
+                               " 2>/dev/null | grep -q rtsim-partial && break; sleep 0.05; done; "
+                               "kill -" +
+                               c.signal + " $pid; wait $pid; echo \"status $?\"";
+    const auto r = run_shell("bash -c '" + script + "'");
+    EXPECT_NE(r.output.find("status " + std::to_string(c.status)), std::string::npos)
+        << c.signal << "\n"
+        << r.output;
+    EXPECT_NE(r.output.find("rtsim: interrupted (" + c.signal + ")"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.signal << ": " << out;
+  }
   fs::remove_all(dir);
 }
 

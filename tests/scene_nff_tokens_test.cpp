@@ -237,8 +237,8 @@ TEST(SceneNffTokens, CountsAreCheckedAgainstTheValuesLeft) {
   expect_input_error(parsing("p 4\n0 0 0\n1 0 0 # 1 1 0\n# 0 1 0\n"), 1,
                      "polygon declares 4 vertices (12 numbers) but the file has only 6 values "
                      "left");
-  expect_input_error(parsing("pp 1000000 0 0 0\n"), 1,
-                     "polygon declares 1000000 vertices (6000000 numbers) but the file has only "
+  expect_input_error(parsing("pp 100000 0 0 0\n"), 1,
+                     "polygon declares 100000 vertices (600000 numbers) but the file has only "
                      "3 values left");
 }
 

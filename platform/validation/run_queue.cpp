@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include "common/spawn_signals.hpp"
+
 extern char** environ;
 
 namespace rtsim::validation {
@@ -85,7 +87,8 @@ RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options
 
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const SpawnDefaultSignals attributes;
+  const int rc = posix_spawn(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
     out.status = "did not start";
