@@ -569,6 +569,18 @@ TEST(Suggest, OnlyReasonablyCloseNamesAreOffered) {
             (std::vector<std::string>{"a.clock", "b.clock", "a.clack"}));  // by last segment
 }
 
+// Found by fuzzing the config reader: a megabyte-long unknown name took seconds to refuse, two
+// edit distances of a megabyte by thirty bytes per declared parameter. Names too far in length
+// to be close are now skipped before any distance is computed; the suggestions are unchanged.
+TEST(Suggest, AHugeUnknownNameIsRefusedWithoutComputingDistances) {
+  const std::vector<std::string_view> names = {"a.clock", "b.clock", "shade.ambient"};
+  const std::string huge(4'000'000, 'a');
+  EXPECT_EQ(closest_names(huge, names), (std::vector<std::string>{}));
+  EXPECT_EQ(closest_names(huge + ".clock", names),
+            (std::vector<std::string>{"a.clock", "b.clock"}));  // by last segment, as before
+  EXPECT_EQ(closest_names("shade.ambeint", names), (std::vector<std::string>{"shade.ambient"}));
+}
+
 TEST(ParamRegistry, ThousandsOfParametersStayUsable) {
   ParamRegistry r;
   for (int pert = 0; pert < 64; ++pert) {
