@@ -196,7 +196,9 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
               Measured m;
               m.value = us(r, key, "gaudet.shell.processing_per_ray_s");
               m.note = "latency (emerges from the bus) " + format_number(shell_latency(r, key)) +
-                       " us per ray, thesis " + format_number(thesis_latency) + " us; " +
+                       " us per ray, thesis " + format_number(thesis_latency) + " us; starved " +
+                       format_number(us(r, key, "gaudet.shell.starved_per_ray_s")) +
+                       " us per ray (not latency); " +
                        format_number(stats_number(r, key, "gaudet.shell.box_tests_per_ray")) +
                        " boxes tested per ray";
               return m;

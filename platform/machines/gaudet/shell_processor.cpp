@@ -182,8 +182,14 @@ void ShellProcessor::run() {
     };
     if (slot_free) earliest(input.fifo.next_item_time());
     if (!done_.empty()) earliest(out_queue_->next_room_time());
+    // Waiting for a packet is latency only when the processor has nothing else it could do:
+    // with a ray slot free and no ray in its input queue, it is starved of rays instead
+    // (L1060-L1062: waiting that a new ray could overlap is not latency).
     const bool for_bus = !waiting_.empty();
-    idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
+    if (for_bus && slot_free && done_.empty())
+      idle_starved(next, port_.changed_event() | input.fifo.put_event());
+    else
+      idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
   }
 }
 
