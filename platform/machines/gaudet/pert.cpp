@@ -44,7 +44,10 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   const sc_core::sc_time first_access = params.get_time("memory.first_access");
   for (std::size_t k = 0; k < 3; ++k) {
     if (!c.buses.empty()) {
-      auto bic = std::make_unique<BusInterface>(params.sub(kKinds[k]).sub("bic"));
+      // The ShellProcessor reads its packets SHELL record by SHELL record (`stream`).
+      auto bic =
+          std::make_unique<BusInterface>(params.sub(kKinds[k]).sub("bic"),
+                                         k == 1 ? ShellProcessor::record_words(c.words.shell) : 0);
       c.buses[k]->attach(*bic);
       ports[k] = std::move(bic);
     } else {

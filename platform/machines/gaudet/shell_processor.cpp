@@ -16,6 +16,10 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
               "Rays a ShellProcessor searches at a time",
               "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
               "docs/machines.md");
+  BusInterface::declare_stream_param(
+      shell.sub("bic"), "true",
+      "seed 001 L920 (the hit line sets the buffer to start copying), L924 (the buffers are "
+      "FIFOs the SJ16 reads a word a cycle): a SHELL record is tested once its words are in");
 }
 
 ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
@@ -29,7 +33,7 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::Param
       out("out"),
       tree_(tree),
       packet_words_(packet_words),
-      record_words_(std::max<std::uint32_t>(record_words, 8)),
+      record_words_(ShellProcessor::record_words(record_words)),
       port_(port),
       counters_(counters),
       searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
@@ -82,7 +86,7 @@ void ShellProcessor::process(const ReceivedPacket& p) {
     for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
       const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
       if (shell.child_index < (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count()))
-        shells_.push_back(shell);
+        shells_.emplace_back(shell, at + record_words_);
       else
         ++rejected_;
     }
@@ -96,7 +100,10 @@ void ShellProcessor::process(const ReceivedPacket& p) {
       probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
       // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
       // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
-      for (const accel::Shell& shell : shells_) {
+      for (const auto& [shell, end] : shells_) {
+        // A streamed packet: its record is tested once its words are in (the first ray waits,
+        // the others find them in). Nothing else can be done meanwhile: latency.
+        idle_until(p.words_in(end), Wait::kData);
         children_.clear();
         const std::size_t before = s.leaves.size();
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,

@@ -10,12 +10,17 @@
 // IDs "continually": when no ID register is free it stacks the ID in its own memory until one
 // is (L910). A packet several rays wait for is caught once and tested for each of them.
 //
+// With the BIC's `stream` set (L920, L924) a packet is taken once its first SHELL record is in
+// and SHELL k is tested once its words are in, while the rest streams into the FIFO; the wait
+// for a record is latency (the processor is committed to the packet).
+//
 // The SHELLs tested are the records in the packet's words as the BIC received them
 // (accel::decode_shell): a word corrupted in the Shell bus's memory changes the search. A
 // record that points outside the data sets (a child or PRIM packet that does not exist) is
 // dropped and counted, so a corrupted memory cannot hang the machine.
 #include <tlm_utils/simple_initiator_socket.h>
 
+#include <algorithm>
 #include <deque>
 #include <map>
 #include <vector>
@@ -42,6 +47,10 @@ class ShellProcessor : public PertProcessor {
                  TraceCounters& counters, MachineTrace& trace);
   /// Its parameters under `shell` ("pert.shell").
   static void declare_params(const modules::ParamDecls& shell);
+  /// Words of a SHELL record as it reads them, from the data sets' `data.words.shell`.
+  static std::uint32_t record_words(std::uint32_t shell_words) {
+    return std::max<std::uint32_t>(shell_words, 8);
+  }
 
   /// Elaboration: the queue `out` feeds (to see whether it has room).
   void set_output_queue(const modules::TimedFifo<ShellToPrim>& q) { out_queue_ = &q; }
@@ -82,7 +91,9 @@ class ShellProcessor : public PertProcessor {
   std::vector<std::uint32_t> overflow_;  ///< IDs stacked in memory, no register free (L910)
   std::deque<int> done_;                 ///< searches whose list is ready to send
   std::vector<std::uint32_t> children_;
-  std::vector<accel::Shell> shells_;  ///< the records of the packet being processed
+  /// The records of the packet being processed, each with the words it ends at (a streamed
+  /// packet's record is tested once its words are in).
+  std::vector<std::pair<accel::Shell, std::size_t>> shells_;
   std::uint64_t box_tests_ = 0, packets_ = 0, packet_uses_ = 0, overflow_peak_ = 0;
   std::uint64_t leaf_shells_ = 0, over_capacity_ = 0, rejected_ = 0;
 };
