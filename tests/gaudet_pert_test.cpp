@@ -50,6 +50,12 @@ TEST(GaudetPert, ImageEqualsTheFunctionalTwinForAnyPertCountModeOrderAndQuantum)
       // packet arriving first would take the only buffer for ever).
       "-p pert_count=2 -p pert.shell.bic.buffers=1 -p pert.prim.bic.buffers=1 "
       "-p pert.shade.bic.buffers=1 -p broadcast.order=random",
+      // The root packet in the ShellProcessor's memory, one ray and one ID register; and
+      // whole packets (no streaming) with the root local, on the bus and in direct memory.
+      "-p pert_count=2 -p pert.shell.root_local=true -p pert.shell.rays_in_flight=1 "
+      "-p pert.shell.bic.id_registers=1",
+      "-p pert_count=3 -p pert.shell.bic.stream=false -p pert.shell.root_local=true",
+      "-p pert_count=2 -p broadcast.mode=direct -p pert.shell.root_local=true",
   };
   int i = 0;
   for (const auto& v : variants) {

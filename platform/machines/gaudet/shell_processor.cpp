@@ -16,6 +16,13 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
               "Rays a ShellProcessor searches at a time",
               "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
               "docs/machines.md");
+  shell.declare({.name = "root_local",
+                 .kind = params::ParamKind::kBool,
+                 .default_value = "false",
+                 .description = "The ShellProcessor holds packet 0 (the root's children) in its "
+                                "local memory and reads it there for every ray, not off the bus",
+                 .source = "seed 001 L662 (every ray needs the root's children), L863 (the local "
+                           "memory holds the globals)"});
   BusInterface::declare_stream_param(
       shell.sub("bic"), "true",
       "seed 001 L920 (the hit line sets the buffer to start copying), L924 (the buffers are "
@@ -25,7 +32,8 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
 ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                                const accel::ShellTree& tree,
                                const std::vector<std::uint32_t>& packet_words,
-                               std::uint32_t record_words, PacketPort& port,
+                               std::uint32_t record_words,
+                               std::span<const std::uint32_t> root_packet, PacketPort& port,
                                std::size_t input_depth, TraceCounters& counters,
                                MachineTrace& trace)
     : PertProcessor(name, registry, trace),
@@ -37,6 +45,9 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::Param
       port_(port),
       counters_(counters),
       searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
+  // Loaded with the globals before the frame (L863): its time is not part of the frame.
+  root_local_ = params_.get_bool("root_local") && !packet_words_.empty();
+  if (root_local_) local_root_.assign(root_packet.begin(), root_packet.end());
   SC_THREAD(run);
 }
 
@@ -71,16 +82,29 @@ void ShellProcessor::begin(ShadeToShell msg) {
     return;
   }
   s.outstanding = 1;
-  ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+  if (!root_local_) {
+    ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+    return;
+  }
+  // SHELL_ARRAY[0] from its own memory, read at one cycle a word as a FIFO's (L863).
+  const std::vector<int> rays{slot};
+  const ReceivedPacket root{
+      .id = 0, .arrival = clock_.now(), .transfer_start = clock_.now(), .words = local_root_};
+  read_and_test(root, &rays);
 }
 
 void ShellProcessor::process(const ReceivedPacket& p) {
+  const auto node = waiting_.extract(p.id);
+  read_and_test(p, node.empty() ? nullptr : &node.mapped());
+  port_.release(p, clock_.now());
+}
+
+void ShellProcessor::read_and_test(const ReceivedPacket& p, const std::vector<int>* rays) {
   ++packets_;
   const sc_core::sc_time read_start = clock_.now();
   compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
   const sc_core::sc_time read_end = clock_.now();
-  const auto node = waiting_.extract(p.id);
-  if (!node.empty()) {
+  if (rays) {
     // The packet's SHELL records, read once for every ray waiting for it (as its words were).
     shells_.clear();
     for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
@@ -90,9 +114,9 @@ void ShellProcessor::process(const ReceivedPacket& p) {
       else
         ++rejected_;
     }
-    const std::size_t sharing = node.mapped().size();
+    const std::size_t sharing = rays->size();
     for (std::size_t i = 0; i < sharing; ++i) {
-      const int slot = node.mapped()[i];
+      const int slot = (*rays)[i];
       Search& s = searches_[static_cast<std::size_t>(slot)];
       ++packet_uses_;
       // The packet was read once for every ray waiting for it: each gets its share.
@@ -120,7 +144,6 @@ void ShellProcessor::process(const ReceivedPacket& p) {
       if (--s.outstanding == 0) finish(slot);
     }
   }
-  port_.release(p, clock_.now());
 }
 
 void ShellProcessor::finish(int slot) {

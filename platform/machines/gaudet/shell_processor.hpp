@@ -3,7 +3,8 @@
 // SHADE_TO_SHELL rays, searches the shell hierarchy with the SHELL packets its BIC catches off
 // the Shell bus, and sends each ray's sorted LeafShellList on as SHELL_TO_PRIM.
 //
-// Per ray: ask for packet 0 (the root's children, L662); box-test the SHELLs of every packet as
+// Per ray: ask for packet 0 (the root's children, L662), or, with `root_local`, read it from its
+// own memory, which holds the globals (L863); box-test the SHELLs of every packet as
 // it arrives — in broadcast order, not request order — adding hit leaf shells to the list and
 // asking for the children packet of every hit parent; when no packet is outstanding, sort the
 // list (L734) and send it. The processor keeps up to `rays_in_flight` rays at a time and stores
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <deque>
 #include <map>
+#include <span>
 #include <vector>
 
 #include "firmware/accel/shell_traversal.hpp"
@@ -41,10 +43,12 @@ class ShellProcessor : public PertProcessor {
   SC_HAS_PROCESS(ShellProcessor);
   /// `tree`: what the control processor knows of the data sets (how many SHELL and PRIM
   /// packets there are); `record_words`: words per SHELL record.
+  /// `root_packet`: packet 0's words, copied into its local memory if `root_local` is set.
   ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                  const accel::ShellTree& tree, const std::vector<std::uint32_t>& packet_words,
-                 std::uint32_t record_words, PacketPort& port, std::size_t input_depth,
-                 TraceCounters& counters, MachineTrace& trace);
+                 std::uint32_t record_words, std::span<const std::uint32_t> root_packet,
+                 PacketPort& port, std::size_t input_depth, TraceCounters& counters,
+                 MachineTrace& trace);
   /// Its parameters under `shell` ("pert.shell").
   static void declare_params(const modules::ParamDecls& shell);
   /// Words of a SHELL record as it reads them, from the data sets' `data.words.shell`.
@@ -76,12 +80,16 @@ class ShellProcessor : public PertProcessor {
   void run();
   void begin(ShadeToShell msg);
   void process(const ReceivedPacket& p);
+  /// Reads packet `p` (its words, one cycle each) and box-tests its SHELLs for `rays`.
+  void read_and_test(const ReceivedPacket& p, const std::vector<int>* rays);
   void ask(std::uint32_t packet, int search);
   void finish(int search);
 
   const accel::ShellTree& tree_;
   const std::vector<std::uint32_t>& packet_words_;
   std::uint32_t record_words_;
+  std::vector<std::uint32_t> local_root_;  ///< packet 0 in its local memory (root_local)
+  bool root_local_ = false;
   PacketPort& port_;
   TraceCounters& counters_;
   const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
