@@ -335,10 +335,11 @@ TEST(GaudetPert, ClassNamesSetEveryPertAndInstanceNamesOne) {
     return stats["simulated_time_s"].get<double>();
   };
   const double plain = frame("gp-inst-0", "");
-  const double one = frame("gp-inst-1", " -p pert1.shell.bic.id_registers=1");
-  const double all = frame("gp-inst-2", " -p pert.shell.bic.id_registers=1");
+  // The default is 1 register: 4 differs from it.
+  const double one = frame("gp-inst-1", " -p pert1.shell.bic.id_registers=4");
+  const double all = frame("gp-inst-2", " -p pert.shell.bic.id_registers=4");
   const double both =
-      frame("gp-inst-3", " -p pert.shell.bic.id_registers=1 -p pert1.shell.bic.id_registers=8");
+      frame("gp-inst-3", " -p pert.shell.bic.id_registers=4 -p pert1.shell.bic.id_registers=1");
   std::cout << "frame time: default " << plain << " s, pert1 only " << one << " s, every PERT "
             << all << " s, every PERT but pert1 " << both << " s\n";
   EXPECT_NE(one, plain);

@@ -7,18 +7,21 @@ namespace rtsim::platform::gaudet {
 
 void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
   PertProcessor::declare_params(
-      shell, {.value = "8",
+      shell, {.value = "1",
               .description = "ID registers of the ShellProcessor's BIC (more IDs wait in its "
                              "memory)",
-              .source = "assumption: \"multiple\" (L910); Shell stores IDs continually and "
-                        "stacks the overflow in its own memory"});
-  shell.count("rays_in_flight", "4", "1", "100000", "rays",
+              .source = "assumption: not stated (L910: the ShellProcessor stores IDs continually, "
+                        "\"may potentially overflow\" and stacks the overflow in its own "
+                        "memory); 1 brings Fig. 6-10's latencies nearest the thesis's "
+                        "(scripts/gaudet_sensitivity.py, docs/validation.md)"});
+  shell.count("rays_in_flight", "1", "1", "100000", "rays",
               "Rays a ShellProcessor searches at a time",
-              "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
-              "docs/machines.md");
+              "assumption: not stated (note 001 §6.4); one, as \"no parallelism until the first "
+              "packet is retrieved\" (L1060) suggests, brings Figs. 6-10 and 6-11 nearest the "
+              "thesis (scripts/gaudet_sensitivity.py, docs/validation.md)");
   shell.declare({.name = "root_local",
                  .kind = params::ParamKind::kBool,
-                 .default_value = "false",
+                 .default_value = "true",
                  .description = "The ShellProcessor holds packet 0 (the root's children) in its "
                                 "local memory and reads it there for every ray, not off the bus",
                  .source = "seed 001 L662 (every ray needs the root's children), L863 (the local "
