@@ -129,7 +129,8 @@ TEST(DataPath, PeripheralParameterMemoryWordChangesTheImage) {
 TEST(DataPath, GaudetShellBusMemoryWordChangesTheImage) {
   // The first SHELL of packet 0 (the root's children, L662) as the Shell bus's memory holds it:
   // flip the sign of one corner coordinate so that its box becomes empty; every ray then misses
-  // that shell's subtree.
+  // that shell's subtree. The ShellProcessors must take packet 0 off the bus for that
+  // (pert.shell.root_local=false; by default they read it from their own memory).
   const fs::path dir = rtsim::test::scratch_dir("data-path-gaudet");
   fs::create_directories(dir);
   auto m = rtsim::test::prepare_machine("gaudet-pert", "builtin:npp-412");
@@ -150,7 +151,7 @@ TEST(DataPath, GaudetShellBusMemoryWordChangesTheImage) {
   const double lo = shell.box.lo.x, hi = shell.box.hi.x;
   ASSERT_TRUE(hi > -lo || lo < -hi) << lo << " " << hi;
   const std::uint64_t word = address + (hi > -lo ? 2u : 5u);
-  const std::vector<std::string> two = {"pert_count=2"};
+  const std::vector<std::string> two = {"pert_count=2", "pert.shell.root_local=false"};
   const Frame clean = simulate("gaudet-pert", "builtin:npp-412", two, {}, dir / "clean.bin");
   const Frame faulty = simulate("gaudet-pert", "builtin:npp-412", two,
                                 {{"shell_bus.memory", word, 0x80000000u}}, dir / "faulty.bin");

@@ -1,6 +1,7 @@
 // gaudet-pert: the image equals the functional twin for any PERT count, broadcast mode, order
 // and quantum; stats.json carries the documented keys and consistent counts; the Broadcast
-// Processor and BIC keep the thesis's timings (seed 001 L957-L962) and the hit rule (L920);
+// Processor and BIC keep the thesis's timings (seed 001 L957-L962) and the hit rule (L920), and a
+// streamed packet is read as it arrives (L920, L924);
 // Gaudet's expected-latency formula (L1083-L1097).
 #include <gtest/gtest.h>
 #include <tlm_utils/simple_initiator_socket.h>
@@ -49,6 +50,12 @@ TEST(GaudetPert, ImageEqualsTheFunctionalTwinForAnyPertCountModeOrderAndQuantum)
       // packet arriving first would take the only buffer for ever).
       "-p pert_count=2 -p pert.shell.bic.buffers=1 -p pert.prim.bic.buffers=1 "
       "-p pert.shade.bic.buffers=1 -p broadcast.order=random",
+      // The root packet in the ShellProcessor's memory, one ray and one ID register; and
+      // whole packets (no streaming) with the root local, on the bus and in direct memory.
+      "-p pert_count=2 -p pert.shell.root_local=true -p pert.shell.rays_in_flight=1 "
+      "-p pert.shell.bic.id_registers=1",
+      "-p pert_count=3 -p pert.shell.bic.stream=false -p pert.shell.root_local=true",
+      "-p pert_count=2 -p broadcast.mode=direct -p pert.shell.root_local=true",
   };
   int i = 0;
   for (const auto& v : variants) {
@@ -224,6 +231,81 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
   }
 }
 
+TEST(BusInterface, StreamedPacketIsTakenAtItsFirstRecordAndReadAsItArrives) {
+  // Seed 001 L920, L924: the hit line starts the copy into a FIFO buffer, so with `stream` a
+  // packet is taken once its first record (here 2 words) is in and word n is readable at
+  // first word + (n + 1) x 400 ns; the ID register is still freed at full arrival (L912).
+  EXPECT_EQ(rtsim::test::run_in_child([] {
+              using namespace rtsim::platform::gaudet;
+              using rtsim::modules::ModuleParams;
+              using rtsim::modules::ParamDecls;
+              rtsim::params::ParamRegistry r;
+              BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
+              BusInterface::declare_params(ParamDecls(r, "bic"),
+                                           {.value = "1", .description = "test", .source = "test"});
+              BusInterface::declare_stream_param(ParamDecls(r, "bic"), "true", "test");
+              BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
+              BusInterface bic(ModuleParams(r, "bic"), 2);
+              bp.attach(bic);
+              // Packet 0 (2 words) and packet 1 (5 words), ID list {ID, address, size}.
+              const std::uint32_t words[] = {0, 6, 2, 1, 8, 5, 7, 7, 1, 2, 3, 4, 5};
+              struct Driver : sc_core::sc_module {
+                SC_HAS_PROCESS(Driver);
+                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
+                       const std::uint32_t* w)
+                    : sc_module(n), bp(b), bic(i), words(w) {
+                  SC_THREAD(run);
+                }
+                void run() {
+                  for (std::uint32_t a = 0; a < 13; ++a) {
+                    tlm::tlm_generic_payload gp;
+                    std::uint32_t v = words[a];
+                    gp.set_command(tlm::TLM_WRITE_COMMAND);
+                    gp.set_address(a * 4);
+                    gp.set_data_ptr(reinterpret_cast<unsigned char*>(&v));
+                    gp.set_data_length(4);
+                    gp.set_streaming_width(4);
+                    gp.set_byte_enable_ptr(nullptr);
+                    sc_time d = sc_core::SC_ZERO_TIME;
+                    socket->b_transport(gp, d);
+                  }
+                  bp.start(sc_time(0, SC_NS), 2, 3);
+                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                  sc_core::wait(bic.changed_event());
+                  // ID 1's strobe at 1000 ns, its slot ends at 2000, the words start after the
+                  // 800 ns overhead (2800) and the last is in at 4800.
+                  EXPECT_EQ(bic.next_arrival(1), sc_time(2800 + 2 * 400, SC_NS));
+                  EXPECT_FALSE(bic.take(sc_time(3599, SC_NS)).has_value());
+                  const auto p = bic.take(sc_time(3600, SC_NS));
+                  EXPECT_TRUE(p.has_value());
+                  if (!p) return;
+                  EXPECT_EQ(p->arrival, sc_time(4800, SC_NS));
+                  EXPECT_EQ(p->words_in(1), sc_time(3200, SC_NS));
+                  EXPECT_EQ(p->words_in(4), sc_time(4400, SC_NS));
+                  EXPECT_EQ(p->words_in(5), sc_time(4800, SC_NS));
+                  EXPECT_EQ(p->words_in(9), sc_time(4800, SC_NS));
+                  EXPECT_EQ(p->words.size(), 5u);
+                  EXPECT_EQ(p->words[4], 5u);
+                  // The register is freed when the packet has been received (L912).
+                  EXPECT_FALSE(bic.register_free(sc_time(4799, SC_NS)));
+                  EXPECT_TRUE(bic.register_free(sc_time(4800, SC_NS)));
+                  bic.release(*p, sc_time(3600, SC_NS));
+                  done = true;
+                }
+                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
+                BroadcastProcessor& bp;
+                BusInterface& bic;
+                const std::uint32_t* words;
+                bool done = false;
+              } drv("drv", bp, bic, words);
+              drv.socket.bind(bp.memory.socket);
+              sc_core::sc_start(sc_time(1, sc_core::SC_MS));
+              EXPECT_TRUE(drv.done);
+              return ::testing::Test::HasFailure() ? 1 : 0;
+            }),
+            0);
+}
+
 TEST(ExpectedLatency, GaudetsFormula) {
   using rtsim::platform::gaudet::EalInputs;
   using rtsim::platform::gaudet::expected_average_latency_s;
@@ -253,10 +335,11 @@ TEST(GaudetPert, ClassNamesSetEveryPertAndInstanceNamesOne) {
     return stats["simulated_time_s"].get<double>();
   };
   const double plain = frame("gp-inst-0", "");
-  const double one = frame("gp-inst-1", " -p pert1.shell.bic.id_registers=1");
-  const double all = frame("gp-inst-2", " -p pert.shell.bic.id_registers=1");
+  // The default is 1 register: 4 differs from it.
+  const double one = frame("gp-inst-1", " -p pert1.shell.bic.id_registers=4");
+  const double all = frame("gp-inst-2", " -p pert.shell.bic.id_registers=4");
   const double both =
-      frame("gp-inst-3", " -p pert.shell.bic.id_registers=1 -p pert1.shell.bic.id_registers=8");
+      frame("gp-inst-3", " -p pert.shell.bic.id_registers=4 -p pert1.shell.bic.id_registers=1");
   std::cout << "frame time: default " << plain << " s, pert1 only " << one << " s, every PERT "
             << all << " s, every PERT but pert1 " << both << " s\n";
   EXPECT_NE(one, plain);

@@ -541,9 +541,6 @@ TEST(ValidateCommand, BadUsageExitsWithTwo) {
 // Figures known to fail, with the reason (none now: Fig. 2-18 runs on builtin:ullner-sheets-1000,
 // the scene its text describes; on random squares its minimum is ~22 us, see docs/validation.md).
 const std::map<std::string, std::string> kOpenFigures = {
-    {"P3b",
-     "Fig. 6-10's oct latency (0.5 us) is below one 70-word packet's transfer; the model's quad "
-     "and oct latencies come out alike (docs/validation.md)"},
     {"P4a",
      "Fig. 6-11's order effect is not reproduced: a ShellProcessor spends ~40 us a box test, so "
      "the bus has cycled several times whenever it asks again (docs/validation.md)"},

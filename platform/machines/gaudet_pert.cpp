@@ -63,9 +63,11 @@ nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
           {"processing_per_ray_s", t.processing.to_seconds() / rays},
           {"latency_per_ray_s", t.latency.to_seconds() / rays},
           {"pipeline_wait_per_ray_s", t.pipeline_wait.to_seconds() / rays},
+          {"starved_per_ray_s", t.starved.to_seconds() / rays},
           {"processing_s", t.processing.to_seconds()},
           {"latency_s", t.latency.to_seconds()},
-          {"pipeline_wait_s", t.pipeline_wait.to_seconds()}};
+          {"pipeline_wait_s", t.pipeline_wait.to_seconds()},
+          {"starved_s", t.starved.to_seconds()}};
 }
 
 /// stats.json's machine keys (scene_stats, gaudet); `stats` (the registry over the frame)
@@ -89,6 +91,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
       m.values["rays"] = static_cast<double>(t.rays);
       m.values["latency_s"] = t.latency.to_seconds();
       m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
+      m.values["starved_s"] = t.starved.to_seconds();
       // Its Bus Interface Controller's counters (none for direct memory).
       if (const auto* bic = dynamic_cast<const gaudet::BusInterface*>(pert->ports[k].get())) {
         auto& b = stats.module(bic->name());

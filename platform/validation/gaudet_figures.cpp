@@ -196,28 +196,31 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
               Measured m;
               m.value = us(r, key, "gaudet.shell.processing_per_ray_s");
               m.note = "latency (emerges from the bus) " + format_number(shell_latency(r, key)) +
-                       " us per ray, thesis " + format_number(thesis_latency) + " us; " +
+                       " us per ray, thesis " + format_number(thesis_latency) + " us; starved " +
+                       format_number(us(r, key, "gaudet.shell.starved_per_ray_s")) +
+                       " us per ray (not latency); " +
                        format_number(stats_number(r, key, "gaudet.shell.box_tests_per_ray")) +
                        " boxes tested per ray";
               return m;
             },
     });
   }
-  // P3a, P3b: the latency is not calibrated, it emerges from the bus model, so only the
-  // thesis's direction is judged (more, smaller packets to wait for: binary > quad > oct).
+  // P3: the latency is not calibrated, it emerges from the bus model (with the open
+  // assumptions chosen in docs/validation.md's sensitivity table), so magnitudes are judged,
+  // not values: binary > quad > oct, binary over 3x quad, quad within 2x of 5.0 us, oct
+  // under 2 us.
   auto latency_ratio = [&](std::string id, std::string trees, std::string seed_text, double thesis,
-                           const std::string& more, const std::string& less) {
+                           double bound, std::string why, const std::string& more,
+                           const std::string& less) {
     return Figure{
         .id = std::move(id),
         .title = "ShellProcessor latency per ray, " + trees,
         .seed_ref = "seed 001 L1015, L1025-L1030",
         .seed_text = std::move(seed_text),
         .seed_value = thesis,
-        .seed_display = "> 1 (thesis " + format_number(thesis) + ")",
+        .seed_display = "> " + format_number(bound) + " (thesis " + format_number(thesis) + ")",
         .unit = "ratio",
-        .tolerance = Tolerance::above(1,
-                                      "the latency is not calibrated: it emerges from the bus "
-                                      "model, so only the thesis's direction is judged"),
+        .tolerance = Tolerance::above(bound, std::move(why)),
         .workload = tree_workload,
         .runs = {more, less},
         .measure =
@@ -231,9 +234,15 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
   plan.figures.push_back(latency_ratio(
       "P3a", "binary over quad",
       "latency 124.9 us (binary) against 5.0 (quad): more, smaller packets to wait for",
-      124.9 / 5.0, k212, k412));
+      124.9 / 5.0, 3,
+      "the latency is not calibrated: a magnitude, not a value (binary well above quad; the "
+      "thesis's ratio is 25)",
+      k212, k412));
   plan.figures.push_back(latency_ratio("P3b", "quad over oct",
-                                       "latency 5.0 us (quad) against 0.5 (oct)", 10, k412, k812));
+                                       "latency 5.0 us (quad) against 0.5 (oct)", 10, 1,
+                                       "the latency is not calibrated: only the direction of "
+                                       "the thesis's ratio of 10 (P3e bounds oct's latency)",
+                                       k412, k812));
   plan.figures.push_back(Figure{
       .id = "P3c",
       .title = "Quad tree best: total per ray over the better of binary and oct",
@@ -253,6 +262,41 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
                             "totals " + join({b, q, o}) + " us per ray (thesis 592.7/528.9/691.0)"};
           },
   });
+
+  auto latency_value = [&](std::string id, std::string tree, double thesis, Tolerance tolerance,
+                           const std::string& key) {
+    return Figure{
+        .id = std::move(id),
+        .title = "ShellProcessor latency per ray, " + tree,
+        .seed_ref = "seed 001 L1025-L1030",
+        .seed_text = "Fig. 6-10: latency 124.9/5.0/0.5 us per ray (binary/quad/oct)",
+        .seed_value = thesis,
+        .unit = "us",
+        .tolerance = std::move(tolerance),
+        .workload = tree_workload,
+        .runs = {key},
+        .measure =
+            [key](const RunResults& r) {
+              return Measured{shell_latency(r, key),
+                              "starved " +
+                                  format_number(us(r, key, "gaudet.shell.starved_per_ray_s")) +
+                                  " us per ray (not latency)"};
+            },
+    };
+  };
+  plan.figures.push_back(latency_value(
+      "P3d", "quad (412)", 5.0,
+      Tolerance::range(2.5, 10,
+                       "within 2x of the thesis: the latency emerges from the bus and from "
+                       "assumptions the thesis leaves open (rays in flight, ID registers; "
+                       "docs/validation.md)"),
+      k412));
+  plan.figures.push_back(latency_value(
+      "P3e", "oct (812)", 0.5,
+      Tolerance::range(0, 2,
+                       "under 2 us: far below one oct packet's transfer (26.4 us), so nearly "
+                       "every packet must be hidden behind processing, as the thesis's 0.5 says"),
+      k812));
 
   // ---- P4: Fig. 6-11, broadcast order (L1032-L1039) ----
   const char* four[] = {"404", "408", "412", "416", "420"};

@@ -167,7 +167,8 @@ void BroadcastProcessor::run() {
       const std::span<const std::uint32_t> mem(memory.contents());
       const std::size_t first = std::min<std::size_t>(s.address, mem.size());
       const auto words = mem.subspan(first, std::min<std::size_t>(s.words, mem.size() - first));
-      for (BusInterface* b : hitters_) b->capture(s.id, start, arrival, words);
+      for (BusInterface* b : hitters_)
+        b->capture(s.id, start, arrival, start + timing_.packet_overhead, timing_.word_time, words);
       ++stats_.hit_packets;
       stats_.captures += hitters_.size();
       stats_.hit_packet_time += packet_time(s);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "modules/sim_time.hpp"
 #include "platform/machines/gaudet/broadcast_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -19,10 +20,23 @@ void BusInterface::declare_params(const modules::ParamDecls& bic, const IdRegist
             id_registers.source);
 }
 
-BusInterface::BusInterface(const modules::ModuleParams& params)
+void BusInterface::declare_stream_param(const modules::ParamDecls& bic, std::string value,
+                                        std::string source) {
+  bic.declare({.name = "stream",
+               .kind = params::ParamKind::kBool,
+               .default_value = std::move(value),
+               .description = "The processor reads a packet's records as they stream into the "
+                              "BIC's FIFO buffer (record k once its words are in), not only "
+                              "after the whole packet",
+               .source = std::move(source)});
+}
+
+BusInterface::BusInterface(const modules::ModuleParams& params, std::uint32_t stream_unit_words)
     : name_(params.path()),
       registers_(std::max<std::size_t>(params.get_count("id_registers"), 1)),
-      buffers_(std::max<std::size_t>(params.get_count("buffers"), 1)) {}
+      buffers_(std::max<std::size_t>(params.get_count("buffers"), 1)),
+      stream_unit_words_(stream_unit_words > 0 && params.get_bool("stream") ? stream_unit_words
+                                                                            : 0) {}
 
 bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
   if (pending(id)) return true;  // the comparator matches it once for everyone who wants it
@@ -73,7 +87,7 @@ std::optional<sc_core::sc_time> BusInterface::next_arrival(std::optional<std::ui
   std::optional<sc_core::sc_time> best;
   for (const Buffer& b : buffers_) {
     if (b.state != BufferState::kFilled || (id && b.id != *id)) continue;
-    if (!best || b.at < *best) best = b.at;
+    if (!best || b.ready < *best) best = b.ready;
   }
   return best;
 }
@@ -83,19 +97,27 @@ std::optional<ReceivedPacket> BusInterface::take(const sc_core::sc_time& t,
   int pick = -1;
   for (std::size_t i = 0; i < buffers_.size(); ++i) {
     const Buffer& b = buffers_[i];
-    if (b.state != BufferState::kFilled || b.at > t || (id && b.id != *id)) continue;
-    if (pick < 0 || b.at < buffers_[static_cast<std::size_t>(pick)].at) pick = static_cast<int>(i);
+    if (b.state != BufferState::kFilled || b.ready > t || (id && b.id != *id)) continue;
+    if (pick < 0 || b.ready < buffers_[static_cast<std::size_t>(pick)].ready)
+      pick = static_cast<int>(i);
   }
   if (pick < 0) return std::nullopt;
   Buffer& b = buffers_[static_cast<std::size_t>(pick)];
   b.state = BufferState::kInUse;
-  return ReceivedPacket{b.id, b.at, b.start, pick, b.words};
+  return ReceivedPacket{.id = b.id,
+                        .arrival = b.at,
+                        .transfer_start = b.start,
+                        .buffer = pick,
+                        .words = b.words,
+                        .streamed = stream_unit_words_ > 0,
+                        .first_word = b.first_word,
+                        .word_time = b.word_time};
 }
 
 void BusInterface::release(const ReceivedPacket& p, const sc_core::sc_time& t) {
   Buffer& b = buffers_.at(static_cast<std::size_t>(p.buffer));
   b.state = BufferState::kFree;
-  b.at = t;
+  b.at = std::max(t, b.at);  // a streamed packet's FIFO fills until its arrival
   // A free buffer can turn a waiting match into a hit: the bus must look again.
   if (bus_) bus_->wake();
 }
@@ -119,7 +141,9 @@ bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
 }
 
 void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
-                           const sc_core::sc_time& arrival, std::span<const std::uint32_t> words) {
+                           const sc_core::sc_time& arrival, const sc_core::sc_time& first_word,
+                           const sc_core::sc_time& word_time,
+                           std::span<const std::uint32_t> words) {
   const int i = free_buffer(sc_core::sc_time_stamp());
   if (i < 0) return;  // hit() said otherwise: cannot happen
   Buffer& b = buffers_[static_cast<std::size_t>(i)];
@@ -127,6 +151,12 @@ void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
   b.id = id;
   b.at = arrival;
   b.start = start;
+  b.first_word = first_word;
+  b.word_time = word_time;
+  // Streamed: taken once its first record is in (L920, L924).
+  b.ready = stream_unit_words_ > 0
+                ? std::min(arrival, first_word + modules::times(word_time, stream_unit_words_))
+                : arrival;
   b.words.assign(words.begin(), words.end());
   ++received_;
   for (Register& r : registers_) {

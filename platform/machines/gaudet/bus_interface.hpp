@@ -8,7 +8,10 @@
 //    a buffer is free, the BIC drives the (wired-OR) hit line and arms the free buffer. A match
 //    with no free buffer is not a hit: the packet is missed until a later cycle.
 //  * Buffers (§5.4.3, L924): two FIFO buffers; the processor works on a packet in one while the
-//    BIC fills the other, and reads a word per cycle.
+//    BIC fills the other, and reads a word per cycle. The hit line "sets the available buffer to
+//    start copying" (L920) and the buffers are FIFOs (L924): with `stream` set, a packet is
+//    taken as soon as its first record is in and its words are read as they arrive
+//    (ReceivedPacket::words_in); the register is still freed at full arrival (L912).
 // The number of registers and of buffers are parameters (the thesis says "multiple" and 2).
 // Every register and buffer carries the time from which its state holds, so a processor that
 // runs ahead of simulated time cannot make the bus see a request before its time.
@@ -34,8 +37,13 @@ class BusInterface final : public PacketPort {
   };
   /// Its parameters under `bic` ("pert.shell.bic"): `id_registers` and `buffers`.
   static void declare_params(const modules::ParamDecls& bic, const IdRegisters& id_registers);
-  /// `params`: its own, under its name ("pert0.shell.bic").
-  explicit BusInterface(const modules::ModuleParams& params);
+  /// `stream` under `bic`, for a processor that reads its packets record by record (the
+  /// ShellProcessor): `value` "true" or "false", and why.
+  static void declare_stream_param(const modules::ParamDecls& bic, std::string value,
+                                   std::string source);
+  /// `params`: its own, under its name ("pert0.shell.bic"). `stream_unit_words`: with `stream`
+  /// declared and set, a packet is taken once this many words are in; 0: never streams.
+  explicit BusInterface(const modules::ModuleParams& params, std::uint32_t stream_unit_words = 0);
 
   const std::string& name() const { return name_; }
 
@@ -55,9 +63,11 @@ class BusInterface final : public PacketPort {
   /// Some valid register holds `id` (valid at `t`) but no buffer is free: counted as a miss.
   bool hit(std::uint32_t id, const sc_core::sc_time& t);
   /// The packet `id` streams into a free buffer from `start` (the bus starts sending it); its
-  /// last word is in at `arrival`. The register that asked for it is freed on receipt (L912).
-  /// `words`: the packet as the bus carried it, copied into the buffer.
+  /// words follow from `first_word`, one every `word_time`; its last word is in at `arrival`.
+  /// The register that asked for it is freed on receipt (L912). `words`: the packet as the bus
+  /// carried it, copied into the buffer.
   void capture(std::uint32_t id, const sc_core::sc_time& start, const sc_core::sc_time& arrival,
+               const sc_core::sc_time& first_word, const sc_core::sc_time& word_time,
                std::span<const std::uint32_t> words);
 
   std::uint64_t requests() const { return requests_; }
@@ -79,13 +89,16 @@ class BusInterface final : public PacketPort {
     std::uint32_t id = 0;
     sc_core::sc_time at = sc_core::SC_ZERO_TIME;     ///< free from / arrival
     sc_core::sc_time start = sc_core::SC_ZERO_TIME;  ///< its transfer began (filled)
-    std::vector<std::uint32_t> words;                ///< the FIFO's contents (filled)
+    sc_core::sc_time ready = sc_core::SC_ZERO_TIME;  ///< can be taken from (filled)
+    sc_core::sc_time first_word = sc_core::SC_ZERO_TIME, word_time = sc_core::SC_ZERO_TIME;
+    std::vector<std::uint32_t> words;  ///< the FIFO's contents (filled)
   };
   int free_buffer(const sc_core::sc_time& t) const;
 
   std::string name_;
   std::vector<Register> registers_;
   std::vector<Buffer> buffers_;
+  std::uint32_t stream_unit_words_ = 0;  ///< 0: packets are taken at full arrival
   BroadcastProcessor* bus_ = nullptr;
   sc_core::sc_event changed_;
   std::uint64_t requests_ = 0;

@@ -12,10 +12,13 @@
 // Times are absolute. A processor may run ahead of simulated time (temporal decoupling); every
 // request and release is stamped with the processor's local time, and the broadcast side
 // honours a stamp only from that time on, so the outcome does not depend on who ran ahead.
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <systemc>
+
+#include "modules/sim_time.hpp"
 
 namespace rtsim::platform::gaudet {
 
@@ -30,6 +33,17 @@ struct ReceivedPacket {
   /// The packet's words as they arrived (the BIC's FIFO buffer, or the processor's own memory):
   /// what the processor computes on. Valid until release().
   std::span<const std::uint32_t> words{};
+  /// Streamed (BusInterface with `stream`): its words are readable as they come in, word n
+  /// (from 0) at first_word + (n + 1) x word_time. Otherwise only at arrival.
+  bool streamed = false;
+  sc_core::sc_time first_word = sc_core::SC_ZERO_TIME;  ///< its first word starts on the bus
+  sc_core::sc_time word_time = sc_core::SC_ZERO_TIME;
+
+  /// When its first `n` words are readable.
+  sc_core::sc_time words_in(std::size_t n) const {
+    if (!streamed) return arrival;
+    return std::min(arrival, first_word + modules::times(word_time, n));
+  }
 };
 
 class PacketPort {

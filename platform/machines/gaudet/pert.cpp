@@ -44,7 +44,10 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   const sc_core::sc_time first_access = params.get_time("memory.first_access");
   for (std::size_t k = 0; k < 3; ++k) {
     if (!c.buses.empty()) {
-      auto bic = std::make_unique<BusInterface>(params.sub(kKinds[k]).sub("bic"));
+      // The ShellProcessor reads its packets SHELL record by SHELL record (`stream`).
+      auto bic =
+          std::make_unique<BusInterface>(params.sub(kKinds[k]).sub("bic"),
+                                         k == 1 ? ShellProcessor::record_words(c.words.shell) : 0);
       c.buses[k]->attach(*bic);
       ports[k] = std::move(bic);
     } else {
@@ -56,8 +59,10 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
       std::make_unique<ShadeProcessor>("shade", c.registry, index, c.pert_count, c.shade, *ports[0],
                                        params.get_count("queue.prim_to_shade"), c.trace);
   shell = std::make_unique<ShellProcessor>(
-      "shell", c.registry, c.tree, c.sets.shell.packet_words, c.words.shell, *ports[1],
-      params.get_count("queue.shade_to_shell"), c.counters, c.trace);
+      "shell", c.registry, c.tree, c.sets.shell.packet_words, c.words.shell,
+      c.sets.shell.image.packet_count() > 0 ? c.sets.shell.image.packet(0)
+                                            : std::span<const std::uint32_t>{},
+      *ports[1], params.get_count("queue.shade_to_shell"), c.counters, c.trace);
   prim = std::make_unique<PrimProcessor>(
       "prim", c.registry, c.tree, c.geometry, c.words, c.sets.prim.packet_words, c.test_cost,
       *ports[2], params.get_count("queue.shell_to_prim"), c.counters, c.trace);

@@ -6,8 +6,12 @@
 // Its time splits the way Gaudet's performance model does (L1045):
 //   time = (processing/ray + latency/ray + pipelinewait/ray) x rays
 // processing: the processor computes; latency: it waits for broadcast data with nothing else
-// to do; pipelinewait: it waits for the next stage's queue to take a message or for work from
-// the previous stage.
+// to do (L825, L833); pipelinewait: it waits for the next stage's queue to take a message or for
+// work from the previous stage. A fourth term, starved, is kept apart: the processor waits for
+// broadcast data while it could take on another ray but none has come (a ShellProcessor with a
+// free ray slot and an empty input queue). That wait is not the thesis's latency, which is
+// waiting with nothing else to do (L1060-L1062): had a ray come, the processor would have worked
+// on it during the wait. In the processor's accounts (modules::Processor) it is waiting for work.
 #include <optional>
 #include <string>
 #include <systemc>
@@ -27,11 +31,13 @@ struct TimeSplit {
   sc_core::sc_time processing = sc_core::SC_ZERO_TIME;
   sc_core::sc_time latency = sc_core::SC_ZERO_TIME;
   sc_core::sc_time pipeline_wait = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time starved = sc_core::SC_ZERO_TIME;
   std::uint64_t rays = 0;  ///< rays this processor finished its part of
   TimeSplit& operator+=(const TimeSplit& o) {
     processing += o.processing;
     latency += o.latency;
     pipeline_wait += o.pipeline_wait;
+    starved += o.starved;
     rays += o.rays;
     return *this;
   }
@@ -45,12 +51,15 @@ class PertProcessor : public modules::Processor {
                              const BusInterface::IdRegisters& id_registers);
 
   /// Its time in Gaudet's terms (L1045): processing = busy; latency = waiting for broadcast
-  /// data; pipeline wait = waiting for work or for room in the next stage's queue.
+  /// data with nothing else to do; pipeline wait = waiting for work or for room in the next
+  /// stage's queue; starved = waiting for broadcast data with room for a ray that has not come
+  /// (part of the accounts' waiting for work). The four add up to the accounts' total.
   TimeSplit split() const {
     const auto& a = accounts();
     return {.processing = a.busy,
             .latency = a.waiting_for_data,
-            .pipeline_wait = a.waiting_for_work + a.blocked,
+            .pipeline_wait = a.waiting_for_work - starved_ + a.blocked,
+            .starved = starved_,
             .rays = rays_};
   }
   /// Elaboration: the event that starts the frame (the control processor's).
@@ -71,6 +80,14 @@ class PertProcessor : public modules::Processor {
   void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
             bool for_bus) {
     Processor::idle(until, events, for_bus ? Wait::kData : Wait::kWork);
+  }
+  /// Waits as idle() does, starved: broadcast data is awaited, but the processor has room for
+  /// another ray and none has come. Accounted as waiting for work, reported as `starved`.
+  void idle_starved(std::optional<sc_core::sc_time> until,
+                    const sc_core::sc_event_or_list& events) {
+    const sc_core::sc_time before = clock_.now();
+    Processor::idle(until, events, Wait::kWork);
+    starved_ += clock_.now() - before;
   }
   /// Waits for the frame to start.
   void begin_frame();
@@ -105,6 +122,7 @@ class PertProcessor : public modules::Processor {
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
   modules::Link* out_link_ = nullptr;
+  sc_core::sc_time starved_ = sc_core::SC_ZERO_TIME;  ///< see idle_starved()
 };
 
 }  // namespace rtsim::platform::gaudet

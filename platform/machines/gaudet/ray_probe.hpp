@@ -82,7 +82,8 @@ class RayProbe {
                   const sc_core::sc_time& start) {
     if (t.journey == modules::LatencyProbe::kNoJourney) return;
     account(t, bus, Part::kQueueing, p.transfer_start);
-    account(t, bus, Part::kTransfer, p.arrival);
+    // A streamed packet is taken before its last word is in: its transfer counts until then.
+    account(t, bus, Part::kTransfer, p.arrival < start ? p.arrival : start);
     account(t, proc, Part::kQueueing, start);
   }
 

@@ -7,21 +7,36 @@ namespace rtsim::platform::gaudet {
 
 void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
   PertProcessor::declare_params(
-      shell, {.value = "8",
+      shell, {.value = "1",
               .description = "ID registers of the ShellProcessor's BIC (more IDs wait in its "
                              "memory)",
-              .source = "assumption: \"multiple\" (L910); Shell stores IDs continually and "
-                        "stacks the overflow in its own memory"});
-  shell.count("rays_in_flight", "4", "1", "100000", "rays",
+              .source = "assumption: not stated (L910: the ShellProcessor stores IDs continually, "
+                        "\"may potentially overflow\" and stacks the overflow in its own "
+                        "memory); 1 brings Fig. 6-10's latencies nearest the thesis's "
+                        "(scripts/gaudet_sensitivity.py, docs/validation.md)"});
+  shell.count("rays_in_flight", "1", "1", "100000", "rays",
               "Rays a ShellProcessor searches at a time",
-              "assumption: not stated (note 001 §6.4); calibrated on Figs. 6-10 and 6-11, see "
-              "docs/machines.md");
+              "assumption: not stated (note 001 §6.4); one, as \"no parallelism until the first "
+              "packet is retrieved\" (L1060) suggests, brings Figs. 6-10 and 6-11 nearest the "
+              "thesis (scripts/gaudet_sensitivity.py, docs/validation.md)");
+  shell.declare({.name = "root_local",
+                 .kind = params::ParamKind::kBool,
+                 .default_value = "true",
+                 .description = "The ShellProcessor holds packet 0 (the root's children) in its "
+                                "local memory and reads it there for every ray, not off the bus",
+                 .source = "seed 001 L662 (every ray needs the root's children), L863 (the local "
+                           "memory holds the globals)"});
+  BusInterface::declare_stream_param(
+      shell.sub("bic"), "true",
+      "seed 001 L920 (the hit line sets the buffer to start copying), L924 (the buffers are "
+      "FIFOs the SJ16 reads a word a cycle): a SHELL record is tested once its words are in");
 }
 
 ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                                const accel::ShellTree& tree,
                                const std::vector<std::uint32_t>& packet_words,
-                               std::uint32_t record_words, PacketPort& port,
+                               std::uint32_t record_words,
+                               std::span<const std::uint32_t> root_packet, PacketPort& port,
                                std::size_t input_depth, TraceCounters& counters,
                                MachineTrace& trace)
     : PertProcessor(name, registry, trace),
@@ -29,10 +44,13 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::Param
       out("out"),
       tree_(tree),
       packet_words_(packet_words),
-      record_words_(std::max<std::uint32_t>(record_words, 8)),
+      record_words_(ShellProcessor::record_words(record_words)),
       port_(port),
       counters_(counters),
       searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
+  // Loaded with the globals before the frame (L863): its time is not part of the frame.
+  root_local_ = params_.get_bool("root_local") && !packet_words_.empty();
+  if (root_local_) local_root_.assign(root_packet.begin(), root_packet.end());
   SC_THREAD(run);
 }
 
@@ -67,28 +85,41 @@ void ShellProcessor::begin(ShadeToShell msg) {
     return;
   }
   s.outstanding = 1;
-  ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+  if (!root_local_) {
+    ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+    return;
+  }
+  // SHELL_ARRAY[0] from its own memory, read at one cycle a word as a FIFO's (L863).
+  const std::vector<int> rays{slot};
+  const ReceivedPacket root{
+      .id = 0, .arrival = clock_.now(), .transfer_start = clock_.now(), .words = local_root_};
+  read_and_test(root, &rays);
 }
 
 void ShellProcessor::process(const ReceivedPacket& p) {
+  const auto node = waiting_.extract(p.id);
+  read_and_test(p, node.empty() ? nullptr : &node.mapped());
+  port_.release(p, clock_.now());
+}
+
+void ShellProcessor::read_and_test(const ReceivedPacket& p, const std::vector<int>* rays) {
   ++packets_;
   const sc_core::sc_time read_start = clock_.now();
   compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
   const sc_core::sc_time read_end = clock_.now();
-  const auto node = waiting_.extract(p.id);
-  if (!node.empty()) {
+  if (rays) {
     // The packet's SHELL records, read once for every ray waiting for it (as its words were).
     shells_.clear();
     for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
       const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
       if (shell.child_index < (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count()))
-        shells_.push_back(shell);
+        shells_.emplace_back(shell, at + record_words_);
       else
         ++rejected_;
     }
-    const std::size_t sharing = node.mapped().size();
+    const std::size_t sharing = rays->size();
     for (std::size_t i = 0; i < sharing; ++i) {
-      const int slot = node.mapped()[i];
+      const int slot = (*rays)[i];
       Search& s = searches_[static_cast<std::size_t>(slot)];
       ++packet_uses_;
       // The packet was read once for every ray waiting for it: each gets its share.
@@ -96,7 +127,10 @@ void ShellProcessor::process(const ReceivedPacket& p) {
       probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
       // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
       // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
-      for (const accel::Shell& shell : shells_) {
+      for (const auto& [shell, end] : shells_) {
+        // A streamed packet: its record is tested once its words are in (the first ray waits,
+        // the others find them in). Nothing else can be done meanwhile: latency.
+        idle_until(p.words_in(end), Wait::kData);
         children_.clear();
         const std::size_t before = s.leaves.size();
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
@@ -113,7 +147,6 @@ void ShellProcessor::process(const ReceivedPacket& p) {
       if (--s.outstanding == 0) finish(slot);
     }
   }
-  port_.release(p, clock_.now());
 }
 
 void ShellProcessor::finish(int slot) {
@@ -182,8 +215,14 @@ void ShellProcessor::run() {
     };
     if (slot_free) earliest(input.fifo.next_item_time());
     if (!done_.empty()) earliest(out_queue_->next_room_time());
+    // Waiting for a packet is latency only when the processor has nothing else it could do:
+    // with a ray slot free and no ray in its input queue, it is starved of rays instead
+    // (L1060-L1062: waiting that a new ray could overlap is not latency).
     const bool for_bus = !waiting_.empty();
-    idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
+    if (for_bus && slot_free && done_.empty())
+      idle_starved(next, port_.changed_event() | input.fifo.put_event());
+    else
+      idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
   }
 }
 
