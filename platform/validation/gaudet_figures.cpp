@@ -425,11 +425,15 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
       for (int n : ns) curve_runs.push_back(add(PertRun{s, m, "breadth", n}));
   }
   const std::string vax412 = "vax-shells-412";
-  const std::string one = PertRun{"412"}.key();
+  // A single PERT had each processor's data in its own memory (L806): direct memory, no
+  // broadcasting. The adaptive single PERT is printed beside it.
+  const std::string one = PertRun{"412", "direct", "breadth", 1}.key();
+  const std::string one_adaptive = PertRun{"412"}.key();
   plan.figures.push_back(Figure{
       .id = "P6",
-      .title = "One PERT against the VAX-11/750 (scene 412)",
-      .seed_ref = "seed 001 L1141 (after [CHIL85])",
+      .title = "One PERT against the VAX-11/750 (scene 412, each processor's data in its own "
+               "memory)",
+      .seed_ref = "seed 001 L1141 (after [CHIL85]), L806",
       .seed_text = "\"a single PERT runs 20 times faster than a VAX/750\"",
       .seed_value = 20,
       .unit = "x",
@@ -439,23 +443,47 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
           "here run the same search on the same scene (vax.search = shells)"),
       .workload = "builtin:npp-412 at " + size +
                   ": vax-750 with vax.search=shells, and "
-                  "gaudet-pert with 1 PERT (adaptive)",
-      .runs = {vax412, one},
-      .measure = [vax412, one](const RunResults& r) { return Measured{speedup(r, vax412, one)}; },
+                  "gaudet-pert with 1 PERT, broadcast.mode=direct (L806: a single PERT's "
+                  "processors hold their data in their own memories)",
+      .runs = {vax412, one, one_adaptive},
+      .measure =
+          [vax412, one, one_adaptive](const RunResults& r) {
+            return Measured{speedup(r, vax412, one),
+                            "with broadcasting (adaptive): " +
+                                format_number(speedup(r, vax412, one_adaptive)) + "x"};
+          },
   });
   const std::string eight = PertRun{"412", "adaptive", "breadth", 8}.key();
   plan.figures.push_back(Figure{
       .id = "P7",
       .title = "Eight PERTs against the VAX-11/750 (scene 412, adaptive)",
-      .seed_ref = "seed 001 L1135, L1143",
+      .seed_ref = "seed 001 L1135, L1143; prediction L1045",
       .seed_text = "\"two orders of magnitude improvement over a VAX/750 with only 8 PERTs\"",
       .seed_value = 100,
       .unit = "x",
       .tolerance = Tolerance::relative(0.4, "an order of magnitude claim (\"about 100\")"),
       .workload = "builtin:npp-412 at " + size + ", 8 PERTs, adaptive",
       .runs = {vax412, eight},
-      .measure = [vax412,
-                  eight](const RunResults& r) { return Measured{speedup(r, vax412, eight)}; },
+      .measure =
+          [vax412, eight](const RunResults& r) {
+            // The thesis's own prediction (L1045): time = (processing/ray + latency/ray +
+            // pipelinewait/ray) x rays, rays = totalrays / n (L1047), for the PrimProcessor, with
+            // latency/ray from the expected average latency (L1105): eal for each ray that
+            // fetches packets.
+            const auto prim = [&](const char* k) {
+              return stats_number(r, eight, std::string("gaudet.prim.") + k);
+            };
+            const double rays = prim("rays");
+            const double latency = prim("eal.eal_s") * prim("rays_with_packets") / rays;
+            const double predicted_s =
+                (prim("processing_per_ray_s") + latency + prim("pipeline_wait_per_ray_s")) * rays /
+                8.0;
+            const double vax_s = stats_number(r, vax412, "simulated_time_s");
+            return Measured{speedup(r, vax412, eight),
+                            "the thesis's prediction from this run (L1045 with eal, "
+                            "PrimProcessor): " +
+                                format_number(vax_s / predicted_s) + "x"};
+          },
   });
   letter = 'a';
   for (int n : {8, 64}) {
