@@ -119,6 +119,7 @@ class Validation:
         if not os.path.isdir(folder):
             raise common.InputProblem(f"{folder}: not a folder (give the --out of rtsim validate)")
         self.folder = folder
+        self.sensitivity = None  # scripts/gaudet_sensitivity.py --json, given by --sensitivity
         path = os.path.join(folder, "validation.json")
         self.rows = []
         if os.path.exists(path):
@@ -443,10 +444,22 @@ def draw_fig610(ax, val):
             ax.annotate(f"lat {latency:.3g}", (x[i] + w / 2, (p or 0.0) + latency),
                         ha="center", va="bottom", fontsize="x-small")
         labelled |= p is not None or latency is not None
+    # The sensitivity of the simulated bars to the open assumptions (docs/validation.md): each
+    # setting's processing + latency, as a marker beside the simulated bar.
+    rows = (val.sensitivity or {}).get("settings", [])
+    markers = "ov^sD"
+    for k, row in enumerate(rows):
+        ys = []
+        for t in trees:
+            cell = row.get("trees", {}).get(str(GAUDET_FIG610[t][0]), {})
+            ys.append(cell.get("processing_us", float("nan")) + cell.get("latency_us", float("nan")))
+        offset = w / 2 + w * (k + 1) / (len(rows) + 1) - w / 2
+        ax.plot(x + offset, ys, linestyle="none", marker=markers[k % len(markers)], markersize=4,
+                color="black", alpha=0.7, label=row.get("setting", f"setting {k + 1}"))
     ax.set_xticks(x)
     ax.set_xticklabels([f"{t} ({GAUDET_FIG610[t][0]})" for t in trees])
     ax.set_ylabel("ShellProcessor time per ray (µs)")
-    ax.set_ylim(0, max(a + b for a, b in zip(proc, lat)) * 1.25)
+    ax.set_ylim(0, max(a + b for a, b in zip(proc, lat)) * (1.6 if rows else 1.25))
     note = "" if sim else " — no simulated values"
     ax.set_title(f"Fig 6-10: processing + latency per ray, left thesis, right simulated{note}",
                  fontsize="small")
@@ -580,12 +593,21 @@ def main(argv):
                     "(comma-separated)")
     ap.add_argument("--each", default=None, metavar="DIR",
                     help="also write each figure drawn as DIR/NAME.png")
+    ap.add_argument("--sensitivity", default=None, metavar="JSON",
+                    help="fig6-10 also marks processing + latency at each setting of "
+                    "`scripts/gaudet_sensitivity.py --json JSON` (the open assumptions)")
     args = ap.parse_args(argv)
     names = list(FIGURES) if args.figure == "all" else [s.strip() for s in args.figure.split(",")]
     for n in names:
         if n not in DRAW:
             raise common.InputProblem(f"--figure: no figure '{n}' (known: {', '.join(FIGURES)})")
     val = Validation(args.input)
+    if args.sensitivity:
+        data = common.read_json(args.sensitivity)
+        if not isinstance(data, dict) or not isinstance(data.get("settings"), list):
+            raise common.InputProblem(f"{args.sensitivity}: expected the --json output of "
+                                      "scripts/gaudet_sensitivity.py (a 'settings' list)")
+        val.sensitivity = data
     drawn = render(val, names, args.out)
     if args.each:
         for name in drawn:

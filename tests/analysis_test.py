@@ -543,6 +543,23 @@ class FiguresTest(unittest.TestCase, PngMixin):
         r = run_script("figures.py", self.dir, out, "--figure", "fig9-99")
         self.assertEqual(r.returncode, 2)
 
+    def test_fig610_marks_the_sensitivity_settings(self):
+        self.make_validation(with_gaudet=True)
+        sens = os.path.join(self.dir, "sensitivity.json")
+        trees = {s: {"processing_us": 500.0, "latency_us": lat, "starved_us": 0.0}
+                 for s, lat in (("212", 80.5), ("412", 5.15), ("812", 0.72))}
+        with open(sens, "w") as f:
+            json.dump({"size": 40, "settings": [{"setting": "one ray", "trees": trees}]}, f)
+        out = os.path.join(self.dir, "fig610.png")
+        r = run_script("figures.py", self.dir, out, "--figure", "fig6-10", "--sensitivity", sens)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(sens, "w") as f:
+            json.dump({"rows": []}, f)
+        r = run_script("figures.py", self.dir, out, "--figure", "fig6-10", "--sensitivity", sens)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("gaudet_sensitivity.py", r.stderr)
+
 
 @unittest.skipUnless(os.environ.get("RTSIM_BINARY"), "RTSIM_BINARY not set")
 class RealRunTest(unittest.TestCase, PngMixin):
