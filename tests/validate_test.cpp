@@ -565,6 +565,8 @@ TEST(ValidateCommand, RealQuickValidationPasses) {
     const std::string id = row["id"];
     const bool pass = row["pass"];
     const auto open = kOpenFigures.find(id);
+    // validation.json says which figures are known open, and why.
+    EXPECT_EQ(row["open"].is_string(), open != kOpenFigures.end()) << id;
     if (open == kOpenFigures.end()) {
       EXPECT_TRUE(pass) << id << " (" << row["title"].get<std::string>()
                         << ") is out of tolerance; see the table above";

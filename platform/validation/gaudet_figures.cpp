@@ -342,6 +342,11 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
               }
               return Measured{so / sb, "breadth " + join(vb) + " us, other " + join(vo) + " us"};
             },
+        .open =
+            "Fig. 6-11's order effect is not reproduced: no setting of streaming, the root "
+            "packet, rays in flight, ID registers, posting or box-test time gives it; the "
+            "request behaviour it needs is not in the seed (docs/validation.md, open figure "
+            "P4)",
     };
   };
   plan.figures.push_back(order_figure("P4a", "depth-first", depth, thesis_depth));

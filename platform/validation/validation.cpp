@@ -188,7 +188,8 @@ std::vector<Row> evaluate(const Plan& plan, const RunResults& results) {
             .unit = f.unit,
             .workload = f.workload,
             .seed_value = f.seed_value,
-            .tolerance = f.tolerance};
+            .tolerance = f.tolerance,
+            .open = f.open};
     for (const auto& key : f.runs) {
       if (const RunRequest* r = plan.find_run(key)) row.commands.push_back(r->command_line());
     }
@@ -302,7 +303,8 @@ std::string format_table(const std::vector<Row>& rows) {
     cells.push_back({r.id, r.title, r.seed_ref,
                      r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
                      r.simulated ? with_unit(*r.simulated, r.unit) : "-", rel ? percent(*rel) : "-",
-                     r.tolerance.describe(), r.pass() ? "pass" : "FAIL"});
+                     r.tolerance.describe(),
+                     r.pass() ? "pass" : (r.open.empty() ? "FAIL" : "FAIL (open)")});
   }
   std::vector<std::size_t> width(head.size());
   for (std::size_t c = 0; c < head.size(); ++c) {
@@ -333,7 +335,18 @@ std::string format_table(const std::vector<Row>& rows) {
   }
   const auto passed = static_cast<std::size_t>(
       std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.pass(); }));
-  out << "\n" << passed << " of " << rows.size() << " figures pass\n";
+  out << "\n" << passed << " of " << rows.size() << " figures pass";
+  std::size_t open_failing = 0;
+  for (const auto& r : rows) {
+    if (!r.pass() && !r.open.empty()) {
+      if (open_failing++ == 0) out << " (known open:";
+      out << " " << r.id;
+    }
+  }
+  out << (open_failing > 0 ? "; docs/validation.md)\n" : "\n");
+  for (const auto& r : rows) {
+    if (!r.pass() && !r.open.empty()) out << r.id << " is open: " << r.open << "\n";
+  }
   return out.str();
 }
 
@@ -370,6 +383,10 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
     t["why"] = r.tolerance.why;
     j["tolerance"] = t;
     j["pass"] = r.pass();
+    if (r.open.empty())
+      j["open"] = nullptr;
+    else
+      j["open"] = r.open;
     j["note"] = r.note;
     j["error"] = r.error;
     j["workload"] = r.workload;

@@ -100,6 +100,9 @@ struct Figure {
   std::string workload;           ///< what is run, in words
   std::vector<std::string> runs;  ///< keys of the RunRequests whose results it reads
   std::function<Measured(const RunResults&)> measure;
+  /// A known open figure: why the model does not reproduce it yet (docs/validation.md). It is
+  /// still judged; a failure shows as "FAIL (open)" and validation.json carries the reason.
+  std::string open{};
 };
 
 /// A figure's verdict: a row of the table.
@@ -111,6 +114,7 @@ struct Row {
   std::string note{};                   ///< from Measured::note
   std::string error{};                  ///< why there is no value (then the row fails)
   std::vector<std::string> commands{};  ///< command lines of its runs
+  std::string open{};                   ///< Figure::open
 
   bool pass() const;
   /// (simulated - seed) / |seed|; empty without a value, for a qualitative figure, or when
