@@ -64,8 +64,8 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
                                             : std::span<const std::uint32_t>{},
       *ports[1], params.get_count("queue.shade_to_shell"), c.counters, c.trace);
   prim = std::make_unique<PrimProcessor>(
-      "prim", c.registry, c.tree, c.geometry, c.words, c.sets.prim.packet_words, c.test_cost,
-      *ports[2], params.get_count("queue.shell_to_prim"), c.counters, c.trace);
+      "prim", c.registry, c.geometry, c.words, c.sets.prim.packet_words, c.test_cost, *ports[2],
+      params.get_count("queue.shell_to_prim"), c.counters, c.trace);
   for (std::size_t k = 0; k < 3; ++k)
     links[k] = std::make_unique<modules::Link>(params.sub("link").sub(kLinks[k]));
   shade->set_output_link(*links[0]);

@@ -14,7 +14,6 @@ void PrimProcessor::declare_params(const modules::ParamDecls& prim) {
 }
 
 PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                             const accel::ShellTree& tree,
                              const functional::SceneGeometry& geometry,
                              const accel::RecordWords& record_words,
                              const std::vector<std::uint32_t>& packet_words,
@@ -23,7 +22,6 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRe
     : PertProcessor(name, registry, trace),
       input("input", input_depth),
       out("out"),
-      tree_(tree),
       geometry_(geometry),
       record_words_(record_words),
       packet_words_(packet_words),

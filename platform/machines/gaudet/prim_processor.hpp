@@ -40,8 +40,7 @@ class PrimProcessor : public PertProcessor {
   /// `geometry`: the host's copy of the primitives (slot numbers, materials, vertex normals);
   /// `record_words`: the PRIM records' sizes.
   PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                const accel::ShellTree& tree, const functional::SceneGeometry& geometry,
-                const accel::RecordWords& record_words,
+                const functional::SceneGeometry& geometry, const accel::RecordWords& record_words,
                 const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
                 PacketPort& port, std::size_t input_depth, TraceCounters& counters,
                 MachineTrace& trace);
@@ -69,7 +68,6 @@ class PrimProcessor : public PertProcessor {
   bool test_record(const accel::PrimRecord& rec, const Ray& ray, double t_min, double t_max,
                    SurfaceHit& out);
 
-  const accel::ShellTree& tree_;
   const functional::SceneGeometry& geometry_;
   accel::RecordWords record_words_;
   const std::vector<std::uint32_t>& packet_words_;
