@@ -303,14 +303,18 @@ TEST(BadInputRuns, SimulatedTimeNeverWraps) {
 TEST(BadInputRuns, SweepRangesCountWhatTheyCanRepresent) {
   const fs::path dir = scratch_dir("sweep-ranges");
   fs::create_directories(dir);
-  auto list = [&](const std::string& param, const std::string& range) {
+  // `rtsim sweep --list` of a sweep on vax-750 whose one axis is `axis` (from line 4 on).
+  auto list_axis = [&](const std::string& axis) {
     const fs::path file = dir / "sweep.toml";
     {
       std::ofstream(file) << "machine = \"vax-750\"\nscene = \"builtin:npp-412\"\n[[axes]]\n"
-                          << "param = \"" << param << "\"\nrange = " << range << "\n";
+                          << axis;
     }
     return run_shell("timeout 20 " + std::string(RTSIM_BINARY) + " sweep " + file.string() +
                      " --list");
+  };
+  auto list = [&](const std::string& param, const std::string& range) {
+    return list_axis("param = \"" + param + "\"\nrange = " + range + "\n");
   };
   const auto tiny = list("shade.ambient", "{ start = 0.0, stop = 1.0, step = 1e-300 }");
   EXPECT_EQ(tiny.exit_code, 2) << tiny.output;
@@ -334,16 +338,11 @@ TEST(BadInputRuns, SweepRangesCountWhatTheyCanRepresent) {
        {"9223372036854775000", "9223372036854775269", "9223372036854775538", "9223372036854775807"})
     EXPECT_NE(spread.output.find(v), std::string::npos) << v << "\n" << spread.output;
   // One value written two ways is one point: compared as values, not as texts.
-  {
-    const fs::path file = dir / "twice.toml";
-    std::ofstream(file) << "machine = \"vax-750\"\nscene = \"builtin:npp-412\"\n[[axes]]\n"
-                        << "param = \"vax.ray_time\"\nvalues = [\"1 us\", \"2 us\", \"1000 ns\"]\n";
-  }
-  const auto twice = run_shell("timeout 20 " + std::string(RTSIM_BINARY) + " sweep " +
-                               (dir / "twice.toml").string() + " --list");
+  const auto twice =
+      list_axis("param = \"vax.ray_time\"\nvalues = [\"1 us\", \"2 us\", \"1000 ns\"]\n");
   EXPECT_EQ(twice.exit_code, 2) << twice.output;
   EXPECT_NE(
-      twice.output.find("twice.toml:5: the axis of 'vax.ray_time' lists '1000 ns' and '1 us'"),
+      twice.output.find("sweep.toml:5: the axis of 'vax.ray_time' lists '1000 ns' and '1 us'"),
       std::string::npos)
       << twice.output;
   const auto wide =

@@ -34,6 +34,24 @@ fs::path run_ok(const std::string& tag, const std::string& args) {
   return dir;
 }
 
+/// Writes words[0 .. count) into a broadcast processor's memory through its load port, one
+/// 32-bit word at a time (the ID list {ID, address, size} and the packets).
+template <typename Socket>
+void load_words(Socket& socket, const std::uint32_t* words, std::uint32_t count) {
+  for (std::uint32_t a = 0; a < count; ++a) {
+    tlm::tlm_generic_payload gp;
+    std::uint32_t v = words[a];
+    gp.set_command(tlm::TLM_WRITE_COMMAND);
+    gp.set_address(a * 4);
+    gp.set_data_ptr(reinterpret_cast<unsigned char*>(&v));
+    gp.set_data_length(4);
+    gp.set_streaming_width(4);
+    gp.set_byte_enable_ptr(nullptr);
+    sc_core::sc_time d = sc_core::SC_ZERO_TIME;
+    socket->b_transport(gp, d);
+  }
+}
+
 }  // namespace
 
 TEST(GaudetPert, ImageEqualsTheFunctionalTwinForAnyPertCountModeOrderAndQuantum) {
@@ -168,19 +186,7 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
                     SC_THREAD(run);
                   }
                   void run() {
-                    for (std::uint32_t a = 0; a < 9; ++a) {
-                      // The ID list {ID, address, size} and the packets, through the load port.
-                      tlm::tlm_generic_payload gp;
-                      std::uint32_t v = words[a];
-                      gp.set_command(tlm::TLM_WRITE_COMMAND);
-                      gp.set_address(a * 4);
-                      gp.set_data_ptr(reinterpret_cast<unsigned char*>(&v));
-                      gp.set_data_length(4);
-                      gp.set_streaming_width(4);
-                      gp.set_byte_enable_ptr(nullptr);
-                      sc_time d = sc_core::SC_ZERO_TIME;
-                      socket->b_transport(gp, d);
-                    }
+                    load_words(socket, words, 9);
                     bp.start(sc_time(0, SC_NS), 3, 3);
                     EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
                     sc_core::wait(bic.changed_event());
@@ -257,18 +263,7 @@ TEST(BusInterface, StreamedPacketIsTakenAtItsFirstRecordAndReadAsItArrives) {
                   SC_THREAD(run);
                 }
                 void run() {
-                  for (std::uint32_t a = 0; a < 13; ++a) {
-                    tlm::tlm_generic_payload gp;
-                    std::uint32_t v = words[a];
-                    gp.set_command(tlm::TLM_WRITE_COMMAND);
-                    gp.set_address(a * 4);
-                    gp.set_data_ptr(reinterpret_cast<unsigned char*>(&v));
-                    gp.set_data_length(4);
-                    gp.set_streaming_width(4);
-                    gp.set_byte_enable_ptr(nullptr);
-                    sc_time d = sc_core::SC_ZERO_TIME;
-                    socket->b_transport(gp, d);
-                  }
+                  load_words(socket, words, 13);
                   bp.start(sc_time(0, SC_NS), 2, 3);
                   EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
                   sc_core::wait(bic.changed_event());

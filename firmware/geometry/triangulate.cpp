@@ -186,15 +186,12 @@ class EarClipper {
     // grid gives the vertices near the ear: those in the cells that the ear, grown by the
     // containment slack, covers.
     double lo_x = 0.0, lo_y = 0.0, hi_x = 0.0, hi_y = 0.0;
-    if (!slack_bounds(e.a, e.b, e.c, lo_x, lo_y, hi_x, hi_y)) {
-      for (std::size_t j = next_[e.ic]; j != e.ia; j = next_[j]) {
-        if (blocks(j, e)) return false;
-      }
-      return true;
-    }
+    const bool bounded = slack_bounds(e.a, e.b, e.c, lo_x, lo_y, hi_x, hi_y);
     const std::size_t x0 = cell_x(lo_x), x1 = cell_x(hi_x);
     const std::size_t y0 = cell_y(lo_y), y1 = cell_y(hi_y);
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) > remaining_) {  // a large ear: the list is shorter
+    // A thin ear that bounds nothing, or a large one over more cells than vertices remain: the
+    // list of remaining vertices is the shorter search.
+    if (!bounded || (x1 - x0 + 1) * (y1 - y0 + 1) > remaining_) {
       for (std::size_t j = next_[e.ic]; j != e.ia; j = next_[j]) {
         if (blocks(j, e)) return false;
       }
