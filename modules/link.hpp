@@ -24,21 +24,27 @@ class Link {
  public:
   /// A machine preset's defaults for one link, with where they come from.
   struct Defaults {
-    std::string latency;   ///< "0 s"
-    std::string lanes;     ///< "32"
-    std::string bit_rate;  ///< "5 Mbit/s" (per lane)
-    std::string source;
+    std::string latency{};   ///< "0 s"
+    std::string lanes{};     ///< "32"
+    std::string bit_rate{};  ///< "5 Mbit/s" (per lane); or, when empty:
+    std::string bit_time{};  ///< "150 ns": the link is set by its bit time (a bit-serial wire)
+    std::string source{};
   };
-  /// Declares `latency`, `lanes` and `bit_rate` under the link's path.
+  /// Declares `latency`, `lanes` and `bit_rate` (or `bit_time`) under the link's path.
   static void declare_params(const ParamDecls& link, const Defaults& d);
 
   /// Reads its parameters under `params` (its name: "pert0.link.shade_to_shell").
-  explicit Link(const ModuleParams& params);
+  explicit Link(const ModuleParams& params) : Link(params.path(), params) {}
+  /// A link named `name` whose parameters are its class's, under `params` (the pipeline's
+  /// links all read "pipeline.link").
+  Link(std::string name, const ModuleParams& params);
 
   const std::string& name() const { return name_; }
   const sc_core::sc_time& latency() const { return latency_; }
   /// Serialisation time of `bits`.
   sc_core::sc_time serialisation(std::uint64_t bits) const;
+  const sc_core::sc_time& bit_time() const { return bit_time_; }
+  std::uint64_t lanes() const { return lanes_; }
 
   /// A message of `bits` whose first word is ready at `start` and whose last word is written
   /// by `written` (its sender's own pace; = start if it was ready at once): returns when its

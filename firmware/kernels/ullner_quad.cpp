@@ -339,14 +339,26 @@ bool UllnerQuadKernel::intersect_with(const UllnerQuadParams<double>& P, const R
   hit.u = r.u;
   hit.v = r.v;
   hit.geometric_normal = P.n_p();
-  hit.shading_normal = hit.geometric_normal;
-  if (has_corner_normals) {
-    // L452-L456: interpolate, then normalise ("must be normalized before it can be used").
-    const Vec3 n = nrm_a * (r.u * r.v) + nrm_b * r.u + nrm_c * r.v + nrm_d;
-    const double l = glm::length(n);
-    if (l > kUllnerMinShadingNormalLength && std::isfinite(l)) hit.shading_normal = n / l;
-  }
+  hit.shading_normal = shading_normal_at(r.u, r.v, hit.geometric_normal);
   return true;
+}
+
+Vec3 UllnerQuadKernel::shading_normal_at(double u, double v, const Vec3& n_p) const {
+  if (!has_corner_normals) return n_p;
+  // L452-L456: interpolate, then normalise ("must be normalized before it can be used").
+  const Vec3 n = nrm_a * (u * v) + nrm_b * u + nrm_c * v + nrm_d;
+  const double l = glm::length(n);
+  return l > kUllnerMinShadingNormalLength && std::isfinite(l) ? n / l : n_p;
+}
+
+SurfaceHit UllnerQuadKernel::surface_at(double t, double u, double v) const {
+  SurfaceHit hit;
+  hit.t = t;
+  hit.u = u;
+  hit.v = v;
+  hit.geometric_normal = params.n_p();
+  hit.shading_normal = shading_normal_at(u, v, hit.geometric_normal);
+  return hit;
 }
 
 }  // namespace rtsim::kernels

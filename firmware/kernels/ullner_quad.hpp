@@ -441,6 +441,12 @@ struct UllnerQuadKernel {
   /// interpolated from this kernel's corner normals (the host's copy, seed 000 L452-L456).
   bool intersect_with(const UllnerQuadParams<double>& P, const Ray& ray, double t_min, double t_max,
                       SurfaceHit& hit) const;
+  /// The hit a machine reports as t and (u, v) on this polygon (the ray-tracing pipeline's
+  /// result fields, seed 000 L700-L711): the host's copy gives the geometric normal and the
+  /// interpolated shading normal, as intersect_with does.
+  SurfaceHit surface_at(double t, double u, double v) const;
+  /// The corner normals interpolated at (u, v) and normalised (L452-L456); `n_p` without them.
+  Vec3 shading_normal_at(double u, double v, const Vec3& n_p) const;
   Bounds bounds() const { return box; }
   Vec3 geometric_normal() const { return params.n_p(); }
 

@@ -33,6 +33,23 @@ void begin_simulation(const params::ParamRegistry& r) {
   tlm::tlm_global_quantum::instance().set(modules::from_ps(r.get_time_ps("quantum")));
 }
 
+void require_polygons(const std::string& machine, const scenes::Scene& scene) {
+  std::size_t other = 0;
+  std::uint32_t first_line = 0;
+  for (const auto& p : scene.primitives) {
+    if (p.kind == scenes::PrimitiveKind::Polygon) continue;
+    if (other++ == 0) first_line = p.source_line;
+  }
+  if (other > 0)
+    throw InputError(scene.name, first_line,
+                     machine +
+                         " intersects polygons only (convex quadrilaterals, seed 000 L267); this "
+                         "scene has " +
+                         std::to_string(other) +
+                         " sphere/cone/patch primitive(s). Use a polygon scene or another "
+                         "machine (`rtsim list machines`)");
+}
+
 void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
                    const std::vector<modules::Memory*>& memories) {
   for (const auto& f : faults) {

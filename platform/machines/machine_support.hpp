@@ -8,6 +8,10 @@ namespace rtsim::platform {
 /// Converts the scene with the functional renderer's geometry conversion and builds its tracer.
 FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::RenderSettings& s);
 
+/// Ullner's machines intersect convex quadrilaterals only (seed 000 L267): an InputError naming
+/// the first sphere, cone or patch of `scene` otherwise.
+void require_polygons(const std::string& machine, const scenes::Scene& scene);
+
 /// Sets the global TLM quantum from the parameter `quantum`. Call before building modules.
 void begin_simulation(const params::ParamRegistry& registry);
 

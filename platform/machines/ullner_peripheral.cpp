@@ -32,19 +32,7 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
                                            const params::ParamRegistry& r) const {
   // The peripheral holds convex quadrilaterals only (seed 000 L267): polygons are converted
   // into convex quads and triangles-as-quads; anything else cannot be loaded.
-  std::size_t other = 0;
-  std::uint32_t first_line = 0;
-  for (const auto& p : scene.primitives) {
-    if (p.kind == scenes::PrimitiveKind::Polygon) continue;
-    if (other++ == 0) first_line = p.source_line;
-  }
-  if (other > 0)
-    throw InputError(scene.name, first_line,
-                     "ullner-peripheral intersects polygons only (convex quadrilaterals, seed "
-                     "000 L267); this scene has " +
-                         std::to_string(other) +
-                         " sphere/cone/patch primitive(s). Use a polygon scene or another "
-                         "machine (`rtsim list machines`)");
+  require_polygons(name(), scene);
   if (const auto a = r.get_int("peripheral.adder_stages"); a != 1 && a != 3)
     throw InputError(r.where_set("peripheral.adder_stages"), 0,
                      "peripheral.adder_stages must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), "
@@ -87,8 +75,15 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   ullner::Peripheral peripheral("peripheral", *twin.geometry, *twin.tracer, shade, quads, pc,
                                 frame.counters(), trace, probe, r);
   inject_faults(name(), opts.faults, {&peripheral.parameters});
-  ullner::Host host("host", r, scene, twin.settings.shade, frame, peripheral.rays.fifo, pc, opts,
-                    trace, *twin.geometry, probe);
+  const ullner::HostAttachment attached{.ray_queue = peripheral.rays.fifo,
+                                        .ray_link_name = "host.ray_link",
+                                        .ray_link_params = "host.ray_link",
+                                        .lighting = {.enabled = pc.lighting,
+                                                     .interval = pc.intersect_interval,
+                                                     .adder_stages = pc.adder_stages,
+                                                     .rsqrt_stages = pc.rsqrt_stages}};
+  ullner::Host host("host", r, scene, twin.settings.shade, frame, attached, opts, trace,
+                    *twin.geometry, probe);
   host.load_out.bind(peripheral.parameters.socket);
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);

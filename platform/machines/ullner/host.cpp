@@ -12,12 +12,11 @@ namespace rtsim::platform::ullner {
 using modules::times;
 
 namespace {
-/// Formatting one ray request into the queue: 7 words written, a few instructions.
-constexpr Cost kSendCost{.mem_words = RayRequest::kWords, .instructions = 4};
+/// Formatting one ray request into the queue: its words written, a few instructions.
+Cost send_cost(std::uint64_t ray_bits) { return {.mem_words = ray_bits / 32, .instructions = 4}; }
 }  // namespace
 
-void Host::declare_params(const modules::ParamDecls& host) {
-  using params::ParamKind;
+void Host::declare_processor_params(const modules::ParamDecls& host) {
   modules::declare_processor_params(
       host,
       {.clock = "5 MHz",
@@ -29,6 +28,10 @@ void Host::declare_params(const modules::ParamDecls& host) {
        .instruction = 2,
        .source = "assumption: the thesis gives no host costs (seed 000 L476); a VAX-11/780-class "
                  "\"medium-sized host\" (L462) with floating-point accelerator"});
+}
+
+void Host::declare_params(const modules::ParamDecls& host) {
+  declare_processor_params(host);
   host.count("result_queue_depth", "16", "1", "1000000", "results",
              "Depth of the result queue from the peripheral to the host",
              "assumption: queue depths are not given (seed 000 L476)");
@@ -43,34 +46,39 @@ void Host::declare_params(const modules::ParamDecls& host) {
 
 Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
            const scenes::Scene& scene, const shading::ShadeParams& shade,
-           functional::FrameState& frame, const modules::TimedFifo<RayRequest>& ray_queue,
-           const PeripheralSettings& peripheral, const RunOptions& opts, MachineTrace& trace,
-           const functional::SceneGeometry& geometry, modules::LatencyProbe& probe)
+           functional::FrameState& frame, const HostAttachment& attached, const RunOptions& opts,
+           MachineTrace& trace, const functional::SceneGeometry& geometry,
+           modules::LatencyProbe& probe)
     : modules::Processor(name, trace),
       ray_out("ray_out"),
       load_out("load_out"),
+      // With a window, every ray in flight has a slot reserved for its answer.
       results("result_queue",
-              modules::ModuleParams(registry, this->name()).get_count("result_queue_depth")),
+              attached.max_in_flight > 0
+                  ? attached.max_in_flight
+                  : modules::ModuleParams(registry, this->name()).get_count("result_queue_depth")),
+      geometry_(geometry),
       scene_(scene),
       shade_params_(shade),
       frame_(frame),
-      ray_queue_(ray_queue),
-      peripheral_(peripheral),
+      ray_queue_(attached.ray_queue),
+      lighting_devices_(attached.lighting),
+      ray_bits_(attached.ray_bits),
+      max_in_flight_(attached.max_in_flight),
       opts_(opts),
-      geometry_(geometry),
       probe_(probe),
       probe_result_queue_(probe.stage(results.name())),
-      ray_link_(modules::ModuleParams(registry, std::string(this->name()) + ".ray_link")),
+      ray_link_(attached.ray_link_name, modules::ModuleParams(registry, attached.ray_link_params)),
       probe_ray_link_(probe.stage(ray_link_.name())),
       // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
       // at the peripheral's arithmetic rate (L584).
-      lighting_(peripheral.intersect_interval, 1 + 2 * peripheral.adder_stages) {
+      lighting_(attached.lighting.interval, 1 + 2 * attached.lighting.adder_stages) {
   set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
   SC_THREAD(run);
 }
 
 sc_core::sc_time Host::result_time(const Cost& c) {
-  if (!peripheral_.lighting) return timing().time_for(c);
+  if (!lighting_devices_.enabled) return timing().time_for(c);
   // With the lighting extension the host only controls and moves data (L566); the vector
   // arithmetic runs on the inner-product device, 3 multiplies per inner product (L564), and
   // each normalisation through the reciprocal-square-root device.
@@ -81,12 +89,12 @@ sc_core::sc_time Host::result_time(const Cost& c) {
   const sc_core::sc_time start = clock_.now() + host_part;
   auto batch = lighting_.issue(inner_products, start);
   const sc_core::sc_time done =
-      batch.done + times(peripheral_.intersect_interval, peripheral_.rsqrt_stages * c.fp_sqrt);
+      batch.done + times(lighting_devices_.interval, lighting_devices_.rsqrt_stages * c.fp_sqrt);
   return done - clock_.now();
 }
 
 void Host::send(RayRequest req) {
-  const sc_core::sc_time cost = timing().time_for(kSendCost);
+  const sc_core::sc_time cost = timing().time_for(send_cost(ray_bits_));
   const sc_core::sc_time since = clock_.now();
   compute_for(cost, "send");
   req.id = next_id_++;
@@ -95,10 +103,15 @@ void Host::send(RayRequest req) {
   // host writes them; the ray is in the queue when the last one arrives (the host only sends
   // when the queue has room).
   req.journey = probe_.begin(req.sent);
-  req.arrived = ray_link_.transfer(RayRequest::kWireBits, since, req.sent);
+  req.arrived = ray_link_.transfer(ray_bits_, since, req.sent);
   probe_.add(req.journey, probe_ray_link_, modules::LatencyPart::kTransfer, req.arrived - req.sent);
-  modules::send_message(ray_out, req, req.arrived, RayRequest::kWireBits);
+  modules::send_message(ray_out, req, req.arrived, ray_bits_);
   ++outstanding_;
+  in_flight_peak_ = std::max(in_flight_peak_, outstanding_);
+}
+
+bool Host::may_send(const sc_core::sc_time& now) const {
+  return ray_queue_.has_room_by(now) && (max_in_flight_ == 0 || outstanding_ < max_in_flight_);
 }
 
 void Host::load_scene() {
@@ -124,11 +137,11 @@ void Host::load_scene() {
     if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/ullner", "parameter memory load failed");
   }
   clock_.catch_up(delay);
-  frame_start_ = clock_.now();
 }
 
 void Host::run() {
   load_scene();
+  frame_start_ = clock_.now();
   shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
   tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
   tasks::ShadeTask shade(scene_, shade_params_);
@@ -167,7 +180,7 @@ void Host::run() {
         opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
       continue;
     }
-    const bool room = ray_queue_.has_room_by(now);
+    const bool room = may_send(now);
     // Rays spawned by task 2 go first: they finish pixels.
     if (!backlog_.empty() && room) {
       RayRequest req = backlog_.front();
@@ -192,7 +205,9 @@ void Host::run() {
     // peripheral frees ahead of us), else wait in global time for the peripheral.
     // Waiting for room in the ray queue is being blocked on output; waiting for a result is
     // waiting for data (the answers it asked for).
-    const bool want_send = !backlog_.empty() || !vision.done();
+    // A full window (every ray in flight) leaves only answers to wait for.
+    const bool window_open = max_in_flight_ == 0 || outstanding_ < max_in_flight_;
+    const bool want_send = (!backlog_.empty() || !vision.done()) && window_open;
     std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
     bool next_is_room = false;
     if (want_send) {
