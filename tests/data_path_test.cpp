@@ -9,6 +9,9 @@
 //    The PrimProcessors test the PRIM records of theirs: a sphere whose radius word is
 //    corrupted to a huge value is hit by every ray that reaches its leaf shell.
 //    A corrupted ID list stalls the machine: the run says so (exit 2), writing nothing.
+//  * ullner-pipeline: each polygon processor intersects the ray description it received with the
+//    polygon in its registers, shifted in by the host at load time. Flipping d_p of the
+//    processor holding the centre pixel's polygon changes the centre pixel.
 //  * `rtsim run --fault` names a memory and a word; a memory the machine does not have, or a
 //    word past its end, is bad input (exit 2).
 // Each simulation runs in a forked child (SystemC allows one per process).
@@ -117,6 +120,34 @@ TEST(DataPath, PeripheralParameterMemoryWordChangesTheImage) {
   ASSERT_EQ(clean.rgb.size(), static_cast<std::size_t>(kSize * kSize * 3));
   const std::size_t changed = pixels_differing(clean, faulty);
   std::printf("polygon %ld: word %llu flipped, %zu of %d pixels changed\n", slot,
+              static_cast<unsigned long long>(word), changed, kSize * kSize);
+  EXPECT_GT(changed, 0u);
+  const std::size_t centre = (static_cast<std::size_t>(kSize / 2) * kSize + kSize / 2) * 3;
+  EXPECT_NE(clean.rgb[centre] + clean.rgb[centre + 1] + clean.rgb[centre + 2],
+            faulty.rgb[centre] + faulty.rgb[centre + 1] + faulty.rgb[centre + 2])
+      << "the centre pixel's polygon moved but the centre pixel did not change";
+  fs::remove_all(dir);
+}
+
+TEST(DataPath, PipelineProcessorPolygonChangesTheImage) {
+  const fs::path dir = rtsim::test::scratch_dir("data-path-pipeline");
+  fs::create_directories(dir);
+  // The pipeline's twin searches the same quads in the same order as the peripheral's brute
+  // force, and processor k holds slot k: its registers are a line of the polygon words and the
+  // identity (PolygonDescription).
+  const long slot = centre_slot();
+  ASSERT_GE(slot, 0) << "the centre ray of " << kScene << " hits nothing";
+  const std::uint64_t line = rtsim::kernels::kUllnerStoredWords + 1;
+  const std::uint64_t word = static_cast<std::uint64_t>(slot) * line +
+                             static_cast<std::size_t>(rtsim::kernels::QuadParam::d_p);
+  const Frame clean = simulate("ullner-pipeline", kScene, {}, {}, dir / "clean.bin");
+  const Frame faulty =
+      simulate("ullner-pipeline", kScene, {}, {{"pipeline.polygon_registers", word, 0x80000000u}},
+               dir / "faulty.bin");
+  ASSERT_TRUE(clean.ok && faulty.ok);
+  ASSERT_EQ(clean.rgb.size(), static_cast<std::size_t>(kSize * kSize * 3));
+  const std::size_t changed = pixels_differing(clean, faulty);
+  std::printf("processor %ld: word %llu flipped, %zu of %d pixels changed\n", slot,
               static_cast<unsigned long long>(word), changed, kSize * kSize);
   EXPECT_GT(changed, 0u);
   const std::size_t centre = (static_cast<std::size_t>(kSize / 2) * kSize + kSize / 2) * 3;

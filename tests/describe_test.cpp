@@ -79,6 +79,7 @@ TEST_P(Describe, TreeHoldsEveryModuleParameterAndStatisticsGroup) {
 INSTANTIATE_TEST_SUITE_P(Machines, Describe,
                          testing::Values(Case{"gaudet-pert", "builtin:npp-412"},
                                          Case{"ullner-peripheral", "builtin:ullner-cubes"},
+                                         Case{"ullner-pipeline", "builtin:ullner-cubes"},
                                          Case{"vax-750", "builtin:npp-412"}),
                          [](const testing::TestParamInfo<Case>& i) {
                            return rtsim::test::gtest_param_name(i.param.machine);
@@ -96,11 +97,12 @@ TEST(Describe, EveryMachineIsCovered) {
     words >> name;
     if (name == "(none)") continue;  // the functional renderer
     bool covered = false;
-    for (const char* m : {"gaudet-pert", "ullner-peripheral", "vax-750"}) covered |= name == m;
+    for (const char* m : {"gaudet-pert", "ullner-peripheral", "ullner-pipeline", "vax-750"})
+      covered |= name == m;
     EXPECT_TRUE(covered) << name << " has no case in Machines/Describe";
     ++machines;
   }
-  EXPECT_EQ(machines, 3u);
+  EXPECT_EQ(machines, 4u);
 }
 
 TEST(Describe, ConnectionsFollowTheWiring) {

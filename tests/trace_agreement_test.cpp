@@ -129,6 +129,10 @@ const std::map<std::string, std::vector<std::string>>& runs_per_machine() {
        {"--scene builtin:ullner-cubes --width 24 --height 24",
         "--scene builtin:ullner-random-1000 --width 24 --height 24 "
         "-p peripheral.grid.divisions=11"}},
+      {"ullner-pipeline",
+       {"--scene builtin:ullner-cubes --width 24 --height 24",
+        "--scene builtin:ullner-sheets-10 --width 24 --height 24 -p pipeline.engines=10 "
+        "-p host.clock=\"100 GHz\""}},
       {"gaudet-pert",
        {"--scene " + shared_path("scenes/balls-s2.nff") + " --width 24 --height 24",
         "--scene " + shared_path("scenes/balls-s2.nff") +

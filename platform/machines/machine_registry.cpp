@@ -6,6 +6,7 @@
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet_pert.hpp"
 #include "platform/machines/ullner_peripheral.hpp"
+#include "platform/machines/ullner_pipeline.hpp"
 #include "platform/machines/vax750.hpp"
 
 namespace rtsim::platform {
@@ -14,7 +15,8 @@ const std::vector<const Machine*>& machines() {
   static const Vax750 vax;
   static const UllnerPeripheral peripheral;
   static const GaudetPert pert;
-  static const std::vector<const Machine*> all{&vax, &peripheral, &pert};
+  static const UllnerPipeline pipeline;
+  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline};
   return all;
 }
 

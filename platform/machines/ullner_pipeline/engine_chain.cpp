@@ -1,0 +1,212 @@
+#include "platform/machines/ullner_pipeline/engine_chain.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "modules/sim_time.hpp"
+#include "platform/functional/scene_tracer.hpp"
+
+namespace rtsim::platform::ullner_pipeline {
+
+using modules::plus;
+using modules::times;
+using tasks::RayDescription;
+
+void EngineChain::declare_params(const modules::ParamDecls& pipeline) {
+  pipeline.count("engines", "1000", "1", "1000000", "processors",
+                 "Polygon processors in the chain (N): one polygon each; spare ones hold dummy "
+                 "polygons. Every ray passes all of them",
+                 "seed 000 L743 (a thousand processors); L751: ten thousand plausible, a "
+                 "million almost certainly infeasible");
+  const modules::ParamDecls engine = pipeline.sub("engine");
+  engine.time("issue_interval", "5 us",
+              "Time between two ray descriptions a processor accepts: one shift-and-add "
+              "floating-point operation, each operation of the intersection having its own "
+              "unit, pipelined as the peripheral's (Fig. 2-17)",
+              "seed 000 L723 and L2084-L2108: about 5 us per operation (24 integer additions "
+              "of 100-200 ns, shifts at twice that rate, plus a pipelining allowance)");
+  engine.time("hop_latency", "200 ns",
+              "From a processor accepting a description to it starting to pass the description "
+              "on: one bit-serial compare-and-select of the carried and the new fields. With "
+              "the link's 4.8 us a hop is 5.0 us",
+              "seed 000 L2108 (an integer addition: 100-200 ns); L733, L743: a hop is \"about "
+              "five microseconds\"");
+  engine.time("compute_latency", "85 us",
+              "From a description's ray fields arriving to the processor's own t, p_r, u, v "
+              "being ready; the result fields trail the ray fields by this along the whole "
+              "chain (each processor compares its t with the carried t, both ready this late)",
+              "seed 000 L572-L588 (Fig. 2-17: 17 operations deep with one-stage additions) at "
+              "5 us an operation (L723)");
+  modules::Link::declare_params(
+      pipeline.sub("link"),
+      {.latency = "0 s",
+       .lanes = "13",
+       .bit_rate = "",
+       .bit_time = "150 ns",
+       .source = "seed 000 L729-L733: bit-serial, one wire per value (13 each way plus "
+                 "handshake); \"about 150 nanoseconds per bit\" (20-200 ns by technology)"});
+}
+
+EngineChain::EngineChain(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                         const functional::SceneGeometry& geometry, std::uint64_t polygons,
+                         TraceCounters& counters, modules::LatencyProbe& probe)
+    : sc_core::sc_module(name),
+      input("input", 1),
+      load("load"),
+      registers("polygon_registers",
+                modules::ModuleParams(registry, this->name()).get_count("engines") *
+                    PolygonDescription::kWords,
+                PolygonDescription::kWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      result_out("result_out"),
+      registers_port_("registers_port"),
+      geometry_(geometry),
+      polygons_(polygons),
+      counters_(counters),
+      probe_(probe),
+      inner_link_(std::string(this->name()) + ".link",
+                  modules::ModuleParams(registry, std::string(this->name()) + ".link")),
+      link_out_(std::string(this->name()) + ".link_out",
+                modules::ModuleParams(registry, std::string(this->name()) + ".link")),
+      timing_(
+          [&] {
+            const modules::ModuleParams engine(registry, std::string(this->name()) + ".engine");
+            return EngineTiming{.issue_interval = engine.get_time("issue_interval"),
+                                .hop_latency = engine.get_time("hop_latency"),
+                                .compute_latency = engine.get_time("compute_latency")};
+          }(),
+          inner_link_.serialisation(RayDescription::kWireBits),
+          modules::ModuleParams(registry, this->name()).get_count("engines")),
+      polygon_time_(inner_link_.serialisation(PolygonDescription::kWireBits)),
+      overwrites_(timing_.engines(), 0),
+      answers_(timing_.engines(), 0) {
+  load.register_b_transport(this, &EngineChain::load_transport);
+  registers_port_.bind(registers.socket);
+  // A ray meets them in this order (after the host's link in).
+  probe_input_ = probe.stage(input.name());
+  probe_engines_ = probe.stage(std::string(this->name()) + ".engine");
+  probe_link_out_ = probe.stage(link_out_.name());
+  SC_THREAD(run);
+}
+
+sc_core::sc_time EngineChain::engine_busy() const {
+  return times(timing_.engine().issue_interval, descriptions_);
+}
+
+void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  const auto* ext = gp.get_extension<modules::MessageExtension<PolygonLoad>>();
+  if (!ext || !ext->message() || loaded_ >= engines()) {
+    gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return;
+  }
+  PolygonLoad& msg = *ext->message();
+  // The description is in the first processor's input register. It passes its current polygon
+  // on (one polygon time on its output link), then accepts the new one; the processor behind
+  // it does the same a polygon time later, and so on, so the polygon that was in the last
+  // processor reaches the host N polygon times after this one arrived. The next description can
+  // come in once this one is accepted (the register is free).
+  const sc_core::sc_time arrived = sc_core::sc_time_stamp() + delay;
+  const sc_core::sc_time accepted = plus(arrived, polygon_time_);
+  msg.returned_at = plus(arrived, times(polygon_time_, engines()));
+  // After N presentations the j-th rests in processor N-1-j, and what leaves the chain at the
+  // j-th is what processor N-1-j held before the load began: each line is written once, where
+  // its description comes to rest (the shifting in between moves it unchanged).
+  const std::uint64_t line = engines() - 1 - loaded_;
+  const auto& words = registers.contents();
+  std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
+              PolygonDescription::kWords, msg.returned.words.begin());
+  tlm::tlm_generic_payload write;
+  write.set_command(tlm::TLM_WRITE_COMMAND);
+  write.set_address(line * PolygonDescription::kWords * 4);
+  write.set_data_ptr(reinterpret_cast<unsigned char*>(msg.presented.words.data()));
+  write.set_data_length(PolygonDescription::kWords * 4);
+  write.set_streaming_width(PolygonDescription::kWords * 4);
+  write.set_byte_enable_ptr(nullptr);
+  write.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  registers_port_->b_transport(write, unused);
+  if (write.is_response_error()) {
+    gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return;
+  }
+  ++loaded_;
+  delay = accepted - sc_core::sc_time_stamp();
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+const std::vector<kernels::UllnerQuadParams<double>>& EngineChain::polygons() {
+  if (registers.words_written() == decoded_after_) return decoded_;
+  const auto& words = registers.contents();
+  decoded_.resize(engines());
+  for (std::uint64_t k = 0; k < engines(); ++k)
+    decoded_[k] = kernels::load_words(std::span<const std::uint32_t, kernels::kUllnerStoredWords>(
+        words.data() + k * PolygonDescription::kWords, kernels::kUllnerStoredWords));
+  decoded_after_ = registers.words_written();
+  return decoded_;
+}
+
+ullner::RayResult EngineChain::read_answer(const ullner::RayRequest& req, const RayDescription& d) {
+  ullner::RayResult res;
+  res.request = req;
+  // A dummy's identity (or none) is no answer (L719).
+  res.found = d.i < polygons_;
+  if (!res.found) return res;
+  const auto& quad = std::get<kernels::UllnerQuadKernel>(geometry_.shapes[d.i].shape);
+  functional::fill_hit(geometry_, d.i, quad.surface_at(d.t, d.u, d.v), res.hit);
+  if (req.ray.kind != RayKind::Shadow) ++counters_.hits;
+  return res;
+}
+
+void EngineChain::run() {
+  const EngineTiming& engine = timing_.engine();
+  const std::uint64_t n = engines();
+  sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
+  for (;;) {
+    if (input.fifo.empty()) {
+      clock_.sync();
+      while (input.fifo.empty()) sc_core::wait(input.fifo.put_event());
+      clock_.resync();
+    }
+    // The first processor accepts the description once it has arrived and its previous one is
+    // an issue interval in: that frees its input register for the host.
+    sc_core::sc_time accepted;
+    const ullner::RayRequest req = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
+    clock_.catch_up(accepted);
+    next_accept = plus(accepted, engine.issue_interval);
+    engine_timeline_.add(accepted, engine.issue_interval);
+    ++descriptions_;
+
+    // The data: the description passes every processor in chain order. The host injects
+    // (r0, r1) with t at the ray's far limit: infinity for vision rays (L704), the light's
+    // distance for shadow rays, so only an occluder before the light answers.
+    RayDescription d;
+    d.r0 = req.ray.ray.origin;
+    d.r1_minus_r0 = req.ray.ray.direction;
+    d.t = req.ray.t_max;
+    const auto ray = kernels::UllnerRay<double>::make(d.r0, d.r1_minus_r0);
+    const auto& held = polygons();
+    for (std::uint64_t k = 0; k < n; ++k)
+      if (tasks::pass_ray_description(d, ray, held[k], static_cast<std::uint32_t>(k)))
+        ++overwrites_[k];
+    counters_.intersection_tests += n;
+    if (d.i < n) ++answers_[d.i];
+
+    // The time: the first inner link carries it as every inner link does; the last processor
+    // accepts it by ChainTiming's formula, and its complete description crosses the last link.
+    if (n > 1) inner_link_.transfer(RayDescription::kWireBits, plus(accepted, engine.hop_latency));
+    const sc_core::sc_time last = timing_.last_accepts(accepted);
+    const sc_core::sc_time leaves = timing_.leaves(last);
+    ullner::RayResult res = read_answer(req, d);
+    res.service_start = accepted;
+    res.answered = leaves;
+    res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves);
+    transit_total_ += leaves - accepted;
+    using modules::LatencyPart;
+    probe_.add(req.journey, probe_input_, LatencyPart::kQueueing, accepted - req.arrived);
+    probe_.add(req.journey, probe_engines_, LatencyPart::kService, leaves - accepted);
+    probe_.add(req.journey, probe_link_out_, LatencyPart::kTransfer, res.arrived - leaves);
+    // The host reserved a slot for every ray in flight, so this never waits.
+    modules::send_message(result_out, res, res.arrived, RayDescription::kWireBits);
+  }
+}
+
+}  // namespace rtsim::platform::ullner_pipeline

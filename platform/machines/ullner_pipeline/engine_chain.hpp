@@ -1,0 +1,112 @@
+#pragma once
+// The ray-tracing pipeline proper (seed 000 §2.4, Fig. 2-23): N polygon processors in a chain,
+// each holding one polygon, joined by bit-serial links (13 wires each way plus handshake,
+// L729-L731); the host drives the unused input at one end and reads the unused output at the
+// other.
+//
+// The processors are identical, so the chain is one module with one thread, not N: for each ray
+// description the data passes every processor in order (each intersects the description it
+// received with the polygon in its registers and passes on the one it wrote, L702-L713), and the
+// time it reaches the far end is arithmetic (ChainTiming). Memory grows by a register line and two
+// counters a processor; wall time by one intersection a processor a ray (which the hardware does).
+//
+// What the host reads is the description that came out of the last processor: its identity
+// field names the polygon (dummies' identities are ignored, L719) and its t and (u, v) the point;
+// the host shades with its own copy of that polygon (its normal and corner normals, L452-L456).
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+
+#include <cstdint>
+#include <systemc>
+#include <vector>
+
+#include "firmware/kernels/ullner_quad.hpp"
+#include "firmware/tasks/polygon_processor_task.hpp"
+#include "firmware/trace_counters.hpp"
+#include "modules/busy_timeline.hpp"
+#include "modules/latency_probe.hpp"
+#include "modules/link.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/memory.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/module_params.hpp"
+#include "platform/functional/scene_geometry.hpp"
+#include "platform/machines/ullner/messages.hpp"
+#include "platform/machines/ullner_pipeline/chain_timing.hpp"
+#include "platform/machines/ullner_pipeline/polygon_load.hpp"
+
+namespace rtsim::platform::ullner_pipeline {
+
+class EngineChain : public sc_core::sc_module {
+ public:
+  /// The first processor's input register: one description (the host is held until it is free).
+  modules::MessageQueue<ullner::RayRequest> input;
+  /// Polygon descriptions presented by the host (a PolygonLoad on each write).
+  tlm_utils::simple_target_socket<EngineChain> load;
+  /// The processors' polygon registers: processor k's description at line k
+  /// (PolygonDescription::kWords words). A --fault on a word corrupts that processor's polygon
+  /// as it is shifted in.
+  modules::Memory registers;
+  tlm_utils::simple_initiator_socket<EngineChain> result_out;  ///< to the host's result queue
+
+  /// Its parameters under `pipeline`: the number of processors, a processor's timing
+  /// (`engine.*`) and the links' (`link.*`).
+  static void declare_params(const modules::ParamDecls& pipeline);
+
+  SC_HAS_PROCESS(EngineChain);
+  /// `geometry`: the host's copy of the scene (`polygons` of it are loaded; the host reads hits
+  /// on them with it).
+  EngineChain(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+              const functional::SceneGeometry& geometry, std::uint64_t polygons,
+              TraceCounters& counters, modules::LatencyProbe& probe);
+
+  std::uint64_t engines() const { return timing_.engines(); }
+  const ChainTiming& timing() const { return timing_; }
+  /// Descriptions every processor passed.
+  std::uint64_t descriptions() const { return descriptions_; }
+  /// Busy time of each processor: one issue interval a description.
+  sc_core::sc_time engine_busy() const;
+  /// The first processor's issue slots (every processor's, shifted along the chain).
+  const modules::BusyTimeline& engine_timeline() const { return engine_timeline_; }
+  /// Per processor: descriptions it overwrote, and answers it gave (the description left the
+  /// chain naming it).
+  const std::vector<std::uint64_t>& overwrites() const { return overwrites_; }
+  const std::vector<std::uint64_t>& answers() const { return answers_; }
+  /// The link from the first processor to the second (every inner link carries the same), and
+  /// the last processor's link to the host.
+  const modules::Link& inner_link() const { return inner_link_; }
+  const modules::Link& link_out() const { return link_out_; }
+  /// Polygon descriptions shifted in, and the time one takes over a link.
+  std::uint64_t loaded() const { return loaded_; }
+  sc_core::sc_time polygon_time() const { return polygon_time_; }
+  /// Sum over descriptions of the time from the first processor accepting it to its answer
+  /// leaving the last one.
+  sc_core::sc_time transit_total() const { return transit_total_; }
+
+ private:
+  void run();
+  void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  /// The processors' polygons as their registers hold them (decoded again after any write).
+  const std::vector<kernels::UllnerQuadParams<double>>& polygons();
+  ullner::RayResult read_answer(const ullner::RayRequest& req, const tasks::RayDescription& d);
+
+  tlm_utils::simple_initiator_socket<EngineChain> registers_port_;  ///< the load's writes
+  const functional::SceneGeometry& geometry_;
+  std::uint64_t polygons_;
+  TraceCounters& counters_;
+  modules::LatencyProbe& probe_;
+  int probe_input_ = -1, probe_engines_ = -1, probe_link_out_ = -1;
+  modules::Link inner_link_;
+  modules::Link link_out_;
+  ChainTiming timing_;
+  sc_core::sc_time polygon_time_;
+  modules::LocalClock clock_;  ///< the first processor's time
+  std::vector<kernels::UllnerQuadParams<double>> decoded_;
+  std::uint64_t decoded_after_ = ~std::uint64_t{0};  ///< registers' words_written() then
+  std::vector<std::uint64_t> overwrites_, answers_;
+  modules::BusyTimeline engine_timeline_;
+  std::uint64_t descriptions_ = 0, loaded_ = 0;
+  sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;
+};
+
+}  // namespace rtsim::platform::ullner_pipeline

@@ -1,0 +1,107 @@
+#include "platform/machines/ullner_pipeline/pipeline_host.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "firmware/kernels/ullner_quad_words.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/sim_time.hpp"
+#include "platform/functional/scene_geometry.hpp"
+
+namespace rtsim::platform::ullner_pipeline {
+
+void PipelineHost::declare_params(const modules::ParamDecls& host) {
+  Host::declare_processor_params(host);
+  host.count("rays_in_flight", "16384", "1", "1000000", "rays",
+             "Rays the host has sent and not yet had answered, at most: it must \"pursue many "
+             "successive ray tracing computations at once\"; each has a slot reserved for its "
+             "answer, so the chain never waits for the host to read one",
+             "seed 000 L715; assumption: enough for 10,000 processors (L751), each holding one "
+             "description, plus the result fields' lag");
+  host.declare({.name = "dummy_distance",
+                .kind = params::ParamKind::kDouble,
+                .default_value = "1e6",
+                .min = "2",
+                .max = "1e12",
+                .unit = "extents",
+                .description = "Where the dummy polygons of spare processors lie: this many "
+                               "modelling-space extents from its centre (along +z), so every "
+                               "real polygon a ray meets is closer than a dummy",
+                .source = "seed 000 L719 (\"very far away from the scene model\"); assumption: "
+                          "far beyond any eye or light a scene places"});
+}
+
+PipelineHost::PipelineHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                           const scenes::Scene& scene, const shading::ShadeParams& shade,
+                           functional::FrameState& frame, const ullner::HostAttachment& attached,
+                           const RunOptions& opts, MachineTrace& trace,
+                           const functional::SceneGeometry& geometry, modules::LatencyProbe& probe,
+                           std::uint64_t engines, const Bounds& modelling_space)
+    : Host(name, registry, scene, shade, frame, attached, opts, trace, geometry, probe),
+      engines_(engines),
+      modelling_space_(modelling_space),
+      dummy_distance_(modules::ModuleParams(registry, this->name()).get_double("dummy_distance")) {}
+
+PolygonDescription PipelineHost::dummy(const Bounds& space, double distance, std::uint32_t id) {
+  const double e = functional::scene_extent(space);
+  const Vec3 c = space.center() + Vec3(0.0, 0.0, distance * e);
+  const double h = 0.5 * e;
+  const auto quad = kernels::UllnerQuadKernel::from(c + Vec3(-h, -h, 0.0), c + Vec3(h, -h, 0.0),
+                                                    c + Vec3(h, h, 0.0), c + Vec3(-h, h, 0.0));
+  PolygonDescription d;
+  kernels::store_words(quad->params, std::span<std::uint32_t, kernels::kUllnerStoredWords>(
+                                         d.words.data(), kernels::kUllnerStoredWords));
+  d.words[PolygonDescription::kIdWord] = id;
+  return d;
+}
+
+void PipelineHost::load_scene() {
+  // N presentations: the last one rests in the first processor, so the host presents the
+  // dummies of the spare processors first (they end at the far end) and polygon 0 last; the
+  // j-th rests in processor N-1-j with identity N-1-j. Formatting a description is the host's
+  // (its words written); the load is timed apart from the frame, so it is not counted as the
+  // frame's busy time or link traffic.
+  const std::uint64_t polygons = geometry_.shapes.size();
+  PolygonLoad msg;
+  modules::MessageExtension<PolygonLoad> ext(&msg);
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_address(0);
+  gp.set_data_ptr(nullptr);
+  gp.set_data_length(PolygonDescription::kWords * 4);
+  gp.set_streaming_width(PolygonDescription::kWords * 4);
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_extension(&ext);
+  const sc_core::sc_time format =
+      timing().time_for(Cost{.mem_words = PolygonDescription::kWords, .instructions = 4});
+  const sc_core::sc_time on_link = link_to_machine().serialisation(PolygonDescription::kWireBits);
+  sc_core::sc_time all_back = clock_.now();
+  const PolygonDescription far = dummy(modelling_space_, dummy_distance_, 0);
+  for (std::uint64_t j = 0; j < engines_; ++j) {
+    const std::uint64_t slot = engines_ - 1 - j;
+    if (slot >= polygons) {
+      msg.presented = far;
+    } else {
+      const auto& quad = std::get<kernels::UllnerQuadKernel>(geometry_.shapes[slot].shape);
+      kernels::store_words(quad.params,
+                           std::span<std::uint32_t, kernels::kUllnerStoredWords>(
+                               msg.presented.words.data(), kernels::kUllnerStoredWords));
+    }
+    msg.presented.words[PolygonDescription::kIdWord] = static_cast<std::uint32_t>(slot);
+    clock_.advance(format);
+    const sc_core::sc_time arrived = modules::plus(clock_.now(), on_link);
+    sc_core::sc_time delay = arrived - sc_core::sc_time_stamp();
+    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    load_out->b_transport(gp, delay);
+    if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/ullner-pipeline", "polygon load failed");
+    // Held until the first processor accepted it (its input register is free again).
+    clock_.catch_up(sc_core::sc_time_stamp() + delay);
+    all_back = std::max(all_back, msg.returned_at);
+    ++returned_;
+  }
+  gp.clear_extension(&ext);
+  // Loaded when the last description the chain held is back at the host.
+  clock_.catch_up(all_back);
+}
+
+}  // namespace rtsim::platform::ullner_pipeline

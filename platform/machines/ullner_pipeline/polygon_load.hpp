@@ -1,0 +1,32 @@
+#pragma once
+// Loading the pipeline (seed 000 L717-L719): the host presents a polygon description to the
+// first processor, which "passes its current polygon to the second processor before accepting
+// the new polygon"; every processor does the same, so the chain shifts by one position and "the
+// description formerly held in the final processor is shifted back to the host".
+#include <array>
+#include <cstdint>
+#include <systemc>
+
+#include "firmware/kernels/ullner_quad_words.hpp"
+
+namespace rtsim::platform::ullner_pipeline {
+
+/// "Five vector and five scalar values, as they did in the ray tracing peripheral ... an
+/// additional value that serves to identify the polygon" (L717): the peripheral's line of words
+/// (the 20 parameters plus the model's 4 pole thresholds and flag word, ullner_quad_words.hpp)
+/// and the identity.
+struct PolygonDescription {
+  static constexpr unsigned kIdWord = kernels::kUllnerStoredWords;
+  static constexpr unsigned kWords = kernels::kUllnerStoredWords + 1;
+  static constexpr std::uint64_t kWireBits = 32 * kWords;
+  std::array<std::uint32_t, kWords> words{};
+};
+
+/// One presentation: the description the host sends in, and what comes back out of the far end.
+struct PolygonLoad {
+  PolygonDescription presented;
+  PolygonDescription returned;                           ///< set by the chain
+  sc_core::sc_time returned_at = sc_core::SC_ZERO_TIME;  ///< when it reaches the host
+};
+
+}  // namespace rtsim::platform::ullner_pipeline

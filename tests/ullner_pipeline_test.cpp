@@ -1,0 +1,156 @@
+// ullner-pipeline (seed 000 §2.4): the image is the functional twin's byte for byte for every
+// chain length and link bit time; the chain's timing follows its formulas (throughput one ray
+// per max(issue interval, 32 bit times) whatever N, latency N hops, the load's shifting); a host
+// slower than the chain sets the pace and leaves the processors idle (L745); bad sizes are
+// bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::read_json;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+/// A host so fast its costs vanish beside the chain's microseconds.
+const std::string kFastHost = " -p host.clock=\"100 GHz\"";
+
+/// `rtsim run --machine ullner-pipeline ARGS` into a scratch folder; its stats.json.
+nlohmann::json run_pipeline(const std::string& tag, const std::string& args) {
+  const fs::path dir = scratch_dir("pipeline-" + tag);
+  const auto r = run_rtsim("run --machine ullner-pipeline " + args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  if (r.exit_code != 0) return {};
+  auto stats = read_json(dir / "stats.json");
+  stats["image_bytes"] = read_file(dir / "image.png").size();
+  stats["image_png"] = (dir / "image.png").string();
+  return stats;
+}
+
+TEST(UllnerPipeline, ImageEqualsTheFunctionalRenderForEveryLengthAndBitTime) {
+  // ullner-cubes: 498 quads with lights (shadow rays); tetra-s3: triangles, hither 1.
+  for (const std::string& path :
+       {std::string("builtin:ullner-cubes"), rtsim::test::shared_path("scenes/tetra-s3.nff")}) {
+    const fs::path golden = scratch_dir("pipeline-golden");
+    const auto g = run_rtsim("render --machine ullner-pipeline --scene " + path +
+                             " --width 20 --height 20 -q --out " + golden.string());
+    ASSERT_EQ(g.exit_code, 0) << g.output;
+    const std::string want = read_file(golden / "image.png");
+    for (const char* engines : {"500", "1000", "4096"}) {
+      for (const char* bit_time : {"20 ns", "150 ns", "200 ns"}) {
+        const std::string args = "--scene " + path + " --width 20 --height 20 --overhead" +
+                                 " -p pipeline.engines=" + engines +
+                                 " -p pipeline.link.bit_time=\"" + bit_time + "\"";
+        const auto s = run_pipeline("image", args);
+        ASSERT_FALSE(s.empty());
+        EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << args;
+        EXPECT_EQ(read_file(s.at("image_png").get<std::string>()), want) << args;
+      }
+    }
+    fs::remove_all(golden);
+  }
+}
+
+TEST(UllnerPipeline, ThroughputIsOneRayPerSpacingWhateverTheLength) {
+  // No lights: every ray is a vision ray, all independent, so a fast host keeps the chain full.
+  // Frame = (rays - 1) spacing + the chain's latency; the latency of every ray is N hops.
+  for (const auto& [engines, scene] :
+       {std::pair{10, "builtin:ullner-sheets-10"}, std::pair{100, "builtin:ullner-random-100"},
+        std::pair{1000, "builtin:ullner-random-1000"}}) {
+    const auto s = run_pipeline("throughput", std::string("--scene ") + scene +
+                                                  " --width 24 --height 24 -p pipeline.engines=" +
+                                                  std::to_string(engines) + kFastHost);
+    ASSERT_FALSE(s.empty());
+    const auto& p = s.at("pipeline");
+    const double spacing = p.at("spacing_s").get<double>();
+    const double latency = p.at("latency_s").get<double>();
+    const double rays = p.at("rays").get<double>();
+    const double frame = s.at("simulated_time_s").get<double>();
+    const double want = (rays - 1) * spacing + latency;
+    std::printf(
+        "N = %d: spacing %.3g us (seed: ~5 us), latency %.4g ms (seed: N x 5 us = %.4g "
+        "ms), frame %.6g s, formula %.6g s\n",
+        engines, spacing * 1e6, latency * 1e3, engines * 5e-3 * 1e-3 * 1e3, frame, want);
+    EXPECT_DOUBLE_EQ(spacing, 5e-6);  // max(5 us issue interval, 32 x 150 ns)
+    EXPECT_NEAR(frame, want, 1e-4 * want);
+    // From the host starting to send (its own microseconds at most) to it taking the answer.
+    EXPECT_NEAR(s.at("ray_latency_s").at("p50").get<double>(), latency, 1e-6);
+    // L743: latency N x 5 us (the compute latency and the two host links besides).
+    EXPECT_NEAR(latency, engines * 5e-6, 0.1 * engines * 5e-6 + 100e-6);
+  }
+}
+
+TEST(UllnerPipeline, SlowBitsMakeTheLinksTheBottleneck) {
+  // 200 ns a bit: 32 bit times = 6.4 us > the 5 us issue interval (L735).
+  const auto s = run_pipeline("bits",
+                              "--scene builtin:ullner-random-100 --width 16 --height 16 "
+                              "-p pipeline.engines=100 -p pipeline.link.bit_time=\"200 ns\"" +
+                                  kFastHost);
+  ASSERT_FALSE(s.empty());
+  EXPECT_DOUBLE_EQ(s["pipeline"]["spacing_s"].get<double>(), 6.4e-6);
+  EXPECT_DOUBLE_EQ(s["pipeline"]["hop_s"].get<double>(), 6.6e-6);
+}
+
+TEST(UllnerPipeline, ASlowHostSetsThePaceAndTheProcessorsIdle) {
+  // L745: the default host (a medium-scale computer) cannot produce and consume a ray every
+  // 5 us; the frame then follows the host and most processors are idle.
+  const auto s = run_pipeline("host-bound", "--scene builtin:ullner-cubes --width 48 --height 48");
+  ASSERT_FALSE(s.empty());
+  const auto& p = s.at("pipeline");
+  const double frame = s.at("simulated_time_s").get<double>();
+  const double host_busy = s.at("modules").at("host").at("busy_s").get<double>();
+  const double latency = p.at("latency_s").get<double>();
+  std::printf(
+      "host busy %.4g s of a %.4g s frame (chain latency %.3g ms), chain utilisation "
+      "%.3f\n",
+      host_busy, frame, latency * 1e3, p.at("chain_utilization").get<double>());
+  // The host is idle only while the chain fills and drains: at the end each generation of rays
+  // (vision, shadow, reflected) waits one chain latency for its answers.
+  EXPECT_GT(host_busy / frame, 0.9);
+  EXPECT_LT(p.at("chain_utilization").get<double>(), 0.2);
+  EXPECT_LT(s.at("modules").at("pipeline.engine").at("utilization").get<double>(), 0.2);
+}
+
+TEST(UllnerPipeline, LoadShiftsEveryDescriptionThroughTheChain) {
+  // Presentation j: the host formats it (26 words, 4 instructions: 60 cycles at 5 MHz = 12 us),
+  // the link carries it (64 bit times = 9.6 us), the first processor passes its polygon on
+  // (9.6 us) and accepts; the last description the chain held reaches the host N polygon times
+  // after the last presentation arrived.
+  for (const int engines : {500, 2000}) {
+    const auto s = run_pipeline("load",
+                                "--scene builtin:ullner-cubes --width 8 --height 8 "
+                                "-p pipeline.engines=" +
+                                    std::to_string(engines));
+    ASSERT_FALSE(s.empty());
+    const double f = 12e-6, p = 9.6e-6, n = engines;
+    const double want = (n - 1) * (f + 2 * p) + f + p + n * p;
+    EXPECT_NEAR(s["pipeline"]["load_time_s"].get<double>(), want, 1e-9 * want) << engines;
+    EXPECT_EQ(s["pipeline"]["load_descriptions"], engines);
+    EXPECT_EQ(s["modules"]["pipeline.engine"]["dummies"], engines - 498);
+  }
+}
+
+TEST(UllnerPipeline, TooFewProcessorsIsBadInput) {
+  const fs::path dir = scratch_dir("pipeline-small");
+  const auto r = run_rtsim(
+      "run --machine ullner-pipeline --scene builtin:ullner-cubes -p pipeline.engines=100 -q "
+      "--out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("498 quadrilaterals"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("pipeline.engines"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+  const auto spheres =
+      run_rtsim("run --machine ullner-pipeline --scene builtin:npp-412 -q --out " + dir.string());
+  EXPECT_EQ(spheres.exit_code, 2) << spheres.output;
+  EXPECT_NE(spheres.output.find("polygons only"), std::string::npos) << spheres.output;
+}
+
+}  // namespace
