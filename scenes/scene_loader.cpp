@@ -60,6 +60,9 @@ const std::vector<BuiltinScene>& builtin_scenes() {
     list.push_back({std::string(kUllnerSheetsPrefix) + "1000",
                     "Ullner's Fig 2-18 scene: 1000 quads as two sheets through the unit cube "
                     "(a_t = 2, d_r = 1/2), no lights; any ullner-sheets-N"});
+    list.push_back({std::string(kUllnerSheetsLitPrefix) + "1000",
+                    "the same with one light at the eye: every vision ray hits and casts one "
+                    "unoccluded shadow ray (Ullner's doubling for shadows, L743)"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -94,13 +97,14 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
     }
     return make_ullner_random(*polygons, seeds.ullner_random);
   }
-  if (const auto polygons = parse_ullner_sheets_name(name)) {
+  bool lit = false;
+  if (const auto polygons = parse_ullner_sheets_name(name, &lit)) {
     if (*polygons < kUllnerSheetsMinPolygons || *polygons > kUllnerSheetsMaxPolygons) {
       throw InputError("", 0,
                        cat("builtin scene ", quote_token(name), ": ullner-sheets-N takes N from ",
                            kUllnerSheetsMinPolygons, " to ", kUllnerSheetsMaxPolygons));
     }
-    return make_ullner_sheets(*polygons);
+    return make_ullner_sheets(*polygons, lit);
   }
 
   // Suggestions: names that contain what was typed ("ullner"), in listing order, then the

@@ -81,3 +81,21 @@ TEST(UllnerSheetsScene, LoadsByNameAndRejectsBadCounts) {
   EXPECT_FALSE(parse_ullner_sheets_name("ullner-sheets-01").has_value());
   EXPECT_FALSE(parse_ullner_sheets_name("ullner-sheets-").has_value());
 }
+
+TEST(UllnerSheetsScene, TheLitVariantHasOneLightAtTheEye) {
+  // The ray-tracing pipeline's "doubling for shadowing" (seed 000 L743): the same sheets, and
+  // one light where the eye is, so every hit's shadow ray runs back along its vision ray.
+  const auto plain = load_scene("builtin:ullner-sheets-1000");
+  const auto lit = load_scene("builtin:ullner-sheets-lit-1000");
+  EXPECT_TRUE(plain.lights.empty());
+  ASSERT_EQ(lit.lights.size(), 1u);
+  EXPECT_EQ(lit.lights[0].position, lit.camera.from);
+  ASSERT_EQ(lit.polygons.size(), plain.polygons.size());
+  EXPECT_EQ(lit.polygons[17].vertices, plain.polygons[17].vertices);
+  bool is_lit = false;
+  EXPECT_EQ(parse_ullner_sheets_name("ullner-sheets-lit-200", &is_lit), 200u);
+  EXPECT_TRUE(is_lit);
+  EXPECT_EQ(parse_ullner_sheets_name("ullner-sheets-200", &is_lit), 200u);
+  EXPECT_FALSE(is_lit);
+  EXPECT_FALSE(parse_ullner_sheets_name("ullner-sheets-lit-").has_value());
+}

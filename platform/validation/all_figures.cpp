@@ -1,6 +1,7 @@
 #include "platform/validation/all_figures.hpp"
 
 #include "platform/validation/gaudet_figures.hpp"
+#include "platform/validation/pipeline_figures.hpp"
 #include "platform/validation/ullner_figures.hpp"
 #include "platform/validation/vax_figures.hpp"
 
@@ -11,6 +12,7 @@ Plan make_validation_plan(const PlanOptions& options) {
   add_ullner_figures(plan, options);
   add_vax_figures(plan, options);
   add_gaudet_figures(plan, options);
+  add_pipeline_figures(plan, options);
   return plan;
 }
 

@@ -38,11 +38,12 @@ double edge(std::size_t i, std::size_t k) {
 
 }  // namespace
 
-Scene make_ullner_sheets(std::size_t polygon_count) {
+Scene make_ullner_sheets(std::size_t polygon_count, bool lit) {
   const auto k = static_cast<std::size_t>(
       std::max(1.0, std::round(std::sqrt(static_cast<double>(polygon_count) / 2.0))));
   Scene scene;
-  scene.name = "builtin:" + std::string(kUllnerSheetsPrefix) + std::to_string(polygon_count);
+  scene.name = "builtin:" + std::string(lit ? kUllnerSheetsLitPrefix : kUllnerSheetsPrefix) +
+               std::to_string(polygon_count);
   scene.has_camera = true;
   scene.camera.from = kEye;
   scene.camera.at = kAt;
@@ -54,6 +55,8 @@ Scene make_ullner_sheets(std::size_t polygon_count) {
   scene.modelling_space = Bounds{Vec3(0.0), Vec3(1.0)};
   // One white, opaque, non-reflective material, no lights: "without lighting effects" (L590).
   scene.materials.push_back(Material{Color(1.0), 1.0, 0.0, 0.0, 0.0, 1.0});
+  // The lit variant: one light at the eye, so every hit's shadow ray runs back unoccluded.
+  if (lit) scene.lights.push_back(Light{kEye, Color(1.0)});
   scene.polygons.reserve(2 * k * k);
   scene.primitives.reserve(2 * k * k);
   for (const Sheet& sheet : kSheets) {
@@ -73,9 +76,12 @@ Scene make_ullner_sheets(std::size_t polygon_count) {
   return scene;
 }
 
-std::optional<std::size_t> parse_ullner_sheets_name(std::string_view name) {
-  if (name.substr(0, kUllnerSheetsPrefix.size()) != kUllnerSheetsPrefix) return std::nullopt;
-  const std::string_view digits = name.substr(kUllnerSheetsPrefix.size());
+std::optional<std::size_t> parse_ullner_sheets_name(std::string_view name, bool* lit) {
+  const bool is_lit = name.substr(0, kUllnerSheetsLitPrefix.size()) == kUllnerSheetsLitPrefix;
+  if (lit) *lit = is_lit;
+  const std::string_view prefix = is_lit ? kUllnerSheetsLitPrefix : kUllnerSheetsPrefix;
+  if (name.substr(0, prefix.size()) != prefix) return std::nullopt;
+  const std::string_view digits = name.substr(prefix.size());
   if (digits.empty() || digits.size() > 9 || (digits.size() > 1 && digits[0] == '0'))
     return std::nullopt;
   std::size_t n = 0;

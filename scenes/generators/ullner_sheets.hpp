@@ -8,6 +8,10 @@
 // eye looks along +y from outside the cube with a narrow view, so every primary ray enters the
 // modelling space at y = 0 and travels about half of it to the first sheet.
 //
+// builtin:ullner-sheets-lit-N adds one light at the eye: every primary ray hits the first sheet
+// and casts one shadow ray that nothing occludes, the "doubling this figure for shadowing" of
+// the ray-tracing pipeline's estimate (L743).
+//
 // Compare builtin:ullner-random-N: the same n_p and a_t as many small randomly oriented squares,
 // which break the model's assumption about occupied subvolumes (L642).
 #include <cstddef>
@@ -19,13 +23,16 @@
 namespace rtsim::scenes {
 
 inline constexpr std::string_view kUllnerSheetsPrefix = "ullner-sheets-";
+inline constexpr std::string_view kUllnerSheetsLitPrefix = "ullner-sheets-lit-";
 inline constexpr std::size_t kUllnerSheetsMinPolygons = 2;
 inline constexpr std::size_t kUllnerSheetsMaxPolygons = 2'000'000;
 
-/// The scene for about `polygon_count` polygons (exactly 2 k^2, k = round(sqrt(N / 2))).
-Scene make_ullner_sheets(std::size_t polygon_count);
+/// The scene for about `polygon_count` polygons (exactly 2 k^2, k = round(sqrt(N / 2))); `lit`:
+/// with one light at the eye.
+Scene make_ullner_sheets(std::size_t polygon_count, bool lit = false);
 
-/// N of "ullner-sheets-N" (canonical decimal), or nothing.
-std::optional<std::size_t> parse_ullner_sheets_name(std::string_view name);
+/// N of "ullner-sheets-N" or "ullner-sheets-lit-N" (canonical decimal), or nothing; `lit` (if
+/// given) says which.
+std::optional<std::size_t> parse_ullner_sheets_name(std::string_view name, bool* lit = nullptr);
 
 }  // namespace rtsim::scenes
