@@ -496,6 +496,19 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     else
       problems.push_back(r.message);
   }
+  if (const json* pipe = find(stats, "pipeline"); pipe && find(*pipe, "along_chain")) {
+    const fs::path png = tools.scratch_dir / "chain_profile.png";
+    const auto r =
+        run_analysis_script(tools, "chain_profile.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "busy fraction along the chain",
+                 "Each polygon processor's busy fraction along the chain, and per ray "
+                 "description how often it overwrote the description and gave the answer: the "
+                 "useful part of its work (stats.json pipeline.along_chain; "
+                 "analysis/chain_profile.py)");
+    else
+      problems.push_back(r.message);
+  }
   if (!problems.empty()) page.note(missing_plots_note(problems));
 
   // `--latency-probe`: the per-stage breakdown of a ray's latency.

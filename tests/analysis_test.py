@@ -28,6 +28,7 @@ except ImportError as e:
           "python3-pandas)")
     sys.exit(SKIP)
 
+import chain_profile  # noqa: E402
 import figures  # noqa: E402
 import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
@@ -306,6 +307,48 @@ class LatencyHistogramTest(unittest.TestCase, PngMixin):
         r = run_script("latency_histogram.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("stats.json:1", r.stderr)
+
+
+class ChainProfileTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def stats(self):
+        return {"machine": "ullner-pipeline", "scene": "s", "pipeline": {
+            "engines": 6, "polygons": 4, "along_chain": {
+                "engines": 6, "busy_fraction": 0.25, "first_engine": [0, 2, 4],
+                "overwrites_per_description": [0.5, 0.125, 0.0],
+                "answers_per_description": [0.25, 0.125, 0.0]}}}
+
+    def test_series_and_png(self):
+        first, busy, over, ans, engines, polygons = chain_profile.chain_series(self.stats())
+        self.assertEqual(first, [0, 2, 4])
+        self.assertEqual(busy, 0.25)
+        self.assertEqual(over, [0.5, 0.125, 0.0])
+        self.assertEqual(ans, [0.25, 0.125, 0.0])
+        self.assertEqual((engines, polygons), (6, 4))
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(self.stats(), f)
+        out = os.path.join(self.dir, "c.png")
+        r = run_script("chain_profile.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        bad = self.stats()
+        bad["pipeline"]["along_chain"]["answers_per_description"] = [0.1]
+        with self.assertRaises(Exception):
+            chain_profile.chain_series(bad)
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"machine": "vax-750"}, f)
+        r = run_script("chain_profile.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("along_chain", r.stderr)
 
 
 def probe_stats():
