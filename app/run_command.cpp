@@ -1,4 +1,5 @@
 // `rtsim run`: a timed machine model (SystemC) renders one frame.
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <iomanip>
@@ -170,10 +171,21 @@ int run_run(const RunArgs& args) {
               << result.simulated_time_s << " s simulated, " << result.image.wall_time_s
               << " s wall\n"
               << "  busy  ";
+    // Every busy module, or on a machine of many (an array of processors) the busiest.
+    std::vector<std::pair<std::string, double>> busy;
     for (const auto& [name, m] : stats["modules"].items())
       if (m.contains("utilization") && m["busy_s"].get<double>() > 0)
-        std::cout << " " << name << " " << std::fixed << std::setprecision(1)
-                  << 100.0 * m["utilization"].get<double>() << "%";
+        busy.emplace_back(name, m["utilization"].get<double>());
+    constexpr std::size_t kMostBusy = 8;
+    const std::size_t more = busy.size() > kMostBusy ? busy.size() - kMostBusy : 0;
+    if (more > 0) {
+      std::stable_sort(busy.begin(), busy.end(),
+                       [](const auto& a, const auto& b) { return a.second > b.second; });
+      busy.resize(kMostBusy);
+    }
+    for (const auto& [name, u] : busy)
+      std::cout << " " << name << " " << std::fixed << std::setprecision(1) << 100.0 * u << "%";
+    if (more > 0) std::cout << " (busiest " << kMostBusy << "; " << more << " more in stats.json)";
     std::cout.unsetf(std::ios::fixed);
     std::cout << std::setprecision(6) << "\n";
     if (stats.contains("ray_latency_s"))

@@ -22,8 +22,13 @@ namespace rtsim::modules {
 template <class T>
 class TimedFifo {
  public:
+  /// A FIFO that is never full: a node's stockpile of messages in its memory (ullner-array).
+  static constexpr std::size_t kUnbounded = static_cast<std::size_t>(-1);
+
   TimedFifo(std::string name, std::size_t capacity)
-      : name_(std::move(name)), capacity_(capacity ? capacity : 1), slot_free_(capacity_) {}
+      : name_(std::move(name)),
+        capacity_(capacity ? capacity : 1),
+        slot_free_(capacity_ == kUnbounded ? 0 : capacity_) {}
 
   const std::string& name() const { return name_; }
   std::size_t capacity() const { return capacity_; }
@@ -35,6 +40,7 @@ class TimedFifo {
   }
   /// True if a slot is free at or before `t`.
   bool has_room_by(const sc_core::sc_time& t) const {
+    if (capacity_ == kUnbounded) return true;
     return items_.size() < capacity_ && slot_free_[put_count_ % capacity_] <= t;
   }
   bool full() const { return items_.size() >= capacity_; }
@@ -45,6 +51,7 @@ class TimedFifo {
   }
   /// When the next put can enter; nothing while the FIFO is full (it depends on a get).
   std::optional<sc_core::sc_time> next_room_time() const {
+    if (capacity_ == kUnbounded) return sc_core::SC_ZERO_TIME;
     if (items_.size() >= capacity_) return std::nullopt;
     return slot_free_[put_count_ % capacity_];
   }
@@ -54,7 +61,8 @@ class TimedFifo {
   /// actually entered (>= t: later if it had to wait for a slot).
   sc_core::sc_time put(T item, sc_core::sc_time t) {
     while (items_.size() >= capacity_) sc_core::wait(got_);
-    const sc_core::sc_time stamp = std::max(t, slot_free_[put_count_ % capacity_]);
+    const sc_core::sc_time stamp =
+        capacity_ == kUnbounded ? t : std::max(t, slot_free_[put_count_ % capacity_]);
     items_.push_back(Entry{std::move(item), stamp});
     ++put_count_;
     occupancy_.put(stamp);
@@ -69,7 +77,7 @@ class TimedFifo {
     Entry e = std::move(items_.front());
     items_.pop_front();
     stamp = std::max(t, e.stamp);
-    slot_free_[get_count_ % capacity_] = stamp;
+    if (capacity_ != kUnbounded) slot_free_[get_count_ % capacity_] = stamp;
     ++get_count_;
     occupancy_.got(stamp);
     got_.notify(sc_core::SC_ZERO_TIME);

@@ -23,6 +23,15 @@ class ShadeTask {
   Cost on_result(const shading::TracedRay& ray, bool found, const Hit& hit,
                  shading::PixelAccumulator& fb, std::vector<shading::TracedRay>& spawned);
 
+  /// What on_result does, with the contribution handed back instead of added: the ray-tracing
+  /// array's node puts it into a result message for the pixel's processor (seed 000 L809).
+  struct Answer {
+    Cost cost;
+    bool contributes = false;  ///< `contribution` is to be added to the ray's pixel
+  };
+  Answer answer(const shading::TracedRay& ray, bool found, const Hit& hit, Color& contribution,
+                std::vector<shading::TracedRay>& spawned);
+
   /// t_min of the search for `ray`: the hither plane for primary rays (NFF `hither`).
   double t_min(const shading::TracedRay& ray) const {
     return ray.kind == RayKind::Primary ? scene_->camera.hither : 0.0;

@@ -20,6 +20,9 @@ struct RenderSettings {
   PolygonKernel polygon_kernel = PolygonKernel::Triangle;
   int grid_divisions = 0;       ///< per axis; 0 = chosen from the primitive count
   bool dda_as_printed = false;  ///< Appendix B exactly as printed (machines' fidelity option)
+  /// The grid search looks for the closest hit within each subvolume only, as the ray-tracing
+  /// array's nodes do (accel::grid_closest_hit_by_subvolume).
+  bool grid_by_subvolume = false;
   /// Shell boxes as a PERT's SHELL records hold them (singles rounded outward), so the twin
   /// searches the boxes gaudet-pert's ShellProcessors read out of their packets.
   bool shell_boxes_as_stored = false;

@@ -122,25 +122,35 @@ class BruteForceTracer final : public Tracer {
 /// Ullner's subvolumes walked by the corrected Appendix B DDA.
 class GridTracer final : public Tracer {
  public:
+  /// `by_subvolume`: each subvolume looks for a hit within itself only (the array's search).
   GridTracer(const SceneGeometry& g, ShapeTester tester, const Bounds& box, accel::GridDivisions n,
-             accel::DdaVariant variant)
-      : GridTracer(tester, std::make_shared<const accel::UniformGrid>(g.bounds, box, n), variant) {}
+             accel::DdaVariant variant, bool by_subvolume)
+      : GridTracer(tester, std::make_shared<const accel::UniformGrid>(g.bounds, box, n), variant,
+                   by_subvolume) {}
   /// Another search over the same grid (a machine's, testing on its own memories).
   GridTracer(ShapeTester tester, std::shared_ptr<const accel::UniformGrid> grid,
-             accel::DdaVariant variant)
-      : tester_(tester), grid_(std::move(grid)), variant_(variant), dda_(*grid_, variant) {}
+             accel::DdaVariant variant, bool by_subvolume)
+      : tester_(tester),
+        grid_(std::move(grid)),
+        variant_(variant),
+        by_subvolume_(by_subvolume),
+        dda_(*grid_, variant) {}
 
   const accel::UniformGrid& grid() const { return *grid_; }
+  std::shared_ptr<const accel::UniformGrid> shared_grid() const { return grid_; }
   std::unique_ptr<Tracer> sharing_grid(ShapeTester tester) const {
-    return std::make_unique<GridTracer>(tester, grid_, variant_);
+    return std::make_unique<GridTracer>(tester, grid_, variant_, by_subvolume_);
   }
 
   bool closest_hit(const Ray& ray, double t_min, double t_max, Hit& hit,
                    TraceCounters& c) const override {
     SurfaceHit best;
     accel::GridTraversalStats st;
-    const auto h =
-        accel::grid_closest_hit(dda_, ray, t_min, t_max, tester_.candidate_test(ray, best, c), st);
+    const auto h = by_subvolume_
+                       ? accel::grid_closest_hit_by_subvolume(
+                             dda_, ray, t_min, t_max, tester_.candidate_test(ray, best, c), st)
+                       : accel::grid_closest_hit(dda_, ray, t_min, t_max,
+                                                 tester_.candidate_test(ray, best, c), st);
     add(st, c);
     return tester_.report_closest(h, best, hit, c);
   }
@@ -162,6 +172,7 @@ class GridTracer final : public Tracer {
   ShapeTester tester_;
   std::shared_ptr<const accel::UniformGrid> grid_;  ///< shared with the twin's search
   accel::DdaVariant variant_;
+  bool by_subvolume_;
   accel::Dda dda_;
 };
 
@@ -220,6 +231,11 @@ std::unique_ptr<Tracer> make_tracer_sharing(const Tracer& twin, const SceneGeome
   throw std::logic_error("make_tracer_sharing: only the grid and brute force are shared");
 }
 
+std::shared_ptr<const accel::UniformGrid> grid_of(const Tracer& twin) {
+  const auto* grid = dynamic_cast<const GridTracer*>(&twin);
+  return grid ? grid->shared_grid() : nullptr;
+}
+
 std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene,
                                     const RenderSettings& settings,
                                     const CandidateTest* machine_test) {
@@ -240,7 +256,8 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& g, const scenes::Scene& scene
     if (settings.grid_divisions == 0) n = accel::choose_divisions(box, g.shapes.size());
     auto tracer = std::make_unique<GridTracer>(
         g, tester, box, n,
-        settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected);
+        settings.dda_as_printed ? accel::DdaVariant::AsPrinted : accel::DdaVariant::Corrected,
+        settings.grid_by_subvolume);
     const auto& grid = tracer->grid();
     desc << "grid " << n.x << "x" << n.y << "x" << n.z
          << (settings.dda_as_printed ? " (DDA as printed)" : "") << ", "

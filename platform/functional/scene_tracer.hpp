@@ -5,6 +5,7 @@
 
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
+#include "firmware/accel/uniform_grid.hpp"
 #include "firmware/tracer.hpp"
 #include "platform/functional/candidate_test.hpp"
 #include "platform/functional/render_params.hpp"
@@ -47,5 +48,9 @@ std::unique_ptr<Tracer> make_tracer(SceneGeometry& geometry, const scenes::Scene
 /// `machine_test`: the peripheral's search on its parameter memories. Both must outlive it.
 std::unique_ptr<Tracer> make_tracer_sharing(const Tracer& twin, const SceneGeometry& g,
                                             const CandidateTest* machine_test);
+
+/// The subvolume grid of `twin` (a grid tracer make_tracer built), nullptr for another
+/// structure: a machine whose nodes walk the twin's subvolumes themselves (ullner-array).
+std::shared_ptr<const accel::UniformGrid> grid_of(const Tracer& twin);
 
 }  // namespace rtsim::functional
