@@ -133,6 +133,9 @@ const std::map<std::string, std::vector<std::string>>& runs_per_machine() {
        {"--scene builtin:ullner-cubes --width 24 --height 24",
         "--scene builtin:ullner-sheets-10 --width 24 --height 24 -p pipeline.engines=10 "
         "-p host.clock=\"100 GHz\""}},
+      {"ullner-array",
+       {"--scene builtin:ullner-cubes --width 24 --height 24 -p array.rows=4 -p array.cols=4",
+        "--scene builtin:ullner-cubes --width 24 --height 24 -p array.mapping=torus"}},
       {"gaudet-pert",
        {"--scene " + shared_path("scenes/balls-s2.nff") + " --width 24 --height 24",
         "--scene " + shared_path("scenes/balls-s2.nff") +

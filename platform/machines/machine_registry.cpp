@@ -5,6 +5,7 @@
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet_pert.hpp"
+#include "platform/machines/ullner_array.hpp"
 #include "platform/machines/ullner_peripheral.hpp"
 #include "platform/machines/ullner_pipeline.hpp"
 #include "platform/machines/vax750.hpp"
@@ -16,7 +17,8 @@ const std::vector<const Machine*>& machines() {
   static const UllnerPeripheral peripheral;
   static const GaudetPert pert;
   static const UllnerPipeline pipeline;
-  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline};
+  static const UllnerArray array;
+  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline, &array};
   return all;
 }
 

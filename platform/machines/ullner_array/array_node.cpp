@@ -1,0 +1,519 @@
+#include "platform/machines/ullner_array/array_node.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "firmware/accel/grid_traversal.hpp"
+#include "firmware/kernels/ullner_quad_words.hpp"
+#include "modules/sim_time.hpp"
+#include "platform/functional/scene_tracer.hpp"
+
+namespace rtsim::platform::ullner_array {
+
+using modules::Direction;
+using modules::GridNode;
+using modules::plus;
+using modules::times;
+
+namespace {
+
+int type_index(MessageType t) { return static_cast<int>(t); }
+
+/// Words of the 20 parameters a test needs at each step of Fig. 2-28 (L841): t (n_p, d_p), then
+/// u (its four coefficients: two vectors and two scalars), then v; a step that rejects stops the
+/// fetches after it.
+constexpr std::uint64_t kTWords = 4, kUWords = 8, kVWords = 8;
+
+}  // namespace
+
+void ArrayNode::declare_params(const modules::ParamDecls& node) {
+  const std::string cpu =
+      "assumption: the thesis gives no MC68000 timings (seed 000 L835; note 000 §7.6): a few "
+      "dozen instructions of 4-10 cycles each";
+  node.declare({.name = "clock",
+                .kind = params::ParamKind::kFrequency,
+                .default_value = "8 MHz",
+                .min = "1 Hz",
+                .description = "Clock of a processor's MC68000-class CPU",
+                .source = "seed 000 L835 (MC68000); assumption: 8 MHz, the part of 1982"});
+  node.count("cycles.message", "120", "0", "1000000000", "cycles",
+             "CPU cycles to take a message from a port buffer and dispatch on its type", cpu);
+  node.count("cycles.route", "80", "0", "1000000000", "cycles",
+             "CPU cycles to choose the port toward a processor and start the port's copy "
+             "(routing is in software, L854)",
+             cpu);
+  node.count("cycles.subvolume", "100", "0", "1000000000", "cycles",
+             "CPU cycles to step to the next subvolume along a ray (Appendix B) and start the "
+             "intersection unit on its polygons (L852)",
+             cpu);
+  node.count("cycles.shade", "400", "0", "1000000000", "cycles",
+             "CPU cycles to shade a hit with the lighting unit (ambient, lights, reflection and "
+             "refraction terms, L809-L817)",
+             cpu);
+  node.count("cycles.spawn", "80", "0", "1000000000", "cycles",
+             "CPU cycles to format a new message (result, shadow, reflected, refracted)", cpu);
+  node.count("cycles.result", "60", "0", "1000000000", "cycles",
+             "CPU cycles to add a result's colour into the frame buffer (L809)", cpu);
+  node.count("cycles.new_ray", "150", "0", "1000000000", "cycles",
+             "CPU cycles to make a new ray for one of its pixels (L801)", cpu);
+  node.count("cycles.keep_test", "200", "0", "1000000000", "cycles",
+             "CPU cycles to decide whether a broadcast polygon touches its subvolumes (L787)", cpu);
+  node.time("memory_cycle", "333.333 ns",
+            "One 16-bit transfer of a processor's memory, shared by the CPU's ports and the "
+            "intersection unit (a 32-bit word is two)",
+            "seed 000 L835, L891 (16-bit path); assumption: the peripheral's 1/3 us cycle, as "
+            "L891's 40-processor estimate supposes");
+  node.count("memory_words", "32768", "1", "1000000000", "words",
+             "Words of a processor's memory for its polygons (128 KB)", "seed 000 L835");
+  node.time("pipeline.stage_time", "333.333 ns",
+            "Stage time of the intersection pipeline (one test issued per stage time at most)",
+            "assumption: custom shift-and-add units (L837) pipelined to keep pace with the "
+            "memory, as L891 assumes");
+  node.count("pipeline.stages", "9", "1", "64", "stages",
+             "Stages of the intersection pipeline (Fig. 2-28)", "seed 000 L843-L850");
+  modules::Link::declare_params(
+      node.sub("link"),
+      {.latency = "0 s",
+       .lanes = "16",
+       .bit_rate = "",
+       .bit_time = "333.333 ns",
+       .source = "assumption: the thesis gives no link width or rate (L854); a port copies 16 "
+                 "bits a memory cycle, the memory's own path"});
+}
+
+ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                     const ArrayContext& context, ArrayTally& tally, GridNode position,
+                     MachineTrace& trace)
+    : modules::Processor(name, trace),
+      memory("memory", modules::ModuleParams(registry, "node").get_count("memory_words"),
+             kPolygonWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      ctx_(context),
+      tally_(tally),
+      position_(position),
+      shade_(*context.scene, context.shade),
+      dda_(*context.grid),
+      memory_port_("memory_port") {
+  const modules::ModuleParams p(registry, "node");
+  timing_ = Timing{.message = p.get_count("cycles.message"),
+                   .route = p.get_count("cycles.route"),
+                   .subvolume = p.get_count("cycles.subvolume"),
+                   .shade = p.get_count("cycles.shade"),
+                   .spawn = p.get_count("cycles.spawn"),
+                   .result = p.get_count("cycles.result"),
+                   .new_ray = p.get_count("cycles.new_ray"),
+                   .keep_test = p.get_count("cycles.keep_test"),
+                   .memory_cycle = p.get_time("memory_cycle"),
+                   .stage_time = p.get_time("pipeline.stage_time"),
+                   .stages = static_cast<unsigned>(p.get_count("pipeline.stages"))};
+  cycle_ = modules::from_ps(
+      static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get_frequency_hz("clock")))));
+  memory_port_.bind(memory.socket);
+  const modules::MeshTopology& topo = *ctx_.topology;
+  for (const Direction d : modules::kDirections) {
+    if (!topo.neighbour(position_, d)) continue;
+    const std::string dir(modules::direction_name(d));
+    // A port's buffer holds the node's stockpile of untraced messages (L825): not bounded here.
+    in[static_cast<int>(d)] = std::make_unique<modules::MessageQueue<RayMessage>>(
+        ("in_" + dir).c_str(), modules::TimedFifo<RayMessage>::kUnbounded);
+    out_[static_cast<int>(d)] =
+        std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
+    links_[static_cast<int>(d)] = std::make_unique<modules::Link>(
+        std::string(this->name()) + ".link_" + dir, modules::ModuleParams(registry, "node.link"));
+  }
+  // Its frame-buffer block: the image rows and columns whose processor it is (L781).
+  const int w = ctx_.frame->width(), h = ctx_.frame->height();
+  for (int y = 0; y < h; ++y)
+    if (y * topo.rows() / h == position_.row) rows_.push_back(static_cast<std::uint32_t>(y));
+  first_col_ = w;
+  for (int x = 0; x < w; ++x) {
+    if (x * topo.cols() / w != position_.col) continue;
+    first_col_ = std::min(first_col_, x);
+    end_col_ = x + 1;
+  }
+  SC_THREAD(run);
+}
+
+void ArrayNode::connect(Direction d, ArrayNode& neighbour) {
+  out_[static_cast<int>(d)]->bind(neighbour.in[static_cast<int>(modules::opposite(d))]->socket);
+}
+
+void ArrayNode::spend(std::uint64_t cycles, std::string_view what) {
+  compute_for(times(cycle_, cycles), what);
+}
+
+GridNode ArrayNode::pixel_owner(std::uint32_t pixel) const {
+  const int w = ctx_.frame->width(), h = ctx_.frame->height();
+  const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(w));
+  const int y = static_cast<int>(pixel / static_cast<std::uint32_t>(w));
+  return {y * ctx_.topology->rows() / h, x * ctx_.topology->cols() / w};
+}
+
+void ArrayNode::load() {
+  // The host broadcasts every polygon (L787); this processor keeps those listed in one of its
+  // subvolumes, in its memory. The broadcast's timing is the machine's (all processors alike);
+  // the words are written here, through the memory's port, so a fault corrupts them.
+  const accel::UniformGrid& grid = *ctx_.grid;
+  const accel::GridDivisions n = grid.divisions();
+  std::vector<std::uint32_t> keep;
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        const accel::CellIndex c{x, y, z};
+        if (!(ctx_.mapping.node_of(c) == position_)) continue;
+        for (const std::uint32_t s : grid.cell(c)) keep.push_back(s);
+      }
+  std::sort(keep.begin(), keep.end());
+  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  if (keep.size() * kPolygonWords > memory.size_words())
+    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its polygons");
+  std::array<std::uint32_t, kPolygonWords> words{};
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_data_length(kPolygonWords * 4);
+  gp.set_streaming_width(kPolygonWords * 4);
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  for (const std::uint32_t slot : keep) {
+    const auto& quad = std::get<kernels::UllnerQuadKernel>(ctx_.geometry->shapes[slot].shape);
+    kernels::store_words(quad.params, std::span<std::uint32_t, kernels::kUllnerStoredWords>(
+                                          words.data(), kernels::kUllnerStoredWords));
+    words[kernels::kUllnerStoredWords] = slot;
+    const auto line = static_cast<std::uint32_t>(slots_.size());
+    gp.set_address(static_cast<std::uint64_t>(line) * kPolygonWords * 4);
+    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    memory_port_->b_transport(gp, unused);
+    lines_[slot] = line;
+    slots_.push_back(slot);
+  }
+}
+
+const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
+  if (memory.words_written() == decoded_after_) return decoded_;
+  const auto& words = memory.contents();
+  decoded_.resize(slots_.size());
+  for (std::size_t k = 0; k < slots_.size(); ++k)
+    decoded_[k] = kernels::load_words(std::span<const std::uint32_t, kernels::kUllnerStoredWords>(
+        words.data() + k * kPolygonWords, kernels::kUllnerStoredWords));
+  decoded_after_ = memory.words_written();
+  return decoded_;
+}
+
+bool ArrayNode::next_message(RayMessage& msg) {
+  const sc_core::sc_time now = clock_.now();
+  // The port whose message arrived first, if one has by now.
+  int best = -1;
+  sc_core::sc_time best_t;
+  for (int d = 0; d < 4; ++d) {
+    if (!in[d] || !in[d]->fifo.has_item_by(now)) continue;
+    const sc_core::sc_time t = *in[d]->fifo.next_item_time();
+    if (best < 0 || t < best_t) {
+      best = d;
+      best_t = t;
+    }
+  }
+  if (best >= 0) {
+    sc_core::sc_time taken;
+    msg = in[best]->fifo.get(now, taken);
+    ++received_[type_index(msg.type)];
+    return true;
+  }
+  if (!own_.empty()) {
+    msg = std::move(own_.front());
+    own_.pop_front();
+    return true;
+  }
+  // A new ray for its next pixel (L801), when it has nothing else to do.
+  while (!vision_ || vision_->done()) {
+    if (next_row_ >= rows_.size() || first_col_ >= end_col_) return false;
+    const std::uint32_t y = rows_[next_row_++];
+    const int w = ctx_.frame->width();
+    vision_ = std::make_unique<tasks::VisionRayTask>(
+        *ctx_.camera, w, ctx_.frame->height(), ctx_.frame->spp(),
+        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(first_col_),
+        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(end_col_));
+  }
+  int sample = 0;
+  msg = RayMessage{};
+  msg.type = MessageType::kNew;
+  msg.ray = vision_->next(sample);
+  msg.first_sample = sample == 0;
+  msg.credit = ctx_.credit_per_ray;
+  msg.created = now;
+  spend(timing_.new_ray, "new ray");
+  return true;
+}
+
+void ArrayNode::run() {
+  load();
+  clock_.catch_up(ctx_.frame_start);
+  for (;;) {
+    RayMessage msg;
+    if (next_message(msg)) {
+      process(std::move(msg));
+      backlog_peak_ = std::max(backlog_peak_, own_.size());
+      continue;
+    }
+    // Out of work: what credit it holds goes back to the detector.
+    if (credit_held_ > 0) {
+      const std::uint64_t c = credit_held_;
+      credit_held_ = 0;
+      RayMessage back;
+      back.type = MessageType::kCredit;
+      back.credit = c;
+      process(std::move(back));
+      continue;
+    }
+    // Wait for a message: one already stamped ahead of its local time, else any port's next.
+    std::optional<sc_core::sc_time> next;
+    sc_core::sc_event_or_list any;
+    bool ports = false;
+    for (auto& q : in) {
+      if (!q) continue;
+      any |= q->fifo.put_event();
+      ports = true;
+      if (const auto t = q->fifo.next_item_time(); t && (!next || *t < *next)) next = t;
+    }
+    if (!ports) return;  // a 1x1 array with no work left
+    if (next && *next > clock_.now()) {
+      idle_until(*next, Wait::kWork);
+      continue;
+    }
+    idle(std::nullopt, any, Wait::kWork);
+  }
+}
+
+void ArrayNode::process(RayMessage msg) {
+  spend(timing_.message, "message");
+  switch (msg.type) {
+    case MessageType::kNew: {
+      // Route it toward the processor owning the first subvolume it strikes (L803-L805).
+      std::optional<accel::CellIndex> first;
+      dda_.traverse(msg.ray.ray, shade_.t_min(msg.ray), msg.ray.t_max,
+                    [&](const accel::CellIndex& c, std::span<const std::uint32_t>, double, double) {
+                      first = c;
+                      return true;
+                    });
+      if (!first) {
+        // It misses the modelling space: it falls off the array (L807).
+        answer(msg, false, Hit{});
+        return;
+      }
+      const GridNode owner = ctx_.mapping.node_of(*first);
+      if (!(owner == position_)) {
+        forward(std::move(msg), owner);
+        return;
+      }
+      msg.type = MessageType::kVision;
+      search(msg);
+      return;
+    }
+    case MessageType::kVision:
+    case MessageType::kShadow:
+      search(msg);
+      return;
+    case MessageType::kResult: {
+      const GridNode owner = pixel_owner(msg.ray.pixel);
+      if (!(owner == position_)) {
+        forward(std::move(msg), owner);
+        return;
+      }
+      add_result(msg);
+      return;
+    }
+    case MessageType::kCredit:
+      if (!(position_ == GridNode{0, 0})) {
+        forward(std::move(msg), GridNode{0, 0});
+        return;
+      }
+      tally_.credit_returned += msg.credit;
+      if (tally_.credit_returned == ctx_.total_credit) tally_.done = clock_.now();
+      return;
+  }
+}
+
+void ArrayNode::add_result(const RayMessage& msg) {
+  spend(timing_.result, "result");
+  ++tally_.results_added;
+  if (tally_.results_added == ctx_.drop_result) {
+    ++tally_.results_dropped;  // lost: its contribution never reaches the frame buffer
+  } else {
+    ctx_.frame->fb().add(msg.ray.pixel, msg.contribution);
+  }
+  tally_.latency.add(clock_.now() - msg.created);
+  return_credit(msg.credit);
+}
+
+void ArrayNode::return_credit(std::uint64_t credit) { credit_held_ += credit; }
+
+void ArrayNode::search(RayMessage& msg) {
+  // Walk the ray's subvolumes from where it left off; search those this processor owns, each
+  // for a hit within it (L807); stop at the first owned by another processor.
+  const shading::TracedRay& r = msg.ray;
+  const bool shadow = r.kind == RayKind::Shadow;
+  const double t_min = shade_.t_min(r);
+  const auto& params = held();
+  const auto ray = kernels::UllnerRay<double>::make(r.ray.origin, r.ray.direction);
+  std::uint32_t step = 0;
+  std::optional<GridNode> next_owner;
+  accel::GridHit hit;
+  SurfaceHit details;
+  std::uint64_t cells = 0, tests = 0, words = 0;
+  TraceCounters& counters = ctx_.frame->counters();
+  // The intersection unit's test of one polygon on the words this memory holds, fetching only
+  // what each step of Fig. 2-28 needs (L841).
+  auto test = [&](std::uint32_t slot, double lo, double hi) {
+    ++tests;
+    ++counters.intersection_tests;
+    const std::uint32_t line = lines_.at(slot);
+    const auto& P = params[line];
+    const auto res = kernels::intersect(P, ray, lo, hi);
+    words += kTWords + (res.t_valid ? kUWords : 0) + (res.t_valid && res.u_valid ? kVWords : 0);
+    if (!res.hit()) return kInfinity;
+    const auto& quad = std::get<kernels::UllnerQuadKernel>(ctx_.geometry->shapes[slot].shape);
+    details.t = res.t;
+    details.u = res.u;
+    details.v = res.v;
+    details.geometric_normal = P.n_p();
+    details.shading_normal = quad.shading_normal_at(res.u, res.v, details.geometric_normal);
+    return res.t;
+  };
+  accel::GridTraversalStats st;
+  bool occluded = false;
+  const auto walk = dda_.traverse(
+      r.ray, t_min, r.t_max,
+      [&](const accel::CellIndex& c, std::span<const std::uint32_t> slots, double, double t_exit) {
+        if (step++ < msg.resume) return false;
+        const GridNode owner = ctx_.mapping.node_of(c);
+        if (!(owner == position_)) {
+          next_owner = owner;
+          msg.resume = step - 1;
+          return true;
+        }
+        ++cells;
+        if (shadow) {
+          for (const std::uint32_t slot : slots) {
+            const double t = test(slot, t_min, r.t_max);
+            if (t > t_min && t < r.t_max) {
+              occluded = true;
+              return true;
+            }
+          }
+          return false;
+        }
+        hit = accel::subvolume_closest_hit(slots, t_min, r.t_max, t_exit, test, st);
+        return hit.valid();
+      });
+  counters.cells_visited += cells;
+  counters.dda_steps += walk.steps;
+  subvolumes_ += cells;
+  tests_ += tests;
+  words_fetched_ += words;
+
+  // The time: the CPU steps through its subvolumes and starts the unit on each; the unit's
+  // fetches share the memory (two transfers a word) and issue at most one test a stage; the
+  // CPU waits for its interrupt.
+  spend(timing_.subvolume * cells, "subvolumes");
+  if (tests > 0) {
+    const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+    const sc_core::sc_time fetch = times(timing_.memory_cycle, 2 * words);
+    const sc_core::sc_time issue = times(timing_.stage_time, tests);
+    const sc_core::sc_time done =
+        plus(plus(start, std::max(fetch, issue)), times(timing_.stage_time, timing_.stages));
+    memory_free_ = plus(start, fetch);
+    memory_busy_ += fetch;
+    pipe_busy_ += std::max(fetch, issue);
+    pipe_timeline_.add(start, std::max(fetch, issue));
+    idle_until(done, Wait::kData);
+  }
+
+  if (next_owner) {
+    forward(std::move(msg), *next_owner);
+    return;
+  }
+  if (shadow) {
+    answer(msg, occluded, Hit{});
+    return;
+  }
+  Hit h;
+  if (hit.valid())
+    functional::fill_hit(*ctx_.geometry, static_cast<std::uint32_t>(hit.prim), details, h);
+  answer(msg, hit.valid(), h);
+}
+
+void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
+  // The ray is answered here: shade a hit (ambient into a result, a shadow ray per light, the
+  // reflected and refracted rays, L809-L817); a miss adds the background (a shadow ray that
+  // left unobstructed, its light: L815).
+  TraceCounters& counters = ctx_.frame->counters();
+  counters.count_ray(msg.ray.kind);
+  if (found && msg.ray.kind != RayKind::Shadow) ++counters.hits;
+  if (msg.first_sample) ctx_.frame->record_primary(msg.ray.pixel, found, hit);
+  Color contribution{0.0};
+  const auto a = shade_.answer(msg.ray, found, hit, contribution, spawned_);
+  counters.cost += a.cost;
+  if (found && msg.ray.kind != RayKind::Shadow) spend(timing_.shade, "shade");
+  // The message's credit is shared by what it sends (the first takes the remainder); with
+  // nothing to send it is returned.
+  const std::uint64_t outputs = (a.contributes ? 1 : 0) + spawned_.size();
+  if (outputs == 0) {
+    return_credit(msg.credit);
+    return;
+  }
+  if (msg.credit < outputs)
+    SC_REPORT_ERROR("rtsim/ullner-array", "a message's credit cannot be shared any further");
+  const std::uint64_t share = msg.credit / outputs;
+  std::uint64_t extra = msg.credit - share * outputs;
+  std::vector<RayMessage> out;
+  out.reserve(outputs);
+  if (a.contributes) {
+    RayMessage res;
+    res.type = MessageType::kResult;
+    res.ray = msg.ray;
+    res.contribution = contribution;
+    res.created = msg.created;
+    out.push_back(std::move(res));
+  }
+  for (const auto& s : spawned_) {
+    RayMessage m;
+    m.type = s.kind == RayKind::Shadow ? MessageType::kShadow : MessageType::kVision;
+    m.ray = s;
+    m.created = msg.created;
+    out.push_back(std::move(m));
+  }
+  for (auto& m : out) {
+    m.credit = share + extra;
+    extra = 0;
+    spend(timing_.spawn, "spawn");
+    if (m.type == MessageType::kResult) {
+      const GridNode owner = pixel_owner(m.ray.pixel);
+      if (owner == position_)
+        add_result(m);
+      else
+        forward(std::move(m), owner);
+    } else {
+      own_.push_back(std::move(m));
+    }
+  }
+}
+
+void ArrayNode::forward(RayMessage msg, const GridNode& to) {
+  spend(timing_.route, "route");
+  send(std::move(msg), ctx_.topology->next_hop(position_, to));
+}
+
+void ArrayNode::send(RayMessage msg, Direction d) {
+  // The port copies the message out of this memory into the neighbour's (L854).
+  const int k = static_cast<int>(d);
+  if (!out_[k]) SC_REPORT_ERROR("rtsim/ullner-array", "a message was routed off the array");
+  modules::Link& link = *links_[k];
+  const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+  const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
+  const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
+  memory_free_ = plus(start, copy);
+  memory_busy_ += copy;
+  ++sent_[type_index(msg.type)];
+  modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);
+}
+
+}  // namespace rtsim::platform::ullner_array

@@ -1,0 +1,172 @@
+#pragma once
+// One processor of Ullner's ray-tracing array (seed 000 §2.5.2, L829-L858): an MC68000-class CPU
+// (its costs per message handled are parameters: the thesis gives none), its memory shared with
+// the intersection unit and the link ports, the 9-stage intersection pipeline of Fig. 2-28, and
+// four link ports, each copying a ray message from this memory into a neighbour's (L854; routing
+// in software). It owns a column of subvolumes (subvolume_mapping.hpp) and the block of the frame
+// buffer at its position in the array (L781).
+//
+// Its work (L799-L819): a new ray is routed to the processor owning the first subvolume it
+// strikes; a vision or shadow ray is searched through this processor's subvolumes along it, one
+// subvolume at a time (the closest hit within the subvolume, accel::subvolume_closest_hit), then
+// passed to the neighbour owning the next one; a hit is shaded (ShadeTask::answer): its
+// contribution goes to the pixel's processor in a result message and the rays it spawns start
+// here. The polygons it tests are the words its memory holds, loaded from the host's broadcast.
+//
+// Termination (the thesis gives no mechanism, L827): credit recovery. The host hands each
+// processor a credit for each vision ray of its pixels; a message carries credit, a processor
+// that spawns splits it among what it sends, and one that consumes a message (a result added,
+// a ray destroyed) keeps the credit and, when it runs out of work, returns what it holds to the
+// detector (processor 0) in a credit message that crosses the links like any other. The frame is
+// complete when the detector holds all the credit.
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <array>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "firmware/accel/dda.hpp"
+#include "firmware/accel/uniform_grid.hpp"
+#include "firmware/kernels/ullner_quad.hpp"
+#include "firmware/kernels/ullner_quad_words.hpp"
+#include "firmware/shading/camera.hpp"
+#include "firmware/tasks/shade_task.hpp"
+#include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/link.hpp"
+#include "modules/memory.hpp"
+#include "modules/mesh_topology.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/processor.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/functional/scene_geometry.hpp"
+#include "platform/machines/machine_trace.hpp"
+#include "platform/machines/ullner_array/ray_message.hpp"
+#include "platform/machines/ullner_array/subvolume_mapping.hpp"
+
+namespace rtsim::platform::ullner_array {
+
+/// Words of one polygon in a processor's memory: the peripheral's 25-word line (the 20
+/// parameters, 4 pole thresholds, flags) and the polygon's identity (its material and corner
+/// normals are looked up by it).
+inline constexpr unsigned kPolygonWords = kernels::kUllnerStoredWords + 1;
+
+/// What every processor shares (read-only but for the frame buffer and the detector's count).
+struct ArrayContext {
+  const modules::MeshTopology* topology = nullptr;
+  SubvolumeMapping mapping;
+  const accel::UniformGrid* grid = nullptr;
+  const functional::SceneGeometry* geometry = nullptr;  ///< the host's copy (normals, materials)
+  const scenes::Scene* scene = nullptr;
+  shading::ShadeParams shade;
+  functional::FrameState* frame = nullptr;
+  const shading::PinholeCamera* camera = nullptr;
+  std::uint64_t credit_per_ray = 0;  ///< credit the host gives for each vision ray
+  std::uint64_t total_credit = 0;
+  sc_core::sc_time frame_start;  ///< the load is over
+  /// A fault for tests: the result message with this sequence number (counted where results
+  /// are added) is lost; 0 loses none.
+  std::uint64_t drop_result = 0;
+};
+
+/// What the whole array counts (the detector's view and the dropped result).
+struct ArrayTally {
+  std::uint64_t credit_returned = 0;
+  std::optional<sc_core::sc_time> done;  ///< when the detector held all the credit
+  std::uint64_t results_added = 0;
+  std::uint64_t results_dropped = 0;
+  modules::LatencyRecorder latency;  ///< a ray's creation to its contribution being added
+};
+
+class ArrayNode : public modules::Processor {
+ public:
+  /// The input port from the neighbour in each direction (absent at an unconnected edge).
+  std::array<std::unique_ptr<modules::MessageQueue<RayMessage>>, 4> in;
+  /// Its memory: its polygons, kPolygonWords words each (L835: 128 KB).
+  modules::Memory memory;
+
+  /// Parameters of every processor, under `node` (the class: all processors alike).
+  static void declare_params(const modules::ParamDecls& node);
+
+  SC_HAS_PROCESS(ArrayNode);
+  ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+            const ArrayContext& context, ArrayTally& tally, modules::GridNode position,
+            MachineTrace& trace);
+
+  /// Wires this processor's output in direction `d` to `neighbour`'s input from the opposite
+  /// side (elaboration).
+  void connect(modules::Direction d, ArrayNode& neighbour);
+
+  modules::GridNode position() const { return position_; }
+  std::size_t polygons() const { return lines_.size(); }
+  const modules::Link* link(modules::Direction d) const {
+    return links_[static_cast<int>(d)].get();
+  }
+  const modules::BusyTimeline& pipeline_timeline() const { return pipe_timeline_; }
+  sc_core::sc_time pipeline_busy() const { return pipe_busy_; }
+  sc_core::sc_time memory_busy() const { return memory_busy_; }
+  /// Messages received and sent, by type (MessageType order).
+  const std::array<std::uint64_t, 5>& received() const { return received_; }
+  const std::array<std::uint64_t, 5>& sent() const { return sent_; }
+  std::uint64_t subvolumes_searched() const { return subvolumes_; }
+  std::uint64_t intersections() const { return tests_; }
+  std::uint64_t words_fetched() const { return words_fetched_; }
+  std::size_t backlog_peak() const { return backlog_peak_; }
+
+ private:
+  struct Timing {
+    std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test;
+    sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
+    sc_core::sc_time stage_time;    ///< the intersection pipeline's
+    unsigned stages;
+  };
+  void run();
+  void load();
+  /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
+  bool next_message(RayMessage& msg);
+  void process(RayMessage msg);
+  void search(RayMessage& msg);
+  /// Sends `msg` one hop toward `to` (or keeps it if `to` is this processor).
+  void forward(RayMessage msg, const modules::GridNode& to);
+  void send(RayMessage msg, modules::Direction d);
+  void answer(const RayMessage& msg, bool found, const Hit& hit);
+  void add_result(const RayMessage& msg);
+  void return_credit(std::uint64_t credit);
+  void spend(std::uint64_t cycles, std::string_view what);
+  modules::GridNode pixel_owner(std::uint32_t pixel) const;
+  const std::vector<kernels::UllnerQuadParams<double>>& held();
+
+  const ArrayContext& ctx_;
+  ArrayTally& tally_;
+  modules::GridNode position_;
+  Timing timing_;
+  sc_core::sc_time cycle_;
+  tasks::ShadeTask shade_;
+  accel::Dda dda_;
+  std::array<std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>>, 4> out_;
+  std::array<std::unique_ptr<modules::Link>, 4> links_;
+  tlm_utils::simple_initiator_socket<ArrayNode> memory_port_;
+  std::unordered_map<std::uint32_t, std::uint32_t> lines_;  ///< polygon slot -> memory line
+  std::vector<std::uint32_t> slots_;                        ///< memory line -> polygon slot
+  std::vector<kernels::UllnerQuadParams<double>> decoded_;
+  std::uint64_t decoded_after_ = ~std::uint64_t{0};
+  std::deque<RayMessage> own_;       ///< rays spawned here, not yet searched
+  std::vector<std::uint32_t> rows_;  ///< image rows of its frame-buffer block
+  int first_col_ = 0, end_col_ = 0;
+  std::size_t next_row_ = 0;
+  std::unique_ptr<tasks::VisionRayTask> vision_;
+  std::uint64_t credit_held_ = 0;
+  sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time memory_busy_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time pipe_busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline pipe_timeline_;
+  std::array<std::uint64_t, 5> received_{}, sent_{};
+  std::uint64_t subvolumes_ = 0, tests_ = 0, words_fetched_ = 0;
+  std::size_t backlog_peak_ = 0;
+  std::vector<shading::TracedRay> spawned_;
+};
+
+}  // namespace rtsim::platform::ullner_array

@@ -1,0 +1,41 @@
+#pragma once
+// A message between the processors of Ullner's ray-tracing array (Fig. 2-27, L791-L799): the
+// type k, the pixel (r, c), the ray's origin r0 and direction r_d, and its colour contribution c,
+// "three vector and three scalar fields". Types (L799-L815): new (on its way to the subvolume it
+// first strikes), vision (reflected and refracted rays too, L817), shadow, result (a contribution
+// on its way to its pixel's processor). The model adds:
+//  * the position along the ray's subvolume walk where the next processor resumes it (the DDA's
+//    state: one word for the count of subvolumes walked; the thesis leaves how a processor knows
+//    where a ray entered its column open);
+//  * the ray's far limit (a shadow ray stops at its light) and its generation (the shading's
+//    depth limit), one word each;
+//  * the termination detector's credit (two words), and a fifth type, credit, which returns it.
+#include <cstdint>
+#include <systemc>
+
+#include "firmware/math.hpp"
+#include "firmware/shading/traced_ray.hpp"
+#include "modules/latency_probe.hpp"
+
+namespace rtsim::platform::ullner_array {
+
+enum class MessageType : std::uint8_t { kNew, kVision, kShadow, kResult, kCredit };
+
+struct RayMessage {
+  MessageType type = MessageType::kNew;
+  /// Pixel (as y * width + x), r0, r_d, c: the ray as the firmware carries it (its weight or,
+  /// for a shadow ray, its light contribution is the colour field c).
+  shading::TracedRay ray;
+  Color contribution{0.0};    ///< result: the colour to add to the pixel
+  std::uint32_t resume = 0;   ///< subvolumes of the ray's walk already searched
+  std::uint64_t credit = 0;   ///< the termination detector's share carried
+  bool first_sample = false;  ///< a pixel's first vision ray: its answer fills the AOVs
+  sc_core::sc_time created;   ///< when its ray was made (ray latency)
+
+  /// k, r, c, r0 (3), r_d (3), c (3) = 12 words (Fig. 2-27), + resume, far limit, generation,
+  /// credit (2) = 17 words.
+  static constexpr unsigned kWords = 17;
+  static constexpr std::uint64_t kWireBits = 32 * kWords;
+};
+
+}  // namespace rtsim::platform::ullner_array

@@ -1,0 +1,177 @@
+// ullner-array (seed 000 §2.5): the router reaches every processor by neighbour hops; the
+// subvolume mappings keep neighbouring subvolumes on neighbouring processors (L866); the image,
+// summed from the contributions the result messages carry, equals the functional twin's for every
+// array size and mapping; a lost result message or a corrupted polygon word changes it; the
+// termination detector's credit comes back whole.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "modules/mesh_topology.hpp"
+#include "platform/machines/ullner_array/subvolume_mapping.hpp"
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::modules::Direction;
+using rtsim::modules::GridNode;
+using rtsim::modules::MeshTopology;
+using rtsim::platform::ullner_array::Mapping;
+using rtsim::platform::ullner_array::SubvolumeMapping;
+using rtsim::test::read_file;
+using rtsim::test::read_json;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+TEST(MeshTopology, DimensionOrderRoutesReachEveryNodeInTheFewestHops) {
+  for (const bool wrap : {false, true}) {
+    const MeshTopology t(5, 7, wrap, wrap);
+    for (int a = 0; a < t.nodes(); ++a)
+      for (int b = 0; b < t.nodes(); ++b) {
+        GridNode at = t.node(a);
+        const GridNode to = t.node(b);
+        const int hops = t.hops(at, to);
+        int taken = 0;
+        while (!(at == to)) {
+          const auto next = t.neighbour(at, t.next_hop(at, to));
+          ASSERT_TRUE(next.has_value()) << "routed off the array";
+          at = *next;
+          ASSERT_LE(++taken, hops);
+        }
+        EXPECT_EQ(taken, hops);
+      }
+  }
+  const MeshTopology mesh(3, 3, false, false);
+  EXPECT_FALSE(mesh.neighbour({0, 0}, Direction::kNorth).has_value());
+  const MeshTopology torus(3, 3, true, true);
+  EXPECT_EQ(*torus.neighbour({0, 0}, Direction::kNorth), (GridNode{2, 0}));
+  EXPECT_EQ(torus.hops({0, 0}, {0, 2}), 1);  // the wrap link is shorter
+  EXPECT_EQ(mesh.hops({0, 0}, {0, 2}), 2);
+}
+
+TEST(SubvolumeMapping, NeighbouringSubvolumesLandOnConnectedProcessors) {
+  for (const Mapping kind : {Mapping::kStraight, Mapping::kSkew, Mapping::kTorus}) {
+    for (const auto& [rows, cols, n] :
+         {std::tuple{8, 8, 8}, std::tuple{8, 8, 16}, std::tuple{4, 6, 12}, std::tuple{3, 3, 9}}) {
+      SubvolumeMapping m;
+      m.rows = rows;
+      m.cols = cols;
+      m.n = n;
+      m.mapping = kind;
+      m.depth_axis = 1;
+      m.col_axis = 0;
+      m.row_axis = 2;
+      const MeshTopology t(rows, cols, m.wrap_rows(), m.wrap_cols());
+      std::vector<int> owned(static_cast<std::size_t>(t.nodes()), 0);
+      for (int x = 0; x < n; ++x)
+        for (int y = 0; y < n; ++y)
+          for (int z = 0; z < n; ++z) {
+            const rtsim::accel::CellIndex c{x, y, z};
+            const GridNode here = m.node_of(c);
+            ++owned[static_cast<std::size_t>(t.index(here))];
+            for (int axis = 0; axis < 3; ++axis) {
+              rtsim::accel::CellIndex d = c;
+              if (axis == 0) ++d.x;
+              if (axis == 1) ++d.y;
+              if (axis == 2) ++d.z;
+              if (d[axis] >= n) continue;
+              const GridNode there = m.node_of(d);
+              EXPECT_TRUE(here == there || t.direction_to(here, there).has_value())
+                  << "mapping " << static_cast<int>(kind) << " " << rows << "x" << cols << " n "
+                  << n << ": (" << x << "," << y << "," << z << ") axis " << axis;
+            }
+          }
+      // Every processor owns its share: n^3 / (rows cols) subvolumes.
+      for (const int k : owned) EXPECT_EQ(k, n * n * n / (rows * cols));
+    }
+  }
+}
+
+/// `rtsim run --machine ullner-array ARGS`; its stats.json (with the image's path added).
+nlohmann::json run_array(const std::string& tag, const std::string& args) {
+  const fs::path dir = scratch_dir("array-" + tag);
+  const auto r = run_rtsim("run --machine ullner-array " + args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  if (r.exit_code != 0) return {};
+  auto stats = read_json(dir / "stats.json");
+  stats["image_png"] = (dir / "image.png").string();
+  return stats;
+}
+
+TEST(UllnerArray, ImageEqualsTheFunctionalRenderForEverySizeAndMapping) {
+  const std::string size = " --width 24 --height 24";
+  for (const std::string& scene :
+       {std::string("builtin:ullner-cubes"), rtsim::test::shared_path("scenes/tetra-s3.nff")}) {
+    for (const auto& [rows, cols, n] :
+         {std::tuple{8, 8, 0}, std::tuple{2, 3, 0}, std::tuple{16, 16, 0}, std::tuple{8, 8, 16}}) {
+      const std::string grid = " -p array.rows=" + std::to_string(rows) +
+                               " -p array.cols=" + std::to_string(cols) +
+                               " -p array.subvolumes=" + std::to_string(n);
+      const fs::path golden = scratch_dir("array-golden");
+      const auto g = run_rtsim("render --machine ullner-array --scene " + scene + size + grid +
+                               " -q --out " + golden.string());
+      ASSERT_EQ(g.exit_code, 0) << g.output;
+      const std::string want = read_file(golden / "image.png");
+      fs::remove_all(golden);
+      for (const char* mapping : {"straight", "skew", "torus"}) {
+        const std::string args =
+            "--scene " + scene + size + grid + " -p array.mapping=" + mapping + " --overhead";
+        const auto s = run_array("image", args);
+        ASSERT_FALSE(s.empty());
+        EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << args;
+        EXPECT_EQ(read_file(s.at("image_png").get<std::string>()), want) << args;
+        // The detector held all the credit: every message was accounted for.
+        EXPECT_GT(s["array"]["termination"]["credit_message_hops"].get<int>(), 0) << args;
+        EXPECT_EQ(s["array"]["results_dropped"], 0);
+      }
+    }
+  }
+}
+
+TEST(UllnerArray, ALostResultMessageChangesTheImage) {
+  const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
+  const auto clean = run_array("clean", args);
+  const auto lost = run_array("lost", args + " -p array.fault.drop_result=200");
+  ASSERT_FALSE(clean.empty() || lost.empty());
+  EXPECT_EQ(lost["array"]["results_dropped"], 1);
+  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+            read_file(lost.at("image_png").get<std::string>()));
+  // The frame still ends: the lost message's credit was returned where it was dropped.
+  EXPECT_EQ(lost["array"]["results_added"], clean["array"]["results_added"]);
+}
+
+TEST(UllnerArray, ACorruptedPolygonWordInAProcessorsMemoryChangesTheImage) {
+  // Flip the sign of d_p (word 3) of every polygon line a centre processor holds.
+  const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
+  const auto clean = run_array("mem-clean", args);
+  ASSERT_FALSE(clean.empty());
+  std::string faults;
+  for (int line = 0; line < 40; ++line)
+    faults += " --fault node27.memory:" + std::to_string(line * 26 + 3) + ":0x80000000";
+  const auto bad = run_array("mem-bad", args + faults);
+  ASSERT_FALSE(bad.empty());
+  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+            read_file(bad.at("image_png").get<std::string>()));
+}
+
+TEST(UllnerArray, BadSizesAreBadInput) {
+  const fs::path dir = scratch_dir("array-bad");
+  auto r = run_rtsim(
+      "run --machine ullner-array --scene builtin:ullner-cubes "
+      "-p array.subvolumes=4 -q --out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("array.subvolumes"), std::string::npos) << r.output;
+  r = run_rtsim("run --machine ullner-array --scene builtin:npp-412 -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = run_rtsim(
+      "run --machine ullner-array --scene builtin:ullner-cubes -p array.mapping=twist "
+      "-q --out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+}  // namespace
