@@ -509,6 +509,18 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     else
       problems.push_back(r.message);
   }
+  if (const json* arr = find(stats, "array"); arr && find(*arr, "node_busy_fraction")) {
+    const fs::path png = tools.scratch_dir / "array_heatmap.png";
+    const auto r =
+        run_analysis_script(tools, "array_heatmap.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "load balance of the array",
+                 "Each processor's CPU busy fraction laid out as the array, and the utilisation "
+                 "of every link toward its neighbour (stats.json array.node_busy_fraction and "
+                 "modules nodeK.link_D; analysis/array_heatmap.py)");
+    else
+      problems.push_back(r.message);
+  }
   if (!problems.empty()) page.note(missing_plots_note(problems));
 
   // `--latency-probe`: the per-stage breakdown of a ray's latency.

@@ -28,6 +28,7 @@ except ImportError as e:
           "python3-pandas)")
     sys.exit(SKIP)
 
+import array_heatmap  # noqa: E402
 import chain_profile  # noqa: E402
 import figures  # noqa: E402
 import latency_breakdown  # noqa: E402
@@ -307,6 +308,47 @@ class LatencyHistogramTest(unittest.TestCase, PngMixin):
         r = run_script("latency_histogram.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("stats.json:1", r.stderr)
+
+
+class ArrayHeatmapTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def stats(self):
+        return {"machine": "ullner-array", "scene": "s",
+                "array": {"mapping": "straight", "depth_axis": "z", "subvolumes": 2,
+                          "node_busy_fraction": [[0.5, 0.25], [0.125, 0.0]]},
+                "modules": {"node0.link_e": {"utilization": 0.2},
+                            "node3.link_n": {"utilization": 0.1},
+                            "node0": {"utilization": 0.5}}}
+
+    def test_series_and_png(self):
+        busy, links, desc = array_heatmap.array_series(self.stats())
+        self.assertEqual(busy, [[0.5, 0.25], [0.125, 0.0]])
+        self.assertEqual(sorted(links), [(0, 0, "e", 0.2), (1, 1, "n", 0.1)])
+        self.assertIn("straight", desc)
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(self.stats(), f)
+        out = os.path.join(self.dir, "a.png")
+        r = run_script("array_heatmap.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        bad = self.stats()
+        bad["array"]["node_busy_fraction"] = [[0.5, 0.25], [0.1]]
+        with self.assertRaises(Exception):
+            array_heatmap.array_series(bad)
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"machine": "vax-750"}, f)
+        r = run_script("array_heatmap.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("node_busy_fraction", r.stderr)
 
 
 class ChainProfileTest(unittest.TestCase, PngMixin):
