@@ -1,5 +1,6 @@
 #include "platform/validation/all_figures.hpp"
 
+#include "platform/validation/array_figures.hpp"
 #include "platform/validation/gaudet_figures.hpp"
 #include "platform/validation/pipeline_figures.hpp"
 #include "platform/validation/ullner_figures.hpp"
@@ -13,6 +14,7 @@ Plan make_validation_plan(const PlanOptions& options) {
   add_vax_figures(plan, options);
   add_gaudet_figures(plan, options);
   add_pipeline_figures(plan, options);
+  add_array_figures(plan, options);
   return plan;
 }
 
