@@ -171,6 +171,13 @@ TEST(UllnerArray, BadSizesAreBadInput) {
       "-q --out " +
       dir.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  // A processor whose memory cannot hold its subvolumes' polygons (L835).
+  r = run_rtsim(
+      "run --machine ullner-array --scene builtin:ullner-cubes -p node.memory_words=100 -q "
+      "--out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("node.memory_words"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
 }
 

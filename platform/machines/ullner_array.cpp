@@ -67,10 +67,11 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
   declare_common_params(
       r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
   const modules::ParamDecls array(r, "array", false);
-  array.count("rows", "8", "1", "256", "processors", "Rows of processors in the array",
+  array.count("rows", "8", "1", "64", "processors",
+              "Rows of processors in the array (at most 64: a thread a processor)",
               "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)");
-  array.count("cols", "8", "1", "256", "processors", "Columns of processors in the array",
-              "seed 000 L773 (Fig. 2-25)");
+  array.count("cols", "8", "1", "64", "processors",
+              "Columns of processors in the array (at most 64)", "seed 000 L773 (Fig. 2-25)");
   array.count("subvolumes", "0", "0", "256", "per axis",
               "Subvolumes per axis of the modelling space; 0: as many as the larger side of the "
               "array (one column of subvolumes a processor, Fig. 2-26). More give each "
@@ -167,6 +168,21 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                modules::times(cpu_cycle, node_params.get_count("cycles.keep_test")));
   ctx.frame_start = modules::times(per_polygon, twin.geometry->shapes.size());
 
+  // Each processor must hold the polygons of its subvolumes (L835: 128 KB).
+  const std::size_t capacity = node_params.get_count("memory_words");
+  for (int i = 0; i < topology.nodes(); ++i) {
+    const std::size_t need =
+        ullner_array::subvolume_polygons(*grid, ctx.mapping, topology.node(i)).size() *
+        ullner_array::kPolygonWords;
+    if (need > capacity)
+      throw InputError(scene.name, 0,
+                       "processor node" + std::to_string(i) + " of the array would hold " +
+                           std::to_string(need / ullner_array::kPolygonWords) + " polygons (" +
+                           std::to_string(need) + " words) but its memory has " +
+                           std::to_string(capacity) +
+                           " words (node.memory_words); use more processors or subvolumes "
+                           "(array.rows, array.cols, array.subvolumes) or a larger memory");
+  }
   ullner_array::ArrayTally tally;
   std::vector<std::unique_ptr<ArrayNode>> nodes;
   nodes.reserve(static_cast<std::size_t>(topology.nodes()));
@@ -192,6 +208,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = modules::plus(compute, readout);
   modules::StatsRegistry& stats = run.stats(ctx.frame_start, frame_time);
 
+  static constexpr const char* kTypeNames[] = {"new", "vision", "shadow", "result", "credit"};
   nlohmann::ordered_json busy = nlohmann::ordered_json::array();
   std::array<std::uint64_t, 5> sent{};
   std::uint64_t kept = 0, tests = 0, words = 0;
@@ -200,7 +217,6 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     for (int col = 0; col < topology.cols(); ++col) {
       const ArrayNode& n = *nodes[static_cast<std::size_t>(topology.index({row, col}))];
       auto& ns = stats.processor(n);
-      static constexpr const char* kTypeNames[] = {"new", "vision", "shadow", "result", "credit"};
       for (int t = 0; t < 5; ++t) {
         ns.values[std::string("received_") + kTypeNames[t]] = static_cast<double>(n.received()[t]);
         ns.values[std::string("sent_") + kTypeNames[t]] = static_cast<double>(n.sent()[t]);
@@ -214,8 +230,14 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
       auto& ps = stats.busy_module(std::string(n.name()) + ".pipeline", n.pipeline_busy(),
                                    n.pipeline_timeline());
       ps.values["words_fetched"] = static_cast<double>(n.words_fetched());
-      for (const modules::Direction d : modules::kDirections)
-        if (const modules::Link* l = n.link(d)) stats.link(*l);
+      for (const modules::Direction d : modules::kDirections) {
+        const modules::Link* l = n.link(d);
+        if (!l) continue;
+        auto& ls = stats.link(*l);
+        for (int t = 0; t < 5; ++t)
+          ls.values[std::string("messages_") + kTypeNames[t]] =
+              static_cast<double>(n.sent_through(d)[static_cast<std::size_t>(t)]);
+      }
       kept += n.polygons();
       tests += n.intersections();
       words += n.words_fetched();
@@ -225,7 +247,6 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     }
     busy.push_back(std::move(line));
   }
-  static constexpr const char* kTypeNames[] = {"new", "vision", "shadow", "result", "credit"};
   nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
   for (int t = 0; t < 5; ++t) by_type[kTypeNames[t]] = sent[static_cast<std::size_t>(t)];
   const auto& m = ctx.mapping;

@@ -26,6 +26,23 @@ constexpr std::uint64_t kTWords = 4, kUWords = 8, kVWords = 8;
 
 }  // namespace
 
+std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
+                                              const SubvolumeMapping& mapping,
+                                              const GridNode& node) {
+  const accel::GridDivisions n = grid.divisions();
+  std::vector<std::uint32_t> keep;
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        const accel::CellIndex c{x, y, z};
+        if (!(mapping.node_of(c) == node)) continue;
+        for (const std::uint32_t s : grid.cell(c)) keep.push_back(s);
+      }
+  std::sort(keep.begin(), keep.end());
+  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  return keep;
+}
+
 void ArrayNode::declare_params(const modules::ParamDecls& node) {
   const std::string cpu =
       "assumption: the thesis gives no MC68000 timings (seed 000 L835; note 000 §7.6): a few "
@@ -152,18 +169,7 @@ void ArrayNode::load() {
   // The host broadcasts every polygon (L787); this processor keeps those listed in one of its
   // subvolumes, in its memory. The broadcast's timing is the machine's (all processors alike);
   // the words are written here, through the memory's port, so a fault corrupts them.
-  const accel::UniformGrid& grid = *ctx_.grid;
-  const accel::GridDivisions n = grid.divisions();
-  std::vector<std::uint32_t> keep;
-  for (int z = 0; z < n.z; ++z)
-    for (int y = 0; y < n.y; ++y)
-      for (int x = 0; x < n.x; ++x) {
-        const accel::CellIndex c{x, y, z};
-        if (!(ctx_.mapping.node_of(c) == position_)) continue;
-        for (const std::uint32_t s : grid.cell(c)) keep.push_back(s);
-      }
-  std::sort(keep.begin(), keep.end());
-  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  const std::vector<std::uint32_t> keep = subvolume_polygons(*ctx_.grid, ctx_.mapping, position_);
   if (keep.size() * kPolygonWords > memory.size_words())
     SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its polygons");
   std::array<std::uint32_t, kPolygonWords> words{};
@@ -513,6 +519,7 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   memory_free_ = plus(start, copy);
   memory_busy_ += copy;
   ++sent_[type_index(msg.type)];
+  ++sent_by_link_[k][type_index(msg.type)];
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);
 }
 

@@ -54,6 +54,12 @@ namespace rtsim::platform::ullner_array {
 /// normals are looked up by it).
 inline constexpr unsigned kPolygonWords = kernels::kUllnerStoredWords + 1;
 
+/// The polygons (slots) listed in the subvolumes `mapping` gives processor `node`, ascending:
+/// what it keeps from the host's broadcast (L787).
+std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
+                                              const SubvolumeMapping& mapping,
+                                              const modules::GridNode& node);
+
 /// What every processor shares (read-only but for the frame buffer and the detector's count).
 struct ArrayContext {
   const modules::MeshTopology* topology = nullptr;
@@ -108,6 +114,10 @@ class ArrayNode : public modules::Processor {
   const modules::BusyTimeline& pipeline_timeline() const { return pipe_timeline_; }
   sc_core::sc_time pipeline_busy() const { return pipe_busy_; }
   sc_core::sc_time memory_busy() const { return memory_busy_; }
+  /// Messages sent through the output link in direction `d`, by type (MessageType order).
+  const std::array<std::uint64_t, 5>& sent_through(modules::Direction d) const {
+    return sent_by_link_[static_cast<int>(d)];
+  }
   /// Messages received and sent, by type (MessageType order).
   const std::array<std::uint64_t, 5>& received() const { return received_; }
   const std::array<std::uint64_t, 5>& sent() const { return sent_; }
@@ -164,6 +174,7 @@ class ArrayNode : public modules::Processor {
   sc_core::sc_time pipe_busy_ = sc_core::SC_ZERO_TIME;
   modules::BusyTimeline pipe_timeline_;
   std::array<std::uint64_t, 5> received_{}, sent_{};
+  std::array<std::array<std::uint64_t, 5>, 4> sent_by_link_{};
   std::uint64_t subvolumes_ = 0, tests_ = 0, words_fetched_ = 0;
   std::size_t backlog_peak_ = 0;
   std::vector<shading::TracedRay> spawned_;
