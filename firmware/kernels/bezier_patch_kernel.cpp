@@ -26,15 +26,34 @@ BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& pat
 template <typename T>
 bool BezierPatchKernelT<T>::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit,
                                       WangCounters* counters) const {
-  if (!valid_ || !(t_min <= t_max) || !is_finite(ray.origin) || !is_finite(ray.direction))
-    return false;
-  if (!(glm::dot(ray.direction, ray.direction) > 0.0)) return false;
-  // Enter the pipeline at O + t_min D, so its "not behind" test (eq. 21) enforces t >= t_min.
-  const double t_enter = std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0;
-  const Vec3 entry = ray.at(t_enter);
+  const auto start = entry(ray, t_min, t_max);
+  if (!start) return false;
   const WangResult<T> r =
-      wang_intersect<T>(net_, Vec3T<T>(entry), Vec3T<T>(ray.direction), iterations_, counters);
+      wang_intersect<T>(net_, *start, Vec3T<T>(ray.direction), iterations_, counters);
+  return finish(r, ray, t_min, t_max, hit);
+}
+
+template <typename T>
+std::optional<Vec3T<T>> BezierPatchKernelT<T>::entry(const Ray& ray, double t_min,
+                                                     double t_max) const {
+  if (!valid_ || !(t_min <= t_max) || !is_finite(ray.origin) || !is_finite(ray.direction))
+    return std::nullopt;
+  if (!(glm::dot(ray.direction, ray.direction) > 0.0)) return std::nullopt;
+  // The host's cull: a ray that misses the box of the control points from t_min on cannot hit
+  // the patch (it lies in its convex hull), so the job is not issued. The box is tested against
+  // the ray's whole forward range, not t_max: a subpatch centre inside the box can project
+  // before the box's entry, so a tighter test could drop a hit the pipeline would report.
+  double t0 = 0.0, t1 = 0.0;
+  if (!bounds_.intersect(ray, entry_t(t_min), kInfinity, t0, t1)) return std::nullopt;
+  // Enter the pipeline at O + t_min D, so its "not behind" test (eq. 21) enforces t >= t_min.
+  return Vec3T<T>(ray.at(entry_t(t_min)));
+}
+
+template <typename T>
+bool BezierPatchKernelT<T>::finish(const WangResult<T>& r, const Ray& ray, double t_min,
+                                   double t_max, SurfaceHit& hit) const {
   if (!r.hit) return false;
+  const double t_enter = entry_t(t_min);
   const Vec3 c(r.point);
   if (!is_finite(c)) return false;
   // t = (C - O).D with D unit (seed 002 L100). The pipeline tested (C - entry).D >= 0 in its own

@@ -1,6 +1,8 @@
 #pragma once
 // Kernel adapter for a bicubic Bezier patch intersected by Wang, Lewis & Hung's pipeline
 // (bezier_wang.hpp): the shape every intersection kernel offers (from / intersect / bounds).
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "firmware/bounds.hpp"
@@ -40,6 +42,15 @@ class BezierPatchKernelT {
   bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit,
                  WangCounters* counters) const;
 
+  /// The two halves of intersect around the pipeline, for a machine that runs the pipeline's
+  /// stages itself (wang_stage0, wang_loop_stage, wang_output on net()): where the ray enters
+  /// it (O + t_min D, in its precision), nothing if the job cannot hit; and the hit from what
+  /// the last stage output.
+  std::optional<Vec3T<T>> entry(const Ray& ray, double t_min, double t_max) const;
+  bool finish(const WangResult<T>& r, const Ray& ray, double t_min, double t_max,
+              SurfaceHit& hit) const;
+  const ControlNet<T>& net() const { return net_; }
+
   /// Box of the 16 control points (contains the patch).
   Bounds bounds() const { return bounds_; }
   int iterations() const { return iterations_; }
@@ -48,6 +59,7 @@ class BezierPatchKernelT {
   const ControlNet<double>& original() const { return original_; }
 
  private:
+  static double entry_t(double t_min) { return std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0; }
   ControlNet<double> original_;  ///< for the normal and the bounds
   ControlNet<T> net_;            ///< the pipeline's copy, in its precision
   Bounds bounds_;

@@ -87,64 +87,99 @@ struct WangResult {
   int survivors = 0;        ///< final buffer1 occupancy (1..4 on a hit)
 };
 
+/// A (ray, patch) job as it travels between the pipeline's stages (Fig. 10, L280-L288): the
+/// ray, its planes U and V, and buffer1 (the at most four surviving subpatches and their
+/// centres). Stage 0 makes it; every loop stage turns it into the next; the last stage's output
+/// is the result.
+template <typename T>
+struct WangJob {
+  Vec3T<T> o{T(0)};
+  Vec3T<T> d{T(0)};
+  RayPlanes<T> planes;
+  std::array<Subpatch<T>, Culler::kSurvivors> buffer1;
+  std::array<Vec3T<T>, Culler::kSurvivors> centers1;
+  int n1 = 0;  ///< buffer1's occupancy
+};
+
+/// Stage 0 (step 1): planes U and V; the input patch into four -> buffer1.
+template <typename T>
+WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
+                       WangCounters& counters) {
+  ++counters.calls;
+  WangJob<T> job;
+  job.o = o;
+  job.d = d;
+  job.planes = PlaneGenerator::generate(o, d);
+  Subpatch<T> root;
+  root.net = net;
+  PatchSubdivider::subdivide(root, job.buffer1.data());
+  ++counters.subdivisions;
+  job.n1 = Culler::kSurvivors;
+  return job;
+}
+
+/// One loop stage (steps 2-4): every buffer1 patch into four, hull classification, centre and
+/// distance of each, and the Culler's four nearest -> buffer1. An empty job passes unchanged.
+template <typename T>
+void wang_loop_stage(WangJob<T>& job, WangCounters& counters) {
+  if (job.n1 == 0) return;
+  ++counters.iterations;
+  // Step 2: every buffer1 patch into four -> buffer2.
+  std::array<Subpatch<T>, Culler::kCandidates> buffer2;
+  int n2 = 0;
+  for (int i = 0; i < job.n1; ++i, n2 += 4)
+    PatchSubdivider::subdivide(job.buffer1[i], &buffer2[n2]);
+  counters.subdivisions += static_cast<std::uint64_t>(job.n1);
+  // Step 3: hull classification, centre, distance -> sort keys. Empty slots and hull failures
+  // get the "behind" flag (see Culler::select).
+  std::array<T, Culler::kCandidates> keys;
+  std::array<Vec3T<T>, Culler::kCandidates> centers;
+  keys.fill(T(PatchDistance::kBehind));
+  for (int i = 0; i < n2; ++i) {
+    const HullClass hull = HullClassification::classify(job.planes, buffer2[i].net);
+    centers[i] = PatchCenter::center(buffer2[i].net);
+    const T dist = PatchDistance::distance(job.o, job.d, centers[i]);
+    keys[i] = hull.may_hit ? dist : T(PatchDistance::kBehind);
+  }
+  counters.hull_tests += static_cast<std::uint64_t>(n2);
+  // Step 4: the four nearest -> buffer1.
+  std::array<int, Culler::kSurvivors> keep;
+  job.n1 = Culler::select(keys, keep);
+  ++counters.culls;
+  for (int k = 0; k < job.n1; ++k) {
+    job.buffer1[k] = buffer2[keep[k]];
+    job.centers1[k] = centers[keep[k]];
+  }
+}
+
+/// Step 5, the last stage's output: the centre of the closest (the Culler put it first). An
+/// empty buffer1 is the null result of the outline's step 3 (L92).
+template <typename T>
+WangResult<T> wang_output(const WangJob<T>& job, int iterations, WangCounters& counters) {
+  WangResult<T> result;
+  if (job.n1 > 0 && iterations >= kWangMinIterations) {
+    result.hit = true;
+    result.point = job.centers1[0];
+    result.u = job.buffer1[0].u_center();
+    result.v = job.buffer1[0].v_center();
+    result.level = job.buffer1[0].level;
+    result.survivors = job.n1;
+    ++counters.hits;
+  }
+  return result;
+}
+
 /// The loop of §2.9 on one (ray, patch) job. `o`, `d` are the ray in the pipeline's precision;
 /// d should be unit length (L100) but only its direction matters here. `iterations` must be in
 /// [kWangMinIterations, kWangMaxIterations] (not checked here; the kernel adapter checks it).
+/// The software loop stops once buffer1 is empty; the hardware's stages pass the empty job on.
 template <typename T>
 WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
                              int iterations, WangCounters* counters = nullptr) {
   WangCounters local;
-  local.calls = 1;
-  // Step 1: planes U and V; the input patch into four -> buffer1.
-  const RayPlanes<T> planes = PlaneGenerator::generate(o, d);
-  Subpatch<T> root;
-  root.net = net;
-  std::array<Subpatch<T>, Culler::kSurvivors> buffer1;
-  std::array<Vec3T<T>, Culler::kSurvivors> centers1;
-  PatchSubdivider::subdivide(root, buffer1.data());
-  ++local.subdivisions;
-  int n1 = Culler::kSurvivors;
-
-  WangResult<T> result;
-  for (int it = 0; it < iterations && n1 > 0; ++it) {
-    ++local.iterations;
-    // Step 2: every buffer1 patch into four -> buffer2.
-    std::array<Subpatch<T>, Culler::kCandidates> buffer2;
-    int n2 = 0;
-    for (int i = 0; i < n1; ++i, n2 += 4) PatchSubdivider::subdivide(buffer1[i], &buffer2[n2]);
-    local.subdivisions += static_cast<std::uint64_t>(n1);
-    // Step 3: hull classification, centre, distance -> sort keys. Empty slots and hull failures
-    // get the "behind" flag (see Culler::select).
-    std::array<T, Culler::kCandidates> keys;
-    std::array<Vec3T<T>, Culler::kCandidates> centers;
-    keys.fill(T(PatchDistance::kBehind));
-    for (int i = 0; i < n2; ++i) {
-      const HullClass hull = HullClassification::classify(planes, buffer2[i].net);
-      centers[i] = PatchCenter::center(buffer2[i].net);
-      const T dist = PatchDistance::distance(o, d, centers[i]);
-      keys[i] = hull.may_hit ? dist : T(PatchDistance::kBehind);
-    }
-    local.hull_tests += static_cast<std::uint64_t>(n2);
-    // Step 4: the four nearest -> buffer1.
-    std::array<int, Culler::kSurvivors> keep;
-    n1 = Culler::select(keys, keep);
-    ++local.culls;
-    for (int k = 0; k < n1; ++k) {
-      buffer1[k] = buffer2[keep[k]];
-      centers1[k] = centers[keep[k]];
-    }
-  }
-  // Step 5: the centre of the closest (the Culler put it first). An empty buffer1 is the null
-  // result of the outline's step 3 (L92).
-  if (n1 > 0 && iterations >= kWangMinIterations) {
-    result.hit = true;
-    result.point = centers1[0];
-    result.u = buffer1[0].u_center();
-    result.v = buffer1[0].v_center();
-    result.level = buffer1[0].level;
-    result.survivors = n1;
-    ++local.hits;
-  }
+  WangJob<T> job = wang_stage0(net, o, d, local);
+  for (int it = 0; it < iterations && job.n1 > 0; ++it) wang_loop_stage(job, local);
+  const WangResult<T> result = wang_output(job, iterations, local);
   if (counters) *counters += local;
   return result;
 }
