@@ -107,4 +107,14 @@ class TimedFifo {
   Occupancy occupancy_;
 };
 
+/// Returns once `fifo` holds an item; a thread whose local time is `clock` (a LocalClock) first
+/// synchronises with simulated time, then waits for a put (the loop of a consumer thread).
+template <class T, class Clock>
+void wait_for_item(const TimedFifo<T>& fifo, Clock& clock) {
+  if (!fifo.empty()) return;
+  clock.sync();
+  while (fifo.empty()) sc_core::wait(fifo.put_event());
+  clock.resync();
+}
+
 }  // namespace rtsim::modules

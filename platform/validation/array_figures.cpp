@@ -20,24 +20,8 @@ constexpr double kHundredSpeedUp = 2.5;           // "250% as fast", L891
 
 RunRequest machine_run(std::string key, const char* machine, int side,
                        const std::vector<std::string>& params) {
-  RunRequest r;
-  r.key = std::move(key);
-  r.args = {"run",
-            "--machine",
-            machine,
-            "--scene",
-            "builtin:ullner-cubes",
-            "--width",
-            std::to_string(side),
-            "--height",
-            std::to_string(side),
-            "-q"};
-  for (const auto& p : params) {
-    r.args.push_back("-p");
-    r.args.push_back(p);
-  }
-  r.cost_hint = 40.0 * side * side;
-  return r;
+  return machine_run_request(std::move(key), machine, "builtin:ullner-cubes", side, side, params,
+                             40.0 * side * side);
 }
 
 /// A time parameter of a run, in seconds, from its stats.json `params`.

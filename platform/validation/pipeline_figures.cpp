@@ -25,26 +25,10 @@ const char* const kFastHost = "host.clock=100 GHz";
 
 RunRequest pipeline_run(std::string key, const std::string& scene, int side, int engines,
                         std::vector<std::string> params) {
-  RunRequest r;
-  r.key = std::move(key);
-  r.args = {"run",
-            "--machine",
-            kPipelineMachine,
-            "--scene",
-            scene,
-            "--width",
-            std::to_string(side),
-            "--height",
-            std::to_string(side),
-            "-q"};
   params.push_back("pipeline.engines=" + std::to_string(engines));
-  for (const auto& p : params) {
-    r.args.push_back("-p");
-    r.args.push_back(p);
-  }
   // Every ray is tested by every processor.
-  r.cost_hint = 2.0 * side * side * engines;
-  return r;
+  return machine_run_request(std::move(key), kPipelineMachine, scene, side, side, params,
+                             2.0 * side * side * engines);
 }
 
 std::string size_text(int side) { return std::to_string(side) + "x" + std::to_string(side); }

@@ -218,6 +218,29 @@ const nlohmann::json& stats_of(const RunResults& results, const std::string& key
   return *r.stats;
 }
 
+RunRequest machine_run_request(std::string key, const std::string& machine,
+                               const std::string& scene, int width, int height,
+                               const std::vector<std::string>& params, double cost_hint) {
+  RunRequest r;
+  r.key = std::move(key);
+  r.args = {"run",
+            "--machine",
+            machine,
+            "--scene",
+            scene,
+            "--width",
+            std::to_string(width),
+            "--height",
+            std::to_string(height),
+            "-q"};
+  for (const auto& p : params) {
+    r.args.push_back("-p");
+    r.args.push_back(p);
+  }
+  r.cost_hint = cost_hint;
+  return r;
+}
+
 double stats_number(const RunResults& results, const std::string& key, const std::string& path) {
   const nlohmann::json* node = &stats_of(results, key);
   std::size_t start = 0;

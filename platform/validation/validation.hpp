@@ -52,6 +52,12 @@ struct RunRequest {
   std::string command_line() const;
 };
 
+/// `rtsim run --machine MACHINE --scene SCENE --width W --height H -q -p P...`: the request of a
+/// figure's run.
+RunRequest machine_run_request(std::string key, const std::string& machine,
+                               const std::string& scene, int width, int height,
+                               const std::vector<std::string>& params, double cost_hint);
+
 /// What came of one run.
 struct RunOutcome {
   RunRequest request;

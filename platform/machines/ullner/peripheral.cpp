@@ -144,11 +144,7 @@ void Peripheral::run() {
   const sc_core::sc_time stage = config_.intersect_interval;
   const bool grid = config_.grid_divisions > 0;
   for (;;) {
-    if (rays.fifo.empty()) {
-      clock_.sync();
-      while (rays.fifo.empty()) sc_core::wait(rays.fifo.put_event());
-      clock_.resync();
-    }
+    modules::wait_for_item(rays.fifo, clock_);
     sc_core::sc_time taken;
     RayRequest req = rays.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);

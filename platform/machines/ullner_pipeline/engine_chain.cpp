@@ -161,11 +161,7 @@ void EngineChain::run() {
   const std::uint64_t n = engines();
   sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
   for (;;) {
-    if (input.fifo.empty()) {
-      clock_.sync();
-      while (input.fifo.empty()) sc_core::wait(input.fifo.put_event());
-      clock_.resync();
-    }
+    modules::wait_for_item(input.fifo, clock_);
     // The first processor accepts the description once it has arrived and its previous one is
     // an issue interval in: that frees its input register for the host.
     sc_core::sc_time accepted;
