@@ -25,7 +25,8 @@ DEFAULT_SCENES = [os.path.join(HERE, "..", "..", "shared", "scenes", n)
                   for n in ("balls-s1.nff", "balls-s2.nff", "balls-s3.nff", "teapot-s2.nff",
                             "teapot.bpt", "tetra-s3.nff")] + [
     "builtin:ullner-cubes", "builtin:npp-412", "builtin:ullner-random-1000"]
-MACHINES = ["vax-750", "ullner-peripheral", "gaudet-pert", "ullner-pipeline", "ullner-array"]
+MACHINES = ["vax-750", "ullner-peripheral", "gaudet-pert", "ullner-pipeline", "ullner-array",
+            "wang-bezier"]
 
 
 def sha256(path):

@@ -81,6 +81,7 @@ INSTANTIATE_TEST_SUITE_P(Machines, Describe,
                                          Case{"ullner-peripheral", "builtin:ullner-cubes"},
                                          Case{"ullner-pipeline", "builtin:ullner-cubes"},
                                          Case{"ullner-array", "builtin:ullner-cubes"},
+                                         Case{"wang-bezier", "builtin:default"},
                                          Case{"vax-750", "builtin:npp-412"}),
                          [](const testing::TestParamInfo<Case>& i) {
                            return rtsim::test::gtest_param_name(i.param.machine);
@@ -98,13 +99,13 @@ TEST(Describe, EveryMachineIsCovered) {
     words >> name;
     if (name == "(none)") continue;  // the functional renderer
     bool covered = false;
-    for (const char* m :
-         {"gaudet-pert", "ullner-peripheral", "ullner-pipeline", "ullner-array", "vax-750"})
+    for (const char* m : {"gaudet-pert", "ullner-peripheral", "ullner-pipeline", "ullner-array",
+                          "vax-750", "wang-bezier"})
       covered |= name == m;
     EXPECT_TRUE(covered) << name << " has no case in Machines/Describe";
     ++machines;
   }
-  EXPECT_EQ(machines, 5u);
+  EXPECT_EQ(machines, 6u);
 }
 
 TEST(Describe, ConnectionsFollowTheWiring) {

@@ -136,6 +136,9 @@ const std::map<std::string, std::vector<std::string>>& runs_per_machine() {
       {"ullner-array",
        {"--scene builtin:ullner-cubes --width 24 --height 24 -p array.rows=4 -p array.cols=4",
         "--scene builtin:ullner-cubes --width 24 --height 24 -p array.mapping=torus"}},
+      {"wang-bezier",
+       {"--scene " + shared_path("scenes/teapot.bpt") + " --width 16 --height 16",
+        "--scene builtin:default --width 16 --height 16 -p pipeline.culler.kind=software"}},
       {"gaudet-pert",
        {"--scene " + shared_path("scenes/balls-s2.nff") + " --width 24 --height 24",
         "--scene " + shared_path("scenes/balls-s2.nff") +

@@ -9,6 +9,7 @@
 #include "platform/machines/ullner_peripheral.hpp"
 #include "platform/machines/ullner_pipeline.hpp"
 #include "platform/machines/vax750.hpp"
+#include "platform/machines/wang_bezier.hpp"
 
 namespace rtsim::platform {
 
@@ -18,7 +19,8 @@ const std::vector<const Machine*>& machines() {
   static const GaudetPert pert;
   static const UllnerPipeline pipeline;
   static const UllnerArray array;
-  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline, &array};
+  static const WangBezier wang;
+  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline, &array, &wang};
   return all;
 }
 

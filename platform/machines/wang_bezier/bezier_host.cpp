@@ -1,0 +1,257 @@
+#include "platform/machines/wang_bezier/bezier_host.hpp"
+
+#include <array>
+#include <bit>
+
+#include "platform/functional/scene_tracer.hpp"
+
+namespace rtsim::platform::wang_bezier {
+
+namespace {
+/// The slab test of a ray against a patch's box: 6 subtractions, 6 multiplications by the
+/// inverse direction, 10 comparisons.
+constexpr Cost kCullCost{.fp_add = 6 + 10, .fp_mul = 6, .mem_words = 6, .instructions = 4};
+/// Formatting a job: its words written, a few instructions.
+constexpr Cost kJobCost{.mem_words = PatchJob::kWireBits / 32, .instructions = 8};
+/// Taking an answer: its words read.
+constexpr Cost kAnswerCost{.mem_words = JobResult::kWireBits / 32, .instructions = 4};
+/// Words of one control net: 16 points x 3 singles.
+constexpr std::size_t kNetWords = 48;
+
+std::size_t count_patches(const functional::SceneGeometry& g) {
+  std::size_t n = 0;
+  for (const auto& s : g.shapes) n += std::holds_alternative<functional::PatchShape>(s.shape);
+  return n;
+}
+}  // namespace
+
+void BezierHost::declare_params(const modules::ParamDecls& host) {
+  modules::declare_processor_params(
+      host, {.clock = "350 MHz",
+             .fp_add = 1,
+             .fp_mul = 1,
+             .fp_div = 20,
+             .fp_sqrt = 30,
+             .mem_word = 1,
+             .instruction = 1,
+             .source = "assumption: the paper gives no host (note 002 §4); the 350 MHz "
+                       "Pentium II on which it timed the blocks (seed 002 L274)"});
+  host.count("rays_in_flight", "4096", "1", "1000000", "rays",
+             "Rays the host keeps in flight (their jobs in the pipeline or waiting for it)",
+             "assumption: enough to keep the pipeline's 56 jobs in flight busy");
+}
+
+BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                       const scenes::Scene& scene, const shading::ShadeParams& shade,
+                       functional::FrameState& frame,
+                       const modules::TimedFifo<PatchJob>& pipeline_input,
+                       const functional::SceneGeometry& geometry, const RunOptions& opts,
+                       MachineTrace& trace)
+    : modules::Processor(name, trace),
+      job_out("job_out"),
+      results("result_queue", modules::TimedFifo<JobResult>::kUnbounded),
+      patch_memory("patch_memory", std::max<std::size_t>(1, count_patches(geometry)) * kNetWords,
+                   kNetWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      scene_(scene),
+      frame_(frame),
+      pipeline_input_(pipeline_input),
+      geometry_(geometry),
+      opts_(opts),
+      shade_(scene, shade),
+      window_(modules::ModuleParams(registry, this->name()).get_count("rays_in_flight")),
+      memory_port_("memory_port") {
+  memory_port_.bind(patch_memory.socket);
+  set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
+  for (std::uint32_t s = 0; s < geometry.shapes.size(); ++s)
+    if (std::holds_alternative<functional::PatchShape>(geometry.shapes[s].shape))
+      patch_slots_.push_back(s);
+  SC_THREAD(run);
+}
+
+void BezierHost::load_patches() {
+  std::array<float, kNetWords> words{};
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_data_length(kNetWords * 4);
+  gp.set_streaming_width(kNetWords * 4);
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  for (std::size_t k = 0; k < patch_slots_.size(); ++k) {
+    const auto& net =
+        std::get<functional::PatchShape>(geometry_.shapes[patch_slots_[k]].shape).kernel->net();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int c = 0; c < 3; ++c)
+          words[static_cast<std::size_t>((a * 4 + b) * 3 + c)] = net.p[a][b][c];
+    gp.set_address(k * kNetWords * 4);
+    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    memory_port_->b_transport(gp, unused);
+  }
+}
+
+const kernels::ControlNet<float>& BezierHost::net_of(std::size_t k) {
+  if (patch_memory.words_written() != decoded_after_) {
+    const auto& words = patch_memory.contents();
+    nets_.resize(patch_slots_.size());
+    for (std::size_t i = 0; i < patch_slots_.size(); ++i)
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          for (int c = 0; c < 3; ++c)
+            nets_[i].p[a][b][c] = std::bit_cast<float>(
+                words[i * kNetWords + static_cast<std::size_t>((a * 4 + b) * 3 + c)]);
+    decoded_after_ = patch_memory.words_written();
+  }
+  return nets_[k];
+}
+
+void BezierHost::start(const shading::TracedRay& r, bool first_sample) {
+  const std::uint64_t id = next_id_++;
+  RayState& st = rays_[id];
+  st.ray = r;
+  st.first_sample = first_sample;
+  st.started = clock_.now();
+  in_flight_peak_ = std::max<std::uint64_t>(in_flight_peak_, rays_.size());
+  const double t_min = shade_.t_min(r);
+  Cost cost;
+  for (std::size_t k = 0; k < patch_slots_.size(); ++k) {
+    const std::uint32_t slot = patch_slots_[k];
+    const auto& kernel = *std::get<functional::PatchShape>(geometry_.shapes[slot].shape).kernel;
+    cost += kCullCost;
+    const auto entry = kernel.entry(r.ray, t_min, r.t_max);
+    if (!entry) {
+      ++culled_;
+      continue;
+    }
+    PatchJob job;
+    job.ray = id;
+    job.slot = slot;
+    job.o = *entry;
+    job.d = Vec3T<float>(r.ray.direction);
+    job.net = net_of(k);  // the control points as the host's memory holds them
+    pending_.push_back(job);
+    ++st.outstanding;
+  }
+  compute(cost, "cull", {{"ray", id}});
+  if (st.outstanding == 0) answer(id);
+}
+
+void BezierHost::answer(std::uint64_t id) {
+  RayState st = std::move(rays_.at(id));
+  rays_.erase(id);
+  const shading::TracedRay& r = st.ray;
+  const double t_min = shade_.t_min(r);
+  const bool shadow = r.kind == RayKind::Shadow;
+  TraceCounters& counters = frame_.counters();
+  Cost cost;  // the host's own tests of the other primitives, then the shading
+  // In slot order, each shape with the nearest found so far as its limit: the twin's search.
+  double best = r.t_max;
+  bool found = false;
+  Hit hit;
+  SurfaceHit s;
+  for (std::uint32_t slot = 0; slot < geometry_.shapes.size() && !(shadow && found); ++slot) {
+    bool here = false;
+    if (const auto* p = std::get_if<functional::PatchShape>(&geometry_.shapes[slot].shape)) {
+      const auto a = st.answers.find(slot);
+      if (a != st.answers.end()) {
+        ++counters.intersection_tests;
+        here = p->kernel->finish(a->second, r.ray, t_min, best, s);
+      }
+    } else {
+      cost += std::visit([](const auto& k) { return std::decay_t<decltype(k)>::kTestCost; },
+                         geometry_.shapes[slot].shape);
+      here = functional::test_shape(geometry_, slot, r.ray, t_min, best, s, counters);
+    }
+    if (!here) continue;
+    found = true;
+    best = s.t;
+    functional::fill_hit(geometry_, slot, s, hit);
+  }
+  counters.count_ray(r.kind);
+  if (found && !shadow) ++counters.hits;
+  if (st.first_sample) frame_.record_primary(r.pixel, found, hit);
+  const Cost shading = shade_.on_result(r, found, hit, frame_.fb(), spawned_);
+  counters.cost += shading;
+  cost += shading;
+  compute(cost, "answer", {{"ray", id}, {"spawned", spawned_.size()}});
+  latency_.add(clock_.now() - st.started);
+  for (const auto& sp : spawned_) backlog_.push_back(sp);
+}
+
+void BezierHost::run() {
+  load_patches();
+  const shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
+  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+  const std::uint64_t total = vision.remaining();
+  std::uint64_t started = 0;
+  for (;;) {
+    const sc_core::sc_time now = clock_.now();
+    if (results.fifo.has_item_by(now)) {
+      sc_core::sc_time taken;
+      JobResult res = results.fifo.get(now, taken);
+      clock_.catch_up(taken);
+      compute(kAnswerCost, "take");
+      job_latency_.add(taken - res.sent);
+      RayState& st = rays_.at(res.ray);
+      st.answers[res.slot] = res.result;
+      if (--st.outstanding == 0) answer(res.ray);
+      continue;
+    }
+    if (!pending_.empty() && pipeline_input_.has_room_by(now)) {
+      PatchJob job = pending_.front();
+      pending_.pop_front();
+      compute(kJobCost, "job", {{"ray", job.ray}});
+      job.sent = clock_.now();
+      job.arrived = job.sent;
+      ++jobs_;
+      modules::send_message(job_out, job, job.arrived, PatchJob::kWireBits);
+      continue;
+    }
+    if (pending_.empty() && rays_.size() < window_) {
+      if (!backlog_.empty()) {
+        const shading::TracedRay r = backlog_.front();
+        backlog_.pop_front();
+        start(r, false);
+        continue;
+      }
+      if (!vision.done()) {
+        int sample = 0;
+        const shading::TracedRay r = vision.next(sample);
+        compute(tasks::VisionRayTask::kCost, "vision ray", {{"pixel", r.pixel}});
+        start(r, sample == 0);
+        if (opts_.progress && (++started & 1023) == 0)
+          opts_.progress(static_cast<long>(started), static_cast<long>(total));
+        continue;
+      }
+    }
+    if (rays_.empty() && backlog_.empty() && vision.done() && pending_.empty()) break;
+    // Wait for an answer, or for room in the pipeline's input when a job is waiting.
+    std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
+    if (!pending_.empty()) {
+      const auto room = pipeline_input_.next_room_time();
+      if (room && (!next || *room < *next)) {
+        if (*room > now) {
+          blocked_until(*room);
+          continue;
+        }
+      }
+    }
+    if (next && *next > now) {
+      idle_until(*next, Wait::kData);
+      continue;
+    }
+    clock_.sync();
+    if (!results.fifo.empty() || (!pending_.empty() && pipeline_input_.next_room_time())) continue;
+    if (!pending_.empty())
+      sc_core::wait(results.fifo.put_event() | pipeline_input_.get_event());
+    else
+      sc_core::wait(results.fifo.put_event());
+    clock_.resync();
+    waited_since(now, Wait::kData);
+  }
+  frame_time_ = clock_.now();
+  clock_.sync();
+  if (opts_.progress) opts_.progress(static_cast<long>(started), static_cast<long>(total));
+}
+
+}  // namespace rtsim::platform::wang_bezier

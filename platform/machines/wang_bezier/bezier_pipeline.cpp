@@ -1,0 +1,146 @@
+#include "platform/machines/wang_bezier/bezier_pipeline.hpp"
+
+#include <algorithm>
+
+#include "modules/sim_time.hpp"
+
+namespace rtsim::platform::wang_bezier {
+
+using modules::plus;
+using modules::times;
+
+void BezierPipeline::declare_params(const modules::ParamDecls& p) {
+  p.time("cycle_time", "6 ns", "Clock period of the TMS320C6701 DSPs", "seed 002 L436");
+  const auto pool = [&](const std::string& name, const char* dsps, const char* cycles,
+                        const std::string& what, const std::string& source) {
+    p.count(name + ".dsps", dsps, "1", "100000", "DSPs", "DSPs of the " + what + " substage",
+            source);
+    p.count(name + ".cycles", cycles, "1", "1000000000", "cycles",
+            "DSP cycles of one call in the " + what + " substage", source);
+  };
+  pool("split_u", "4", "182", "SplitInHalf (u: 4 patches into 8 halves)",
+       "seed 002 L437 (Table 4, substage 1)");
+  pool("split_v", "8", "182", "SplitInHalf (v: 8 halves into 16 subpatches)",
+       "seed 002 L438 (Table 4, substage 2)");
+  pool("hull", "32", "112", "HullClassification (16 subpatches x 2 planes)",
+       "seed 002 L439, L430 (112 cycles on one plane)");
+  pool("center_distance", "16", "130", "PatchCenter + PatchDistance (16 subpatches)",
+       "seed 002 L440 (102 + 28 cycles, Table 3)");
+  p.declare({.name = "culler.kind",
+             .kind = params::ParamKind::kString,
+             .default_value = "asic",
+             .allowed = {"asic", "software"},
+             .description = "The Culler: the bitonic-network ASIC, or the software routine on "
+                            "one DSP (the implementation without custom hardware)",
+             .source = "seed 002 L302-L318, L432"});
+  p.time("culler.delay", "800 ns",
+         "Delay of the Culler ASIC's 10-stage sorting network (not pipelined)", "seed 002 L318");
+  p.count("culler.software_cycles", "3081", "1", "1000000000", "cycles",
+          "DSP cycles of the software Culler", "seed 002 L432 (Table 3)");
+  p.declare({.name = "stage0.mapping",
+             .kind = params::ParamKind::kString,
+             .default_value = "split",
+             .allowed = {"split", "subdivider"},
+             .description = "Stage 0: SplitInHalf in u on 1 DSP then in v on 2, PlaneGenerator "
+                            "alongside (split), or PlaneGenerator and PatchSubdivider on one DSP "
+                            "(subdivider, 243 + 36 cycles: the bottleneck)",
+             .source = "assumption: the paper gives no stage-0 mapping (note 002 §4.5); "
+                       "split keeps it off the critical path"});
+  p.count("stage0.subdivider_cycles", "243", "1", "1000000000", "cycles",
+          "DSP cycles of PatchSubdivider (Table 2's last step; the earlier ones: 11478, 9018, "
+          "7803, 1284, 1257, 317)",
+          "seed 002 L415-L427");
+  p.count("stage0.plane_cycles", "36", "1", "1000000000", "cycles", "DSP cycles of PlaneGenerator",
+          "seed 002 L429 (Table 3)");
+}
+
+BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
+                               int loop_stages)
+    : sc_core::sc_module(name),
+      input("input", 1),
+      result_out("result_out"),
+      loop_stages_(loop_stages) {
+  const modules::ModuleParams p(r, this->name());
+  const sc_core::sc_time t = p.get_time("cycle_time");
+  const auto substage = [&](const std::string& n, std::uint64_t units) {
+    Substage s;
+    s.name = n;
+    s.dsps = static_cast<unsigned>(p.get_count(n + ".dsps"));
+    s.units = units;
+    s.cycles = p.get_count(n + ".cycles");
+    s.time = times(t, ((units + s.dsps - 1) / s.dsps) * s.cycles);
+    return s;
+  };
+  // A loop stage (Table 4): 4 patches split in u, their 8 halves in v, 16 subpatches x 2
+  // planes classified, 16 centres and distances, then the Culler.
+  loop_ = {substage("split_u", 4), substage("split_v", 8), substage("hull", 32),
+           substage("center_distance", 16)};
+  Substage culler;
+  culler.name = "culler";
+  const sc_core::sc_time asic_delay = p.get_time("culler.delay");
+  const std::uint64_t software_cycles = p.get_count("culler.software_cycles");
+  if (p.get_string("culler.kind") == "asic") {
+    culler.time = asic_delay;
+  } else {
+    culler.dsps = 1;
+    culler.units = 1;
+    culler.cycles = software_cycles;
+    culler.time = times(t, culler.cycles);
+  }
+  loop_.push_back(culler);
+  // Stage 0 (L284): the first split and the planes.
+  const std::uint64_t plane = p.get_count("stage0.plane_cycles");
+  const std::uint64_t subdivider = p.get_count("stage0.subdivider_cycles");
+  if (p.get_string("stage0.mapping") == "split") {
+    const std::uint64_t half = p.get_count("split_u.cycles");
+    stage0_ = {
+        Substage{"stage0.split_u", 1, 1, std::max(half, plane), times(t, std::max(half, plane))},
+        Substage{"stage0.split_v", 2, 2, half, times(t, half)}};
+  } else {
+    const std::uint64_t c = subdivider + plane;
+    stage0_ = {Substage{"stage0.subdivider", 1, 1, c, times(t, c)}};
+  }
+  cycle_ = sc_core::SC_ZERO_TIME;
+  for (const auto& s : stage0_) cycle_ = std::max(cycle_, s.time);
+  for (const auto& s : loop_) cycle_ = std::max(cycle_, s.time);
+  latency_ = times(cycle_, stage0_.size() + loop_.size() * static_cast<std::uint64_t>(loop_stages));
+  sub_timelines_.resize(loop_.size());
+  SC_THREAD(run);
+}
+
+void BezierPipeline::run() {
+  sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
+  const std::uint64_t stage0_slots = stage0_.size();
+  for (;;) {
+    modules::wait_for_item(input.fifo, clock_);
+    // Stage 0 takes the job once the previous one is a cycle in.
+    sc_core::sc_time accepted;
+    const PatchJob job = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
+    clock_.catch_up(accepted);
+    next_accept = plus(accepted, cycle_);
+    timeline_.add(accepted, cycle_);
+    for (std::size_t k = 0; k < loop_.size(); ++k)
+      sub_timelines_[k].add(plus(accepted, times(cycle_, stage0_slots + k)), loop_[k].time);
+    ++jobs_;
+
+    // The data: stage 0, every loop stage, the last stage's output.
+    auto w = kernels::wang_stage0(job.net, job.o, job.d, counters_);
+    for (int s = 0; s < loop_stages_; ++s) kernels::wang_loop_stage(w, counters_);
+    JobResult res;
+    res.ray = job.ray;
+    res.slot = job.slot;
+    res.sent = job.sent;
+    res.result = kernels::wang_output(w, loop_stages_, counters_);
+    if (res.result.hit) ++hits_;
+
+    const sc_core::sc_time leaves = plus(accepted, latency_);
+    leaving_.erase(std::remove_if(leaving_.begin(), leaving_.end(),
+                                  [&](const sc_core::sc_time& l) { return l <= accepted; }),
+                   leaving_.end());
+    leaving_.push_back(leaves);
+    in_flight_peak_ = std::max<std::uint64_t>(in_flight_peak_, leaving_.size());
+    modules::send_message(result_out, res, leaves, JobResult::kWireBits);
+  }
+}
+
+}  // namespace rtsim::platform::wang_bezier

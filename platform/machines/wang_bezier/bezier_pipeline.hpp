@@ -1,0 +1,82 @@
+#pragma once
+// The ray/Bezier-patch pipeline of Wang, Lewis & Hung (seed 002 §3-§4, Fig. 10, L280-L288): stage
+// 0 (PlaneGenerator and the first four-way split) and N identical loop stages (bezier.iterations,
+// 10 in the paper), unrolled, no feedback. Each loop stage has the five substages of Table 4
+// (L436-L441): SplitInHalf in u on 4 DSPs, in v on 8, HullClassification on 32 (one plane each),
+// PatchCenter + PatchDistance on 16, and the Culler (an ASIC of at most 800 ns, L318, or the
+// software routine of 3081 cycles, L432). TMS320C6701s at 6 ns a cycle (L436).
+//
+// Data flows through the stages: each job is stage 0's output carried through every loop stage
+// (kernels::wang_stage0, wang_loop_stage, wang_output on the control net and ray the job
+// brought); what leaves the last stage is the result the host reads.
+//
+// Timing by arithmetic (every block's work is data-independent, L193): a substage with k DSPs
+// doing u units of c cycles takes ceil(u / k) c cycle times; the pipeline cycle is the slowest
+// substage, one job enters per cycle, and a job leaves after (stage 0's substages + 5 N) cycles.
+// One thread for the whole pipeline.
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <array>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/busy_timeline.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/module_params.hpp"
+#include "platform/machines/wang_bezier/messages.hpp"
+
+namespace rtsim::platform::wang_bezier {
+
+/// One kind of substage: its name, and the time it takes for a job.
+struct Substage {
+  std::string name;   ///< "split_u", ...: its parameters and statistics
+  unsigned dsps = 0;  ///< 0: custom hardware (the Culler ASIC)
+  std::uint64_t units = 0;
+  std::uint64_t cycles = 0;
+  sc_core::sc_time time;  ///< per job
+};
+
+class BezierPipeline : public sc_core::sc_module {
+ public:
+  modules::MessageQueue<PatchJob> input;  ///< stage 0's input: one job
+  tlm_utils::simple_initiator_socket<BezierPipeline> result_out;
+
+  /// Its parameters under `pipeline`.
+  static void declare_params(const modules::ParamDecls& pipeline);
+
+  SC_HAS_PROCESS(BezierPipeline);
+  /// `loop_stages`: N (bezier.iterations).
+  BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                 int loop_stages);
+
+  int loop_stages() const { return loop_stages_; }
+  const std::vector<Substage>& stage0() const { return stage0_; }
+  const std::vector<Substage>& loop_substages() const { return loop_; }
+  /// The slowest substage's time: one job a cycle.
+  sc_core::sc_time cycle() const { return cycle_; }
+  sc_core::sc_time latency() const { return latency_; }
+  std::uint64_t jobs() const { return jobs_; }
+  /// Its issue slots (a job a cycle) and the first loop stage's substages, each's busy intervals.
+  const modules::BusyTimeline& timeline() const { return timeline_; }
+  const std::vector<modules::BusyTimeline>& substage_timelines() const { return sub_timelines_; }
+  std::uint64_t jobs_hit() const { return hits_; }
+  std::uint64_t in_flight_peak() const { return in_flight_peak_; }
+  const kernels::WangCounters& counters() const { return counters_; }
+
+ private:
+  void run();
+
+  int loop_stages_;
+  std::vector<Substage> stage0_, loop_;
+  sc_core::sc_time cycle_, latency_;
+  modules::LocalClock clock_;
+  modules::BusyTimeline timeline_;
+  std::vector<modules::BusyTimeline> sub_timelines_;
+  std::vector<sc_core::sc_time> leaving_;  ///< when the jobs in flight leave, oldest first
+  std::uint64_t jobs_ = 0, hits_ = 0, in_flight_peak_ = 0;
+  kernels::WangCounters counters_;
+};
+
+}  // namespace rtsim::platform::wang_bezier

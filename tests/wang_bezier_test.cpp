@@ -1,0 +1,115 @@
+// wang-bezier (seed 002): the image, from what left the pipeline's last stage, equals the
+// functional twin's for every stage-0 mapping, Culler and stage count; a corrupted control point
+// changes it; the pipeline's cycle and throughput are Table 4's (L436-L441), and the what-ifs of
+// L326 and L432 move them as the note derives.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::read_json;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+using rtsim::test::shared_path;
+
+namespace {
+
+nlohmann::json run_wang(const std::string& tag, const std::string& args) {
+  const fs::path dir = scratch_dir("wang-" + tag);
+  const auto r = run_rtsim("run --machine wang-bezier " + args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  if (r.exit_code != 0) return {};
+  auto stats = read_json(dir / "stats.json");
+  stats["image_png"] = (dir / "image.png").string();
+  return stats;
+}
+
+TEST(WangBezier, ImageEqualsTheFunctionalRenderWhateverTheTiming) {
+  for (const std::string& scene :
+       {shared_path("scenes/teapot.bpt"), std::string("builtin:default")}) {
+    for (const char* stages : {"4", "10"}) {
+      const std::string base =
+          "--scene " + scene + " --width 24 --height 24 -p bezier.iterations=" + stages;
+      const fs::path golden = scratch_dir("wang-golden");
+      const auto g =
+          run_rtsim("render --machine wang-bezier " + base + " -q --out " + golden.string());
+      ASSERT_EQ(g.exit_code, 0) << g.output;
+      const std::string want = read_file(golden / "image.png");
+      fs::remove_all(golden);
+      for (const char* timing :
+           {"", " -p pipeline.culler.kind=software", " -p pipeline.stage0.mapping=subdivider"}) {
+        const auto s = run_wang("image", base + timing + " --overhead");
+        ASSERT_FALSE(s.empty());
+        EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << base << timing;
+        EXPECT_EQ(read_file(s.at("image_png").get<std::string>()), want) << base << timing;
+      }
+    }
+  }
+}
+
+TEST(WangBezier, ACorruptedControlPointChangesTheImage) {
+  const std::string base =
+      "--scene " + shared_path("scenes/teapot.bpt") + " --width 24 --height 24";
+  const auto clean = run_wang("clean", base);
+  // A corner control point's y of each of the 32 patches (48 words a patch), its exponent's
+  // top bit flipped: every patch is bent far out of shape.
+  std::string faults;
+  for (int k = 0; k < 32; ++k)
+    faults += " --fault host.patch_memory:" + std::to_string(k * 48 + 1) + ":0x40000000";
+  const auto bad = run_wang("bad", base + faults);
+  ASSERT_FALSE(clean.empty() || bad.empty());
+  EXPECT_EQ(bad["faults"][0]["applied"], 1);
+  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+            read_file(bad.at("image_png").get<std::string>()));
+}
+
+TEST(WangBezier, Table4CycleAndThroughput) {
+  const auto s =
+      run_wang("table4", "--scene " + shared_path("scenes/teapot.bpt") + " --width 16 --height 16");
+  ASSERT_FALSE(s.empty());
+  const auto& w = s.at("wang");
+  std::printf("cycle %.4g us (seed 1.092), throughput %.4g RPI/s (seed 9.16e5)\n",
+              w["cycle_s"].get<double>() * 1e6, w["throughput_rpi_per_s"].get<double>());
+  EXPECT_NEAR(w["cycle_s"].get<double>(), 1.092e-6, 1e-12);
+  EXPECT_NEAR(w["throughput_rpi_per_s"].get<double>(), 9.16e5, 0.01 * 9.16e5);
+  const auto& sub = w.at("substages");
+  EXPECT_NEAR(sub["split_u"]["time_s"].get<double>(), 1.092e-6, 1e-12);
+  EXPECT_NEAR(sub["split_v"]["time_s"].get<double>(), 1.092e-6, 1e-12);
+  EXPECT_NEAR(sub["hull"]["time_s"].get<double>(), 0.672e-6, 1e-12);
+  EXPECT_NEAR(sub["center_distance"]["time_s"].get<double>(), 0.780e-6, 1e-12);
+  EXPECT_NEAR(sub["culler"]["time_s"].get<double>(), 0.800e-6, 1e-12);
+  EXPECT_EQ(w["dsps"], 4 + 10 * 60);  // stage 0's 1 + 2 + PlaneGenerator, 60 a loop stage
+}
+
+TEST(WangBezier, AHostThatKeepsUpFillsThePipeline) {
+  // The teapot at 64x64 with a host whose costs vanish: the pipeline takes a job every cycle but
+  // while it fills and drains (each generation of rays waits for the last's answers).
+  const auto s = run_wang("full", "--scene " + shared_path("scenes/teapot.bpt") +
+                                      " --width 64 --height 64 -p host.clock=\"100 GHz\"");
+  ASSERT_FALSE(s.empty());
+  const double measured = s["wang"]["measured_rpi_per_s"].get<double>();
+  std::printf("measured %.4g RPI/s over the frame (seed 9.16e5 with the pipe full)\n", measured);
+  EXPECT_GT(measured, 0.9 * 9.16e5);
+  EXPECT_LE(measured, 9.16e5 * 1.001);
+}
+
+TEST(WangBezier, WhatIfsMoveTheBottleneck) {
+  const std::string base = "--scene " + shared_path("scenes/teapot.bpt") + " --width 8 --height 8";
+  // L326: SplitInHalf at 166 cycles gives 1e6 RPI/s; the 800 ns Culler is next.
+  auto s = run_wang("166", base + " -p pipeline.split_u.cycles=166 -p pipeline.split_v.cycles=166");
+  ASSERT_FALSE(s.empty());
+  EXPECT_GE(s["wang"]["throughput_rpi_per_s"].get<double>(), 1e6);
+  s = run_wang("120", base + " -p pipeline.split_u.cycles=120 -p pipeline.split_v.cycles=120");
+  ASSERT_FALSE(s.empty());
+  EXPECT_NEAR(s["wang"]["throughput_rpi_per_s"].get<double>(), 1.25e6, 1.0);
+  // The software Culler (L432): 3081 cycles, about 5.4e4 RPI/s.
+  s = run_wang("soft", base + " -p pipeline.culler.kind=software");
+  ASSERT_FALSE(s.empty());
+  EXPECT_NEAR(s["wang"]["throughput_rpi_per_s"].get<double>(), 1.0 / (3081 * 6e-9), 1.0);
+}
+
+}  // namespace
