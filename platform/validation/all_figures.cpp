@@ -5,6 +5,7 @@
 #include "platform/validation/pipeline_figures.hpp"
 #include "platform/validation/ullner_figures.hpp"
 #include "platform/validation/vax_figures.hpp"
+#include "platform/validation/wang_figures.hpp"
 
 namespace rtsim::validation {
 
@@ -15,6 +16,7 @@ Plan make_validation_plan(const PlanOptions& options) {
   add_gaudet_figures(plan, options);
   add_pipeline_figures(plan, options);
   add_array_figures(plan, options);
+  add_wang_figures(plan, options);
   return plan;
 }
 

@@ -1,0 +1,94 @@
+#include "platform/validation/wang_figures.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rtsim::validation {
+
+namespace {
+
+constexpr double kMicro = 1e6;
+
+RunRequest wang_run(std::string key, int side, const std::vector<std::string>& params) {
+  return machine_run_request(std::move(key), kWangMachine, "builtin:default", side, side, params,
+                             10.0 * side * side);
+}
+
+Figure figure(std::string id, std::string title, std::string seed_ref, std::string seed_text,
+              double seed_value, std::string unit, Tolerance tol, std::string workload,
+              const std::string& key, std::string path, double scale) {
+  return Figure{.id = std::move(id),
+                .title = std::move(title),
+                .seed_ref = std::move(seed_ref),
+                .seed_text = std::move(seed_text),
+                .seed_value = seed_value,
+                .unit = std::move(unit),
+                .tolerance = std::move(tol),
+                .workload = std::move(workload),
+                .runs = {key},
+                .measure = [key, path, scale](const RunResults& r) {
+                  return Measured{stats_number(r, key, path) * scale, "stats.json " + path};
+                }};
+}
+
+}  // namespace
+
+void add_wang_figures(Plan& plan, const PlanOptions& options) {
+  // The pipeline's timing does not depend on the frame: a small one does in both modes.
+  const int side = options.quick ? 8 : 16;
+  const std::string base = plan.add_run(wang_run("wang-table4", side, {}));
+  const std::string workload =
+      "builtin:default (the host intersects its spheres and polygons; "
+      "the figures are the pipeline's parameters at work)";
+  const Tolerance one = Tolerance::relative(
+      0.01,
+      "the issue's 1%: the cycle is 182 x 6 ns exactly; the seed prints 9.16e5 for "
+      "1 / 1.092 us = 9.1575e5");
+  plan.figures.push_back(figure("W1a", "Bezier pipeline cycle (Table 4)", "seed 002 L437",
+                                "\"pipeline cycle 1.092 x 10^-6 s\" (182 cycles of 6 ns)", 1.092,
+                                "us", one, workload, base, "wang.cycle_s", kMicro));
+  plan.figures.push_back(figure("W1b", "Bezier pipeline throughput (Table 4)", "seed 002 L437",
+                                "\"overall system throughput 9.16 x 10^5 RPI/s\"", 9.16e5, "RPI/s",
+                                one, workload, base, "wang.throughput_rpi_per_s", 1.0));
+  const std::vector<std::pair<std::string, double>> substages = {{"split_u", 1.092},
+                                                                 {"split_v", 1.092},
+                                                                 {"hull", 0.672},
+                                                                 {"center_distance", 0.780},
+                                                                 {"culler", 0.800}};
+  const char suffix[] = {'c', 'd', 'e', 'f', 'g'};
+  for (std::size_t i = 0; i < substages.size(); ++i) {
+    const auto& [name, us] = substages[i];
+    plan.figures.push_back(figure(
+        std::string("W1") + suffix[i], "Substage " + std::to_string(i + 1) + " (" + name + ")",
+        "seed 002 L437-L441",
+        "Table 4: 4 x SplitInHalf, 8 x SplitInHalf, 32 x "
+        "HullClassification, 16 x (PatchCenter + PatchDistance), Culler",
+        us, "us", Tolerance::relative(0.01, "DSP cycles x 6 ns, or the Culler's 800 ns; exact"),
+        workload, base, "wang.substages." + name + ".time_s", kMicro));
+  }
+  const std::string fast = plan.add_run(wang_run(
+      "wang-split166", side, {"pipeline.split_u.cycles=166", "pipeline.split_v.cycles=166"}));
+  plan.figures.push_back(figure(
+      "W2a", "SplitInHalf at 166 cycles", "seed 002 L326",
+      "assembly-level SplitInHalf would raise the throughput; 166 cycles give 10^6 RPI/s [D]", 1e6,
+      "RPI/s", Tolerance::above(1e6 - 1, "at least 10^6: the cycle is 166 x 6 = 0.996 us"),
+      workload, fast, "wang.throughput_rpi_per_s", 1.0));
+  const std::string faster = plan.add_run(wang_run(
+      "wang-split120", side, {"pipeline.split_u.cycles=120", "pipeline.split_v.cycles=120"}));
+  plan.figures.push_back(figure(
+      "W2b", "The Culler caps it", "seed 002 L318, L326",
+      "once SplitInHalf is faster the 800 ns Culler sets the cycle: 1.25 x 10^6 RPI/s [D]", 1.25e6,
+      "RPI/s",
+      Tolerance::relative(1e-6, "1 / 800 ns exactly: the Culler is then the slowest substage"),
+      workload + ", SplitInHalf at 120 cycles", faster, "wang.throughput_rpi_per_s", 1.0));
+  const std::string soft =
+      plan.add_run(wang_run("wang-software", side, {"pipeline.culler.kind=software"}));
+  plan.figures.push_back(figure("W3", "Software Culler (no custom hardware)", "seed 002 L302, L432",
+                                "the Culler in software, 3081 cycles: about 5.4 x 10^4 RPI/s [D]",
+                                5.4e4, "RPI/s",
+                                Tolerance::relative(0.01, "1 / (3081 x 6 ns) = 5.41e4"), workload,
+                                soft, "wang.throughput_rpi_per_s", 1.0));
+}
+
+}  // namespace rtsim::validation
