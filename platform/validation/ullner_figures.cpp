@@ -38,24 +38,7 @@ std::string side_text(int side) { return std::to_string(side) + "x" + std::to_st
 
 RunRequest peripheral_run(std::string key, const std::string& scene, int side,
                           const std::vector<std::string>& params, double cost_hint) {
-  RunRequest r;
-  r.key = std::move(key);
-  r.args = {"run",
-            "--machine",
-            kUllnerMachine,
-            "--scene",
-            scene,
-            "--width",
-            std::to_string(side),
-            "--height",
-            std::to_string(side),
-            "-q"};
-  for (const auto& p : params) {
-    r.args.push_back("-p");
-    r.args.push_back(p);
-  }
-  r.cost_hint = cost_hint;
-  return r;
+  return machine_run_request(std::move(key), kUllnerMachine, scene, side, side, params, cost_hint);
 }
 
 std::string two_digits(int n) {

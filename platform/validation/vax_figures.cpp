@@ -21,25 +21,9 @@ constexpr int kCubesSideQuick = 24;
 
 RunRequest vax_run(std::string key, const std::string& scene, int width, int height,
                    const std::vector<std::string>& params, double objects) {
-  RunRequest r;
-  r.key = std::move(key);
-  r.args = {"run",
-            "--machine",
-            kVaxMachine,
-            "--scene",
-            scene,
-            "--width",
-            std::to_string(width),
-            "--height",
-            std::to_string(height),
-            "-q"};
-  for (const auto& p : params) {
-    r.args.push_back("-p");
-    r.args.push_back(p);
-  }
   // Brute force: every ray tests every object; with reflections and shadows ~3 rays a pixel.
-  r.cost_hint = 3.0 * width * height * objects;
-  return r;
+  return machine_run_request(std::move(key), kVaxMachine, scene, width, height, params,
+                             3.0 * width * height * objects);
 }
 
 // What a run says about the cost model: its rays, objects and simulated time.
