@@ -4,6 +4,7 @@
 // exit status 2 and no output), and the results table built from outcomes.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
@@ -441,4 +442,14 @@ TEST(SweepExamples, ConfigsSweepsParse) {
   EXPECT_EQ(texts(gaudet.axes.front().members.at(0)),
             (Strings{"builtin:npp-412", "builtin:npp-816", "builtin:npp-820"}));
   EXPECT_NO_THROW(check_sweep(gaudet, expand_points(gaudet)));
+
+  // Every example in the folder reads and checks as `rtsim sweep` would (names, values, scenes).
+  std::size_t examples = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".toml") continue;
+    ++examples;
+    const SweepFile f = read_sweep_file(e.path().string());
+    EXPECT_NO_THROW(check_sweep(f, expand_points(f))) << e.path();
+  }
+  EXPECT_GE(examples, 6u);
 }
