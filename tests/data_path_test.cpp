@@ -103,24 +103,26 @@ std::size_t pixels_differing(const Frame& a, const Frame& b) {
   return n;
 }
 
-TEST(DataPath, PeripheralParameterMemoryWordChangesTheImage) {
-  const fs::path dir = rtsim::test::scratch_dir("data-path");
+/// Flips the sign of d_p (word 3 of a line, firmware/kernels/ullner_quad_words.hpp: it mirrors
+/// the polygon's plane through the origin) of the polygon the centre ray hits, in `memory` of
+/// `machine`, whose lines are `line_words` long with polygon k at line k: some pixels and the
+/// centre pixel change.
+void expect_centre_polygon_fault_shows(const std::string& machine, const std::string& memory,
+                                       std::uint64_t line_words) {
+  const fs::path dir = rtsim::test::scratch_dir("data-path-" + machine);
   fs::create_directories(dir);
   const long slot = centre_slot();
   ASSERT_GE(slot, 0) << "the centre ray of " << kScene << " hits nothing";
-  // d_p is word 3 of the line (firmware/kernels/ullner_quad_words.hpp); its sign bit mirrors
-  // the polygon's plane through the origin.
-  const std::uint64_t word = static_cast<std::uint64_t>(slot) * rtsim::kernels::kUllnerStoredWords +
+  const std::uint64_t word = static_cast<std::uint64_t>(slot) * line_words +
                              static_cast<std::size_t>(rtsim::kernels::QuadParam::d_p);
-  const Frame clean = simulate("ullner-peripheral", kScene, {}, {}, dir / "clean.bin");
+  const Frame clean = simulate(machine, kScene, {}, {}, dir / "clean.bin");
   const Frame faulty =
-      simulate("ullner-peripheral", kScene, {},
-               {{"peripheral.parameter_memories", word, 0x80000000u}}, dir / "faulty.bin");
+      simulate(machine, kScene, {}, {{memory, word, 0x80000000u}}, dir / "faulty.bin");
   ASSERT_TRUE(clean.ok && faulty.ok);
   ASSERT_EQ(clean.rgb.size(), static_cast<std::size_t>(kSize * kSize * 3));
   const std::size_t changed = pixels_differing(clean, faulty);
-  std::printf("polygon %ld: word %llu flipped, %zu of %d pixels changed\n", slot,
-              static_cast<unsigned long long>(word), changed, kSize * kSize);
+  std::printf("%s: polygon %ld, word %llu flipped, %zu of %d pixels changed\n", machine.c_str(),
+              slot, static_cast<unsigned long long>(word), changed, kSize * kSize);
   EXPECT_GT(changed, 0u);
   const std::size_t centre = (static_cast<std::size_t>(kSize / 2) * kSize + kSize / 2) * 3;
   EXPECT_NE(clean.rgb[centre] + clean.rgb[centre + 1] + clean.rgb[centre + 2],
@@ -129,32 +131,17 @@ TEST(DataPath, PeripheralParameterMemoryWordChangesTheImage) {
   fs::remove_all(dir);
 }
 
+TEST(DataPath, PeripheralParameterMemoryWordChangesTheImage) {
+  expect_centre_polygon_fault_shows("ullner-peripheral", "peripheral.parameter_memories",
+                                    rtsim::kernels::kUllnerStoredWords);
+}
+
 TEST(DataPath, PipelineProcessorPolygonChangesTheImage) {
-  const fs::path dir = rtsim::test::scratch_dir("data-path-pipeline");
-  fs::create_directories(dir);
   // The pipeline's twin searches the same quads in the same order as the peripheral's brute
   // force, and processor k holds slot k: its registers are a line of the polygon words and the
   // identity (PolygonDescription).
-  const long slot = centre_slot();
-  ASSERT_GE(slot, 0) << "the centre ray of " << kScene << " hits nothing";
-  const std::uint64_t line = rtsim::kernels::kUllnerStoredWords + 1;
-  const std::uint64_t word = static_cast<std::uint64_t>(slot) * line +
-                             static_cast<std::size_t>(rtsim::kernels::QuadParam::d_p);
-  const Frame clean = simulate("ullner-pipeline", kScene, {}, {}, dir / "clean.bin");
-  const Frame faulty =
-      simulate("ullner-pipeline", kScene, {}, {{"pipeline.polygon_registers", word, 0x80000000u}},
-               dir / "faulty.bin");
-  ASSERT_TRUE(clean.ok && faulty.ok);
-  ASSERT_EQ(clean.rgb.size(), static_cast<std::size_t>(kSize * kSize * 3));
-  const std::size_t changed = pixels_differing(clean, faulty);
-  std::printf("processor %ld: word %llu flipped, %zu of %d pixels changed\n", slot,
-              static_cast<unsigned long long>(word), changed, kSize * kSize);
-  EXPECT_GT(changed, 0u);
-  const std::size_t centre = (static_cast<std::size_t>(kSize / 2) * kSize + kSize / 2) * 3;
-  EXPECT_NE(clean.rgb[centre] + clean.rgb[centre + 1] + clean.rgb[centre + 2],
-            faulty.rgb[centre] + faulty.rgb[centre + 1] + faulty.rgb[centre + 2])
-      << "the centre pixel's polygon moved but the centre pixel did not change";
-  fs::remove_all(dir);
+  expect_centre_polygon_fault_shows("ullner-pipeline", "pipeline.polygon_registers",
+                                    rtsim::kernels::kUllnerStoredWords + 1);
 }
 
 TEST(DataPath, GaudetShellBusMemoryWordChangesTheImage) {
