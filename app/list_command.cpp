@@ -15,8 +15,12 @@ namespace {
 
 void list_scenes() {
   std::cout << "Built-in scenes (use as --scene builtin:NAME):\n";
+  // The names' column as wide as the longest name and two spaces.
+  std::size_t width = 0;
+  for (const auto& info : scenes::builtin_scenes()) width = std::max(width, info.name.size());
   for (const auto& info : scenes::builtin_scenes())
-    std::cout << "  " << std::left << std::setw(22) << info.name << info.description << "\n";
+    std::cout << "  " << std::left << std::setw(static_cast<int>(width + 2)) << info.name
+              << info.description << "\n";
   std::cout << "Files: .nff (Haines' Neutral File Format) and .bpt (bicubic Bezier patches).\n";
 }
 

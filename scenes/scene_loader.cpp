@@ -8,6 +8,7 @@
 #include "common/suggest.hpp"
 #include "scenes/bpt_reader.hpp"
 #include "scenes/generators/default_scene.hpp"
+#include "scenes/generators/newell_teapot.hpp"
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_random.hpp"
@@ -63,6 +64,8 @@ const std::vector<BuiltinScene>& builtin_scenes() {
     list.push_back({std::string(kUllnerSheetsLitPrefix) + "1000",
                     "the same with one light at the eye: every vision ray hits and casts one "
                     "unoccluded shadow ray (Ullner's doubling for shadows, L743)"});
+    list.push_back(
+        {"teapot", "the Newell teapot: 32 bicubic Bezier patches (SPD's teapot.bpt), no lights"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -86,6 +89,7 @@ std::vector<std::string> builtin_scene_names() {
 Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "default") return make_default_scene();
   if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
+  if (name == "teapot") return make_newell_teapot();
   int n = 0;
   int pp = 0;
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);

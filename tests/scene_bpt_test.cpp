@@ -3,6 +3,7 @@
 
 #include "scene_test_support.hpp"
 #include "scenes/bpt_reader.hpp"
+#include "scenes/scene_loader.hpp"
 #include "scenes/scene_text.hpp"
 #include "scenes/scene_writer.hpp"
 
@@ -47,6 +48,18 @@ TEST(SceneBpt, RoundTrip) {
   const Scene a = read_bpt(shared_scene("teapot.bpt"));
   const Scene b = parse_bpt(write_bpt(a), "again.bpt");
   expect_same_content(a, b);
+}
+
+// builtin:teapot is the shared file's patches, built in (scenes/generators/newell_teapot.cpp).
+TEST(SceneBpt, BuiltinTeapotIsTheSharedFile) {
+  const Scene file = read_bpt(shared_scene("teapot.bpt"));
+  const Scene builtin = load_scene("builtin:teapot");
+  EXPECT_EQ(builtin.name, "builtin:teapot");
+  expect_same_content(file, builtin);
+  ASSERT_EQ(builtin.patches.size(), file.patches.size());
+  for (std::size_t k = 0; k < file.patches.size(); ++k)
+    for (std::size_t i = 0; i < 16; ++i)
+      EXPECT_EQ(builtin.patches[k].control[i], file.patches[k].control[i]) << k << " " << i;
 }
 
 TEST(SceneBpt, CommentsAndBlankLinesAreAllowed) {

@@ -8,6 +8,7 @@
 
 #include "common/suggest.hpp"
 #include "scene_test_support.hpp"
+#include "scenes/bpt_reader.hpp"
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/splitmix64.hpp"
@@ -254,12 +255,14 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
     if (const auto n = parse_ullner_random_name(name); n && *n > kRoundTripMaxPrimitives) continue;
     const Scene a = load_scene("builtin:" + name);
     const Scene b = load_scene("builtin:" + name);
-    const std::string ta = write_nff(a);
-    EXPECT_EQ(ta, write_nff(b));
+    // Patch scenes (builtin:teapot) export as .bpt, the rest as NFF.
+    const bool patches = !a.patches.empty();
+    const std::string ta = patches ? write_bpt(a) : write_nff(a);
+    EXPECT_EQ(ta, patches ? write_bpt(b) : write_nff(b));
     EXPECT_EQ(a.cluster_of_primitive, b.cluster_of_primitive);
     EXPECT_EQ(a.name, "builtin:" + name);
-    // The NFF export reads back to the same scene (the reader's rules accept every generator).
-    expect_same_content(a, parse_nff(ta, name + ".nff"));
+    // The export reads back to the same scene (the reader's rules accept every generator).
+    expect_same_content(a, patches ? parse_bpt(ta, name + ".bpt") : parse_nff(ta, name + ".nff"));
   }
 }
 
@@ -267,13 +270,14 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 24u);
+  ASSERT_EQ(names.size(), 25u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
   EXPECT_EQ(names[6], "ullner-random-1000000");
   EXPECT_EQ(names[7], "ullner-sheets-1000");
   EXPECT_EQ(names[8], "ullner-sheets-lit-1000");
+  EXPECT_EQ(names[9], "teapot");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());
