@@ -521,7 +521,48 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     else
       problems.push_back(r.message);
   }
+  if (const json* w = find(stats, "wang"); w && find(*w, "substages")) {
+    const fs::path png = tools.scratch_dir / "wang_substages.png";
+    const auto r =
+        run_analysis_script(tools, "wang_substages.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "the Bezier pipeline's substages",
+                 "Each substage's time per job against the pipeline cycle (the slowest sets it), "
+                 "and the busy fraction of its DSP pool over the frame beside the host's "
+                 "(stats.json wang.stage0, wang.substages; analysis/wang_substages.py)");
+    else
+      problems.push_back(r.message);
+  }
   if (!problems.empty()) page.note(missing_plots_note(problems));
+
+  // `-p accuracy.check=true` on wang-bezier: the pipeline's answers against the reference.
+  if (const json* w = find(stats, "wang"); w && find(*w, "accuracy")) {
+    page.heading("Accuracy against the reference solver");
+    page.paragraph(
+        "Every (ray, patch) job's answer, and every primary ray's nearest patch hit, compared "
+        "with the double-precision reference solver: missed (the reference hits, the pipeline "
+        "does not), phantom (the reverse), another surface (both hit, more than 8 final "
+        "subpatch widths apart); the error is the distance between the pipeline's point and the "
+        "reference's over the rest, in patch sizes (the control box's diagonal) and in pixels. "
+        "stats.json wang.accuracy; configs/sweeps/wang-accuracy.toml sweeps the stage count.");
+    std::vector<std::vector<std::string>> rows;
+    for (const char* kind : {"jobs", "rays"}) {
+      const json* a = find((*w)["accuracy"], kind);
+      if (!a || !a->is_object()) continue;
+      const json* pe = find(*a, "point_error");
+      const json* px = find(*a, "pixel_error");
+      rows.push_back({kind == std::string("jobs") ? "jobs" : "primary rays",
+                      value_text((*a)["compared"]), value_text((*a)["missed"]),
+                      value_text((*a)["phantom"]), value_text((*a)["another_surface"]),
+                      format_number(100.0 * num(*a, "wrong_of_hits", 0.0), 3) + " %",
+                      pe ? format_number(num(*pe, "p50", 0.0), 3) : "",
+                      pe ? format_number(num(*pe, "p99", 0.0), 3) : "",
+                      px ? format_number(num(*px, "p99", 0.0), 3) : ""});
+    }
+    page.table({"compared", "count", "missed", "phantom", "another surface",
+                "wrong / reference hits", "error p50 (patch sizes)", "p99", "p99 (pixels)"},
+               rows);
+  }
 
   // `--latency-probe`: the per-stage breakdown of a ray's latency.
   if (const json* probe = find(stats, "latency_probe"); probe && probe->is_object()) {

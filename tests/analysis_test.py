@@ -35,6 +35,8 @@ import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
+import wang_accuracy  # noqa: E402
+import wang_substages  # noqa: E402
 
 PYTHON = sys.executable
 
@@ -391,6 +393,95 @@ class ChainProfileTest(unittest.TestCase, PngMixin):
         r = run_script("chain_profile.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("along_chain", r.stderr)
+
+
+class WangSubstagesTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def stats(self):
+        return {"machine": "wang-bezier", "scene": "s", "simulated_time_s": 1e-3,
+                "modules": {"host": {"utilization": 0.75}},
+                "wang": {"loop_stages": 2, "cycle_s": 2e-6, "jobs": 250, "dsps": 9,
+                         "stage0": {"stage0.split_u": {"dsps": 1, "cycles": 10, "time_s": 1e-6}},
+                         "substages": {
+                             "split_u": {"dsps": 4, "units": 4, "cycles": 20, "time_s": 2e-6},
+                             "culler": {"dsps": 0, "units": 0, "cycles": 0, "time_s": 8e-7}}}}
+
+    def test_rows_busy_and_png(self):
+        rows, cycle, jobs, frame, host = wang_substages.substage_rows(self.stats())
+        self.assertEqual([r[0] for r in rows], ["stage0.split_u", "loop.split_u", "loop.culler"])
+        self.assertEqual(rows[1], ("loop.split_u", 4, 20, 2e-6))
+        self.assertEqual((cycle, jobs, frame, host), (2e-6, 250, 1e-3, 0.75))
+        # 250 jobs of 2 us in 1 ms: busy half the frame; 0.8 us: a fifth.
+        busy = wang_substages.busy_fractions(rows, jobs, frame)
+        self.assertAlmostEqual(busy[1], 0.5)
+        self.assertAlmostEqual(busy[2], 0.2)
+        with open(os.path.join(self.dir, "stats.json"), "w") as f:
+            json.dump(self.stats(), f)
+        out = os.path.join(self.dir, "w.png")
+        r = run_script("wang_substages.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"machine": "vax-750"}, f)
+        r = run_script("wang_substages.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("wang.substages", r.stderr)
+
+
+class WangAccuracyTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def row(self, n, missed, phantom, another):
+        a = "wang.accuracy.rays."
+        return {"point": n, "status": "ok", "bezier.iterations": n, a + "compared": 1000,
+                a + "both": 400 - missed, a + "missed": missed, a + "phantom": phantom,
+                a + "another_surface": another, a + "point_error.p50": 2.0 ** -(n + 2),
+                a + "point_error.p90": 2.0 ** -(n + 1), a + "point_error.p99": 2.0 ** -n,
+                a + "pixel_error.p50": 2.0 ** (4 - n), a + "pixel_error.p90": 2.0 ** (5 - n),
+                a + "pixel_error.p99": 2.0 ** (6 - n), "wang.latency_s": n * 5e-6,
+                "wang.dsps": 60 * n + 4, "wang.throughput_rpi_per_s": 9.16e5}
+
+    def write(self, rows):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for r in rows:
+                f.write(json.dumps(r) + "\n")
+
+    def test_table_fewest_wrong_and_png(self):
+        # 400 reference hits each; wrong answers 40, 8, 12 at 4, 6, 8 stages.
+        self.write([self.row(8, 10, 0, 2), self.row(4, 0, 36, 4), self.row(6, 2, 4, 2)])
+        rows = wang_accuracy.accuracy_table(sweep_plot.read_results(self.dir))
+        self.assertEqual([r["stages"] for r in rows], [4, 6, 8])
+        self.assertAlmostEqual(rows[0]["disagreement"], 36 / 400)
+        self.assertAlmostEqual(rows[0]["wrong"], 40 / 400)
+        self.assertAlmostEqual(rows[2]["wrong"], 12 / 400)
+        self.assertEqual(rows[1]["width"], 2.0 ** -7)
+        self.assertEqual(wang_accuracy.fewest_wrong(rows), 6)
+        self.assertIn("| 6 | 364 |", wang_accuracy.markdown(rows))
+        out = os.path.join(self.dir, "a.png")
+        r = run_script("wang_accuracy.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("fewest wrong answers at 6 stages", r.stdout)
+        self.assertGoodPng(out)
+
+    def test_a_sweep_without_the_check(self):
+        row = self.row(4, 0, 0, 0)
+        del row["wang.accuracy.rays.missed"]
+        self.write([row])
+        r = run_script("wang_accuracy.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("wang.accuracy.rays.missed", r.stderr)
 
 
 def probe_stats():

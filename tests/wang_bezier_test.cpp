@@ -4,6 +4,8 @@
 // L326 and L432 move them as the note derives.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -110,6 +112,77 @@ TEST(WangBezier, WhatIfsMoveTheBottleneck) {
   s = run_wang("soft", base + " -p pipeline.culler.kind=software");
   ASSERT_FALSE(s.empty());
   EXPECT_NEAR(s["wang"]["throughput_rpi_per_s"].get<double>(), 1.0 / (3081 * 6e-9), 1.0);
+}
+
+// The accuracy check (accuracy.check) compares every answer with the double reference; it only
+// checks: the image and the frame time are the same with it on.
+TEST(WangAccuracy, TheCheckChangesNeitherImageNorTiming) {
+  const std::string base = "--scene builtin:teapot --width 32 --height 32";
+  const auto off = run_wang("acc-off", base);
+  const auto on = run_wang("acc-on", base + " -p accuracy.check=true");
+  ASSERT_FALSE(off.empty() || on.empty());
+  EXPECT_EQ(read_file(off.at("image_png").get<std::string>()),
+            read_file(on.at("image_png").get<std::string>()));
+  EXPECT_EQ(off["simulated_time_s"], on["simulated_time_s"]);
+  EXPECT_FALSE(off["wang"].contains("accuracy"));
+  const auto& acc = on["wang"]["accuracy"];
+  EXPECT_EQ(acc["jobs"]["compared"].get<double>(), on["wang"]["jobs"].get<double>());
+  EXPECT_GT(acc["rays"]["compared"].get<double>(), 0);
+}
+
+// As the stages grow the hit-point error halves (the final subpatch does), and the phantom hits
+// of the loose early hull tests die out (note 002 §2.7); at the paper's 10 stages the pipeline's
+// point is well inside a pixel.
+TEST(WangAccuracy, ErrorHalvesWithEachStage) {
+  double previous = 0;
+  for (int n : {4, 6, 8, 10}) {
+    const auto s = run_wang("acc" + std::to_string(n),
+                            "--scene builtin:teapot --width 64 "
+                            "--height 64 -p accuracy.check=true "
+                            "-p bezier.iterations=" +
+                                std::to_string(n));
+    ASSERT_FALSE(s.empty());
+    const auto& rays = s["wang"]["accuracy"]["rays"];
+    const double width = std::ldexp(1.0, -(n + 1));
+    const double p50 = rays["point_error"]["p50"].get<double>();
+    const double hits = rays["both"].get<double>() + rays["missed"].get<double>();
+    std::printf(
+        "%2d stages: p50 %.3g patch sizes (final width %.3g), p99 %.3g px; %g missed, %g "
+        "phantom, %g on another surface of %g reference hits\n",
+        n, p50, width, rays["pixel_error"]["p99"].get<double>(), rays["missed"].get<double>(),
+        rays["phantom"].get<double>(), rays["another_surface"].get<double>(), hits);
+    // The centre of the right final subpatch is within half its diagonal of the hit: measured
+    // p50 about a third of a width (tests/bezier_wang_test.cpp measures the same on two views).
+    EXPECT_LT(p50, 0.5 * width) << n;
+    EXPECT_GT(p50, 0.1 * width) << n;
+    if (previous > 0) {
+      EXPECT_GT(previous / p50, 3.0) << n;  // two stages: a quarter
+      EXPECT_LT(previous / p50, 5.0) << n;
+    }
+    previous = p50;
+    EXPECT_LT(rays["wrong_of_hits"].get<double>(), 0.05) << n;
+    if (n == 10) {
+      EXPECT_EQ(rays["phantom"].get<double>(), 0);
+      EXPECT_LT(rays["pixel_error"]["p99"].get<double>(), 0.1);
+    }
+  }
+}
+
+// The check compares with the scene's own patches: a pipeline computing on corrupted control
+// points (host.patch_memory) disagrees far more.
+TEST(WangAccuracy, TheCheckSeesCorruptedControlPoints) {
+  const std::string base = "--scene builtin:teapot --width 32 --height 32 -p accuracy.check=true";
+  std::string faults;
+  for (int k = 0; k < 32; ++k)
+    faults += " --fault host.patch_memory:" + std::to_string(k * 48 + 1) + ":0x40000000";
+  const auto clean = run_wang("acc-clean", base);
+  const auto bad = run_wang("acc-bad", base + faults);
+  ASSERT_FALSE(clean.empty() || bad.empty());
+  const double c = clean["wang"]["accuracy"]["jobs"]["wrong_of_hits"].get<double>();
+  const double b = bad["wang"]["accuracy"]["jobs"]["wrong_of_hits"].get<double>();
+  std::printf("wrong answers over reference hits: %.4f clean, %.4f corrupted\n", c, b);
+  EXPECT_LT(c, 0.05);
+  EXPECT_GT(b, 0.3);
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry
                        functional::FrameState& frame,
                        const modules::TimedFifo<PatchJob>& pipeline_input,
                        const functional::SceneGeometry& geometry, const RunOptions& opts,
-                       MachineTrace& trace)
+                       MachineTrace& trace, ReferenceCheck* check)
     : modules::Processor(name, trace),
       job_out("job_out"),
       results("result_queue", modules::TimedFifo<JobResult>::kUnbounded),
@@ -57,6 +57,7 @@ BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry
       pipeline_input_(pipeline_input),
       geometry_(geometry),
       opts_(opts),
+      check_(check),
       shade_(scene, shade),
       window_(modules::ModuleParams(registry, this->name()).get_count("rays_in_flight")),
       memory_port_("memory_port") {
@@ -142,6 +143,7 @@ void BezierHost::answer(std::uint64_t id) {
   const shading::TracedRay& r = st.ray;
   const double t_min = shade_.t_min(r);
   const bool shadow = r.kind == RayKind::Shadow;
+  if (check_) check_->ray(r.ray, t_min, r.t_max, st.first_sample, st.answers);
   TraceCounters& counters = frame_.counters();
   Cost cost;  // the host's own tests of the other primitives, then the shading
   // In slot order, each shape with the nearest found so far as its limit: the twin's search.

@@ -25,6 +25,7 @@
 #include "platform/machine.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/wang_bezier/messages.hpp"
+#include "platform/machines/wang_bezier/reference_check.hpp"
 
 namespace rtsim::platform::wang_bezier {
 
@@ -42,8 +43,8 @@ class BezierHost : public modules::Processor {
   BezierHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
              const scenes::Scene& scene, const shading::ShadeParams& shade,
              functional::FrameState& frame, const modules::TimedFifo<PatchJob>& pipeline_input,
-             const functional::SceneGeometry& geometry, const RunOptions& opts,
-             MachineTrace& trace);
+             const functional::SceneGeometry& geometry, const RunOptions& opts, MachineTrace& trace,
+             ReferenceCheck* check = nullptr);
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
@@ -76,6 +77,7 @@ class BezierHost : public modules::Processor {
   const modules::TimedFifo<PatchJob>& pipeline_input_;
   const functional::SceneGeometry& geometry_;
   const RunOptions& opts_;
+  ReferenceCheck* check_;  ///< the accuracy study's, or none
   tasks::ShadeTask shade_;
   std::uint64_t window_;
   std::map<std::uint64_t, RayState> rays_;
