@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <systemc>
+#include <utility>
+#include <vector>
 
 #include "modules/busy_timeline.hpp"
 #include "modules/link.hpp"
@@ -31,6 +33,9 @@ struct ModuleStats {
   /// They must outlive the registry's use by the traces.
   const BusyTimeline* busy_source = nullptr;
   const Occupancy* occupancy_source = nullptr;
+  /// Other level signals of the module for its traces, by name ("holder": a token ring's
+  /// transmitting node); levels are never negative.
+  std::vector<std::pair<std::string, const std::vector<LevelChange>*>> level_sources{};
 };
 
 /// Windows a frame is cut into for `utilization_windows`: enough to see phases (fill, steady

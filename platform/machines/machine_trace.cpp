@@ -21,7 +21,7 @@ constexpr const char* kDepth = "depth";
 
 struct Signal {
   std::string module;  ///< stats.json name
-  const char* what;    ///< "busy" or "depth"
+  std::string what;    ///< "busy", "depth", or another level signal's name
   std::vector<modules::LevelChange> changes;
 };
 
@@ -60,6 +60,8 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatsRegistry& stats)
     if (m.busy_source && m.busy_source->keeps_intervals())
       signals.push_back({name, kBusy, m.busy_source->level_changes()});
     if (m.occupancy_source) signals.push_back({name, kDepth, m.occupancy_source->depth_changes()});
+    for (const auto& [what, changes] : m.level_sources)
+      if (changes) signals.push_back({name, what, *changes});
   }
   for (const Signal& s : signals)
     if (!s.changes.empty()) last = std::max(last, s.changes.back().t);
