@@ -5,6 +5,7 @@
 // termination detector's credit comes back whole.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -128,6 +129,52 @@ TEST(UllnerArray, ImageEqualsTheFunctionalRenderForEverySizeAndMapping) {
       }
     }
   }
+}
+
+// array.interconnect = ring: one token ring instead of the mesh links. The same image; the ring
+// carries every message straight to its destination (no processor on the way), and reports its
+// load; its holder signal is in the VCD trace.
+TEST(UllnerArray, OnARingTheImageIsTheSameAndTheRingCarriesEveryMessage) {
+  const std::string base = "--scene builtin:ullner-cubes --width 32 --height 32";
+  const fs::path golden = scratch_dir("array-ring-golden");
+  ASSERT_EQ(
+      run_rtsim("render --machine ullner-array " + base + " -q --out " + golden.string()).exit_code,
+      0);
+  const std::string want = read_file(golden / "image.png");
+  const auto mesh = run_array("ring-mesh", base);
+  const fs::path traced = scratch_dir("array-ring-vcd");
+  const auto r = run_rtsim("run --machine ullner-array " + base +
+                           " -p array.interconnect=ring --trace vcd -q --out " + traced.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto ring = read_json(traced / "stats.json");
+  ASSERT_FALSE(mesh.empty());
+  EXPECT_EQ(read_file(traced / "image.png"), want);
+  EXPECT_EQ(read_file(mesh.at("image_png").get<std::string>()), want);
+  EXPECT_EQ(ring["array"]["interconnect"], "ring");
+  const auto& m = ring["modules"]["ring"];
+  // Every message sent is one packet on the ring (68 bytes fit one), and nothing else is.
+  double sent = 0;
+  for (const auto& [type, n] : ring["array"]["messages_sent_by_type"].items())
+    sent += n.get<double>();
+  EXPECT_EQ(m["messages"].get<double>(), sent);
+  EXPECT_EQ(m["packets"].get<double>(), sent);
+  EXPECT_EQ(m["bytes.result"].get<double>(),
+            ring["array"]["messages_sent_by_type"]["result"].get<double>() * (68 + 4));
+  EXPECT_GT(m["utilization"].get<double>(), 0.0);
+  EXPECT_GT(m["token_rotation_s"].get<double>(), 0.0);
+  // No mesh links on a ring; the mesh has no ring.
+  EXPECT_FALSE(ring["modules"].contains("node0.link_east"));
+  EXPECT_FALSE(mesh["modules"].contains("ring"));
+  // A ring at one mesh link's rate is one shared medium against many links: slower here.
+  std::printf("frame: mesh %.4g s, ring %.4g s (ring busy %.0f%%)\n",
+              mesh["simulated_time_s"].get<double>(), ring["simulated_time_s"].get<double>(),
+              100 * m["utilization"].get<double>());
+  EXPECT_GT(ring["simulated_time_s"].get<double>(), mesh["simulated_time_s"].get<double>());
+  const std::string vcd = read_file(traced / "trace.vcd");
+  // VCD scopes by module: the ring's scope holds its busy and holder variables.
+  const auto scope = vcd.find("$scope module ring $end");
+  ASSERT_NE(scope, std::string::npos);
+  EXPECT_NE(vcd.find(" holder $end", scope), std::string::npos);
 }
 
 TEST(UllnerArray, ALostResultMessageChangesTheImage) {

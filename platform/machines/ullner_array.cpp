@@ -100,6 +100,26 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
              "Time to shift one pixel out of the distributed frame buffer in scan-line order "
              "(L781)",
              "assumption: 24 bits of colour, two 16-bit transfers at the memory cycle");
+  array.declare({.name = "interconnect",
+                 .kind = params::ParamKind::kString,
+                 .default_value = "mesh",
+                 .allowed = {"mesh", "ring"},
+                 .description = "How processors exchange messages: links to the four neighbours, "
+                                "a message copied hop by hop (mesh, L854), or one token ring "
+                                "(ring.*) carrying each message straight to its destination",
+                 .source = "seed 000 L854 (mesh); the ring is a what-if after Pixel-Planes 5's "
+                           "(seed 004 L284)"});
+  modules::TokenRing::declare_params(
+      modules::ParamDecls(r, "ring", false),
+      {.bandwidth = "48 Mbit/s",
+       .bandwidth_source = "assumption: one mesh link's rate (16 bits a 333 ns memory cycle), so "
+                           "the comparison is one shared medium against the mesh's many links",
+       .hop_latency = "333.333 ns",
+       .max_packet_bytes = "68",
+       .header_bytes = "4",
+       .service = "exhaustive",
+       .source = "assumption: a node passes the token or a packet's bits on in one memory cycle; "
+                 "a packet holds one 17-word message with a one-word header"});
   array.count("fault.drop_result", "0", "0", "1000000000000", "messages",
               "A fault for tests: the result message with this number (counted where results "
               "are added) is lost; 0 loses none",
@@ -183,17 +203,37 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                            " words (node.memory_words); use more processors or subvolumes "
                            "(array.rows, array.cols, array.subvolumes) or a larger memory");
   }
+  // The interconnect: the mesh links of each processor, or one ring (its parameters are read
+  // either way, so a bad value is an error whichever is chosen).
+  const modules::TokenRing::Config ring_config =
+      modules::TokenRing::read_config(modules::ModuleParams(r, "ring"));
+  std::unique_ptr<modules::TokenRing> ring;
+  std::unique_ptr<modules::RingChannel<ullner_array::RayMessage>> ring_channel;
+  if (r.get_string("array.interconnect") == "ring") {
+    ring = std::make_unique<modules::TokenRing>(
+        "ring", ring_config, static_cast<std::size_t>(topology.nodes()),
+        std::vector<std::string>{"new", "vision", "shadow", "result", "credit"});
+    ring_channel =
+        std::make_unique<modules::RingChannel<ullner_array::RayMessage>>("ring_channel", *ring);
+    ctx.ring = ring_channel.get();
+  }
   ullner_array::ArrayTally tally;
   std::vector<std::unique_ptr<ArrayNode>> nodes;
   nodes.reserve(static_cast<std::size_t>(topology.nodes()));
   for (int i = 0; i < topology.nodes(); ++i)
     nodes.push_back(std::make_unique<ArrayNode>(("node" + std::to_string(i)).c_str(), r, ctx, tally,
                                                 topology.node(i), run.trace()));
-  for (int i = 0; i < topology.nodes(); ++i)
+  for (int i = 0; i < topology.nodes(); ++i) {
+    if (ring_channel) {
+      ring_channel->attach(static_cast<std::size_t>(i),
+                           *nodes[static_cast<std::size_t>(i)]->in[ullner_array::kRingPort]);
+      continue;
+    }
     for (const modules::Direction d : modules::kDirections)
       if (const auto m = topology.neighbour(topology.node(i), d))
         nodes[static_cast<std::size_t>(i)]->connect(
             d, *nodes[static_cast<std::size_t>(topology.index(*m))]);
+  }
   std::vector<modules::Memory*> memories;
   for (auto& n : nodes) memories.push_back(&n->memory);
   inject_faults(name(), opts.faults, memories);
@@ -247,6 +287,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     }
     busy.push_back(std::move(line));
   }
+  if (ring) ring->report(stats, "ring");
   nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
   for (int t = 0; t < 5; ++t) by_type[kTypeNames[t]] = sent[static_cast<std::size_t>(t)];
   const auto& m = ctx.mapping;
@@ -256,6 +297,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"cols", m.cols},
                   {"subvolumes", m.n},
                   {"mapping", r.get_string("array.mapping")},
+                  {"interconnect", r.get_string("array.interconnect")},
                   {"depth_axis", std::string(1, "xyz"[m.depth_axis])},
                   {"polygons", twin.geometry->shapes.size()},
                   {"polygons_kept", kept},

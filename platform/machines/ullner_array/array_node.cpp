@@ -126,8 +126,11 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
       static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get_frequency_hz("clock")))));
   memory_port_.bind(memory.socket);
   const modules::MeshTopology& topo = *ctx_.topology;
+  if (ctx_.ring)
+    in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
+        "in_ring", modules::TimedFifo<RayMessage>::kUnbounded);
   for (const Direction d : modules::kDirections) {
-    if (!topo.neighbour(position_, d)) continue;
+    if (ctx_.ring || !topo.neighbour(position_, d)) continue;
     const std::string dir(modules::direction_name(d));
     // A port's buffer holds the node's stockpile of untraced messages (L825): not bounded here.
     in[static_cast<int>(d)] = std::make_unique<modules::MessageQueue<RayMessage>>(
@@ -210,7 +213,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
   // The port whose message arrived first, if one has by now.
   int best = -1;
   sc_core::sc_time best_t;
-  for (int d = 0; d < 4; ++d) {
+  for (int d = 0; d < static_cast<int>(in.size()); ++d) {
     if (!in[d] || !in[d]->fifo.has_item_by(now)) continue;
     const sc_core::sc_time t = *in[d]->fifo.next_item_time();
     if (best < 0 || t < best_t) {
@@ -505,7 +508,26 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
 
 void ArrayNode::forward(RayMessage msg, const GridNode& to) {
   spend(timing_.route, "route");
+  if (ctx_.ring) {
+    // On a ring the message goes straight to its destination's port.
+    const sc_core::sc_time start = copy_out();
+    ++sent_[type_index(msg.type)];
+    const auto cls = static_cast<std::size_t>(type_index(msg.type));
+    const auto me = static_cast<std::size_t>(ctx_.topology->index(position_));
+    const auto dest = static_cast<std::size_t>(ctx_.topology->index(to));
+    ctx_.ring->send(me, dest, std::move(msg), RayMessage::kWireBits / 8, start, cls);
+    return;
+  }
   send(std::move(msg), ctx_.topology->next_hop(position_, to));
+}
+
+sc_core::sc_time ArrayNode::copy_out() {
+  // The port copies the message out of this memory (L854), 16 bits a memory cycle.
+  const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+  const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
+  memory_free_ = plus(start, copy);
+  memory_busy_ += copy;
+  return start;
 }
 
 void ArrayNode::send(RayMessage msg, Direction d) {
@@ -513,11 +535,8 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   const int k = static_cast<int>(d);
   if (!out_[k]) SC_REPORT_ERROR("rtsim/ullner-array", "a message was routed off the array");
   modules::Link& link = *links_[k];
-  const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+  const sc_core::sc_time start = copy_out();
   const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
-  const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
-  memory_free_ = plus(start, copy);
-  memory_busy_ += copy;
   ++sent_[type_index(msg.type)];
   ++sent_by_link_[k][type_index(msg.type)];
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);

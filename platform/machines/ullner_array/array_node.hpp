@@ -40,6 +40,7 @@
 #include "modules/mesh_topology.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
+#include "modules/ring_channel.hpp"
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
@@ -76,7 +77,13 @@ struct ArrayContext {
   /// A fault for tests: the result message with this sequence number (counted where results
   /// are added) is lost; 0 loses none.
   std::uint64_t drop_result = 0;
+  /// array.interconnect = ring: one token ring instead of the mesh links; a message goes from
+  /// its sender straight to its destination (no processor on the way copies it). Null: mesh.
+  modules::RingChannel<RayMessage>* ring = nullptr;
 };
+
+/// The input port of the ring (in[kRingPort]), after the four mesh ports.
+inline constexpr int kRingPort = 4;
 
 /// What the whole array counts (the detector's view and the dropped result).
 struct ArrayTally {
@@ -89,8 +96,9 @@ struct ArrayTally {
 
 class ArrayNode : public modules::Processor {
  public:
-  /// The input port from the neighbour in each direction (absent at an unconnected edge).
-  std::array<std::unique_ptr<modules::MessageQueue<RayMessage>>, 4> in;
+  /// The input port from the neighbour in each direction (absent at an unconnected edge, and
+  /// all four on a ring), and the ring's (in[kRingPort], on a ring only).
+  std::array<std::unique_ptr<modules::MessageQueue<RayMessage>>, 5> in;
   /// Its memory: its polygons, kPolygonWords words each (L835: 128 KB).
   modules::Memory memory;
 
@@ -139,9 +147,11 @@ class ArrayNode : public modules::Processor {
   bool next_message(RayMessage& msg);
   void process(RayMessage msg);
   void search(RayMessage& msg);
-  /// Sends `msg` one hop toward `to` (or keeps it if `to` is this processor).
+  /// Sends `msg` one hop toward `to` on the mesh, or on the ring straight to `to`.
   void forward(RayMessage msg, const modules::GridNode& to);
   void send(RayMessage msg, modules::Direction d);
+  /// The port copies the message out of this memory: when it may start, and the memory's time.
+  sc_core::sc_time copy_out();
   void answer(const RayMessage& msg, bool found, const Hit& hit);
   void add_result(const RayMessage& msg);
   void return_credit(std::uint64_t credit);
