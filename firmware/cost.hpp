@@ -23,6 +23,16 @@ struct Cost {
     instructions += o.instructions;
     return *this;
   }
+  /// What was added since `earlier` (a running total's growth; earlier <= *this in each class).
+  constexpr Cost& operator-=(const Cost& earlier) {
+    fp_add -= earlier.fp_add;
+    fp_mul -= earlier.fp_mul;
+    fp_div -= earlier.fp_div;
+    fp_sqrt -= earlier.fp_sqrt;
+    mem_words -= earlier.mem_words;
+    instructions -= earlier.instructions;
+    return *this;
+  }
   friend constexpr Cost operator+(Cost a, const Cost& b) { return a += b; }
   friend constexpr Cost operator*(Cost a, std::uint64_t k) {
     a.fp_add *= k;

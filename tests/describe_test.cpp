@@ -82,6 +82,7 @@ INSTANTIATE_TEST_SUITE_P(Machines, Describe,
                                          Case{"ullner-pipeline", "builtin:ullner-cubes"},
                                          Case{"ullner-array", "builtin:ullner-cubes"},
                                          Case{"wang-bezier", "builtin:default"},
+                                         Case{"pxpl5-raytrace", "builtin:default"},
                                          Case{"vax-750", "builtin:npp-412"}),
                          [](const testing::TestParamInfo<Case>& i) {
                            return rtsim::test::gtest_param_name(i.param.machine);
@@ -100,12 +101,12 @@ TEST(Describe, EveryMachineIsCovered) {
     if (name == "(none)") continue;  // the functional renderer
     bool covered = false;
     for (const char* m : {"gaudet-pert", "ullner-peripheral", "ullner-pipeline", "ullner-array",
-                          "vax-750", "wang-bezier"})
+                          "vax-750", "wang-bezier", "pxpl5-raytrace"})
       covered |= name == m;
     EXPECT_TRUE(covered) << name << " has no case in Machines/Describe";
     ++machines;
   }
-  EXPECT_EQ(machines, 6u);
+  EXPECT_EQ(machines, 7u);
 }
 
 TEST(Describe, ConnectionsFollowTheWiring) {

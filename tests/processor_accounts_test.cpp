@@ -64,6 +64,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"ullner-pipeline", "--scene builtin:ullner-cubes --width 24 --height 24", "host"},
         Case{"ullner-array", "--scene builtin:ullner-cubes --width 24 --height 24", ""},
         Case{"wang-bezier", "--scene builtin:default --width 16 --height 16", "host"},
+        Case{"pxpl5-raytrace", "--scene builtin:default --width 32 --height 32 -p frames=2",
+             "host"},
         Case{"gaudet-pert", "--scene builtin:npp-412 --width 16 --height 16 -p pert_count=2", ""}),
     [](const testing::TestParamInfo<Case>& i) {
       return rtsim::test::gtest_param_name(i.param.machine);

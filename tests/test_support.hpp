@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imagecache.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -82,6 +83,20 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
              ("rtsim-test-" + std::to_string(::getpid()) + "-" + name);
   std::filesystem::remove_all(dir);
   return dir;
+}
+
+/// `rtsim run --machine MACHINE ARGS -q` into a scratch folder named after `tag`: its stats.json
+/// with "image_png" (the image's path) added; an empty object, and a failed expectation, if the
+/// run did not exit 0.
+inline nlohmann::ordered_json run_machine(const std::string& machine, const std::string& tag,
+                                          const std::string& args) {
+  const auto dir = scratch_dir(machine + "-" + tag);
+  const auto r = run_rtsim("run --machine " + machine + " " + args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  if (r.exit_code != 0) return {};
+  auto stats = read_json(dir / "stats.json");
+  stats["image_png"] = (dir / "image.png").string();
+  return stats;
 }
 
 /// An ImageBuf made from a file name reads it through OpenImageIO's shared ImageCache, which

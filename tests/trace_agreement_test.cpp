@@ -139,6 +139,10 @@ const std::map<std::string, std::vector<std::string>>& runs_per_machine() {
       {"wang-bezier",
        {"--scene " + shared_path("scenes/teapot.bpt") + " --width 16 --height 16",
         "--scene builtin:default --width 16 --height 16 -p pipeline.culler.kind=software"}},
+      {"pxpl5-raytrace",
+       {"--scene builtin:default --width 32 --height 32 -p frames=2",
+        "--scene " + shared_path("scenes/balls-s1.nff") +
+            " --width 24 --height 24 -p assign.scheme=rows -p ring.service=gated"}},
       {"gaudet-pert",
        {"--scene " + shared_path("scenes/balls-s2.nff") + " --width 24 --height 24",
         "--scene " + shared_path("scenes/balls-s2.nff") +

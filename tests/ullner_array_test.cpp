@@ -91,14 +91,8 @@ TEST(SubvolumeMapping, NeighbouringSubvolumesLandOnConnectedProcessors) {
 }
 
 /// `rtsim run --machine ullner-array ARGS`; its stats.json (with the image's path added).
-nlohmann::json run_array(const std::string& tag, const std::string& args) {
-  const fs::path dir = scratch_dir("array-" + tag);
-  const auto r = run_rtsim("run --machine ullner-array " + args + " -q --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-  if (r.exit_code != 0) return {};
-  auto stats = read_json(dir / "stats.json");
-  stats["image_png"] = (dir / "image.png").string();
-  return stats;
+nlohmann::ordered_json run_array(const std::string& tag, const std::string& args) {
+  return rtsim::test::run_machine("ullner-array", tag, args);
 }
 
 TEST(UllnerArray, ImageEqualsTheFunctionalRenderForEverySizeAndMapping) {

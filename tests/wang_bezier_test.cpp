@@ -20,14 +20,8 @@ using rtsim::test::shared_path;
 
 namespace {
 
-nlohmann::json run_wang(const std::string& tag, const std::string& args) {
-  const fs::path dir = scratch_dir("wang-" + tag);
-  const auto r = run_rtsim("run --machine wang-bezier " + args + " -q --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-  if (r.exit_code != 0) return {};
-  auto stats = read_json(dir / "stats.json");
-  stats["image_png"] = (dir / "image.png").string();
-  return stats;
+nlohmann::ordered_json run_wang(const std::string& tag, const std::string& args) {
+  return rtsim::test::run_machine("wang-bezier", tag, args);
 }
 
 TEST(WangBezier, ImageEqualsTheFunctionalRenderWhateverTheTiming) {

@@ -4,6 +4,7 @@
 // integer, which is associative: a machine that delivers the contributions of a pixel in any
 // order, from any number of processors, produces the same bits as the functional renderer.
 // Resolution 2^-32 is far below what an 8-bit PNG or a 32-bit float EXR can show.
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -30,6 +31,23 @@ class PixelAccumulator {
     p[0] += to_fixed(c.r);
     p[1] += to_fixed(c.g);
     p[2] += to_fixed(c.b);
+  }
+
+  /// The fixed-point sums of a pixel, as they are (a machine moves them between accumulators:
+  /// a ray caster's samples to the frame buffer, with no rounding on the way).
+  std::array<std::int64_t, 3> raw(std::uint32_t pixel) const {
+    const std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
+    return {p[0], p[1], p[2]};
+  }
+  void add_raw(std::uint32_t pixel, const std::array<std::int64_t, 3>& sums) {
+    std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
+    p[0] += sums[0];
+    p[1] += sums[1];
+    p[2] += sums[2];
+  }
+  void clear(std::uint32_t pixel) {
+    std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
+    p[0] = p[1] = p[2] = 0;
   }
 
   /// Pixel value divided by the number of samples per pixel.

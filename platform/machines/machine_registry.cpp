@@ -5,6 +5,7 @@
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet_pert.hpp"
+#include "platform/machines/pxpl5_raytrace.hpp"
 #include "platform/machines/ullner_array.hpp"
 #include "platform/machines/ullner_peripheral.hpp"
 #include "platform/machines/ullner_pipeline.hpp"
@@ -20,7 +21,9 @@ const std::vector<const Machine*>& machines() {
   static const UllnerPipeline pipeline;
   static const UllnerArray array;
   static const WangBezier wang;
-  static const std::vector<const Machine*> all{&vax, &peripheral, &pert, &pipeline, &array, &wang};
+  static const Pxpl5Raytrace pxpl5;
+  static const std::vector<const Machine*> all{&vax,   &peripheral, &pert, &pipeline,
+                                               &array, &wang,       &pxpl5};
   return all;
 }
 

@@ -1,0 +1,295 @@
+#include "platform/machines/pxpl5_raytrace.hpp"
+
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "modules/module_params.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/token_ring.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/pxpl5/nodes.hpp"
+
+namespace rtsim::platform {
+
+namespace {
+
+/// The camera of frame f of `frames`: the last frame's `last` turned about the vertical axis
+/// (its up vector through the point it looks at) by (f - (frames - 1)) x `spin_deg`.
+scenes::Camera frame_camera(const scenes::Camera& last, int f, int frames, double spin_deg) {
+  scenes::Camera c = last;
+  const double a = (f - (frames - 1)) * spin_deg * kPi / 180.0;
+  if (a == 0.0) return c;
+  const Vec3 k = glm::normalize(last.up);
+  const Vec3 v = last.from - last.at;
+  // Rodrigues' rotation of the eye about the axis k through `at`.
+  c.from = last.at + v * std::cos(a) + glm::cross(k, v) * std::sin(a) +
+           k * glm::dot(k, v) * (1.0 - std::cos(a));
+  return c;
+}
+
+}  // namespace
+
+std::string Pxpl5Raytrace::sample_scene() const { return "builtin:default"; }
+
+void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
+  // The ray casters run the ordinary software ray tracer on their copy of the scene: every
+  // render parameter is read.
+  declare_common_params(r, {});
+  const modules::ParamDecls top(r, "", false);
+  top.count("caster_count", "16", "1", "1024", "GPs",
+            "Ray-caster GPs (i860s with the scene replicated)",
+            "seed 004 L369: Fig. 9's system has 21 GPs, 4 of them compositors, one master");
+  top.count("compositor_count", "4", "1", "256", "GPs",
+            "Compositor GPs, each owning every compositor_count-th band of rows",
+            "seed 004 L369 (4 in Fig. 9; 8 typical, L310)");
+  top.count("frames", "1", "1", "100000", "frames",
+            "Frames rendered; the camera turns between them (camera.spin) and the image is the "
+            "last frame's",
+            "assumption: a camera path for frame rates (the issue's multi-frame runs)");
+  top.declare({.name = "camera.spin",
+               .kind = params::ParamKind::kDouble,
+               .default_value = "0",
+               .min = "-360",
+               .max = "360",
+               .unit = "degrees",
+               .description = "Turn of the eye about the vertical axis (the view's up through "
+                              "the point looked at) from one frame to the next",
+               .source = "assumption: a simple camera path"});
+  const modules::ParamDecls assign(r, "assign", false);
+  assign.declare({.name = "scheme",
+                  .kind = params::ParamKind::kString,
+                  .default_value = "squares",
+                  .allowed = {"rows", "squares"},
+                  .description = "Work the master GP hands out: sample rows, in order from the top "
+                                 "(L352), or square regions (L360)",
+                  .source = "seed 004 L352, L360"});
+  assign.count("square", "64", "1", "4096", "pixels",
+               "Side of a square region (VOL2: 65 x 65 with one edge of replicated rays on each "
+               "side, 1/80 of 640 x 512: 64 pixels a side without the replicated edge)",
+               "seed 004 L360");
+  assign.declare({.name = "order",
+                  .kind = params::ParamKind::kString,
+                  .default_value = "cost",
+                  .allowed = {"screen", "cost"},
+                  .description = "Order the regions are handed out in: screen order, or "
+                                 "descending cost in the previous frame (0th-order prediction)",
+                  .source = "seed 004 L360"});
+  const modules::ParamDecls gp(r, "gp", false);
+  modules::declare_processor_params(
+      gp, {.clock = "40 MHz",
+           .fp_add = 1,
+           .fp_mul = 1,
+           .fp_div = 20,
+           .fp_sqrt = 20,
+           .mem_word = 1,
+           .instruction = 1,
+           .source = "assumption: the seed names the i860 only (L282); a 40 MHz i860 XR issuing "
+                     "an add or multiply a cycle, divides and square roots by Newton "
+                     "iterations"});
+  gp.declare({.name = "memory",
+              .kind = params::ParamKind::kDataSize,
+              .default_value = "8 MiB",
+              .min = "1 B",
+              .description = "Local memory of each GP; a ray caster must hold the whole scene",
+              .source = "seed 004 L282"});
+  gp.count("scene_bytes_per_primitive", "256", "1", "1000000", "bytes",
+           "Memory a ray caster's copy of the scene takes per primitive (its kernel's "
+           "parameters, material and its share of the acceleration structure)",
+           "assumption: a triangle's or sphere's precomputed kernel and its grid references");
+  r.declare({.name = "master.assign_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "20 us",
+             .min = "0 s",
+             .max = "1 s",
+             .description = "Master GP time to take a request and hand out a region",
+             .source = "assumption: the seed gives no master GP costs (Fig. 5, L347, measures "
+                       "its limit without numbers); 800 i860 cycles"});
+  r.declare({.name = "compositor.sample_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "500 ns",
+             .min = "0 s",
+             .max = "1 s",
+             .description = "Compositor GP time per sample received (store it in its band)",
+             .source = "assumption: 20 i860 cycles a sample"});
+  r.declare({.name = "compositor.band_rows",
+             .kind = params::ParamKind::kInt,
+             .default_value = "64",
+             .min = "1",
+             .max = "16384",
+             .unit = "rows",
+             .description = "Rows of one band; band b belongs to compositor b mod compositor_count",
+             .source = "seed 004 L310 (640 x 64 bands)"});
+  r.declare({.name = "renderer.tile_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "1 ms",
+             .min = "0 s",
+             .max = "1 s",
+             .description = "SIMD renderer time to resample its 128 x 128 tile (all pixels at "
+                            "once, whatever their content)",
+             .source = "assumption: the seed gives none (Fig. 6, L350, without numbers)"});
+  r.declare({.name = "frame_buffer.pixel_time",
+             .kind = params::ParamKind::kTime,
+             .default_value = "10 ns",
+             .min = "0 s",
+             .max = "1 s",
+             .description = "Frame buffer time to write one display pixel",
+             .source = "assumption"});
+  const modules::ParamDecls wire(r, "wire", false);
+  wire.count("control_bytes", "16", "1", "65536", "bytes",
+             "Bytes of a control message on the ring (frame start, request, assignment, frame "
+             "done)",
+             "assumption: the seed gives no message formats (note 004 A)");
+  wire.count("sample_bytes", "8", "1", "65536", "bytes",
+             "Bytes of one sample on the ring (samples and band messages)",
+             "assumption: 24-bit colour, depth and flags");
+  wire.count("pixel_bytes", "4", "1", "65536", "bytes", "Bytes of one display pixel on the ring",
+             "assumption: 24-bit colour and a byte of alpha");
+  wire.count("header_bytes", "16", "0", "65536", "bytes",
+             "Bytes of header on a samples, band or pixels message", "assumption");
+  modules::TokenRing::declare_params(
+      modules::ParamDecls(r, "ring", false),
+      {.bandwidth = "5 Gbit/s",
+       .bandwidth_source = "seed 004 L284",
+       .hop_latency = "50 ns",
+       .max_packet_bytes = "1024",
+       .header_bytes = "8",
+       .service = "exhaustive",
+       .source = "assumption: the seed gives only the bandwidth (note 004 A; Fuchs et al., "
+                 "SIGGRAPH 89, would give the rest)"});
+  r.declare({.name = "fault.corrupt_samples",
+             .kind = params::ParamKind::kInt,
+             .default_value = "0",
+             .min = "0",
+             .max = "1000000000000",
+             .unit = "messages",
+             .description = "A fault for tests: the samples message with this number (counted "
+                            "over all casters from 1) has its first sample changed on the ring; "
+                            "0 changes none",
+             .source = "assumption: fault injection, not a machine property"});
+}
+
+FunctionalTwin Pxpl5Raytrace::make_twin(scenes::Scene& scene,
+                                        const params::ParamRegistry& r) const {
+  FunctionalTwin twin = make_functional_twin(scene, functional::read_render_settings(r));
+  // The image is the last frame's: the scene's camera is that frame's; the earlier ones are
+  // turned back from it (run()).
+  // A ray caster holds the whole scene (L310): it must fit in a GP's memory.
+  const double bytes = static_cast<double>(twin.geometry->shapes.size()) *
+                       static_cast<double>(r.get_int("gp.scene_bytes_per_primitive"));
+  const double memory = r.get_data_size_bits("gp.memory") / 8.0;
+  if (bytes > memory)
+    throw InputError(scene.name, 0,
+                     "pxpl5-raytrace: the scene's " + std::to_string(twin.geometry->shapes.size()) +
+                         " primitives take " + std::to_string(static_cast<long long>(bytes)) +
+                         " bytes on a ray caster (gp.scene_bytes_per_primitive) but a GP has " +
+                         std::to_string(static_cast<long long>(memory)) +
+                         " (gp.memory): the scene cannot be replicated, and splitting it into "
+                         "slabs (L310) is not modelled");
+  return twin;
+}
+
+RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
+                             const params::ParamRegistry& r, const RunOptions& opts) const {
+  using namespace pxpl5;
+  MachineRun run(name(), scene, twin, r, opts);
+  Context ctx;
+  ctx.layout.width = run.width();
+  ctx.layout.height = run.height();
+  ctx.layout.casters = static_cast<int>(r.get_int("caster_count"));
+  ctx.layout.compositors = static_cast<int>(r.get_int("compositor_count"));
+  ctx.layout.band_rows = static_cast<int>(r.get_int("compositor.band_rows"));
+  ctx.scheme = r.get_string("assign.scheme") == "rows" ? Scheme::kRows : Scheme::kSquares;
+  ctx.square = static_cast<int>(r.get_int("assign.square"));
+  ctx.cost_order = r.get_string("assign.order") == "cost";
+  ctx.frames = static_cast<int>(r.get_int("frames"));
+  ctx.sizes = {.control = static_cast<std::uint64_t>(r.get_int("wire.control_bytes")),
+               .sample = static_cast<std::uint64_t>(r.get_int("wire.sample_bytes")),
+               .pixel = static_cast<std::uint64_t>(r.get_int("wire.pixel_bytes")),
+               .header = static_cast<std::uint64_t>(r.get_int("wire.header_bytes"))};
+  ctx.gp_timing = modules::read_processor_timing(modules::ModuleParams(r, "gp"));
+  const double spin = r.get_double("camera.spin");
+  for (int f = 0; f < ctx.frames; ++f)
+    ctx.cameras.emplace_back(frame_camera(scene.camera, f, ctx.frames, spin), run.width(),
+                             run.height());
+  ctx.tracer = twin.tracer.get();
+  ctx.scene = &scene;
+  ctx.shade = twin.settings.shade;
+  ctx.frame = &run.frame();
+  ctx.opts = &opts;
+  ctx.corrupt_samples = static_cast<std::uint64_t>(r.get_int("fault.corrupt_samples"));
+  ctx.scratch = std::make_unique<shading::PixelAccumulator>(run.width(), run.height());
+
+  const Layout& lay = ctx.layout;
+  modules::TokenRing ring("ring", modules::TokenRing::read_config(modules::ModuleParams(r, "ring")),
+                          static_cast<std::size_t>(lay.nodes()), kTrafficClasses);
+  modules::RingChannel<Message> channel("ring_channel", ring);
+  Host host("host", run.trace(), channel, ctx);
+  MasterGp master("master", run.trace(), channel, ctx,
+                  modules::from_ps(r.get_time_ps("master.assign_time")));
+  std::vector<std::unique_ptr<RayCaster>> casters;
+  for (int k = 0; k < lay.casters; ++k)
+    casters.push_back(std::make_unique<RayCaster>(("caster" + std::to_string(k)).c_str(),
+                                                  run.trace(), channel, ctx, k));
+  std::vector<std::unique_ptr<Compositor>> compositors;
+  for (int k = 0; k < lay.compositors; ++k)
+    compositors.push_back(std::make_unique<Compositor>(
+        ("compositor" + std::to_string(k)).c_str(), run.trace(), channel, ctx, k,
+        modules::from_ps(r.get_time_ps("compositor.sample_time"))));
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (int k = 0; k < lay.renderers(); ++k)
+    renderers.push_back(
+        std::make_unique<Renderer>(("renderer" + std::to_string(k)).c_str(), run.trace(), channel,
+                                   ctx, k, modules::from_ps(r.get_time_ps("renderer.tile_time"))));
+  FrameBuffer fb("frame_buffer", run.trace(), channel, ctx,
+                 modules::from_ps(r.get_time_ps("frame_buffer.pixel_time")));
+  inject_faults(name(), opts.faults, {});  // its answers come from the messages, not a memory
+  run.simulate();
+
+  if (host.done().size() != static_cast<std::size_t>(ctx.frames))
+    throw std::runtime_error("pxpl5-raytrace: the frame buffer never had every pixel");
+  const sc_core::sc_time end = host.done().back();
+  modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, end);
+  ring.report(stats, "ring");
+  stats.processor(master).values["assignments"] = static_cast<double>(master.assignments());
+  nlohmann::ordered_json workload = nlohmann::ordered_json::array();
+  double most = 0;
+  for (const auto& c : casters) most = std::max(most, c->accounts().busy.to_seconds());
+  for (const auto& c : casters) {
+    auto& cs = stats.processor(*c);
+    cs.values["regions"] = static_cast<double>(c->regions());
+    cs.values["samples"] = static_cast<double>(c->samples());
+    workload.push_back(most > 0 ? c->accounts().busy.to_seconds() / most : 0.0);
+  }
+  for (const auto& c : compositors)
+    stats.processor(*c).values["samples"] = static_cast<double>(c->samples());
+  for (const auto& n : renderers) stats.processor(*n);
+  stats.processor(fb);
+  stats.processor(host);
+  nlohmann::ordered_json frame_times = nlohmann::ordered_json::array();
+  double sum = 0;
+  for (std::size_t f = 0; f < host.done().size(); ++f) {
+    const double t = (host.done()[f] - host.started()[f]).to_seconds();
+    frame_times.push_back(t);
+    sum += t;
+  }
+  nlohmann::ordered_json& res = run.machine_stats();
+  res["pxpl5"] = {{"casters", lay.casters},
+                  {"compositors", lay.compositors},
+                  {"renderers", lay.renderers()},
+                  {"ring_nodes", lay.nodes()},
+                  {"scheme", r.get_string("assign.scheme")},
+                  {"order", r.get_string("assign.order")},
+                  {"regions_per_frame", lay.regions(ctx.scheme, ctx.square).size()},
+                  {"frames", ctx.frames},
+                  {"frame_times_s", std::move(frame_times)},
+                  {"frames_per_second", sum > 0 ? static_cast<double>(ctx.frames) / sum : 0.0},
+                  {"caster_workload", std::move(workload)},
+                  {"samples_messages", ctx.samples_messages}};
+  return run.finish(modules::LatencyRecorder{}, {});
+}
+
+}  // namespace rtsim::platform

@@ -1,0 +1,93 @@
+// pxpl5-raytrace (seed 004 VOL2): the image, built from the samples that crossed the token ring,
+// equals the functional render whatever the scheme, order, node counts and ring; a sample
+// changed on the ring changes it; the scene must fit a GP's memory; the ring carries every
+// message and the casters share the work.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::read_json;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+using rtsim::test::shared_path;
+
+namespace {
+
+nlohmann::ordered_json run_pxpl5(const std::string& tag, const std::string& args) {
+  return rtsim::test::run_machine("pxpl5-raytrace", tag, args);
+}
+
+TEST(Pxpl5Raytrace, ImageEqualsTheFunctionalRenderForEverySchemeAndSize) {
+  for (const std::string& scene :
+       {std::string("builtin:default"), shared_path("scenes/balls-s1.nff")}) {
+    const std::string base = "--scene " + scene + " --width 80 --height 60";
+    const fs::path golden = scratch_dir("pxpl5-golden");
+    const auto g =
+        run_rtsim("render --machine pxpl5-raytrace " + base + " -q --out " + golden.string());
+    ASSERT_EQ(g.exit_code, 0) << g.output;
+    const std::string want = read_file(golden / "image.png");
+    fs::remove_all(golden);
+    for (const char* variant :
+         {"", " -p assign.scheme=rows", " -p assign.square=16 -p assign.order=screen",
+          " -p caster_count=1 -p compositor_count=1", " -p caster_count=5 -p compositor_count=3",
+          " -p ring.service=one_packet -p ring.max_packet_bytes=64",
+          " -p frames=3 -p camera.spin=10"}) {
+      const auto s = run_pxpl5("image", base + variant + " --overhead");
+      ASSERT_FALSE(s.empty());
+      EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << base << variant;
+      EXPECT_EQ(read_file(s.at("image_png").get<std::string>()), want) << base << variant;
+    }
+  }
+}
+
+TEST(Pxpl5Raytrace, ASampleChangedOnTheRingChangesTheImage) {
+  const std::string base = "--scene builtin:default --width 128 --height 128";
+  const auto clean = run_pxpl5("clean", base);
+  const auto bad = run_pxpl5("bad", base + " -p fault.corrupt_samples=3");
+  ASSERT_FALSE(clean.empty() || bad.empty());
+  EXPECT_EQ(clean["pxpl5"]["samples_messages"], 4);
+  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+            read_file(bad.at("image_png").get<std::string>()));
+}
+
+TEST(Pxpl5Raytrace, TheRingCarriesEveryMessageAndTheCastersShareTheWork) {
+  const auto s = run_pxpl5("ring", "--scene builtin:default --width 128 --height 128");
+  ASSERT_FALSE(s.empty());
+  const auto& p = s["pxpl5"];
+  const auto& ring = s["modules"]["ring"];
+  // Nodes: host, master, 16 casters, 4 compositors, 1 renderer (128 x 128), frame buffer.
+  EXPECT_EQ(p["ring_nodes"], 1 + 1 + 16 + 4 + 1 + 1);
+  EXPECT_EQ(p["regions_per_frame"], 4);  // 64 x 64 squares
+  // Every sample crossed the ring three times (to a compositor, a renderer, the frame buffer):
+  // 128 x 128 x (8 + 8 + 4) bytes plus headers and control.
+  const double samples = 128.0 * 128.0;
+  EXPECT_GE(ring["bytes.samples"].get<double>(), samples * 8);
+  EXPECT_GE(ring["bytes.band"].get<double>(), samples * 8);
+  EXPECT_GE(ring["bytes.pixels"].get<double>(), samples * 4);
+  EXPECT_GT(ring["utilization"].get<double>(), 0.0);
+  double regions = 0;
+  for (int k = 0; k < 16; ++k)
+    regions += s["modules"]["caster" + std::to_string(k)]["regions"].get<double>();
+  EXPECT_EQ(regions, 4);
+  EXPECT_GT(s["simulated_time_s"].get<double>(), 0.0);
+  EXPECT_GT(p["frames_per_second"].get<double>(), 0.0);
+}
+
+TEST(Pxpl5Raytrace, AScenePastAGpsMemoryIsBadInput) {
+  const fs::path dir = scratch_dir("pxpl5-big");
+  const auto r = run_rtsim(
+      "run --machine pxpl5-raytrace --scene builtin:default --width 8 "
+      "--height 8 -p gp.memory=\"1 KiB\" -q --out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot be replicated"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
+}
+
+}  // namespace
