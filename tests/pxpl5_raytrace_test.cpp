@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "tests/test_support.hpp"
 
@@ -77,6 +78,69 @@ TEST(Pxpl5Raytrace, TheRingCarriesEveryMessageAndTheCastersShareTheWork) {
   EXPECT_EQ(regions, 4);
   EXPECT_GT(s["simulated_time_s"].get<double>(), 0.0);
   EXPECT_GT(p["frames_per_second"].get<double>(), 0.0);
+}
+
+double frame_s(const nlohmann::ordered_json& s) {
+  return s.empty() ? 0.0 : s["pxpl5"]["frame_times_s"].back().get<double>();
+}
+
+// By-pass code (seed 004 L333-L350): with every node by-passed only messages remain, and the
+// pipeline's rate does not depend on how many casters there are (Fig. 4, L344).
+TEST(Pxpl5Bypass, AllBypassedTheRateIsIndependentOfTheCasters) {
+  const std::string base = "--scene builtin:default --width 320 --height 256 -p bypass=all";
+  std::vector<double> t;
+  for (const int casters : {4, 16, 48}) {
+    const auto s = run_pxpl5("bypass-all", base + " -p caster_count=" + std::to_string(casters));
+    ASSERT_FALSE(s.empty());
+    t.push_back(frame_s(s));
+    std::printf("all by-passed, %2d casters: frame %.4g ms\n", casters, t.back() * 1e3);
+  }
+  for (const double x : t) EXPECT_NEAR(x, t[0], 0.1 * t[0]);
+}
+
+// All but the master GP by-passed: the frame rate rises with the casters until the master's
+// rate caps it (Fig. 5, L347). Sample rows: 256 assignments a frame at 320 x 256.
+TEST(Pxpl5Bypass, AllButTheMasterTheMasterCapsTheRate) {
+  const std::string base =
+      "--scene builtin:default --width 320 --height 256 "
+      "-p bypass=all-but-master -p assign.scheme=rows";
+  double previous = 0;
+  double master = 0;
+  for (const int casters : {1, 4, 16, 48}) {
+    const auto s = run_pxpl5("bypass-master", base + " -p caster_count=" + std::to_string(casters));
+    ASSERT_FALSE(s.empty());
+    const double t = frame_s(s);
+    master = s["modules"]["master"]["utilization"].get<double>();
+    std::printf("all but the master by-passed, %2d casters: frame %.4g ms, master busy %.0f%%\n",
+                casters, t * 1e3, 100 * master);
+    if (previous > 0) {
+      EXPECT_LT(t, previous * 1.001);
+    }
+    previous = t;
+  }
+  EXPECT_GT(master, 0.85);  // the master GP sets the pace
+}
+
+// With the casters and the master by-passed, the back end (compositing, resampling, display)
+// depends on the image's resolution, not on the node count or the content (Fig. 6, L350).
+TEST(Pxpl5Bypass, TheBackEndDependsOnResolutionOnly) {
+  const std::string base = " -p bypass=casters-and-master";
+  const auto small =
+      run_pxpl5("be-small", "--scene builtin:default --width 320 --height 256" + base);
+  const auto many = run_pxpl5(
+      "be-many", "--scene builtin:default --width 320 --height 256 -p caster_count=40" + base);
+  const auto other = run_pxpl5("be-content", "--scene " + shared_path("scenes/balls-s2.nff") +
+                                                 " --width 320 --height 256" + base);
+  const auto large =
+      run_pxpl5("be-large", "--scene builtin:default --width 640 --height 512" + base);
+  std::printf("back end: 320x256 %.4g ms (40 casters %.4g, balls-s2 %.4g), 640x512 %.4g ms\n",
+              frame_s(small) * 1e3, frame_s(many) * 1e3, frame_s(other) * 1e3,
+              frame_s(large) * 1e3);
+  EXPECT_NEAR(frame_s(many), frame_s(small), 0.05 * frame_s(small));
+  EXPECT_NEAR(frame_s(other), frame_s(small), 0.05 * frame_s(small));
+  EXPECT_GT(frame_s(large), 2.0 * frame_s(small));  // four times the pixels
+  // By-passed casters send samples of no radiance: a black image.
+  EXPECT_EQ(small["hits"], 0);
 }
 
 TEST(Pxpl5Raytrace, AScenePastAGpsMemoryIsBadInput) {

@@ -78,6 +78,17 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
                   .description = "Order the regions are handed out in: screen order, or "
                                  "descending cost in the previous frame (0th-order prediction)",
                   .source = "seed 004 L360"});
+  top.declare({.name = "bypass",
+               .kind = params::ParamKind::kString,
+               .default_value = "none",
+               .allowed = {"none", "all", "all-but-master", "casters-and-master"},
+               .description =
+                   "By-pass code: nodes that keep their message passing and drop their compute, "
+                   "to measure each part's greatest rate: all (the pipeline's, Fig. 4), "
+                   "all-but-master (the master GP's, Fig. 5), casters-and-master (the "
+                   "compositing, resampling and display back end's, Fig. 6). A by-passed caster "
+                   "sends samples of no radiance: the image is black",
+               .source = "seed 004 L333-L350"});
   const modules::ParamDecls gp(r, "gp", false);
   modules::declare_processor_params(
       gp, {.clock = "40 MHz",
@@ -220,6 +231,10 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.shade = twin.settings.shade;
   ctx.frame = &run.frame();
   ctx.opts = &opts;
+  const std::string bypass = r.get_string("bypass");
+  ctx.bypass_casters = bypass != "none";
+  ctx.bypass_master = bypass == "all" || bypass == "casters-and-master";
+  ctx.bypass_back_end = bypass == "all" || bypass == "all-but-master";
   ctx.corrupt_samples = static_cast<std::uint64_t>(r.get_int("fault.corrupt_samples"));
   ctx.scratch = std::make_unique<shading::PixelAccumulator>(run.width(), run.height());
 
@@ -283,6 +298,7 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"ring_nodes", lay.nodes()},
                   {"scheme", r.get_string("assign.scheme")},
                   {"order", r.get_string("assign.order")},
+                  {"bypass", bypass},
                   {"regions_per_frame", lay.regions(ctx.scheme, ctx.square).size()},
                   {"frames", ctx.frames},
                   {"frame_times_s", std::move(frame_times)},

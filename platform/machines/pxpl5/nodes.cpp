@@ -58,7 +58,7 @@ MasterGp::MasterGp(sc_core::sc_module_name name, MachineTrace& trace,
 }
 
 void MasterGp::assign(int caster) {
-  compute_for(assign_time_, "assign", {{"caster", caster}});
+  if (!ctx_.bypass_master) compute_for(assign_time_, "assign", {{"caster", caster}});
   Message a;
   a.kind = Kind::kAssign;
   a.frame = frame_;
@@ -130,7 +130,15 @@ void RayCaster::run() {
     const shading::PinholeCamera& camera = ctx_.cameras[static_cast<std::size_t>(m.frame)];
     TraceCounters& counters = ctx_.frame->counters();
     const Cost before = counters.cost;
-    for (int y = g.y0; y < g.y0 + g.h; ++y) {
+    for (int y = g.y0; y < g.y0 + g.h && ctx_.bypass_casters; ++y)
+      for (int x = g.x0; x < g.x0 + g.w; ++x) {
+        by_compositor[static_cast<std::size_t>(lay.compositor_of_row(y))].push_back(
+            {static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
+                 static_cast<std::uint32_t>(x),
+             {}});
+        ++samples_;
+      }
+    for (int y = g.y0; y < g.y0 + g.h && !ctx_.bypass_casters; ++y) {
       const auto row = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w);
       tasks::VisionRayTask vision(camera, w, h, spp, row + static_cast<std::uint32_t>(g.x0),
                                   row + static_cast<std::uint32_t>(g.x0 + g.w));
@@ -155,7 +163,7 @@ void RayCaster::run() {
     }
     Cost spent = counters.cost;
     spent -= before;
-    compute(spent, "region", {{"region", g.id}, {"pixels", g.w * g.h}});
+    if (!ctx_.bypass_casters) compute(spent, "region", {{"region", g.id}, {"pixels", g.w * g.h}});
     ++regions_;
     // The samples go to the compositors owning their rows (L310).
     for (int k = 0; k < lay.compositors; ++k) {
@@ -203,8 +211,9 @@ void Compositor::run() {
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kSamples) continue;
-    compute_for(modules::times(sample_time_, m.samples.size()), "composite",
-                {{"samples", m.samples.size()}});
+    if (!ctx_.bypass_back_end)
+      compute_for(modules::times(sample_time_, m.samples.size()), "composite",
+                  {{"samples", m.samples.size()}});
     for (const Sample& s : m.samples) {
       const int x = static_cast<int>(s.pixel % static_cast<std::uint32_t>(w));
       const int y = static_cast<int>(s.pixel / static_cast<std::uint32_t>(w));
@@ -244,7 +253,7 @@ void Renderer::run() {
     if (static_cast<long>(tile.size()) < mine) continue;
     // SIMD: the whole tile at once, whatever its content. One sample a pixel: resampling
     // leaves the values as they are.
-    compute_for(tile_time_, "resample", {{"pixels", tile.size()}});
+    if (!ctx_.bypass_back_end) compute_for(tile_time_, "resample", {{"pixels", tile.size()}});
     send(ctx_.layout.frame_buffer(), take_samples(Kind::kPixels, m.frame, tile));
   }
 }
@@ -266,8 +275,9 @@ void FrameBuffer::run() {
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kPixels) continue;
-    compute_for(modules::times(pixel_time_, m.samples.size()), "write",
-                {{"pixels", m.samples.size()}});
+    if (!ctx_.bypass_back_end)
+      compute_for(modules::times(pixel_time_, m.samples.size()), "write",
+                  {{"pixels", m.samples.size()}});
     // The image is the last frame's: the pixels as they arrived.
     if (m.frame == ctx_.frames - 1)
       for (const Sample& s : m.samples) ctx_.frame->fb().add_raw(s.pixel, s.sum);

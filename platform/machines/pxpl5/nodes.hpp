@@ -46,6 +46,9 @@ struct Context {
   shading::ShadeParams shade;
   functional::FrameState* frame = nullptr;  ///< the image: the last frame's pixels
   const RunOptions* opts = nullptr;
+  /// By-pass code (L333-L337): these nodes keep their message passing and drop their compute
+  /// (a by-passed caster sends samples of no radiance, so the image is black).
+  bool bypass_casters = false, bypass_master = false, bypass_back_end = false;
   /// A fault for tests: the samples message with this number (1, 2, ..., counted over all
   /// casters) has its first sample changed on the ring (black, or white if it was black); 0 changes
   /// none.
