@@ -533,6 +533,18 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
     else
       problems.push_back(r.message);
   }
+  if (const json* px = find(stats, "pxpl5"); px && find(*px, "caster_workload")) {
+    const fs::path png = tools.scratch_dir / "pxpl5_workload.png";
+    const auto r =
+        run_analysis_script(tools, "pxpl5_workload.py", {in.stats_json.string(), png.string()});
+    if (r.ok)
+      page.image(png, "the ray casters' workloads",
+                 "Each ray caster's busy time over the busiest's, with the regions it was given "
+                 "(VOL2's Plate 4), and the bytes each traffic class put on the token ring "
+                 "(stats.json pxpl5.caster_workload, modules ring; analysis/pxpl5_workload.py)");
+    else
+      problems.push_back(r.message);
+  }
   if (!problems.empty()) page.note(missing_plots_note(problems));
 
   // `-p accuracy.check=true` on wang-bezier: the pipeline's answers against the reference.

@@ -33,6 +33,7 @@ import chain_profile  # noqa: E402
 import figures  # noqa: E402
 import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
+import pxpl5_workload  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
 import wang_accuracy  # noqa: E402
@@ -482,6 +483,45 @@ class WangAccuracyTest(unittest.TestCase, PngMixin):
         r = run_script("wang_accuracy.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("wang.accuracy.rays.missed", r.stderr)
+
+
+class Pxpl5WorkloadTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def stats(self):
+        return {"machine": "pxpl5-raytrace", "scene": "s",
+                "pxpl5": {"caster_workload": [1.0, 0.5, 0.75], "scheme": "squares",
+                          "order": "cost"},
+                "modules": {"caster0": {"regions": 4}, "caster1": {"regions": 2},
+                            "caster2": {"regions": 3},
+                            "ring": {"utilization": 0.25, "bytes.samples": 8e6,
+                                     "bytes.band": 8e6, "bytes.pixels": 4e6}}}
+
+    def test_series_and_png(self):
+        w, regions, class_bytes, util = pxpl5_workload.workload_series(self.stats())
+        self.assertEqual(w, [1.0, 0.5, 0.75])
+        self.assertEqual(regions, [4.0, 2.0, 3.0])
+        self.assertEqual(class_bytes["pixels"], 4e6)
+        self.assertEqual(class_bytes["request"], 0.0)
+        self.assertEqual(util, 0.25)
+        with open(os.path.join(self.dir, "stats.json"), "w") as f:
+            json.dump(self.stats(), f)
+        out = os.path.join(self.dir, "p.png")
+        r = run_script("pxpl5_workload.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"machine": "vax-750"}, f)
+        r = run_script("pxpl5_workload.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("caster_workload", r.stderr)
 
 
 def probe_stats():
