@@ -118,4 +118,22 @@ class Memory : public sc_core::sc_module {
   std::vector<Fault> faults_;
 };
 
+/// Writes `n` words from `words` at word address `word` of the memory behind `port` (its load
+/// path) in one TLM write transaction, adding the access time to `delay` (loosely timed: the
+/// caller synchronises when it likes). False if the memory refused it (out of range).
+template <class Socket>
+bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, std::size_t n,
+                 sc_core::sc_time& delay) {
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_address(word * 4);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<std::uint32_t*>(words)));
+  gp.set_data_length(static_cast<unsigned>(n * 4));
+  gp.set_streaming_width(static_cast<unsigned>(n * 4));
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  port->b_transport(gp, delay);
+  return !gp.is_response_error();
+}
+
 }  // namespace rtsim::modules

@@ -50,18 +50,10 @@ void ControlProcessor::run() {
     // Each data set into its Broadcast Processor's memory, a burst at a time.
     for (std::size_t b = 0; b < buses_.size(); ++b) {
       const auto& mem = sets_[b]->memory;
-      tlm::tlm_generic_payload gp;
-      gp.set_command(tlm::TLM_WRITE_COMMAND);
-      gp.set_byte_enable_ptr(nullptr);
       for (std::size_t at = 0; at < mem.size(); at += kLoadBurstWords) {
         const std::size_t n = std::min(kLoadBurstWords, mem.size() - at);
-        gp.set_address(at * 4);
-        gp.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<std::uint32_t*>(&mem[at])));
-        gp.set_data_length(static_cast<unsigned>(n * 4));
-        gp.set_streaming_width(static_cast<unsigned>(n * 4));
-        gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-        (*load_[b])->b_transport(gp, delay);
-        if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/gaudet", "BP memory load failed");
+        if (!modules::write_words(*load_[b], at, &mem[at], n, delay))
+          SC_REPORT_ERROR("rtsim/gaudet", "BP memory load failed");
         words_loaded_ += n;
       }
     }

@@ -5,6 +5,7 @@
 #include "firmware/kernels/ullner_quad_words.hpp"
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/memory.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::ullner {
@@ -121,20 +122,12 @@ void Host::load_scene() {
   sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
   constexpr std::size_t kLine = kernels::kUllnerStoredWords;
   std::array<std::uint32_t, kLine> words{};
-  tlm::tlm_generic_payload gp;
-  gp.set_command(tlm::TLM_WRITE_COMMAND);
-  gp.set_data_length(kLine * 4);
-  gp.set_streaming_width(kLine * 4);
-  gp.set_byte_enable_ptr(nullptr);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
   for (std::size_t k = 0; k < geometry_.shapes.size(); ++k) {
     const auto* quad = std::get_if<kernels::UllnerQuadKernel>(&geometry_.shapes[k].shape);
     if (!quad) continue;
     kernels::store_words(quad->params, words);
-    gp.set_address(k * kLine * 4);
-    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    load_out->b_transport(gp, delay);
-    if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/ullner", "parameter memory load failed");
+    if (!modules::write_words(load_out, k * kLine, words.data(), kLine, delay))
+      SC_REPORT_ERROR("rtsim/ullner", "parameter memory load failed");
   }
   clock_.catch_up(delay);
 }

@@ -176,12 +176,6 @@ void ArrayNode::load() {
   if (keep.size() * kPolygonWords > memory.size_words())
     SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its polygons");
   std::array<std::uint32_t, kPolygonWords> words{};
-  tlm::tlm_generic_payload gp;
-  gp.set_command(tlm::TLM_WRITE_COMMAND);
-  gp.set_data_length(kPolygonWords * 4);
-  gp.set_streaming_width(kPolygonWords * 4);
-  gp.set_byte_enable_ptr(nullptr);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
   for (const std::uint32_t slot : keep) {
     const auto& quad = std::get<kernels::UllnerQuadKernel>(ctx_.geometry->shapes[slot].shape);
@@ -189,9 +183,8 @@ void ArrayNode::load() {
                                           words.data(), kernels::kUllnerStoredWords));
     words[kernels::kUllnerStoredWords] = slot;
     const auto line = static_cast<std::uint32_t>(slots_.size());
-    gp.set_address(static_cast<std::uint64_t>(line) * kPolygonWords * 4);
-    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    memory_port_->b_transport(gp, unused);
+    modules::write_words(memory_port_, static_cast<std::uint64_t>(line) * kPolygonWords,
+                         words.data(), kPolygonWords, unused);
     lines_[slot] = line;
     slots_.push_back(slot);
   }

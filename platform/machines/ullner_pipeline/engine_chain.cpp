@@ -114,17 +114,9 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
   const auto& words = registers.contents();
   std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
               PolygonDescription::kWords, msg.returned.words.begin());
-  tlm::tlm_generic_payload write;
-  write.set_command(tlm::TLM_WRITE_COMMAND);
-  write.set_address(line * PolygonDescription::kWords * 4);
-  write.set_data_ptr(reinterpret_cast<unsigned char*>(msg.presented.words.data()));
-  write.set_data_length(PolygonDescription::kWords * 4);
-  write.set_streaming_width(PolygonDescription::kWords * 4);
-  write.set_byte_enable_ptr(nullptr);
-  write.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
-  registers_port_->b_transport(write, unused);
-  if (write.is_response_error()) {
+  if (!modules::write_words(registers_port_, line * PolygonDescription::kWords,
+                            msg.presented.words.data(), PolygonDescription::kWords, unused)) {
     gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return;
   }

@@ -70,13 +70,7 @@ BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry
 }
 
 void BezierHost::load_patches() {
-  std::array<float, kNetWords> words{};
-  tlm::tlm_generic_payload gp;
-  gp.set_command(tlm::TLM_WRITE_COMMAND);
-  gp.set_data_length(kNetWords * 4);
-  gp.set_streaming_width(kNetWords * 4);
-  gp.set_byte_enable_ptr(nullptr);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words.data()));
+  std::array<std::uint32_t, kNetWords> words{};
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
   for (std::size_t k = 0; k < patch_slots_.size(); ++k) {
     const auto& net =
@@ -84,10 +78,9 @@ void BezierHost::load_patches() {
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
         for (int c = 0; c < 3; ++c)
-          words[static_cast<std::size_t>((a * 4 + b) * 3 + c)] = net.p[a][b][c];
-    gp.set_address(k * kNetWords * 4);
-    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    memory_port_->b_transport(gp, unused);
+          words[static_cast<std::size_t>((a * 4 + b) * 3 + c)] =
+              std::bit_cast<std::uint32_t>(net.p[a][b][c]);
+    modules::write_words(memory_port_, k * kNetWords, words.data(), kNetWords, unused);
   }
 }
 
