@@ -50,6 +50,8 @@ class BezierPatchKernelT {
   bool finish(const WangResult<T>& r, const Ray& ray, double t_min, double t_max,
               SurfaceHit& hit) const;
   const ControlNet<T>& net() const { return net_; }
+  /// Where a job enters the ray: t_min when it is a positive finite number, else 0.
+  static double entry_t(double t_min) { return std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0; }
 
   /// Box of the 16 control points (contains the patch).
   Bounds bounds() const { return bounds_; }
@@ -59,7 +61,6 @@ class BezierPatchKernelT {
   const ControlNet<double>& original() const { return original_; }
 
  private:
-  static double entry_t(double t_min) { return std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0; }
   ControlNet<double> original_;  ///< for the normal and the bounds
   ControlNet<T> net_;            ///< the pipeline's copy, in its precision
   Bounds bounds_;

@@ -81,7 +81,7 @@ nlohmann::ordered_json Agreement::to_json() const {
 void ReferenceCheck::ray(const Ray& ray, double t_min, double t_max, bool primary,
                          const std::map<std::uint32_t, kernels::WangResult<float>>& answers) {
   if (answers.empty()) return;
-  const double t_enter = std::isfinite(t_min) && t_min > 0.0 ? t_min : 0.0;
+  const double t_enter = kernels::BezierPatchKernel::entry_t(t_min);
   const double no_footprint = std::numeric_limits<double>::quiet_NaN();
   Found near_pipeline, near_reference;
   for (const auto& [slot, answer] : answers) {
