@@ -30,7 +30,6 @@ int run_render(const RenderArgs& args) {
               : platform::make_functional_twin(scene, functional::read_render_settings(registry));
   const auto& settings = twin.settings;
   const auto& geometry = *twin.geometry;
-  const auto& tracer = twin.tracer;
 
   // The output folder is checked (and made) before the render: a bad --out costs no work.
   OutputSet out(args.out_dir);
@@ -44,7 +43,7 @@ int run_render(const RenderArgs& args) {
   opts.aov_depth = wants_aov(args.aovs, "depth");
   ProgressBar bar(args.quiet ? std::string() : "render");
   if (!args.quiet) opts.progress = [&bar](int done, int total) { bar.update(done, total); };
-  const auto result = functional::render(scene, *tracer, opts);
+  const auto result = platform::render_twin(twin, scene, opts);
   if (result.threads < opts.threads)
     std::cerr << "rtsim: warning: the system would start only " << result.threads << " of the "
               << opts.threads << " worker threads asked for; rendered with " << result.threads

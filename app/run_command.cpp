@@ -127,7 +127,7 @@ int run_run(const RunArgs& args) {
     fo.spp = twin.settings.spp;
     fo.threads = 1;
     fo.shade = twin.settings.shade;
-    const auto functional_result = functional::render(scene, *twin.tracer, fo);
+    const auto functional_result = platform::render_twin(twin, scene, fo);
     stats["functional_wall_time_s"] = functional_result.wall_time_s;
     stats["overhead_ratio"] = result.image.wall_time_s / functional_result.wall_time_s;
     stats["functional_image_identical"] = functional_result.rgb == result.image.rgb;

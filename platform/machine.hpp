@@ -25,7 +25,19 @@ struct FunctionalTwin {
   std::unique_ptr<functional::SceneGeometry> geometry;
   std::unique_ptr<Tracer> tracer;
   functional::RenderSettings settings;
+  /// The twin's image where it is not one traced pixel at a time (pxpl5-raytrace's sampled
+  /// screen); empty: functional::render. Call render_twin.
+  std::function<functional::RenderResult(const scenes::Scene&, const Tracer&,
+                                         const functional::RenderOptions&)>
+      render;
 };
+
+/// The twin's image: its own render, or the functional renderer's with its tracer.
+inline functional::RenderResult render_twin(const FunctionalTwin& twin, const scenes::Scene& scene,
+                                            const functional::RenderOptions& opts) {
+  return twin.render ? twin.render(scene, *twin.tracer, opts)
+                     : functional::render(scene, *twin.tracer, opts);
+}
 
 /// A word corrupted on its way into one of a machine's memories (`rtsim run --fault
 /// MEMORY:WORD:XOR`): the memory by its hierarchical name, the word's index, the bits flipped.

@@ -11,24 +11,77 @@
 #include "modules/token_ring.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
+#include "platform/machines/pxpl5/camera_path.hpp"
 #include "platform/machines/pxpl5/nodes.hpp"
+#include "platform/machines/pxpl5/sampled_render.hpp"
 
 namespace rtsim::platform {
 
 namespace {
 
-/// The camera of frame f of `frames`: the last frame's `last` turned about the vertical axis
-/// (its up vector through the point it looks at) by (f - (frames - 1)) x `spin_deg`.
-scenes::Camera frame_camera(const scenes::Camera& last, int f, int frames, double spin_deg) {
-  scenes::Camera c = last;
-  const double a = (f - (frames - 1)) * spin_deg * kPi / 180.0;
-  if (a == 0.0) return c;
-  const Vec3 k = glm::normalize(last.up);
-  const Vec3 v = last.from - last.at;
-  // Rodrigues' rotation of the eye about the axis k through `at`.
-  c.from = last.at + v * std::cos(a) + glm::cross(k, v) * std::sin(a) +
-           k * glm::dot(k, v) * (1.0 - std::cos(a));
-  return c;
+[[noreturn]] void bad_param(const params::ParamRegistry& r, const std::string& name,
+                            const std::string& what) {
+  throw InputError(name + " (set at " + r.where_set(name) + ")", 0, "pxpl5-raytrace: " + what);
+}
+
+bool power_of_two(long v) { return v > 0 && (v & (v - 1)) == 0; }
+
+/// The layout a run's parameters give (its size is the run's), with the sampling rule checked.
+pxpl5::Layout read_layout(const params::ParamRegistry& r) {
+  using namespace pxpl5;
+  Layout lay;
+  lay.casters = static_cast<int>(r.get_int("caster_count"));
+  lay.compositors = static_cast<int>(r.get_int("compositor_count"));
+  lay.band_rows = static_cast<int>(r.get_int("compositor.band_rows"));
+  lay.scheme = r.get_string("assign.scheme") == "rows" ? Scheme::kRows : Scheme::kSquares;
+  lay.square = static_cast<int>(r.get_int("assign.square"));
+  lay.rule.finest = static_cast<int>(r.get_int("sampling.finest"));
+  lay.rule.start = static_cast<int>(r.get_int("sampling.start"));
+  if (lay.rule.start == 0) lay.rule.start = lay.rule.finest;
+  lay.rule.threshold = r.get_double("sampling.threshold");
+  lay.rule.object_edges = r.get_bool("sampling.object_edges");
+  lay.rule.subdivision = r.get_string("sampling.subdivision") == "conventional"
+                             ? tasks::Subdivision::kConventional
+                             : tasks::Subdivision::kPartial;
+  lay.update_period = 100 / static_cast<int>(std::stol(r.get_string("update.fraction")));
+  const auto square = static_cast<long>(lay.square);
+  if (!power_of_two(lay.rule.finest))
+    bad_param(r, "sampling.finest",
+              "the pixels between rays must be a power of two (1, 2, 4, 8, ...)");
+  if (lay.scheme == Scheme::kRows) {
+    lay.rule.start = lay.rule.finest;  // rows preclude adaptive sampling (L352)
+  } else {
+    if (square % lay.rule.finest != 0)
+      bad_param(r, "sampling.finest",
+                "a square of assign.square = " + std::to_string(square) +
+                    " pixels must hold a whole number of lattice steps of sampling.finest = " +
+                    std::to_string(lay.rule.finest));
+    if (lay.rule.adaptive()) {
+      if (!power_of_two(lay.rule.start))
+        bad_param(r, "sampling.start", "the pixels between rays must be a power of two");
+      if (square % lay.rule.start != 0)
+        bad_param(r, "sampling.start",
+                  "adaptive squares of assign.square = " + std::to_string(square) +
+                      " pixels are cut into cells of sampling.start = " +
+                      std::to_string(lay.rule.start) + ": it must divide the square");
+      if (lay.update_period > 1)
+        bad_param(r, "update.fraction",
+                  "partial updating casts a fixed share of the lattice each frame, and adaptive "
+                  "subdivision needs every corner of a cell in the same frame: use one of them "
+                  "(sampling.start = sampling.finest for partial updating)");
+    }
+  }
+  if (lay.rule.start < lay.rule.finest)
+    bad_param(r, "sampling.start",
+              "rays start at most as close as they end: sampling.start (" +
+                  std::to_string(lay.rule.start) + ") must be at least sampling.finest (" +
+                  std::to_string(lay.rule.finest) + ")");
+  return lay;
+}
+
+/// Whether the image is the plain functional render's: every pixel cast every frame.
+bool every_pixel(const pxpl5::Layout& lay) {
+  return lay.rule.finest == 1 && !lay.rule.adaptive() && lay.update_period == 1;
 }
 
 }  // namespace
@@ -67,10 +120,12 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
                   .description = "Work the master GP hands out: sample rows, in order from the top "
                                  "(L352), or square regions (L360)",
                   .source = "seed 004 L352, L360"});
-  assign.count("square", "64", "1", "4096", "pixels",
-               "Side of a square region (VOL2: 65 x 65 with one edge of replicated rays on each "
-               "side, 1/80 of 640 x 512: 64 pixels a side without the replicated edge)",
-               "seed 004 L360");
+  assign.count(
+      "square", "64", "1", "4096", "pixels",
+      "Side of a square region in pixels (VOL2: 64, 1/80 of 640 x 512). With adaptive sampling "
+      "a square also casts its right and bottom edges, shared with its neighbours: 65 x "
+      "65 pixels, \"two edges of replicated rays\"",
+      "seed 004 L360");
   assign.declare({.name = "order",
                   .kind = params::ParamKind::kString,
                   .default_value = "cost",
@@ -89,6 +144,60 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
                    "compositing, resampling and display back end's, Fig. 6). A by-passed caster "
                    "sends samples of no radiance: the image is black",
                .source = "seed 004 L333-L350"});
+  top.declare({.name = "camera.distance",
+               .kind = params::ParamKind::kDouble,
+               .default_value = "1",
+               .min = "0.01",
+               .max = "100",
+               .unit = "x",
+               .description = "The eye's distance from the point it looks at, times the scene's "
+                              "(larger: the scene covers less of the screen)",
+               .source = "seed 004 L369: Fig. 9 varies screen coverage by viewing distance"});
+  const modules::ParamDecls sampling(r, "sampling", false);
+  sampling.count("finest", "1", "1", "64", "pixels",
+                 "Pixels between rays at the finest level, a power of two: 1 casts a ray per "
+                 "pixel (the image of every other machine); VOL2 ends at one ray per 4 x 4; the "
+                 "renderers resample to display pixels",
+                 "seed 004 L369 (4; rows every 8 x 8 or 4 x 4)");
+  sampling.count("start", "0", "0", "256", "pixels",
+                 "Pixels between rays before adaptive refinement, squares only (rows cannot "
+                 "adapt, L352): larger than sampling.finest turns adaptive sampling on; 0 is "
+                 "sampling.finest (no refinement)",
+                 "seed 004 L369 (16: one ray per 16 x 16 refined to 4 x 4)");
+  sampling.declare({.name = "threshold",
+                    .kind = params::ParamKind::kDouble,
+                    .default_value = "0.05",
+                    .min = "0",
+                    .max = "1000",
+                    .unit = "radiance",
+                    .description = "Colour difference between two corner samples (any channel) "
+                                   "that refines a square",
+                    .source = "seed 004 L362 (a user-defined threshold; 0.05 is about 13 of 255 "
+                              "display levels: an assumption)"});
+  sampling.declare({.name = "subdivision",
+                    .kind = params::ParamKind::kString,
+                    .default_value = "partial",
+                    .allowed = {"partial", "conventional"},
+                    .description = "Refinement of a square whose corners differ: new samples "
+                                   "only between differing pairs and the centre (partial), or "
+                                   "all five (conventional)",
+                    .source = "seed 004 L362, Fig. 8 (L358)"});
+  sampling.declare({.name = "object_edges",
+                    .kind = params::ParamKind::kBool,
+                    .default_value = "true",
+                    .description = "Corner samples that hit different primitives differ whatever "
+                                   "their colour (edges and intersection curves are refined)",
+                    .source = "seed 004 L364 (isosurface encoding; here the primitive hit)"});
+  r.declare({.name = "update.fraction",
+             .kind = params::ParamKind::kString,
+             .default_value = "100",
+             .allowed = {"100", "50", "25"},
+             .unit = "percent",
+             .description = "Partial updating: the share of lattice positions cast each frame, "
+                            "on a regular grid (a modulus of the position with the frame "
+                            "number); the compositors keep the rest from earlier frames. The "
+                            "first frame casts all",
+             .source = "seed 004 L373-L379"});
   const modules::ParamDecls gp(r, "gp", false);
   modules::declare_processor_params(
       gp, {.clock = "40 MHz",
@@ -185,9 +294,19 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
 
 FunctionalTwin Pxpl5Raytrace::make_twin(scenes::Scene& scene,
                                         const params::ParamRegistry& r) const {
+  const pxpl5::Layout layout = read_layout(r);  // bad sampling settings are bad input
+  // The image is the last frame's: the scene's camera, moved to camera.distance, is that
+  // frame's; the earlier ones are turned back from it (run()).
+  pxpl5::move_eye(scene.camera, r.get_double("camera.distance"));
   FunctionalTwin twin = make_functional_twin(scene, functional::read_render_settings(r));
-  // The image is the last frame's: the scene's camera is that frame's; the earlier ones are
-  // turned back from it (run()).
+  if (!every_pixel(layout)) {
+    const int frames = static_cast<int>(r.get_int("frames"));
+    const double spin = r.get_double("camera.spin");
+    twin.render = [layout, frames, spin](const scenes::Scene& s, const Tracer& tracer,
+                                         const functional::RenderOptions& opts) {
+      return pxpl5::sampled_render(s, tracer, opts, layout, frames, spin);
+    };
+  }
   // A ray caster holds the whole scene (L310): it must fit in a GP's memory.
   const double bytes = static_cast<double>(twin.geometry->shapes.size()) *
                        static_cast<double>(r.get_int("gp.scene_bytes_per_primitive"));
@@ -208,13 +327,9 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   using namespace pxpl5;
   MachineRun run(name(), scene, twin, r, opts);
   Context ctx;
+  ctx.layout = read_layout(r);
   ctx.layout.width = run.width();
   ctx.layout.height = run.height();
-  ctx.layout.casters = static_cast<int>(r.get_int("caster_count"));
-  ctx.layout.compositors = static_cast<int>(r.get_int("compositor_count"));
-  ctx.layout.band_rows = static_cast<int>(r.get_int("compositor.band_rows"));
-  ctx.scheme = r.get_string("assign.scheme") == "rows" ? Scheme::kRows : Scheme::kSquares;
-  ctx.square = static_cast<int>(r.get_int("assign.square"));
   ctx.cost_order = r.get_string("assign.order") == "cost";
   ctx.frames = static_cast<int>(r.get_int("frames"));
   ctx.sizes = {.control = static_cast<std::uint64_t>(r.get_int("wire.control_bytes")),
@@ -236,7 +351,6 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.bypass_master = bypass == "all" || bypass == "casters-and-master";
   ctx.bypass_back_end = bypass == "all" || bypass == "all-but-master";
   ctx.corrupt_samples = static_cast<std::uint64_t>(r.get_int("fault.corrupt_samples"));
-  ctx.scratch = std::make_unique<shading::PixelAccumulator>(run.width(), run.height());
 
   const Layout& lay = ctx.layout;
   modules::TokenRing ring("ring", modules::TokenRing::read_config(modules::ModuleParams(r, "ring")),
@@ -273,10 +387,13 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   nlohmann::ordered_json workload = nlohmann::ordered_json::array();
   double most = 0;
   for (const auto& c : casters) most = std::max(most, c->accounts().busy.to_seconds());
+  std::uint64_t rays = 0;
   for (const auto& c : casters) {
     auto& cs = stats.processor(*c);
     cs.values["regions"] = static_cast<double>(c->regions());
+    cs.values["rays"] = static_cast<double>(c->rays());
     cs.values["samples"] = static_cast<double>(c->samples());
+    rays += c->rays();
     workload.push_back(most > 0 ? c->accounts().busy.to_seconds() / most : 0.0);
   }
   for (const auto& c : compositors)
@@ -299,7 +416,16 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"scheme", r.get_string("assign.scheme")},
                   {"order", r.get_string("assign.order")},
                   {"bypass", bypass},
-                  {"regions_per_frame", lay.regions(ctx.scheme, ctx.square).size()},
+                  {"regions_per_frame", lay.regions().size()},
+                  {"lattice", {lay.lattice().nx(), lay.lattice().ny()}},
+                  {"sampling",
+                   {{"finest", lay.rule.finest},
+                    {"start", lay.rule.start},
+                    {"adaptive", lay.rule.adaptive()},
+                    {"update_fraction", 1.0 / lay.update_period}}},
+                  {"rays_per_frame", static_cast<double>(rays) / ctx.frames},
+                  {"rays_per_pixel", static_cast<double>(rays) / ctx.frames /
+                                         (static_cast<double>(lay.width) * lay.height)},
                   {"frames", ctx.frames},
                   {"frame_times_s", std::move(frame_times)},
                   {"frames_per_second", sum > 0 ? static_cast<double>(ctx.frames) / sum : 0.0},

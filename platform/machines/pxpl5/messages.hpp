@@ -8,21 +8,23 @@
 #include <string>
 #include <vector>
 
+#include "firmware/tasks/region_sampling.hpp"
+#include "firmware/tasks/sample_lattice.hpp"
+
 namespace rtsim::platform::pxpl5 {
 
-/// A screen region a ray caster is given: pixels [x0, x0 + w) x [y0, y0 + h).
+/// A screen region a ray caster is given: pixels [x0, x0 + w) x [y0, y0 + h), and the sample
+/// lattice positions it casts (Layout::regions).
 struct Region {
   int x0 = 0, y0 = 0, w = 0, h = 0;
   int id = -1;  ///< its number in the frame's list (-1: none left)
+  tasks::LatticeRange lattice;
 };
 
-/// One sample: its pixel and its value, the pixel's radiance summed over its samples in the
-/// frame buffer's fixed point (shading::PixelAccumulator), so that resampling at full density
-/// changes no bit.
-struct Sample {
-  std::uint32_t pixel = 0;
-  std::array<std::int64_t, 3> sum{};
-};
+/// One sample: its lattice position and its value, the radiance summed over the position's
+/// rays in the frame buffer's fixed point (shading::PixelAccumulator), so that resampling at full
+/// density changes no bit. In a pixels message, a display pixel and its value.
+using Sample = tasks::LatticeSample;
 
 enum class Kind : std::uint8_t {
   kStartFrame,  ///< host -> master GP: frame f begins

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
-#include "firmware/tasks/ray_tree.hpp"
-#include "firmware/tasks/vision_ray_task.hpp"
+#include "firmware/tasks/lattice_ray_task.hpp"
+#include "firmware/tasks/region_sampling.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::pxpl5 {
@@ -72,7 +72,7 @@ void MasterGp::run() {
     const Message m = receive(Wait::kWork);
     if (m.kind == Kind::kStartFrame) {
       frame_ = m.frame;
-      regions_ = ctx_.layout.regions(ctx_.scheme, ctx_.square);
+      regions_ = ctx_.layout.regions();
       cost_.resize(regions_.size(), 0.0);
       // 0th-order cost prediction (L360): the costliest of the previous frame first.
       if (ctx_.cost_order && frame_ > 0)
@@ -118,8 +118,11 @@ void RayCaster::run() {
   request.kind = Kind::kRequest;
   send(ctx_.layout.master(), request);
   const Layout& lay = ctx_.layout;
+  const tasks::SampleLattice lattice = lay.lattice();
   const int w = ctx_.frame->width(), h = ctx_.frame->height(), spp = ctx_.frame->spp();
-  std::vector<shading::TracedRay> stack, spawned;
+  const int f = lattice.finest();
+  TraceCounters& counters = ctx_.frame->counters();
+  tasks::LatticeRayTask task(*ctx_.tracer, shade_, counters);
   std::vector<std::vector<Sample>> by_compositor(static_cast<std::size_t>(lay.compositors));
   for (;;) {
     const Message m = receive(Wait::kWork);
@@ -128,57 +131,51 @@ void RayCaster::run() {
     const Region& g = m.region;
     const bool last_frame = m.frame == ctx_.frames - 1;
     const shading::PinholeCamera& camera = ctx_.cameras[static_cast<std::size_t>(m.frame)];
-    TraceCounters& counters = ctx_.frame->counters();
     const Cost before = counters.cost;
-    for (int y = g.y0; y < g.y0 + g.h && ctx_.bypass_casters; ++y)
-      for (int x = g.x0; x < g.x0 + g.w; ++x) {
-        by_compositor[static_cast<std::size_t>(lay.compositor_of_row(y))].push_back(
-            {static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
-                 static_cast<std::uint32_t>(x),
-             {}});
-        ++samples_;
+    const auto cast = [&](int i, int j) {
+      if (ctx_.bypass_casters) {
+        Sample none;  // by-pass code: the message, no ray (L333)
+        none.index = lattice.index(i, j);
+        return none;
       }
-    for (int y = g.y0; y < g.y0 + g.h && !ctx_.bypass_casters; ++y) {
-      const auto row = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w);
-      tasks::VisionRayTask vision(camera, w, h, spp, row + static_cast<std::uint32_t>(g.x0),
-                                  row + static_cast<std::uint32_t>(g.x0 + g.w));
-      for (int x = g.x0; x < g.x0 + g.w; ++x) {
-        const std::uint32_t pixel = row + static_cast<std::uint32_t>(x);
-        for (int s = 0; s < spp; ++s) {
-          int sample = 0;
-          bool first = true;
-          tasks::trace_ray_tree(vision.next(sample), *ctx_.tracer, shade_, *ctx_.scratch, counters,
-                                stack, spawned,
-                                [&](const shading::TracedRay& r, bool found, const Hit& hit) {
-                                  if (first && sample == 0 && last_frame)
-                                    ctx_.frame->record_primary(r.pixel, found, hit);
-                                  first = false;
-                                });
-        }
-        by_compositor[static_cast<std::size_t>(lay.compositor_of_row(y))].push_back(
-            {pixel, ctx_.scratch->raw(pixel)});
-        ctx_.scratch->clear(pixel);
-        ++samples_;
-      }
-    }
+      const int x = i * f, y = j * f;
+      return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
+        if (last_frame && x < w && y < h)
+          ctx_.frame->record_primary(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
+                                         static_cast<std::uint32_t>(x),
+                                     found, hit);
+      });
+    };
+    const auto update = [&](int i, int j) {
+      return tasks::updated_in_frame(i, j, m.frame, lay.update_period);
+    };
+    const auto out = [&](const Sample& s) {
+      by_compositor[static_cast<std::size_t>(lay.compositor_of_lattice_row(lattice.j_of(s.index)))]
+          .push_back(s);
+      ++samples_;
+    };
+    const std::size_t rays =
+        tasks::sample_region(lattice, lay.rule, g.lattice, spp, cast, update, out);
+    rays_ += rays;
     Cost spent = counters.cost;
     spent -= before;
-    if (!ctx_.bypass_casters) compute(spent, "region", {{"region", g.id}, {"pixels", g.w * g.h}});
+    if (!ctx_.bypass_casters)
+      compute(spent, "region", {{"region", g.id}, {"pixels", g.w * g.h}, {"rays", rays}});
     ++regions_;
     // The samples go to the compositors owning their rows (L310).
     for (int k = 0; k < lay.compositors; ++k) {
       auto& samples = by_compositor[static_cast<std::size_t>(k)];
       if (samples.empty()) continue;
-      Message out = take_samples(Kind::kSamples, m.frame, samples);
+      Message out_msg = take_samples(Kind::kSamples, m.frame, samples);
       if (++ctx_.samples_messages == ctx_.corrupt_samples) {
         // The fault: the first sample turns black, or white if it was black.
-        auto& sum = out.samples.front().sum;
+        auto& sum = out_msg.samples.front().sum;
         const bool black = sum[0] == 0 && sum[1] == 0 && sum[2] == 0;
         const std::int64_t v =
             black ? static_cast<std::int64_t>(shading::PixelAccumulator::kScale) * spp : 0;
         sum = {v, v, v};
       }
-      send(lay.compositor(k), std::move(out));
+      send(lay.compositor(k), std::move(out_msg));
     }
     Message next;
     next.kind = Kind::kRequest;
@@ -199,15 +196,40 @@ Compositor::Compositor(sc_core::sc_module_name name, MachineTrace& trace,
       number_(number),
       sample_time_(sample_time) {
   set_timing(ctx.gp_timing);
+  const Layout& lay = ctx.layout;
+  const std::vector<Region> regions = lay.regions();
+  for (int phase = 0; phase <= lay.update_period; ++phase) {
+    // Phase 0 is the first frame; phase p > 0 any frame f > 0 with f mod period = p - 1.
+    const int frame = phase == 0 ? 0 : lay.update_period + phase - 1;
+    long n = 0;
+    for (const Region& g : regions) n += lay.positions_sent(g, number, frame);
+    expected_.push_back(n);
+  }
   SC_THREAD(run);
+}
+
+long Compositor::expected(int frame) const {
+  const int phase = frame == 0 ? 0 : 1 + frame % ctx_.layout.update_period;
+  return expected_[static_cast<std::size_t>(phase)];
 }
 
 void Compositor::run() {
   const Layout& lay = ctx_.layout;
-  const long mine = lay.pixels_of_compositor(number_);
+  const tasks::SampleLattice lattice = lay.lattice();
+  // The persistent sample array of its bands (L379): the rows it owns, in order.
+  std::vector<int> local_row(static_cast<std::size_t>(lattice.ny()), -1);
+  std::vector<int> rows;
+  for (int j = 0; j < lattice.ny(); ++j)
+    if (lay.compositor_of_lattice_row(j) == number_) {
+      local_row[static_cast<std::size_t>(j)] = static_cast<int>(rows.size());
+      rows.push_back(j);
+    }
+  const auto nx = static_cast<std::size_t>(lattice.nx());
+  std::vector<Sample> kept(rows.size() * nx);
+  std::vector<int> written(kept.size(), -1);  // the frame each position was last written in
+  const auto tile_cols = lay.tiles_reading(false), tile_rows = lay.tiles_reading(true);
   std::vector<std::vector<Sample>> by_renderer(static_cast<std::size_t>(lay.renderers()));
   long have = 0;
-  const int w = ctx_.frame->width();
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kSamples) continue;
@@ -215,14 +237,24 @@ void Compositor::run() {
       compute_for(modules::times(sample_time_, m.samples.size()), "composite",
                   {{"samples", m.samples.size()}});
     for (const Sample& s : m.samples) {
-      const int x = static_cast<int>(s.pixel % static_cast<std::uint32_t>(w));
-      const int y = static_cast<int>(s.pixel / static_cast<std::uint32_t>(w));
-      by_renderer[static_cast<std::size_t>(lay.renderer_of(x, y))].push_back(s);
+      const int j = lattice.j_of(s.index), i = lattice.i_of(s.index);
+      const std::size_t k = static_cast<std::size_t>(local_row[static_cast<std::size_t>(j)]) * nx +
+                            static_cast<std::size_t>(i);
+      // A frame's first copy replaces the last frame's; a replicated one keeps the better.
+      if (written[k] != m.frame || tasks::better_copy(s, kept[k])) kept[k] = s;
+      written[k] = m.frame;
     }
     samples_ += m.samples.size();
     have += static_cast<long>(m.samples.size());
-    if (have < mine) continue;
-    // Its bands are complete: each renderer gets the part in its tile.
+    if (have < expected(m.frame)) continue;
+    // Its bands have the frame: each renderer gets the positions its tile reads.
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (std::size_t i = 0; i < nx; ++i) {
+        const Sample& s = kept[r * nx + i];
+        for (int ty : tile_rows[static_cast<std::size_t>(rows[r])])
+          for (int tx : tile_cols[i])
+            by_renderer[static_cast<std::size_t>(ty * lay.tiles_x() + tx)].push_back(s);
+      }
     for (int k = 0; k < lay.renderers(); ++k) {
       auto& part = by_renderer[static_cast<std::size_t>(k)];
       if (!part.empty()) send(lay.renderer(k), take_samples(Kind::kBand, m.frame, part));
@@ -244,17 +276,45 @@ Renderer::Renderer(sc_core::sc_module_name name, MachineTrace& trace,
 }
 
 void Renderer::run() {
-  const long mine = ctx_.layout.pixels_of_renderer(number_);
-  std::vector<Sample> tile;
+  const Layout& lay = ctx_.layout;
+  const tasks::SampleLattice lattice = lay.lattice();
+  const tasks::LatticeRange r = lay.lattice_of_renderer(number_);
+  const int cols = r.i1 - r.i0;
+  const long mine = static_cast<long>(cols) * (r.j1 - r.j0);
+  std::vector<std::array<std::int64_t, 3>> tile(static_cast<std::size_t>(mine));
+  const auto at = [&](int i, int j) -> const std::array<std::int64_t, 3>& {
+    return tile[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
+                static_cast<std::size_t>(i - r.i0)];
+  };
+  const int tx = number_ % lay.tiles_x(), ty = number_ / lay.tiles_x();
+  const int x0 = tx * lay.tile, y0 = ty * lay.tile;
+  const int x1 = std::min(x0 + lay.tile, lay.width), y1 = std::min(y0 + lay.tile, lay.height);
+  long have = 0;
+  std::vector<Sample> pixels;
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kBand) continue;
-    tile.insert(tile.end(), m.samples.begin(), m.samples.end());
-    if (static_cast<long>(tile.size()) < mine) continue;
-    // SIMD: the whole tile at once, whatever its content. One sample a pixel: resampling
-    // leaves the values as they are.
-    if (!ctx_.bypass_back_end) compute_for(tile_time_, "resample", {{"pixels", tile.size()}});
-    send(ctx_.layout.frame_buffer(), take_samples(Kind::kPixels, m.frame, tile));
+    for (const Sample& s : m.samples) {
+      const int i = lattice.i_of(s.index), j = lattice.j_of(s.index);
+      tile[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
+           static_cast<std::size_t>(i - r.i0)] = s.sum;
+    }
+    have += static_cast<long>(m.samples.size());
+    if (have < mine) continue;
+    have = 0;
+    // SIMD: the whole tile at once, whatever its content (L282): each display pixel from the
+    // lattice positions around it.
+    if (!ctx_.bypass_back_end)
+      compute_for(tile_time_, "resample", {{"pixels", (x1 - x0) * (y1 - y0)}});
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        Sample p;
+        p.index = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(lay.width) +
+                  static_cast<std::uint32_t>(x);
+        p.sum = lattice.resample(x, y, at);
+        pixels.push_back(p);
+      }
+    send(lay.frame_buffer(), take_samples(Kind::kPixels, m.frame, pixels));
   }
 }
 
@@ -280,7 +340,7 @@ void FrameBuffer::run() {
                   {{"pixels", m.samples.size()}});
     // The image is the last frame's: the pixels as they arrived.
     if (m.frame == ctx_.frames - 1)
-      for (const Sample& s : m.samples) ctx_.frame->fb().add_raw(s.pixel, s.sum);
+      for (const Sample& s : m.samples) ctx_.frame->fb().add_raw(s.index, s.sum);
     have += static_cast<long>(m.samples.size());
     if (have < all) continue;
     have = 0;

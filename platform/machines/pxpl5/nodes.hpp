@@ -4,12 +4,13 @@
 //   Host         the Sun-4: starts each frame and hears when the frame buffer has it (L306);
 //   MasterGp     hands out screen regions first-come-first-served (L352), in screen order or
 //                in descending order of what each cost in the previous frame (L360);
-//   RayCaster    an i860 GP with the whole scene (replicated, L310): traces every pixel of a
-//                region (the firmware's ray tree) and sends each compositor the samples in its
-//                bands;
-//   Compositor   an i860 GP owning bands of rows (L310): gathers its samples and, when its bands
-//                are complete, sends each renderer the part of them in its tile;
-//   Renderer     a SIMD renderer owning a 128 x 128 tile (L282): resamples its samples to
+//   RayCaster    an i860 GP with the whole scene (replicated, L310): samples its region on the
+//                lattice (firmware/tasks/region_sampling.hpp: uniform, partial updating or
+//                adaptive) and sends each compositor the samples in its bands;
+//   Compositor   an i860 GP owning bands of rows (L310): keeps its samples from frame to frame
+//                (partial updating, L379) and, when its bands have every sample of the frame,
+//                sends each renderer the part of them its tile reads;
+//   Renderer     a SIMD renderer owning a 128 x 128 tile (L282): resamples the lattice to
 //                display pixels (at one sample a pixel, unchanged) and sends them on;
 //   FrameBuffer  writes the pixels that arrive into the image and tells the host when a frame
 //                is complete.
@@ -33,9 +34,7 @@ namespace rtsim::platform::pxpl5 {
 
 /// What the nodes share.
 struct Context {
-  Layout layout;
-  Scheme scheme = Scheme::kSquares;
-  int square = 64;
+  Layout layout;  ///< where everyone is, the regions, the sampling rule
   bool cost_order = true;
   int frames = 1;
   WireSizes sizes;
@@ -54,9 +53,6 @@ struct Context {
   /// none.
   std::uint64_t corrupt_samples = 0;
   std::uint64_t samples_messages = 0;
-  /// Casters' scratch: the radiance of the pixel being traced (one at a time: a caster traces
-  /// a pixel's ray tree without yielding).
-  std::unique_ptr<shading::PixelAccumulator> scratch;
 };
 
 class Host : public RingNode {
@@ -100,13 +96,15 @@ class RayCaster : public RingNode {
   RayCaster(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
             Context& ctx, int number);
   std::uint64_t regions() const { return regions_; }
+  /// Rays cast at lattice positions (each with its `spp` vision rays) and samples sent.
+  std::uint64_t rays() const { return rays_; }
   std::uint64_t samples() const { return samples_; }
 
  private:
   void run();
   Context& ctx_;
   tasks::ShadeTask shade_;
-  std::uint64_t regions_ = 0, samples_ = 0;
+  std::uint64_t regions_ = 0, rays_ = 0, samples_ = 0;
 };
 
 class Compositor : public RingNode {
@@ -118,10 +116,14 @@ class Compositor : public RingNode {
 
  private:
   void run();
+  /// Samples the casters send this compositor in frame `frame`.
+  long expected(int frame) const;
   Context& ctx_;
   int number_;
   sc_core::sc_time sample_time_;
   std::uint64_t samples_ = 0;
+  /// By frame phase (0: the first frame, 1 + f mod period after): samples to wait for.
+  std::vector<long> expected_;
 };
 
 class Renderer : public RingNode {
