@@ -188,7 +188,9 @@ int run_run(const RunArgs& args) {
     if (more > 0) std::cout << " (busiest " << kMostBusy << "; " << more << " more in stats.json)";
     std::cout.unsetf(std::ios::fixed);
     std::cout << std::setprecision(6) << "\n";
-    if (stats.contains("ray_latency_s"))
+    // A machine that follows no ray from start to answer (pxpl5-raytrace: a caster traces a
+    // region in one go) records none.
+    if (stats.contains("ray_latency_s") && stats["ray_latency_s"].value("count", 0.0) > 0)
       std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
                 << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
                 << stats["ray_latency_s"]["p99"].get<double>() << " s\n";

@@ -10,6 +10,7 @@
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/newell_teapot.hpp"
 #include "scenes/generators/npp_scene.hpp"
+#include "scenes/generators/spd_teapot.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_random.hpp"
 #include "scenes/generators/ullner_sheets.hpp"
@@ -66,6 +67,9 @@ const std::vector<BuiltinScene>& builtin_scenes() {
                     "unoccluded shadow ray (Ullner's doubling for shadows, L743)"});
     list.push_back(
         {"teapot", "the Newell teapot: 32 bicubic Bezier patches (SPD's teapot.bpt), no lights"});
+    list.push_back({"spd-teapot",
+                    "SPD's teapot scene: the same patches as 992 triangles with vertex normals "
+                    "on a checkerboard, 2 lights"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -90,6 +94,7 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "default") return make_default_scene();
   if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
   if (name == "teapot") return make_newell_teapot();
+  if (name == "spd-teapot") return make_spd_teapot();
   int n = 0;
   int pp = 0;
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);

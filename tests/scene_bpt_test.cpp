@@ -150,5 +150,49 @@ TEST(SceneBpt, BadInput) {
   expect_input_error(parse("1\n3 3\x01\n"), 2, "non-printable byte 0x01 at column 4");
 }
 
+// builtin:spd-teapot is SPD's teapot scene (shared/scenes/teapot-s2.nff) with the patches cut
+// finer: the same view, lights, background, materials and checkerboard, and a teapot of the same
+// extent.
+TEST(SceneBpt, BuiltinSpdTeapotIsSpdsTeapotScene) {
+  const Scene file = load_scene(shared_scene("teapot-s2.nff"));
+  const Scene built = load_scene("builtin:spd-teapot");
+  EXPECT_EQ(built.camera.from, file.camera.from);
+  EXPECT_EQ(built.camera.at, file.camera.at);
+  EXPECT_EQ(built.camera.up, file.camera.up);
+  EXPECT_EQ(built.camera.angle_deg, file.camera.angle_deg);
+  EXPECT_EQ(built.background, file.background);
+  ASSERT_EQ(built.lights.size(), file.lights.size());
+  for (std::size_t i = 0; i < file.lights.size(); ++i)
+    EXPECT_EQ(built.lights[i].position, file.lights[i].position);
+  ASSERT_EQ(built.materials.size(), file.materials.size());
+  for (std::size_t i = 0; i < file.materials.size(); ++i) {
+    EXPECT_EQ(built.materials[i].color, file.materials[i].color) << i;
+    EXPECT_EQ(built.materials[i].kd, file.materials[i].kd) << i;
+    EXPECT_EQ(built.materials[i].shine, file.materials[i].shine) << i;
+  }
+  // The checkerboard: the first four polygons, as sets of corners.
+  for (std::size_t i = 0; i < 4; ++i) {
+    Bounds a, b;
+    for (const Vec3& v : file.polygons[i].vertices) a.extend(v);
+    for (const Vec3& v : built.polygons[i].vertices) b.extend(v);
+    EXPECT_EQ(a.lo, b.lo) << i;
+    EXPECT_EQ(a.hi, b.hi) << i;
+  }
+  // The teapot: triangles with a normal a vertex, over the same box as SPD's coarser cut.
+  Bounds a, b;
+  for (std::size_t i = 4; i < file.polygons.size(); ++i)
+    for (const Vec3& v : file.polygons[i].vertices) a.extend(v);
+  for (std::size_t i = 4; i < built.polygons.size(); ++i) {
+    ASSERT_EQ(built.polygons[i].vertices.size(), 3u);
+    ASSERT_EQ(built.polygons[i].normals.size(), 3u);
+    for (const Vec3& v : built.polygons[i].vertices) b.extend(v);
+  }
+  EXPECT_EQ(built.polygons.size(), 4u + 992u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(a.lo[k], b.lo[k], 0.02) << k;
+    EXPECT_NEAR(a.hi[k], b.hi[k], 0.02) << k;
+  }
+}
+
 }  // namespace
 }  // namespace rtsim::scenes

@@ -270,7 +270,7 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 25u);
+  ASSERT_EQ(names.size(), 26u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
@@ -278,6 +278,7 @@ TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   EXPECT_EQ(names[7], "ullner-sheets-1000");
   EXPECT_EQ(names[8], "ullner-sheets-lit-1000");
   EXPECT_EQ(names[9], "teapot");
+  EXPECT_EQ(names[10], "spd-teapot");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());

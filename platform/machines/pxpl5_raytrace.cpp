@@ -387,8 +387,10 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   nlohmann::ordered_json workload = nlohmann::ordered_json::array();
   double most = 0;
   for (const auto& c : casters) most = std::max(most, c->accounts().busy.to_seconds());
-  std::uint64_t rays = 0;
+  std::uint64_t rays = 0, cast_last = 0, covered_last = 0;
   for (const auto& c : casters) {
+    cast_last += c->cast_last_frame();
+    covered_last += c->covered_last_frame();
     auto& cs = stats.processor(*c);
     cs.values["regions"] = static_cast<double>(c->regions());
     cs.values["rays"] = static_cast<double>(c->rays());
@@ -408,29 +410,37 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
     frame_times.push_back(t);
     sum += t;
   }
+  const double last = (host.done().back() - host.started().back()).to_seconds();
   nlohmann::ordered_json& res = run.machine_stats();
-  res["pxpl5"] = {{"casters", lay.casters},
-                  {"compositors", lay.compositors},
-                  {"renderers", lay.renderers()},
-                  {"ring_nodes", lay.nodes()},
-                  {"scheme", r.get_string("assign.scheme")},
-                  {"order", r.get_string("assign.order")},
-                  {"bypass", bypass},
-                  {"regions_per_frame", lay.regions().size()},
-                  {"lattice", {lay.lattice().nx(), lay.lattice().ny()}},
-                  {"sampling",
-                   {{"finest", lay.rule.finest},
-                    {"start", lay.rule.start},
-                    {"adaptive", lay.rule.adaptive()},
-                    {"update_fraction", 1.0 / lay.update_period}}},
-                  {"rays_per_frame", static_cast<double>(rays) / ctx.frames},
-                  {"rays_per_pixel", static_cast<double>(rays) / ctx.frames /
-                                         (static_cast<double>(lay.width) * lay.height)},
-                  {"frames", ctx.frames},
-                  {"frame_times_s", std::move(frame_times)},
-                  {"frames_per_second", sum > 0 ? static_cast<double>(ctx.frames) / sum : 0.0},
-                  {"caster_workload", std::move(workload)},
-                  {"samples_messages", ctx.samples_messages}};
+  res["pxpl5"] = {
+      {"casters", lay.casters},
+      {"compositors", lay.compositors},
+      {"renderers", lay.renderers()},
+      {"ring_nodes", lay.nodes()},
+      {"scheme", r.get_string("assign.scheme")},
+      {"order", r.get_string("assign.order")},
+      {"bypass", bypass},
+      {"regions_per_frame", lay.regions().size()},
+      {"lattice", {lay.lattice().nx(), lay.lattice().ny()}},
+      {"sampling",
+       {{"finest", lay.rule.finest},
+        {"start", lay.rule.start},
+        {"adaptive", lay.rule.adaptive()},
+        {"update_fraction", 1.0 / lay.update_period}}},
+      {"rays_per_frame", static_cast<double>(rays) / ctx.frames},
+      // Fig. 9's abscissa: the share of the screen the scene covers (last frame's
+      // rays on the screen that hit; adaptive squares cast more where it is).
+      {"screen_coverage", cast_last > 0 ? static_cast<double>(covered_last) / cast_last : 0.0},
+      {"rays_per_pixel",
+       static_cast<double>(rays) / ctx.frames / (static_cast<double>(lay.width) * lay.height)},
+      {"frames", ctx.frames},
+      {"frame_times_s", std::move(frame_times)},
+      {"frames_per_second", sum > 0 ? static_cast<double>(ctx.frames) / sum : 0.0},
+      // The last frame's rate: the steady state once a previous frame's costs order the squares
+      // (L360).
+      {"last_frame_per_second", last > 0 ? 1.0 / last : 0.0},
+      {"caster_workload", std::move(workload)},
+      {"samples_messages", ctx.samples_messages}};
   return run.finish(modules::LatencyRecorder{}, {});
 }
 

@@ -139,11 +139,14 @@ void RayCaster::run() {
         return none;
       }
       const int x = i * f, y = j * f;
+      const bool on_screen = x < w && y < h;
+      if (last_frame && on_screen) ++cast_last_frame_;
       return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
-        if (last_frame && x < w && y < h)
-          ctx_.frame->record_primary(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
-                                         static_cast<std::uint32_t>(x),
-                                     found, hit);
+        if (!last_frame || !on_screen) return;
+        covered_last_frame_ += found;
+        ctx_.frame->record_primary(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
+                                       static_cast<std::uint32_t>(x),
+                                   found, hit);
       });
     };
     const auto update = [&](int i, int j) {

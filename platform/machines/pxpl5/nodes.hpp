@@ -99,12 +99,16 @@ class RayCaster : public RingNode {
   /// Rays cast at lattice positions (each with its `spp` vision rays) and samples sent.
   std::uint64_t rays() const { return rays_; }
   std::uint64_t samples() const { return samples_; }
+  /// In the last frame: rays cast on the screen, and those whose primary ray hit something.
+  std::uint64_t cast_last_frame() const { return cast_last_frame_; }
+  std::uint64_t covered_last_frame() const { return covered_last_frame_; }
 
  private:
   void run();
   Context& ctx_;
   tasks::ShadeTask shade_;
   std::uint64_t regions_ = 0, rays_ = 0, samples_ = 0;
+  std::uint64_t cast_last_frame_ = 0, covered_last_frame_ = 0;
 };
 
 class Compositor : public RingNode {
