@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "app/interrupt_cleanup.hpp"
 #include "common/input_error.hpp"
 
 namespace rtsim::app {
@@ -71,6 +72,15 @@ void add_image_options(CLI::App* cmd, int& width, int& height, std::vector<std::
 }
 
 }  // namespace
+
+int run_cli_in_forked_child(const std::vector<std::string>& args) {
+  restart_interrupt_cleanup_after_fork();
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return run_cli(static_cast<int>(copy.size()), argv.data());
+}
 
 int run_cli(int argc, char** argv) {
   CLI::App app(kDescription, "rtsim");

@@ -1,24 +1,66 @@
 #include "app/image_files.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <stdexcept>
+#include <string>
+
+#include "app/image_io/image_io_api.hpp"
 
 namespace rtsim::app {
 namespace {
 
-void write_image(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
-                 OIIO::TypeDesc type, const void* data) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw std::runtime_error("cannot create " + path.string() + ": " + OIIO::geterror());
-  if (!out->open(path.string(), spec) || !out->write_image(type, data) || !out->close())
-    throw std::runtime_error("cannot write " + path.string() + ": " + out->geterror());
+constexpr const char* kModule = "librtsim_image_io.so";
+
+/// The folder of the running program (/proc/self/exe), or empty.
+std::filesystem::path program_dir() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe.parent_path();
+}
+
+/// The module's write function, loaded on first use: from the program's folder (build/rtsim
+/// beside build/librtsim_image_io.so), its parent (the test programs in build/tests/), or the
+/// build folder this rtsim was configured with.
+rtsim_write_image_fn load_writer() {
+  static std::once_flag once;
+  static rtsim_write_image_fn writer = nullptr;
+  static std::string tried;
+  std::call_once(once, [] {
+    const std::filesystem::path dir = program_dir();
+    for (const std::filesystem::path& candidate :
+         {dir / kModule, dir.parent_path() / kModule,
+          std::filesystem::path(RTSIM_MODULE_DIR) / kModule}) {
+      tried += (tried.empty() ? "" : ", ") + candidate.string();
+      void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) continue;
+      writer = reinterpret_cast<rtsim_write_image_fn>(::dlsym(handle, kRtsimWriteImageSymbol));
+      if (writer) return;
+    }
+  });
+  if (!writer)
+    throw std::runtime_error(std::string("cannot load rtsim's image module (") + kModule +
+                             "; looked for " + tried + ": " +
+                             "build it with the rest: cmake --build build)");
+  return writer;
+}
+
+void write_image(const std::filesystem::path& path, int width, int height, int channels,
+                 bool float_data, const void* data, const char* channel_name, bool zip) {
+  char error[1024] = {0};
+  if (load_writer()(path.c_str(), width, height, channels, float_data ? 1 : 0, data, channel_name,
+                    zip ? 1 : 0, error, sizeof error) != 0)
+    throw std::runtime_error(error);
 }
 
 }  // namespace
+
+void preload_image_module() { (void)load_writer(); }
 
 void write_png(const std::filesystem::path& path, int width, int height,
                const std::vector<float>& rgb) {
@@ -27,19 +69,12 @@ void write_png(const std::filesystem::path& path, int width, int height,
     const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
     bytes[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
   }
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  write_image(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+  write_image(path, width, height, 3, false, bytes.data(), nullptr, false);
 }
 
 void write_exr(const std::filesystem::path& path, int width, int height, int channels,
                const std::vector<float>& data, const char* channel_name) {
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-  if (channels == 1) spec.channelnames = {channel_name};
-  spec.attribute("compression", "zip");
-  // OpenImageIO's EXR writer stamps the current time into DateTime unless one is given; an
-  // empty stamp keeps the file a function of the pixels only (same inputs, same bytes).
-  spec.attribute("DateTime", "");
-  write_image(path, spec, OIIO::TypeDesc::FLOAT, data.data());
+  write_image(path, width, height, channels, true, data.data(), channel_name, true);
 }
 
 void stage_images(OutputSet& out, const functional::RenderResult& r) {

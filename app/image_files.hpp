@@ -1,5 +1,7 @@
 #pragma once
 // Image outputs through OpenImageIO: image.png (8-bit), image.exr and the AOVs (32-bit float).
+// OpenImageIO lives in a module loaded when the first image is written
+// (app/image_io/image_io_api.hpp).
 #include <filesystem>
 #include <vector>
 
@@ -7,6 +9,10 @@
 #include "platform/functional/functional_renderer.hpp"
 
 namespace rtsim::app {
+
+/// Loads the image module now (`rtsim sweep` and `rtsim validate`, before they fork their runs,
+/// so that no run loads it again). Throws std::runtime_error if it cannot be loaded.
+void preload_image_module();
 
 /// Linear RGB floats to an 8-bit PNG: each channel clamped to [0,1] and rounded (no transfer
 /// curve: the machines' frame buffers held linear intensities).

@@ -74,6 +74,12 @@ void wait_for_interrupt() {
 
 }  // namespace
 
+void restart_interrupt_cleanup_after_fork() {
+  // The parent's threads do not exist here: this is the only thread.
+  registry().clear();
+  std::thread(wait_for_interrupt).detach();
+}
+
 void install_interrupt_cleanup() {
   const sigset_t set = interrupt_signals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);

@@ -15,6 +15,11 @@ namespace rtsim::app {
 /// signals unblocked (common/spawn_signals.hpp).
 void install_interrupt_cleanup();
 
+/// In a child forked to run one command in process (validation::RunQueueOptions::in_process):
+/// forgets the parent's registered paths and starts the child's own waiting thread (fork copies
+/// only the forking thread; the signals stay blocked).
+void restart_interrupt_cleanup_after_fork();
+
 /// `path` is removed (with everything in it) if the process is interrupted before forget_on_
 /// interrupt(id). Paths are removed newest first.
 std::uint64_t remove_on_interrupt(const std::filesystem::path& path);

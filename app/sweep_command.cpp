@@ -12,6 +12,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/image_files.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/sweep_mpi.hpp"
@@ -182,6 +183,12 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
       q.on_finished = [&](const validation::RunOutcome& run, int, int) {
         record(request_of_key.at(run.request.key), sweep::outcome_of(run));
       };
+      // Points are forks of this process (no program start-up each), unless another rtsim
+      // binary was asked for.
+      if (args.rtsim.empty()) {
+        q.in_process = run_cli_in_forked_child;
+        preload_image_module();  // once here, not in every point
+      }
       (void)validation::run_all(requests, q);
     }
   }

@@ -11,6 +11,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/image_files.hpp"
 #include "app/progress_bar.hpp"
 #include "platform/validation/all_figures.hpp"
 #include "platform/validation/run_queue.hpp"
@@ -112,6 +113,11 @@ int run_validate(const ValidateArgs& args) {
     q.executable = executable;
     q.work_dir = work_dir;
     q.jobs = args.jobs;
+    // Runs are forks of this process, unless another rtsim binary was asked for.
+    if (args.rtsim.empty()) {
+      q.in_process = run_cli_in_forked_child;
+      preload_image_module();  // once here, not in every run
+    }
     q.on_finished = [&bar](const val::RunOutcome&, int done, int total) {
       bar.update(done, total);
     };

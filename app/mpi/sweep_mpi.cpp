@@ -1,7 +1,7 @@
-// `rtsim sweep --mpi` with the MPI C API (OpenMPI from Debian). The only file that includes
-// mpi.h; see app/sweep_mpi.hpp for the protocol's shape.
+// `rtsim sweep --mpi` over MPI (OpenMPI from Debian), whose calls are in a module loaded by
+// --mpi only (app/mpi/mpi_api.hpp); see app/sweep_mpi.hpp for the protocol's shape.
 //
-// Messages are JSON text in MPI_CHAR buffers:
+// Messages are JSON text in char buffers:
 //   worker -> 0  kTagReady   {"slots": J}                    one per free slot: "give me a point"
 //   worker -> 0  kTagResult  {"slots": J, "job": i, "outcome": {...}}   a result, and a request
 //   0 -> worker  kTagAssign  {"job": i, "key": K, "args": [...], "work_dir": D}
@@ -13,12 +13,14 @@
 // the main threads poll (MPI_Iprobe) and sleep between polls instead.
 #include "app/sweep_mpi.hpp"
 
-#include <mpi.h>
+#include <dlfcn.h>
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdlib>
 #include <deque>
 #include <exception>
+#include <filesystem>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -26,6 +28,8 @@
 #include <string>
 #include <thread>
 #include <utility>
+
+#include "app/mpi/mpi_api.hpp"
 
 namespace rtsim::app::mpi {
 
@@ -43,15 +47,36 @@ constexpr int kTagStop = 4;
 // more), long enough to leave the core to the points.
 constexpr auto kPollInterval = std::chrono::milliseconds(5);
 
+constexpr const char* kModule = "librtsim_mpi.so";
+
+/// The module's table, loaded by the first Session: from the program's folder, or the build
+/// folder this rtsim was configured with. RTLD_GLOBAL: Open MPI's own plugins look for its
+/// symbols globally.
+const rtsim_mpi_api* load_api(std::string* tried = nullptr) {
+  static const rtsim_mpi_api* api = nullptr;
+  if (api) return api;
+  std::error_code ec;
+  const fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  for (const fs::path& candidate : {dir / kModule, fs::path(RTSIM_MODULE_DIR) / kModule}) {
+    if (tried) *tried += (tried->empty() ? "" : ", ") + candidate.string();
+    void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (!handle) continue;
+    if (auto fn = reinterpret_cast<rtsim_mpi_api_fn>(::dlsym(handle, kRtsimMpiApiSymbol))) {
+      api = fn();
+      return api;
+    }
+  }
+  return nullptr;
+}
+
+const rtsim_mpi_api& api() { return *load_api(); }
+
 void check(int rc, const char* what) {
-  if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+  if (rc != 0) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
 
 void send_text(const std::string& text, int dest, int tag) {
-  // MPI_Send takes a non-const buffer in older MPI headers.
-  check(MPI_Send(const_cast<char*>(text.data()), static_cast<int>(text.size()), MPI_CHAR, dest, tag,
-                 MPI_COMM_WORLD),
-        "MPI_Send");
+  check(api().send_text(text.data(), static_cast<int>(text.size()), dest, tag), "MPI_Send");
 }
 
 struct Message {
@@ -60,18 +85,16 @@ struct Message {
   std::string text;
 };
 
+constexpr int kAnySource = -1;
+
 // The next message from `source` (or any), if one has arrived.
 std::optional<Message> poll(int source) {
-  int arrived = 0;
-  MPI_Status status;
-  check(MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
+  int arrived = 0, from = 0, tag = 0, size = 0;
+  char* data = nullptr;
+  check(api().poll_text(source, &arrived, &from, &tag, &data, &size), "MPI_Iprobe/MPI_Recv");
   if (!arrived) return std::nullopt;
-  int count = 0;
-  check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
-  Message m{status.MPI_SOURCE, status.MPI_TAG, std::string(static_cast<std::size_t>(count), '\0')};
-  check(MPI_Recv(m.text.data(), count, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE),
-        "MPI_Recv");
+  Message m{from, tag, std::string(data, static_cast<std::size_t>(size))};
+  std::free(data);
   return m;
 }
 
@@ -150,23 +173,25 @@ class LocalRunner {
 
 }  // namespace
 
-bool built_with_mpi() { return true; }
+bool built_with_mpi() { return load_api() != nullptr; }
 
 Session::Session() {
-  int provided = 0;
-  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
-  check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
-  check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+  std::string tried;
+  if (!load_api(&tried))
+    throw std::runtime_error(
+        "this rtsim has no MPI module (" + std::string(kModule) + "; looked for " + tried +
+        "): install Debian's libopenmpi-dev and openmpi-bin (scripts/quickstart.sh does) and "
+        "re-run cmake");
+  check(api().init(&rank_, &size_), "MPI_Init_thread");
 }
 
 Session::~Session() {
   // An exception on one rank would leave the others waiting for it forever: end them all.
-  if (std::uncaught_exceptions() > 0) MPI_Abort(MPI_COMM_WORLD, 1);
-  MPI_Finalize();
+  api().finish(std::uncaught_exceptions() > 0 ? 1 : 0);
 }
 
 int Session::share_status(int status) {
-  check(MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  check(api().bcast_int(&status), "MPI_Bcast");
   return status;
 }
 
@@ -210,7 +235,7 @@ void Session::dispatch(
       ++next;
       busy = true;
     }
-    while (auto m = poll(MPI_ANY_SOURCE)) {
+    while (auto m = poll(kAnySource)) {
       busy = true;
       const Json j = Json::parse(m->text);
       slots[m->source] = j.at("slots").get<int>();

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,9 +10,14 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <fstream>
+#include <iostream>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -51,8 +57,18 @@ std::string describe_status(int status) {
 
 }  // namespace
 
-RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options) {
+namespace {
+
+/// A run about to start: its outcome so far and its command line.
+struct Prepared {
   RunOutcome out;
+  std::vector<std::string> args;
+  bool ready = false;  ///< false: it cannot start (out says why)
+};
+
+Prepared prepare(const RunRequest& request, const RunQueueOptions& options) {
+  Prepared p;
+  RunOutcome& out = p.out;
   out.request = request;
   out.out_dir = options.work_dir / request.key;
   out.log =
@@ -65,48 +81,82 @@ RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options
     if (ec) {
       out.status = "did not start";
       out.failure = "cannot create " + out.out_dir.string() + ": " + ec.message();
-      return out;
+      return p;
     }
   }
+  p.args.push_back(options.executable.string());
+  p.args.insert(p.args.end(), request.args.begin(), request.args.end());
+  p.args.push_back("--out");
+  p.args.push_back(out.out_dir.string());
+  p.ready = true;
+  return p;
+}
 
-  std::vector<std::string> args;
-  args.push_back(options.executable.string());
-  args.insert(args.end(), request.args.begin(), request.args.end());
-  args.push_back("--out");
-  args.push_back(out.out_dir.string());
+/// Starts the run: a new program, or a fork of this process calling options.in_process.
+/// Returns the child's pid, or -1 with the outcome saying why it did not start.
+pid_t start(Prepared& p, const RunQueueOptions& options) {
+  if (options.in_process) {
+    const int log = ::open(p.out.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (log < 0) {
+      p.out.status = "did not start";
+      p.out.failure = "cannot write " + p.out.log.string() + ": " + std::strerror(errno);
+      return -1;
+    }
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      // The child: its own output, no input, the run's signals at their default; it ends
+      // when the run does, and with its parent.
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      ::dup2(log, STDOUT_FILENO);
+      ::dup2(log, STDERR_FILENO);
+      const int null = ::open("/dev/null", O_RDONLY);
+      if (null >= 0) ::dup2(null, STDIN_FILENO);
+      int code = 70;  // EX_SOFTWARE
+      try {
+        code = options.in_process(p.args);
+      } catch (...) {
+      }
+      std::cout.flush();
+      std::cerr.flush();
+      std::fflush(nullptr);
+      std::_Exit(code);
+    }
+    ::close(log);
+    if (pid < 0) {
+      p.out.status = "did not start";
+      p.out.failure = std::string("fork: ") + std::strerror(errno);
+    }
+    return pid;
+  }
   std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
+  for (auto& a : p.args) argv.push_back(a.data());
   argv.push_back(nullptr);
-
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.log.c_str(),
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, p.out.log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, STDIN_FILENO);
-
-  const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
   const SpawnDefaultSignals attributes;
   const int rc = posix_spawn(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
-    out.status = "did not start";
-    out.failure = "cannot start " + args[0] + ": " + std::strerror(rc);
-    return out;
+    p.out.status = "did not start";
+    p.out.failure = "cannot start " + p.args[0] + ": " + std::strerror(rc);
+    return -1;
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      out.status = "lost";
-      out.failure = std::string("waitpid: ") + std::strerror(errno);
-      return out;
-    }
-  }
-  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return pid;
+}
+
+/// The outcome of a run that ended with wait status `status` after `wall_s`.
+RunOutcome finish(RunOutcome out, int status, double wall_s) {
+  out.wall_s = wall_s;
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   out.status = describe_status(status);
-
   if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
     out.failure = describe_status(status) + " (log " + out.log.string() + ")";
     const std::string tail = tail_of_file(out.log, kLogLinesInFailure);
@@ -127,6 +177,88 @@ RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options
   return out;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options) {
+  Prepared p = prepare(request, options);
+  if (!p.ready) return p.out;
+  const auto began = std::chrono::steady_clock::now();
+  const pid_t pid = start(p, options);
+  if (pid < 0) return p.out;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      p.out.status = "lost";
+      p.out.failure = std::string("waitpid: ") + std::strerror(errno);
+      return p.out;
+    }
+  }
+  return finish(std::move(p.out), status, seconds_since(began));
+}
+
+namespace {
+
+/// run_all with in_process: this thread forks every child (fork copies only the calling thread,
+/// so no worker threads may exist) and waits for whichever ends first.
+void run_forked(const std::vector<RunRequest>& requests, const std::vector<std::size_t>& order,
+                int workers, const RunQueueOptions& options, std::vector<RunOutcome>& outcomes) {
+  struct Running {
+    std::size_t index;
+    RunOutcome out;
+    std::chrono::steady_clock::time_point began;
+  };
+  std::map<pid_t, Running> running;
+  std::size_t next = 0;
+  int done = 0;
+  const int total = static_cast<int>(requests.size());
+  const auto report = [&](std::size_t i) {
+    ++done;
+    if (options.on_finished) options.on_finished(outcomes[i], done, total);
+  };
+  while (next < order.size() || !running.empty()) {
+    while (next < order.size() && static_cast<int>(running.size()) < workers) {
+      const std::size_t i = order[next++];
+      Prepared p = prepare(requests[i], options);
+      const auto began = std::chrono::steady_clock::now();
+      const pid_t pid = p.ready ? start(p, options) : -1;
+      if (pid < 0) {
+        outcomes[i] = std::move(p.out);
+        report(i);
+        continue;
+      }
+      running.emplace(pid, Running{i, std::move(p.out), began});
+    }
+    if (running.empty()) continue;
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      // No children left to wait for: every running one is lost.
+      for (auto& [_, r] : running) {
+        r.out.status = "lost";
+        r.out.failure = std::string("waitpid: ") + std::strerror(errno);
+        outcomes[r.index] = std::move(r.out);
+        report(r.index);
+      }
+      running.clear();
+      continue;
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;  // not one of ours
+    outcomes[it->second.index] =
+        finish(std::move(it->second.out), status, seconds_since(it->second.began));
+    const std::size_t i = it->second.index;
+    running.erase(it);
+    report(i);
+  }
+}
+
+}  // namespace
+
 RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOptions& options) {
   fs::create_directories(options.work_dir);
   const int total = static_cast<int>(requests.size());
@@ -138,6 +270,12 @@ RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOption
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return requests[a].cost_hint > requests[b].cost_hint;
   });
+  if (options.in_process) {
+    run_forked(requests, order, workers, options, outcomes);
+    RunResults results;
+    for (auto& o : outcomes) results.emplace(o.request.key, std::move(o));
+    return results;
+  }
   std::atomic<std::size_t> next{0};
   std::mutex report;
   int done = 0;
