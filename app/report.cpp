@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -73,18 +74,29 @@ std::string last_lines(const std::string& text, int n) {
 
 }  // namespace
 
-ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string& script,
-                                 const std::vector<std::string>& args) {
-  const ReportTools tools = tools_in.resolved();
-  ScriptResult res;
+namespace {
+
+/// A script started and not yet waited for.
+struct Launched {
+  pid_t pid = -1;
+  fs::path log;
+  std::string python, script;
+  ScriptResult failed_to_start;  ///< when pid is -1
+};
+
+Launched launch_script(const ReportTools& tools, const std::string& script,
+                       const std::vector<std::string>& args) {
+  Launched l;
+  l.python = tools.python;
+  l.script = script;
   const fs::path script_path = tools.analysis_dir / script;
   if (!fs::exists(script_path)) {
-    res.message = "no analysis script " + script_path.string();
-    return res;
+    l.failed_to_start.message = "no analysis script " + script_path.string();
+    return l;
   }
   std::error_code ec;
   fs::create_directories(tools.scratch_dir, ec);
-  const fs::path log = tools.scratch_dir / (script + ".log");
+  l.log = tools.scratch_dir / (script + ".log");
   std::vector<std::string> argv_s = {tools.python, script_path.string()};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -94,7 +106,7 @@ ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string&
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, l.log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = 0;
@@ -102,11 +114,18 @@ ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string&
   const int rc = posix_spawnp(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
-    res.message = "cannot run " + tools.python + ": " + std::strerror(rc);
-    return res;
+    l.failed_to_start.message = "cannot run " + tools.python + ": " + std::strerror(rc);
+    return l;
   }
+  l.pid = pid;
+  return l;
+}
+
+ScriptResult wait_for(const Launched& l) {
+  if (l.pid < 0) return l.failed_to_start;
+  ScriptResult res;
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
+  while (waitpid(l.pid, &status, 0) < 0) {
     if (errno != EINTR) {
       res.message = std::string("waitpid: ") + std::strerror(errno);
       return res;
@@ -118,18 +137,48 @@ ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string&
   }
   std::string text;
   try {
-    text = read_file(log);
+    text = read_file(l.log);
   } catch (const std::exception&) {
   }
   // posix_spawnp reports a missing interpreter as exit status 127 from the child.
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && text.empty())
-    res.message = "cannot run " + tools.python;
+    res.message = "cannot run " + l.python;
   else
-    res.message = tools.python + " " + script + " failed" +
+    res.message = l.python + " " + l.script + " failed" +
                   (WIFEXITED(status) ? " (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
                                      : " (killed by a signal)") +
                   (text.empty() ? "" : ": " + last_lines(text, 2));
   return res;
+}
+
+/// The report's plots, drawn at the same time: a first pass over the report starts every script
+/// it asks for and returns at once (that pass's page is thrown away); the second pass waits for
+/// each. Python's start-up and matplotlib's import (about a second) are paid once, not per plot.
+struct ScriptBatch {
+  bool starting = true;
+  std::map<std::string, Launched> launched;  ///< by script and arguments
+};
+ScriptBatch* batch = nullptr;
+
+}  // namespace
+
+ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string& script,
+                                 const std::vector<std::string>& args) {
+  const ReportTools tools = tools_in.resolved();
+  std::string key = script;
+  for (const auto& a : args) key += '\0' + a;
+  if (batch && batch->starting) {
+    batch->launched.emplace(key, launch_script(tools, script, args));
+    return {false, "started"};
+  }
+  if (batch) {
+    if (auto it = batch->launched.find(key); it != batch->launched.end()) {
+      const ScriptResult r = wait_for(it->second);
+      batch->launched.erase(it);
+      return r;
+    }
+  }
+  return wait_for(launch_script(tools, script, args));
 }
 
 // ---- HTML ------------------------------------------------------------------------------------
@@ -412,8 +461,9 @@ void write_trace_section(HtmlReport& page, const json& stats) {
 
 }  // namespace
 
-void write_run_report(const RunReportInputs& in, const fs::path& out_html,
-                      const ReportTools& tools_in) {
+namespace {
+
+HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_in) {
   const ReportTools tools = tools_in.resolved();
   json stats;
   try {
@@ -468,8 +518,15 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
   fs::create_directories(tools.scratch_dir);
   // The trace's signals are stats.json's numbers over time; a trace narrowed to a window or to
   // some modules, or cut at a cap, cannot draw the whole frame, so stats.json's windows do.
-  const bool trace =
-      !in.trace_json.empty() && fs::exists(in.trace_json) && trace_is_complete(stats);
+  // A large trace is not loaded: Python would take tens of seconds and gigabytes to read what
+  // stats.json's windows already hold (it only adds the queue depths).
+  constexpr std::uintmax_t kMaxTraceBytes = 32u << 20;
+  std::error_code size_error;
+  const std::uintmax_t trace_bytes =
+      in.trace_json.empty() ? 0 : fs::file_size(in.trace_json, size_error);
+  const bool trace_too_large = !size_error && trace_bytes > kMaxTraceBytes;
+  const bool trace = !in.trace_json.empty() && fs::exists(in.trace_json) &&
+                     trace_is_complete(stats) && !(trace_too_large && has_windows(stats));
   if (trace || has_windows(stats)) {
     const fs::path png = tools.scratch_dir / "utilisation.png";
     const auto r = run_analysis_script(
@@ -481,7 +538,14 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
                          "(from trace.json's busy and depth counters, the sources of stats.json's "
                          "utilisation and occupancy; analysis/utilisation_timeline.py)"
                        : "Busy fraction of each module per window of the frame (stats.json "
-                         "utilization_windows; analysis/utilisation_timeline.py)");
+                         "utilization_windows; analysis/utilisation_timeline.py)" +
+                             std::string(trace_too_large
+                                             ? ". The trace (" + std::to_string(trace_bytes >> 20) +
+                                                   " MiB) is not loaded for the report; "
+                                                   "`analysis/utilisation_timeline.py "
+                                                   "trace.json OUT.png` draws its queue "
+                                                   "depths too"
+                                             : ""));
     else
       problems.push_back(r.message);
   }
@@ -698,7 +762,27 @@ void write_run_report(const RunReportInputs& in, const fs::path& out_html,
 
   page.paragraph("Written by " + str(stats, "tool") + " " + str(stats, "version") +
                  ". Every figure here is also in stats.json (schema: docs/stats.md).");
-  page.write(out_html);
+  return page;
+}
+
+}  // namespace
+
+void write_run_report(const RunReportInputs& in, const fs::path& out_html,
+                      const ReportTools& tools) {
+  ScriptBatch scripts;
+  batch = &scripts;
+  try {
+    (void)run_report_page(in, tools);  // starts the plots
+    scripts.starting = false;
+    const HtmlReport page = run_report_page(in, tools);  // waits for them
+    batch = nullptr;
+    for (const auto& [_, l] : scripts.launched) (void)wait_for(l);  // none left, normally
+    page.write(out_html);
+  } catch (...) {
+    batch = nullptr;
+    for (const auto& [_, l] : scripts.launched) (void)wait_for(l);
+    throw;
+  }
 }
 
 }  // namespace rtsim::app

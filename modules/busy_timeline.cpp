@@ -29,10 +29,33 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
     else
       intervals_.push_back({s, e});
   }
-  if (busy_.empty()) {
-    origin_ = first_ = s;
-    last_ = e;
-  } else if (s < origin_) {
+  first_ = recorded_ ? std::min(first_, s) : s;
+  last_ = recorded_ ? std::max(last_, e) : e;
+  recorded_ = true;
+  if (binned_) {
+    add_to_bins(s, e);
+    return;
+  }
+  if (!sparse_.empty() && sparse_.back().end == s)
+    sparse_.back().end = e;
+  else
+    sparse_.push_back({s, e});
+  if (sparse_.size() > kSparseIntervals) to_bins();
+}
+
+void BusyTimeline::to_bins() {
+  // Bins for the span so far with room to double once before the first merge.
+  width_ = 1;
+  while (ceil_div(last_ - first_, width_) > kMaxBins / 2) width_ *= 2;
+  origin_ = first_;
+  busy_.assign(1, 0);
+  binned_ = true;
+  for (const Interval& i : sparse_) add_to_bins(i.start, i.end);
+  std::vector<Interval>().swap(sparse_);
+}
+
+void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
+  if (s < origin_) {
     // Earlier than anything so far: grow the bins to the left by whole bins.
     std::uint64_t k = ceil_div(origin_ - s, width_);
     while (busy_.size() + k > kMaxBins) {
@@ -42,8 +65,6 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
     busy_.insert(busy_.begin(), static_cast<std::size_t>(k), 0);
     origin_ -= k * width_;
   }
-  first_ = std::min(first_, s);
-  last_ = std::max(last_, e);
   while (ceil_div(e - origin_, width_) > kMaxBins) merge_pairs();
   const std::uint64_t a = s - origin_;
   const std::uint64_t b = e - origin_;
@@ -73,6 +94,7 @@ std::vector<LevelChange> BusyTimeline::level_changes() const {
 sc_core::sc_time BusyTimeline::total() const {
   std::uint64_t sum = 0;
   for (std::uint64_t v : busy_) sum += v;
+  for (const Interval& i : sparse_) sum += i.end - i.start;
   return sc_core::sc_time::from_value(sum);
 }
 
@@ -86,17 +108,12 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
   out.begin_s = begin.to_seconds();
   out.window_s = (end - begin).to_seconds() / static_cast<double>(n);
   std::vector<long double> busy(n, 0.0L);
-  for (std::size_t i = 0; i < busy_.size(); ++i) {
-    if (busy_[i] == 0) continue;
-    // The bin, less what lies outside everything recorded (exact edges for the first and last).
-    const std::uint64_t x0 = std::max(origin_ + i * width_, first_);
-    const std::uint64_t x1 = std::min(origin_ + (i + 1) * width_, last_);
+  // Spreads `ticks` of busy time evenly over [x0, x1) into the windows it overlaps.
+  const auto spread = [&](std::uint64_t ticks, std::uint64_t x0, std::uint64_t x1) {
     const std::uint64_t c0 = std::max(x0, B);
     const std::uint64_t c1 = std::min(x1, E);
-    if (c1 <= c0) continue;
-    // This bin's busy time per tick, spread evenly over the bin.
-    const long double density =
-        static_cast<long double>(busy_[i]) / static_cast<long double>(x1 - x0);
+    if (c1 <= c0) return;
+    const long double density = static_cast<long double>(ticks) / static_cast<long double>(x1 - x0);
     const long double r0 = static_cast<long double>(c0 - B);
     const long double r1 = static_cast<long double>(c1 - B);
     auto j = static_cast<std::size_t>(r0 / window);
@@ -108,6 +125,16 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
       if (hi > lo) busy[j] += density * (hi - lo);
       if (w1 >= r1) break;
     }
+  };
+  // Sparse: each interval exactly.
+  for (const Interval& i : sparse_) spread(i.end - i.start, i.start, i.end);
+  for (std::size_t i = 0; i < busy_.size(); ++i) {
+    if (busy_[i] == 0) continue;
+    // The bin, less what lies outside everything recorded (exact edges for the first and last).
+    const std::uint64_t x0 = std::max(origin_ + i * width_, first_);
+    const std::uint64_t x1 = std::min(origin_ + (i + 1) * width_, last_);
+    if (x1 <= x0) continue;
+    spread(busy_[i], x0, x1);
   }
   out.values.resize(n);
   for (std::size_t j = 0; j < n; ++j) out.values[j] = static_cast<double>(busy[j] / window);
