@@ -26,7 +26,7 @@ DEFAULT_SCENES = [os.path.join(HERE, "..", "..", "shared", "scenes", n)
                             "teapot.bpt", "tetra-s3.nff")] + [
     "builtin:ullner-cubes", "builtin:npp-412", "builtin:ullner-random-1000"]
 MACHINES = ["vax-750", "ullner-peripheral", "gaudet-pert", "ullner-pipeline", "ullner-array",
-            "wang-bezier"]
+            "wang-bezier", "pxpl5-raytrace"]
 
 
 def sha256(path):
