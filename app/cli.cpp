@@ -165,6 +165,15 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--overhead", runa.overhead,
                 "Also render the same frame with no timing in this process and report "
                 "functional_wall_time_s and overhead_ratio");
+  run->add_option("--sample", runa.sample,
+                  "Sampled simulation: one window of rows in K in detail (the first and every "
+                  "K-th after it), the rest rendered functionally (the image is the same); the "
+                  "frame time is estimated with a 99.7% confidence interval (stats.json sample)")
+      ->check(CLI::Range(2, 1000000));
+  run->add_option("--sample-window", runa.sample_window,
+                  "Rows of a --sample window (default: the machine's; gaudet-pert's is its PERT "
+                  "count, so that a window keeps every PERT busy)")
+      ->check(CLI::Range(1, 1000000));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "
                 "has its answer) broken down by stage (module or queue) into queueing, service "

@@ -37,6 +37,8 @@ struct RunArgs {
   std::size_t trace_max_events = 0;        ///< per trace file; 0: every event
   std::string quantum;                     ///< "" keeps the parameter `quantum`
   bool overhead = false;
+  int sample = 0;                   ///< --sample K: one row window in K in detail (0: off)
+  int sample_window = 0;            ///< --sample-window R: rows a window (0: the machine's choice)
   bool report = false;              ///< also write report.html
   bool latency_probe = false;       ///< stats.json latency_probe: per-ray time by stage and part
   std::vector<std::string> faults;  ///< MEMORY:WORD:XOR, each a corrupted word

@@ -107,6 +107,18 @@ int run_run(const RunArgs& args) {
   opts.aov_id = wants_aov(args.aovs, "id");
   opts.aov_depth = wants_aov(args.aovs, "depth");
   opts.latency_probe = args.latency_probe;
+  if (args.sample_window > 0 && args.sample == 0)
+    throw InputError("--sample-window", 0, "sizes the windows of --sample K: give --sample too");
+  if (args.sample > 0) {
+    if (!machine.supports_sampling())
+      throw InputError("--sample", 0,
+                       machine.name() +
+                           " does not take --sample yet (its work is not rows of "
+                           "vision rays); the other machines do");
+    opts.sample_every = args.sample;
+    opts.sample_window_rows =
+        args.sample_window > 0 ? args.sample_window : machine.sample_window_rows(registry);
+  }
   opts.trace_filter = trace_filter;
   opts.trace_max_events = args.trace_max_events;
   for (const auto& t : args.traces) {
@@ -194,6 +206,15 @@ int run_run(const RunArgs& args) {
       std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
                 << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
                 << stats["ray_latency_s"]["p99"].get<double>() << " s\n";
+    if (stats.contains("sample") && stats["sample"].contains("ci99_7_s")) {
+      const auto& sm = stats["sample"];
+      std::cout << "  sample  " << sm["detailed_windows"].get<int>() << " of "
+                << sm["windows"].get<int>() << " windows of " << sm["window_rows"].get<int>()
+                << " rows in detail (" << sm["detailed_frame_s"].get<double>()
+                << " s simulated): frame time " << sm["estimate_s"].get<double>() << " s +- "
+                << std::setprecision(2) << 100.0 * sm["half_width_relative"].get<double>()
+                << std::setprecision(6) << "% (99.7% confidence)\n";
+    }
     if (stats.contains("latency_probe")) {
       const auto& p = stats["latency_probe"];
       std::cout << "  per ray by stage ";

@@ -62,6 +62,10 @@ struct RunOptions {
   bool latency_probe = false;
   std::vector<MemoryFault> faults;
   std::function<void(long, long)> progress;  ///< (rays finished, rays expected so far)
+  /// Sampled simulation (platform/machines/frame_sample.hpp): every `sample_every`-th window of
+  /// `sample_window_rows` rows in detail, the rest functionally; 0: the whole frame in detail.
+  int sample_every = 0;
+  int sample_window_rows = 1;
 };
 
 struct RunResult {
@@ -85,6 +89,11 @@ class Machine {
   /// machine cannot hold (with what and why).
   virtual FunctionalTwin make_twin(scenes::Scene& scene,
                                    const params::ParamRegistry& registry) const = 0;
+  /// Sampled simulation (`rtsim run --sample`): whether the machine's rays come from
+  /// VisionRayTask (which skips the rows not simulated in detail), and the rows of a window
+  /// that keeps every parallel part of it busy (gaudet-pert's PERTs take scanlines in turn).
+  virtual bool supports_sampling() const { return true; }
+  virtual int sample_window_rows(const params::ParamRegistry&) const { return 1; }
   /// Builds the SystemC model, simulates one frame and returns the image and statistics.
   /// SystemC allows one simulation per process: call at most once.
   virtual RunResult run(scenes::Scene& scene, FunctionalTwin& twin,

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "firmware/math.hpp"
@@ -26,7 +27,14 @@ class PixelAccumulator {
   int width() const { return width_; }
   int height() const { return height_; }
 
+  /// Told of every contribution's pixel as it is added (sampled simulation times the frame's
+  /// windows by them); empty: nothing is told.
+  void set_observer(std::function<void(std::uint32_t)> observer) {
+    observer_ = std::move(observer);
+  }
+
   void add(std::uint32_t pixel, const Color& c) {
+    if (observer_) observer_(pixel);
     std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
     p[0] += to_fixed(c.r);
     p[1] += to_fixed(c.g);
@@ -40,6 +48,7 @@ class PixelAccumulator {
     return {p[0], p[1], p[2]};
   }
   void add_raw(std::uint32_t pixel, const std::array<std::int64_t, 3>& sums) {
+    if (observer_) observer_(pixel);
     std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
     p[0] += sums[0];
     p[1] += sums[1];
@@ -68,6 +77,7 @@ class PixelAccumulator {
   int width_;
   int height_;
   std::vector<std::int64_t> sums_;
+  std::function<void(std::uint32_t)> observer_;
 };
 
 }  // namespace rtsim::shading

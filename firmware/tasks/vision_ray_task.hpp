@@ -3,6 +3,7 @@
 // for the pixels, in scan-line order, `spp` per pixel. Sample 0 is the pixel centre; later
 // samples follow the R2 low-discrepancy sequence.
 #include <cstdint>
+#include <vector>
 
 #include "firmware/cost.hpp"
 #include "firmware/shading/camera.hpp"
@@ -15,12 +16,16 @@ void sample_offset(int s, double& dx, double& dy);
 
 class VisionRayTask {
  public:
-  /// Rays for pixels [first_pixel, end_pixel) of a width x height image.
+  /// Rays for pixels [first_pixel, end_pixel) of a width x height image. With `rows` (one flag
+  /// per image row; sampled simulation, platform/machines/frame_sample.hpp) only the pixels of
+  /// flagged rows.
   VisionRayTask(const shading::PinholeCamera& camera, int width, int height, int spp,
-                std::uint32_t first_pixel, std::uint32_t end_pixel);
-  VisionRayTask(const shading::PinholeCamera& camera, int width, int height, int spp);
+                std::uint32_t first_pixel, std::uint32_t end_pixel,
+                const std::vector<char>* rows = nullptr);
+  VisionRayTask(const shading::PinholeCamera& camera, int width, int height, int spp,
+                const std::vector<char>* rows = nullptr);
 
-  bool done() const { return pixel_ >= end_; }
+  bool done() const { return pixels_left_ == 0; }
   std::uint64_t remaining() const;
   /// The next vision ray; `sample` receives its sample index within the pixel.
   shading::TracedRay next(int& sample);
@@ -36,6 +41,10 @@ class VisionRayTask {
   std::uint32_t pixel_;
   std::uint32_t end_;
   int sample_ = 0;
+  const std::vector<char>* rows_ = nullptr;
+  std::uint64_t pixels_left_ = 0;  ///< selected pixels from pixel_ on
+  /// Moves pixel_ to the next selected pixel at or after it.
+  void skip_unselected();
 };
 
 }  // namespace rtsim::tasks

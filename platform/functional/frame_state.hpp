@@ -21,6 +21,17 @@ class FrameState {
   }
 
   shading::PixelAccumulator& fb() { return fb_; }
+  /// Sampled simulation: one flag per row, set for the rows the machine simulates in detail
+  /// (the others are rendered functionally afterwards); empty: every row. VisionRayTask takes it.
+  const std::vector<char>* detailed_rows() const { return rows_.empty() ? nullptr : &rows_; }
+  void set_detailed_rows(std::vector<char> rows) { rows_ = std::move(rows); }
+  /// The pixels the machine traces: all of them, or those of the detailed rows.
+  std::uint64_t detailed_pixels() const {
+    std::uint64_t rows = 0;
+    for (char r : rows_) rows += r ? 1 : 0;
+    return static_cast<std::uint64_t>(width_) *
+           (rows_.empty() ? static_cast<std::uint64_t>(height_) : rows);
+  }
   TraceCounters& counters() { return counters_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -56,6 +67,7 @@ class FrameState {
   int width_, height_, spp_;
   shading::PixelAccumulator fb_;
   std::vector<float> id_, depth_;
+  std::vector<char> rows_;
   TraceCounters counters_;
 };
 

@@ -73,4 +73,28 @@ RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const Rend
   return result;
 }
 
+void render_rows(const scenes::Scene& scene, const Tracer& tracer,
+                 const shading::ShadeParams& shade, FrameState& frame,
+                 const std::vector<char>& rows) {
+  const int w = frame.width(), h = frame.height();
+  shading::PinholeCamera camera(scene.camera, w, h);
+  tasks::ShadeTask task(scene, shade);
+  std::vector<TracedRay> stack, spawned;
+  for (int y = 0; y < h; ++y) {
+    if (!rows[static_cast<std::size_t>(y)]) continue;
+    tasks::VisionRayTask vision(camera, w, h, frame.spp(), static_cast<std::uint32_t>(y * w),
+                                static_cast<std::uint32_t>((y + 1) * w));
+    while (!vision.done()) {
+      int sample = 0;
+      const TracedRay r = vision.next(sample);
+      bool first = true;
+      tasks::trace_ray_tree(r, tracer, task, frame.fb(), frame.counters(), stack, spawned,
+                            [&](const TracedRay& ray, bool found, const Hit& hit) {
+                              if (first && sample == 0) frame.record_primary(ray.pixel, found, hit);
+                              first = false;
+                            });
+    }
+  }
+}
+
 }  // namespace rtsim::functional

@@ -336,8 +336,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   shared.frame = &frame;
   shared.camera = &camera;
   shared.packet_words = &sets.shade.packet_words;
-  shared.initial_rays_total = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
-                              static_cast<std::uint64_t>(frame.spp());
+  shared.initial_rays_total = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
   shared.opts = &opts;
 
   // --latency-probe: every ray's journey around its ring (ray_probe.hpp).

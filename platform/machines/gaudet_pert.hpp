@@ -21,6 +21,10 @@ class GaudetPert final : public Machine {
                            const params::ParamRegistry& registry) const override;
   RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
                 const RunOptions& opts) const override;
+  /// A sampled window spans every PERT: each takes every N-th scanline (L938).
+  int sample_window_rows(const params::ParamRegistry& registry) const override {
+    return static_cast<int>(registry.get_int("pert_count"));
+  }
 };
 
 }  // namespace rtsim::platform

@@ -14,13 +14,24 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
                        const params::ParamRegistry& registry, const RunOptions& opts)
     : wall_start_(std::chrono::steady_clock::now()),
       machine_(std::move(machine)),
+      scene_(scene),
+      twin_(twin),
       opts_(opts),
       width_(or_default(opts.width, scene.camera.width)),
       height_(or_default(opts.height, scene.camera.height)),
       frame_(width_, height_, twin.settings.spp, opts.aov_id, opts.aov_depth),
       // The quantum is set before anything is built (the trace is the first member to be).
       trace_((begin_simulation(registry), opts)),
-      probe_(opts.latency_probe) {}
+      probe_(opts.latency_probe) {
+  if (opts.sample_every > 1) {
+    sample_.emplace(width_, height_, opts.sample_every, opts.sample_window_rows);
+    frame_.set_detailed_rows(sample_->detailed_rows());
+    // A window is done when its last contribution lands in the frame buffer.
+    frame_.fb().set_observer([this](std::uint32_t pixel) {
+      sample_->contribution(pixel, sc_core::sc_time_stamp().value());
+    });
+  }
+}
 
 void MachineRun::simulate() {
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO,
@@ -43,6 +54,8 @@ modules::StatsRegistry& MachineRun::stats(const sc_core::sc_time& begin,
                                           const sc_core::sc_time& frame_time) {
   frame_time_ = frame_time;
   result_.simulated_time_s = frame_time.to_seconds();
+  if (sample_)
+    sample_json_ = sample_->estimate(begin, begin + frame_time, result_.simulated_time_s);
   return stats_.emplace(begin, begin + frame_time);
 }
 
@@ -57,6 +70,13 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
   if (probe_.enabled()) out["latency_probe"] = probe_.to_json();
   if (!opts_.faults.empty()) out["faults"] = faults_json(fault_memories);
   if (trace_.on()) out["trace"] = trace_.finish(*stats_);
+  if (sample_) {
+    out["sample"] = std::move(sample_json_);
+    // The rows not simulated in detail, functionally: the image is whole.
+    frame_.fb().set_observer({});
+    functional::render_rows(scene_, *twin_.tracer, twin_.settings.shade, frame_,
+                            sample_->functional_rows());
+  }
   result_.stats = std::move(out);
   result_.image = frame_.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());

@@ -23,6 +23,7 @@
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/frame_sample.hpp"
 #include "platform/machines/machine_trace.hpp"
 
 namespace rtsim::platform {
@@ -61,6 +62,8 @@ class MachineRun {
  private:
   std::chrono::steady_clock::time_point wall_start_;
   std::string machine_;
+  const scenes::Scene& scene_;
+  const FunctionalTwin& twin_;
   const RunOptions& opts_;
   int width_, height_;
   functional::FrameState frame_;
@@ -69,6 +72,8 @@ class MachineRun {
   std::optional<modules::StatsRegistry> stats_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   RunResult result_;
+  std::optional<FrameSample> sample_;  ///< --sample
+  nlohmann::ordered_json sample_json_;
 };
 
 }  // namespace rtsim::platform

@@ -21,6 +21,9 @@ class Pxpl5Raytrace final : public Machine {
                            const params::ParamRegistry& registry) const override;
   RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
                 const RunOptions& opts) const override;
+  /// Its casters sample screen regions on a lattice handed out by the master GP, not rows of
+  /// vision rays: row windows do not apply (issue 17 leaves it for a region-level sample).
+  bool supports_sampling() const override { return false; }
 };
 
 }  // namespace rtsim::platform

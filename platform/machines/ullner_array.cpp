@@ -1,6 +1,5 @@
 #include "platform/machines/ullner_array.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <systemc>
@@ -168,9 +167,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.shade = twin.settings.shade;
   ctx.frame = &frame;
   ctx.camera = &camera;
-  const std::uint64_t rays = static_cast<std::uint64_t>(run.width()) *
-                             static_cast<std::uint64_t>(run.height()) *
-                             static_cast<std::uint64_t>(frame.spp());
+  // The vision rays of the rows simulated in detail (all of them unless --sample).
+  const std::uint64_t rays = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
   ctx.credit_per_ray = kCreditPerRay;
   while (ctx.credit_per_ray > 1 && rays > (std::uint64_t{1} << 62) / ctx.credit_per_ray)
     ctx.credit_per_ray >>= 1;

@@ -87,7 +87,8 @@ class VaxHost : public modules::Processor {
  private:
   void run() {
     shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
-    tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+    tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp(),
+                                frame_.detailed_rows());
     tasks::ShadeTask shade(scene_, settings_.shade);
     std::vector<TracedRay> stack, spawned;
     long rays = 0;

@@ -44,7 +44,7 @@ bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
     const auto first = static_cast<std::uint32_t>(y_) * static_cast<std::uint32_t>(f.width());
     scanline_ = std::make_unique<tasks::VisionRayTask>(
         *shared_.camera, f.width(), f.height(), f.spp(), first,
-        first + static_cast<std::uint32_t>(f.width()));
+        first + static_cast<std::uint32_t>(f.width()), f.detailed_rows());
   }
   ray = scanline_->next(sample);
   return true;

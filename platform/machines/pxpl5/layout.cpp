@@ -44,15 +44,23 @@ std::vector<Region> Layout::regions() const {
     // One lattice row each: every image row at finest 1, every f-th with the row past the last.
     for (int j = 0; j < lat.ny(); ++j) {
       const int y = j * f;
-      out.push_back({0, y, width, std::max(0, std::min(f, height - y)),
-                     static_cast<int>(out.size()), {0, j, lat.nx(), j + 1, 0}});
+      out.push_back({0,
+                     y,
+                     width,
+                     std::max(0, std::min(f, height - y)),
+                     static_cast<int>(out.size()),
+                     {0, j, lat.nx(), j + 1, 0}});
     }
     return out;
   }
   for (int y = 0; y < height; y += square)
     for (int x = 0; x < width; x += square) {
-      Region g{x, y, std::min(square, width - x), std::min(square, height - y),
-               static_cast<int>(out.size()), {}};
+      Region g{x,
+               y,
+               std::min(square, width - x),
+               std::min(square, height - y),
+               static_cast<int>(out.size()),
+               {}};
       const int i0 = x / f, j0 = y / f;
       if (rule.adaptive()) {
         // Its right and bottom edges replicated (65 x 65 for 64, L360).

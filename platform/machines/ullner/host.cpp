@@ -136,7 +136,8 @@ void Host::run() {
   load_scene();
   frame_start_ = clock_.now();
   shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
-  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp(),
+                              frame_.detailed_rows());
   tasks::ShadeTask shade(scene_, shade_params_);
   std::vector<shading::TracedRay> spawned;
   const std::uint64_t total_vision = vision.remaining();

@@ -233,7 +233,8 @@ bool ArrayNode::next_message(RayMessage& msg) {
     vision_ = std::make_unique<tasks::VisionRayTask>(
         *ctx_.camera, w, ctx_.frame->height(), ctx_.frame->spp(),
         y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(first_col_),
-        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(end_col_));
+        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(end_col_),
+        ctx_.frame->detailed_rows());
   }
   int sample = 0;
   msg = RayMessage{};

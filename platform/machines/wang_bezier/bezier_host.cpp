@@ -176,7 +176,8 @@ void BezierHost::answer(std::uint64_t id) {
 void BezierHost::run() {
   load_patches();
   const shading::PinholeCamera camera(scene_.camera, frame_.width(), frame_.height());
-  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp());
+  tasks::VisionRayTask vision(camera, frame_.width(), frame_.height(), frame_.spp(),
+                              frame_.detailed_rows());
   const std::uint64_t total = vision.remaining();
   std::uint64_t started = 0;
   for (;;) {
