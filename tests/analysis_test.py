@@ -33,6 +33,8 @@ import chain_profile  # noqa: E402
 import figures  # noqa: E402
 import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
+import pareto_plot  # noqa: E402,F401
+import pxpl5_rows_squares  # noqa: E402
 import pxpl5_workload  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
@@ -483,6 +485,74 @@ class WangAccuracyTest(unittest.TestCase, PngMixin):
         r = run_script("wang_accuracy.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("wang.accuracy.rays.missed", r.stderr)
+
+
+class Pxpl5RowsSquaresTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def write(self, points):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for scheme, dist, rate, cover in points:
+                f.write(json.dumps({"status": "ok", "assign.scheme": scheme,
+                                    "camera.distance": dist,
+                                    "pxpl5.last_frame_per_second": rate,
+                                    "pxpl5.screen_coverage": cover}) + "\n")
+
+    def test_table_crossing_and_png(self):
+        # Squares faster near (full screen), rows faster far away.
+        self.write([("rows", 0.5, 5.0, 0.9), ("squares", 0.5, 10.0, 0.95),
+                    ("rows", 2.0, 40.0, 0.1), ("squares", 2.0, 20.0, 0.4),
+                    ("rows", 1.0, 12.0, 0.5), ("squares", 1.0, 15.0, 0.7)])
+        rows = pxpl5_rows_squares.table(sweep_plot.read_results(self.dir))
+        self.assertEqual(list(rows), [0.5, 1.0, 2.0])
+        self.assertEqual(rows[2.0]["coverage"], 0.1)  # the rows' coverage, not the squares'
+        self.assertEqual(pxpl5_rows_squares.crossing(rows), (0.5, 0.1))
+        out = os.path.join(self.dir, "f.png")
+        r = run_script("pxpl5_rows_squares.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| 2 | 10.0% | 40.00 | 20.00 | 0.50 |", r.stdout)
+        self.assertIn("squares win down to 50.0% coverage, rows from 10.0%", r.stdout)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        self.write([("rows", 0.5, 5.0, 0.9)])
+        r = run_script("pxpl5_rows_squares.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("rows and squares", r.stderr)
+
+
+class ParetoPlotTest(unittest.TestCase, PngMixin):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_png_and_bad_input(self):
+        rows = [{"machine": m, "scene": sc, "setting": st, "frame_s": 1.0, "wall_s": w,
+                 "speedup": 1.0 / w, "error": e, **extra}
+                for m in ("vax-750", "gaudet-pert")
+                for sc in ("builtin:a", "builtin:b")
+                for st, w, e, extra in (("reference", 1.0, 0.0, {}),
+                                        ("quantum 1 ms", 0.8, 0.0, {}),
+                                        ("sample 4", 0.1, 0.005, {"ci_holds": True}),
+                                        ("sample 16", 0.05, 0.2, {"ci_holds": False}))]
+        path = os.path.join(self.dir, "pareto.json")
+        with open(path, "w") as f:
+            json.dump(rows, f)
+        out = os.path.join(self.dir, "p.png")
+        r = run_script("pareto_plot.py", path, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(path, "w") as f:
+            f.write("[]")
+        r = run_script("pareto_plot.py", path, out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no runs", r.stderr)
 
 
 class Pxpl5WorkloadTest(unittest.TestCase, PngMixin):

@@ -44,7 +44,7 @@ RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const Rend
 class FrameState;
 
 /// The flagged rows of `frame` (one flag per row), rendered as render() would, into its frame
-/// buffer and AOVs, with one thread: the rows a sampled simulation did not simulate in detail.
+/// buffer and AOVs, on every core: the rows a sampled simulation did not simulate in detail.
 void render_rows(const scenes::Scene& scene, const Tracer& tracer,
                  const shading::ShadeParams& shade, FrameState& frame,
                  const std::vector<char>& rows);

@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""Run time against frame-time error on every machine (issue 17's Pareto benchmark).
+
+For each machine on three scenes, runs the reference setting (quantum 0, the whole frame in
+detail) and every speed knob: the global quantum (docs/quantum.md) and sampled simulation
+(`--sample K`, docs/sampling.md). Each setting is run --repeat times; the table has the median
+wall time of the simulation (stats.json wall_time_s: the model, and for --sample also the
+functional rest of the image), the speed-up over the reference, the frame time's error against
+the reference, and for --sample whether its 99.7% interval holds the reference's frame time.
+
+    /usr/bin/python3 bench/pareto.py [--rtsim build/rtsim] [--repeat 3] --out out/pareto
+    /usr/bin/python3 analysis/pareto_plot.py out/pareto/pareto.json docs/pareto.png
+
+Writes OUT/pareto.json (every run) and prints the Markdown table of docs/pareto.md.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+SIZE = 128
+# Three scenes a machine can hold (wang-bezier holds Bezier patches only: the teapot at three
+# sizes of frame instead).
+MACHINES = {
+    "vax-750": ["builtin:default", "builtin:ullner-cubes", "builtin:npp-412"],
+    "ullner-peripheral": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
+                          "builtin:ullner-sheets-1000"],
+    "ullner-pipeline": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
+                        "builtin:ullner-sheets-1000"],
+    "ullner-array": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
+                     "builtin:ullner-sheets-1000"],
+    "gaudet-pert": ["builtin:npp-412", "builtin:npp-208", "builtin:default"],
+    "wang-bezier": ["builtin:teapot@64", "builtin:teapot@96", "builtin:teapot@128"],
+    "pxpl5-raytrace": ["builtin:default", "builtin:spd-teapot", "builtin:npp-412"],
+}
+EXTRA = {"gaudet-pert": ["-p", "pert_count=8"]}
+QUANTA = ["10 us", "1 ms"]
+SAMPLES = [2, 4, 8, 16]
+
+
+def run(rtsim, machine, scene, extra, out):
+    size = SIZE
+    if "@" in scene:
+        scene, size = scene.split("@")[0], int(scene.split("@")[1])
+    cmd = [rtsim, "run", "--machine", machine, "--scene", scene, "--width", str(size),
+           "--height", str(size), *EXTRA.get(machine, []), *extra, "-q", "--out", out]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        return None
+    with open(os.path.join(out, "stats.json")) as f:
+        return json.load(f)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="pareto.py", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rtsim", default="build/rtsim")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--out", default="out/pareto")
+    ap.add_argument("--machines", nargs="*", default=list(MACHINES))
+    a = ap.parse_args(argv)
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    settings = [("reference", [])] + [(f"quantum {q}", ["--quantum", q]) for q in QUANTA] + [
+        (f"sample {k}", ["--sample", str(k)]) for k in SAMPLES]
+    with tempfile.TemporaryDirectory() as tmp:
+        for machine in a.machines:
+            for scene in MACHINES[machine]:
+                ref = None
+                for name, extra in settings:
+                    runs = [run(a.rtsim, machine, scene, extra, os.path.join(tmp, "r"))
+                            for _ in range(a.repeat)]
+                    runs = [s for s in runs if s]
+                    if not runs:
+                        continue  # not available here (pxpl5 and --sample, too few windows)
+                    s = runs[0]
+                    row = {"machine": machine, "scene": scene, "setting": name,
+                           "frame_s": s["simulated_time_s"],
+                           "wall_s": statistics.median(x["wall_time_s"] for x in runs)}
+                    if "sample" in s and "ci99_7_s" in s["sample"]:
+                        row["ci"] = s["sample"]["ci99_7_s"]
+                    if name == "reference":
+                        ref = row
+                    if ref:
+                        row["speedup"] = ref["wall_s"] / row["wall_s"]
+                        row["error"] = abs(row["frame_s"] - ref["frame_s"]) / ref["frame_s"]
+                        if "ci" in row:
+                            row["ci_holds"] = row["ci"][0] <= ref["frame_s"] <= row["ci"][1]
+                    rows.append(row)
+                    print(f"{machine:18} {scene:28} {name:14} wall {row['wall_s']:.3f} s "
+                          f"x{row.get('speedup', 1):.2f} error {100 * row.get('error', 0):.3f}%",
+                          file=sys.stderr)
+    with open(os.path.join(a.out, "pareto.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    print("| machine | scene | setting | wall (median) | speed-up | frame-time error | "
+          "99.7% interval holds the reference |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        holds = "" if "ci_holds" not in r else ("yes" if r["ci_holds"] else "**no**")
+        print(f"| {r['machine']} | {r['scene']} | {r['setting']} | {r['wall_s']:.3f} s | "
+              f"{r.get('speedup', 1):.2f}x | {100 * r.get('error', 0):.3f}% | {holds} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
