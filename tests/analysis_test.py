@@ -73,9 +73,19 @@ class PngMixin:
         self.assertEqual([f for f in os.listdir(folder) if f.endswith(".partial")], [])
 
 
-class SweepPlotTest(unittest.TestCase, PngMixin):
+class ScratchTest(unittest.TestCase, PngMixin):
+    """A test with its own scratch folder, self.dir, removed afterwards."""
+
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+
+class SweepPlotTest(ScratchTest):
+    def setUp(self):
+        super().setUp()
         self.csv = os.path.join(self.dir, "results.csv")
         with open(self.csv, "w") as f:
             f.write("machine,scene,pert.count,link.bit_time,simulated_time_s,wall_time_s,"
@@ -87,9 +97,6 @@ class SweepPlotTest(unittest.TestCase, PngMixin):
                     "gaudet-pert,builtin:npp-408,1,400 ns,10.0,2.0,100,0.9,0,,d\n"
                     "gaudet-pert,builtin:npp-408,2,400 ns,6.0,2.0,100,0.8,0,,e\n"
                     "gaudet-pert,builtin:npp-408,8,400 ns,,0,0,0,1,crashed,f\n")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
 
     def test_speed_up_per_scene_against_the_one_pert_row(self):
         df = sweep_plot.read_results(self.csv)
@@ -204,13 +211,7 @@ def make_trace():
     return {"traceEvents": meta + ev[::-1], "displayTimeUnit": "ns"}  # out of time order
 
 
-class UtilisationTimelineTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class UtilisationTimelineTest(ScratchTest):
     def test_busy_fraction_per_window_from_a_trace(self):
         edges, busy, depth = utilisation_timeline.busy_from_trace(make_trace(), windows=4)
         np.testing.assert_allclose(edges, [0, 10e-6, 20e-6, 30e-6, 40e-6], atol=1e-15)
@@ -280,13 +281,7 @@ class UtilisationTimelineTest(unittest.TestCase, PngMixin):
         self.assertIn("utilization_windows", r.stderr)
 
 
-class LatencyHistogramTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class LatencyHistogramTest(ScratchTest):
     def test_series_and_png(self):
         stats = {"machine": "m", "scene": "s", "ray_latency_s": {
             "count": 7, "mean": 2.5e-6, "p50": 2e-6, "p99": 4e-6, "max": 4e-6,
@@ -315,13 +310,7 @@ class LatencyHistogramTest(unittest.TestCase, PngMixin):
         self.assertIn("stats.json:1", r.stderr)
 
 
-class ArrayHeatmapTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class ArrayHeatmapTest(ScratchTest):
     def stats(self):
         return {"machine": "ullner-array", "scene": "s",
                 "array": {"mapping": "straight", "depth_axis": "z", "subvolumes": 2,
@@ -356,13 +345,7 @@ class ArrayHeatmapTest(unittest.TestCase, PngMixin):
         self.assertIn("node_busy_fraction", r.stderr)
 
 
-class ChainProfileTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class ChainProfileTest(ScratchTest):
     def stats(self):
         return {"machine": "ullner-pipeline", "scene": "s", "pipeline": {
             "engines": 6, "polygons": 4, "along_chain": {
@@ -398,13 +381,7 @@ class ChainProfileTest(unittest.TestCase, PngMixin):
         self.assertIn("along_chain", r.stderr)
 
 
-class WangSubstagesTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class WangSubstagesTest(ScratchTest):
     def stats(self):
         return {"machine": "wang-bezier", "scene": "s", "simulated_time_s": 1e-3,
                 "modules": {"host": {"utilization": 0.75}},
@@ -439,13 +416,7 @@ class WangSubstagesTest(unittest.TestCase, PngMixin):
         self.assertIn("wang.substages", r.stderr)
 
 
-class WangAccuracyTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class WangAccuracyTest(ScratchTest):
     def row(self, n, missed, phantom, another):
         a = "wang.accuracy.rays."
         return {"point": n, "status": "ok", "bezier.iterations": n, a + "compared": 1000,
@@ -487,13 +458,7 @@ class WangAccuracyTest(unittest.TestCase, PngMixin):
         self.assertIn("wang.accuracy.rays.missed", r.stderr)
 
 
-class Pxpl5RowsSquaresTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class Pxpl5RowsSquaresTest(ScratchTest):
     def write(self, points):
         with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
             for scheme, dist, rate, cover in points:
@@ -525,13 +490,7 @@ class Pxpl5RowsSquaresTest(unittest.TestCase, PngMixin):
         self.assertIn("rows and squares", r.stderr)
 
 
-class ParetoPlotTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class ParetoPlotTest(ScratchTest):
     def test_png_and_bad_input(self):
         rows = [{"machine": m, "scene": sc, "setting": st, "frame_s": 1.0, "wall_s": w,
                  "speedup": 1.0 / w, "error": e, **extra}
@@ -555,13 +514,7 @@ class ParetoPlotTest(unittest.TestCase, PngMixin):
         self.assertIn("no runs", r.stderr)
 
 
-class Pxpl5WorkloadTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class Pxpl5WorkloadTest(ScratchTest):
     def stats(self):
         return {"machine": "pxpl5-raytrace", "scene": "s",
                 "pxpl5": {"caster_workload": [1.0, 0.5, 0.75], "scheme": "squares",
@@ -608,13 +561,7 @@ def probe_stats():
                     "p99_s": 5e-6, "share": 4 / 7}}}}
 
 
-class LatencyBreakdownTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class LatencyBreakdownTest(ScratchTest):
     def test_series(self):
         s = latency_breakdown.breakdown_series(probe_stats())
         self.assertEqual(s["stages"], ["queue", "cpu"])  # the order stats.json lists them in
@@ -703,13 +650,7 @@ def gaudet_rows():
     ]
 
 
-class FiguresTest(unittest.TestCase, PngMixin):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="rtsim-analysis-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
+class FiguresTest(ScratchTest):
     def test_ullner_model_reproduces_the_seed_minimum(self):
         # L652 with L654's parameters: minimum 14.3 us at n_s = 11 (seed 000 L654), and 1/3 ms
         # plus stepping and latency without subdivision.
