@@ -1,8 +1,5 @@
 #include "app/image_files.hpp"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,37 +8,21 @@
 #include <string>
 
 #include "app/image_io/image_io_api.hpp"
+#include "app/module_symbol.hpp"
 
 namespace rtsim::app {
 namespace {
 
 constexpr const char* kModule = "librtsim_image_io.so";
 
-/// The folder of the running program (/proc/self/exe), or empty.
-std::filesystem::path program_dir() {
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : exe.parent_path();
-}
-
-/// The module's write function, loaded on first use: from the program's folder (build/rtsim
-/// beside build/librtsim_image_io.so), its parent (the test programs in build/tests/), or the
-/// build folder this rtsim was configured with.
+/// The module's write function, loaded on first use.
 rtsim_write_image_fn load_writer() {
   static std::once_flag once;
   static rtsim_write_image_fn writer = nullptr;
   static std::string tried;
   std::call_once(once, [] {
-    const std::filesystem::path dir = program_dir();
-    for (const std::filesystem::path& candidate :
-         {dir / kModule, dir.parent_path() / kModule,
-          std::filesystem::path(RTSIM_MODULE_DIR) / kModule}) {
-      tried += (tried.empty() ? "" : ", ") + candidate.string();
-      void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) continue;
-      writer = reinterpret_cast<rtsim_write_image_fn>(::dlsym(handle, kRtsimWriteImageSymbol));
-      if (writer) return;
-    }
+    writer = reinterpret_cast<rtsim_write_image_fn>(
+        find_module_symbol(kModule, kRtsimWriteImageSymbol, false, tried));
   });
   if (!writer)
     throw std::runtime_error(std::string("cannot load rtsim's image module (") + kModule +

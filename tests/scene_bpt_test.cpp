@@ -12,6 +12,7 @@ namespace {
 
 using testing::expect_input_error;
 using testing::expect_same_content;
+using testing::expect_same_view;
 using testing::expect_scene_sound;
 using testing::shared_scene;
 
@@ -156,14 +157,7 @@ TEST(SceneBpt, BadInput) {
 TEST(SceneBpt, BuiltinSpdTeapotIsSpdsTeapotScene) {
   const Scene file = load_scene(shared_scene("teapot-s2.nff"));
   const Scene built = load_scene("builtin:spd-teapot");
-  EXPECT_EQ(built.camera.from, file.camera.from);
-  EXPECT_EQ(built.camera.at, file.camera.at);
-  EXPECT_EQ(built.camera.up, file.camera.up);
-  EXPECT_EQ(built.camera.angle_deg, file.camera.angle_deg);
-  EXPECT_EQ(built.background, file.background);
-  ASSERT_EQ(built.lights.size(), file.lights.size());
-  for (std::size_t i = 0; i < file.lights.size(); ++i)
-    EXPECT_EQ(built.lights[i].position, file.lights[i].position);
+  expect_same_view(file, built);
   ASSERT_EQ(built.materials.size(), file.materials.size());
   for (std::size_t i = 0; i < file.materials.size(); ++i) {
     EXPECT_EQ(built.materials[i].color, file.materials[i].color) << i;

@@ -79,9 +79,8 @@ inline void expect_scene_sound(const Scene& s) {
   }
 }
 
-/// Exact equality of two scenes' content (name and source lines excluded). Materials are
-/// compared through the primitives that use them, so dedup order does not matter.
-inline void expect_same_content(const Scene& a, const Scene& b) {
+/// Exact equality of two scenes' view: camera, background and lights.
+inline void expect_same_view(const Scene& a, const Scene& b) {
   ASSERT_EQ(a.has_camera, b.has_camera);
   if (a.has_camera) {
     EXPECT_EQ(a.camera.from, b.camera.from);
@@ -98,6 +97,12 @@ inline void expect_same_content(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.lights[i].position, b.lights[i].position);
     EXPECT_EQ(a.lights[i].color, b.lights[i].color);
   }
+}
+
+/// Exact equality of two scenes' content (name and source lines excluded). Materials are
+/// compared through the primitives that use them, so dedup order does not matter.
+inline void expect_same_content(const Scene& a, const Scene& b) {
+  expect_same_view(a, b);
   ASSERT_EQ(a.primitives.size(), b.primitives.size());
   for (std::size_t i = 0; i < a.primitives.size(); ++i) {
     const Primitive& pa = a.primitives[i];

@@ -13,8 +13,6 @@
 // the main threads poll (MPI_Iprobe) and sleep between polls instead.
 #include "app/sweep_mpi.hpp"
 
-#include <dlfcn.h>
-
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
@@ -29,6 +27,7 @@
 #include <thread>
 #include <utility>
 
+#include "app/module_symbol.hpp"
 #include "app/mpi/mpi_api.hpp"
 
 namespace rtsim::app::mpi {
@@ -49,24 +48,17 @@ constexpr auto kPollInterval = std::chrono::milliseconds(5);
 
 constexpr const char* kModule = "librtsim_mpi.so";
 
-/// The module's table, loaded by the first Session: from the program's folder, or the build
-/// folder this rtsim was configured with. RTLD_GLOBAL: Open MPI's own plugins look for its
-/// symbols globally.
+/// The module's table, loaded by the first Session. RTLD_GLOBAL: Open MPI's own plugins look
+/// for its symbols globally.
 const rtsim_mpi_api* load_api(std::string* tried = nullptr) {
   static const rtsim_mpi_api* api = nullptr;
   if (api) return api;
-  std::error_code ec;
-  const fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (const fs::path& candidate : {dir / kModule, fs::path(RTSIM_MODULE_DIR) / kModule}) {
-    if (tried) *tried += (tried->empty() ? "" : ", ") + candidate.string();
-    void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_GLOBAL);
-    if (!handle) continue;
-    if (auto fn = reinterpret_cast<rtsim_mpi_api_fn>(::dlsym(handle, kRtsimMpiApiSymbol))) {
-      api = fn();
-      return api;
-    }
-  }
-  return nullptr;
+  std::string paths;
+  if (auto fn = reinterpret_cast<rtsim_mpi_api_fn>(
+          find_module_symbol(kModule, kRtsimMpiApiSymbol, true, paths)))
+    api = fn();
+  if (tried) *tried = paths;
+  return api;
 }
 
 const rtsim_mpi_api& api() { return *load_api(); }
