@@ -34,6 +34,14 @@ inline bool better_copy(const LatticeSample& in, const LatticeSample& kept) {
   return in.sum < kept.sum;
 }
 
+/// Keeps `in` at a position whose kept copy was written in frame `written`: the frame's first
+/// copy replaces an earlier frame's (partial updating keeps the rest, L379); a replicated copy
+/// in the same frame keeps the better (better_copy). The compositors and the functional twin.
+inline void keep_copy(LatticeSample& kept, int& written, const LatticeSample& in, int frame) {
+  if (written != frame || better_copy(in, kept)) kept = in;
+  written = frame;
+}
+
 class SampleLattice {
  public:
   SampleLattice(int width, int height, int finest)
@@ -58,6 +66,13 @@ class SampleLattice {
   }
   int j_of(std::uint32_t index) const {
     return static_cast<int>(index / static_cast<std::uint32_t>(nx_));
+  }
+
+  /// The image pixel (y width + x) position (i, j) lies on, or -1 for one past the image's last
+  /// column or row.
+  std::int64_t pixel(int i, int j) const {
+    const int x = i * finest_, y = j * finest_;
+    return x < width_ && y < height_ ? static_cast<std::int64_t>(y) * width_ + x : -1;
   }
 
   /// The lattice columns [first, last] a display pixel column range [x0, x1) reads.

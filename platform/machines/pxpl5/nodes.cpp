@@ -119,8 +119,7 @@ void RayCaster::run() {
   send(ctx_.layout.master(), request);
   const Layout& lay = ctx_.layout;
   const tasks::SampleLattice lattice = lay.lattice();
-  const int w = ctx_.frame->width(), h = ctx_.frame->height(), spp = ctx_.frame->spp();
-  const int f = lattice.finest();
+  const int spp = ctx_.frame->spp();
   TraceCounters& counters = ctx_.frame->counters();
   tasks::LatticeRayTask task(*ctx_.tracer, shade_, counters);
   std::vector<std::vector<Sample>> by_compositor(static_cast<std::size_t>(lay.compositors));
@@ -138,15 +137,12 @@ void RayCaster::run() {
         none.index = lattice.index(i, j);
         return none;
       }
-      const int x = i * f, y = j * f;
-      const bool on_screen = x < w && y < h;
-      if (last_frame && on_screen) ++cast_last_frame_;
+      const std::int64_t pixel = last_frame ? lattice.pixel(i, j) : -1;
+      if (pixel >= 0) ++cast_last_frame_;
       return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
-        if (!last_frame || !on_screen) return;
+        if (pixel < 0) return;
         covered_last_frame_ += found;
-        ctx_.frame->record_primary(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
-                                       static_cast<std::uint32_t>(x),
-                                   found, hit);
+        ctx_.frame->record_primary(static_cast<std::uint32_t>(pixel), found, hit);
       });
     };
     const auto update = [&](int i, int j) {
@@ -243,9 +239,7 @@ void Compositor::run() {
       const int j = lattice.j_of(s.index), i = lattice.i_of(s.index);
       const std::size_t k = static_cast<std::size_t>(local_row[static_cast<std::size_t>(j)]) * nx +
                             static_cast<std::size_t>(i);
-      // A frame's first copy replaces the last frame's; a replicated one keeps the better.
-      if (written[k] != m.frame || tasks::better_copy(s, kept[k])) kept[k] = s;
-      written[k] = m.frame;
+      tasks::keep_copy(kept[k], written[k], s, m.frame);
     }
     samples_ += m.samples.size();
     have += static_cast<long>(m.samples.size());
@@ -285,7 +279,7 @@ void Renderer::run() {
   const int cols = r.i1 - r.i0;
   const long mine = static_cast<long>(cols) * (r.j1 - r.j0);
   std::vector<std::array<std::int64_t, 3>> tile(static_cast<std::size_t>(mine));
-  const auto at = [&](int i, int j) -> const std::array<std::int64_t, 3>& {
+  const auto at = [&](int i, int j) -> std::array<std::int64_t, 3>& {
     return tile[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
                 static_cast<std::size_t>(i - r.i0)];
   };
@@ -298,9 +292,7 @@ void Renderer::run() {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kBand) continue;
     for (const Sample& s : m.samples) {
-      const int i = lattice.i_of(s.index), j = lattice.j_of(s.index);
-      tile[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
-           static_cast<std::size_t>(i - r.i0)] = s.sum;
+      at(lattice.i_of(s.index), lattice.j_of(s.index)) = s.sum;
     }
     have += static_cast<long>(m.samples.size());
     if (have < mine) continue;

@@ -16,7 +16,6 @@ functional::RenderResult sampled_render(const scenes::Scene& scene, const Tracer
   layout.height = opts.height > 0 ? opts.height : scene.camera.height;
   const int w = layout.width, h = layout.height, spp = std::max(1, opts.spp);
   const tasks::SampleLattice lattice = layout.lattice();
-  const int f = lattice.finest();
   functional::FrameState frame(w, h, spp, opts.aov_id, opts.aov_depth);
   tasks::ShadeTask shade(scene, opts.shade);
   tasks::LatticeRayTask task(tracer, shade, frame.counters());
@@ -30,20 +29,16 @@ functional::RenderResult sampled_render(const scenes::Scene& scene, const Tracer
     const bool last_frame = fr == frames - 1;
     for (const Region& g : regions) {
       const auto cast = [&](int i, int j) {
-        const int x = i * f, y = j * f;
+        const std::int64_t pixel = last_frame ? lattice.pixel(i, j) : -1;
         return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
-          if (last_frame && x < w && y < h)
-            frame.record_primary(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
-                                     static_cast<std::uint32_t>(x),
-                                 found, hit);
+          if (pixel >= 0) frame.record_primary(static_cast<std::uint32_t>(pixel), found, hit);
         });
       };
       const auto update = [&](int i, int j) {
         return tasks::updated_in_frame(i, j, fr, layout.update_period);
       };
       const auto out = [&](const tasks::LatticeSample& s) {
-        if (written[s.index] != fr || tasks::better_copy(s, kept[s.index])) kept[s.index] = s;
-        written[s.index] = fr;
+        tasks::keep_copy(kept[s.index], written[s.index], s, fr);
       };
       tasks::sample_region(lattice, layout.rule, g.lattice, spp, cast, update, out);
     }
