@@ -1,7 +1,6 @@
 #include "app/report.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,9 +17,7 @@
 #include <stdexcept>
 
 #include "app/trace_options.hpp"
-#include "common/spawn_signals.hpp"
-
-extern char** environ;
+#include "common/spawn_logged.hpp"
 
 namespace rtsim::app {
 
@@ -97,24 +94,12 @@ Launched launch_script(const ReportTools& tools, const std::string& script,
   std::error_code ec;
   fs::create_directories(tools.scratch_dir, ec);
   l.log = tools.scratch_dir / (script + ".log");
-  std::vector<std::string> argv_s = {tools.python, script_path.string()};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, l.log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = 0;
-  const SpawnDefaultSignals attributes;
-  const int rc = posix_spawnp(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
-    l.failed_to_start.message = "cannot run " + tools.python + ": " + std::strerror(rc);
+  std::vector<std::string> argv = {tools.python, script_path.string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::string error;
+  const pid_t pid = spawn_logged(std::move(argv), l.log, true, error);
+  if (pid < 0) {
+    l.failed_to_start.message = "cannot run " + tools.python + ": " + error;
     return l;
   }
   l.pid = pid;
@@ -124,13 +109,8 @@ Launched launch_script(const ReportTools& tools, const std::string& script,
 ScriptResult wait_for(const Launched& l) {
   if (l.pid < 0) return l.failed_to_start;
   ScriptResult res;
-  int status = 0;
-  while (waitpid(l.pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      res.message = std::string("waitpid: ") + std::strerror(errno);
-      return res;
-    }
-  }
+  const int status = wait_for_child(l.pid, res.message);
+  if (status < 0) return res;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
     res.ok = true;
     return res;

@@ -1,7 +1,6 @@
 #include "platform/validation/run_queue.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,9 +21,7 @@
 #include <sstream>
 #include <thread>
 
-#include "common/spawn_signals.hpp"
-
-extern char** environ;
+#include "common/spawn_logged.hpp"
 
 namespace rtsim::validation {
 
@@ -131,23 +128,11 @@ pid_t start(Prepared& p, const RunQueueOptions& options) {
     }
     return pid;
   }
-  std::vector<char*> argv;
-  for (auto& a : p.args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, p.out.log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, STDIN_FILENO);
-  pid_t pid = 0;
-  const SpawnDefaultSignals attributes;
-  const int rc = posix_spawn(&pid, argv[0], &actions, attributes.get(), argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
+  std::string error;
+  const pid_t pid = spawn_logged(p.args, p.out.log, false, error);
+  if (pid < 0) {
     p.out.status = "did not start";
-    p.out.failure = "cannot start " + p.args[0] + ": " + std::strerror(rc);
-    return -1;
+    p.out.failure = "cannot start " + p.args[0] + ": " + error;
   }
   return pid;
 }
@@ -189,13 +174,12 @@ RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options
   const auto began = std::chrono::steady_clock::now();
   const pid_t pid = start(p, options);
   if (pid < 0) return p.out;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      p.out.status = "lost";
-      p.out.failure = std::string("waitpid: ") + std::strerror(errno);
-      return p.out;
-    }
+  std::string error;
+  const int status = wait_for_child(pid, error);
+  if (status < 0) {
+    p.out.status = "lost";
+    p.out.failure = error;
+    return p.out;
   }
   return finish(std::move(p.out), status, seconds_since(began));
 }
