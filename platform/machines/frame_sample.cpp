@@ -14,7 +14,7 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows)
       every_(every),
       window_rows_(std::max(1, window_rows)),
       windows_((height + window_rows_ - 1) / window_rows_) {
-  const int detailed = (windows_ + every_ - 1) / every_;
+  const int detailed = detailed_windows();
   if (detailed < 3)
     throw InputError("--sample " + std::to_string(every_), 0,
                      "simulates " + std::to_string(detailed) + " of the frame's " +
@@ -49,7 +49,7 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   out["every"] = every_;
   out["window_rows"] = window_rows_;
   out["windows"] = windows_;
-  out["detailed_windows"] = (windows_ + every_ - 1) / every_;
+  out["detailed_windows"] = detailed_windows();
   out["detailed_frame_s"] = E - B;
   if (c.size() < 3) {
     // Nothing to extrapolate from: the sampled run's own frame, and no interval.

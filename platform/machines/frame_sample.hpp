@@ -43,6 +43,8 @@ class FrameSample {
                                   double& estimate_s) const;
 
  private:
+  /// Windows 0, K, 2K, ... below the frame's count.
+  int detailed_windows() const { return (windows_ + every_ - 1) / every_; }
   std::uint32_t width_;
   int every_, window_rows_, windows_;
   std::vector<char> detailed_, functional_;
