@@ -17,7 +17,14 @@ void Processor::compute_for(const sc_core::sc_time& t, std::string_view what,
 void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
                      Wait why) {
   const sc_core::sc_time before = clock_.now();
-  clock_.sync();
+  // Ahead of simulated time (a quantum > 0): catch up first and let the caller look again.
+  // While this thread waited, the others ran up to its local time, and an event it would wait
+  // for may have fired then (a slot freed, an item put): waiting on it now could miss it and
+  // sleep until `until`, or forever.
+  if (before > sc_core::sc_time_stamp()) {
+    clock_.sync();
+    return;
+  }
   const sc_core::sc_time g = sc_core::sc_time_stamp();
   // A time already reached is something the caller cannot act on yet: wait for a change.
   if (until && *until > g)

@@ -23,6 +23,7 @@
 #include "modules/local_clock.hpp"
 #include "modules/processor_timing.hpp"
 #include "modules/slice_sink.hpp"
+#include "modules/timed_fifo.hpp"
 
 namespace rtsim::modules {
 
@@ -62,6 +63,8 @@ class Processor : public sc_core::sc_module {
   void compute_for(const sc_core::sc_time& t, std::string_view what,
                    std::initializer_list<PerfettoTrace::Arg> args = {});
   /// Idle until `until` (if known) or until one of `events` fires, whichever comes first.
+  /// A thread ahead of simulated time only catches up and returns (an event may have fired
+  /// meanwhile): call it in a loop that looks at the state again.
   void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
             Wait why);
   /// Idle until `t`, a time already known (a message stamped ahead of it).
@@ -72,6 +75,30 @@ class Processor : public sc_core::sc_module {
   }
   /// Blocked on output until `t` (a put into a full queue was accepted at t).
   void blocked_until(const sc_core::sc_time& t);
+  /// A host's wait when it can neither take an answer nor send (call it in its loop): until
+  /// the next answer in `answers`, or, if it `wants_to_send`, until `out` has room, whichever
+  /// comes first. Waiting for room is being blocked on output, waiting for an answer waiting
+  /// for data. A full `out` frees a slot only when its consumer takes an item, a time not known
+  /// yet: then the wait ends at that take too.
+  template <class Answer, class Request>
+  void await_answer_or_room(const TimedFifo<Answer>& answers, const TimedFifo<Request>& out,
+                            bool wants_to_send) {
+    std::optional<sc_core::sc_time> next = answers.next_item_time();
+    const std::optional<sc_core::sc_time> room = out.next_room_time();
+    if (wants_to_send && room && (!next || *room < *next) && *room > clock_.now()) {
+      blocked_until(*room);
+      return;
+    }
+    if (wants_to_send && !room) {
+      idle(next, answers.put_event() | out.get_event(), Wait::kData);
+      return;
+    }
+    if (next && *next > clock_.now()) {
+      idle_until(*next, Wait::kData);
+      return;
+    }
+    idle(std::nullopt, answers.put_event(), Wait::kData);
+  }
 
   const ProcessorTiming& timing() const { return timing_; }
 

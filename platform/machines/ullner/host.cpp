@@ -196,40 +196,11 @@ void Host::run() {
     }
     if (outstanding_ == 0 && backlog_.empty() && vision.done()) break;
     // Idle: move to the next event already known (a result stamped ahead of us, a slot the
-    // peripheral frees ahead of us), else wait in global time for the peripheral.
-    // Waiting for room in the ray queue is being blocked on output; waiting for a result is
-    // waiting for data (the answers it asked for).
-    // A full window (every ray in flight) leaves only answers to wait for.
+    // peripheral frees ahead of us), else wait in global time for the peripheral. A full window
+    // (every ray in flight) leaves only answers to wait for.
     const bool window_open = max_in_flight_ == 0 || outstanding_ < max_in_flight_;
-    const bool want_send = (!backlog_.empty() || !vision.done()) && window_open;
-    std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
-    bool next_is_room = false;
-    if (want_send) {
-      const auto room_at = ray_queue_.next_room_time();
-      if (room_at && (!next || *room_at < *next)) {
-        next = room_at;
-        next_is_room = true;
-      }
-    }
-    if (next && *next > now) {
-      if (want_send && !ray_queue_.next_room_time()) {
-        // The ray queue may free a slot before then: wake at whichever comes first.
-        idle(*next, results.fifo.put_event() | ray_queue_.get_event(), Wait::kData);
-      } else if (next_is_room) {
-        blocked_until(*next);
-      } else {
-        idle_until(*next, Wait::kData);
-      }
-      continue;
-    }
-    clock_.sync();
-    if (!results.fifo.empty() || (want_send && ray_queue_.next_room_time())) continue;
-    if (want_send)
-      sc_core::wait(results.fifo.put_event() | ray_queue_.get_event());
-    else
-      sc_core::wait(results.fifo.put_event());
-    clock_.resync();
-    waited_since(now, Wait::kData);
+    await_answer_or_room(results.fifo, ray_queue_,
+                         (!backlog_.empty() || !vision.done()) && window_open);
   }
   frame_time_ = clock_.now() - frame_start_;
   clock_.sync();

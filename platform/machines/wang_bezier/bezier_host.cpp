@@ -222,28 +222,7 @@ void BezierHost::run() {
     }
     if (rays_.empty() && backlog_.empty() && vision.done() && pending_.empty()) break;
     // Wait for an answer, or for room in the pipeline's input when a job is waiting.
-    std::optional<sc_core::sc_time> next = results.fifo.next_item_time();
-    if (!pending_.empty()) {
-      const auto room = pipeline_input_.next_room_time();
-      if (room && (!next || *room < *next)) {
-        if (*room > now) {
-          blocked_until(*room);
-          continue;
-        }
-      }
-    }
-    if (next && *next > now) {
-      idle_until(*next, Wait::kData);
-      continue;
-    }
-    clock_.sync();
-    if (!results.fifo.empty() || (!pending_.empty() && pipeline_input_.next_room_time())) continue;
-    if (!pending_.empty())
-      sc_core::wait(results.fifo.put_event() | pipeline_input_.get_event());
-    else
-      sc_core::wait(results.fifo.put_event());
-    clock_.resync();
-    waited_since(now, Wait::kData);
+    await_answer_or_room(results.fifo, pipeline_input_, !pending_.empty());
   }
   frame_time_ = clock_.now();
   clock_.sync();
