@@ -170,6 +170,12 @@ int run_cli(int argc, char** argv) {
                   "K-th after it), the rest rendered functionally (the image is the same); the "
                   "frame time is estimated with a 99.7% confidence interval (stats.json sample)")
       ->check(CLI::Range(2, 1000000));
+  run->add_option("--sample-error", runa.sample_error,
+                  "Sampled simulation with K chosen for a target error, e.g. \"1%\": a pilot run "
+                  "(about ten windows in detail, in a forked process) measures how the windows "
+                  "vary; K is the largest whose 99.7% interval is expected within E of the frame "
+                  "time (1, the whole frame in detail, if K = 2 would not be). stats.json "
+                  "sample.plan; the pilot's time is in wall_time_s");
   run->add_option("--sample-window", runa.sample_window,
                   "Rows of a --sample window (default: the machine's; gaudet-pert's is its PERT "
                   "count, so that a window keeps every PERT busy)")

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
@@ -12,6 +13,7 @@
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/report.hpp"
+#include "app/sample_pilot.hpp"
 #include "app/scene_input.hpp"
 #include "app/stats_json.hpp"
 #include "app/trace_options.hpp"
@@ -44,6 +46,9 @@ std::string command_line(const RunArgs& a) {
   for (const auto& v : a.aovs) s += " --aov " + v;
   if (a.overhead) s += " --overhead";
   if (a.latency_probe) s += " --latency-probe";
+  if (a.sample > 0) s += " --sample " + std::to_string(a.sample);
+  if (!a.sample_error.empty()) s += " --sample-error " + quoted(a.sample_error);
+  if (a.sample_window > 0) s += " --sample-window " + std::to_string(a.sample_window);
   for (const auto& f : a.faults) s += " --fault " + quoted(f);
   return s + " --report --out " + quoted(a.out_dir);
 }
@@ -107,14 +112,16 @@ int run_run(const RunArgs& args) {
   opts.aov_id = wants_aov(args.aovs, "id");
   opts.aov_depth = wants_aov(args.aovs, "depth");
   opts.latency_probe = args.latency_probe;
-  if (args.sample_window > 0 && args.sample == 0)
-    throw InputError("--sample-window", 0, "sizes the windows of --sample K: give --sample too");
-  if (args.sample > 0) {
-    if (!machine.supports_sampling())
-      throw InputError("--sample", 0,
-                       machine.name() +
-                           " does not take --sample yet (its work is not rows of "
-                           "vision rays); the other machines do");
+  const bool sampled = args.sample > 0 || !args.sample_error.empty();
+  if (args.sample_window > 0 && !sampled)
+    throw InputError("--sample-window", 0,
+                     "sizes the windows of --sample K or --sample-error E: give one of them too");
+  if (args.sample > 0 && !args.sample_error.empty())
+    throw InputError("--sample-error " + args.sample_error, 0,
+                     "chooses K itself: give --sample K or --sample-error E, not both");
+  const double sample_error =
+      args.sample_error.empty() ? 0.0 : parse_sample_error(args.sample_error);
+  if (sampled) {
     opts.sample_every = args.sample;
     opts.sample_window_rows =
         args.sample_window > 0 ? args.sample_window : machine.sample_window_rows(registry);
@@ -125,9 +132,19 @@ int run_run(const RunArgs& args) {
     if (t == "vcd") opts.vcd_path = out.stage("trace.vcd");
     if (t == "perfetto") opts.perfetto_path = out.stage("trace.json");
   }
+  std::optional<SamplePlan> plan;
+  if (sample_error > 0) {
+    const int width = args.width > 0 ? args.width : scene.camera.width;
+    const int height = args.height > 0 ? args.height : scene.camera.height;
+    plan = plan_sample(machine, scene, twin, registry, opts,
+                       machine.sample_units(registry, width, height), sample_error);
+    opts.sample_every = plan->every >= 2 ? plan->every : 0;
+  }
   ProgressBar bar(args.quiet ? std::string() : "run " + machine.name());
   if (!args.quiet) opts.progress = [&bar](long done, long total) { bar.update(done, total); };
   platform::RunResult result = machine.run(scene, twin, registry, opts);
+  // The pilot is part of what the run cost.
+  if (plan) result.image.wall_time_s += plan->pilot_wall_s;
 
   auto stats = frame_stats_json("run", machine.name(), scene, *twin.geometry, registry,
                                 twin.settings, result.image, 1, result.simulated_time_s);
@@ -151,6 +168,7 @@ int run_run(const RunArgs& args) {
     else
       stats[key] = value;
   }
+  if (plan) stats["sample"]["plan"] = plan->json;
 
   // A trace that lost events says so wherever the numbers are read: here, stats.json `trace`,
   // the report.
@@ -206,14 +224,22 @@ int run_run(const RunArgs& args) {
       std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
                 << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
                 << stats["ray_latency_s"]["p99"].get<double>() << " s\n";
+    if (plan)
+      std::cout << "  sample  K = " << plan->every
+                << (plan->every >= 2 ? "" : " (the whole frame in detail)") << " for +-"
+                << std::setprecision(3) << 100.0 * sample_error << std::setprecision(6)
+                << "%, chosen by a pilot at K = " << plan->json["pilot_every"].get<int>() << " ("
+                << plan->pilot_wall_s << " s)\n";
     if (stats.contains("sample") && stats["sample"].contains("ci99_7_s")) {
       const auto& sm = stats["sample"];
       std::cout << "  sample  " << sm["detailed_windows"].get<int>() << " of "
-                << sm["windows"].get<int>() << " windows of " << sm["window_rows"].get<int>()
-                << " rows in detail (" << sm["detailed_frame_s"].get<double>()
-                << " s simulated): frame time " << sm["estimate_s"].get<double>() << " s +- "
-                << std::setprecision(2) << 100.0 * sm["half_width_relative"].get<double>()
-                << std::setprecision(6) << "% (99.7% confidence)\n";
+                << sm["windows"].get<int>() << " windows of "
+                << sm.value("window_rows", sm.value("window_units", 0)) << " "
+                << sm.value("unit", std::string("rows")) << " in detail ("
+                << sm["detailed_frame_s"].get<double>() << " s simulated): frame time "
+                << sm["estimate_s"].get<double>() << " s +- " << std::setprecision(2)
+                << 100.0 * sm["half_width_relative"].get<double>() << std::setprecision(6)
+                << "% (99.7% confidence)\n";
     }
     if (stats.contains("latency_probe")) {
       const auto& p = stats["latency_probe"];

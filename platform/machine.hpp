@@ -66,6 +66,8 @@ struct RunOptions {
   /// `sample_window_rows` rows in detail, the rest functionally; 0: the whole frame in detail.
   int sample_every = 0;
   int sample_window_rows = 1;
+  /// A pilot of --sample-error: only the estimate is wanted, the rest is not rendered.
+  bool sample_pilot = false;
 };
 
 struct RunResult {
@@ -89,11 +91,15 @@ class Machine {
   /// machine cannot hold (with what and why).
   virtual FunctionalTwin make_twin(scenes::Scene& scene,
                                    const params::ParamRegistry& registry) const = 0;
-  /// Sampled simulation (`rtsim run --sample`): whether the machine's rays come from
-  /// VisionRayTask (which skips the rows not simulated in detail), and the rows of a window
-  /// that keeps every parallel part of it busy (gaudet-pert's PERTs take scanlines in turn).
-  virtual bool supports_sampling() const { return true; }
+  /// Sampled simulation (`rtsim run --sample`, FrameSample): the rows (or units, below) of a
+  /// window that keeps every parallel part of it busy (gaudet-pert's PERTs take scanlines in
+  /// turn). A machine whose rays come from VisionRayTask skips the rows not simulated in detail.
   virtual int sample_window_rows(const params::ParamRegistry&) const { return 1; }
+  /// The units of work a sampled run's windows are made of in a `width` x `height` frame: its
+  /// rows, or what the machine hands out instead (pxpl5-raytrace: screen regions).
+  virtual int sample_units(const params::ParamRegistry&, int /*width*/, int height) const {
+    return height;
+  }
   /// Builds the SystemC model, simulates one frame and returns the image and statistics.
   /// SystemC allows one simulation per process: call at most once.
   virtual RunResult run(scenes::Scene& scene, FunctionalTwin& twin,

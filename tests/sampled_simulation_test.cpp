@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "platform/machines/frame_sample.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -29,6 +30,9 @@ TEST(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
            Case{"ullner-array", "--scene builtin:ullner-cubes --width 48 --height 48"},
            Case{"gaudet-pert", "--scene builtin:npp-412 --width 48 --height 48 -p pert_count=4"},
            Case{"wang-bezier", "--scene builtin:teapot --width 32 --height 32"},
+           // Its windows are the regions its master hands out: a lattice row each.
+           Case{"pxpl5-raytrace",
+                "--scene builtin:default --width 48 --height 48 -p assign.scheme=rows"},
        }) {
     SCOPED_TRACE(c.machine);
     const auto full = rtsim::test::run_machine(c.machine, "sample-full", c.args);
@@ -67,14 +71,79 @@ TEST(SampledSimulation, TheWindowsAreCutAsAsked) {
   EXPECT_LT(s["detailed_frame_s"].get<double>(), full["simulated_time_s"].get<double>());
 }
 
+TEST(SampledSimulation, TheTargetErrorChoosesK) {
+  // A pilot of 100 windows of 1 ms each, apart by 20 us (successive differences): the
+  // half-width at K is 3 * 99 * 20 us * sqrt(1 / (n - 1) - 1 / 99), n = ceil(100 / K).
+  nlohmann::ordered_json pilot = {{"windows", 100}, {"estimate_s", 0.1}, {"window_s_sd", 2e-5}};
+  using rtsim::platform::FrameSample;
+  for (const double target : {0.002, 0.005, 0.01, 0.05}) {
+    const int k = FrameSample::every_for(pilot, target);
+    std::printf("target %.1f%%: K = %d\n", 100 * target, k);
+    if (k >= 2) {
+      EXPECT_LE(FrameSample::half_width(100, (100 + k - 1) / k, 2e-5), target * 0.1);
+    }
+    // The next K would miss the target, or is more than the pilot's (100 / 10 windows).
+    const int next = (100 + k) / (k + 1);
+    if (k + 1 <= 100 / FrameSample::kPilotWindows) {
+      EXPECT_GT(FrameSample::half_width(100, next, 2e-5), target * 0.1);
+    }
+  }
+  EXPECT_EQ(FrameSample::every_for(pilot, 1e-6), 1);  // not even K = 2: the whole frame
+  EXPECT_GT(FrameSample::every_for(pilot, 0.05), FrameSample::every_for(pilot, 0.005));
+  pilot["window_s_sd"] = 0.0;
+  // Windows all alike: the largest K that keeps the pilot's 10 windows.
+  EXPECT_EQ(FrameSample::every_for(pilot, 0.01), 10);
+}
+
+TEST(SampledSimulation, ATargetErrorRunsAPilotAndHoldsTheFullFrame) {
+  const std::string args = "--scene builtin:ullner-sheets-1000 --width 64 --height 64";
+  const auto full = rtsim::test::run_machine("ullner-peripheral", "sample-e-full", args);
+  const auto sampled =
+      rtsim::test::run_machine("ullner-peripheral", "sample-e-1", args + " --sample-error 1%");
+  ASSERT_FALSE(full.empty() || sampled.empty());
+  const auto& s = sampled["sample"];
+  ASSERT_TRUE(s.contains("plan")) << s.dump();
+  const int k = s["plan"]["every"].get<int>();
+  const double t = full["simulated_time_s"].get<double>();
+  std::printf(
+      "--sample-error 1%%: K = %d from a pilot at K = %d; estimate %.6g s (+-%.3f%%), "
+      "full %.6g s\n",
+      k, s["plan"]["pilot_every"].get<int>(), s["estimate_s"].get<double>(),
+      100 * s["half_width_relative"].get<double>(), t);
+  ASSERT_GE(k, 2);  // this scene's rows are alike: a sample reaches 1%
+  EXPECT_EQ(s["every"], k);
+  EXPECT_LE(s["half_width_relative"].get<double>(), 0.01 * 1.5);
+  EXPECT_LE(s["ci99_7_s"][0].get<double>(), t);
+  EXPECT_GE(s["ci99_7_s"][1].get<double>(), t);
+  EXPECT_EQ(read_file(full.at("image_png").get<std::string>()),
+            read_file(sampled.at("image_png").get<std::string>()));
+}
+
 TEST(SampledSimulation, BadUsesExitTwo) {
   for (const auto& [args, says] :
        {std::pair<std::string, std::string>{
+            // One 64 x 64 square: one window.
             "--machine pxpl5-raytrace --scene builtin:default --width 32 --height 32 --sample 4",
-            "does not take --sample"},
+            "1 windows of 1 regions"},
         {"--machine vax-750 --scene builtin:default --width 8 --height 8 --sample 4", "at least 3"},
         {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-window 2",
-         "give --sample too"}}) {
+         "give one of them too"},
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample 4 "
+         "--sample-error 1%",
+         "not both"},
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error 0%",
+         "(0, 50%]"},
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error one",
+         "a percentage"},
+        {"--machine vax-750 --scene builtin:default --width 5 --height 5 --sample-error 1%",
+         "at least 6"},
+        {"--machine pxpl5-raytrace --scene builtin:default --width 32 --height 32 "
+         "-p assign.scheme=rows -p frames=2 --sample-error 5%",
+         "set frames = 1"},
+        // Found by the machine, in the pilot: the pilot's message is the run's.
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error 1% "
+         "--fault nosuch:0:1",
+         "has no memory 'nosuch'"}}) {
     const fs::path dir = scratch_dir("sample-bad");
     const auto r = run_rtsim("run " + args + " -q --out " + dir.string());
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;

@@ -9,18 +9,37 @@
 
 namespace rtsim::platform {
 
-FrameSample::FrameSample(int width, int height, int every, int window_rows)
-    : width_(static_cast<std::uint32_t>(width)),
-      every_(every),
+FrameSample::FrameSample(int every, int window_rows, int windows, const std::string& unit_name)
+    : every_(every),
       window_rows_(std::max(1, window_rows)),
-      windows_((height + window_rows_ - 1) / window_rows_) {
+      windows_(windows),
+      unit_name_(unit_name) {
   const int detailed = detailed_windows();
   if (detailed < 3)
     throw InputError("--sample " + std::to_string(every_), 0,
                      "simulates " + std::to_string(detailed) + " of the frame's " +
                          std::to_string(windows_) + " windows of " + std::to_string(window_rows_) +
-                         " rows in detail; the estimate needs at least 3: a smaller K, a "
-                         "smaller --sample-window or a taller image");
+                         " " + unit_name_ +
+                         " in detail; the estimate needs at least 3: a smaller K, a "
+                         "smaller --sample-window or a larger image");
+  done_.assign(static_cast<std::size_t>(windows_), 0);
+}
+
+FrameSample FrameSample::of_units(int units, int height, int every, int window_units,
+                                  const std::string& unit_name, int workers) {
+  const int per = std::max(1, window_units);
+  FrameSample s(every, per, windows_in(units, per), unit_name);
+  s.workers_ = std::max(1, workers);
+  s.busy_.assign(static_cast<std::size_t>(s.windows_), 0);
+  // The machine renders what it does not simulate: no row is left to the functional renderer.
+  s.detailed_.assign(static_cast<std::size_t>(height), 1);
+  s.functional_.assign(static_cast<std::size_t>(height), 0);
+  return s;
+}
+
+FrameSample::FrameSample(int width, int height, int every, int window_rows)
+    : FrameSample(every, window_rows, windows_in(height, std::max(1, window_rows)), "rows") {
+  width_ = static_cast<std::uint32_t>(width);
   detailed_.assign(static_cast<std::size_t>(height), 0);
   functional_.assign(static_cast<std::size_t>(height), 1);
   for (int y = 0; y < height; ++y)
@@ -28,7 +47,6 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows)
       detailed_[static_cast<std::size_t>(y)] = 1;
       functional_[static_cast<std::size_t>(y)] = 0;
     }
-  done_.assign(static_cast<std::size_t>(windows_), 0);
 }
 
 nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
@@ -47,10 +65,19 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   const double tick = sc_core::sc_time::from_value(1).to_seconds();
   nlohmann::ordered_json out;
   out["every"] = every_;
-  out["window_rows"] = window_rows_;
+  if (unit_name_ == "rows") {
+    out["window_rows"] = window_rows_;
+  } else {
+    out["unit"] = unit_name_;
+    out["window_units"] = window_rows_;
+  }
   out["windows"] = windows_;
   out["detailed_windows"] = detailed_windows();
   out["detailed_frame_s"] = E - B;
+  if (workers_ > 0 && c.size() >= 3) {
+    out.update(estimate_shared(B, E, estimate_s));
+    return out;
+  }
   if (c.size() < 3) {
     // Nothing to extrapolate from: the sampled run's own frame, and no interval.
     estimate_s = E - B;
@@ -75,16 +102,77 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   const double head = static_cast<double>(c.front()) * tick - B;
   const double tail = E - static_cast<double>(c.back()) * tick;
   estimate_s = head + N * mean + tail;
-  const double fpc = std::sqrt(std::max(0.0, 1.0 - n / N));
-  const double half = 3.0 * N * std::sqrt(var) / std::sqrt(n) * fpc;
+  const double half = half_width(windows_, static_cast<int>(c.size()), std::sqrt(var));
   out["estimate_s"] = estimate_s;
   out["ci99_7_s"] = {estimate_s - half, estimate_s + half};
   out["half_width_relative"] = estimate_s > 0 ? half / estimate_s : 0.0;
   out["start_s"] = head;
   out["window_s_mean"] = mean;
+  out["window_s_sd"] = std::sqrt(var);
   out["drain_s"] = tail;
   if (silent > 0) out["silent_windows"] = silent;
   return out;
+}
+
+nlohmann::ordered_json FrameSample::estimate_shared(double B, double E, double& estimate_s) const {
+  const double tick = sc_core::sc_time::from_value(1).to_seconds();
+  std::vector<double> u;
+  std::uint64_t last_done = 0;
+  for (int w = 0; w < windows_; w += every_) {
+    if (done_[static_cast<std::size_t>(w)] == 0) continue;
+    u.push_back(static_cast<double>(busy_[static_cast<std::size_t>(w)]) * tick);
+    last_done = std::max(last_done, done_[static_cast<std::size_t>(w)]);
+  }
+  const double n = static_cast<double>(u.size()), N = windows_, P = workers_;
+  const double mean = std::accumulate(u.begin(), u.end(), 0.0) / n;
+  double var = 0;  // successive differences, as the windows of rows (estimate())
+  for (std::size_t i = 1; i < u.size(); ++i) var += (u[i] - u[i - 1]) * (u[i] - u[i - 1]);
+  var /= 2.0 * (n - 1);
+  const double head = static_cast<double>(first_start_) * tick - B;
+  const double tail = E - static_cast<double>(last_done) * tick;
+  // When the last window starts, the other P - 1 workers are half-way through theirs on
+  // average: W = P t + u + (P - 1) u / 2, and the work ends at t + u = W / P + (u / 2)(1 - 1/P),
+  // u a window's mean. That last term lies between 0 (all finish together) and u (1 - 1/P)
+  // (the last window starts as the others end): the interval adds its half-range to the
+  // sampling error. No window ends sooner than it is long.
+  const double last = 0.5 * mean * (1.0 - 1.0 / P);
+  const double work = N * mean / P + last;
+  estimate_s = head + std::max(work, *std::max_element(u.begin(), u.end())) + tail;
+  const double half =
+      3.0 * (N / P) * std::sqrt(var) * std::sqrt(std::max(0.0, 1.0 / n - 1.0 / N)) + last;
+  nlohmann::ordered_json out;
+  out["workers"] = workers_;
+  out["estimate_s"] = estimate_s;
+  out["ci99_7_s"] = {estimate_s - half, estimate_s + half};
+  out["half_width_relative"] = estimate_s > 0 ? half / estimate_s : 0.0;
+  out["start_s"] = head;
+  out["window_busy_s_mean"] = mean;
+  out["window_s_sd"] = std::sqrt(var) / P;
+  out["window_s_mean"] = mean / P;
+  out["drain_s"] = tail;
+  return out;
+}
+
+double FrameSample::half_width(int windows, int detailed, double window_sd) {
+  // N - 1 increments in the frame, n - 1 of them measured; with the finite-population correction.
+  const double N = windows - 1.0, n = detailed - 1.0;
+  if (n <= 0 || N <= 0) return 0.0;
+  return 3.0 * N * window_sd * std::sqrt(std::max(0.0, 1.0 / n - 1.0 / N));
+}
+
+int FrameSample::pilot_every(int windows) { return std::max(2, windows / kPilotWindows); }
+
+int FrameSample::every_for(const nlohmann::ordered_json& pilot, double target) {
+  const int windows = pilot.value("windows", 0);
+  const double sd = pilot.value("window_s_sd", 0.0), frame = pilot.value("estimate_s", 0.0);
+  if (!pilot.contains("window_s_sd") || frame <= 0) return 1;
+  // The largest K first; never fewer windows than the pilot had, so the run's own interval
+  // rests on as many differences as the choice did.
+  for (int k = std::max(2, windows / kPilotWindows); k >= 2; --k) {
+    const int detailed = (windows + k - 1) / k;
+    if (detailed >= 3 && half_width(windows, detailed, sd) <= target * frame) return k;
+  }
+  return 1;
 }
 
 }  // namespace rtsim::platform

@@ -5,6 +5,21 @@
 // and every K-th after it are simulated in detail, back to back, and the other rows are rendered
 // functionally afterwards, so the image is whole and the same bytes.
 //
+// A machine whose work is not rows of vision rays names its own work units (pxpl5-raytrace: the
+// screen regions its master hands out, in that order) and says when each is done (unit_done);
+// it then renders the units not simulated in detail itself. Units that `workers` processors take
+// from a queue side by side are timed by what each took: with u_i a detailed window's busy time
+// (its units' sum), the frame is estimated as
+//
+//   T = (s_0 - B) + max(N mean(u) / P + (mean(u) / 2)(1 - 1/P), max(u)) + (E - c_{n-1})
+//
+// the start-up to the first unit's start s_0; the N windows' work shared by the P workers, the
+// last of them started with the others half-way through theirs (but no sooner done than the
+// longest window); and the drain after the last window's completion. Its half-width is
+// 3 (N / P) s_u sqrt(1/n - 1/N), s_u from successive differences of the u_i in window order,
+// plus (mean(u) / 2)(1 - 1/P): the last window may start anywhere from as the others end to
+// with them (frame_sample.cpp).
+//
 // The machine tells the frame buffer of each contribution; a window's completion is the time of
 // its last. With c_0 < ... < c_{n-1} the detailed windows' completions in the frame [B, E] of the
 // sampled run and d_i = c_i - c_{i-1} (one window's worth of the machine's throughput, the
@@ -14,9 +29,11 @@
 //
 // the start-up, N - 1 windows at the sampled rate, and the drain. Its 99.7% confidence interval
 // is T +- 3 (N - 1) s_d / sqrt(n - 1) sqrt(1 - (n - 1) / (N - 1)), with s_d^2 from successive
-// differences of the d_i (frame_sample.cpp says why) and the finite-population correction. Only the frame time is estimated; the other statistics are the sampled run's.
+// differences of the d_i (frame_sample.cpp says why) and the finite-population correction. Only the
+// frame time is estimated; the other statistics are the sampled run's.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <systemc>
 #include <vector>
 
@@ -26,6 +43,20 @@ class FrameSample {
  public:
   /// Throws InputError when fewer than three windows would be simulated in detail.
   FrameSample(int width, int height, int every, int window_rows);
+  /// `units` work units in the machine's order, `window_units` a window (what "rows" are to the
+  /// constructor above; every row is the machine's then). Throws as it does.
+  static FrameSample of_units(int units, int height, int every, int window_units,
+                              const std::string& unit_name, int workers = 1);
+
+  /// Unit `unit` (of_units) is simulated in detail.
+  bool detailed_unit(int unit) const { return (unit / window_rows_) % every_ == 0; }
+  /// Unit `unit` was started at simulated time `start` and done at `end` (ticks).
+  void unit_done(int unit, std::uint64_t start, std::uint64_t end) {
+    const auto w = static_cast<std::size_t>(unit / window_rows_);
+    if (done_[w] < end) done_[w] = end;
+    busy_[w] += end - start;
+    first_start_ = std::min(first_start_, start);
+  }
 
   /// One flag per row: simulated in detail, or rendered functionally afterwards.
   const std::vector<char>& detailed_rows() const { return detailed_; }
@@ -42,11 +73,36 @@ class FrameSample {
   nlohmann::ordered_json estimate(const sc_core::sc_time& begin, const sc_core::sc_time& end,
                                   double& estimate_s) const;
 
+  /// `--sample-error`: from a pilot's estimate (its stats.json `sample`), the largest K whose
+  /// 99.7% half-width, by the pilot's window spread, is at most `target` of the frame time; 1
+  /// (the whole frame in detail) if even K = 2 is not expected to reach it. The pilot's
+  /// successive windows lie K0 apart, so its spread is, if anything, larger than a denser
+  /// sample's: the choice errs towards smaller K.
+  static int every_for(const nlohmann::ordered_json& pilot, double target);
+  /// The pilot's K for a frame of `windows` windows: about kPilotWindows of them in detail (at
+  /// least 3). every_for chooses no larger K.
+  static constexpr int kPilotWindows = 10;
+  static int pilot_every(int windows);
+  /// Windows of `window_rows` rows in a frame of `height` rows.
+  static int windows_in(int height, int window_rows) {
+    return (height + window_rows - 1) / window_rows;
+  }
+  /// The half-width of the 99.7% interval of a frame of `windows` windows, `detailed` of them in
+  /// detail, whose windows take `window_sd` apart (successive differences) on average.
+  static double half_width(int windows, int detailed, double window_sd);
+
  private:
   /// Windows 0, K, 2K, ... below the frame's count.
   int detailed_windows() const { return (windows_ + every_ - 1) / every_; }
-  std::uint32_t width_;
+  FrameSample(int every, int window_rows, int windows, const std::string& unit_name);
+  std::uint32_t width_ = 1;
+  /// The workers' estimate (of_units with workers > 1).
+  nlohmann::ordered_json estimate_shared(double B, double E, double& estimate_s) const;
   int every_, window_rows_, windows_;
+  std::string unit_name_ = "rows";   ///< what a window is made of
+  int workers_ = 0;                  ///< of_units: processors taking units side by side
+  std::vector<std::uint64_t> busy_;  ///< by window: its units' time (unit_done)
+  std::uint64_t first_start_ = UINT64_MAX;
   std::vector<char> detailed_, functional_;
   std::vector<std::uint64_t> done_;  ///< by window: its last contribution (0: none)
 };

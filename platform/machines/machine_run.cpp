@@ -11,7 +11,8 @@ int or_default(int asked, int scene) { return asked > 0 ? asked : scene; }
 }  // namespace
 
 MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const FunctionalTwin& twin,
-                       const params::ParamRegistry& registry, const RunOptions& opts)
+                       const params::ParamRegistry& registry, const RunOptions& opts,
+                       bool rows_sampled)
     : wall_start_(std::chrono::steady_clock::now()),
       machine_(std::move(machine)),
       scene_(scene),
@@ -23,7 +24,7 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
       // The quantum is set before anything is built (the trace is the first member to be).
       trace_((begin_simulation(registry), opts)),
       probe_(opts.latency_probe) {
-  if (opts.sample_every > 1) {
+  if (opts.sample_every > 1 && rows_sampled) {
     sample_.emplace(width_, height_, opts.sample_every, opts.sample_window_rows);
     frame_.set_detailed_rows(sample_->detailed_rows());
     // A window is done when its last contribution lands in the frame buffer.
@@ -31,6 +32,13 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
       sample_->contribution(pixel, sc_core::sc_time_stamp().value());
     });
   }
+}
+
+FrameSample* MachineRun::sample_units(int units, const std::string& unit_name, int workers) {
+  if (opts_.sample_every <= 1) return nullptr;
+  sample_.emplace(FrameSample::of_units(units, height_, opts_.sample_every,
+                                        opts_.sample_window_rows, unit_name, workers));
+  return &*sample_;
 }
 
 void MachineRun::simulate() {
@@ -74,8 +82,9 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
     out["sample"] = std::move(sample_json_);
     // The rows not simulated in detail, functionally: the image is whole.
     frame_.fb().set_observer({});
-    functional::render_rows(scene_, *twin_.tracer, twin_.settings.shade, frame_,
-                            sample_->functional_rows());
+    if (!opts_.sample_pilot)
+      functional::render_rows(scene_, *twin_.tracer, twin_.settings.shade, frame_,
+                              sample_->functional_rows());
   }
   result_.stats = std::move(out);
   result_.image = frame_.finish(

@@ -32,8 +32,17 @@ class MachineRun {
  public:
   /// Starts the wall clock, sizes the frame (RunOptions, else the scene's camera), sets the TLM
   /// quantum and opens the traces: before any module is built.
+  /// With --sample, windows of rows (`rows_sampled`), else the machine names its own work units
+  /// (sample_units).
   MachineRun(std::string machine, const scenes::Scene& scene, const FunctionalTwin& twin,
-             const params::ParamRegistry& registry, const RunOptions& opts);
+             const params::ParamRegistry& registry, const RunOptions& opts,
+             bool rows_sampled = true);
+
+  /// With --sample on a machine whose work is not rows (FrameSample::of_units): `units` units of
+  /// work called `unit_name`; the machine simulates those detailed_unit() names, says when each
+  /// is done (unit_done) and renders the rest itself; `workers` processors take the units side
+  /// by side. Nothing without --sample.
+  FrameSample* sample_units(int units, const std::string& unit_name, int workers = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -12,6 +12,7 @@
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/pxpl5/camera_path.hpp"
+#include "platform/machines/pxpl5/functional_regions.hpp"
 #include "platform/machines/pxpl5/nodes.hpp"
 #include "platform/machines/pxpl5/sampled_render.hpp"
 
@@ -322,10 +323,17 @@ FunctionalTwin Pxpl5Raytrace::make_twin(scenes::Scene& scene,
   return twin;
 }
 
+int Pxpl5Raytrace::sample_units(const params::ParamRegistry& r, int width, int height) const {
+  pxpl5::Layout layout = read_layout(r);
+  layout.width = width;
+  layout.height = height;
+  return static_cast<int>(layout.regions().size());
+}
+
 RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
                              const params::ParamRegistry& r, const RunOptions& opts) const {
   using namespace pxpl5;
-  MachineRun run(name(), scene, twin, r, opts);
+  MachineRun run(name(), scene, twin, r, opts, /*rows_sampled=*/false);
   Context ctx;
   ctx.layout = read_layout(r);
   ctx.layout.width = run.width();
@@ -351,6 +359,19 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.bypass_master = bypass == "all" || bypass == "casters-and-master";
   ctx.bypass_back_end = bypass == "all" || bypass == "all-but-master";
   ctx.corrupt_samples = static_cast<std::uint64_t>(r.get_int("fault.corrupt_samples"));
+  if (opts.sample_every > 1) {
+    // Sampled: every K-th region (in the master's order, which is screen order in a first
+    // frame) in detail, the others cast functionally and handed to the compositors.
+    if (ctx.frames != 1 || bypass != "none")
+      throw InputError("--sample", 0,
+                       "pxpl5-raytrace samples the regions of a single frame with its casters "
+                       "working: set frames = 1 and bypass = none (a later frame's regions and "
+                       "order depend on the frames before it in detail)");
+    ctx.sample = run.sample_units(static_cast<int>(ctx.layout.regions().size()), "regions",
+                                  ctx.layout.casters);
+    ctx.functional_samples = cast_functionally(
+        ctx, [&](int id) { return !ctx.sample->detailed_unit(id); }, !opts.sample_pilot);
+  }
 
   const Layout& lay = ctx.layout;
   modules::TokenRing ring("ring", modules::TokenRing::read_config(modules::ModuleParams(r, "ring")),

@@ -22,8 +22,8 @@ class Pxpl5Raytrace final : public Machine {
   RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
                 const RunOptions& opts) const override;
   /// Its casters sample screen regions on a lattice handed out by the master GP, not rows of
-  /// vision rays: row windows do not apply (issue 17 leaves it for a region-level sample).
-  bool supports_sampling() const override { return false; }
+  /// vision rays: a sampled run's windows are regions (FrameSample::of_units).
+  int sample_units(const params::ParamRegistry& registry, int width, int height) const override;
 };
 
 }  // namespace rtsim::platform

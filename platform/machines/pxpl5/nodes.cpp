@@ -73,6 +73,9 @@ void MasterGp::run() {
     if (m.kind == Kind::kStartFrame) {
       frame_ = m.frame;
       regions_ = ctx_.layout.regions();
+      // A sampled frame: the detailed regions only (the others were cast functionally).
+      if (ctx_.sample)
+        std::erase_if(regions_, [&](const Region& g) { return !ctx_.sample->detailed_unit(g.id); });
       cost_.resize(regions_.size(), 0.0);
       // 0th-order cost prediction (L360): the costliest of the previous frame first.
       if (ctx_.cost_order && frame_ > 0)
@@ -176,6 +179,7 @@ void RayCaster::run() {
       }
       send(lay.compositor(k), std::move(out_msg));
     }
+    if (ctx_.sample) ctx_.sample->unit_done(g.id, began.value(), clock_.now().value());
     Message next;
     next.kind = Kind::kRequest;
     next.frame = m.frame;
@@ -228,19 +232,26 @@ void Compositor::run() {
   std::vector<int> written(kept.size(), -1);  // the frame each position was last written in
   const auto tile_cols = lay.tiles_reading(false), tile_rows = lay.tiles_reading(true);
   std::vector<std::vector<Sample>> by_renderer(static_cast<std::size_t>(lay.renderers()));
+  const auto keep = [&](const Sample& s, int frame) {
+    const int j = lattice.j_of(s.index), i = lattice.i_of(s.index);
+    const std::size_t k = static_cast<std::size_t>(local_row[static_cast<std::size_t>(j)]) * nx +
+                          static_cast<std::size_t>(i);
+    tasks::keep_copy(kept[k], written[k], s, frame);
+  };
   long have = 0;
+  // A sampled frame: the regions not simulated in detail are here from the start.
+  if (!ctx_.functional_samples.empty())
+    for (const Sample& s : ctx_.functional_samples[static_cast<std::size_t>(number_)]) {
+      keep(s, 0);
+      ++have;
+    }
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kSamples) continue;
     if (!ctx_.bypass_back_end)
       compute_for(modules::times(sample_time_, m.samples.size()), "composite",
                   {{"samples", m.samples.size()}});
-    for (const Sample& s : m.samples) {
-      const int j = lattice.j_of(s.index), i = lattice.i_of(s.index);
-      const std::size_t k = static_cast<std::size_t>(local_row[static_cast<std::size_t>(j)]) * nx +
-                            static_cast<std::size_t>(i);
-      tasks::keep_copy(kept[k], written[k], s, m.frame);
-    }
+    for (const Sample& s : m.samples) keep(s, m.frame);
     samples_ += m.samples.size();
     have += static_cast<long>(m.samples.size());
     if (have < expected(m.frame)) continue;

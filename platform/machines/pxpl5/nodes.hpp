@@ -27,6 +27,7 @@
 #include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/frame_sample.hpp"
 #include "platform/machines/pxpl5/layout.hpp"
 #include "platform/machines/pxpl5/ring_node.hpp"
 
@@ -53,6 +54,12 @@ struct Context {
   /// none.
   std::uint64_t corrupt_samples = 0;
   std::uint64_t samples_messages = 0;
+  /// --sample (one frame): the regions simulated in detail, and when each was done (a caster
+  /// sent its samples); null without.
+  FrameSample* sample = nullptr;
+  /// With --sample, by compositor: the samples of the regions not simulated in detail, cast
+  /// functionally (functional_regions.hpp), which it holds when the frame starts.
+  std::vector<std::vector<Sample>> functional_samples;
 };
 
 class Host : public RingNode {
