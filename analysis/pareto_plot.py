@@ -44,8 +44,10 @@ def main(argv):
                 error = r.get("error", 0)
                 # Errors past the right edge are drawn on it, with their value in the label.
                 x = min(max(error, floor), ceiling)
-                label = (f"E=1%,K={r.get('chosen_k', '?')}" if r["setting"].startswith("sample-error")
-                         else r["setting"].replace("sample ", "K=").replace("quantum ", "q="))
+                if r["setting"].startswith("sample-error"):
+                    label = f"E=1%,K={r.get('chosen_k', '?')}"
+                else:
+                    label = r["setting"].replace("sample ", "K=").replace("quantum ", "q=")
                 if error > ceiling:
                     label += f" ({100 * error:.0f}%)"
                 ax.scatter(x, r.get("speedup", 1), marker="o" if sampled else "s", s=28,

@@ -3,8 +3,8 @@
 
 For each machine on three scenes, runs the reference setting (quantum 0, the whole frame in
 detail) and every speed knob: the global quantum (docs/quantum.md) and sampled simulation
-(`--sample K`, and `--sample-error 1%` choosing K by a pilot run; docs/sampling.md). Each setting is run --repeat times; the table has the median
-wall time of the simulation (stats.json wall_time_s: the model, and for --sample also the
+(`--sample K`, and `--sample-error 1%` choosing K by a pilot run; docs/sampling.md). Each
+setting is run --repeat times; the table has the median wall time of the simulation (stats.json wall_time_s: the model, and for --sample also the
 functional rest of the image), the speed-up over the reference, the frame time's error against
 the reference, and for --sample whether its 99.7% interval holds the reference's frame time.
 
