@@ -4,8 +4,9 @@
 For each machine on three scenes, runs the reference setting (quantum 0, the whole frame in
 detail) and every speed knob: the global quantum (docs/quantum.md) and sampled simulation
 (`--sample K`, and `--sample-error 1%` choosing K by a pilot run; docs/sampling.md). Each
-setting is run --repeat times; the table has the median wall time of the simulation (stats.json wall_time_s: the model, and for --sample also the
-functional rest of the image), the speed-up over the reference, the frame time's error against
+setting is run --repeat times; the table has the median wall time of the simulation
+(stats.json wall_time_s: the model, and for --sample also the functional rest of the image and
+the pilot), the speed-up over the reference, the frame time's error against
 the reference, and for --sample whether its 99.7% interval holds the reference's frame time.
 
     /usr/bin/python3 bench/pareto.py [--rtsim build/rtsim] [--repeat 3] --out out/pareto
