@@ -178,7 +178,9 @@ int run_cli(int argc, char** argv) {
                   "sample.plan; the pilot's time is in wall_time_s");
   run->add_option("--sample-window", runa.sample_window,
                   "Rows of a --sample window (default: the machine's; gaudet-pert's is its PERT "
-                  "count, so that a window keeps every PERT busy)")
+                  "count, so that a window keeps every PERT busy; pxpl5-raytrace's windows are "
+                  "screen regions, in the order its master hands them out, and this counts "
+                  "regions)")
       ->check(CLI::Range(1, 1000000));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "
