@@ -9,16 +9,16 @@
 
 namespace rtsim::platform {
 
-FrameSample::FrameSample(int every, int window_rows, int windows, const std::string& unit_name)
+FrameSample::FrameSample(int every, int window_size, int windows, const std::string& unit_name)
     : every_(every),
-      window_rows_(std::max(1, window_rows)),
+      window_size_(std::max(1, window_size)),
       windows_(windows),
       unit_name_(unit_name) {
   const int detailed = detailed_windows();
   if (detailed < 3)
     throw InputError("--sample " + std::to_string(every_), 0,
                      "simulates " + std::to_string(detailed) + " of the frame's " +
-                         std::to_string(windows_) + " windows of " + std::to_string(window_rows_) +
+                         std::to_string(windows_) + " windows of " + std::to_string(window_size_) +
                          " " + unit_name_ +
                          " in detail; the estimate needs at least 3: a smaller K, a "
                          "smaller --sample-window or a larger image");
@@ -43,7 +43,7 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows)
   detailed_.assign(static_cast<std::size_t>(height), 0);
   functional_.assign(static_cast<std::size_t>(height), 1);
   for (int y = 0; y < height; ++y)
-    if ((y / window_rows_) % every_ == 0) {
+    if ((y / window_size_) % every_ == 0) {
       detailed_[static_cast<std::size_t>(y)] = 1;
       functional_[static_cast<std::size_t>(y)] = 0;
     }
@@ -66,10 +66,10 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   nlohmann::ordered_json out;
   out["every"] = every_;
   if (unit_name_ == "rows") {
-    out["window_rows"] = window_rows_;
+    out["window_rows"] = window_size_;
   } else {
     out["unit"] = unit_name_;
-    out["window_units"] = window_rows_;
+    out["window_units"] = window_size_;
   }
   out["windows"] = windows_;
   out["detailed_windows"] = detailed_windows();

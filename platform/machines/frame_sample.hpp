@@ -49,10 +49,10 @@ class FrameSample {
                               const std::string& unit_name, int workers = 1);
 
   /// Unit `unit` (of_units) is simulated in detail.
-  bool detailed_unit(int unit) const { return (unit / window_rows_) % every_ == 0; }
+  bool detailed_unit(int unit) const { return (unit / window_size_) % every_ == 0; }
   /// Unit `unit` was started at simulated time `start` and done at `end` (ticks).
   void unit_done(int unit, std::uint64_t start, std::uint64_t end) {
-    const auto w = static_cast<std::size_t>(unit / window_rows_);
+    const auto w = static_cast<std::size_t>(unit / window_size_);
     if (done_[w] < end) done_[w] = end;
     busy_[w] += end - start;
     first_start_ = std::min(first_start_, start);
@@ -64,7 +64,7 @@ class FrameSample {
 
   /// A contribution to `pixel` at simulated time `ticks`.
   void contribution(std::uint32_t pixel, std::uint64_t ticks) {
-    const std::size_t w = (pixel / width_) / static_cast<std::uint32_t>(window_rows_);
+    const std::size_t w = (pixel / width_) / static_cast<std::uint32_t>(window_size_);
     if (done_[w] < ticks) done_[w] = ticks;
   }
 
@@ -94,11 +94,13 @@ class FrameSample {
  private:
   /// Windows 0, K, 2K, ... below the frame's count.
   int detailed_windows() const { return (windows_ + every_ - 1) / every_; }
-  FrameSample(int every, int window_rows, int windows, const std::string& unit_name);
+  FrameSample(int every, int window_size, int windows, const std::string& unit_name);
   std::uint32_t width_ = 1;
   /// The workers' estimate (of_units with workers > 1).
   nlohmann::ordered_json estimate_shared(double B, double E, double& estimate_s) const;
-  int every_, window_rows_, windows_;
+  int every_;
+  int window_size_;  ///< rows a window, or the machine's units (of_units)
+  int windows_;
   std::string unit_name_ = "rows";   ///< what a window is made of
   int workers_ = 0;                  ///< of_units: processors taking units side by side
   std::vector<std::uint64_t> busy_;  ///< by window: its units' time (unit_done)
