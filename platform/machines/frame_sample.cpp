@@ -9,6 +9,19 @@
 
 namespace rtsim::platform {
 
+namespace {
+/// The variance of one of `x` (in sample order) from successive differences. Neighbouring
+/// windows cost alike (the image varies smoothly from row to row), so the variance of the mean of
+/// a systematic sample is estimated this way (Wolter, "Introduction to Variance Estimation", the
+/// v_3 estimator), not as if the windows were drawn at random, which would take the spread
+/// between the scene's empty and busy rows for noise.
+double successive_difference_variance(const std::vector<double>& x) {
+  double var = 0;
+  for (std::size_t i = 1; i < x.size(); ++i) var += (x[i] - x[i - 1]) * (x[i] - x[i - 1]);
+  return var / (2.0 * (static_cast<double>(x.size()) - 1));
+}
+}  // namespace
+
 FrameSample::FrameSample(int every, int window_size, int windows, const std::string& unit_name)
     : every_(every),
       window_size_(std::max(1, window_size)),
@@ -25,15 +38,13 @@ FrameSample::FrameSample(int every, int window_size, int windows, const std::str
   done_.assign(static_cast<std::size_t>(windows_), 0);
 }
 
-FrameSample FrameSample::of_units(int units, int height, int every, int window_units,
+FrameSample FrameSample::of_units(int units, int every, int window_units,
                                   const std::string& unit_name, int workers) {
   const int per = std::max(1, window_units);
   FrameSample s(every, per, windows_in(units, per), unit_name);
   s.workers_ = std::max(1, workers);
   s.busy_.assign(static_cast<std::size_t>(s.windows_), 0);
-  // The machine renders what it does not simulate: no row is left to the functional renderer.
-  s.detailed_.assign(static_cast<std::size_t>(height), 1);
-  s.functional_.assign(static_cast<std::size_t>(height), 0);
+  // The machine renders what it does not simulate: no rows, detailed or functional.
   return s;
 }
 
@@ -43,7 +54,7 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows)
   detailed_.assign(static_cast<std::size_t>(height), 0);
   functional_.assign(static_cast<std::size_t>(height), 1);
   for (int y = 0; y < height; ++y)
-    if ((y / window_size_) % every_ == 0) {
+    if (detailed_window(y / window_size_)) {
       detailed_[static_cast<std::size_t>(y)] = 1;
       functional_[static_cast<std::size_t>(y)] = 0;
     }
@@ -88,16 +99,8 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   std::vector<double> d;
   for (std::size_t i = 1; i < c.size(); ++i)
     d.push_back(static_cast<double>(c[i] - c[i - 1]) * tick);
-  const double n = static_cast<double>(d.size());
-  const double mean = std::accumulate(d.begin(), d.end(), 0.0) / n;
-  // Neighbouring windows cost alike (the image varies smoothly from row to row), so the
-  // variance of the mean of a systematic sample is estimated from successive differences
-  // (Wolter, "Introduction to Variance Estimation", the v_3 estimator), not as if the windows
-  // were drawn at random, which would take the spread between the scene's empty and busy rows
-  // for noise.
-  double var = 0;
-  for (std::size_t i = 1; i < d.size(); ++i) var += (d[i] - d[i - 1]) * (d[i] - d[i - 1]);
-  var /= 2.0 * (n - 1);
+  const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
+  const double var = successive_difference_variance(d);
   const double N = static_cast<double>(windows_ - 1);
   const double head = static_cast<double>(c.front()) * tick - B;
   const double tail = E - static_cast<double>(c.back()) * tick;
@@ -125,9 +128,7 @@ nlohmann::ordered_json FrameSample::estimate_shared(double B, double E, double& 
   }
   const double n = static_cast<double>(u.size()), N = windows_, P = workers_;
   const double mean = std::accumulate(u.begin(), u.end(), 0.0) / n;
-  double var = 0;  // successive differences, as the windows of rows (estimate())
-  for (std::size_t i = 1; i < u.size(); ++i) var += (u[i] - u[i - 1]) * (u[i] - u[i - 1]);
-  var /= 2.0 * (n - 1);
+  const double var = successive_difference_variance(u);
   const double head = static_cast<double>(first_start_) * tick - B;
   const double tail = E - static_cast<double>(last_done) * tick;
   // When the last window starts, the other P - 1 workers are half-way through theirs on
@@ -169,7 +170,7 @@ int FrameSample::every_for(const nlohmann::ordered_json& pilot, double target) {
   // The largest K first; never fewer windows than the pilot had, so the run's own interval
   // rests on as many differences as the choice did.
   for (int k = std::max(2, windows / kPilotWindows); k >= 2; --k) {
-    const int detailed = (windows + k - 1) / k;
+    const int detailed = windows_in(windows, k);  // windows 0, K, 2K, ...
     if (detailed >= 3 && half_width(windows, detailed, sd) <= target * frame) return k;
   }
   return 1;

@@ -45,27 +45,27 @@ class FrameSample {
   FrameSample(int width, int height, int every, int window_rows);
   /// `units` work units in the machine's order, `window_units` a window (what "rows" are to the
   /// constructor above; every row is the machine's then). Throws as it does.
-  static FrameSample of_units(int units, int height, int every, int window_units,
-                              const std::string& unit_name, int workers = 1);
+  static FrameSample of_units(int units, int every, int window_units, const std::string& unit_name,
+                              int workers = 1);
 
   /// Unit `unit` (of_units) is simulated in detail.
-  bool detailed_unit(int unit) const { return (unit / window_size_) % every_ == 0; }
+  bool detailed_unit(int unit) const { return detailed_window(unit / window_size_); }
   /// Unit `unit` was started at simulated time `start` and done at `end` (ticks).
   void unit_done(int unit, std::uint64_t start, std::uint64_t end) {
-    const auto w = static_cast<std::size_t>(unit / window_size_);
-    if (done_[w] < end) done_[w] = end;
-    busy_[w] += end - start;
+    const int w = unit / window_size_;
+    done_by(w, end);
+    busy_[static_cast<std::size_t>(w)] += end - start;
     first_start_ = std::min(first_start_, start);
   }
 
-  /// One flag per row: simulated in detail, or rendered functionally afterwards.
+  /// One flag per row: simulated in detail, or rendered functionally afterwards (both empty
+  /// with of_units: the machine renders every unit itself).
   const std::vector<char>& detailed_rows() const { return detailed_; }
   const std::vector<char>& functional_rows() const { return functional_; }
 
   /// A contribution to `pixel` at simulated time `ticks`.
   void contribution(std::uint32_t pixel, std::uint64_t ticks) {
-    const std::size_t w = (pixel / width_) / static_cast<std::uint32_t>(window_size_);
-    if (done_[w] < ticks) done_[w] = ticks;
+    done_by(static_cast<int>(pixel / width_) / window_size_, ticks);
   }
 
   /// The estimate from the sampled run's frame [begin, end]: stats.json `sample`, and the
@@ -93,16 +93,22 @@ class FrameSample {
 
  private:
   /// Windows 0, K, 2K, ... below the frame's count.
-  int detailed_windows() const { return (windows_ + every_ - 1) / every_; }
+  int detailed_windows() const { return windows_in(windows_, every_); }
+  bool detailed_window(int w) const { return w % every_ == 0; }
+  /// Window `w` has done work by simulated time `ticks`.
+  void done_by(int w, std::uint64_t ticks) {
+    auto& done = done_[static_cast<std::size_t>(w)];
+    if (done < ticks) done = ticks;
+  }
   FrameSample(int every, int window_size, int windows, const std::string& unit_name);
   std::uint32_t width_ = 1;
-  /// The workers' estimate (of_units with workers > 1).
+  /// The estimate of of_units: windows shared by `workers_` processors (1 or more).
   nlohmann::ordered_json estimate_shared(double B, double E, double& estimate_s) const;
   int every_;
   int window_size_;  ///< rows a window, or the machine's units (of_units)
   int windows_;
-  std::string unit_name_ = "rows";   ///< what a window is made of
-  int workers_ = 0;                  ///< of_units: processors taking units side by side
+  std::string unit_name_ = "rows";  ///< what a window is made of
+  int workers_ = 0;  ///< of_units: processors taking units side by side (0: windows of rows)
   std::vector<std::uint64_t> busy_;  ///< by window: its units' time (unit_done)
   std::uint64_t first_start_ = UINT64_MAX;
   std::vector<char> detailed_, functional_;

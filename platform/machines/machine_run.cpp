@@ -36,8 +36,8 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
 
 FrameSample* MachineRun::sample_units(int units, const std::string& unit_name, int workers) {
   if (opts_.sample_every <= 1) return nullptr;
-  sample_.emplace(FrameSample::of_units(units, height_, opts_.sample_every,
-                                        opts_.sample_window_rows, unit_name, workers));
+  sample_.emplace(FrameSample::of_units(units, opts_.sample_every, opts_.sample_window_rows,
+                                        unit_name, workers));
   return &*sample_;
 }
 
@@ -82,7 +82,7 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
     out["sample"] = std::move(sample_json_);
     // The rows not simulated in detail, functionally: the image is whole.
     frame_.fb().set_observer({});
-    if (!opts_.sample_pilot)
+    if (!opts_.sample_pilot && !sample_->functional_rows().empty())
       functional::render_rows(scene_, *twin_.tracer, twin_.settings.shade, frame_,
                               sample_->functional_rows());
   }
