@@ -1,6 +1,6 @@
 #include "platform/machines/pxpl5/functional_regions.hpp"
 
-#include "firmware/tasks/lattice_ray_task.hpp"
+#include "platform/machines/pxpl5/region_cast.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
@@ -16,25 +16,11 @@ std::vector<std::vector<Sample>> cast_functionally(const Context& ctx,
   std::vector<std::vector<Sample>> by_compositor(static_cast<std::size_t>(lay.compositors));
   for (const Region& g : lay.regions()) {
     if (!functional(g.id)) continue;
-    const auto cast = [&](int i, int j) {
-      if (!cast_rays) {
-        Sample blank;
-        blank.index = lattice.index(i, j);
-        return blank;
-      }
-      const std::int64_t pixel = lattice.pixel(i, j);
-      return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
-        if (pixel >= 0) ctx.frame->record_primary(static_cast<std::uint32_t>(pixel), found, hit);
-      });
-    };
-    const auto update = [&](int i, int j) {
-      return tasks::updated_in_frame(i, j, 0, lay.update_period);
-    };
     const auto out = [&](const Sample& s) {
       by_compositor[static_cast<std::size_t>(lay.compositor_of_lattice_row(lattice.j_of(s.index)))]
           .push_back(s);
     };
-    tasks::sample_region(lattice, lay.rule, g.lattice, spp, cast, update, out);
+    cast_region(lay, task, camera, spp, g, 0, ctx.frame, out, cast_rays);
   }
   return by_compositor;
 }

@@ -2,9 +2,9 @@
 
 #include <chrono>
 
-#include "firmware/tasks/lattice_ray_task.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machines/pxpl5/camera_path.hpp"
+#include "platform/machines/pxpl5/region_cast.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
@@ -27,21 +27,11 @@ functional::RenderResult sampled_render(const scenes::Scene& scene, const Tracer
   for (int fr = 0; fr < frames; ++fr) {
     const shading::PinholeCamera camera(frame_camera(scene.camera, fr, frames, spin_deg), w, h);
     const bool last_frame = fr == frames - 1;
-    for (const Region& g : regions) {
-      const auto cast = [&](int i, int j) {
-        const std::int64_t pixel = last_frame ? lattice.pixel(i, j) : -1;
-        return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
-          if (pixel >= 0) frame.record_primary(static_cast<std::uint32_t>(pixel), found, hit);
-        });
-      };
-      const auto update = [&](int i, int j) {
-        return tasks::updated_in_frame(i, j, fr, layout.update_period);
-      };
-      const auto out = [&](const tasks::LatticeSample& s) {
-        tasks::keep_copy(kept[s.index], written[s.index], s, fr);
-      };
-      tasks::sample_region(lattice, layout.rule, g.lattice, spp, cast, update, out);
-    }
+    for (const Region& g : regions)
+      cast_region(layout, task, camera, spp, g, fr, last_frame ? &frame : nullptr,
+                  [&](const tasks::LatticeSample& s) {
+                    tasks::keep_copy(kept[s.index], written[s.index], s, fr);
+                  });
     if (opts.progress) opts.progress(fr + 1, frames);
   }
   const auto at = [&](int i, int j) -> const std::array<std::int64_t, 3>& {
