@@ -36,6 +36,7 @@ struct RunArgs {
   std::vector<std::string> trace_modules;  ///< patterns on module names; none: all
   std::size_t trace_max_events = 0;        ///< per trace file; 0: every event
   std::string quantum;                     ///< "" keeps the parameter `quantum`
+  int spp = 0;                             ///< --spp N: render.spp (0: the configuration's)
   bool overhead = false;
   int sample = 0;                   ///< --sample K: one row window in K in detail (0: off)
   int sample_window = 0;            ///< --sample-window R: rows a window (0: the machine's choice)
@@ -51,6 +52,8 @@ struct ListArgs {
   std::string what;
   std::string machine;
   std::string format = "text";  ///< text | markdown
+  std::string pattern;          ///< params: only names matching this shell pattern ("": all)
+  bool changed = false;         ///< params: only those whose value is not the default
   ConfigArgs config;
 };
 

@@ -1,4 +1,6 @@
 // `rtsim list scenes|machines|params`.
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
@@ -7,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
 #include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "scenes/scene_loader.hpp"
 
@@ -32,11 +35,42 @@ void list_machines() {
             << "rtsim render: the functional renderer, firmware with no timing\n";
 }
 
+/// The entries `list params PATTERN --changed` shows. A pattern no name matches is bad input,
+/// with the closest names.
+std::vector<params::ParamEntry> select_params(std::vector<params::ParamEntry> all,
+                                              const ListArgs& args) {
+  std::vector<params::ParamEntry> out;
+  for (auto& e : all) {
+    // No FNM_PERIOD or FNM_PATHNAME: '*' matches dots too ("pert.*" is every PERT parameter).
+    if (!args.pattern.empty() && ::fnmatch(args.pattern.c_str(), e.name.c_str(), 0) != 0) continue;
+    if (args.changed && e.value_text == e.default_text) continue;
+    out.push_back(std::move(e));
+  }
+  if (out.empty() && !args.pattern.empty() && !args.changed) {
+    std::vector<std::string_view> names;
+    for (const auto& e : all) names.push_back(e.name);
+    std::string msg = "no parameter" +
+                      (args.machine.empty() ? std::string() : " of " + args.machine) +
+                      " matches '" + args.pattern + "'";
+    const auto close = closest_names(args.pattern, names);
+    if (!close.empty()) msg += "; did you mean '" + close.front() + "'?";
+    msg += " ('*' matches any characters, dots included: 'pert.*', '*word_time')";
+    throw InputError("list params", 0, msg);
+  }
+  return out;
+}
+
 void list_params(const ListArgs& args) {
   const platform::Machine* machine =
       args.machine.empty() ? nullptr : &platform::find_machine(args.machine);
   const auto registry = build_registry(args.config, machine);
-  const auto entries = registry.list();
+  const auto entries = select_params(registry.list(), args);
+  if (entries.empty()) {
+    std::cout << "every parameter"
+              << (args.pattern.empty() ? "" : " matching '" + args.pattern + "'")
+              << " is at its default\n";
+    return;
+  }
   if (args.format == "markdown") {
     std::cout << "| name | default | unit | description | source |\n|---|---|---|---|---|\n";
     for (const auto& e : entries)
@@ -64,6 +98,9 @@ void list_params(const ListArgs& args) {
 }  // namespace
 
 int run_list(const ListArgs& args) {
+  if (args.what != "params" && (!args.pattern.empty() || args.changed || !args.machine.empty()))
+    throw InputError("list " + args.what, 0,
+                     "a pattern, --machine and --changed go with `rtsim list params`");
   if (args.what == "scenes") list_scenes();
   if (args.what == "machines") list_machines();
   if (args.what == "params") list_params(args);

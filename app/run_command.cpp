@@ -39,6 +39,7 @@ std::string command_line(const RunArgs& a) {
   for (const auto& c : a.config.config_files) s += " --config " + quoted(c);
   for (const auto& p : a.config.overrides) s += " -p " + quoted(p);
   if (!a.quantum.empty()) s += " --quantum " + quoted(a.quantum);
+  if (a.spp > 0) s += " --spp " + std::to_string(a.spp);
   for (const auto& t : a.traces) s += " --trace " + t;
   if (!a.trace_window.empty()) s += " --trace-window " + quoted(a.trace_window);
   for (const auto& m : a.trace_modules) s += " --trace-modules " + quoted(m);
@@ -95,6 +96,9 @@ int run_run(const RunArgs& args) {
       throw InputError("--quantum " + args.quantum, 0, e.message());
     }
   }
+  // As `render --spp`: the parameter render.spp, which a machine that cannot take several
+  // samples a pixel refuses with its reason.
+  if (args.spp > 0) registry.apply_override("render.spp=" + std::to_string(args.spp));
   platform::RunOptions opts;
   for (const auto& f : args.faults) opts.faults.push_back(parse_fault(f));
   const modules::TraceFilter trace_filter =

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -129,7 +130,9 @@ int run_validate(const ValidateArgs& args) {
   const auto rows = val::evaluate(plan, results);
   const auto passed = static_cast<int>(
       std::count_if(rows.begin(), rows.end(), [](const auto& r) { return r.pass(); }));
-  const bool all_pass = passed == static_cast<int>(rows.size());
+  // Exit 0: every figure expected to pass passed (known open ones fail as documented).
+  const bool all_pass =
+      std::all_of(rows.begin(), rows.end(), [](const auto& r) { return r.as_expected(); });
   int failed_runs = 0;
 
   nlohmann::ordered_json doc;
@@ -143,6 +146,10 @@ int run_validate(const ValidateArgs& args) {
   doc["figures"] = rows.size();
   doc["passed"] = passed;
   doc["failed"] = static_cast<int>(rows.size()) - passed;
+  auto open_failing = nlohmann::ordered_json::array();
+  for (const auto& r : rows)
+    if (!r.pass() && r.as_expected()) open_failing.push_back(r.id);
+  doc["known_open_failing"] = open_failing;
   doc["pass"] = all_pass;
   doc["rows"] = val::rows_to_json(rows);
   auto runs = nlohmann::ordered_json::array();
@@ -168,6 +175,14 @@ int run_validate(const ValidateArgs& args) {
   }
 
   std::cout << "\n" << val::format_table(rows);
+  if (all_pass) {
+    std::cout << "every figure expected to pass passes\n";
+  } else {
+    std::cout << "expected to pass but failed:";
+    for (const auto& r : rows)
+      if (!r.as_expected()) std::cout << " " << r.id;
+    std::cout << "\n";
+  }
   std::cout << "wall time " << val::format_number(wall) << " s\n";
 
   // Run folders go unless asked for; a failed run's folder stays so its log can be read.

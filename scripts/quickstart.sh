@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Set up, build and run rtsim on a Debian 12 machine.
-#   scripts/quickstart.sh run   install what is missing, build (Release), run the default machine
-#                               (Ullner's peripheral) on the default built-in scene
-#   scripts/quickstart.sh test  install what is missing, build (Release), run the test suite
+#   scripts/quickstart.sh run   install what is missing, build the rtsim program (Release), run
+#                               the default machine (Ullner's peripheral) on the default scene
+#   scripts/quickstart.sh test  install what is missing, build everything (Release: the tests and
+#                               benchmarks too), run the test suite
 # Installs only Debian packages (needs root, or sudo). Nothing is downloaded from elsewhere.
 set -euo pipefail
 
@@ -39,7 +40,11 @@ if ((${#missing[@]})); then
 fi
 
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
-cmake --build "$build_dir" -j "$jobs"
+# `run` needs the rtsim program only (it builds the modules it loads); `test` builds everything:
+# the test programs and the benchmarks too.
+targets=()
+if [ "$mode" = run ]; then targets=(--target rtsim); fi
+cmake --build "$build_dir" -j "$jobs" "${targets[@]}"
 
 case "$mode" in
   run)

@@ -187,3 +187,60 @@ TEST(RunCli, TracesOpenAsPerfettoJsonAndVcd) {
   EXPECT_NE(vcd.find("$scope module ray_queue $end\n$var integer 32"), std::string::npos);
   EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
 }
+
+TEST(RunCli, ListParamsFiltersByPatternAndChangedAndSuggestsNames) {
+  // A shell pattern whose '*' also matches dots.
+  auto r = run_rtsim("list params --machine gaudet-pert 'pert.shell.*'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("pert.shell.rays_in_flight"), std::string::npos);
+  EXPECT_EQ(r.output.find("pert.prim."), std::string::npos);
+  EXPECT_EQ(r.output.find("pert_count"), std::string::npos);
+  // --changed: only what differs from the default, with where it was set.
+  r = run_rtsim("list params --machine gaudet-pert --changed -p pert_count=8");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("pert_count  8      -p"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("broadcast."), std::string::npos);
+  r = run_rtsim("list params --machine gaudet-pert --changed");
+  EXPECT_NE(r.output.find("every parameter is at its default"), std::string::npos) << r.output;
+  // Near misses: the machine, the subcommand's word, a pattern nothing matches.
+  r = run_rtsim("list params --machine gaudet");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("did you mean 'gaudet-pert'?"), std::string::npos) << r.output;
+  r = run_rtsim("list param");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("did you mean 'params'?"), std::string::npos) << r.output;
+  r = run_rtsim("list params --machine ullner-peripheral 'peripheral.grid.divison'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("did you mean 'peripheral.grid.divisions'?"), std::string::npos)
+      << r.output;
+}
+
+TEST(RunCli, ConfigExamplesHoldEachMachinesPresetValues) {
+  // configs/examples/MACHINE.toml: a commented copy of the preset's main knobs, so a run with it
+  // is the default run (render.toml: the functional renderer's).
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(RTSIM_SOURCE_DIR) / "configs/examples")) {
+    if (e.path().extension() != ".toml") continue;
+    ++files;
+    const std::string stem = e.path().stem().string();
+    const std::string machine = stem == "render" ? "" : " --machine " + stem;
+    const auto set = run_rtsim("list params" + machine + " --config " + e.path().string());
+    ASSERT_EQ(set.exit_code, 0) << e.path() << "\n" << set.output;
+    EXPECT_NE(set.output.find(e.path().filename().string() + ":"), std::string::npos)
+        << e.path() << " sets nothing";
+    const auto changed =
+        run_rtsim("list params" + machine + " --changed --config " + e.path().string());
+    EXPECT_NE(changed.output.find("every parameter is at its default"), std::string::npos)
+        << e.path() << " changes a preset value:\n"
+        << changed.output;
+  }
+  EXPECT_EQ(files, 8u);  // one a machine, and the functional renderer's
+}
+
+TEST(RunCli, RunSppIsRenderSpp) {
+  const auto dir =
+      run_ok("run-spp", "run --machine ullner-peripheral --width 16 --height 16 --spp 2");
+  const auto stats = read_json(dir / "stats.json");
+  EXPECT_EQ(stats["spp"], 2);
+  EXPECT_EQ(stats["params"]["render.spp"], "2");
+}

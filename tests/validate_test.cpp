@@ -556,8 +556,12 @@ TEST(ValidateCommand, RealQuickValidationPasses) {
   const auto dir = scratch_dir("validate-real");
   const auto r = run_rtsim("validate --quick --jobs 2 --out " + dir.string());
   std::cout << r.output;
-  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "validate itself failed";
+  // Exit 0: every figure passes but the known open ones (which do not count).
+  EXPECT_EQ(r.exit_code, 0) << "a figure expected to pass failed, or validate itself did";
   const auto doc = nlohmann::json::parse(read_file(dir / "validation.json"));
+  EXPECT_EQ(doc["pass"], true);
+  for (const auto& id : doc["known_open_failing"])
+    EXPECT_TRUE(kOpenFigures.count(id.get<std::string>())) << id;
   for (const auto& run : doc["runs"])
     EXPECT_EQ(run["failure"], "") << run["command"].get<std::string>();
   EXPECT_TRUE(fs::exists(dir / "fig2-18.csv"));

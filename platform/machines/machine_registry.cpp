@@ -35,7 +35,11 @@ const Machine& find_machine(const std::string& name) {
   }
   const std::vector<std::string_view> names(owned.begin(), owned.end());
   std::string msg = "unknown machine '" + name + "'";
-  const auto close = closest_names(name, names);
+  auto close = closest_names(name, names);
+  // A part of a name ("gaudet", "pipeline") is a near miss too.
+  if (close.empty() && !name.empty())
+    for (const auto& n : owned)
+      if (n.find(name) != std::string::npos) close.push_back(n);
   if (!close.empty()) {
     msg += "; did you mean ";
     for (std::size_t i = 0; i < close.size(); ++i)
