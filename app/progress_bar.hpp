@@ -14,6 +14,12 @@ class ProgressBar {
   ~ProgressBar();
   /// Redraws at most ten times a second, and always at completion.
   void update(long done, long total);
+  /// What the command does after the counted work (a terminal's bar says it, in place of the
+  /// ETA: "writing outputs"), so a full bar does not sit silent.
+  void phase(const std::string& what);
+  /// Ends the bar's line, so what is printed next starts on a line of its own; draws nothing
+  /// after. The destructor calls it.
+  void finish();
 
   /// Time between two progress lines when stderr is not a terminal.
   static constexpr std::chrono::seconds kLineInterval{10};
@@ -23,6 +29,8 @@ class ProgressBar {
   bool enabled_;
   bool lines_ = false;  ///< plain lines, not a redrawn bar
   bool drawn_ = false;
+  bool in_phase_ = false;  ///< phase() drew last
+  long done_ = 0, total_ = 0;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_;
 };

@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
 #include "app/image_files.hpp"
+#include "app/number_text.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/scene_input.hpp"
@@ -44,6 +45,7 @@ int run_render(const RenderArgs& args) {
   ProgressBar bar(args.quiet ? std::string() : "render");
   if (!args.quiet) opts.progress = [&bar](int done, int total) { bar.update(done, total); };
   const auto result = platform::render_twin(twin, scene, opts);
+  bar.phase("writing outputs");
   if (result.threads < opts.threads)
     std::cerr << "rtsim: warning: the system would start only " << result.threads << " of the "
               << opts.threads << " worker threads asked for; rendered with " << result.threads
@@ -59,11 +61,13 @@ int run_render(const RenderArgs& args) {
     if (!stats) throw std::runtime_error("cannot write stats.json");
   }
   out.commit();
+  bar.finish();
 
   if (!args.quiet) {
     const double rays = static_cast<double>(result.counters.total_rays());
     std::cout << "rtsim render: " << scene.name << " at " << result.width << "x" << result.height
-              << ", " << rays / 1e6 << " M rays in " << result.wall_time_s << " s\n"
+              << ", " << format_significant(rays / 1e6) << " M rays in "
+              << format_seconds(result.wall_time_s) << "\n"
               << "  image  " << (out.dir() / "image.png").string() << "  "
               << (out.dir() / "image.exr").string() << "\n"
               << "  stats  " << (out.dir() / "stats.json").string() << "\n";

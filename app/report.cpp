@@ -307,28 +307,6 @@ void HtmlReport::write(const fs::path& path) const {
   if (!f) throw std::runtime_error("cannot write " + path.string());
 }
 
-// ---- Numbers as the pages show them ----------------------------------------------------------
-
-std::string format_number(double v, int digits) {
-  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  char buf[64];
-  if (v == std::round(v) && std::abs(v) < 1e15)
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-  else
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
-
-std::string format_seconds(double s) {
-  const double a = std::abs(s);
-  if (!std::isfinite(s)) return format_number(s);
-  if (a == 0.0) return "0 s";
-  if (a >= 1.0) return format_number(s, 5) + " s";
-  if (a >= 1e-3) return format_number(s * 1e3, 4) + " ms";
-  if (a >= 1e-6) return format_number(s * 1e6, 4) + " µs";
-  return format_number(s * 1e9, 4) + " ns";
-}
-
 // ---- The run report --------------------------------------------------------------------------
 
 namespace {

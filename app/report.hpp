@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/number_text.hpp"
 #include "platform/params/registry.hpp"
 
 namespace rtsim::app {
@@ -77,11 +78,6 @@ class HtmlReport {
   std::string body_;
   int images_ = 0;
 };
-
-/// A number as the pages show it: integers whole, others to `digits` significant digits.
-std::string format_number(double v, int digits = 4);
-/// Seconds with a unit that reads well: "346 ms", "14.3 µs".
-std::string format_seconds(double s);
 
 /// Standard base64 (RFC 4648) of `bytes`.
 std::string base64(const std::string& bytes);

@@ -13,6 +13,7 @@
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/report.hpp"
+#include "app/run_summary.hpp"
 #include "app/sample_pilot.hpp"
 #include "app/scene_input.hpp"
 #include "app/stats_json.hpp"
@@ -147,6 +148,7 @@ int run_run(const RunArgs& args) {
   ProgressBar bar(args.quiet ? std::string() : "run " + machine.name());
   if (!args.quiet) opts.progress = [&bar](long done, long total) { bar.update(done, total); };
   platform::RunResult result = machine.run(scene, twin, registry, opts);
+  bar.phase(args.overhead ? "functional render (--overhead), writing outputs" : "writing outputs");
   // The pilot is part of what the run cost.
   if (plan) result.image.wall_time_s += plan->pilot_wall_s;
 
@@ -199,69 +201,16 @@ int run_run(const RunArgs& args) {
   }
   out.commit();
 
+  bar.finish();
   if (!args.quiet) {
-    std::cout << "rtsim run: " << machine.name() << " on " << scene.name << " at "
-              << result.image.width << "x" << result.image.height << ": frame time "
-              << result.simulated_time_s << " s simulated, " << result.image.wall_time_s
-              << " s wall\n"
-              << "  busy  ";
-    // Every busy module, or on a machine of many (an array of processors) the busiest.
-    std::vector<std::pair<std::string, double>> busy;
-    for (const auto& [name, m] : stats["modules"].items())
-      if (m.contains("utilization") && m["busy_s"].get<double>() > 0)
-        busy.emplace_back(name, m["utilization"].get<double>());
-    constexpr std::size_t kMostBusy = 8;
-    const std::size_t more = busy.size() > kMostBusy ? busy.size() - kMostBusy : 0;
-    if (more > 0) {
-      std::stable_sort(busy.begin(), busy.end(),
-                       [](const auto& a, const auto& b) { return a.second > b.second; });
-      busy.resize(kMostBusy);
-    }
-    for (const auto& [name, u] : busy)
-      std::cout << " " << name << " " << std::fixed << std::setprecision(1) << 100.0 * u << "%";
-    if (more > 0) std::cout << " (busiest " << kMostBusy << "; " << more << " more in stats.json)";
-    std::cout.unsetf(std::ios::fixed);
-    std::cout << std::setprecision(6) << "\n";
-    // A machine that follows no ray from start to answer (pxpl5-raytrace: a caster traces a
-    // region in one go) records none.
-    if (stats.contains("ray_latency_s") && stats["ray_latency_s"].value("count", 0.0) > 0)
-      std::cout << "  ray latency  mean " << stats["ray_latency_s"]["mean"].get<double>()
-                << " s, p50 " << stats["ray_latency_s"]["p50"].get<double>() << " s, p99 "
-                << stats["ray_latency_s"]["p99"].get<double>() << " s\n";
-    if (plan)
-      std::cout << "  sample  K = " << plan->every
-                << (plan->every >= 2 ? "" : " (the whole frame in detail)") << " for +-"
-                << std::setprecision(3) << 100.0 * sample_error << std::setprecision(6)
-                << "%, chosen by a pilot at K = " << plan->json["pilot_every"].get<int>() << " ("
-                << plan->pilot_wall_s << " s)\n";
-    if (stats.contains("sample") && stats["sample"].contains("ci99_7_s")) {
-      const auto& sm = stats["sample"];
-      std::cout << "  sample  " << sm["detailed_windows"].get<int>() << " of "
-                << sm["windows"].get<int>() << " windows of "
-                << sm.value("window_rows", sm.value("window_units", 0)) << " "
-                << sm.value("unit", std::string("rows")) << " in detail ("
-                << sm["detailed_frame_s"].get<double>() << " s simulated): frame time "
-                << sm["estimate_s"].get<double>() << " s +- " << std::setprecision(2)
-                << 100.0 * sm["half_width_relative"].get<double>() << std::setprecision(6)
-                << "% (99.7% confidence)\n";
-    }
-    if (stats.contains("latency_probe")) {
-      const auto& p = stats["latency_probe"];
-      std::cout << "  per ray by stage ";
-      for (const auto& [name, st] : p["stages"].items())
-        std::cout << " " << name << " " << st["total_s"].get<double>() << " s ("
-                  << std::setprecision(3) << 100.0 * st["share"].get<double>() << "%)"
-                  << std::setprecision(6);
-      std::cout << ", unattributed " << p["unattributed_s"].get<double>() << " s\n";
-    }
-    std::cout << "  image  " << (out.dir() / "image.png").string() << "  "
-              << (out.dir() / "image.exr").string() << "\n"
-              << "  stats  " << (out.dir() / "stats.json").string() << "\n";
-    if (!opts.vcd_path.empty())
-      std::cout << "  trace  " << (out.dir() / "trace.vcd").string() << "\n";
+    std::vector<std::pair<std::string, std::string>> outputs = {
+        {"image", (out.dir() / "image.png").string() + "  " + (out.dir() / "image.exr").string()},
+        {"stats", (out.dir() / "stats.json").string()}};
+    if (!opts.vcd_path.empty()) outputs.emplace_back("trace", (out.dir() / "trace.vcd").string());
     if (!opts.perfetto_path.empty())
-      std::cout << "  trace  " << (out.dir() / "trace.json").string() << "\n";
-    if (args.report) std::cout << "  report " << (out.dir() / "report.html").string() << "\n";
+      outputs.emplace_back("trace", (out.dir() / "trace.json").string());
+    if (args.report) outputs.emplace_back("report", (out.dir() / "report.html").string());
+    std::cout << format_run_summary(stats, outputs);
   }
   return kExitOk;
 }

@@ -1,0 +1,57 @@
+#include "app/number_text.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rtsim::app {
+
+std::string format_number(double v, int digits) {
+  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+  char buf[64];
+  if (v == std::round(v) && std::abs(v) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string format_significant(double v, int digits) {
+  if (!std::isfinite(v)) return format_number(v);
+  if (v == 0.0) return "0";
+  // Digits before the point, after rounding to `digits` significant ones (999.96 -> "1000").
+  const int before = static_cast<int>(std::floor(std::log10(std::abs(v)))) + 1;
+  int decimals = std::max(0, digits - before);
+  const double rounded = std::round(v * std::pow(10.0, decimals)) / std::pow(10.0, decimals);
+  if (std::abs(rounded) >= std::pow(10.0, before)) decimals = std::max(0, decimals - 1);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string format_seconds(double s) {
+  if (!std::isfinite(s)) return format_number(s);
+  const double a = std::abs(s);
+  if (a < 1e-12) return "0 s";
+  struct Unit {
+    double seconds;
+    const char* name;
+  };
+  // From the largest down: the first unit the value reaches one of.
+  static constexpr Unit kUnits[] = {{3600.0, "h"}, {60.0, "min"}, {1.0, "s"},
+                                    {1e-3, "ms"},  {1e-6, "µs"},  {1e-9, "ns"}};
+  for (const Unit& u : kUnits) {
+    // Judged as rounded for showing: 0.99996 ms is "1.000 ms", not "1000 µs".
+    if (std::stod(format_significant(a / u.seconds)) >= 1.0 || u.seconds == 1e-9)
+      return format_significant(s / u.seconds) + " " + u.name;
+  }
+  return format_number(s) + " s";
+}
+
+std::string format_percent(double fraction) {
+  if (!std::isfinite(fraction)) return format_number(fraction);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,18 @@
+#pragma once
+// Numbers as people read them, on the console and in the reports: a few significant digits, no
+// exponent, times in the engineering unit that suits them ("55.29 µs", "226.5 ms", "36.76 h").
+#include <string>
+
+namespace rtsim::app {
+
+/// Integers whole; others to `digits` significant digits (%g: an exponent only far from 1).
+std::string format_number(double v, int digits = 4);
+/// `v` to `digits` significant digits in fixed notation: "55.29", "0.1234", "12000".
+std::string format_significant(double v, int digits = 4);
+/// Seconds in ns, µs, ms, s, min or h, 4 significant digits: "55.29 µs", "2.517 h". Below a
+/// picosecond (SystemC's resolution: rounding left-overs such as -2.7e-21) it is "0 s".
+std::string format_seconds(double s);
+/// A fraction as a percentage with one decimal: 0.9994 -> "99.9%".
+std::string format_percent(double fraction);
+
+}  // namespace rtsim::app

@@ -1,0 +1,144 @@
+#include "app/run_summary.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "app/number_text.hpp"
+
+namespace rtsim::app {
+namespace {
+
+using json = nlohmann::json;
+
+double number(const json& j, const char* key) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
+}
+
+struct Busy {
+  std::string name;
+  double utilization;
+};
+
+/// Modules that were busy, busiest first (ties by name).
+std::vector<Busy> busy_modules(const json& modules) {
+  std::vector<Busy> busy;
+  for (const auto& [name, m] : modules.items())
+    if (m.contains("utilization") && number(m, "busy_s") > 0)
+      busy.push_back({name, m["utilization"].get<double>()});
+  std::stable_sort(busy.begin(), busy.end(),
+                   [](const Busy& a, const Busy& b) { return a.utilization > b.utilization; });
+  return busy;
+}
+
+/// The module (not `bottleneck`) that spent the largest share of the frame blocked on output or
+/// waiting for data it asked for: who waits for the bottleneck. Empty if none waited.
+std::pair<std::string, double> longest_waiter(const json& modules, const std::string& bottleneck,
+                                              double frame_s) {
+  std::pair<std::string, double> best{"", 0.0};
+  if (frame_s <= 0) return best;
+  for (const auto& [name, m] : modules.items()) {
+    if (name == bottleneck) continue;
+    const double waited = (number(m, "blocked_s") + number(m, "waiting_for_data_s")) / frame_s;
+    if (waited > best.second) best = {name, waited};
+  }
+  return best;
+}
+
+void print_busy(std::ostream& out, const json& stats) {
+  if (!stats.contains("modules")) return;
+  const auto busy = busy_modules(stats["modules"]);
+  if (busy.empty()) return;
+  out << "  busy        ";
+  for (std::size_t i = 0; i < busy.size() && i < kBusiestShown; ++i)
+    out << (i ? "  " : "") << busy[i].name << " " << format_percent(busy[i].utilization);
+  if (busy.size() > kBusiestShown)
+    out << "  (" << busy.size() - kBusiestShown << " more in stats.json)";
+  out << "\n";
+  const Busy& top = busy.front();
+  if (top.utilization < kSaturated) {
+    out << "  bottleneck  none saturated: the busiest, " << top.name << ", is "
+        << format_percent(top.utilization) << " busy\n";
+    return;
+  }
+  out << "  bottleneck  " << top.name << ", " << format_percent(top.utilization) << " busy";
+  const auto [waiter, share] =
+      longest_waiter(stats["modules"], top.name, number(stats, "simulated_time_s"));
+  if (!waiter.empty() && share >= 0.01)
+    out << ": " << waiter << " waits " << format_percent(share) << " of the frame";
+  if (busy.size() > 1)
+    out << " (next busiest " << busy[1].name << " " << format_percent(busy[1].utilization) << ")";
+  out << "\n";
+}
+
+void print_sample(std::ostream& out, const json& stats) {
+  if (!stats.contains("sample")) return;
+  const auto& sm = stats["sample"];
+  if (sm.contains("plan")) {
+    const auto& plan = sm["plan"];
+    const int every = plan.value("every", 0);
+    out << "  sample      K = " << every << (every >= 2 ? "" : " (the whole frame in detail)")
+        << " for +-" << format_significant(100.0 * plan.value("target_error", 0.0), 3)
+        << "%, chosen by a pilot at K = " << plan.value("pilot_every", 0) << " ("
+        << format_seconds(plan.value("pilot_wall_time_s", 0.0)) << " wall)\n";
+  }
+  if (!sm.contains("ci99_7_s")) return;
+  out << "  sample      " << sm.value("detailed_windows", 0) << " of " << sm.value("windows", 0)
+      << " windows of " << sm.value("window_rows", sm.value("window_units", 0)) << " "
+      << sm.value("unit", std::string("rows")) << " in detail ("
+      << format_seconds(number(sm, "detailed_frame_s")) << " simulated): frame time "
+      << format_seconds(number(sm, "estimate_s")) << " +- "
+      << format_significant(100.0 * number(sm, "half_width_relative"), 2)
+      << "% (99.7% confidence)\n";
+}
+
+void print_latency(std::ostream& out, const json& stats) {
+  // A machine that follows no ray from start to answer (pxpl5-raytrace: a caster traces a
+  // region in one go) records none.
+  if (stats.contains("ray_latency_s") && number(stats["ray_latency_s"], "count") > 0) {
+    const auto& l = stats["ray_latency_s"];
+    out << "  ray latency mean " << format_seconds(number(l, "mean")) << ", p50 "
+        << format_seconds(number(l, "p50")) << ", p99 " << format_seconds(number(l, "p99")) << "\n";
+  }
+  if (!stats.contains("latency_probe")) return;
+  const auto& p = stats["latency_probe"];
+  // The stages where a ray spends most of its time first.
+  std::vector<std::pair<std::string, const json*>> stages;
+  for (const auto& [name, st] : p["stages"].items()) stages.emplace_back(name, &st);
+  std::stable_sort(stages.begin(), stages.end(), [](const auto& a, const auto& b) {
+    return number(*a.second, "share") > number(*b.second, "share");
+  });
+  out << "  per ray     ";
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    out << (i ? ", " : "") << stages[i].first << " "
+        << format_seconds(number(*stages[i].second, "total_s")) << " ("
+        << format_percent(number(*stages[i].second, "share")) << ")";
+  out << "; unattributed " << format_seconds(number(p, "unattributed_s")) << "\n";
+}
+
+}  // namespace
+
+std::string format_run_summary(const json& stats,
+                               const std::vector<std::pair<std::string, std::string>>& outputs) {
+  std::ostringstream out;
+  out << "rtsim run: " << stats.value("machine", std::string()) << " on "
+      << stats.value("scene", std::string()) << " at " << stats.value("width", 0) << "x"
+      << stats.value("height", 0) << ": frame time "
+      << format_seconds(number(stats, "simulated_time_s")) << " simulated, "
+      << format_seconds(number(stats, "wall_time_s")) << " wall\n";
+  print_busy(out, stats);
+  print_latency(out, stats);
+  print_sample(out, stats);
+  if (stats.contains("overhead_ratio"))
+    out << "  overhead    " << format_significant(number(stats, "overhead_ratio"), 3)
+        << "x the functional render of the same frame ("
+        << format_seconds(number(stats, "functional_wall_time_s")) << " wall)\n";
+  for (const auto& [what, where] : outputs) {
+    std::string label = what;
+    label.resize(std::max<std::size_t>(label.size() + 1, 12), ' ');
+    out << "  " << label << where << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace rtsim::app

@@ -1,0 +1,22 @@
+#pragma once
+// What `rtsim run` prints when it has finished: the frame time, the modules by utilisation with
+// the bottleneck named, the ray latency, the sample estimate, the overhead over the functional
+// render, and where the outputs went. Numbers in engineering units (number_text.hpp).
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rtsim::app {
+
+/// The summary of a run from its stats.json document; `outputs` are the lines naming the files
+/// written ({"image", "out/run/image.png  out/run/image.exr"}, ...).
+std::string format_run_summary(const nlohmann::json& stats,
+                               const std::vector<std::pair<std::string, std::string>>& outputs);
+
+/// Modules busier than this are saturated: the bottleneck line names the busiest.
+inline constexpr double kSaturated = 0.95;
+/// How many modules the busy line shows, busiest first.
+inline constexpr std::size_t kBusiestShown = 8;
+
+}  // namespace rtsim::app

@@ -1,0 +1,92 @@
+// What `rtsim run` prints (app/run_summary.hpp) and the number formats it uses
+// (app/number_text.hpp): engineering units, modules by utilisation, the bottleneck, the overhead.
+#include "app/run_summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "app/number_text.hpp"
+
+using rtsim::app::format_percent;
+using rtsim::app::format_run_summary;
+using rtsim::app::format_seconds;
+using rtsim::app::format_significant;
+
+TEST(NumberText, SecondsInEngineeringUnitsWithFourSignificantDigits) {
+  EXPECT_EQ(format_seconds(5.52977e-05), "55.30 µs");
+  EXPECT_EQ(format_seconds(0.22651), "226.5 ms");
+  EXPECT_EQ(format_seconds(1.5), "1.500 s");
+  EXPECT_EQ(format_seconds(9062.35), "2.517 h");  // the VAX's frame, not "9062.35 s"
+  EXPECT_EQ(format_seconds(132340.0), "36.76 h");
+  EXPECT_EQ(format_seconds(90.0), "1.500 min");
+  EXPECT_EQ(format_seconds(4.8e-9), "4.800 ns");
+  EXPECT_EQ(format_seconds(0.99996e-3), "1.000 ms");  // rounded before the unit is chosen
+  EXPECT_EQ(format_seconds(-2.67696e-21), "0 s");     // below SystemC's picosecond: rounding
+  EXPECT_EQ(format_seconds(0.0), "0 s");
+  EXPECT_EQ(format_significant(999.96), "1000");
+  EXPECT_EQ(format_significant(0.00012346), "0.0001235");
+  EXPECT_EQ(format_percent(0.99994), "100.0%");
+  EXPECT_EQ(format_percent(0.138), "13.8%");
+}
+
+namespace {
+
+nlohmann::json stats_of_a_run() {
+  return nlohmann::json::parse(R"({
+    "machine": "ullner-peripheral", "scene": "builtin:ullner-cubes", "width": 64, "height": 64,
+    "simulated_time_s": 1.388, "wall_time_s": 0.1361,
+    "functional_wall_time_s": 0.004538, "overhead_ratio": 29.99,
+    "modules": {
+      "host": {"busy_s": 0.0167, "utilization": 0.012, "waiting_for_data_s": 1.3714,
+               "blocked_s": 0.0},
+      "host.ray_link": {"busy_s": 0.019, "utilization": 0.014},
+      "peripheral.pipeline": {"busy_s": 1.388, "utilization": 0.99991},
+      "peripheral.lighting": {"busy_s": 0.0097, "utilization": 0.007},
+      "queue.rays": {"mean_occupancy": 3.2}
+    },
+    "ray_latency_s": {"count": 4096, "mean": 5.52977e-05, "p50": 5.52e-05, "p99": 5.54e-05},
+    "latency_probe": {"unattributed_s": -2.67696e-21, "stages": {
+      "host": {"total_s": 1.2e-6, "share": 0.02},
+      "peripheral.pipeline": {"total_s": 5.1e-5, "share": 0.93}}}
+  })");
+}
+
+}  // namespace
+
+TEST(RunSummary, ModulesByUtilisationBottleneckOverheadAndNoExponents) {
+  const std::string text =
+      format_run_summary(stats_of_a_run(), {{"image", "out/run/image.png"}, {"stats", "s.json"}});
+  std::cout << text;
+  EXPECT_NE(text.find("frame time 1.388 s simulated, 136.1 ms wall"), std::string::npos);
+  // Busiest first, not by name.
+  const auto pipeline = text.find("peripheral.pipeline 100.0%");
+  const auto ray_link = text.find("host.ray_link 1.4%");
+  const auto host = text.find("host 1.2%");
+  ASSERT_NE(pipeline, std::string::npos);
+  EXPECT_LT(pipeline, ray_link);
+  EXPECT_LT(ray_link, host);
+  // The bottleneck, and who waits for it.
+  EXPECT_NE(text.find("bottleneck  peripheral.pipeline, 100.0% busy: host waits 98.8% of the "
+                      "frame"),
+            std::string::npos);
+  EXPECT_NE(text.find("ray latency mean 55.30 µs, p50 55.20 µs, p99 55.40 µs"), std::string::npos);
+  // Stages by their share; rounding noise is 0.
+  EXPECT_LT(text.find("peripheral.pipeline 51.00 µs (93.0%)"), text.find("host 1.200 µs (2.0%)"));
+  EXPECT_NE(text.find("unattributed 0 s"), std::string::npos);
+  EXPECT_NE(text.find("overhead    30.0x the functional render of the same frame (4.538 ms wall)"),
+            std::string::npos);
+  EXPECT_NE(text.find("  image       out/run/image.png\n"), std::string::npos);
+  EXPECT_EQ(text.find("e-"), std::string::npos) << "a number in e-notation";
+  EXPECT_EQ(text.find("e+"), std::string::npos) << "a number in e-notation";
+}
+
+TEST(RunSummary, NoSaturatedModuleIsSaidSo) {
+  auto stats = stats_of_a_run();
+  stats["modules"]["peripheral.pipeline"]["utilization"] = 0.838;
+  const std::string text = format_run_summary(stats, {});
+  EXPECT_NE(text.find("bottleneck  none saturated: the busiest, peripheral.pipeline, is 83.8% "
+                      "busy"),
+            std::string::npos)
+      << text;
+}
