@@ -302,6 +302,22 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   add_config_options(l, list.config);
 
+  DiffArgs diff;
+  auto* df = app.add_subcommand(
+      "diff",
+      "Compare two runs: the parameters that differ and every statistic that changed, with its\n"
+      "relative change, largest first (wall-clock numbers apart). Exit 0 whether they differ or "
+      "not.");
+  df->add_option("A", diff.a, "A run folder (rtsim run --out) or its stats.json")->required();
+  df->add_option("B", diff.b, "The other run")->required();
+  df->add_flag("--all", diff.all,
+               "Every changed statistic (default: the " + std::to_string(DiffArgs::kStatsShown) +
+                   " largest changes)");
+  df->add_option("--tolerance", diff.tolerance,
+                 "Relative difference below which two numbers count as the same (e.g. 1e-9)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+
   DescribeArgs da;
   auto* d = app.add_subcommand(
       "describe",
@@ -324,6 +340,7 @@ int run_cli(int argc, char** argv) {
   try {
     if (r->parsed()) return run_render(render);
     if (l->parsed()) return run_list(list);
+    if (df->parsed()) return run_diff(diff);
     if (d->parsed()) return run_describe(da);
     if (run->parsed()) return run_run(runa);
     if (validate->parsed()) return run_validate(va);

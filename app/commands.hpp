@@ -48,6 +48,13 @@ struct RunArgs {
   ConfigArgs config;
 };
 
+struct DiffArgs {
+  std::string a, b;        ///< run folders or stats.json files
+  bool all = false;        ///< every changed statistic, not the first kStatsShown
+  double tolerance = 0.0;  ///< relative: numbers closer than this are the same
+  static constexpr std::size_t kStatsShown = 40;
+};
+
 struct ListArgs {
   std::string what;
   std::string machine;
@@ -94,6 +101,7 @@ inline bool wants_aov(const std::vector<std::string>& aovs, const std::string& n
 int run_render(const RenderArgs& args);
 int run_validate(const ValidateArgs& args);
 int run_list(const ListArgs& args);
+int run_diff(const DiffArgs& args);
 int run_describe(const DescribeArgs& args);
 int run_run(const RunArgs& args);
 int run_sweep(const SweepArgs& args);

@@ -27,7 +27,6 @@ constexpr std::array<std::string_view, 13> kHeadline = {
     "ray_latency_s.mean", "ray_latency_s.p50",  "ray_latency_s.p99",
     "ray_latency_s.max"};
 
-// Scalar leaves by dotted path; arrays (histograms, messages, mean_rgb) are left out.
 void flatten(const Json& j, const std::string& prefix,
              std::vector<std::pair<std::string, Json>>& out) {
   for (const auto& [key, value] : j.items()) {
@@ -41,6 +40,16 @@ void flatten(const Json& j, const std::string& prefix,
     }
   }
 }
+
+}  // namespace
+
+std::vector<std::pair<std::string, Json>> stats_leaves(const Json& stats) {
+  std::vector<std::pair<std::string, Json>> out;
+  flatten(stats, "", out);
+  return out;
+}
+
+namespace {
 
 std::string csv_cell(const Json& v) {
   if (v.is_null()) return "";

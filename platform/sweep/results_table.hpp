@@ -39,6 +39,12 @@ std::string to_csv(const ResultsTable& table);
 /// One JSON object per line, keys in column order.
 std::string to_jsonl(const ResultsTable& table);
 
+/// A stats.json document's scalar leaves by dotted path ("modules.host.utilization"), in
+/// document order: its stats columns. Arrays (histograms, windows, messages) and the keys that
+/// are not stats (tool, version, command, machine, scene, width, height, params) are left out.
+std::vector<std::pair<std::string, nlohmann::ordered_json>> stats_leaves(
+    const nlohmann::ordered_json& stats);
+
 /// Columns that hold wall-clock measurements: the only ones that differ between two runs of the
 /// same sweep (point_wall_time_s, wall_time_s, rays_per_second, functional_wall_time_s,
 /// overhead_ratio).

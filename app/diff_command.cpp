@@ -1,0 +1,50 @@
+// `rtsim diff A B`: two runs compared (app/run_diff.hpp).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "app/cli.hpp"
+#include "app/commands.hpp"
+#include "app/run_diff.hpp"
+#include "common/input_error.hpp"
+
+namespace rtsim::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A run folder's stats.json, or a stats.json file itself.
+nlohmann::ordered_json read_stats(const std::string& given) {
+  fs::path path = given;
+  if (fs::is_directory(path)) path /= "stats.json";
+  if (!fs::is_regular_file(path))
+    throw InputError(given, 0,
+                     fs::exists(given) ? "not a run folder: it has no stats.json"
+                                       : "no such file or folder (give a run's --out folder or "
+                                         "its stats.json)");
+  std::ifstream f(path);
+  try {
+    return nlohmann::ordered_json::parse(f);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path.string(), 0, std::string("not a stats.json: ") + e.what());
+  }
+}
+
+std::string label(const std::string& given, const nlohmann::ordered_json& s) {
+  return given + " (" + s.value("machine", std::string("?")) + " on " +
+         s.value("scene", std::string("?")) + ", " + std::to_string(s.value("width", 0)) + "x" +
+         std::to_string(s.value("height", 0)) + ")";
+}
+
+}  // namespace
+
+int run_diff(const DiffArgs& args) {
+  const auto a = read_stats(args.a);
+  const auto b = read_stats(args.b);
+  const RunDiff d = diff_runs(a, b, args.tolerance);
+  std::cout << format_run_diff(d, label(args.a, a), label(args.b, b),
+                               args.all ? 0 : DiffArgs::kStatsShown);
+  return kExitOk;
+}
+
+}  // namespace rtsim::app
