@@ -40,7 +40,14 @@ sigset_t interrupt_signals() {
   return set;
 }
 
-[[noreturn]] void end_by(int sig) {
+std::function<void(int)>& handler() {
+  static std::function<void(int)> h;
+  return h;
+}
+
+}  // namespace
+
+[[noreturn]] void end_by_signal(int sig) {
   // The default action of these signals ends the process; unblocked here, raise() delivers it.
   ::signal(sig, SIG_DFL);
   sigset_t set;
@@ -51,10 +58,23 @@ sigset_t interrupt_signals() {
   std::_Exit(128 + sig);
 }
 
+namespace {
+
 void wait_for_interrupt() {
   const sigset_t set = interrupt_signals();
   int sig = 0;
   while (sigwait(&set, &sig) != 0) {
+  }
+  std::function<void(int)> h;
+  {
+    std::lock_guard lock(registry_mutex());
+    h = handler();
+  }
+  if (h) {
+    h(sig);
+    // The command ends itself; a second signal ends it now.
+    while (sigwait(&set, &sig) != 0) {
+    }
   }
   std::size_t removed = 0;
   {
@@ -68,15 +88,21 @@ void wait_for_interrupt() {
     const std::string message = std::string("\nrtsim: interrupted (") + sigabbrev_np(sig) + ")" +
                                 (removed > 0 ? "; removed the run's partial outputs\n" : "\n");
     (void)!::write(STDERR_FILENO, message.data(), message.size());
-    end_by(sig);
+    end_by_signal(sig);
   }
 }
 
 }  // namespace
 
+void set_interrupt_handler(std::function<void(int)> h) {
+  std::lock_guard lock(registry_mutex());
+  handler() = std::move(h);
+}
+
 void restart_interrupt_cleanup_after_fork() {
   // The parent's threads do not exist here: this is the only thread.
   registry().clear();
+  handler() = nullptr;
   std::thread(wait_for_interrupt).detach();
 }
 

@@ -7,6 +7,7 @@
 // signal, so a shell or a sweep sees how it ended.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 
 namespace rtsim::app {
 
@@ -19,6 +20,16 @@ void install_interrupt_cleanup();
 /// forgets the parent's registered paths and starts the child's own waiting thread (fork copies
 /// only the forking thread; the signals stay blocked).
 void restart_interrupt_cleanup_after_fork();
+
+/// A command that must finish its own way when interrupted (`rtsim sweep`: stop its runs, write
+/// the partial table, say how to resume) sets a handler: the first signal calls it, from the
+/// waiting thread, instead of the cleanup; the command then ends itself with end_by_signal. A
+/// second signal does the cleanup and ends the process at once. An empty handler restores the
+/// default.
+void set_interrupt_handler(std::function<void(int sig)> handler);
+
+/// Ends the process by `sig` (its default action), so a shell or a parent sees how it ended.
+[[noreturn]] void end_by_signal(int sig);
 
 /// `path` is removed (with everything in it) if the process is interrupted before forget_on_
 /// interrupt(id). Paths are removed newest first.

@@ -54,10 +54,10 @@ void check_output_folder(const fs::path& dir) {
 }
 
 bool is_rtsim_output_name(std::string_view name) {
-  static constexpr std::array<std::string_view, 13> kNames = {
-      "image.png", "image.exr",  "id.exr",       "depth.exr",   "stats.json",
-      "trace.vcd", "trace.json", "report.html",  "results.csv", "results.jsonl",
-      "points",    "run.log",    ".report-plots"};
+  static constexpr std::array<std::string_view, 14> kNames = {
+      "image.png", "image.exr",  "id.exr",        "depth.exr",        "stats.json",
+      "trace.vcd", "trace.json", "report.html",   "results.csv",      "results.jsonl",
+      "points",    "run.log",    ".report-plots", ".rtsim-sweep.lock"};
   if (std::find(kNames.begin(), kNames.end(), name) != kNames.end()) return true;
   // A staging folder (this run's or a killed one's), or a sweep table being written.
   return name.starts_with(".rtsim-partial-") || name.find(".partial-") != std::string_view::npos;
@@ -117,6 +117,13 @@ void OutputSet::commit() {
   // From the first rename on, the files in DIR are the run's answer: an interrupt no longer
   // removes DIR (the staging folder, now emptying, still goes).
   if (created_dir_) forget_on_interrupt(interrupt_ids_.front());
+  // An earlier run's outputs that this one does not write would read as this run's (a trace
+  // from a run with --trace beside the stats of one without): they go.
+  for (const std::string_view old : superseded_) {
+    if (std::find(names_.begin(), names_.end(), old) != names_.end()) continue;
+    std::error_code ec;
+    if (fs::is_regular_file(dir_ / old, ec)) fs::remove(dir_ / old, ec);
+  }
   for (const auto& name : names_) {
     std::error_code ec;
     fs::rename(staging_ / name, dir_ / name, ec);

@@ -6,6 +6,7 @@
 // does Ctrl-C or SIGTERM (app/interrupt_cleanup.hpp).
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,16 @@ class OutputSet {
   /// Where a file staged as `name` is before commit() (for readers of staged files, such as
   /// the report); also a place for scratch files that must not be committed.
   std::filesystem::path staged_path(const std::string& name) const { return staging_ / name; }
+  /// The files of a single frame's outputs (image, AOVs, stats, traces, report): what a run
+  /// or a render writes, any of which an earlier one in the same folder may have written.
+  static constexpr std::string_view kFrameOutputs[] = {"image.png",  "image.exr",  "id.exr",
+                                                       "depth.exr",  "stats.json", "trace.vcd",
+                                                       "trace.json", "report.html"};
+  /// On commit(), the files of `names` that this set did not stage are removed from DIR: they
+  /// are an earlier run's, and would otherwise sit beside this run's outputs as if its own.
+  void supersede(std::span<const std::string_view> names) {
+    superseded_.assign(names.begin(), names.end());
+  }
   /// Move every staged file into place. Throws std::runtime_error on failure.
   void commit();
   const std::filesystem::path& dir() const { return dir_; }
@@ -40,6 +51,7 @@ class OutputSet {
   std::filesystem::path dir_;
   std::filesystem::path staging_;
   std::vector<std::string> names_;
+  std::vector<std::string_view> superseded_;
   bool created_dir_ = false;
   bool committed_ = false;
   std::vector<std::uint64_t> interrupt_ids_;  ///< app/interrupt_cleanup.hpp registrations

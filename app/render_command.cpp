@@ -34,6 +34,7 @@ int run_render(const RenderArgs& args) {
 
   // The output folder is checked (and made) before the render: a bad --out costs no work.
   OutputSet out(args.out_dir);
+  out.supersede(OutputSet::kFrameOutputs);
   functional::RenderOptions opts;
   opts.width = args.width;
   opts.height = args.height;

@@ -112,6 +112,7 @@ int run_run(const RunArgs& args) {
   platform::FunctionalTwin twin = machine.make_twin(scene, registry);
 
   OutputSet out(args.out_dir);
+  out.supersede(OutputSet::kFrameOutputs);
   opts.width = args.width;
   opts.height = args.height;
   opts.aov_id = wants_aov(args.aovs, "id");

@@ -1,9 +1,16 @@
 // `rtsim sweep SWEEP.toml`: every point of a sweep file is one `rtsim run` process, run on the
 // local cores (the run queue) or over MPI ranks (--mpi); one results table at the end.
 // docs/sweeps.md describes the file, the outputs and resuming.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <stdexcept>
@@ -13,6 +20,7 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/image_files.hpp"
+#include "app/interrupt_cleanup.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/sweep_mpi.hpp"
@@ -86,6 +94,32 @@ std::string command_line(const SweepArgs& a, const fs::path& out) {
   return s + " --report --out " + out.string();
 }
 
+/// The lock a sweep holds on its --out folder while it runs (flock: released when the process
+/// ends, however it ends). A second sweep into the same folder is refused.
+constexpr const char* kLockName = ".rtsim-sweep.lock";
+
+void lock_output_folder(const fs::path& out) {
+  const fs::path path = out / kLockName;
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError("--out " + out.string(), 0, "cannot create " + path.string());
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    std::string holder;
+    std::getline(std::ifstream(path), holder);
+    ::close(fd);
+    throw InputError("--out " + out.string(), 0,
+                     "another rtsim sweep is writing into this folder" +
+                         (holder.empty() ? std::string() : " (" + holder + ")") +
+                         "; wait for it to end, or give another --out");
+  }
+  // Held until the process ends: the descriptor stays open.
+  const std::string who = "pid " + std::to_string(::getpid());
+  (void)!::ftruncate(fd, 0);
+  (void)!::write(fd, who.data(), who.size());
+}
+
+/// The signal that interrupted the sweep (0: none).
+std::atomic<int> interrupted_by{0};
+
 int list_points(const Plan& plan, const fs::path& out) {
   for (const auto& p : plan.points) {
     const bool done = sweep::find_done(out / "points" / p.key, p).has_value();
@@ -108,6 +142,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
                        "cannot create " + points_dir.string() + ": " +
                            (ec ? ec.message() : std::string("not a folder")));
   }
+  lock_output_folder(out);
 
   std::vector<sweep::PointOutcome> outcomes(n);
   std::vector<validation::RunRequest> requests;
@@ -140,6 +175,16 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     std::cout << "\n  out  " << out.string() << "\n" << std::flush;
   }
 
+  // Ctrl-C, SIGTERM, SIGHUP: the running points are stopped (each removes its partial
+  // outputs), no new one starts, and the table of what is done is written below.
+  if (!session)
+    set_interrupt_handler([](int sig) {
+      interrupted_by.store(sig);
+      const std::string message = std::string("\nrtsim sweep: interrupted (") + sigabbrev_np(sig) +
+                                  "): stopping the running points\n";
+      (void)!::write(STDERR_FILENO, message.data(), message.size());
+      validation::stop_runs(SIGTERM);
+    });
   const auto start = std::chrono::steady_clock::now();
   {
     ProgressBar bar(args.quiet ? std::string() : "sweep",
@@ -194,6 +239,15 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const int interrupted = interrupted_by.load();
+  if (interrupted != 0) {
+    // What was stopped or never started is not a failure of the point: it is still to run.
+    for (const std::size_t i : request_point)
+      if (!outcomes[i].ok) {
+        outcomes[i].interrupted = true;
+        outcomes[i].error = "interrupted: not run to the end";
+      }
+  }
 
   const auto table = sweep::make_results_table(plan.file, plan.points, outcomes);
   sweep::write_file_atomically(out / "results.csv", sweep::to_csv(table));
@@ -201,6 +255,12 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
 
   std::size_t failed = 0;
   for (const auto& o : outcomes) failed += o.ok ? 0 : 1;
+  if (interrupted != 0) {
+    std::cerr << "rtsim sweep: interrupted: " << n - failed << " of " << n
+              << " points done; run the same command to resume\n"
+              << "  table  " << (out / "results.csv").string() << " (the points done so far)\n";
+    end_by_signal(interrupted);
+  }
 
   // The report covers every point of the table, run now or before, failed or not.
   std::string report_error;

@@ -244,3 +244,12 @@ TEST(RunCli, RunSppIsRenderSpp) {
   EXPECT_EQ(stats["spp"], 2);
   EXPECT_EQ(stats["params"]["render.spp"], "2");
 }
+
+TEST(RunCli, ARunIntoAFolderRemovesTheEarlierRunsOutputsItDoesNotWrite) {
+  const auto dir = run_ok("rerun", "run --width 16 --height 16 --trace perfetto");
+  ASSERT_TRUE(fs::exists(dir / "trace.json"));
+  const auto r = run_rtsim("run --width 16 --height 16 -q --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "trace.json")) << "a trace of the earlier run beside this one's";
+  EXPECT_TRUE(fs::exists(dir / "stats.json"));
+}

@@ -21,6 +21,7 @@ struct PointOutcome {
   std::string error{};
   std::string stats_text{};  ///< the run's stats.json as written (ok only)
   bool reused = false;       ///< done by an earlier run of the sweep, not run now
+  bool interrupted = false;  ///< the sweep was interrupted before it ended: still to run
 
   /// For sending between MPI ranks.
   nlohmann::json to_json() const;

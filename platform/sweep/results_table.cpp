@@ -119,7 +119,7 @@ ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>&
       }
     }
     for (const auto& name : swept) row.push_back(p.find(name)->value.json);
-    row.emplace_back(o.ok ? "ok" : "failed");
+    row.emplace_back(o.ok ? "ok" : (o.interrupted ? "interrupted" : "failed"));
     row.emplace_back(o.exit_code);
     row.emplace_back(o.error);
     row.emplace_back(o.wall_s);

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -89,6 +90,33 @@ Prepared prepare(const RunRequest& request, const RunQueueOptions& options) {
   return p;
 }
 
+/// The children running now, for stop_runs.
+std::mutex running_mutex;
+std::set<pid_t> running_children;
+std::atomic<bool> stopped{false};
+int stop_signal = SIGTERM;
+
+void track_child(pid_t pid) {
+  std::lock_guard lock(running_mutex);
+  running_children.insert(pid);
+  // Stopped between the caller's check and now: this one goes too.
+  if (stopped.load()) ::kill(pid, stop_signal);
+}
+
+void untrack_child(pid_t pid) {
+  std::lock_guard lock(running_mutex);
+  running_children.erase(pid);
+}
+
+/// The outcome of a run that stop_runs kept from starting.
+RunOutcome not_run(const RunRequest& request) {
+  RunOutcome out;
+  out.request = request;
+  out.status = "not run";
+  out.failure = "not run: the queue was stopped";
+  return out;
+}
+
 /// Starts the run: a new program, or a fork of this process calling options.in_process.
 /// Returns the child's pid, or -1 with the outcome saying why it did not start.
 pid_t start(Prepared& p, const RunQueueOptions& options) {
@@ -105,8 +133,9 @@ pid_t start(Prepared& p, const RunQueueOptions& options) {
     const pid_t pid = ::fork();
     if (pid == 0) {
       // The child: its own output, no input, the run's signals at their default; it ends
-      // when the run does, and with its parent.
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      // when the run does, and with its parent (SIGTERM: removing its partial outputs).
+      ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+      if (::getppid() == 1) std::_Exit(128 + SIGTERM);  // the parent died before the prctl
       ::dup2(log, STDOUT_FILENO);
       ::dup2(log, STDERR_FILENO);
       const int null = ::open("/dev/null", O_RDONLY);
@@ -168,14 +197,26 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
+void stop_runs(int sig) {
+  std::lock_guard lock(running_mutex);
+  stop_signal = sig;
+  stopped.store(true);
+  for (const pid_t pid : running_children) ::kill(pid, sig);
+}
+
+bool runs_stopped() { return stopped.load(); }
+
 RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options) {
+  if (stopped.load()) return not_run(request);
   Prepared p = prepare(request, options);
   if (!p.ready) return p.out;
   const auto began = std::chrono::steady_clock::now();
   const pid_t pid = start(p, options);
   if (pid < 0) return p.out;
+  track_child(pid);
   std::string error;
   const int status = wait_for_child(pid, error);
+  untrack_child(pid);
   if (status < 0) {
     p.out.status = "lost";
     p.out.failure = error;
@@ -206,6 +247,10 @@ void run_forked(const std::vector<RunRequest>& requests, const std::vector<std::
   while (next < order.size() || !running.empty()) {
     while (next < order.size() && static_cast<int>(running.size()) < workers) {
       const std::size_t i = order[next++];
+      if (stopped.load()) {
+        outcomes[i] = not_run(requests[i]);
+        continue;  // not reported: it did not run
+      }
       Prepared p = prepare(requests[i], options);
       const auto began = std::chrono::steady_clock::now();
       const pid_t pid = p.ready ? start(p, options) : -1;
@@ -214,6 +259,7 @@ void run_forked(const std::vector<RunRequest>& requests, const std::vector<std::
         report(i);
         continue;
       }
+      track_child(pid);
       running.emplace(pid, Running{i, std::move(p.out), began});
     }
     if (running.empty()) continue;
@@ -233,6 +279,7 @@ void run_forked(const std::vector<RunRequest>& requests, const std::vector<std::
     }
     const auto it = running.find(pid);
     if (it == running.end()) continue;  // not one of ours
+    untrack_child(pid);
     outcomes[it->second.index] =
         finish(std::move(it->second.out), status, seconds_since(it->second.began));
     const std::size_t i = it->second.index;

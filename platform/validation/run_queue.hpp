@@ -37,6 +37,14 @@ RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOption
 /// emptied first. Never throws for a failed run.
 RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options);
 
+/// Stops every run queue of this process: no run starts from now on, and every running child
+/// is sent `sig` (SIGTERM lets an rtsim child remove its partial outputs). run_all then returns
+/// once the running ones have ended; a run never started has an outcome with status "not run".
+/// Safe to call from any thread (the interrupt thread of app/interrupt_cleanup.hpp).
+void stop_runs(int sig);
+/// Whether stop_runs was called.
+bool runs_stopped();
+
 /// Last `max_lines` lines of a text file ("" if it cannot be read).
 std::string tail_of_file(const std::filesystem::path& file, int max_lines);
 

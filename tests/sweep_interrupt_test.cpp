@@ -1,0 +1,144 @@
+// `rtsim sweep` stopped part-way: Ctrl-C writes the table of the points done and says how to
+// resume; a second sweep into the same --out is refused while one runs; a sweep killed outright
+// takes its points with it.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/file.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "common/spawn_logged.hpp"
+#include "tests/test_support.hpp"
+
+namespace fs = std::filesystem;
+using rtsim::test::read_file;
+using rtsim::test::run_rtsim;
+using rtsim::test::scratch_dir;
+
+namespace {
+
+// Twelve points of a few tenths of a second each, one at a time.
+constexpr int kPoints = 12;
+fs::path write_slow_sweep(const fs::path& dir) {
+  fs::create_directories(dir);
+  const fs::path file = dir / "slow.toml";
+  std::ofstream(file) << "machine = \"gaudet-pert\"\nscene = \"builtin:npp-412\"\n"
+                         "width = 96\nheight = 96\n[[axes]]\nparam = \"pert_count\"\n"
+                         "range = { start = 1, stop = 12 }\n";
+  return file;
+}
+
+/// Starts `rtsim sweep FILE --out OUT ...` in the background; its output goes to `log`.
+pid_t start_sweep(const fs::path& file, const fs::path& out, const std::string& jobs,
+                  const fs::path& log) {
+  std::string error;
+  const pid_t pid = rtsim::spawn_logged(
+      {RTSIM_BINARY, "sweep", file.string(), "--jobs", jobs, "--out", out.string()}, log, false,
+      error);
+  EXPECT_GT(pid, 0) << error;
+  return pid;
+}
+
+/// Waits until `path` exists (true) or `seconds` pass (false).
+bool wait_for(const fs::path& path, int seconds) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  while (!fs::exists(path)) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+/// Processes whose command line names `needle` (the sweep's own --out: its points are forks
+/// with the same command line).
+int processes_naming(const std::string& needle) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string cmd = read_file(e.path() / "cmdline");
+    std::string flat = cmd;
+    for (char& c : flat)
+      if (c == '\0') c = ' ';
+    if (flat.find(needle) != std::string::npos) ++n;
+  }
+  return n;
+}
+
+int count_of(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(SweepInterrupt, CtrlCWritesThePartialTableAndTheSameCommandResumes) {
+  const fs::path dir = scratch_dir("sweep-interrupt");
+  const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "sweep.log";
+  const pid_t pid = start_sweep(file, out, "1", log);
+  ASSERT_TRUE(wait_for(out / "points" / "0001" / "done.json", 120)) << read_file(log);
+  ::kill(pid, SIGINT);
+  std::string error;
+  const int status = rtsim::wait_for_child(pid, error);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep should end by the signal; log:\n"
+                                   << read_file(log);
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
+  const std::string said = read_file(log);
+  std::cout << said;
+  EXPECT_NE(said.find("run the same command to resume"), std::string::npos);
+  // The table holds every point: the ones done, and the rest still to run.
+  const std::string table = read_file(out / "results.csv");
+  const int ok = count_of(table, ",ok,"), interrupted = count_of(table, ",interrupted,");
+  EXPECT_GE(ok, 2);
+  EXPECT_GE(interrupted, 1);
+  EXPECT_EQ(ok + interrupted, kPoints) << table;
+  EXPECT_NE(said.find("interrupted: " + std::to_string(ok) + " of " + std::to_string(kPoints) +
+                      " points done"),
+            std::string::npos);
+  // No point left partial outputs behind.
+  for (const auto& e : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(e.path().filename().string().find(".rtsim-partial-"), std::string::npos) << e.path();
+  // The same command runs only what is left.
+  const auto again = run_rtsim("sweep " + file.string() + " --jobs 2 --out " + out.string());
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find(std::to_string(kPoints - ok) + " to run (" + std::to_string(ok) +
+                              " done before)"),
+            std::string::npos)
+      << again.output;
+  EXPECT_EQ(count_of(read_file(out / "results.csv"), ",ok,"), kPoints);
+}
+
+TEST(SweepInterrupt, ASecondSweepIntoTheSameFolderIsRefused) {
+  const fs::path dir = scratch_dir("sweep-lock");
+  const fs::path file = write_slow_sweep(dir), out = dir / "out";
+  fs::create_directories(out);
+  // What a running sweep holds: an exclusive flock on the folder's lock file.
+  const int fd = ::open((out / ".rtsim-sweep.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const auto r = run_rtsim("sweep " + file.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("another rtsim sweep is writing into this folder"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out / "results.csv"));
+  ::close(fd);  // released: the folder is free again
+  const auto list = run_rtsim("sweep " + file.string() + " --list --out " + out.string());
+  EXPECT_EQ(list.exit_code, 0) << list.output;
+}
+
+TEST(SweepInterrupt, ASweepKilledOutrightTakesItsRunningPointsWithIt) {
+  const fs::path dir = scratch_dir("sweep-killed");
+  const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "sweep.log";
+  const pid_t pid = start_sweep(file, out, "2", log);
+  ASSERT_TRUE(wait_for(out / "points" / "0000" / "run.log", 120)) << read_file(log);
+  EXPECT_GE(processes_naming(out.string()), 2);  // the sweep and a point at least
+  ::kill(pid, SIGKILL);
+  std::string error;
+  (void)rtsim::wait_for_child(pid, error);
+  // Its points get the parent-death signal and end within moments.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (processes_naming(out.string()) > 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(processes_naming(out.string()), 0) << "a point ran on after its sweep was killed";
+}
