@@ -2,8 +2,8 @@
 """Load balance of Ullner's ray-tracing array (`rtsim run --machine ullner-array`): a heat map
 of each processor's busy fraction, and the traffic on every link, from stats.json.
 
-    python3 analysis/array_heatmap.py out/run/stats.json array.png
-    python3 analysis/array_heatmap.py out/run array.png
+    /usr/bin/python3 analysis/array_heatmap.py out/run/stats.json array.png
+    /usr/bin/python3 analysis/array_heatmap.py out/run array.png
 
 Left: `array.node_busy_fraction` (CPU busy time / frame time), one cell per processor, laid out
 as the array (row 0 at the top: the processor holding the top of the frame buffer, L781).
@@ -77,7 +77,11 @@ def plot(busy, links, desc, title, out_path):
     right.set_title(f"links (outgoing, toward the neighbour): max utilisation {top:.3f}",
                     fontsize="medium")
     right.set_xlabel("column")
+    for ax in (left, right):
+        common.integer_axis(ax.xaxis)
+        common.integer_axis(ax.yaxis)
     fig.suptitle(f"{title}\n{desc}", fontsize="medium")
+    fig.tight_layout()  # the two-line suptitle clear of the panels' titles
     common.save(fig, out_path)
     plt.close(fig)
 

@@ -3,8 +3,8 @@
 each polygon processor's busy fraction, and what its work was worth, from stats.json
 (`pipeline.along_chain`; docs/stats.md).
 
-    python3 analysis/chain_profile.py out/run/stats.json chain.png
-    python3 analysis/chain_profile.py out/run chain.png
+    /usr/bin/python3 analysis/chain_profile.py out/run/stats.json chain.png
+    /usr/bin/python3 analysis/chain_profile.py out/run chain.png
 
 Top: the busy fraction of the processors along the chain (every processor takes every ray for
 one issue interval, so the line is flat: high when the chain sets the pace, low when the host
@@ -44,7 +44,8 @@ def chain_series(stats):
     return first, busy, over, ans, engines, polygons
 
 
-def plot(first, busy, over, ans, engines, polygons, title, out_path):
+def draw(first, busy, over, ans, engines, polygons, title):
+    """(fig, (top, bottom)): busy fraction and worth along the chain, processors on x."""
     import numpy as np
 
     plt = common.pyplot()
@@ -53,22 +54,22 @@ def plot(first, busy, over, ans, engines, polygons, title, out_path):
     x = np.asarray(first + [engines])
     for ax in (top, bottom):
         if polygons < engines:
-            ax.axvspan(polygons, engines, color="0.9", label="dummy polygons")
+            ax.axvspan(polygons, engines, color="0.9", label="dummy polygons", zorder=0)
         ax.grid(True, alpha=0.3)
     top.stairs(np.full(len(first), busy), x, color="tab:blue", linewidth=1.5,
                label=f"busy {busy:.3g}")
     top.set_ylim(0, 1.05)
     top.set_ylabel("busy fraction")
-    top.legend(fontsize="small", loc="upper right")
     bottom.stairs(np.asarray(over), x, color="tab:orange", label="overwrote the description")
     bottom.stairs(np.asarray(ans), x, color="tab:green", label="gave the answer")
     bottom.set_ylabel("per ray description")
     bottom.set_xlabel("processor along the chain")
     bottom.set_xlim(0, engines)
-    bottom.legend(fontsize="small", loc="upper right")
+    common.integer_axis(bottom.xaxis)
     top.set_title(title)
-    common.save(fig, out_path)
-    plt.close(fig)
+    for ax in (top, bottom):
+        common.place_legend(ax, fontsize="small")
+    return fig, (top, bottom)
 
 
 def main(argv):
@@ -84,7 +85,9 @@ def main(argv):
     first, busy, over, ans, engines, polygons = chain_series(stats)
     title = args.title or (f"Along the chain: {engines} processors, {polygons} polygons, "
                            f"{stats.get('scene', '?')}")
-    plot(first, busy, over, ans, engines, polygons, title, args.out)
+    fig, _ = draw(first, busy, over, ans, engines, polygons, title)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     return common.EXIT_OK
 
 

@@ -4,9 +4,9 @@ folder `rtsim validate --out DIR` writes (validation.json, fig2-18.csv; with --k
 run folders runs-XXXXXX/KEY/stats.json, which add curves the table has no room for).
 
     rtsim validate --quick --out val --keep
-    python3 analysis/figures.py val figures.png                 # every figure it can draw
-    python3 analysis/figures.py val fig2-18.png --figure fig2-18
-    python3 analysis/figures.py val figures.png --each val/figures   # also one PNG a figure
+    /usr/bin/python3 analysis/figures.py val figures.png                 # every figure it can draw
+    /usr/bin/python3 analysis/figures.py val fig2-18.png --figure fig2-18
+    /usr/bin/python3 analysis/figures.py val figures.png --each val/figures   # also one PNG a figure
 
 Figures (each drawn only when its data is there; the others are skipped with a note):
   fig2-18  Ullner's time per ray against grid divisions n_s: the analytic model (seed 000
@@ -310,15 +310,6 @@ def series_fig218(val):
     return out
 
 
-def plain_log_ticks(axis):
-    """Numbers (20, 50, 100) rather than powers of ten on a logarithmic axis."""
-    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
-
-    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    axis.set_minor_formatter(NullFormatter())
-
-
 def draw_fig218(ax, val):
     s = series_fig218(val)
     ax.plot(*s["model"], "k-", label="model, L652 with L654's parameters")
@@ -332,45 +323,45 @@ def draw_fig218(ax, val):
                 label="simulated: random squares (ullner-random-1000)")
     ax.plot([ULLNER_MIN_NS], [ULLNER_MIN_US], "r*", ms=13, label="seed: 14.3 µs at n_s = 11 (L654)")
     ax.set_yscale("log")
-    plain_log_ticks(ax.yaxis)
+    common.log_axis(ax.yaxis)
+    common.integer_axis(ax.xaxis)
     ax.set_xlabel("subdivisions per axis n_s")
     ax.set_ylabel("time per ray (µs)")
     ax.set_title("Fig. 2-18: time per ray against grid divisions")
-    ax.legend(fontsize="x-small")
-    return True
+    return {"fontsize": "x-small"}
 
 
 def draw_fig221(ax, val):
     import numpy as np
 
     if val.fig218 is None or "simulated_tests_per_ray" not in val.fig218:
-        return False
+        return None
     df = val.fig218.sort_values("n_s")
     n = np.linspace(1.0, 30.0, 291)
     ax.plot(n, [ullner_model_intersections(x) for x in n], "k-", label="model n_i (L652)")
     ax.plot(df["n_s"], df["simulated_tests_per_ray"], "o-", ms=4, label="simulated: two sheets")
     ax.set_yscale("log")
-    plain_log_ticks(ax.yaxis)
+    common.log_axis(ax.yaxis)
+    common.integer_axis(ax.xaxis)
     ax.set_xlabel("subdivisions per axis n_s")
     ax.set_ylabel("intersections per ray")
     ax.set_title("Fig. 2-21: intersections per ray")
-    ax.legend(fontsize="x-small")
-    return True
+    return {"fontsize": "x-small"}
 
 
 def draw_fig219(ax, val):
     cubes = val.sweep("peripheral-cubes", "peripheral.time_per_ray_s")
     if not cubes:
-        return False
+        return None
     ax.plot([p[0] for p in cubes], [p[1] * 1e6 for p in cubes], "o-", ms=4,
             label="simulated: 83 cubes (ullner-cubes)")
     best = min(cubes, key=lambda p: p[1])
     ax.plot([best[0]], [best[1] * 1e6], "r*", ms=12, label=f"minimum at n_s = {best[0]}")
+    common.integer_axis(ax.xaxis)
     ax.set_xlabel("subdivisions per axis n_s")
     ax.set_ylabel("time per ray (µs)")
     ax.set_title("Fig. 2-19: 83 cubes (seed values lost: shape only)")
-    ax.legend(fontsize="x-small")
-    return True
+    return {"fontsize": "x-small"}
 
 
 def series_vax(val):
@@ -397,7 +388,7 @@ def draw_vax(ax, val):
 
     points, rec = series_vax(val)
     if not points and len(rec) < 2:
-        return False
+        return None
     o = np.linspace(0, VAX_FIG14_OBJECTS * 1.05, 50)
     ax.plot(o, (VAX_T_S_US + VAX_T_I_US * o) / 1e3, "k-",
             label="seed: T_s + T_i O, 710 + 429 O µs (L317-L318)")
@@ -410,11 +401,11 @@ def draw_vax(ax, val):
     per_ray_ms = VAX_FIG14_HOURS * 3600.0 / VAX_FIG14_RAYS * 1e3
     ax.plot([VAX_FIG14_OBJECTS], [per_ray_ms], "r*", ms=12,
             label="seed: Fig 1-4 scene, 238 h / 1,824,915 rays (L322-L326)")
+    common.integer_axis(ax.xaxis)
     ax.set_xlabel("objects O")
     ax.set_ylabel("time per ray (ms)")
     ax.set_title("VAX-11/750: time per ray, T_t = R_t (T_s + T_i O)")
-    ax.legend(fontsize="x-small")
-    return True
+    return {"fontsize": "x-small"}
 
 
 def draw_fig610(ax, val):
@@ -463,8 +454,7 @@ def draw_fig610(ax, val):
     note = "" if sim else " — no simulated values"
     ax.set_title(f"Fig 6-10: processing + latency per ray, left thesis, right simulated{note}",
                  fontsize="small")
-    ax.legend(fontsize="x-small", loc="upper left", ncol=2)
-    return True
+    return {"fontsize": "x-small", "ncol": 2}
 
 
 def draw_fig611(ax, val):
@@ -491,14 +481,13 @@ def draw_fig611(ax, val):
         note = ""
     ax.set_title(f"Fig 6-11: broadcast order (L1032-L1039){note}", fontsize="small",
                  color="tab:red" if verdict and verdict.startswith("NOT") else "black")
-    ax.legend(fontsize="x-small", ncol=2)
-    return True
+    return {"fontsize": "x-small", "ncol": 2}
 
 
 def draw_speedup(ax, val):
     curves = gaudet_speedup(val)
     if not curves:
-        return False
+        return None
     styles = {"direct": ":", "non-adaptive": "--", "adaptive": "-"}
     colors = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown"]
     for k, (scene, modes) in enumerate(curves.items()):
@@ -513,21 +502,20 @@ def draw_speedup(ax, val):
     counts = sorted({int(n) for modes in curves.values() for ns, _ in modes.values() for n in ns})
     ax.xaxis.set_major_locator(FixedLocator(counts))
     ax.xaxis.set_minor_locator(NullLocator())
-    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: common.plain_number(v)))
     ax.set_yscale("log")
-    plain_log_ticks(ax.yaxis)
+    common.log_axis(ax.yaxis)
     ax.set_xlabel("PERTs n")
     ax.set_ylabel("times faster than the VAX-11/750")
     ax.set_title("Figs 6-12..6-14: speed-up over the VAX (thesis graphs lost; dotted direct, "
                  "dashed non-adaptive, solid adaptive)", fontsize="small")
-    ax.legend(fontsize="xx-small", ncol=2)
-    return True
+    return {"fontsize": "xx-small", "ncol": 2}
 
 
 def draw_summary(ax, val):
     rows = [r for r in val.rows if r.get("id")]
     if not rows:
-        return False
+        return None
     ids = [r["id"] for r in rows]
     errs = []
     for r in rows:
@@ -547,9 +535,11 @@ def draw_summary(ax, val):
     ax.axhline(0, color="k", lw=0.5)
     passed = sum(1 for r in rows if r.get("pass"))
     ax.set_title(f"All figures: {passed} of {len(rows)} pass (bars: error; lines: tolerance)")
-    return True
+    return {}
 
 
+# Each draws its figure on an axes and returns its legend's options (a dict), or None when the
+# folder has no data for it.
 DRAW = {"fig2-18": draw_fig218, "fig2-21": draw_fig221, "fig2-19": draw_fig219, "vax": draw_vax,
         "fig6-10": draw_fig610, "fig6-11": draw_fig611, "speedup": draw_speedup,
         "summary": draw_summary}
@@ -562,7 +552,7 @@ def render(val, names, out_path):
     drawable = []
     for name in names:
         fig, ax = plt.subplots()
-        if DRAW[name](ax, val):
+        if DRAW[name](ax, val) is not None:
             drawable.append(name)
         else:
             print(f"figures.py: {name}: no data in {val.folder}; skipped", file=sys.stderr)
@@ -572,12 +562,18 @@ def render(val, names, out_path):
     cols = 1 if len(drawable) == 1 else 2
     nrows = (len(drawable) + cols - 1) // cols
     fig, axes = plt.subplots(nrows, cols, figsize=(7.5 * cols, 4.8 * nrows), squeeze=False)
+    legends = []
     for k, name in enumerate(drawable):
-        DRAW[name](axes[k // cols][k % cols], val)
-        axes[k // cols][k % cols].grid(True, which="both", alpha=0.3)
+        ax = axes[k // cols][k % cols]
+        legends.append((ax, DRAW[name](ax, val)))
+        ax.grid(True, which="both", alpha=0.3)
     for k in range(len(drawable), nrows * cols):
         axes[k // cols][k % cols].set_axis_off()
     fig.tight_layout()
+    for ax, options in legends:
+        if ax.get_legend_handles_labels()[0]:
+            common.place_legend(ax, **options)
+    fig.tight_layout()  # room for legends that went beside their panel
     common.save(fig, out_path)
     plt.close(fig)
     return drawable

@@ -2,8 +2,8 @@
 """Where a ray spends its time: the per-stage breakdown recorded by `rtsim run --latency-probe`
 (stats.json `latency_probe`, docs/stats.md).
 
-    python3 analysis/latency_breakdown.py out/run/stats.json breakdown.png
-    python3 analysis/latency_breakdown.py out/run breakdown.png --title "grid 11"
+    /usr/bin/python3 analysis/latency_breakdown.py out/run/stats.json breakdown.png
+    /usr/bin/python3 analysis/latency_breakdown.py out/run breakdown.png --title "grid 11"
 
 One horizontal bar per stage (a module or queue, in the order a ray meets them), stacked from
 its mean queueing, service and transfer time per ray; below them the unattributed rest (the

@@ -2,8 +2,8 @@
 """Histogram of per-ray latency from a run's stats.json (`ray_latency_s`: from the ray
 entering the machine's ray queue until the host has its answer; docs/stats.md).
 
-    python3 analysis/latency_histogram.py out/run/stats.json latency.png
-    python3 analysis/latency_histogram.py out/run latency.png --linear
+    /usr/bin/python3 analysis/latency_histogram.py out/run/stats.json latency.png
+    /usr/bin/python3 analysis/latency_histogram.py out/run latency.png --linear
 
 stats.json holds the histogram rtsim recorded (`histogram.edges_s`, `histogram.counts`: 4
 log-spaced buckets per octave) and the exact `mean`, `p50`, `p99` and `max`, which are drawn as
@@ -34,7 +34,8 @@ def histogram_series(stats):
     return edges, counts, marks
 
 
-def plot(edges, counts, marks, count, title, out_path, log_x=True):
+def draw(edges, counts, marks, count, title, log_x=True):
+    """(fig, ax): the buckets and the marks, latency in one unit (ns, µs, ms, s or h)."""
     import numpy as np
 
     plt = common.pyplot()
@@ -51,17 +52,18 @@ def plot(edges, counts, marks, count, title, out_path, log_x=True):
                        label=f"{name} {value * scale:.4g} {unit}")
         if log_x and e[0] > 0:
             ax.set_xscale("log")
+            common.log_axis(ax.xaxis)
+        common.integer_axis(ax.yaxis)
         ax.set_xlabel(f"ray latency ({unit})")
         ax.set_ylabel("rays")
-        ax.legend(fontsize="small")
+        ax.grid(True, alpha=0.3)
+        common.place_legend(ax, fontsize="small")
     else:
         ax.text(0.5, 0.5, "no ray latency recorded", ha="center", va="center",
                 transform=ax.transAxes)
         ax.set_axis_off()
     ax.set_title(title)
-    ax.grid(True, alpha=0.3)
-    common.save(fig, out_path)
-    plt.close(fig)
+    return fig, ax
 
 
 def main(argv):
@@ -78,7 +80,9 @@ def main(argv):
     count = int(stats["ray_latency_s"].get("count", sum(counts)))
     title = args.title or (f"Ray latency: {stats.get('machine', '?')} on "
                            f"{stats.get('scene', '?')}")
-    plot(edges, counts, marks, count, title, args.out, log_x=not args.linear)
+    fig, _ = draw(edges, counts, marks, count, title, log_x=not args.linear)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     return common.EXIT_OK
 
 

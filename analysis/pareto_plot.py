@@ -66,13 +66,15 @@ def main(argv):
         ax.set_title(machine, fontsize="small")
         ax.set_xlabel("frame-time error", fontsize=7)
         ax.set_ylabel("speed-up over quantum 0", fontsize=7)
-        ax.legend(fontsize=6, loc="upper left")
         ax.grid(True, which="major", alpha=0.3)
     for ax in list(axes.flat)[len(machines):]:
         ax.axis("off")
     fig.suptitle("Run time against error: squares quantum, circles --sample K (hollow: interval "
                  "misses); grey: 10x at <= 1%", fontsize="small")
     fig.tight_layout()
+    for ax in list(axes.flat)[:len(machines)]:
+        common.place_legend(ax, fontsize=6)
+    fig.tight_layout()  # room for legends that went beside their panel
     common.save(fig, args.out)
     plt.close(fig)
     return common.EXIT_OK

@@ -33,11 +33,11 @@ def table(df):
     cover = common.resolve_column(df.columns, "pxpl5.screen_coverage")
     out = {}
     for _, r in df.iterrows():
-        d = sweep_plot.to_number(r[dist])
+        d = common.to_number(r[dist])
         row = out.setdefault(d, {})
-        row[str(r[scheme])] = sweep_plot.to_number(r[rate])
+        row[str(r[scheme])] = common.to_number(r[rate])
         if str(r[scheme]) == "rows":
-            row["coverage"] = sweep_plot.to_number(r[cover])
+            row["coverage"] = common.to_number(r[cover])
     rows = {d: v for d, v in sorted(out.items()) if {"rows", "squares", "coverage"} <= v.keys()}
     if not rows:
         raise common.InputProblem("the sweep needs assign.scheme rows and squares at each "
@@ -72,9 +72,9 @@ def plot(rows, out_path):
     ax.set_ylabel("frames per second (the second frame)")
     ax.set_title("pxpl5-raytrace, SPD teapot, 640 x 512, 16 casters + 4 compositors + master "
                  "(VOL2 Fig. 9)", fontsize="small")
-    ax.legend(fontsize="small", loc="upper right")
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
+    common.place_legend(ax, fontsize="small")
     common.save(fig, out_path)
     plt.close(fig)
 

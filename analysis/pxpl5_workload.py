@@ -2,8 +2,8 @@
 """The ray casters' workloads and the ring's traffic of Pixel-Planes 5's ray tracer
 (`rtsim run --machine pxpl5-raytrace`), from stats.json (`pxpl5`, `modules`; docs/stats.md).
 
-    python3 analysis/pxpl5_workload.py out/run/stats.json workload.png
-    python3 analysis/pxpl5_workload.py out/run workload.png
+    /usr/bin/python3 analysis/pxpl5_workload.py out/run/stats.json workload.png
+    /usr/bin/python3 analysis/pxpl5_workload.py out/run workload.png
 
 Top: each ray caster's busy time normalised to the busiest, the bar graph VOL2 watched its load
 balance with (Plate 4, seed 004 L366), with the regions each was given. Bottom: the bytes each
@@ -45,6 +45,7 @@ def plot(workloads, regions, class_bytes, ring_util, title, out_path):
     for xi, (w, n) in enumerate(zip(workloads, regions)):
         top.text(xi, w, f"{n:.0f}", ha="center", va="bottom", fontsize="x-small")
     top.set_ylim(0, 1.15)
+    common.integer_axis(top.xaxis)
     top.set_xlabel("ray caster (the number over a bar: regions it was given)")
     top.set_ylabel("busy / busiest caster's")
     top.set_title(title, fontsize="medium")

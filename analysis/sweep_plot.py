@@ -2,10 +2,10 @@
 """Plot any column of a sweep's results table against any other, one line per scene or
 machine (or any grouping column).
 
-    python3 analysis/sweep_plot.py results.csv out.png --x peripheral.grid.divisions \\
+    /usr/bin/python3 analysis/sweep_plot.py results.csv out.png --x peripheral.grid.divisions \\
         --y peripheral.time_per_ray_s --logy
-    python3 analysis/sweep_plot.py results.jsonl speedup.png --x pert.count \\
-        --y simulated_time_s --ratio-to pert.count=1     # speed-up over the 1-PERT point
+    /usr/bin/python3 analysis/sweep_plot.py results.jsonl speedup.png --x pert_count \\
+        --y simulated_time_s --ratio-to pert_count=1     # speed-up over the 1-PERT point
 
 INPUT is results.csv or results.jsonl from `rtsim sweep` (one row per point: the swept
 parameters, machine, scene, headline stats such as simulated_time_s, wall_time_s, rays.total,
@@ -13,6 +13,11 @@ modules.NAME.utilization), or a folder holding one of them. Nested JSON objects 
 column names; extra columns are ignored. Rows whose exit status or status says the point
 failed are left out. Values written with units ("400 ns", "5 MHz") are read in the SI base
 unit. `utilisation` and `utilization` name the same column.
+
+Times (columns named *_s, such as simulated_time_s and ray_latency_s.mean, and values written
+in seconds, such as "250 ns") are drawn in one unit per axis, ns, µs, ms, s or h, chosen from
+their range and named in the axis label ("(s)" in --xlabel or --ylabel becomes that unit).
+Lines are listed in the order of their values ("250 ns" before "1000 ns").
 
 --ratio-to draws y as a ratio to a baseline: COL=VALUE takes, in each group, the row where COL
 equals VALUE (e.g. the 1-PERT run); a bare column name divides by that column row by row.
@@ -24,33 +29,10 @@ group), labelled by what differs between the column names.
 
 import argparse
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
-
-# SI prefixes of values written with units in configs and sweep files ("400 ns", "5 MHz").
-_PREFIX = {"p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "m": 1e-3, "": 1.0, "k": 1e3,
-           "K": 1e3, "M": 1e6, "G": 1e9, "T": 1e12}
-_UNIT_RE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([pnuµmkKMGT]?)"
-                      r"(s|Hz|bit/s|bps|bit|B|)\s*$")
-
-
-def to_number(value):
-    """A float for 3, "3", "400 ns" (4e-7), "5 MHz" (5e6); None if it is not a number."""
-    if isinstance(value, bool):
-        return float(value)
-    if isinstance(value, (int, float)):
-        return float(value)
-    if isinstance(value, str):
-        m = _UNIT_RE.match(value)
-        if m:
-            number, prefix, unit = m.groups()
-            if unit == "" and prefix not in ("",):
-                return None  # "3 m" is not a unit rtsim writes
-            return float(number) * _PREFIX[prefix]
-    return None
 
 
 def read_results(path):
@@ -95,7 +77,7 @@ def ok_rows(df):
     keep = pd.Series(True, index=df.index)
     for col in ("exit_status", "exit_code"):
         if col in df.columns:
-            codes = df[col].map(to_number)
+            codes = df[col].map(common.to_number)
             keep &= codes.isna() | (codes == 0)
     if "status" in df.columns:
         st = df["status"].fillna("").astype(str).str.lower()
@@ -113,7 +95,7 @@ def default_group(df):
 
 
 def _numeric(series):
-    nums = series.map(to_number)
+    nums = series.map(common.to_number)
     return nums if nums.notna().all() else None
 
 
@@ -132,7 +114,7 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", ca
         names = group if isinstance(group, (list, tuple)) else str(group).split(",")
         group = [common.resolve_column(df.columns, g.strip(), "group column") for g in names]
         group = group[0] if len(group) == 1 else group
-    ys_all = df[y].map(to_number)
+    ys_all = df[y].map(common.to_number)
     df = df.assign(_y=ys_all)
     base_col, base_value = None, None
     if ratio_to:
@@ -146,24 +128,22 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", ca
         raise common.InputProblem(f"--ratio-mode must be speedup or fraction, not {ratio_mode}")
     df = df[df["_y"].notna()]
     xnum = _numeric(df[x])
-    categories = None
     if xnum is None:
         categories = list(dict.fromkeys(list(categories or []) + list(df[x].astype(str))))
         df = df.assign(_x=df[x].astype(str).map(categories.index).astype(float))
     else:
         categories = None
         df = df.assign(_x=xnum)
-    groups = [(None, df)] if not group else list(df.groupby(group, sort=True, dropna=False))
     out = {}
-    for label, g in groups:
+    for label, g in groups_in_value_order(df, group):
         # Repeated x values are averaged first; the ratio is of the averages.
         agg = g.groupby("_x", sort=True)["_y"].mean().astype(float)
         xs = np.array(agg.index, dtype=float)
         ys = np.array(agg.values, dtype=float)
         if base_col is not None and base_value is not None:
-            want = to_number(base_value)
+            want = common.to_number(base_value)
             col = g[base_col]
-            nums = col.map(to_number)
+            nums = col.map(common.to_number)
             match = (nums == want) if want is not None else (col.astype(str) == base_value)
             if not match.any():
                 print(f"sweep_plot: group {label}: no row with {base_col} = {base_value}; "
@@ -172,15 +152,23 @@ def compute_series(df, x, y, group=None, ratio_to=None, ratio_mode="speedup", ca
             baseline = float(g.loc[match, "_y"].astype(float).mean())
             ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
         elif base_col is not None:
-            g = g.assign(_b=g[base_col].map(to_number).astype(float))
+            g = g.assign(_b=g[base_col].map(common.to_number).astype(float))
             baseline = g.groupby("_x", sort=True)["_b"].mean().to_numpy(float)
             ys = baseline / ys if ratio_mode == "speedup" else ys / baseline
-        if label is None:
-            label = "all"
-        elif isinstance(label, tuple):
-            label = ", ".join(map(str, label))
-        out[str(label)] = (xs, ys)
+        out[label] = (xs, ys)
     return out, categories
+
+
+def groups_in_value_order(df, group):
+    """[(label, rows)] per value of the group column(s), "all" without one; labels "a, b" for
+    several columns, in the order of their values ("250 ns" before "1000 ns")."""
+    if not group:
+        return [("all", df)]
+    groups = []
+    for label, g in df.groupby(group, sort=False, dropna=False):
+        text = ", ".join(map(str, label)) if isinstance(label, tuple) else str(label)
+        groups.append((text, g))
+    return sorted(groups, key=lambda item: common.value_order_key(item[0]))
 
 
 def short_names(columns):
@@ -223,59 +211,108 @@ def compute_multi(df, x, ys, group=None, ratio_to=None, ratio_mode="speedup"):
     return out, categories
 
 
-def plot(series, categories, args, out_path):
-    plt = common.pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for label, (xs, ys) in series.items():
-        ax.plot(xs, ys, marker="o", markersize=4, label=label)
-    if categories:
-        ax.set_xticks(range(len(categories)))
-        ax.set_xticklabels(categories, rotation=30, ha="right")
-    if args.logx:
-        ax.set_xscale("log")
-        # Plain numbers at the values swept (1, 2, 4, ..., 64), not powers of ten.
-        from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+def time_axes(df, args, categories):
+    """(x is a time, y is a time): x when it has numbers and its column is named in seconds
+    or its values are written in seconds ("250 ns"); y when every --y column is named in
+    seconds and no ratio is drawn."""
+    ok = ok_rows(df)
+    x = common.resolve_column(ok.columns, args.x)
+    x_time = not categories and (common.seconds_column(x)
+                                 or common.written_in_seconds(ok[x].dropna()))
+    y_time = not args.ratio_to and all(common.seconds_column(y) for y in args.y)
+    return bool(x_time), bool(y_time)
 
-        ticks = sorted({float(x) for xs, _ in series.values() for x in xs if x > 0})
-        if 0 < len(ticks) <= 12:
-            ax.xaxis.set_major_locator(FixedLocator(ticks))
-            ax.xaxis.set_minor_locator(NullLocator())
-            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    if args.logy:
-        ax.set_yscale("log")
-        # Plain numbers (1, 2, 5, 10, 20, 50) rather than powers of ten when they read well.
-        ys = [float(y) for _, yv in series.values() for y in yv if y > 0]
-        if ys and 1e-3 <= min(ys) and max(ys) < 1e6:
-            from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-            ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-            ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-            ax.yaxis.set_minor_formatter(NullFormatter())
-    ax.set_xlabel(args.xlabel or args.x)
+def scale_times(series, x_time, y_time):
+    """The series in one time unit per time axis: ({label: (xs, ys)}, x unit, y unit), a unit
+    None for an axis that is not a time."""
+    import numpy as np
+
+    def unit_for(values):
+        finite = [abs(v) for v in values if np.isfinite(v)]
+        return common.time_unit(max(finite) if finite else 1.0)
+
+    xscale, xunit = unit_for([x for xs, _ in series.values() for x in xs]) if x_time else (1, None)
+    yscale, yunit = unit_for([y for _, ys in series.values() for y in ys]) if y_time else (1, None)
+    scaled = {k: (np.asarray(xs) * xscale, np.asarray(ys) * yscale)
+              for k, (xs, ys) in series.items()}
+    return scaled, xunit, yunit
+
+
+def y_label(args, unit):
+    """--ylabel, or the column(s) and the ratio drawn; with the time unit if y is a time."""
     if args.ylabel:
-        ylabel = args.ylabel
+        label = args.ylabel
     else:
         y = args.y[0] if len(args.y) == 1 else short_names(args.y)[1] or ", ".join(args.y)
         if args.ratio_to:
-            ylabel = (f"speed-up over {args.ratio_to}\n({y})" if args.ratio_mode == "speedup"
-                      else f"{y}\nrelative to {args.ratio_to}")
+            label = (f"speed-up over {args.ratio_to}\n({y})" if args.ratio_mode == "speedup"
+                     else f"{y}\nrelative to {args.ratio_to}")
         else:
-            ylabel = y
-    ax.set_ylabel(ylabel)
+            label = y
+    return common.label_with_unit(label, unit) if unit else label
+
+
+def x_label(args, unit):
+    """--xlabel or the column; with the time unit if x is a time."""
+    label = args.xlabel or args.x
+    return common.label_with_unit(label, unit) if unit else label
+
+
+def format_x(ax, series, categories, logx):
+    """Category names, or the values swept (up to 12) on a log axis, or readable log ticks,
+    or whole numbers when every x is one."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+
+    xs = [float(x) for xs, _ in series.values() for x in xs]
+    if categories:
+        ax.set_xticks(range(len(categories)))
+        ax.set_xticklabels(categories, rotation=30, ha="right")
+    elif logx:
+        ax.set_xscale("log")
+        ticks = sorted({x for x in xs if x > 0})
+        if 0 < len(ticks) <= 12:
+            ax.xaxis.set_major_locator(FixedLocator(ticks))
+            ax.xaxis.set_minor_locator(NullLocator())
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: common.plain_number(v)))
+        else:
+            common.log_axis(ax.xaxis, integer=common.integer_valued(xs))
+    elif common.integer_valued(xs):
+        common.integer_axis(ax.xaxis)
+
+
+def format_y(ax, series, logy):
+    """Readable log ticks, or whole numbers when every y is one."""
+    ys = [float(y) for _, ys in series.values() for y in ys]
+    if logy:
+        ax.set_yscale("log")
+        common.log_axis(ax.yaxis, integer=common.integer_valued(ys))
+    elif common.integer_valued(ys):
+        common.integer_axis(ax.yaxis)
+
+
+def draw(series, categories, args):
+    """(fig, ax): one line per series, times in one unit per axis, the legend off the lines.
+    args is the parsed command line with group_used, x_time and y_time set (see figure)."""
+    plt = common.pyplot()
+    series, xunit, yunit = scale_times(series, args.x_time, args.y_time)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for label, (xs, ys) in series.items():
+        ax.plot(xs, ys, marker="o", markersize=4, label=label)
+    format_x(ax, series, categories, args.logx)
+    format_y(ax, series, args.logy)
+    ax.set_xlabel(x_label(args, xunit))
+    ax.set_ylabel(y_label(args, yunit))
     if args.title:
         ax.set_title(args.title)
-    if len(series) > 1 or (len(series) == 1 and next(iter(series)) != "all"):
-        if len(series) <= 4:
-            ax.legend(title=args.group_used, fontsize="small")
-        else:  # beside the axes, where it hides no line
-            ax.legend(title=args.group_used, fontsize="x-small", loc="upper left",
-                      bbox_to_anchor=(1.02, 1.0))
     ax.grid(True, which="both", alpha=0.3)
-    common.save(fig, out_path)
-    plt.close(fig)
+    if list(series) != ["all"]:
+        common.place_legend(ax, title=args.group_used,
+                            fontsize="small" if len(series) <= 4 else "x-small")
+    return fig, ax
 
 
-def main(argv):
+def parse_args(argv):
     ap = argparse.ArgumentParser(
         prog="sweep_plot.py", description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -297,7 +334,11 @@ def main(argv):
     ap.add_argument("--title", default=None)
     ap.add_argument("--xlabel", default=None)
     ap.add_argument("--ylabel", default=None)
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def figure(args):
+    """(fig, ax) of the plot the parsed command line asks for, read from its input."""
     df = read_results(args.input)
     if df.empty:
         raise common.InputProblem(f"{args.input}: the table has no rows")
@@ -311,7 +352,15 @@ def main(argv):
     if not series or all(len(xs) == 0 for xs, _ in series.values()):
         raise common.InputProblem(
             f"{args.input}: no successful rows with a value of {' or '.join(args.y)}")
-    plot(series, categories, args, args.out)
+    args.x_time, args.y_time = time_axes(df, args, categories)
+    return draw(series, categories, args)
+
+
+def main(argv):
+    args = parse_args(argv)
+    fig, _ = figure(args)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     return common.EXIT_OK
 
 

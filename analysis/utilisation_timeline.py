@@ -2,9 +2,9 @@
 """Bus and module utilisation over simulated time: the busy fraction of each module in each
 time window, and the mean depth of each queue.
 
-    python3 analysis/utilisation_timeline.py out/run/trace.json util.png --windows 200
-    python3 analysis/utilisation_timeline.py out/run/stats.json util.png
-    python3 analysis/utilisation_timeline.py out/run util.png     # trace.json if there, else stats.json
+    /usr/bin/python3 analysis/utilisation_timeline.py out/run/trace.json util.png --windows 200
+    /usr/bin/python3 analysis/utilisation_timeline.py out/run/stats.json util.png
+    /usr/bin/python3 analysis/utilisation_timeline.py out/run util.png     # trace.json if there, else stats.json
 
 From a Perfetto/Chrome JSON trace (`rtsim run --trace perfetto`): each module's busy counter
 ("C" events NAME.busy: the level of the very busy intervals stats.json's busy_s is summed from)
@@ -195,8 +195,9 @@ def busy_from_stats(stats, modules=None):
     return edges, out
 
 
-def plot(busy_series, depth_series, title, out_path):
-    """busy_series: {name: (edges, values)}; depth_series: {name: (edges, values)}."""
+def draw(busy_series, depth_series, title):
+    """(fig, axes): busy_series and depth_series are {name: (edges, values)}; time from the
+    first edge, in one unit (ns, µs, ms, s or h) chosen from the range drawn."""
     import numpy as np
 
     plt = common.pyplot()
@@ -213,8 +214,6 @@ def plot(busy_series, depth_series, title, out_path):
     ax.set_ylabel("busy (%)")
     ax.set_ylim(-2, 102)
     ax.grid(True, alpha=0.3)
-    if busy_series:
-        ax.legend(fontsize="small", loc="best")
     ax.set_title(title)
     if depth_series:
         ax2 = axes[1][0]
@@ -222,10 +221,11 @@ def plot(busy_series, depth_series, title, out_path):
             ax2.stairs(np.asarray(v), (np.asarray(e) - start) * scale, label=name, linewidth=1.4)
         ax2.set_ylabel("mean queue depth")
         ax2.grid(True, alpha=0.3)
-        ax2.legend(fontsize="small", loc="best")
     axes[-1][0].set_xlabel(f"simulated time ({unit}) after t = {start * scale:.6g} {unit}")
-    common.save(fig, out_path)
-    plt.close(fig)
+    for a in axes[:, 0]:
+        if a.get_legend_handles_labels()[0]:
+            common.place_legend(a, fontsize="small")
+    return fig, axes[:, 0]
 
 
 def main(argv):
@@ -261,7 +261,9 @@ def main(argv):
                                f"{data.get('scene', '?')}")
     if not busy_series and not depth_series:
         raise common.InputProblem("nothing to draw (no track matches)")
-    plot(busy_series, depth_series, title, args.out)
+    fig, _ = draw(busy_series, depth_series, title)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     return common.EXIT_OK
 
 

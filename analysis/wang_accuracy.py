@@ -7,7 +7,7 @@ costs. The throughput does not depend on the stage count (a job a pipeline cycle
 seed 002 L437): the stages cost hardware and latency.
 
     build/rtsim sweep configs/sweeps/wang-accuracy.toml --out out/wang-accuracy
-    python3 analysis/wang_accuracy.py out/wang-accuracy out/wang-accuracy/accuracy.png
+    /usr/bin/python3 analysis/wang_accuracy.py out/wang-accuracy out/wang-accuracy/accuracy.png
 
 Per primary ray (a pixel), top to bottom:
 1. the reference's hits the pipeline missed, the pipeline's hits the reference does not have
@@ -62,7 +62,7 @@ def accuracy_table(df):
     cols = {k: common.resolve_column(df.columns, v) for k, v in COLUMNS.items()}
     rows = []
     for _, r in df.iterrows():
-        row = {k: sweep_plot.to_number(r[c]) for k, c in cols.items()}
+        row = {k: common.to_number(r[c]) for k, c in cols.items()}
         if any(v is None for v in row.values()):
             raise common.InputProblem(f"point with {STAGES}={r[cols['stages']]}: a value is "
                                       "missing (was the sweep run with accuracy.check = true?)")
@@ -97,7 +97,8 @@ def markdown(rows):
     return "\n".join(lines)
 
 
-def plot(rows, title, out_path):
+def draw(rows, title):
+    """(fig, (top, err, pix, cost)): the four panels against the stage count."""
     plt = common.pyplot()
     n = [r["stages"] for r in rows]
     fig, (top, err, pix, cost) = plt.subplots(4, 1, figsize=(7.5, 11.5), sharex=True)
@@ -118,39 +119,45 @@ def plot(rows, title, out_path):
     top.plot([], [], color="grey", linestyle=":", label=f"fewest wrong: {best:.0f} stages")
     top.plot([], [], color="tab:green", linestyle="--", label="the paper's 10 stages (L286)")
     top.set_yscale("log")
+    common.log_axis(top.yaxis)
     top.set_ylim(1e-4, 5)
     top.set_ylabel("share of the reference's hits")
-    top.legend(fontsize="x-small", loc="upper right", ncol=2)
     for key, style in (("p50", "-"), ("p90", "--"), ("p99", ":")):
         err.plot(n, [r[key] for r in rows], marker="o", linestyle=style, color="tab:blue",
                  label=f"hit-point error {key}")
     err.plot(n, [r["width"] for r in rows], color="grey", label="final subpatch width 2^-(N+1)")
     err.set_yscale("log")
+    common.log_axis(err.yaxis)
     err.set_ylabel("patch sizes")
-    err.legend(fontsize="x-small", loc="upper right")
     for key, style in (("px50", "-"), ("px90", "--"), ("px99", ":")):
         pix.plot(n, [r[key] for r in rows], marker="o", linestyle=style, color="tab:cyan",
                  label=f"hit-point error p{key[2:]}")
     pix.axhline(0.5, color="grey", linewidth=0.8, label="half a pixel")
     pix.set_yscale("log")
+    common.log_axis(pix.yaxis)
     pix.set_ylabel("pixels (this image)")
-    pix.legend(fontsize="x-small", loc="upper right")
-    cost.plot(n, [r["latency_s"] * 1e6 for r in rows], marker="o", color="tab:brown",
+    scale, unit = common.time_unit(max(r["latency_s"] for r in rows))
+    cost.plot(n, [r["latency_s"] * scale for r in rows], marker="o", color="tab:brown",
               label="pipeline latency")
-    cost.set_ylabel("latency (us)")
+    cost.set_ylabel(f"latency ({unit})")
     dsp = cost.twinx()
     dsp.plot(n, [r["dsps"] for r in rows], marker="s", markerfacecolor="none", linestyle="--",
              color="tab:gray", label="DSPs")
     dsp.set_ylabel("DSPs")
-    lines, labels = cost.get_legend_handles_labels()
-    more, more_labels = dsp.get_legend_handles_labels()
-    cost.legend(lines + more, labels + more_labels, fontsize="x-small", loc="upper left")
+    common.integer_axis(dsp.yaxis)
     cost.set_xlabel("loop stages N (bezier.iterations); throughput is one job a cycle for any N")
     cost.set_xticks(n)
     top.set_title(title, fontsize="medium")
     fig.tight_layout()
-    common.save(fig, out_path)
-    plt.close(fig)
+    common.place_legend(top, fontsize="x-small", ncol=2)
+    for ax in (err, pix):
+        common.place_legend(ax, fontsize="x-small")
+    lines, labels = cost.get_legend_handles_labels()
+    more, more_labels = dsp.get_legend_handles_labels()
+    # On the twin axes, drawn after cost: no line is drawn over the legend.
+    common.place_legend(dsp, handles=lines + more, labels=labels + more_labels,
+                        fontsize="x-small")
+    return fig, (top, err, pix, cost)
 
 
 def main(argv):
@@ -165,7 +172,9 @@ def main(argv):
     compared = rows[0]["compared"]
     title = args.title or (f"Wang's pipeline against the reference: {compared:.0f} primary rays, "
                            f"{rows[0]['ref_hits']:.0f} reference hits")
-    plot(rows, title, args.out)
+    fig, _ = draw(rows, title)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     print(markdown(rows))
     print(f"\nfewest wrong answers at {fewest_wrong(rows):.0f} stages")
     return common.EXIT_OK

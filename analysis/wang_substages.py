@@ -3,8 +3,8 @@
 what each costs a job against the pipeline cycle, and how busy its DSP pool was over the frame,
 from stats.json (`wang.stage0`, `wang.substages`, `modules`; docs/stats.md).
 
-    python3 analysis/wang_substages.py out/run/stats.json substages.png
-    python3 analysis/wang_substages.py out/run substages.png
+    /usr/bin/python3 analysis/wang_substages.py out/run/stats.json substages.png
+    /usr/bin/python3 analysis/wang_substages.py out/run substages.png
 
 Top: each substage's time per job (stage 0's, then those of one loop stage, Table 4's rows,
 seed 002 L436-L441) with the pipeline cycle, the slowest of them (one job enters a cycle); the
@@ -51,25 +51,27 @@ def busy_fractions(rows, jobs, frame):
     return [min(1.0, r[3] * jobs / frame) if frame > 0 else 0.0 for r in rows]
 
 
-def plot(rows, cycle, jobs, frame, host_busy, loop_stages, title, out_path):
+def draw(rows, cycle, jobs, frame, host_busy, loop_stages, title):
+    """(fig, (top, bottom)): time per job against the cycle, in one unit (ns, µs, ms, s or h),
+    and each pool's busy fraction over the frame."""
     plt = common.pyplot()
     names = [r[0] for r in rows]
-    times_us = [r[3] * 1e6 for r in rows]
-    slowest = max(times_us)
-    colors = ["tab:red" if t >= slowest * (1 - 1e-9) else "tab:blue" for t in times_us]
+    scale, unit = common.time_unit(max([r[3] for r in rows] + [cycle]))
+    times = [r[3] * scale for r in rows]
+    slowest = max(times)
+    colors = ["tab:red" if t >= slowest * (1 - 1e-9) else "tab:blue" for t in times]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 7))
     y = list(range(len(rows)))[::-1]
-    top.barh(y, times_us, color=colors)
-    for yi, (name, dsps, cycles, t) in zip(y, rows):
+    top.barh(y, times, color=colors)
+    for yi, (name, dsps, cycles, _), t in zip(y, rows, times):
         what = f"{dsps} DSP{'s' if dsps != 1 else ''} x {cycles} cycles" if dsps else "ASIC"
-        top.text(t * 1e6, yi, f"  {what}", va="center", fontsize="x-small")
-    top.axvline(cycle * 1e6, color="black", linestyle="--",
-                label=f"pipeline cycle {cycle * 1e6:.3f} us ({1 / cycle:.3g} jobs/s)")
+        top.text(t, yi, f"  {what}", va="center", fontsize="x-small")
+    top.axvline(cycle * scale, color="black", linestyle="--",
+                label=f"pipeline cycle {cycle * scale:.4g} {unit} ({1 / cycle:.3g} jobs/s)")
     top.set_yticks(y)
     top.set_yticklabels(names, fontsize="small")
-    top.set_xlabel("time per job (us)")
+    top.set_xlabel(f"time per job ({unit})")
     top.set_xlim(0, slowest * 1.45)
-    top.legend(fontsize="x-small", loc="lower right")
     top.set_title(title, fontsize="medium")
     busy = busy_fractions(rows, jobs, frame)
     bottom.barh(y, busy, color=colors)
@@ -78,12 +80,14 @@ def plot(rows, cycle, jobs, frame, host_busy, loop_stages, title, out_path):
     bottom.set_yticks(y)
     bottom.set_yticklabels(names, fontsize="small")
     bottom.set_xlim(0, 1.0)
-    bottom.set_xlabel(f"busy fraction over the frame ({jobs:.0f} jobs in {frame * 1e3:.3g} ms; "
-                      f"all {loop_stages} loop stages alike)")
-    bottom.legend(fontsize="x-small", loc="lower right")
+    frame_scale, frame_unit = common.time_unit(frame)
+    bottom.set_xlabel(f"busy fraction over the frame ({jobs:.0f} jobs in "
+                      f"{frame * frame_scale:.3g} {frame_unit}; all {loop_stages} loop stages "
+                      "alike)")
     fig.tight_layout()
-    common.save(fig, out_path)
-    plt.close(fig)
+    for ax in (top, bottom):
+        common.place_legend(ax, fontsize="x-small")
+    return fig, (top, bottom)
 
 
 def main(argv):
@@ -100,7 +104,9 @@ def main(argv):
     dsps = stats["wang"].get("dsps", "?")
     title = args.title or (f"Bezier pipeline substages: {loop_stages} loop stages, {dsps} DSPs, "
                            f"{stats.get('scene', '?')}")
-    plot(rows, cycle, jobs, frame, host_busy, loop_stages, title, args.out)
+    fig, _ = draw(rows, cycle, jobs, frame, host_busy, loop_stages, title)
+    common.save(fig, args.out)
+    common.pyplot().close(fig)
     return common.EXIT_OK
 
 

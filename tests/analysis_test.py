@@ -30,6 +30,7 @@ except ImportError as e:
 
 import array_heatmap  # noqa: E402
 import chain_profile  # noqa: E402
+import common  # noqa: E402
 import figures  # noqa: E402
 import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
@@ -88,7 +89,7 @@ class SweepPlotTest(ScratchTest):
         super().setUp()
         self.csv = os.path.join(self.dir, "results.csv")
         with open(self.csv, "w") as f:
-            f.write("machine,scene,pert.count,link.bit_time,simulated_time_s,wall_time_s,"
+            f.write("machine,scene,pert_count,link.bit_time,simulated_time_s,wall_time_s,"
                     "rays.total,modules.host.utilization,exit_status,error,unrelated\n"
                     "gaudet-pert,builtin:npp-404,1,200 ns,8.0,1.5,100,0.9,0,,a\n"
                     "gaudet-pert,builtin:npp-404,2,200 ns,4.0,1.2,100,0.8,0,,b\n"
@@ -100,8 +101,8 @@ class SweepPlotTest(ScratchTest):
 
     def test_speed_up_per_scene_against_the_one_pert_row(self):
         df = sweep_plot.read_results(self.csv)
-        series, cats = sweep_plot.compute_series(df, "pert.count", "simulated_time_s", "scene",
-                                                 "pert.count=1")
+        series, cats = sweep_plot.compute_series(df, "pert_count", "simulated_time_s", "scene",
+                                                 "pert_count=1")
         self.assertIsNone(cats)
         xs, ys = series["builtin:npp-404"]
         np.testing.assert_allclose(xs, [1, 2, 4])
@@ -113,8 +114,8 @@ class SweepPlotTest(ScratchTest):
 
     def test_one_line_per_combination_of_several_group_columns(self):
         df = sweep_plot.read_results(self.csv)
-        series, _ = sweep_plot.compute_series(df, "pert.count", "simulated_time_s",
-                                              "scene,link.bit_time", "pert.count=1")
+        series, _ = sweep_plot.compute_series(df, "pert_count", "simulated_time_s",
+                                              "scene,link.bit_time", "pert_count=1")
         self.assertEqual(sorted(series), ["builtin:npp-404, 200 ns", "builtin:npp-408, 400 ns"])
         np.testing.assert_allclose(series["builtin:npp-404, 200 ns"][1], [1.0, 2.0, 4.0])
 
@@ -126,9 +127,9 @@ class SweepPlotTest(ScratchTest):
         xs, ys = series["builtin:npp-404"]
         np.testing.assert_allclose(xs, [2e-7])
         np.testing.assert_allclose(ys, [(0.9 + 0.8 + 0.7 + 0.7) / 4])
-        self.assertAlmostEqual(sweep_plot.to_number("5 MHz"), 5e6)
-        self.assertAlmostEqual(sweep_plot.to_number("1.5 Gbit/s"), 1.5e9)
-        self.assertIsNone(sweep_plot.to_number("scanline"))
+        self.assertAlmostEqual(common.to_number("5 MHz"), 5e6)
+        self.assertAlmostEqual(common.to_number("1.5 Gbit/s"), 1.5e9)
+        self.assertIsNone(common.to_number("scanline"))
 
     def test_jsonl_nested_objects_become_dotted_columns(self):
         path = os.path.join(self.dir, "results.jsonl")
@@ -177,11 +178,11 @@ class SweepPlotTest(ScratchTest):
 
     def test_command_line_writes_a_png_and_rejects_an_unknown_column(self):
         out = os.path.join(self.dir, "speedup.png")
-        r = run_script("sweep_plot.py", self.csv, out, "--x", "pert.count", "--y",
-                       "simulated_time_s", "--ratio-to", "pert.count=1", "--logx")
+        r = run_script("sweep_plot.py", self.csv, out, "--x", "pert_count", "--y",
+                       "simulated_time_s", "--ratio-to", "pert_count=1", "--logx")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGoodPng(out)
-        r = run_script("sweep_plot.py", self.csv, out + "2", "--x", "pert.count", "--y",
+        r = run_script("sweep_plot.py", self.csv, out + "2", "--x", "pert_count", "--y",
                        "simulated_tme_s")
         self.assertEqual(r.returncode, 2)
         self.assertIn("did you mean simulated_time_s", r.stderr)
@@ -786,6 +787,127 @@ class FiguresTest(ScratchTest):
         r = run_script("figures.py", self.dir, out, "--figure", "fig6-10", "--sensitivity", sens)
         self.assertEqual(r.returncode, 2)
         self.assertIn("gaudet_sensitivity.py", r.stderr)
+
+
+class ReadableAxesTest(ScratchTest):
+    """What a reader sees on the axes (issue 18, item 4): several labelled ticks on a log axis,
+    reaching below the data's minimum; no offset or multiplier text; whole numbers on axes of
+    counts; times in one unit named in the label; legends in the order of their values, off
+    the data. Checked on the matplotlib objects as drawn."""
+
+    def write_sweep(self):
+        """pert_count 1..5 for three bit times written as text, sorting as text would put
+        "1000 ns" first; frame times differing in the sixth digit (an offset on a plain axis)
+        and times per ray from 15 to 414 us (one decade mark, 1e-4, on a plain log axis)."""
+        path = os.path.join(self.dir, "results.jsonl")
+        with open(path, "w") as f:
+            for bit_time, k in (("1000 ns", 4), ("250 ns", 1), ("500 ns", 2)):
+                for n in range(1, 6):
+                    f.write(json.dumps({
+                        "pert_count": n, "link.bit_time": bit_time, "status": "ok",
+                        "simulated_time_s": 8.804e-2 + 1e-7 * (n + k),
+                        "peripheral.time_per_ray_s": 15e-6 * k * (6 - n) ** 1.2}) + "\n")
+        return path
+
+    def drawn(self, *argv):
+        """(fig, ax) of sweep_plot with these options on the sweep, rendered."""
+        args = sweep_plot.parse_args([self.write_sweep(), os.path.join(self.dir, "x.png"),
+                                      *argv])
+        fig, ax = sweep_plot.figure(args)
+        self.addCleanup(common.pyplot().close, fig)
+        fig.canvas.draw()
+        return fig, ax
+
+    def labels(self, axis):
+        """The tick labels shown: those with text at ticks within the view."""
+        lo, hi = sorted(axis.get_view_interval())
+        tol = 1e-9 * max(abs(lo), abs(hi))
+        return [t.get_text() for t, v in zip(axis.get_majorticklabels(),
+                                             axis.get_majorticklocs())
+                if t.get_text() and lo - tol <= v <= hi + tol]
+
+    def assertNoOffsetText(self, ax):
+        for axis in (ax.xaxis, ax.yaxis):
+            self.assertEqual(axis.get_offset_text().get_text(), "", axis.axis_name)
+
+    def assertTimeLabel(self, label):
+        self.assertRegex(label, r"\((ns|µs|ms|s|h)\)")
+
+    def assertLegendClear(self, fig, ax):
+        """The legend hides no line vertex (marker) of the axes."""
+        box = ax.get_legend().get_window_extent(fig.canvas.get_renderer())
+        for line in ax.lines:
+            xy = line.get_transform().transform(line.get_xydata())
+            inside = ((xy[:, 0] > box.x0) & (xy[:, 0] < box.x1) & (xy[:, 1] > box.y0)
+                      & (xy[:, 1] < box.y1))
+            self.assertFalse(inside.any(), f"the legend hides {line.get_label()}")
+
+    def test_sweep_plot_log_axis_of_times(self):
+        fig, ax = self.drawn("--x", "pert_count", "--y", "peripheral.time_per_ray_s", "--logy",
+                             "--group", "link.bit_time", "--ylabel", "time per ray (s)")
+        labels = self.labels(ax.yaxis)
+        self.assertGreaterEqual(len(labels), 3, labels)
+        # The lowest label is at or below the smallest value: the minimum can be read.
+        lowest = min(float(t) for t in labels)
+        self.assertLessEqual(lowest, min(line.get_ydata().min() for line in ax.lines))
+        self.assertEqual(ax.get_ylabel(), "time per ray (µs)")
+        self.assertNoOffsetText(ax)
+        for t in self.labels(ax.xaxis):
+            self.assertRegex(t, r"^\d+$")  # pert_count: whole numbers only
+        self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()],
+                         ["250 ns", "500 ns", "1000 ns"])
+        self.assertLegendClear(fig, ax)
+
+    def test_sweep_plot_close_times_and_a_time_on_x(self):
+        fig, ax = self.drawn("--x", "pert_count", "--y", "simulated_time_s", "--group", "none")
+        self.assertTimeLabel(ax.get_ylabel())
+        self.assertNoOffsetText(ax)
+        # In ms: pert_count 1 averaged over the three bit times (k = 4, 1, 2).
+        np.testing.assert_allclose(ax.lines[0].get_ydata()[0], 88.04 + 1e-4 * (1 + 7 / 3))
+        fig, ax = self.drawn("--x", "link.bit_time", "--y", "simulated_time_s", "--group",
+                             "pert_count")
+        self.assertEqual(ax.get_xlabel(), "link.bit_time (µs)")  # "250 ns" read as a time
+        np.testing.assert_allclose(ax.lines[0].get_xdata(), [0.25, 0.5, 1.0])
+        self.assertNoOffsetText(ax)
+        self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()],
+                         ["1", "2", "3", "4", "5"])
+
+    def test_time_axes_of_a_run(self):
+        edges, busy, depth = utilisation_timeline.busy_from_trace(make_trace(), windows=4)
+        fig, axes = utilisation_timeline.draw({k: (edges, v) for k, v in busy.items()},
+                                              {k: (edges, v) for k, v in depth.items()}, "t")
+        self.addCleanup(common.pyplot().close, fig)
+        fig.canvas.draw()
+        self.assertTimeLabel(axes[-1].get_xlabel())
+        self.assertIn("(µs)", axes[-1].get_xlabel())
+        self.assertLessEqual(axes[-1].get_xlim()[1], 42.0)  # 40 us drawn as 40
+        for ax in axes:
+            self.assertNoOffsetText(ax)
+            self.assertLegendClear(fig, ax)
+        fig, ax = latency_histogram.draw([1e-6, 2e-6, 4e-6, 8e-6], [1, 4, 2],
+                                         {"mean": 2.5e-6, "p99": 4e-6}, 7, "t")
+        self.addCleanup(common.pyplot().close, fig)
+        fig.canvas.draw()
+        self.assertEqual(ax.get_xlabel(), "ray latency (µs)")
+        self.assertGreaterEqual(len(self.labels(ax.xaxis)), 3)
+        for t in self.labels(ax.yaxis):
+            self.assertRegex(t, r"^\d+$")  # a count of rays
+        self.assertNoOffsetText(ax)
+        self.assertLegendClear(fig, ax)
+
+    def test_helpers(self):
+        self.assertEqual(sorted(["1000 ns", "250 ns", "1 ms", "builtin:npp-16", "500 ns",
+                                 "builtin:npp-8"], key=common.value_order_key),
+                         ["250 ns", "500 ns", "1000 ns", "1 ms", "builtin:npp-8",
+                          "builtin:npp-16"])
+        self.assertEqual(common.time_unit(88e-3), (1e3, "ms"))
+        self.assertEqual(common.time_unit(7200.0)[1], "h")
+        self.assertEqual(common.label_with_unit("ray latency (s)", "µs"), "ray latency (µs)")
+        for lo, hi in ((15.0, 300.0), (14.0, 18.0), (1e-5, 1.0), (0.9, 1.1)):
+            ticks = common.log_ticks(lo, hi)
+            self.assertLessEqual(ticks[0], lo)
+            self.assertGreaterEqual(ticks[-1], hi)
+            self.assertGreaterEqual(np.count_nonzero((ticks >= lo) & (ticks <= hi)), 2)
 
 
 @unittest.skipUnless(os.environ.get("RTSIM_BINARY"), "RTSIM_BINARY not set")
