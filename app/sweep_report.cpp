@@ -144,12 +144,29 @@ bool log_spaced(std::vector<double> v) {
   return spread(lg) < spread(lin);
 }
 
+/// How much brighter a point's thumbnail is shown: an image whose mean is dark (no light
+/// reaches the camera, or shade.max_depth = 0 leaves the ambient term alone) would look black at
+/// thumbnail size. 1 for an image bright enough, or without a mean in its stats.json.
+double thumbnail_gain(const std::string& stats_text) {
+  constexpr double kDark = 0.15, kShownMean = 0.45, kMaxGain = 8.0;
+  const auto stats = nlohmann::json::parse(stats_text, nullptr, false);
+  if (stats.is_discarded() || !stats.contains("image") || !stats["image"].contains("mean_rgb"))
+    return 1.0;
+  const auto& rgb = stats["image"]["mean_rgb"];
+  if (!rgb.is_array() || rgb.size() != 3) return 1.0;
+  // Rec. 709 luma of the mean colour.
+  const double luma =
+      0.2126 * rgb[0].get<double>() + 0.7152 * rgb[1].get<double>() + 0.0722 * rgb[2].get<double>();
+  if (luma >= kDark) return 1.0;
+  return luma > 0 ? std::min(kMaxGain, kShownMean / luma) : kMaxGain;
+}
+
 /// What a plot's picture says it is, and how to draw it again.
 std::string reproduce(const SweepPlotSpec& s) {
-  std::string cmd = "python3 analysis/sweep_plot.py results.jsonl plot.png";
+  std::string cmd = "/usr/bin/python3 analysis/sweep_plot.py results.jsonl plot.png";
   for (const auto& a : s.script_args()) {
-    const bool quote = a.find_first_of(" =*(),") != std::string::npos || a.empty();
-    cmd += " " + (quote ? "'" + a + "'" : a);
+    cmd += ' ';
+    cmd += validation::shell_quote(a);
   }
   return cmd;
 }
@@ -485,7 +502,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
   // ---- Thumbnails ----
   {
     std::string grid;
-    std::size_t shown = 0, without = 0;
+    std::size_t shown = 0, without = 0, brightened = 0;
     int images = 0;
     for (const auto& p : points) {
       const fs::path png = in.points_dir / p.key / "image.png";
@@ -505,12 +522,21 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
       std::string swept;
       for (const auto& s : p.settings)
         if (s.swept) swept += (swept.empty() ? "" : ", ") + s.name + "=" + s.value.text;
+      const auto& outcome = (*in.outcomes)[p.index];
+      const double gain = outcome.ok ? thumbnail_gain(outcome.stats_text) : 1.0;
+      std::string filter, note;
+      if (gain > 1.0) {
+        filter = ";filter:brightness(" + format_number(gain, 3) + ")";
+        note = " (dark: shown " + format_number(gain, 2) + "x brighter)";
+        ++brightened;
+      }
       grid += "<figure style=\"margin:0;width:" + std::to_string(kThumbPixels + 8) +
               "px\"><img alt=\"point " + html_escape(p.key) +
-              "\" style=\"width:" + std::to_string(kThumbPixels) +
-              "px;image-rendering:pixelated\" src=\"data:image/png;base64," + base64(data) +
+              "\" style=\"width:" + std::to_string(kThumbPixels) + "px;image-rendering:pixelated" +
+              filter + "\" src=\"data:image/png;base64," + base64(data) +
               "\"><figcaption style=\"overflow-wrap:anywhere\">" +
-              html_escape(p.key + (swept.empty() ? "" : ": " + swept)) + "</figcaption></figure>\n";
+              html_escape(p.key + (swept.empty() ? "" : ": " + swept) + note) +
+              "</figcaption></figure>\n";
       ++shown;
       ++images;
     }
@@ -529,7 +555,12 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
                           ? " " + std::to_string(without) +
                                 " point(s) have no image.png here (failed, or written on another "
                                 "node without a shared file system)."
-                          : std::string()));
+                          : std::string()) +
+                     (brightened > 0 ? " Dark images (a mean below 15% grey: no light reaches "
+                                       "the camera, or shade.max_depth = 0 leaves the ambient "
+                                       "term alone) are shown brighter, as their captions say; "
+                                       "image.png itself is as rendered."
+                                     : std::string()));
       page.raw("<div style=\"display:flex;flex-wrap:wrap;gap:10px\">\n" + grid + "</div>\n",
                images);
     }

@@ -158,6 +158,13 @@ TEST_F(SweepReport, PageHasEveryRowPlotsImagesAndParameters) {
   EXPECT_NE(html.find("alt=\"peripheral.time_per_ray_s against"), std::string::npos);
   EXPECT_NE(html.find("alt=\"point 0002\""), std::string::npos);
   EXPECT_NE(html.find("Every point&#39;s image (3)"), std::string::npos);
+  // shade.max_depth = 0 leaves the ambient term alone: a dark image, shown brighter and said so.
+  EXPECT_EQ(count(html, "filter:brightness("), 3);
+  EXPECT_NE(html.find("0002: peripheral.grid.divisions=8 (dark: shown"), std::string::npos);
+  // How to draw a plot again: a command a shell runs as it is (quotes inside quoted).
+  EXPECT_NE(html.find("/usr/bin/python3 analysis/sweep_plot.py results.jsonl plot.png --x"),
+            std::string::npos);
+  EXPECT_NE(html.find("the point&#39;\\&#39;&#39;s rtsim run"), std::string::npos);
   EXPECT_EQ(count(html, "src=\"http"), 0);
   // Parameters with their sources: the swept one, the fixed one with its line in the sweep file.
   EXPECT_NE(html.find("<tr class=\"set\"><td>peripheral.grid.divisions</td><td>swept: 2, 4, 8"),

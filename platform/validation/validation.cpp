@@ -82,12 +82,16 @@ std::string exact_number(double v) {
   return std::string(buf, r.ptr);
 }
 
-bool needs_quoting(const std::string& s) {
-  return s.find_first_of(" \t\"'\\$`|&;<>()*?[]{}~#!") != std::string::npos || s.empty();
+bool is_group_member(const std::string& id, const std::string& group) {
+  if (id.size() <= group.size() || id.compare(0, group.size(), group) != 0) return false;
+  return std::all_of(id.begin() + static_cast<std::ptrdiff_t>(group.size()), id.end(),
+                     [](char c) { return c >= 'a' && c <= 'z'; });
 }
 
+}  // namespace
+
 std::string shell_quote(const std::string& s) {
-  if (!needs_quoting(s)) return s;
+  if (!s.empty() && s.find_first_of(" \t\"'\\$`|&;<>()*?[]{}~#!") == std::string::npos) return s;
   std::string out = "'";
   for (char c : s) {
     if (c == '\'')
@@ -97,14 +101,6 @@ std::string shell_quote(const std::string& s) {
   }
   return out + "'";
 }
-
-bool is_group_member(const std::string& id, const std::string& group) {
-  if (id.size() <= group.size() || id.compare(0, group.size(), group) != 0) return false;
-  return std::all_of(id.begin() + static_cast<std::ptrdiff_t>(group.size()), id.end(),
-                     [](char c) { return c >= 'a' && c <= 'z'; });
-}
-
-}  // namespace
 
 // ---- Runs and plans -------------------------------------------------------------------------
 

@@ -166,7 +166,10 @@ const nlohmann::json& stats_of(const RunResults& results, const std::string& key
 double stats_number(const RunResults& results, const std::string& key, const std::string& path);
 
 /// Output.
-std::string format_number(double v);  ///< 4 significant digits, no exponent for 1e-3..1e6
+std::string format_number(double v);
+/// `s` as one word for a POSIX shell: as it is if it needs no quoting, else in single quotes
+/// (a quote inside written '\'').
+std::string shell_quote(const std::string& s);  ///< 4 significant digits, no exponent for 1e-3..1e6
 std::string format_table(const std::vector<Row>& rows);
 nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows);
 std::string rows_to_csv(const std::vector<Row>& rows);
