@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -22,7 +23,8 @@
 namespace rtsim::app {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+// Ordered: a machine's figures keep the order stats.json has them in (shade, shell, prim).
+using json = nlohmann::ordered_json;
 
 // ---- Tools -----------------------------------------------------------------------------------
 
@@ -320,6 +322,84 @@ std::string value_text(const json& v) {
   std::string s = v.dump();
   if (s.size() > 160) s = s.substr(0, 157) + "...";
   return s;
+}
+
+/// A figure of a machine's section as the page shows it: seconds (a name ending in _s) in
+/// engineering units, a utilisation as a percentage, other numbers to 4 digits.
+std::string figure_text(const std::string& name, const json& v) {
+  if (!v.is_number()) return value_text(v);
+  const double x = v.get<double>();
+  if (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0) return format_seconds(x);
+  if (name == "utilization" || name == "utilisation") return format_percent(x);
+  return format_number(x, 4);
+}
+
+bool is_scalar(const json& v) { return !v.is_object() && !v.is_array(); }
+
+/// The scalar figures of `o`, nested objects' by dotted path ("eal.n"), in document order.
+void each_figure(const json& o, const std::string& prefix,
+                 const std::function<void(const std::string&, const json&)>& f) {
+  for (const auto& [k, x] : o.items()) {
+    const std::string path = prefix.empty() ? k : prefix + "." + k;
+    if (x.is_object())
+      each_figure(x, path, f);
+    else
+      f(path, x);
+  }
+}
+
+/// The objects `names` of `parent` in one table, a row per figure and a column per object, so
+/// that figures of the same kind (three processors' latency per ray) read side by side.
+void side_by_side(HtmlReport& page, const json& parent, const std::vector<std::string>& names) {
+  std::vector<std::string> figures;
+  std::map<std::string, std::map<std::string, std::string>> cells;  // figure -> object -> text
+  for (const auto& name : names)
+    each_figure(parent[name], "", [&](const std::string& path, const json& x) {
+      auto& row = cells[path];
+      if (row.empty()) figures.push_back(path);
+      row[name] = figure_text(path.substr(path.rfind('.') + 1), x);
+    });
+  // Figures every object has first (the processors' common time split), then the others.
+  std::stable_partition(figures.begin(), figures.end(),
+                        [&](const std::string& f) { return cells[f].size() == names.size(); });
+  std::vector<std::string> head = {""};
+  head.insert(head.end(), names.begin(), names.end());
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& f : figures) {
+    std::vector<std::string> row = {f};
+    for (const auto& name : names) {
+      const auto it = cells[f].find(name);
+      row.push_back(it == cells[f].end() ? "" : it->second);
+    }
+    rows.push_back(std::move(row));
+  }
+  page.table(head, rows);
+}
+
+/// A machine's own stats.json object (gaudet-pert's `gaudet`): its plain figures as a list;
+/// its objects of figures (the shade, shell and prim processors) side by side in one table;
+/// and each object of such objects (the buses) as a table of its own.
+void machine_section(HtmlReport& page, const std::string& key, const json& v) {
+  std::vector<std::pair<std::string, std::string>> plain;
+  std::vector<std::string> members, groups;
+  for (const auto& [k, x] : v.items()) {
+    if (!x.is_object()) {
+      plain.emplace_back(k, is_scalar(x) ? figure_text(k, x) : value_text(x));
+    } else if (!x.empty() &&
+               std::all_of(x.begin(), x.end(), [](const json& m) { return m.is_object(); })) {
+      groups.push_back(k);
+    } else {
+      members.push_back(k);
+    }
+  }
+  if (!plain.empty()) page.key_values(plain);
+  if (!members.empty()) side_by_side(page, v, members);
+  for (const auto& g : groups) {
+    page.paragraph(key + "." + g + ":");
+    std::vector<std::string> names;
+    for (const auto& [k, x] : v[g].items()) names.push_back(k);
+    side_by_side(page, v[g], names);
+  }
 }
 
 const json* find(const json& j, const std::string& key) {
@@ -679,9 +759,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   for (const auto& [key, v] : stats.items()) {
     if (kShownKeys.count(key) || !v.is_object()) continue;
     page.heading(key);
-    std::vector<std::pair<std::string, std::string>> kv;
-    for (const auto& [k, x] : v.items()) kv.emplace_back(k, value_text(x));
-    page.key_values(kv);
+    machine_section(page, key, v);
   }
   {
     std::vector<std::pair<std::string, std::string>> kv;

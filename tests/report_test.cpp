@@ -103,6 +103,31 @@ TEST(Report, RunWritesASelfContainedPageWithImagePlotsAndParameters) {
   fs::remove_all(dir);
 }
 
+TEST(Report, AMachinesOwnFiguresAreTablesNotRawJson) {
+  // gaudet-pert's `gaudet` object: its three processors side by side, its buses in a table.
+  const auto dir = scratch_dir("report-gaudet");
+  const auto r = run_rtsim(
+      "run --machine gaudet-pert --scene builtin:npp-412 --width 24 --height 24 -p pert_count=2 "
+      "--report -q --out " +
+      dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string html = read_file(dir / "report.html");
+  const auto section = html.find("<h2>gaudet</h2>");
+  ASSERT_NE(section, std::string::npos);
+  const std::string g = html.substr(section, html.find("<h2>", section + 1) - section);
+  // The processors in pipeline order, their time split a row each, in engineering units.
+  EXPECT_NE(g.find("<tr><th></th><th>shade</th><th>shell</th><th>prim</th></tr>"),
+            std::string::npos)
+      << g.substr(0, 2000);
+  EXPECT_NE(g.find("<tr><td>processing_per_ray_s</td><td>"), std::string::npos);
+  EXPECT_NE(g.find(" µs</td>"), std::string::npos);
+  EXPECT_NE(g.find("gaudet.buses:"), std::string::npos);
+  EXPECT_NE(g.find("<tr><td>utilization</td><td>"), std::string::npos);
+  // No object shown as JSON text.
+  EXPECT_EQ(g.find("{&quot;"), std::string::npos) << g.substr(0, 2000);
+  EXPECT_EQ(g.find("...</td>"), std::string::npos);
+}
+
 TEST(Report, BadInputWritesNothing) {
   const auto dir = scratch_dir("report-bad");
   const auto r = run_rtsim("run --scene builtin:no-such-scene --report -q --out " + dir.string());

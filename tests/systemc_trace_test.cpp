@@ -151,6 +151,31 @@ TEST(PerfettoTrace, ModuleHierarchyBecomesProcessesAndThreads) {
   EXPECT_EQ(t["otherData"]["rtsim_events_dropped"], 0);
 }
 
+TEST(PerfettoTrace, NumberedModulesSortInNumberOrderWhateverTheirCreationOrder) {
+  // gaudet-pert's PERTs: created pert0, pert11, pert10, ..., they read pert0, pert1, ..., pert11,
+  // each stem where it first appeared (the buses after the PERTs).
+  const auto dir = fresh_dir("perfetto-order");
+  const auto path = dir / "trace.json";
+  {
+    PerfettoTrace trace(path, 100);
+    for (const char* name : {"pert0.shade", "pert11.shade", "pert2.shade", "pert10.shell",
+                             "shell_bus", "pert1.prim", "prim_bus"})
+      trace.track(name);
+  }
+  const json t = parse_trace(path);
+  std::map<int, std::string> process_by_sort_index;
+  std::map<int, int> sort_index_of_pid;
+  for (const auto& e : events_of(t, "M"))
+    if (e.at("name") == "process_sort_index") sort_index_of_pid[e["pid"]] = e["args"]["sort_index"];
+  for (const auto& e : events_of(t, "M"))
+    if (e.at("name") == "process_name")
+      process_by_sort_index[sort_index_of_pid.at(e["pid"])] = e["args"]["name"];
+  std::vector<std::string> order;
+  for (const auto& [index, name] : process_by_sort_index) order.push_back(name);
+  EXPECT_EQ(order, (std::vector<std::string>{"pert0", "pert1", "pert2", "pert10", "pert11",
+                                             "shell_bus", "prim_bus"}));
+}
+
 TEST(PerfettoTrace, SlicesInstantsAndCountersCarryTheirTimes) {
   const auto dir = fresh_dir("perfetto-events");
   const auto path = dir / "trace.json";

@@ -185,6 +185,21 @@ const PerfettoTrace::Track& PerfettoTrace::track_at(int track) const {
   return tracks_[static_cast<std::size_t>(track)];
 }
 
+int PerfettoTrace::process_sort_index(std::string_view process) {
+  std::size_t digits = process.size();
+  while (digits > 0 && process[digits - 1] >= '0' && process[digits - 1] <= '9') --digits;
+  const std::string_view stem = process.substr(0, digits);
+  const std::string_view number = process.substr(digits);
+  auto rank = stem_rank_.find(stem);
+  if (rank == stem_rank_.end())
+    rank = stem_rank_.emplace(std::string(stem), static_cast<int>(stem_rank_.size())).first;
+  // Up to 100000 numbered instances a stem; a longer number sorts last among them.
+  constexpr int kPerStem = 100000;
+  int n = kPerStem - 1;
+  if (!number.empty() && number.size() <= 5) n = std::stoi(std::string(number));
+  return rank->second * kPerStem + n;
+}
+
 int PerfettoTrace::track(std::string_view hierarchical_name) {
   if (auto it = track_of_name_.find(hierarchical_name); it != track_of_name_.end()) {
     return it->second;
@@ -206,7 +221,7 @@ int PerfettoTrace::track(std::string_view hierarchical_name) {
     pid_of_process_.emplace(std::string(process), pid);
     if (open_) {
       write_metadata("process_name", pid, 0, "name", process, 0);
-      write_metadata("process_sort_index", pid, 0, "sort_index", {}, pid);
+      write_metadata("process_sort_index", pid, 0, "sort_index", {}, process_sort_index(process));
     }
   }
   const int tid = static_cast<int>(pid_of_process_.size() + tracks_.size()) + 1;

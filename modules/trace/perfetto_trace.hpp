@@ -128,6 +128,11 @@ class PerfettoTrace {
   std::vector<Track> tracks_;
   std::map<std::string, int, std::less<>> track_of_name_;
   std::map<std::string, int, std::less<>> pid_of_process_;
+  /// Process names without their trailing number ("pert" of "pert11"), by first appearance.
+  std::map<std::string, int, std::less<>> stem_rank_;
+  /// Where a process sorts in the viewer: by its stem's first appearance, then its number, so
+  /// pert0, pert1, ..., pert11 read in order whatever order they were created in.
+  int process_sort_index(std::string_view process);
   std::string scratch_;
   std::vector<std::pair<std::string, std::string>> other_data_;
 };
