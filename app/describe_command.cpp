@@ -27,6 +27,7 @@
 #include "app/configuration.hpp"
 #include "app/scene_input.hpp"
 #include "common/input_error.hpp"
+#include "common/seed_citation.hpp"
 #include "modules/wiring.hpp"
 #include "platform/machine.hpp"
 
@@ -164,7 +165,7 @@ int run_describe(const DescribeArgs& args) {
 
   // Text: the tree, indented by depth.
   std::ostringstream text;
-  text << machine.name() << ": " << machine.description() << "\n";
+  text << machine.name() << ": " << cite_seeds(machine.description()) << "\n";
   text << "Module tree (built for " << scene_spec
        << "); parameters by the name that sets every instance, with their values; "
           "statistics as stats.json `modules` reports them.\n\n";

@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
 #include "common/input_error.hpp"
+#include "common/seed_citation.hpp"
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "scenes/scene_loader.hpp"
@@ -30,7 +31,8 @@ void list_scenes() {
 void list_machines() {
   std::cout << "Machines (rtsim run --machine NAME; rtsim list params --machine NAME):\n";
   for (const platform::Machine* m : platform::machines())
-    std::cout << "  " << std::left << std::setw(20) << m->name() << m->description() << "\n";
+    std::cout << "  " << std::left << std::setw(20) << m->name() << cite_seeds(m->description())
+              << "\n";
   std::cout << "  " << std::left << std::setw(20) << "(none)"
             << "rtsim render: the functional renderer, firmware with no timing\n";
 }
@@ -75,7 +77,7 @@ void list_params(const ListArgs& args) {
     std::cout << "| name | default | unit | description | source |\n|---|---|---|---|---|\n";
     for (const auto& e : entries)
       std::cout << "| `" << e.name << "` | `" << e.default_text << "` | " << e.unit << " | "
-                << e.description << " | " << e.source << " |\n";
+                << e.description << " | " << cite_seeds(e.source) << " |\n";
     return;
   }
   std::size_t name_w = 4, value_w = 5;
@@ -91,7 +93,7 @@ void list_params(const ListArgs& args) {
               << std::setw(static_cast<int>(value_w + 2)) << e.value_text << e.where_set << "\n"
               << "    " << e.description << "\n"
               << "    default " << e.default_text << (e.unit.empty() ? "" : " (" + e.unit + ")")
-              << "; source: " << e.source << "\n";
+              << "; source: " << cite_seeds(e.source) << "\n";
   }
 }
 

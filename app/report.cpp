@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "app/trace_options.hpp"
+#include "common/seed_citation.hpp"
 #include "common/spawn_logged.hpp"
 
 namespace rtsim::app {
@@ -374,6 +375,34 @@ void side_by_side(HtmlReport& page, const json& parent, const std::vector<std::s
     rows.push_back(std::move(row));
   }
   page.table(head, rows);
+}
+
+/// The seed documents the parameters' sources cite, linked to their text (a line number is a
+/// line of that file): beside the checkout, ../shared/reference/seeds/NNN_*.txt.
+void seed_links(HtmlReport& page, const std::vector<params::ParamEntry>& params) {
+  std::set<std::string> cited;
+  for (const auto& p : params)
+    for (auto at = p.source.find("seed "); at != std::string::npos;
+         at = p.source.find("seed ", at + 1))
+      if (!seed_author(p.source.substr(at + 5, 3)).empty())
+        cited.insert(p.source.substr(at + 5, 3));
+  std::error_code ec;
+  const fs::path seeds = fs::weakly_canonical(
+      fs::path(RTSIM_SOURCE_DIR) / ".." / "shared" / "reference" / "seeds", ec);
+  std::string links;
+  for (const auto& number : cited) {
+    std::string file;
+    if (!ec && fs::is_directory(seeds, ec))
+      for (const auto& e : fs::directory_iterator(seeds, ec))
+        if (e.path().filename().string().rfind(number + "_", 0) == 0) file = e.path().string();
+    links += links.empty() ? "" : ", ";
+    const std::string who = html_escape(std::string(seed_author(number)));
+    links += file.empty() ? who
+                          : "<a href=\"file://" + html_escape(file) + "\">" + who + "</a> (" +
+                                html_escape(fs::path(file).filename().string()) + ")";
+  }
+  if (!links.empty())
+    page.raw("<p>Sources cite the seed documents by author, year and line: " + links + ".</p>\n");
 }
 
 /// A machine's own stats.json object (gaudet-pert's `gaudet`): its plain figures as a list;
@@ -785,10 +814,11 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     std::vector<std::vector<std::string>> rows;
     std::vector<bool> set;
     for (const auto& p : in.params) {
-      rows.push_back({p.name, p.value_text, p.default_text, p.where_set, p.source});
+      rows.push_back({p.name, p.value_text, p.default_text, p.where_set, cite_seeds(p.source)});
       set.push_back(p.where_set != "default");
     }
     page.table({"parameter", "value", "default", "set by", "source"}, rows, set);
+    seed_links(page, in.params);
   } else if (const json* ps = find(stats, "params"); ps && ps->is_object()) {
     page.paragraph("Every parameter as used (stats.json params; sources: `rtsim list params`).");
     std::vector<std::vector<std::string>> rows;

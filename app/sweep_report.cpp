@@ -14,6 +14,7 @@
 
 #include "app/configuration.hpp"
 #include "common/input_error.hpp"
+#include "common/seed_citation.hpp"
 #include "platform/machine.hpp"
 
 namespace rtsim::app {
@@ -597,7 +598,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
           where = f->second;
         }
         set.push_back(where != "default");
-        rows.push_back({e.name, value, e.default_text, where, e.source});
+        rows.push_back({e.name, value, e.default_text, where, cite_seeds(e.source)});
       }
       page.paragraph(
           "Every parameter of " + machine_name +

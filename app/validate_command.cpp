@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "app/image_files.hpp"
 #include "app/progress_bar.hpp"
+#include "common/seed_citation.hpp"
 #include "platform/validation/all_figures.hpp"
 #include "platform/validation/run_queue.hpp"
 #include "platform/validation/validation.hpp"
@@ -56,7 +57,7 @@ void print_list(const val::Plan& plan) {
   // Sweeps have dozens of runs that differ in one parameter: show the first and a count.
   constexpr std::size_t kRunsShown = 2;
   for (const auto& f : plan.figures) {
-    std::cout << f.id << "  " << f.title << "  (" << f.seed_ref << ")\n"
+    std::cout << f.id << "  " << f.title << "  (" << cite_seeds(f.seed_ref) << ")\n"
               << "    seed:      " << seed_of(f) << " -- " << f.seed_text << "\n"
               << "    tolerance: " << f.tolerance.describe() << " -- " << f.tolerance.why << "\n"
               << "    workload:  " << f.workload << "\n";

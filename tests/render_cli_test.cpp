@@ -181,7 +181,7 @@ TEST(RenderCli, HelpAndListWork) {
   r = run_rtsim("list params");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.output.find("bezier.iterations"), std::string::npos);
-  EXPECT_NE(r.output.find("seed 002 L284"), std::string::npos);
+  EXPECT_NE(r.output.find("Wang, Lewis & Hung c. 2000, line 284"), std::string::npos);
 }
 
 TEST(RenderCli, UllnerQuadAndTriangleKernelsRenderTheSamePolygons) {

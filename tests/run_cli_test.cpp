@@ -156,7 +156,7 @@ TEST(RunCli, ListsMachinesAndTheirParameters) {
         "peripheral.grid.dda", "peripheral.grid.step_time", "host.clock", "quantum"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
   EXPECT_NE(r.output.find("333.333 ns"), std::string::npos);
-  EXPECT_NE(r.output.find("seed 000 L654"), std::string::npos);
+  EXPECT_NE(r.output.find("Ullner 1983, line 654"), std::string::npos);  // seed 000 L654
 }
 
 TEST(RunCli, TracesOpenAsPerfettoJsonAndVcd) {

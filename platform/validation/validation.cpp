@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/seed_citation.hpp"
+
 namespace rtsim::validation {
 
 // ---- Tolerance ----------------------------------------------------------------------------
@@ -319,7 +321,7 @@ std::string format_table(const std::vector<Row>& rows) {
   std::vector<std::vector<std::string>> cells;
   for (const auto& r : rows) {
     const auto rel = r.relative_error();
-    cells.push_back({r.id, r.title, r.seed_ref,
+    cells.push_back({r.id, r.title, cite_seeds(r.seed_ref),
                      r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
                      r.simulated ? with_unit(*r.simulated, r.unit) : "-", rel ? percent(*rel) : "-",
                      r.tolerance.describe(),
