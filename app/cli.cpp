@@ -259,6 +259,11 @@ int run_cli(int argc, char** argv) {
                   "utilisation and latency against each axis (analysis/sweep_plot.py, "
                   "python3-matplotlib), thumbnails of the first 24 images and the parameters "
                   "with their sources");
+  sweep
+      ->add_option("--baseline", sw.baseline,
+                   "With --report: compare every point with point N (as in points/NNNN): its "
+                   "frame time, speed-up and largest changes against it (as `rtsim diff`)")
+      ->check(CLI::NonNegativeNumber);
   sweep->add_flag("-q,--quiet", sw.quiet, "Print nothing but errors");
   ValidateArgs va;
   va.jobs = render.threads;

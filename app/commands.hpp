@@ -89,6 +89,7 @@ struct SweepArgs {
   bool force = false;   ///< run every point again, even those done before
   bool list = false;    ///< print the points' command lines, run nothing
   bool report = false;  ///< also write report.html (app/sweep_report.hpp)
+  int baseline = -1;    ///< --baseline N: the report compares every point with point N
   bool quiet = false;
   std::string rtsim;  ///< binary to run for each point; empty: this one
 };

@@ -47,6 +47,15 @@ std::string format_seconds(double s) {
   return format_number(s) + " s";
 }
 
+std::string format_change(double relative) {
+  if (!std::isfinite(relative)) return format_number(relative);
+  if (relative == 0.0) return "0%";
+  std::string text = relative > 0 ? "+" : "";
+  text += format_significant(100.0 * relative, 3);
+  text += '%';
+  return text;
+}
+
 std::string format_percent(double fraction) {
   if (!std::isfinite(fraction)) return format_number(fraction);
   char buf[32];

@@ -12,6 +12,9 @@ std::string format_significant(double v, int digits = 4);
 /// Seconds in ns, µs, ms, s, min or h, 4 significant digits: "55.29 µs", "2.517 h". Below a
 /// picosecond (SystemC's resolution: rounding left-overs such as -2.7e-21) it is "0 s".
 std::string format_seconds(double s);
+/// A relative change as a signed percentage, 3 significant digits: 3.76 -> "+376%", -0.807 ->
+/// "-80.7%", 0 -> "0%".
+std::string format_change(double relative);
 /// A fraction as a percentage with one decimal: 0.9994 -> "99.9%".
 std::string format_percent(double fraction);
 

@@ -76,11 +76,7 @@ std::string relative_text(const RunDiff::Change& c) {
   if (c.a.is_null()) return "new";
   if (c.b.is_null()) return "gone";
   if (!c.relative) return c.a.is_number() ? "from 0" : "";
-  const double r = 100.0 * *c.relative;
-  std::string text = r > 0 ? "+" : "";
-  text += format_significant(r, 3);
-  text += '%';
-  return text;
+  return format_change(*c.relative);
 }
 
 void print_changes(std::ostream& out, const std::vector<RunDiff::Change>& changes,

@@ -71,6 +71,12 @@ Plan make_plan(const SweepArgs& args) {
   plan.file = sweep::read_sweep_file(args.file);
   plan.points = sweep::expand_points(plan.file);
   sweep::check_sweep(plan.file, plan.points);
+  if (args.baseline >= 0 && !args.report)
+    throw InputError("--baseline", 0, "marks a point in report.html: give --report too");
+  if (args.baseline >= static_cast<int>(plan.points.size()))
+    throw InputError("--baseline " + std::to_string(args.baseline), 0,
+                     "no such point: the sweep has points 0 to " +
+                         std::to_string(plan.points.size() - 1) + " (--list shows them)");
   return plan;
 }
 
@@ -278,6 +284,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
       in.wall_s = wall;
       in.run_now = requests.size();
       in.ranks = session ? session->size() : 0;
+      if (args.baseline >= 0) in.baseline = static_cast<std::size_t>(args.baseline);
       ReportTools tools;
       tools.scratch_dir = set.staged_path(".report-plots");
       write_sweep_report(in, set.stage("report.html"), tools);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/configuration.hpp"
+#include "app/run_diff.hpp"
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
 #include "platform/machine.hpp"
@@ -160,6 +161,57 @@ double thumbnail_gain(const std::string& stats_text) {
       0.2126 * rgb[0].get<double>() + 0.7152 * rgb[1].get<double>() + 0.0722 * rgb[2].get<double>();
   if (luma >= kDark) return 1.0;
   return luma > 0 ? std::min(kMaxGain, kShownMean / luma) : kMaxGain;
+}
+
+/// --baseline: every point that ran against the baseline point, as `rtsim diff` compares two
+/// runs: frame time, its change, the speed-up, and the largest other changes.
+void baseline_section(HtmlReport& page, const SweepReportInputs& in) {
+  constexpr std::size_t kChangesShown = 3;
+  const auto& points = *in.points;
+  const auto& base_outcome = (*in.outcomes)[*in.baseline];
+  page.heading("Against the baseline: point " + points[*in.baseline].key);
+  if (!base_outcome.ok) {
+    page.note("Point " + points[*in.baseline].key +
+              " did not run to the end: nothing to compare with.");
+    return;
+  }
+  const auto base = nlohmann::ordered_json::parse(base_outcome.stats_text, nullptr, false);
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> bold;
+  for (const auto& p : points) {
+    const auto& o = (*in.outcomes)[p.index];
+    if (!o.ok) continue;
+    const auto stats = nlohmann::ordered_json::parse(o.stats_text, nullptr, false);
+    if (stats.is_discarded() || base.is_discarded()) continue;
+    const RunDiff d = diff_runs(base, stats);
+    std::string swept, frame_change = "0%", speedup = "1", others;
+    for (const auto& s : p.settings)
+      if (s.swept) swept += (swept.empty() ? "" : ", ") + s.name + "=" + s.value.text;
+    std::size_t shown = 0;
+    for (const auto& c : d.stats) {
+      if (c.name == "simulated_time_s") {
+        if (c.relative) frame_change = format_change(*c.relative);
+        continue;
+      }
+      if (!c.relative || shown == kChangesShown) continue;
+      others += (others.empty() ? "" : "; ") + c.name + " " + format_change(*c.relative);
+      ++shown;
+    }
+    const double t = stats.value("simulated_time_s", 0.0), t0 = base.value("simulated_time_s", 0.0);
+    if (t > 0) speedup = format_significant(t0 / t, 3);
+    rows.push_back({p.key, swept, format_seconds(t), frame_change, speedup, others});
+    bold.push_back(p.index == *in.baseline);
+  }
+  page.paragraph("Each point that ran against point " + points[*in.baseline].key +
+                 " (bold): its frame time, the change, the speed-up (the baseline's frame time "
+                 "over the point's) and its " +
+                 std::to_string(kChangesShown) +
+                 " largest other relative changes (`rtsim diff points/" + points[*in.baseline].key +
+                 " points/NNNN` lists them all).");
+  page.raw("<div style=\"overflow-x:auto\">\n");
+  page.table({"point", "swept", "frame time", "change", "speed-up", "largest other changes"}, rows,
+             bold);
+  page.raw("</div>\n");
 }
 
 /// What a plot's picture says it is, and how to draw it again.
@@ -499,6 +551,9 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
     page.table(cols, rows, bold);
     page.raw("</div>\n");
   }
+
+  // ---- Against the baseline ----
+  if (in.baseline) baseline_section(page, in);
 
   // ---- Thumbnails ----
   {

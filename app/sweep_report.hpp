@@ -9,6 +9,7 @@
 // point): failed points are listed, not fatal. A plot that cannot be drawn adds a note.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,7 @@ struct SweepReportInputs {
   double wall_s = 0;                    ///< wall time of this invocation
   std::size_t run_now = 0;              ///< points run by this invocation (the rest resumed)
   int ranks = 0;                        ///< MPI ranks; 0: a local run
+  std::optional<std::size_t> baseline;  ///< --baseline: the point every other is compared with
 };
 
 /// Writes the page to `out_html` (the caller stages it). Throws std::runtime_error only if the

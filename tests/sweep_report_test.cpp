@@ -62,7 +62,7 @@ class SweepReport : public ::testing::Test {
     fs::create_directories(*dir_);
     std::ofstream(*dir_ / "grid.toml") << kGridSweep;
     result_ = new rtsim::test::CommandResult(run_rtsim("sweep " + (*dir_ / "grid.toml").string() +
-                                                       " --jobs 2 --report -q --out " +
+                                                       " --jobs 2 --report --baseline 1 -q --out " +
                                                        (*dir_ / "out").string()));
   }
   static void TearDownTestSuite() {
@@ -158,6 +158,11 @@ TEST_F(SweepReport, PageHasEveryRowPlotsImagesAndParameters) {
   EXPECT_NE(html.find("alt=\"peripheral.time_per_ray_s against"), std::string::npos);
   EXPECT_NE(html.find("alt=\"point 0002\""), std::string::npos);
   EXPECT_NE(html.find("Every point&#39;s image (3)"), std::string::npos);
+  // --baseline 1: every point against point 0001 (bold), as rtsim diff compares two runs.
+  EXPECT_NE(html.find("<h2>Against the baseline: point 0001</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<tr class=\"set\"><td>0001</td><td>peripheral.grid.divisions=4</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>0%</td><td>1.00</td>"), std::string::npos);
   // shade.max_depth = 0 leaves the ambient term alone: a dark image, shown brighter and said so.
   EXPECT_EQ(count(html, "filter:brightness("), 3);
   EXPECT_NE(html.find("0002: peripheral.grid.divisions=8 (dark: shown"), std::string::npos);
