@@ -147,6 +147,19 @@ def time_unit(max_seconds):
     return 1e9, "ns"
 
 
+def seconds_text(seconds):
+    """A time as text in the unit that suits it, 4 significant digits: "2.627 ms", "0 s"."""
+    if seconds == 0 or not math.isfinite(seconds):
+        return f"{seconds:g} s"
+    scale, unit = time_unit(abs(seconds))
+    return f"{seconds * scale:.4g} {unit}"
+
+
+def instance_pattern(name):
+    """A module's class name: its numbers as "*" ("pert3.shell" -> "pert*.shell")."""
+    return re.sub(r"\d+", "*", str(name))
+
+
 def label_with_unit(label, unit):
     """The axis label naming `unit`: a "(s)" in it becomes "(unit)", else " (unit)" is
     appended."""

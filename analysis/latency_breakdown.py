@@ -93,11 +93,11 @@ def draw(series, title):
         share = width / total if total > 0 else 0.0
         if label == UNATTRIBUTED and abs(share) < 1e-9:
             # Rounding only: say so rather than print a meaningless 1e-15.
-            text = f" ~0 ({abs(share):.1g} of end to end)"
+            text = " ~0 (rounding)"
         elif label == END_TO_END:
-            text = f" {width:.4g} {unit}"
+            text = " " + common.seconds_text(width / scale)
         else:
-            text = f" {width:.4g} {unit} ({100 * share:.3g}%)"
+            text = f" {common.seconds_text(width / scale)} ({100 * share:.3g}%)"
         ax.text(max(width, 0.0), i, text, va="center", fontsize="small")
     ax.set_yticks(y)
     ax.set_yticklabels(labels)

@@ -195,6 +195,36 @@ def busy_from_stats(stats, modules=None):
     return edges, out
 
 
+# More series than this in one panel are drawn by class (module_groups).
+MOST_SERIES = 12
+
+
+def module_groups(series, most=MOST_SERIES):
+    """{label: (edges, mean, low, high)}: the series as they are when there are at most `most`;
+    else the instances of a class (names equal but for their numbers: pert0.shell ...
+    pert63.shell) with the same windows as one group, its mean and its min-max band (low and
+    high None for a single series)."""
+    import numpy as np
+
+    if len(series) <= most:
+        return {name: (e, np.asarray(v, float), None, None) for name, (e, v) in series.items()}
+    classes = {}
+    for name, (e, v) in series.items():
+        classes.setdefault(common.instance_pattern(name), []).append((name, e, v))
+    out = {}
+    for pattern, members in classes.items():
+        edges = np.asarray(members[0][1], float)
+        same = all(np.array_equal(np.asarray(e, float), edges) for _, e, _ in members)
+        if len(members) == 1 or not same:
+            for name, e, v in members:
+                out[name] = (e, np.asarray(v, float), None, None)
+            continue
+        values = np.array([np.asarray(v, float) for _, _, v in members])
+        out[f"{pattern} ({len(members)}: mean, min-max)"] = (
+            edges, values.mean(axis=0), values.min(axis=0), values.max(axis=0))
+    return out
+
+
 def draw(busy_series, depth_series, title):
     """(fig, axes): busy_series and depth_series are {name: (edges, values)}; time from the
     first edge, in one unit (ns, µs, ms, s or h) chosen from the range drawn."""
@@ -208,20 +238,27 @@ def draw(busy_series, depth_series, title):
     rows = 2 if depth_series else 1
     fig, axes = plt.subplots(rows, 1, figsize=(8, 3.2 * rows + 0.6), sharex=True, squeeze=False)
     ax = axes[0][0]
-    for name, (e, v) in busy_series.items():
+    for name, (e, v, low, high) in module_groups(busy_series).items():
         x = (np.asarray(e) - start) * scale
-        ax.stairs(100.0 * np.asarray(v), x, label=name, linewidth=1.4)
+        line = ax.stairs(100.0 * v, x, label=name, linewidth=1.4)
+        if low is not None:
+            ax.stairs(100.0 * high, x, baseline=100.0 * low, fill=True, alpha=0.2,
+                      color=line.get_edgecolor(), zorder=0.5)
     ax.set_ylabel("busy (%)")
     ax.set_ylim(-2, 102)
     ax.grid(True, alpha=0.3)
     ax.set_title(title)
     if depth_series:
         ax2 = axes[1][0]
-        for name, (e, v) in depth_series.items():
-            ax2.stairs(np.asarray(v), (np.asarray(e) - start) * scale, label=name, linewidth=1.4)
+        for name, (e, v, low, high) in module_groups(depth_series).items():
+            x = (np.asarray(e) - start) * scale
+            line = ax2.stairs(v, x, label=name, linewidth=1.4)
+            if low is not None:
+                ax2.stairs(high, x, baseline=low, fill=True, alpha=0.2,
+                           color=line.get_edgecolor(), zorder=0.5)
         ax2.set_ylabel("mean queue depth")
         ax2.grid(True, alpha=0.3)
-    axes[-1][0].set_xlabel(f"simulated time ({unit}) after t = {start * scale:.6g} {unit}")
+    axes[-1][0].set_xlabel(f"simulated time ({unit}) after t = {common.seconds_text(start)}")
     for a in axes[:, 0]:
         if a.get_legend_handles_labels()[0]:
             common.place_legend(a, fontsize="small")

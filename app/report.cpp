@@ -742,8 +742,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     // Below 1e-9 of the mean the rest is the rounding of summing the parts: say so.
     const double rest_share = mean > 0 ? rest / mean : 0.0;
     if (std::abs(rest_share) < 1e-9)
-      rows.push_back({"unattributed", "", "", "",
-                      "0 (rounding: " + format_number(rest_share, 2) + ")", "0 %", ""});
+      rows.push_back({"unattributed", "", "", "", "0 (rounding)", "0 %", ""});
     else
       rows.push_back({"unattributed", "", "", "", format_seconds(rest),
                       format_number(100.0 * rest_share, 4) + " %", ""});
@@ -762,6 +761,12 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
       page.note(missing_plots_note({r.message}));
   }
 
+  // A machine's own figures and the other measured objects.
+  for (const auto& [key, v] : stats.items()) {
+    if (kShownKeys.count(key) || !v.is_object()) continue;
+    page.heading(key);
+    machine_section(page, key, v);
+  }
   // Modules.
   if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
     page.heading("Modules");
@@ -771,7 +776,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
       for (const auto& [k, v] : m.items()) {
         if (k == "busy_s" || k == "utilization" || k == "queue" || k == "utilization_windows")
           continue;
-        other += (other.empty() ? "" : ", ") + k + " " + value_text(v);
+        other += (other.empty() ? "" : ", ") + k + " " + figure_text(k, v);
       }
       std::string queue;
       if (const json* q = find(m, "queue"))
@@ -784,12 +789,6 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     page.table({"module", "busy", "utilisation", "queue occupancy", "counts"}, rows);
   }
 
-  // A machine's own figures and the other measured objects.
-  for (const auto& [key, v] : stats.items()) {
-    if (kShownKeys.count(key) || !v.is_object()) continue;
-    page.heading(key);
-    machine_section(page, key, v);
-  }
   {
     std::vector<std::pair<std::string, std::string>> kv;
     for (const char* key : {"accel", "scene_stats", "geometry", "firmware_cost", "image"}) {

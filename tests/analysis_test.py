@@ -910,6 +910,31 @@ class ReadableAxesTest(ScratchTest):
             self.assertGreaterEqual(np.count_nonzero((ticks >= lo) & (ticks <= hi)), 2)
 
 
+class ManyModulesTest(unittest.TestCase):
+    """A machine of many instances (gaudet-pert's 64 PERTs) draws a line per class of module,
+    its mean with a min-max band, not a line and a legend entry per instance."""
+
+    def test_instances_of_a_class_become_one_group(self):
+        edges = [0.0, 1.0, 2.0]
+        series = {f"pert{i}.shell": (edges, [0.5 + 0.01 * i, 0.6]) for i in range(14)}
+        series["shell_bus"] = (edges, [0.3, 0.4])
+        groups = utilisation_timeline.module_groups(series)
+        self.assertEqual(sorted(groups), ["pert*.shell (14: mean, min-max)", "shell_bus"])
+        _, mean, low, high = groups["pert*.shell (14: mean, min-max)"]
+        self.assertAlmostEqual(mean[0], 0.565)
+        self.assertAlmostEqual(low[0], 0.5)
+        self.assertAlmostEqual(high[0], 0.63)
+        self.assertIsNone(groups["shell_bus"][2])
+        # Few series: each its own line.
+        few = {k: series[k] for k in list(series)[:5]}
+        self.assertEqual(sorted(utilisation_timeline.module_groups(few)), sorted(few))
+
+    def test_times_read_in_their_own_unit(self):
+        self.assertEqual(common.seconds_text(0.0026268), "2.627 ms")
+        self.assertEqual(common.seconds_text(9.573e-6), "9.573 µs")
+        self.assertEqual(common.seconds_text(0.0), "0 s")
+
+
 @unittest.skipUnless(os.environ.get("RTSIM_BINARY"), "RTSIM_BINARY not set")
 class RealRunTest(unittest.TestCase, PngMixin):
     """A real run: the trace and stats.json windows must tell the same story."""
