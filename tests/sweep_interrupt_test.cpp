@@ -30,13 +30,15 @@ fs::path write_slow_sweep(const fs::path& dir) {
   return file;
 }
 
-/// Starts `rtsim sweep FILE --out OUT ...` in the background; its output goes to `log`.
+/// Starts `rtsim sweep FILE --out OUT ...` in the background; its output goes to `log`. With
+/// `programs`, its points are programs started anew (--rtsim), not forks of the sweep.
 pid_t start_sweep(const fs::path& file, const fs::path& out, const std::string& jobs,
-                  const fs::path& log) {
+                  const fs::path& log, bool programs = false) {
+  std::vector<std::string> args = {RTSIM_BINARY, "sweep", file.string(), "--jobs",
+                                   jobs,         "--out", out.string()};
+  if (programs) args.insert(args.end(), {"--rtsim", RTSIM_BINARY});
   std::string error;
-  const pid_t pid = rtsim::spawn_logged(
-      {RTSIM_BINARY, "sweep", file.string(), "--jobs", jobs, "--out", out.string()}, log, false,
-      error);
+  const pid_t pid = rtsim::spawn_logged(args, log, false, error);
   EXPECT_GT(pid, 0) << error;
   return pid;
 }
@@ -128,17 +130,24 @@ TEST(SweepInterrupt, ASecondSweepIntoTheSameFolderIsRefused) {
 }
 
 TEST(SweepInterrupt, ASweepKilledOutrightTakesItsRunningPointsWithIt) {
-  const fs::path dir = scratch_dir("sweep-killed");
-  const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "sweep.log";
-  const pid_t pid = start_sweep(file, out, "2", log);
-  ASSERT_TRUE(wait_for(out / "points" / "0000" / "run.log", 120)) << read_file(log);
-  EXPECT_GE(processes_naming(out.string()), 2);  // the sweep and a point at least
-  ::kill(pid, SIGKILL);
-  std::string error;
-  (void)rtsim::wait_for_child(pid, error);
-  // Its points get the parent-death signal and end within moments.
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (processes_naming(out.string()) > 0 && std::chrono::steady_clock::now() < until)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  EXPECT_EQ(processes_naming(out.string()), 0) << "a point ran on after its sweep was killed";
+  for (const bool programs : {false, true}) {
+    SCOPED_TRACE(programs ? "points started as programs (--rtsim)" : "points forked");
+    const fs::path dir = scratch_dir(programs ? "sweep-killed-programs" : "sweep-killed");
+    const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "sweep.log";
+    const pid_t pid = start_sweep(file, out, "2", log, programs);
+    ASSERT_TRUE(wait_for(out / "points" / "0000" / "run.log", 120)) << read_file(log);
+    // The sweep and a point at least (the point's log is opened just before it starts).
+    const auto started = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (processes_naming(out.string()) < 2 && std::chrono::steady_clock::now() < started)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_GE(processes_naming(out.string()), 2);
+    ::kill(pid, SIGKILL);
+    std::string error;
+    (void)rtsim::wait_for_child(pid, error);
+    // Its points get the parent-death signal and end within moments.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (processes_naming(out.string()) > 0 && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_EQ(processes_naming(out.string()), 0) << "a point ran on after its sweep was killed";
+  }
 }

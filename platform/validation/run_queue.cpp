@@ -117,6 +117,63 @@ RunOutcome not_run(const RunRequest& request) {
   return out;
 }
 
+/// Starts the program `args` as spawn_logged does (no input, its output to `log`, the interrupt
+/// signals at their default), and with the parent-death signal, which posix_spawn cannot set:
+/// the program ends (SIGTERM: removing its partial outputs) when this process does, however
+/// it ends. Returns its pid, or -1 with why in `error` (an exec that failed included).
+pid_t start_program(std::vector<std::string> args, const fs::path& log, std::string& error) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (out < 0) {
+    error = "cannot write " + log.string() + ": " + std::strerror(errno);
+    return -1;
+  }
+  int exec_failed[2];  // the child writes errno here if exec fails; closed by a good exec
+  if (::pipe2(exec_failed, O_CLOEXEC) != 0) {
+    error = std::string("pipe: ") + std::strerror(errno);
+    ::close(out);
+    return -1;
+  }
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent died before the prctl
+    sigset_t none;
+    sigemptyset(&none);
+    ::pthread_sigmask(SIG_SETMASK, &none, nullptr);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) ::signal(sig, SIG_DFL);
+    const int null = ::open("/dev/null", O_RDONLY);
+    if (null >= 0) ::dup2(null, STDIN_FILENO);
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(out, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    const int e = errno;
+    (void)!::write(exec_failed[1], &e, sizeof e);
+    ::_exit(127);
+  }
+  ::close(out);
+  ::close(exec_failed[1]);
+  if (pid < 0) {
+    error = std::string("fork: ") + std::strerror(errno);
+    ::close(exec_failed[0]);
+    return -1;
+  }
+  int e = 0;
+  const ssize_t n = ::read(exec_failed[0], &e, sizeof e);
+  ::close(exec_failed[0]);
+  if (n == static_cast<ssize_t>(sizeof e)) {
+    std::string ignored;
+    (void)wait_for_child(pid, ignored);
+    error = std::strerror(e);
+    return -1;
+  }
+  return pid;
+}
+
 /// Starts the run: a new program, or a fork of this process calling options.in_process.
 /// Returns the child's pid, or -1 with the outcome saying why it did not start.
 pid_t start(Prepared& p, const RunQueueOptions& options) {
@@ -158,7 +215,7 @@ pid_t start(Prepared& p, const RunQueueOptions& options) {
     return pid;
   }
   std::string error;
-  const pid_t pid = spawn_logged(p.args, p.out.log, false, error);
+  const pid_t pid = start_program(p.args, p.out.log, error);
   if (pid < 0) {
     p.out.status = "did not start";
     p.out.failure = "cannot start " + p.args[0] + ": " + error;
