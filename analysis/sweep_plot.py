@@ -307,7 +307,7 @@ def draw(series, categories, args):
         ax.set_title(args.title)
     ax.grid(True, which="both", alpha=0.3)
     if list(series) != ["all"]:
-        common.place_legend(ax, title=args.group_used,
+        common.place_legend(ax, title=", ".join(str(args.group_used).split(",")),
                             fontsize="small" if len(series) <= 4 else "x-small")
     return fig, ax
 
