@@ -129,6 +129,21 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
   while (cursor_.t < t) pass(cursor_, !adaptive_, true);
 }
 
+bool BroadcastProcessor::wanted(std::uint32_t id, const sc_core::sc_time& t) const {
+  if (demand_[id] <= 0) return false;
+  return std::any_of(bics_.begin(), bics_.end(),
+                     [&](const BusInterface* b) { return b->requested(id, t); });
+}
+
+std::optional<sc_core::sc_time> BroadcastProcessor::first_request_time() const {
+  std::optional<sc_core::sc_time> first;
+  for (const BusInterface* b : bics_)
+    for (const auto& r : b->registers_)
+      if (r.valid && r.id < demand_.size() && demand_[r.id] > 0 && (!first || r.from < *first))
+        first = r.from;
+  return first;
+}
+
 void BroadcastProcessor::run() {
   sc_core::wait(start_);
   if (slots_.empty()) return;
@@ -138,11 +153,21 @@ void BroadcastProcessor::run() {
       skip_to(sc_core::sc_time_stamp());
       continue;
     }
-    // The next slot whose ID some BIC holds (at most one cycle ahead).
+    // The next slot whose ID some BIC holds in a register valid by then (at most one cycle
+    // ahead). A register is valid from its processor's local time, which may lie ahead of
+    // simulated time (a quantum > 0): a strobe before then could not match it.
     Cursor c = cursor_;
-    for (std::size_t n = 0; n < slots_.size() && demand_[slots_[c.pos].id] <= 0; ++n)
-      pass(c, !adaptive_, false);
+    std::size_t n = 0;
+    for (; n < slots_.size() && !wanted(slots_[c.pos].id, c.t); ++n) pass(c, !adaptive_, false);
     const sc_core::sc_time now = sc_core::sc_time_stamp();
+    if (n == slots_.size()) {
+      // Every request is valid only from beyond this cycle: sleep until the first of them (or
+      // a new request), instead of strobing a cycle of slots no comparator can match yet.
+      const auto first = first_request_time();
+      sc_core::wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
+      skip_to(sc_core::sc_time_stamp());
+      continue;
+    }
     if (c.t > now) {
       sc_core::wait(c.t - now, wake_);
       // Woken early by a new request or a freed buffer: nothing was wanted before now.

@@ -23,6 +23,7 @@
 // packet the loop went through.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <systemc>
 #include <vector>
@@ -100,6 +101,10 @@ class BroadcastProcessor : public sc_core::sc_module {
   void pass(Cursor& c, bool sent, bool account);
   /// Moves the cursor to the first slot starting at or after `t`; no ID there is wanted.
   void skip_to(const sc_core::sc_time& t);
+  /// Some BIC holds `id` in a register valid at `t`: its slot at `t` is worth a strobe.
+  bool wanted(std::uint32_t id, const sc_core::sc_time& t) const;
+  /// The earliest time from which a register of some BIC holding a listed ID is valid.
+  std::optional<sc_core::sc_time> first_request_time() const;
 
   BroadcastTiming timing_;
   bool adaptive_;

@@ -128,11 +128,13 @@ int BusInterface::free_buffer(const sc_core::sc_time& t) const {
   return -1;
 }
 
+bool BusInterface::requested(std::uint32_t id, const sc_core::sc_time& t) const {
+  return std::any_of(registers_.begin(), registers_.end(),
+                     [&](const Register& r) { return r.valid && r.id == id && r.from <= t; });
+}
+
 bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
-  const bool match = std::any_of(registers_.begin(), registers_.end(), [&](const Register& r) {
-    return r.valid && r.id == id && r.from <= t;
-  });
-  if (!match) return false;
+  if (!requested(id, t)) return false;
   if (free_buffer(t) < 0) {
     ++missed_;  // a match without a free buffer does not raise the hit line (L920)
     return false;

@@ -70,6 +70,9 @@ class BusInterface final : public PacketPort {
                const sc_core::sc_time& first_word, const sc_core::sc_time& word_time,
                std::span<const std::uint32_t> words);
 
+  /// Some register holds `id`, valid at `t` (the comparator would match it then).
+  bool requested(std::uint32_t id, const sc_core::sc_time& t) const;
+
   std::uint64_t requests() const { return requests_; }
   std::uint64_t packets_received() const { return received_; }
   std::uint64_t missed_no_buffer() const { return missed_; }
