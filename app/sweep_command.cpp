@@ -183,14 +183,13 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
 
   // Ctrl-C, SIGTERM, SIGHUP: the running points are stopped (each removes its partial
   // outputs), no new one starts, and the table of what is done is written below.
-  if (!session)
-    set_interrupt_handler([](int sig) {
-      interrupted_by.store(sig);
-      const std::string message = std::string("\nrtsim sweep: interrupted (") + sigabbrev_np(sig) +
-                                  "): stopping the running points\n";
-      (void)!::write(STDERR_FILENO, message.data(), message.size());
-      validation::stop_runs(SIGTERM);
-    });
+  set_interrupt_handler([](int sig) {
+    interrupted_by.store(sig);
+    const std::string message = std::string("\nrtsim sweep: interrupted (") + sigabbrev_np(sig) +
+                                "): stopping the running points\n";
+    (void)!::write(STDERR_FILENO, message.data(), message.size());
+    validation::stop_runs(SIGTERM);
+  });
   const auto start = std::chrono::steady_clock::now();
   {
     ProgressBar bar(args.quiet ? std::string() : "sweep",
@@ -331,6 +330,10 @@ int run_sweep_mpi(const SweepArgs& args) {
     q.executable = executable_of(args);
     q.jobs = args.jobs > 0 ? args.jobs : 1;
     q.log_in_run_dir = true;
+    // mpirun passes an interrupt on to every rank: a worker stops its points and reports them,
+    // so rank 0 can write the table of what is done (a worker dying by the signal would make
+    // mpirun end rank 0 first).
+    set_interrupt_handler([](int) { validation::stop_runs(SIGTERM); });
     session.work(q);
     return kExitOk;
   }

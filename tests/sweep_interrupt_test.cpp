@@ -3,6 +3,7 @@
 // takes its points with it.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <sys/file.h>
 
 #include <chrono>
@@ -73,6 +74,31 @@ int count_of(const std::string& text, const std::string& what) {
   return n;
 }
 
+/// What an interrupted sweep leaves: the message, and a table of every point, the ones done
+/// `ok` and the rest `interrupted`. Returns how many are done.
+int expect_partial_table(const fs::path& log, const fs::path& out) {
+  const std::string said = read_file(log);
+  std::cout << said;
+  EXPECT_NE(said.find("run the same command to resume"), std::string::npos);
+  const std::string table = read_file(out / "results.csv");
+  const int ok = count_of(table, ",ok,"), interrupted = count_of(table, ",interrupted,");
+  EXPECT_GE(ok, 2);
+  EXPECT_GE(interrupted, 1);
+  EXPECT_EQ(ok + interrupted, kPoints) << table;
+  EXPECT_NE(said.find("interrupted: " + std::to_string(ok) + " of " + std::to_string(kPoints) +
+                      " points done"),
+            std::string::npos);
+  return ok;
+}
+
+/// Whether every process naming `out` is gone within 10 s.
+bool all_gone(const fs::path& out) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (processes_naming(out.string()) > 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  return processes_naming(out.string()) == 0;
+}
+
 }  // namespace
 
 TEST(SweepInterrupt, CtrlCWritesThePartialTableAndTheSameCommandResumes) {
@@ -86,18 +112,7 @@ TEST(SweepInterrupt, CtrlCWritesThePartialTableAndTheSameCommandResumes) {
   ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep should end by the signal; log:\n"
                                    << read_file(log);
   EXPECT_EQ(WTERMSIG(status), SIGINT);
-  const std::string said = read_file(log);
-  std::cout << said;
-  EXPECT_NE(said.find("run the same command to resume"), std::string::npos);
-  // The table holds every point: the ones done, and the rest still to run.
-  const std::string table = read_file(out / "results.csv");
-  const int ok = count_of(table, ",ok,"), interrupted = count_of(table, ",interrupted,");
-  EXPECT_GE(ok, 2);
-  EXPECT_GE(interrupted, 1);
-  EXPECT_EQ(ok + interrupted, kPoints) << table;
-  EXPECT_NE(said.find("interrupted: " + std::to_string(ok) + " of " + std::to_string(kPoints) +
-                      " points done"),
-            std::string::npos);
+  const int ok = expect_partial_table(log, out);
   // No point left partial outputs behind.
   for (const auto& e : fs::recursive_directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().find(".rtsim-partial-"), std::string::npos) << e.path();
@@ -145,9 +160,30 @@ TEST(SweepInterrupt, ASweepKilledOutrightTakesItsRunningPointsWithIt) {
     std::string error;
     (void)rtsim::wait_for_child(pid, error);
     // Its points get the parent-death signal and end within moments.
-    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (processes_naming(out.string()) > 0 && std::chrono::steady_clock::now() < until)
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    EXPECT_EQ(processes_naming(out.string()), 0) << "a point ran on after its sweep was killed";
+    EXPECT_TRUE(all_gone(out)) << "a point ran on after its sweep was killed";
   }
+}
+
+TEST(SweepInterrupt, AnMpiSweepInterruptedWritesThePartialTableToo) {
+#ifndef RTSIM_MPIEXEC
+  GTEST_SKIP() << "built without MPI";
+#else
+  // mpirun passes the interrupt on to every rank: the workers stop their points and report them,
+  // rank 0 writes the table of what is done.
+  const fs::path dir = scratch_dir("sweep-interrupt-mpi");
+  const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "mpirun.log";
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);  // CI containers run as root
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  std::string error;
+  const pid_t pid =
+      rtsim::spawn_logged({RTSIM_MPIEXEC, "-np", "2", "--oversubscribe", RTSIM_BINARY, "sweep",
+                           file.string(), "--mpi", "--jobs", "1", "--out", out.string()},
+                          log, false, error);
+  ASSERT_GT(pid, 0) << error;
+  ASSERT_TRUE(wait_for(out / "points" / "0001" / "done.json", 120)) << read_file(log);
+  ::kill(pid, SIGINT);
+  (void)rtsim::wait_for_child(pid, error);
+  expect_partial_table(log, out);
+  EXPECT_TRUE(all_gone(out));
+#endif
 }

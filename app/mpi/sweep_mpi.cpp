@@ -202,8 +202,12 @@ void Session::dispatch(
       if (slots[w] == 0 || stops[w] < slots[w]) return false;
     return true;
   };
+  // Interrupted (rtsim sweep's handler stopped the runs): no point is handed out any more; the
+  // ones handed out end (stopped) and are reported, every worker is sent its stops.
+  std::size_t handed_out = requests.size();
   const auto reply = [&](int worker) {
-    if (next < requests.size()) {
+    if (validation::runs_stopped()) handed_out = std::min(handed_out, next);
+    if (next < handed_out) {
       const auto& r = requests[next];
       const Json job = {
           {"job", next}, {"key", r.key}, {"args", r.args}, {"work_dir", local.work_dir.string()}};
@@ -215,14 +219,15 @@ void Session::dispatch(
     }
   };
 
-  while (finished < requests.size() || !all_stopped()) {
+  while (finished < std::min(handed_out, requests.size()) || !all_stopped()) {
+    if (validation::runs_stopped()) handed_out = std::min(handed_out, next);
     bool busy = false;
     for (auto& [job, outcome] : runner.take_finished()) {
       on_done(job, outcome);
       ++finished;
       busy = true;
     }
-    while (runner.in_flight() < local_slots && next < requests.size()) {
+    while (runner.in_flight() < local_slots && next < handed_out) {
       runner.submit(next, requests[next], local.work_dir);
       ++next;
       busy = true;
