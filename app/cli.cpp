@@ -59,11 +59,8 @@ CLI::Validator one_of(std::vector<std::string> allowed) {
   return CLI::Validator(
       [allowed, names](std::string& value) -> std::string {
         if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return {};
-        std::string msg = "'" + value + "' is not one of " + names;
         const std::vector<std::string_view> views(allowed.begin(), allowed.end());
-        if (const auto close = closest_names(value, views); !close.empty())
-          msg += "; did you mean '" + close.front() + "'?";
-        return msg;
+        return "'" + value + "' is not one of " + names + did_you_mean(value, views);
       },
       "{" + names + "}");
 }

@@ -54,8 +54,7 @@ std::vector<params::ParamEntry> select_params(std::vector<params::ParamEntry> al
     std::string msg = "no parameter" +
                       (args.machine.empty() ? std::string() : " of " + args.machine) +
                       " matches '" + args.pattern + "'";
-    const auto close = closest_names(args.pattern, names);
-    if (!close.empty()) msg += "; did you mean '" + close.front() + "'?";
+    msg += did_you_mean(args.pattern, names);
     msg += " ('*' matches any characters, dots included: 'pert.*', '*word_time')";
     throw InputError("list params", 0, msg);
   }

@@ -67,4 +67,14 @@ std::vector<std::string> closest_names(std::string_view unknown,
   return out;
 }
 
+std::string did_you_mean(std::string_view unknown,
+                         const std::vector<std::string_view>& candidates) {
+  const auto near = closest_names(unknown, candidates, 1);
+  if (near.empty()) return {};
+  std::string tail = "; did you mean '";
+  tail += near.front();
+  tail += "'?";
+  return tail;
+}
+
 }  // namespace rtsim

@@ -23,4 +23,8 @@ std::vector<std::string> closest_names(std::string_view unknown,
                                        const std::vector<std::string_view>& candidates,
                                        std::size_t max_count = 3);
 
+/// "; did you mean 'NAME'?" for the closest of `candidates` to `unknown`, or "" if none is
+/// close: the tail of a message that names one suggestion.
+std::string did_you_mean(std::string_view unknown, const std::vector<std::string_view>& candidates);
+
 }  // namespace rtsim

@@ -62,11 +62,11 @@ void inject_faults(const std::string& machine, const std::vector<MemoryFault>& f
     }
     if (!target) {
       std::string msg = machine + " has no memory '" + f.memory + "' whose words its answers use";
-      const auto near = closest_names(f.memory, names);
-      if (!near.empty()) msg += "; did you mean '" + near.front() + "'?";
+      const std::string suggestion = did_you_mean(f.memory, names);
+      msg += suggestion;
       if (names.empty())
         msg += " (it has none: its answers are not computed from the words of a modelled memory)";
-      else if (near.empty())
+      else if (suggestion.empty())
         msg += " (it has: " + std::string(names.front()) + (names.size() > 1 ? ", ..." : "") + ")";
       throw InputError(arg, 0, msg);
     }
