@@ -117,6 +117,13 @@ RunOutcome not_run(const RunRequest& request) {
   return out;
 }
 
+/// In a child just forked from `parent`: end (SIGTERM, so an rtsim child removes its partial
+/// outputs) when the parent does, however it ends; at once if it already has. Async-signal-safe.
+void end_with_parent(pid_t parent) {
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent died before the prctl
+}
+
 /// Starts the program `args` as spawn_logged does (no input, its output to `log`, the interrupt
 /// signals at their default), and with the parent-death signal, which posix_spawn cannot set:
 /// the program ends (SIGTERM: removing its partial outputs) when this process does, however
@@ -140,8 +147,7 @@ pid_t start_program(std::vector<std::string> args, const fs::path& log, std::str
   const pid_t pid = ::fork();
   if (pid == 0) {
     // Only async-signal-safe calls between fork and exec.
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent died before the prctl
+    end_with_parent(parent);
     sigset_t none;
     sigemptyset(&none);
     ::pthread_sigmask(SIG_SETMASK, &none, nullptr);
@@ -187,12 +193,12 @@ pid_t start(Prepared& p, const RunQueueOptions& options) {
     std::cout.flush();
     std::cerr.flush();
     std::fflush(nullptr);
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid == 0) {
       // The child: its own output, no input, the run's signals at their default; it ends
-      // when the run does, and with its parent (SIGTERM: removing its partial outputs).
-      ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-      if (::getppid() == 1) std::_Exit(128 + SIGTERM);  // the parent died before the prctl
+      // when the run does, and with its parent.
+      end_with_parent(parent);
       ::dup2(log, STDOUT_FILENO);
       ::dup2(log, STDERR_FILENO);
       const int null = ::open("/dev/null", O_RDONLY);
