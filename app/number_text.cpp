@@ -47,6 +47,10 @@ std::string format_seconds(double s) {
   return format_number(s) + " s";
 }
 
+bool names_seconds(std::string_view name) {
+  return name.ends_with("_s") || name.find("_s.") != std::string_view::npos;
+}
+
 std::string format_change(double relative) {
   if (!std::isfinite(relative)) return format_number(relative);
   if (relative == 0.0) return "0%";

@@ -2,6 +2,7 @@
 // Numbers as people read them, on the console and in the reports: a few significant digits, no
 // exponent, times in the engineering unit that suits them ("55.29 µs", "226.5 ms", "36.76 h").
 #include <string>
+#include <string_view>
 
 namespace rtsim::app {
 
@@ -12,6 +13,9 @@ std::string format_significant(double v, int digits = 4);
 /// Seconds in ns, µs, ms, s, min or h, 4 significant digits: "55.29 µs", "2.517 h". Below a
 /// picosecond (SystemC's resolution: rounding left-overs such as -2.7e-21) it is "0 s".
 std::string format_seconds(double s);
+/// Whether a stats.json name holds seconds: one ending in _s ("simulated_time_s"), or a statistic
+/// of one ("ray_latency_s.p99").
+bool names_seconds(std::string_view name);
 /// A relative change as a signed percentage, 3 significant digits: 3.76 -> "+376%", -0.807 ->
 /// "-80.7%", 0 -> "0%".
 std::string format_change(double relative);

@@ -325,12 +325,12 @@ std::string value_text(const json& v) {
   return s;
 }
 
-/// A figure of a machine's section as the page shows it: seconds (a name ending in _s) in
+/// A figure of a machine's section as the page shows it: seconds (names_seconds) in
 /// engineering units, a utilisation as a percentage, other numbers to 4 digits.
 std::string figure_text(const std::string& name, const json& v) {
   if (!v.is_number()) return value_text(v);
   const double x = v.get<double>();
-  if (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0) return format_seconds(x);
+  if (names_seconds(name)) return format_seconds(x);
   if (name == "utilization" || name == "utilisation") return format_percent(x);
   return format_number(x, 4);
 }
@@ -382,10 +382,7 @@ void side_by_side(HtmlReport& page, const json& parent, const std::vector<std::s
 void seed_links(HtmlReport& page, const std::vector<params::ParamEntry>& params) {
   std::set<std::string> cited;
   for (const auto& p : params)
-    for (auto at = p.source.find("seed "); at != std::string::npos;
-         at = p.source.find("seed ", at + 1))
-      if (!seed_author(p.source.substr(at + 5, 3)).empty())
-        cited.insert(p.source.substr(at + 5, 3));
+    for (auto& number : cited_seeds(p.source)) cited.insert(std::move(number));
   std::error_code ec;
   const fs::path seeds = fs::weakly_canonical(
       fs::path(RTSIM_SOURCE_DIR) / ".." / "shared" / "reference" / "seeds", ec);

@@ -64,10 +64,7 @@ std::string shown(const std::string& name, const Json& v) {
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (!v.is_number()) return v.dump();
   const double x = v.get<double>();
-  // Seconds: a name ending in _s, or a statistic of one (ray_latency_s.p99).
-  const bool time = (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0) ||
-                    name.find("_s.") != std::string::npos;
-  if (time) return format_seconds(x);
+  if (names_seconds(name)) return format_seconds(x);
   if (v.is_number_integer() || x == std::round(x)) return format_number(x);
   return format_significant(x);
 }

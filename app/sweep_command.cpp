@@ -82,12 +82,7 @@ Plan make_plan(const SweepArgs& args) {
 
 /// What the swept settings of a point are, for messages: "peripheral.grid.divisions=3 ...".
 std::string describe_point(const sweep::Point& p) {
-  std::string s;
-  for (const auto& setting : p.settings) {
-    if (!setting.swept) continue;
-    if (!s.empty()) s += " ";
-    s += setting.name + "=" + setting.value.text;
-  }
+  const std::string s = p.swept_text(" ");
   return s.empty() ? "the only point" : s;
 }
 

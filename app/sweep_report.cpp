@@ -71,10 +71,9 @@ std::string cell_text(const Json& v, const std::string& column) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  // Seconds: "simulated_time_s", "ray_latency_s.mean".
-  const bool secs = ends_with(column, "_s") || column.find("_s.") != std::string::npos;
   if (v.is_number())
-    return secs ? format_seconds(v.get<double>()) : format_number(v.get<double>(), 4);
+    return names_seconds(column) ? format_seconds(v.get<double>())
+                                 : format_number(v.get<double>(), 4);
   return v.dump();
 }
 
@@ -176,17 +175,16 @@ void baseline_section(HtmlReport& page, const SweepReportInputs& in) {
     return;
   }
   const auto base = nlohmann::ordered_json::parse(base_outcome.stats_text, nullptr, false);
+  if (base.is_discarded()) return;  // an ok point's stats.json was read as JSON already
   std::vector<std::vector<std::string>> rows;
   std::vector<bool> bold;
   for (const auto& p : points) {
     const auto& o = (*in.outcomes)[p.index];
     if (!o.ok) continue;
     const auto stats = nlohmann::ordered_json::parse(o.stats_text, nullptr, false);
-    if (stats.is_discarded() || base.is_discarded()) continue;
+    if (stats.is_discarded()) continue;
     const RunDiff d = diff_runs(base, stats);
-    std::string swept, frame_change = "0%", speedup = "1", others;
-    for (const auto& s : p.settings)
-      if (s.swept) swept += (swept.empty() ? "" : ", ") + s.name + "=" + s.value.text;
+    std::string frame_change = "0%", speedup = "1", others;
     std::size_t shown = 0;
     for (const auto& c : d.stats) {
       if (c.name == "simulated_time_s") {
@@ -199,7 +197,7 @@ void baseline_section(HtmlReport& page, const SweepReportInputs& in) {
     }
     const double t = stats.value("simulated_time_s", 0.0), t0 = base.value("simulated_time_s", 0.0);
     if (t > 0) speedup = format_significant(t0 / t, 3);
-    rows.push_back({p.key, swept, format_seconds(t), frame_change, speedup, others});
+    rows.push_back({p.key, p.swept_text(", "), format_seconds(t), frame_change, speedup, others});
     bold.push_back(p.index == *in.baseline);
   }
   page.paragraph("Each point that ran against point " + points[*in.baseline].key +
@@ -470,10 +468,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
         rows.push_back({"...", "", "the rest are in results.csv"});
         break;
       }
-      std::string swept;
-      for (const auto& s : p.settings)
-        if (s.swept) swept += (swept.empty() ? "" : " ") + s.name + "=" + s.value.text;
-      rows.push_back({p.key, swept, o.error});
+      rows.push_back({p.key, p.swept_text(" "), o.error});
     }
     page.table({"point", "swept values", "error"}, rows);
   }
@@ -575,9 +570,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
         ++without;
         continue;
       }
-      std::string swept;
-      for (const auto& s : p.settings)
-        if (s.swept) swept += (swept.empty() ? "" : ", ") + s.name + "=" + s.value.text;
+      const std::string swept = p.swept_text(", ");
       const auto& outcome = (*in.outcomes)[p.index];
       const double gain = outcome.ok ? thumbnail_gain(outcome.stats_text) : 1.0;
       std::string filter, note;

@@ -1,5 +1,6 @@
 #include "common/seed_citation.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <utility>
@@ -68,7 +69,29 @@ std::string lines_for_reader(std::string_view chunk) {
   return out;
 }
 
+constexpr std::string_view kSeed = "seed ";
+
+/// The number of the seed cited at `at` (where "seed " starts): three digits of a seed this
+/// project has, not followed by another digit; "" otherwise.
+std::string_view seed_at(std::string_view text, std::size_t at) {
+  const std::size_t from = at + kSeed.size();
+  if (from + 3 > text.size() || (from + 3 < text.size() && digit(text[from + 3]))) return {};
+  const std::string_view number = text.substr(from, 3);
+  return seed_author(number).empty() ? std::string_view() : number;
+}
+
 }  // namespace
+
+std::vector<std::string> cited_seeds(std::string_view text) {
+  std::vector<std::string> out;
+  for (std::size_t at = text.find(kSeed); at != std::string_view::npos;
+       at = text.find(kSeed, at + 1)) {
+    const std::string_view number = seed_at(text, at);
+    if (!number.empty() && std::find(out.begin(), out.end(), number) == out.end())
+      out.emplace_back(number);
+  }
+  return out;
+}
 
 std::string_view seed_author(std::string_view number) {
   for (const auto& [n, who] : kSeeds)
@@ -77,7 +100,6 @@ std::string_view seed_author(std::string_view number) {
 }
 
 std::string cite_seeds(std::string_view text) {
-  static constexpr std::string_view kSeed = "seed ";
   std::string out;
   std::size_t i = 0;
   bool cited = false;  // a seed was cited: later bare line references are its lines
@@ -86,17 +108,15 @@ std::string cite_seeds(std::string_view text) {
   };
   while (i < text.size()) {
     const std::size_t at = text.find(kSeed, i);
-    if (at == std::string_view::npos || at + kSeed.size() + 3 > text.size()) break;
-    const std::string_view number = text.substr(at + kSeed.size(), 3);
-    const std::string_view who = seed_author(number);
-    if (who.empty() ||
-        (at + kSeed.size() + 3 < text.size() && digit(text[at + kSeed.size() + 3]))) {
+    if (at == std::string_view::npos) break;
+    const std::string_view number = seed_at(text, at);
+    if (number.empty()) {
       copy(text.substr(i, at + kSeed.size() - i));
       i = at + kSeed.size();
       continue;
     }
     copy(text.substr(i, at - i));
-    out.append(who);
+    out.append(seed_author(number));
     cited = true;
     std::size_t j = at + kSeed.size() + 3;
     // The lines cited right after: "L883, L961", "L572-L588", "L572-588".

@@ -4,8 +4,12 @@
 // reads says whose work and which line: "Ullner 1983, line 584".
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rtsim {
+
+/// The numbers of the seeds `text` cites ("seed 000 L584" -> "000"), each once, in order.
+std::vector<std::string> cited_seeds(std::string_view text);
 
 /// A seed's citation: "000" -> "Ullner 1983"; "" for a number that is no seed.
 std::string_view seed_author(std::string_view number);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 using rtsim::cite_seeds;
+using rtsim::cited_seeds;
 
 TEST(SeedCitation, SeedLinesBecomeAuthorYearAndLines) {
   EXPECT_EQ(cite_seeds("seed 000 L584"), "Ullner 1983, line 584");
@@ -24,4 +25,10 @@ TEST(SeedCitation, SeedLinesBecomeAuthorYearAndLines) {
   EXPECT_EQ(cite_seeds("seed 0001 L5"), "seed 0001 L5");
   EXPECT_EQ(cite_seeds("random seed 1985"), "random seed 1985");
   EXPECT_EQ(cite_seeds(""), "");
+}
+
+TEST(SeedCitation, CitedSeedsAreListedOnceInOrder) {
+  EXPECT_EQ(cited_seeds("seed 001 L959; seed 000 L476 and seed 001 L962"),
+            (std::vector<std::string>{"001", "000"}));
+  EXPECT_TRUE(cited_seeds("seed 003 L5, seed 0001, random seed 1985, seed 00").empty());
 }

@@ -29,6 +29,16 @@ const std::string& Point::scene() const {
   return s->value.text;
 }
 
+std::string Point::swept_text(std::string_view separator) const {
+  std::string s;
+  for (const auto& setting : settings) {
+    if (!setting.swept) continue;
+    if (!s.empty()) s += separator;
+    s += setting.name + "=" + setting.value.text;
+  }
+  return s;
+}
+
 std::string Point::command_line() const {
   validation::RunRequest r;
   r.args = args;

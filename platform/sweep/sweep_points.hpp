@@ -32,6 +32,8 @@ struct Point {
   const Setting* find(std::string_view name) const;
   const std::string& machine() const;  ///< as written in the sweep file
   const std::string& scene() const;    ///< as written (relative paths unresolved)
+  /// The swept settings as NAME=VALUE, in axis order, joined by `separator` ("" for none).
+  std::string swept_text(std::string_view separator) const;
   /// "rtsim run ..." with arguments shell-quoted where needed.
   std::string command_line() const;
   /// FNV-1a 64-bit hash of command_line(), 16 hex digits: the point's identity for resuming.
