@@ -202,6 +202,13 @@ int run_cli(int argc, char** argv) {
                   "screen regions, in the order its master hands them out, and this counts "
                   "regions)")
       ->check(CLI::Range(1, 1000000));
+  run->add_option("--sample-warmup", runa.sample_warmup,
+                  "Windows after window 0 that a --sample run simulates in detail before it "
+                  "samples, and leaves out of the per-window mean: the machine's queues fill "
+                  "meanwhile (default: the windows holding 512 vision rays, at most an eighth of "
+                  "the frame; 0: none). stats.json sample.warmup_windows. Not for "
+                  "pxpl5-raytrace, whose casters share its regions")
+      ->check(CLI::Range(0, 1000000));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "
                 "has its answer) broken down by stage (module or queue) into queueing, service "

@@ -46,6 +46,7 @@ std::string command_line(const RunArgs& a) {
   if (a.sample > 0) s += " --sample " + std::to_string(a.sample);
   if (!a.sample_error.empty()) s += " --sample-error " + validation::shell_quote(a.sample_error);
   if (a.sample_window > 0) s += " --sample-window " + std::to_string(a.sample_window);
+  if (a.sample_warmup >= 0) s += " --sample-warmup " + std::to_string(a.sample_warmup);
   for (const auto& f : a.faults) s += " --fault " + validation::shell_quote(f);
   return s + " --report --out " + validation::shell_quote(a.out_dir);
 }
@@ -117,6 +118,9 @@ int run_run(const RunArgs& args) {
   if (args.sample_window > 0 && !sampled)
     throw InputError("--sample-window", 0,
                      "sizes the windows of --sample K or --sample-error E: give one of them too");
+  if (args.sample_warmup >= 0 && !sampled)
+    throw InputError("--sample-warmup", 0,
+                     "is the warm-up of --sample K or --sample-error E: give one of them too");
   if (args.sample > 0 && !args.sample_error.empty())
     throw InputError("--sample-error " + args.sample_error, 0,
                      "chooses K itself: give --sample K or --sample-error E, not both");
@@ -126,6 +130,7 @@ int run_run(const RunArgs& args) {
     opts.sample_every = args.sample;
     opts.sample_window_rows =
         args.sample_window > 0 ? args.sample_window : machine.sample_window_rows(registry);
+    opts.sample_warmup = args.sample_warmup;
   }
   opts.trace_filter = trace_filter;
   opts.trace_max_events = args.trace_max_events;

@@ -66,6 +66,9 @@ struct RunOptions {
   /// `sample_window_rows` rows in detail, the rest functionally; 0: the whole frame in detail.
   int sample_every = 0;
   int sample_window_rows = 1;
+  /// Windows after window 0 simulated in detail as a warm-up (FrameSample::kDefaultWarmup: the
+  /// default, FrameSample::default_warmup).
+  int sample_warmup = -1;
   /// A pilot of --sample-error: only the estimate is wanted, the rest is not rendered.
   bool sample_pilot = false;
 };

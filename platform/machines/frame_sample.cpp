@@ -22,34 +22,53 @@ double successive_difference_variance(const std::vector<double>& x) {
 }
 }  // namespace
 
-FrameSample::FrameSample(int every, int window_size, int windows, const std::string& unit_name)
+FrameSample::FrameSample(int every, int window_size, int windows, const std::string& unit_name,
+                         int warmup)
     : every_(every),
+      warmup_(std::clamp(warmup, 0, std::max(0, windows - 1))),
       window_size_(std::max(1, window_size)),
       windows_(windows),
       unit_name_(unit_name) {
-  const int detailed = detailed_windows();
-  if (detailed < 3)
+  const int sampled = sampled_windows(windows_, every_, warmup_);
+  if (sampled < 2) {
+    std::string what = "simulates " + std::to_string(detailed_windows()) + " of the frame's " +
+                       std::to_string(windows_) + " windows of " + std::to_string(window_size_) +
+                       " " + unit_name_ + " in detail";
+    if (warmup_ > 0)
+      what += " (" + std::to_string(warmup_) + " of them a warm-up after window 0, " +
+              std::to_string(sampled) + " sampled after it)";
     throw InputError("--sample " + std::to_string(every_), 0,
-                     "simulates " + std::to_string(detailed) + " of the frame's " +
-                         std::to_string(windows_) + " windows of " + std::to_string(window_size_) +
-                         " " + unit_name_ +
-                         " in detail; the estimate needs at least 3: a smaller K, a "
-                         "smaller --sample-window or a larger image");
+                     what +
+                         "; the estimate needs at least 3 (window 0 and two sampled): a smaller "
+                         "K, a smaller --sample-window, a shorter --sample-warmup or a larger "
+                         "image");
+  }
   done_.assign(static_cast<std::size_t>(windows_), 0);
+}
+
+int FrameSample::default_warmup(int width, int window_rows, int windows) {
+  const long rays = static_cast<long>(std::max(1, width)) * std::max(1, window_rows);
+  const int enough = static_cast<int>((kWarmupRays + rays - 1) / rays);
+  return std::min(enough, std::max(0, windows - 1) / 8);
 }
 
 FrameSample FrameSample::of_units(int units, int every, int window_units,
                                   const std::string& unit_name, int workers) {
   const int per = std::max(1, window_units);
-  FrameSample s(every, per, windows_in(units, per), unit_name);
+  // No warm-up: the workers' busy times (estimate_shared) do not lengthen as queues fill.
+  FrameSample s(every, per, windows_in(units, per), unit_name, 0);
   s.workers_ = std::max(1, workers);
   s.busy_.assign(static_cast<std::size_t>(s.windows_), 0);
   // The machine renders what it does not simulate: no rows, detailed or functional.
   return s;
 }
 
-FrameSample::FrameSample(int width, int height, int every, int window_rows)
-    : FrameSample(every, window_rows, windows_in(height, std::max(1, window_rows)), "rows") {
+FrameSample::FrameSample(int width, int height, int every, int window_rows, int warmup)
+    : FrameSample(
+          every, window_rows, windows_in(height, std::max(1, window_rows)), "rows",
+          warmup == kDefaultWarmup
+              ? default_warmup(width, window_rows, windows_in(height, std::max(1, window_rows)))
+              : warmup) {
   width_ = static_cast<std::uint32_t>(width);
   detailed_.assign(static_cast<std::size_t>(height), 0);
   functional_.assign(static_cast<std::size_t>(height), 1);
@@ -63,9 +82,16 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows)
 nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
                                              const sc_core::sc_time& end,
                                              double& estimate_s) const {
+  // The warm-up's completion (the latest of windows 0..W), then the sampled windows'.
   std::vector<std::uint64_t> c;
   int silent = 0;
-  for (int w = 0; w < windows_; w += every_) {
+  std::uint64_t warm = 0;
+  for (int w = 0; w <= warmup_; ++w) warm = std::max(warm, done_[static_cast<std::size_t>(w)]);
+  if (warm == 0)
+    ++silent;
+  else
+    c.push_back(warm);
+  for (int w = (warmup_ / every_ + 1) * every_; w < windows_; w += every_) {
     if (done_[static_cast<std::size_t>(w)] == 0)
       ++silent;
     else
@@ -84,6 +110,7 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
   }
   out["windows"] = windows_;
   out["detailed_windows"] = detailed_windows();
+  if (workers_ == 0) out["warmup_windows"] = warmup_;
   out["detailed_frame_s"] = E - B;
   if (workers_ > 0 && c.size() >= 3) {
     out.update(estimate_shared(B, E, estimate_s));
@@ -101,11 +128,11 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
     d.push_back(static_cast<double>(c[i] - c[i - 1]) * tick);
   const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
   const double var = successive_difference_variance(d);
-  const double N = static_cast<double>(windows_ - 1);
+  const double N = static_cast<double>(windows_ - 1 - warmup_);  // windows after the warm-up
   const double head = static_cast<double>(c.front()) * tick - B;
   const double tail = E - static_cast<double>(c.back()) * tick;
   estimate_s = head + N * mean + tail;
-  const double half = half_width(windows_, static_cast<int>(c.size()), std::sqrt(var));
+  const double half = half_width(windows_ - warmup_, static_cast<int>(c.size()), std::sqrt(var));
   out["estimate_s"] = estimate_s;
   out["ci99_7_s"] = {estimate_s - half, estimate_s + half};
   out["half_width_relative"] = estimate_s > 0 ? half / estimate_s : 0.0;
@@ -165,13 +192,14 @@ int FrameSample::pilot_every(int windows) { return std::max(2, windows / kPilotW
 
 int FrameSample::every_for(const nlohmann::ordered_json& pilot, double target) {
   const int windows = pilot.value("windows", 0);
+  const int warmup = pilot.value("warmup_windows", 0);
   const double sd = pilot.value("window_s_sd", 0.0), frame = pilot.value("estimate_s", 0.0);
   if (!pilot.contains("window_s_sd") || frame <= 0) return 1;
   // The largest K first; never fewer windows than the pilot had, so the run's own interval
-  // rests on as many differences as the choice did.
+  // rests on as many differences as the choice did. The run has the pilot's warm-up.
   for (int k = std::max(2, windows / kPilotWindows); k >= 2; --k) {
-    const int detailed = windows_in(windows, k);  // windows 0, K, 2K, ...
-    if (detailed >= 3 && half_width(windows, detailed, sd) <= target * frame) return k;
+    const int sampled = sampled_windows(windows, k, warmup);  // after the warm-up
+    if (sampled >= 2 && half_width(windows - warmup, 1 + sampled, sd) <= target * frame) return k;
   }
   return 1;
 }

@@ -21,15 +21,20 @@
 // with them (frame_sample.cpp).
 //
 // The machine tells the frame buffer of each contribution; a window's completion is the time of
-// its last. With c_0 < ... < c_{n-1} the detailed windows' completions in the frame [B, E] of the
-// sampled run and d_i = c_i - c_{i-1} (one window's worth of the machine's throughput, the
+// its last. Windows 1 to W right after window 0 are simulated in detail too, as a warm-up: a
+// machine's queues fill at the start of the frame, and until they have the windows go faster
+// than they will (ullner-pipeline on a scene of alike rows: 4% faster for its first ~512 rays).
+// With c_0 the completion of the warm-up (the latest of windows 0..W), c_1 < ... < c_m those of
+// the sampled windows after it (kW < k K, the rest of 0, K, 2K, ...), all in the frame [B, E] of
+// the sampled run, and d_i = c_i - c_{i-1} (one window's worth of the machine's throughput, the
 // windows before it having warmed the queues), the frame of all N windows is estimated as
 //
-//   T = (c_0 - B) + (N - 1) mean(d) + (E - c_{n-1})
+//   T = (c_0 - B) + (N - 1 - W) mean(d) + (E - c_m)
 //
-// the start-up, N - 1 windows at the sampled rate, and the drain. Its 99.7% confidence interval
-// is T +- 3 (N - 1) s_d / sqrt(n - 1) sqrt(1 - (n - 1) / (N - 1)), with s_d^2 from successive
-// differences of the d_i (frame_sample.cpp says why) and the finite-population correction. Only the
+// the start-up and warm-up (exact), the N - 1 - W windows after it at the sampled rate, and the
+// drain. Its 99.7% confidence interval is T +- 3 R s_d / sqrt(m) sqrt(1 - m / R), R = N - 1 - W,
+// with s_d^2 from successive differences of the d_i (frame_sample.cpp says why) and the
+// finite-population correction. With W = 0 this is the estimate without a warm-up. Only the
 // frame time is estimated; the other statistics are the sampled run's.
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -41,8 +46,18 @@ namespace rtsim::platform {
 
 class FrameSample {
  public:
-  /// Throws InputError when fewer than three windows would be simulated in detail.
-  FrameSample(int width, int height, int every, int window_rows);
+  /// `warmup`: windows after window 0 simulated in detail as a warm-up (kDefaultWarmup: enough
+  /// for kWarmupRays vision rays). Throws InputError when fewer than two windows after the
+  /// warm-up would be sampled.
+  static constexpr int kDefaultWarmup = -1;
+  FrameSample(int width, int height, int every, int window_rows, int warmup = kDefaultWarmup);
+  /// The default warm-up: the windows after window 0 that hold kWarmupRays vision rays, at most
+  /// an eighth of the frame's windows. 512: ullner-pipeline's queues take that many rays to fill
+  /// on a scene of alike rows, at 64, 128 and 256 pixels a row (docs/sampling.md); the other
+  /// machines show no transient.
+  static constexpr int kWarmupRays = 512;
+  static int default_warmup(int width, int window_rows, int windows);
+  int warmup_windows() const { return warmup_; }
   /// `units` work units in the machine's order, `window_units` a window (what "rows" are to the
   /// constructor above; every row is the machine's then). Throws as it does.
   static FrameSample of_units(int units, int every, int window_units, const std::string& unit_name,
@@ -88,23 +103,29 @@ class FrameSample {
     return (height + window_rows - 1) / window_rows;
   }
   /// The half-width of the 99.7% interval of a frame of `windows` windows, `detailed` of them in
-  /// detail, whose windows take `window_sd` apart (successive differences) on average.
+  /// detail, whose windows take `window_sd` apart (successive differences) on average. After a
+  /// warm-up of W windows: a frame of windows - W windows, 1 + (sampled windows) in detail.
   static double half_width(int windows, int detailed, double window_sd);
 
  private:
-  /// Windows 0, K, 2K, ... below the frame's count.
-  int detailed_windows() const { return windows_in(windows_, every_); }
-  bool detailed_window(int w) const { return w % every_ == 0; }
+  /// The windows in detail: the warm-up (0..W) and the sampled windows after it.
+  int detailed_windows() const { return warmup_ + 1 + sampled_windows(windows_, every_, warmup_); }
+  bool detailed_window(int w) const { return w <= warmup_ || w % every_ == 0; }
+  /// The windows K, 2K, ... after a warm-up of `warmup` windows, below `windows`.
+  static int sampled_windows(int windows, int every, int warmup) {
+    return windows_in(windows, every) - (warmup / every + 1);
+  }
   /// Window `w` has done work by simulated time `ticks`.
   void done_by(int w, std::uint64_t ticks) {
     auto& done = done_[static_cast<std::size_t>(w)];
     if (done < ticks) done = ticks;
   }
-  FrameSample(int every, int window_size, int windows, const std::string& unit_name);
+  FrameSample(int every, int window_size, int windows, const std::string& unit_name, int warmup);
   std::uint32_t width_ = 1;
   /// The estimate of of_units: windows shared by `workers_` processors (1 or more).
   nlohmann::ordered_json estimate_shared(double B, double E, double& estimate_s) const;
   int every_;
+  int warmup_ = 0;   ///< windows 1..warmup_ in detail, not sampled
   int window_size_;  ///< rows a window, or the machine's units (of_units)
   int windows_;
   std::string unit_name_ = "rows";  ///< what a window is made of

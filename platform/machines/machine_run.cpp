@@ -25,7 +25,8 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
       trace_((begin_simulation(registry), opts)),
       probe_(opts.latency_probe) {
   if (opts.sample_every > 1 && rows_sampled) {
-    sample_.emplace(width_, height_, opts.sample_every, opts.sample_window_rows);
+    sample_.emplace(width_, height_, opts.sample_every, opts.sample_window_rows,
+                    opts.sample_warmup);
     frame_.set_detailed_rows(sample_->detailed_rows());
     // A window is done when its last contribution lands in the frame buffer.
     frame_.fb().set_observer([this](std::uint32_t pixel) {
@@ -36,6 +37,11 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
 
 FrameSample* MachineRun::sample_units(int units, const std::string& unit_name, int workers) {
   if (opts_.sample_every <= 1) return nullptr;
+  if (opts_.sample_warmup > 0)
+    throw InputError("--sample-warmup", 0,
+                     machine_ + "'s windows are " + unit_name +
+                         " its processors share, timed by their busy time: a warm-up does not "
+                         "apply; leave it out");
   sample_.emplace(FrameSample::of_units(units, opts_.sample_every, opts_.sample_window_rows,
                                         unit_name, workers));
   return &*sample_;
