@@ -206,8 +206,9 @@ int run_cli(int argc, char** argv) {
                   "Windows after window 0 that a --sample run simulates in detail before it "
                   "samples, and leaves out of the per-window mean: the machine's queues fill "
                   "meanwhile (default: the windows holding 512 vision rays, at most an eighth of "
-                  "the frame; 0: none). stats.json sample.warmup_windows. Not for "
-                  "pxpl5-raytrace, whose casters share its regions")
+                  "the frame; none on ullner-array, whose processors start their rays at once; "
+                  "0: none). stats.json sample.warmup_windows. Not for pxpl5-raytrace, whose "
+                  "casters share its regions")
       ->check(CLI::Range(0, 1000000));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "

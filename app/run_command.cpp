@@ -20,6 +20,7 @@
 #include "app/trace_options.hpp"
 #include "common/input_error.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/frame_sample.hpp"
 #include "platform/validation/validation.hpp"
 
 namespace rtsim::app {
@@ -130,7 +131,16 @@ int run_run(const RunArgs& args) {
     opts.sample_every = args.sample;
     opts.sample_window_rows =
         args.sample_window > 0 ? args.sample_window : machine.sample_window_rows(registry);
-    opts.sample_warmup = args.sample_warmup;
+    // The warm-up: as asked, or the windows holding the machine's warm-up rays.
+    const int width = args.width > 0 ? args.width : scene.camera.width;
+    const int height = args.height > 0 ? args.height : scene.camera.height;
+    opts.sample_warmup =
+        args.sample_warmup >= 0
+            ? args.sample_warmup
+            : platform::FrameSample::default_warmup(
+                  width, opts.sample_window_rows,
+                  platform::FrameSample::windows_in(height, opts.sample_window_rows),
+                  machine.sample_warmup_rays(registry));
   }
   opts.trace_filter = trace_filter;
   opts.trace_max_events = args.trace_max_events;

@@ -57,6 +57,24 @@ def run(rtsim, machine, scene, extra, out):
         return json.load(f)
 
 
+def print_targets(rows):
+    """Issue 17's two targets, as the rows have them: per machine the best speed-up within 1%
+    frame-time error (with its interval holding the reference, if it has one), and how many
+    sampled runs' 99.7% intervals hold the reference."""
+    print("Target 1, the best speed-up within 1% frame-time error:")
+    for machine in dict.fromkeys(r["machine"] for r in rows):
+        ok = [r for r in rows if r["machine"] == machine and r["setting"] != "reference"
+              and r.get("error", 1) <= 0.01 and r.get("ci_holds", True)]
+        best = max(ok, key=lambda r: r.get("speedup", 0), default=None)
+        print(f"  {machine}: " + ("none" if best is None else
+              f"{best['speedup']:.2f}x, {best['setting']} on {best['scene']} "
+              f"({100 * best['error']:.3f}%)"))
+    sampled = [r for r in rows if "ci_holds" in r]
+    held = sum(r["ci_holds"] for r in sampled)
+    print(f"Target 2: {held} of {len(sampled)} sampled runs' intervals hold the reference "
+          f"({100 * held / max(1, len(sampled)):.1f}%)")
+
+
 def main(argv):
     ap = argparse.ArgumentParser(prog="pareto.py", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -64,6 +82,9 @@ def main(argv):
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default="out/pareto")
     ap.add_argument("--machines", nargs="*", default=list(MACHINES))
+    ap.add_argument("--merge", metavar="PARETO_JSON",
+                    help="an earlier run's pareto.json: its rows of the machines not run now "
+                         "are kept, so one machine can be measured again")
     a = ap.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
     rows = []
@@ -99,8 +120,14 @@ def main(argv):
                     print(f"{machine:18} {scene:28} {name:14} wall {row['wall_s']:.3f} s "
                           f"x{row.get('speedup', 1):.2f} error {100 * row.get('error', 0):.3f}%",
                           file=sys.stderr)
+    if a.merge:
+        with open(a.merge) as f:
+            earlier = [r for r in json.load(f) if r["machine"] not in a.machines]
+        order = list(MACHINES)
+        rows = sorted(earlier + rows, key=lambda r: order.index(r["machine"]))
     with open(os.path.join(a.out, "pareto.json"), "w") as f:
         json.dump(rows, f, indent=1)
+    print_targets(rows)
     print("| machine | scene | setting | wall (median) | speed-up | frame-time error | "
           "99.7% interval holds the reference |")
     print("|---|---|---|---|---|---|---|")

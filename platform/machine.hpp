@@ -66,9 +66,8 @@ struct RunOptions {
   /// `sample_window_rows` rows in detail, the rest functionally; 0: the whole frame in detail.
   int sample_every = 0;
   int sample_window_rows = 1;
-  /// Windows after window 0 simulated in detail as a warm-up (FrameSample::kDefaultWarmup: the
-  /// default, FrameSample::default_warmup).
-  int sample_warmup = -1;
+  /// Windows after window 0 simulated in detail as a warm-up (FrameSample).
+  int sample_warmup = 0;
   /// A pilot of --sample-error: only the estimate is wanted, the rest is not rendered.
   bool sample_pilot = false;
 };
@@ -98,6 +97,11 @@ class Machine {
   /// window that keeps every parallel part of it busy (gaudet-pert's PERTs take scanlines in
   /// turn). A machine whose rays come from VisionRayTask skips the rows not simulated in detail.
   virtual int sample_window_rows(const params::ParamRegistry&) const { return 1; }
+  /// The vision rays a sampled run simulates in detail after window 0 before it samples (its
+  /// warm-up, FrameSample::default_warmup): the machine's queues fill meanwhile, and until they
+  /// have its windows run faster than they will. 512: ullner-pipeline's fill on a scene of
+  /// alike rows, at 64, 128 and 256 pixels a row (docs/sampling.md). 0: no warm-up.
+  virtual int sample_warmup_rays(const params::ParamRegistry&) const { return 512; }
   /// The units of work a sampled run's windows are made of in a `width` x `height` frame: its
   /// rows, or what the machine hands out instead (pxpl5-raytrace: screen regions).
   virtual int sample_units(const params::ParamRegistry&, int /*width*/, int height) const {

@@ -46,9 +46,10 @@ FrameSample::FrameSample(int every, int window_size, int windows, const std::str
   done_.assign(static_cast<std::size_t>(windows_), 0);
 }
 
-int FrameSample::default_warmup(int width, int window_rows, int windows) {
-  const long rays = static_cast<long>(std::max(1, width)) * std::max(1, window_rows);
-  const int enough = static_cast<int>((kWarmupRays + rays - 1) / rays);
+int FrameSample::default_warmup(int width, int window_rows, int windows, int rays) {
+  if (rays <= 0) return 0;
+  const long per_window = static_cast<long>(std::max(1, width)) * std::max(1, window_rows);
+  const int enough = static_cast<int>((rays + per_window - 1) / per_window);
   return std::min(enough, std::max(0, windows - 1) / 8);
 }
 
@@ -64,11 +65,8 @@ FrameSample FrameSample::of_units(int units, int every, int window_units,
 }
 
 FrameSample::FrameSample(int width, int height, int every, int window_rows, int warmup)
-    : FrameSample(
-          every, window_rows, windows_in(height, std::max(1, window_rows)), "rows",
-          warmup == kDefaultWarmup
-              ? default_warmup(width, window_rows, windows_in(height, std::max(1, window_rows)))
-              : warmup) {
+    : FrameSample(every, window_rows, windows_in(height, std::max(1, window_rows)), "rows",
+                  warmup) {
   width_ = static_cast<std::uint32_t>(width);
   detailed_.assign(static_cast<std::size_t>(height), 0);
   functional_.assign(static_cast<std::size_t>(height), 1);

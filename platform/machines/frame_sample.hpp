@@ -46,17 +46,12 @@ namespace rtsim::platform {
 
 class FrameSample {
  public:
-  /// `warmup`: windows after window 0 simulated in detail as a warm-up (kDefaultWarmup: enough
-  /// for kWarmupRays vision rays). Throws InputError when fewer than two windows after the
-  /// warm-up would be sampled.
-  static constexpr int kDefaultWarmup = -1;
-  FrameSample(int width, int height, int every, int window_rows, int warmup = kDefaultWarmup);
-  /// The default warm-up: the windows after window 0 that hold kWarmupRays vision rays, at most
-  /// an eighth of the frame's windows. 512: ullner-pipeline's queues take that many rays to fill
-  /// on a scene of alike rows, at 64, 128 and 256 pixels a row (docs/sampling.md); the other
-  /// machines show no transient.
-  static constexpr int kWarmupRays = 512;
-  static int default_warmup(int width, int window_rows, int windows);
+  /// `warmup`: windows after window 0 simulated in detail as a warm-up (default_warmup).
+  /// Throws InputError when fewer than two windows after the warm-up would be sampled.
+  FrameSample(int width, int height, int every, int window_rows, int warmup);
+  /// The default warm-up: the windows after window 0 that hold `rays` vision rays (the
+  /// machine's Machine::sample_warmup_rays), at most an eighth of the frame's windows.
+  static int default_warmup(int width, int window_rows, int windows, int rays);
   int warmup_windows() const { return warmup_; }
   /// `units` work units in the machine's order, `window_units` a window (what "rows" are to the
   /// constructor above; every row is the machine's then). Throws as it does.

@@ -24,6 +24,8 @@ class Pxpl5Raytrace final : public Machine {
   /// Its casters sample screen regions on a lattice handed out by the master GP, not rows of
   /// vision rays: a sampled run's windows are regions (FrameSample::of_units).
   int sample_units(const params::ParamRegistry& registry, int width, int height) const override;
+  /// Its estimate rests on each region's busy time, which does not grow as queues fill.
+  int sample_warmup_rays(const params::ParamRegistry&) const override { return 0; }
 };
 
 }  // namespace rtsim::platform
