@@ -159,6 +159,14 @@ TEST(GaudetPert, RunsAreDeterministicAndBadParametersAreBadInput) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("adaptive"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "image.png"));
+  // A Broadcast Processor whose idle cycle takes no time would never get past its first moment
+  // (it ran for ever before it was refused).
+  const auto zero =
+      run_rtsim(base + " -p 'broadcast.id_time=0 ns' -p 'broadcast.loop_reset=0 ns' -q --out " +
+                dir.string());
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("id_time and"), std::string::npos) << zero.output;
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
 }
 
 TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 
+#include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/wiring.hpp"
 
@@ -33,6 +34,22 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
               .word_time = params.get_time("word_time"),
               .loop_reset = params.get_time("loop_reset")},
       adaptive_(adaptive) {
+  // A pass through the ID list that sends nothing must take time, or the loop never gets past
+  // a moment (it ran for ever before this check).
+  const bool sends_take_time =
+      timing_.packet_overhead > sc_core::SC_ZERO_TIME || timing_.word_time > sc_core::SC_ZERO_TIME;
+  if (timing_.id_slot == sc_core::SC_ZERO_TIME && timing_.loop_reset == sc_core::SC_ZERO_TIME &&
+      (adaptive_ || !sends_take_time)) {
+    std::string names = params.path();
+    names += ".id_time and ";
+    names += params.path();
+    names += ".loop_reset";
+    throw InputError(
+        names, 0,
+        "both are 0 s: a cycle through the ID list with nothing to send would take no "
+        "time, and the Broadcast Processor would never get past its first moment; give "
+        "either a time (defaults 1000 ns and 400 ns, seed 001 L959 and L962)");
+  }
   SC_THREAD(run);
 }
 
@@ -55,17 +72,24 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
   }
   demand_.assign(slots_.empty() ? 0 : max_id + 1, 0);
   listed_.assign(demand_.size(), false);
-  for (const Slot& s : slots_) listed_[s.id] = true;
-  idle_cycle_ = timing_.loop_reset;
+  positions_.assign(demand_.size(), {});
+  demanded_.clear();
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    listed_[slots_[i].id] = true;
+    positions_[slots_[i].id].push_back(static_cast<std::uint32_t>(i));
+  }
   idle_cycle_packets_ = idle_cycle_words_ = 0;
+  offset_.assign(1, sc_core::SC_ZERO_TIME);
   for (const Slot& s : slots_) {
-    idle_cycle_ += timing_.id_slot;
+    sc_core::sc_time next = offset_.back() + timing_.id_slot;
     if (!adaptive_) {
-      idle_cycle_ += packet_time(s);
+      next += packet_time(s);
       ++idle_cycle_packets_;
       idle_cycle_words_ += s.words;
     }
+    offset_.push_back(next);
   }
+  idle_cycle_ = offset_.back() + timing_.loop_reset;
   cursor_ = Cursor{0, t};
   start_.notify(t > sc_core::sc_time_stamp() ? t - sc_core::sc_time_stamp()
                                              : sc_core::SC_ZERO_TIME);
@@ -79,8 +103,16 @@ void BroadcastProcessor::demand(std::uint32_t id, int delta) {
   // An ID the ID list does not hold (only with a corrupted memory) is never broadcast: its
   // requester waits for ever, and the loop must not spin through cycles looking for it.
   if (id >= demand_.size() || !listed_[id]) return;
+  const bool was = demand_[id] > 0;
   demand_[id] += delta;
   total_demand_ += delta;
+  const bool is = demand_[id] > 0;
+  if (is && !was) demanded_.push_back(id);
+  if (was && !is) {
+    const auto at = std::find(demanded_.begin(), demanded_.end(), id);
+    *at = demanded_.back();
+    demanded_.pop_back();
+  }
 }
 
 sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
@@ -107,7 +139,49 @@ void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
   }
 }
 
+BroadcastProcessor::Cursor BroadcastProcessor::after(const Cursor& c, std::size_t d) const {
+  const std::size_t n = slots_.size();
+  if (c.pos + d < n) return Cursor{c.pos + d, c.t + (offset_[c.pos + d] - offset_[c.pos])};
+  return Cursor{c.pos + d - n, c.t + (idle_cycle_ - offset_[c.pos]) + offset_[c.pos + d - n]};
+}
+
+std::size_t BroadcastProcessor::next_wanted() const {
+  // The first slot in the loop's order from the cursor whose ID is wanted by its time: of the
+  // demanded IDs' slots, the nearest (the slots' times grow with their distance).
+  const std::size_t n = slots_.size();
+  std::size_t best = n;
+  for (const std::uint32_t id : demanded_)
+    for (const std::uint32_t p : positions_[id]) {
+      const std::size_t d = (p + n - cursor_.pos) % n;
+      if (d < best && wanted(id, after(cursor_, d).t)) best = d;
+    }
+  return best;
+}
+
 void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
+  if (adaptive_) {
+    // Nothing is sent on the way: only IDs and cycles to count, so the slots' starts are
+    // worked out, not passed one by one.
+    if (cursor_.t >= t) return;
+    const std::size_t n = slots_.size();
+    const sc_core::sc_time cycle_start = cursor_.t - offset_[cursor_.pos];
+    // The first slot starting at or after t, counted in slots from this cycle's slot 0.
+    const std::uint64_t into = (t - cycle_start).value();
+    std::uint64_t cycles = into / idle_cycle_.value();
+    const sc_core::sc_time rest = sc_core::sc_time::from_value(into % idle_cycle_.value());
+    std::size_t k = static_cast<std::size_t>(
+        std::lower_bound(offset_.begin(), offset_.begin() + static_cast<std::ptrdiff_t>(n), rest) -
+        offset_.begin());
+    if (k == n) {  // past the last slot's start: slot 0 of the next cycle
+      k = 0;
+      ++cycles;
+    }
+    stats_.ids += cycles * n + k - cursor_.pos;
+    stats_.cycles += cycles;
+    cursor_.pos = k;
+    cursor_.t = cycle_start + modules::times(idle_cycle_, cycles) + offset_[k];
+    return;
+  }
   // Slot by slot to the start of a cycle, whole idle cycles at once (each the same length),
   // then slot by slot.
   while (cursor_.t < t && cursor_.pos != 0) pass(cursor_, !adaptive_, true);
@@ -156,9 +230,7 @@ void BroadcastProcessor::run() {
     // The next slot whose ID some BIC holds in a register valid by then (at most one cycle
     // ahead). A register is valid from its processor's local time, which may lie ahead of
     // simulated time (a quantum > 0): a strobe before then could not match it.
-    Cursor c = cursor_;
-    std::size_t n = 0;
-    for (; n < slots_.size() && !wanted(slots_[c.pos].id, c.t); ++n) pass(c, !adaptive_, false);
+    const std::size_t n = next_wanted();
     const sc_core::sc_time now = sc_core::sc_time_stamp();
     if (n == slots_.size()) {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
@@ -168,6 +240,7 @@ void BroadcastProcessor::run() {
       skip_to(sc_core::sc_time_stamp());
       continue;
     }
+    const Cursor c = after(cursor_, n);
     if (c.t > now) {
       sc_core::wait(c.t - now, wake_);
       // Woken early by a new request or a freed buffer: nothing was wanted before now.
@@ -176,7 +249,7 @@ void BroadcastProcessor::run() {
         continue;
       }
     }
-    while (cursor_.pos != c.pos || cursor_.t != c.t) pass(cursor_, !adaptive_, true);
+    skip_to(c.t);  // to the wanted slot, counting the ones before it
     // The sync strobe: every BIC compares the ID with its registers (L920).
     const Slot& s = slots_[cursor_.pos];
     const sc_core::sc_time strobe = cursor_.t;

@@ -101,6 +101,12 @@ class BroadcastProcessor : public sc_core::sc_module {
   void pass(Cursor& c, bool sent, bool account);
   /// Moves the cursor to the first slot starting at or after `t`; no ID there is wanted.
   void skip_to(const sc_core::sc_time& t);
+  /// The cursor `d` slots after `c` (d < the slots in the list), no packet sent but those the
+  /// mode sends anyway: the slots' starts repeat cycle after cycle (offset_).
+  Cursor after(const Cursor& c, std::size_t d) const;
+  /// The distance from the cursor to the first slot of the next cycle's worth whose ID some BIC
+  /// holds in a register valid by then; the number of slots if there is none.
+  std::size_t next_wanted() const;
   /// Some BIC holds `id` in a register valid at `t`: its slot at `t` is worth a strobe.
   bool wanted(std::uint32_t id, const sc_core::sc_time& t) const;
   /// The earliest time from which a register of some BIC holding a listed ID is valid.
@@ -112,6 +118,12 @@ class BroadcastProcessor : public sc_core::sc_module {
   std::vector<Slot> slots_;
   std::vector<int> demand_;   ///< by ID: valid registers holding it, over all BICs
   std::vector<bool> listed_;  ///< by ID: the ID list holds it
+  /// By ID: its slots in the ID list (one, unless a corrupted memory lists it twice).
+  std::vector<std::vector<std::uint32_t>> positions_;
+  std::vector<std::uint32_t> demanded_;  ///< the IDs whose demand_ is positive, in no order
+  /// By slot: when it starts after the cycle's start, no packet sent but those the mode sends
+  /// anyway (adaptive: none; direct: every one); offset_[slots] ends the last slot.
+  std::vector<sc_core::sc_time> offset_;
   long total_demand_ = 0;
   sc_core::sc_time idle_cycle_ = sc_core::SC_ZERO_TIME;  ///< one cycle with nothing wanted
   std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;
