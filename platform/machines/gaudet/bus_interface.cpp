@@ -124,13 +124,15 @@ void BusInterface::release(const ReceivedPacket& p, const sc_core::sc_time& t) {
 
 int BusInterface::free_buffer(const sc_core::sc_time& t) const {
   for (std::size_t i = 0; i < buffers_.size(); ++i)
-    if (buffers_[i].state == BufferState::kFree && buffers_[i].at <= t) return static_cast<int>(i);
+    if (buffers_[i].state == BufferState::kFree && buffers_[i].at < t)  // freed before t
+      return static_cast<int>(i);
   return -1;
 }
 
 bool BusInterface::requested(std::uint32_t id, const sc_core::sc_time& t) const {
   return std::any_of(registers_.begin(), registers_.end(),
-                     [&](const Register& r) { return r.valid && r.id == id && r.from <= t; });
+                     // Valid before the strobe at t, not at it (bus_interface.hpp says why).
+                     [&](const Register& r) { return r.valid && r.id == id && r.from < t; });
 }
 
 bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
