@@ -145,17 +145,19 @@ BroadcastProcessor::Cursor BroadcastProcessor::after(const Cursor& c, std::size_
   return Cursor{c.pos + d - n, c.t + (idle_cycle_ - offset_[c.pos]) + offset_[c.pos + d - n]};
 }
 
-std::size_t BroadcastProcessor::next_wanted() const {
-  // The first slot in the loop's order from the cursor whose ID is wanted by its time: of the
-  // demanded IDs' slots, the nearest (the slots' times grow with their distance).
+std::size_t BroadcastProcessor::next_wanted() {
+  // The first slot in the loop's order from the cursor whose ID is wanted by its time: the
+  // demanded IDs' slots, nearest first (the slots' times grow with their distance), until one
+  // is wanted by then (a register valid before its strobe).
   const std::size_t n = slots_.size();
-  std::size_t best = n;
+  candidates_.clear();
   for (const std::uint32_t id : demanded_)
-    for (const std::uint32_t p : positions_[id]) {
-      const std::size_t d = (p + n - cursor_.pos) % n;
-      if (d < best && wanted(id, after(cursor_, d).t)) best = d;
-    }
-  return best;
+    for (const std::uint32_t p : positions_[id])
+      candidates_.emplace_back((p + n - cursor_.pos) % n, id);
+  std::sort(candidates_.begin(), candidates_.end());
+  for (const auto& [d, id] : candidates_)
+    if (wanted(id, after(cursor_, d).t)) return d;
+  return n;
 }
 
 void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {

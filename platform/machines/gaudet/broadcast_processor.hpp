@@ -106,7 +106,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   Cursor after(const Cursor& c, std::size_t d) const;
   /// The distance from the cursor to the first slot of the next cycle's worth whose ID some BIC
   /// holds in a register valid by then; the number of slots if there is none.
-  std::size_t next_wanted() const;
+  std::size_t next_wanted();
   /// Some BIC holds `id` in a register valid at `t`: its slot at `t` is worth a strobe.
   bool wanted(std::uint32_t id, const sc_core::sc_time& t) const;
   /// The earliest time from which a register of some BIC holding a listed ID is valid.
@@ -121,6 +121,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   /// By ID: its slots in the ID list (one, unless a corrupted memory lists it twice).
   std::vector<std::vector<std::uint32_t>> positions_;
   std::vector<std::uint32_t> demanded_;  ///< the IDs whose demand_ is positive, in no order
+  std::vector<std::pair<std::size_t, std::uint32_t>> candidates_;  ///< next_wanted's (distance, ID)
   /// By slot: when it starts after the cycle's start, no packet sent but those the mode sends
   /// anyway (adaptive: none; direct: every one); offset_[slots] ends the last slot.
   std::vector<sc_core::sc_time> offset_;
