@@ -281,6 +281,9 @@ def log_axis(axis, integer=False):
 
 # Free space kept between a legend inside the axes and the data (pixels).
 _LEGEND_CLEARANCE_PX = 4.0
+# A legend that does not fit inside goes beside the axes with at most this many entries, else
+# below them in columns.
+_LEGEND_BESIDE_MAX = 6
 # Places tried inside the axes, in order, before the legend goes beside them.
 _LEGEND_INSIDE = ("upper right", "upper left", "lower right", "lower left", "center right",
                   "center left", "upper center", "lower center")
@@ -304,7 +307,9 @@ def value_order_key(label):
 
 def place_legend(ax, **kwargs):
     """ax.legend(**kwargs) in the first place inside the axes where it hides no data of the
-    figure, else beside the axes on the right. Call when the data and limits are final."""
+    figure, else beside the axes on the right, or below them in columns if it has more than
+    _LEGEND_BESIDE_MAX entries and no other axes lies below. Call when the data and limits are
+    final."""
     for a in ax.figure.axes:  # autoscale now: matplotlib does it lazily, at the next draw
         a.get_xlim()
         a.get_ylim()
@@ -314,6 +319,18 @@ def place_legend(ax, **kwargs):
         box = legend.get_window_extent(renderer).padded(_LEGEND_CLEARANCE_PX)
         if not covers_data(ax.figure, box, renderer):
             return legend
+    handles, _ = ax.get_legend_handles_labels()
+    below_is_free = not any(other is not ax and other.bbox.y1 <= ax.bbox.y0 + 1.0
+                            for other in ax.figure.axes)
+    if len(handles) > _LEGEND_BESIDE_MAX and below_is_free:
+        # Many entries beside the axes would widen the figure by the legend's width: below the
+        # axes (the lowest of the figure) in columns instead, as wide as the axes allow.
+        axis_box = ax.xaxis.get_tightbbox(renderer)
+        under = (axis_box.y0 if axis_box is not None else ax.bbox.y0) - _LEGEND_CLEARANCE_PX
+        y = ax.transAxes.inverted().transform((0.0, under))[1]
+        kwargs.setdefault("ncol", min(4, len(handles)))
+        return ax.legend(loc="upper center", bbox_to_anchor=(0.5, y), borderaxespad=0.0,
+                         **kwargs)
     return ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
                      **kwargs)
 

@@ -291,14 +291,26 @@ def format_y(ax, series, logy):
         common.integer_axis(ax.yaxis)
 
 
+# One marker a line, so that lines that cross or coincide stay apart in the legend.
+_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "*")
+
+
 def draw(series, categories, args):
     """(fig, ax): one line per series, times in one unit per axis, the legend off the lines.
     args is the parsed command line with group_used, x_time and y_time set (see figure)."""
     plt = common.pyplot()
     series, xunit, yunit = scale_times(series, args.x_time, args.y_time)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for label, (xs, ys) in series.items():
-        ax.plot(xs, ys, marker="o", markersize=4, label=label)
+    drawn = []
+    for i, (label, (xs, ys)) in enumerate(series.items()):
+        # A line equal to one drawn before would hide it: it is drawn dashed over it, with its
+        # own marker, and its legend entry says which line it equals.
+        same = next((other for other, oxs, oys in drawn
+                     if list(oxs) == list(xs) and list(oys) == list(ys)), None)
+        ax.plot(xs, ys, marker=_MARKERS[i % len(_MARKERS)], markersize=4,
+                linestyle="--" if same is not None else "-",
+                label=label if same is None else f"{label} (= {same})")
+        drawn.append((label, xs, ys))
     format_x(ax, series, categories, args.logx)
     format_y(ax, series, args.logy)
     ax.set_xlabel(x_label(args, xunit))

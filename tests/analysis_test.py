@@ -872,6 +872,46 @@ class ReadableAxesTest(ScratchTest):
         self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()],
                          ["1", "2", "3", "4", "5"])
 
+    def write_lines(self, values):
+        """A sweep of x = 1..10 with one group per entry of `values`: group g's y at x is
+        values[g](x)."""
+        path = os.path.join(self.dir, "lines.jsonl")
+        with open(path, "w") as f:
+            for g, fn in enumerate(values):
+                for x in range(1, 11):
+                    f.write(json.dumps({"x": x, "group": f"g{g}", "status": "ok",
+                                        "simulated_time_s": fn(x)}) + "\n")
+        return path
+
+    def drawn_lines(self, values):
+        args = sweep_plot.parse_args([self.write_lines(values), os.path.join(self.dir, "l.png"),
+                                      "--x", "x", "--y", "simulated_time_s", "--group", "group"])
+        fig, ax = sweep_plot.figure(args)
+        self.addCleanup(common.pyplot().close, fig)
+        fig.canvas.draw()
+        return fig, ax
+
+    def test_equal_lines_are_told_apart(self):
+        # g1 equals g0 (link and link_in of the sweep report's utilisation): drawn dashed over
+        # it with a marker of its own, and its legend entry says so.
+        fig, ax = self.drawn_lines([lambda x: x, lambda x: x, lambda x: 2 * x])
+        texts = [t.get_text() for t in ax.get_legend().get_texts()]
+        self.assertEqual(texts, ["g0", "g1 (= g0)", "g2"])
+        self.assertEqual(ax.lines[0].get_linestyle(), "-")
+        self.assertEqual(ax.lines[1].get_linestyle(), "--")
+        self.assertNotEqual(ax.lines[0].get_marker(), ax.lines[1].get_marker())
+
+    def test_many_lines_put_the_legend_below_not_beside(self):
+        # Eight lines across the whole axes: no place inside is free. Beside the axes the
+        # legend widened the PNG by its width; below them, in columns, it does not.
+        fig, ax = self.drawn_lines([(lambda g: (lambda x: g + 0.3 * (x % 3)))(g)
+                                    for g in range(8)])
+        renderer = fig.canvas.get_renderer()
+        box = ax.get_legend().get_window_extent(renderer)
+        self.assertLess(box.y1, ax.xaxis.get_tightbbox(renderer).y0)  # under the x label
+        self.assertLessEqual(box.x1, fig.bbox.x1)
+        self.assertGreaterEqual(box.x0, fig.bbox.x0)
+
     def test_time_axes_of_a_run(self):
         edges, busy, depth = utilisation_timeline.busy_from_trace(make_trace(), windows=4)
         fig, axes = utilisation_timeline.draw({k: (edges, v) for k, v in busy.items()},
