@@ -127,13 +127,13 @@ int run_run(const RunArgs& args) {
                      "chooses K itself: give --sample K or --sample-error E, not both");
   const double sample_error =
       args.sample_error.empty() ? 0.0 : parse_sample_error(args.sample_error);
+  const int width = args.width > 0 ? args.width : scene.camera.width;
+  const int height = args.height > 0 ? args.height : scene.camera.height;
   if (sampled) {
     opts.sample_every = args.sample;
     opts.sample_window_rows =
         args.sample_window > 0 ? args.sample_window : machine.sample_window_rows(registry);
     // The warm-up: as asked, or the windows holding the machine's warm-up rays.
-    const int width = args.width > 0 ? args.width : scene.camera.width;
-    const int height = args.height > 0 ? args.height : scene.camera.height;
     opts.sample_warmup =
         args.sample_warmup >= 0
             ? args.sample_warmup
@@ -150,8 +150,6 @@ int run_run(const RunArgs& args) {
   }
   std::optional<SamplePlan> plan;
   if (sample_error > 0) {
-    const int width = args.width > 0 ? args.width : scene.camera.width;
-    const int height = args.height > 0 ? args.height : scene.camera.height;
     plan = plan_sample(machine, scene, twin, registry, opts,
                        machine.sample_units(registry, width, height), sample_error);
     opts.sample_every = plan->every >= 2 ? plan->every : 0;

@@ -32,6 +32,8 @@ Bench& bench() {
   static Bench b;
   return b;
 }
+/// Whether the benchmark of `kind` runs and takes thread (or pair) `index` part.
+bool runs(Kind kind, int index) { return bench().active == kind && index < bench().threads; }
 
 // A thread that waits with its own period while its benchmark runs with enough threads.
 class Waiter : public sc_core::sc_module {
@@ -47,7 +49,7 @@ class Waiter : public sc_core::sc_module {
  private:
   void run() {
     for (;;) {
-      while (bench().active != Kind::kTimedWait || index_ >= bench().threads) wait(go);
+      while (!runs(Kind::kTimedWait, index_)) wait(go);
       wait(period_);
       ++bench().count;
     }
@@ -69,10 +71,9 @@ class Pair : public sc_core::sc_module {
   int index_;
 
  private:
-  bool running() const { return bench().active == Kind::kHandOff && index_ < bench().threads; }
   void send() {
     for (;;) {
-      while (!running()) wait(go);
+      while (!runs(Kind::kHandOff, index_)) wait(go);
       message_.notify(delay_);
       wait(answer_);
     }

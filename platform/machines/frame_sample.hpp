@@ -25,8 +25,8 @@
 // machine's queues fill at the start of the frame, and until they have the windows go faster
 // than they will (ullner-pipeline on a scene of alike rows: 4% faster for its first ~512 rays).
 // With c_0 the completion of the warm-up (the latest of windows 0..W), c_1 < ... < c_m those of
-// the sampled windows after it (kW < k K, the rest of 0, K, 2K, ...), all in the frame [B, E] of
-// the sampled run, and d_i = c_i - c_{i-1} (one window's worth of the machine's throughput, the
+// the sampled windows after it (the windows kK beyond W), all in the frame [B, E] of the sampled
+// run, and d_i = c_i - c_{i-1} (one window's worth of the machine's throughput, the
 // windows before it having warmed the queues), the frame of all N windows is estimated as
 //
 //   T = (c_0 - B) + (N - 1 - W) mean(d) + (E - c_m)
@@ -52,7 +52,6 @@ class FrameSample {
   /// The default warm-up: the windows after window 0 that hold `rays` vision rays (the
   /// machine's Machine::sample_warmup_rays), at most an eighth of the frame's windows.
   static int default_warmup(int width, int window_rows, int windows, int rays);
-  int warmup_windows() const { return warmup_; }
   /// `units` work units in the machine's order, `window_units` a window (what "rows" are to the
   /// constructor above; every row is the machine's then). Throws as it does.
   static FrameSample of_units(int units, int every, int window_units, const std::string& unit_name,

@@ -21,8 +21,7 @@
 // registers as the strobe comes, L920). Which of two threads SystemC runs first at one time is
 // the order of its event queue, which any other event can change: with `<=`, a request and a
 // strobe at the same picosecond met or missed by that order, and an unrelated timed event in the
-// simulation moved 8-PERT frame times by up to 0.3% (tests/gaudet_pert_test.cpp,
-// FrameTimesDoNotDependOnTheOrderOfThreadsAtOneTime).
+// simulation moved 8-PERT frame times by up to 0.3% (tests/gaudet_tie_order_test.cpp).
 #include <cstdint>
 #include <span>
 #include <string>
