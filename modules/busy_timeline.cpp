@@ -16,6 +16,7 @@ void BusyTimeline::merge_pairs() {
   for (std::size_t i = 0; i < n; i += 2) busy_[i / 2] = busy_[i] + (i + 1 < n ? busy_[i + 1] : 0);
   busy_.resize((n + 1) / 2);
   width_ *= 2;
+  ++shift_;
 }
 
 void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& duration) {
@@ -46,7 +47,11 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
 void BusyTimeline::to_bins() {
   // Bins for the span so far with room to double once before the first merge.
   width_ = 1;
-  while (ceil_div(last_ - first_, width_) > kMaxBins / 2) width_ *= 2;
+  shift_ = 0;
+  while (ceil_div(last_ - first_, width_) > kMaxBins / 2) {
+    width_ *= 2;
+    ++shift_;
+  }
   origin_ = first_;
   busy_.assign(1, 0);
   binned_ = true;
@@ -55,25 +60,34 @@ void BusyTimeline::to_bins() {
 }
 
 void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
+  // The width is a power of two (1, doubled by merge_pairs): shifts, not divisions, on the path
+  // every busy interval of a frame takes.
+  const auto bins_to = [this](std::uint64_t ticks) {  // ceil(ticks / width_)
+    return (ticks >> shift_) + ((ticks & (width_ - 1)) != 0 ? 1 : 0);
+  };
   if (s < origin_) {
     // Earlier than anything so far: grow the bins to the left by whole bins.
-    std::uint64_t k = ceil_div(origin_ - s, width_);
+    std::uint64_t k = bins_to(origin_ - s);
     while (busy_.size() + k > kMaxBins) {
       merge_pairs();
-      k = ceil_div(origin_ - s, width_);
+      k = bins_to(origin_ - s);
     }
     busy_.insert(busy_.begin(), static_cast<std::size_t>(k), 0);
     origin_ -= k * width_;
   }
-  while (ceil_div(e - origin_, width_) > kMaxBins) merge_pairs();
+  while (bins_to(e - origin_) > kMaxBins) merge_pairs();
   const std::uint64_t a = s - origin_;
   const std::uint64_t b = e - origin_;
-  const std::size_t first = static_cast<std::size_t>(a / width_);
-  const std::size_t last = static_cast<std::size_t>((b - 1) / width_);
+  const std::size_t first = static_cast<std::size_t>(a >> shift_);
+  const std::size_t last = static_cast<std::size_t>((b - 1) >> shift_);
   if (busy_.size() <= last) busy_.resize(last + 1, 0);
+  if (first == last) {  // the common case: an interval within one bin
+    busy_[first] += b - a;
+    return;
+  }
   for (std::size_t i = first; i <= last; ++i) {
-    const std::uint64_t lo = std::max<std::uint64_t>(a, i * width_);
-    const std::uint64_t hi = std::min<std::uint64_t>(b, (i + 1) * width_);
+    const std::uint64_t lo = std::max<std::uint64_t>(a, i << shift_);
+    const std::uint64_t hi = std::min<std::uint64_t>(b, (i + 1) << shift_);
     busy_[i] += hi - lo;
   }
 }

@@ -89,9 +89,10 @@ class BusyTimeline {
   bool keep_ = false;
   std::vector<Interval> intervals_;
   std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
-  std::uint64_t width_ = 1;   ///< ticks per bin
-  std::uint64_t first_ = 0;   ///< earliest start recorded
-  std::uint64_t last_ = 0;    ///< latest end recorded
+  std::uint64_t width_ = 1;   ///< ticks per bin: a power of two, 1 << shift_
+  unsigned shift_ = 0;
+  std::uint64_t first_ = 0;  ///< earliest start recorded
+  std::uint64_t last_ = 0;   ///< latest end recorded
   std::vector<std::uint64_t> busy_;
   bool recorded_ = false;         ///< anything added yet
   bool binned_ = false;           ///< bins in use (else sparse_ holds everything)

@@ -14,8 +14,8 @@ void Processor::compute_for(const sc_core::sc_time& t, std::string_view what,
   accounts_.busy += t;
 }
 
-void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
-                     Wait why) {
+template <class Events>
+void Processor::idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why) {
   const sc_core::sc_time before = clock_.now();
   // Ahead of simulated time (a quantum > 0): catch up first and let the caller look again.
   // While this thread waited, the others ran up to its local time, and an event it would wait
@@ -33,6 +33,16 @@ void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_ev
     sc_core::wait(events);
   clock_.resync();
   account(why) += clock_.now() - before;
+}
+
+void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
+                     Wait why) {
+  idle_on(until, events, why);
+}
+
+void Processor::idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
+                     Wait why) {
+  idle_on(until, event, why);
 }
 
 void Processor::idle_until(const sc_core::sc_time& t, Wait why) {

@@ -67,6 +67,9 @@ class Processor : public sc_core::sc_module {
   /// meanwhile): call it in a loop that looks at the state again.
   void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
             Wait why);
+  /// idle() on one event. A list built for a single wait allocates on every call; a loop that
+  /// idles once a ray keeps its lists (sc_event_or_list members or locals of its thread).
+  void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event, Wait why);
   /// Idle until `t`, a time already known (a message stamped ahead of it).
   void idle_until(const sc_core::sc_time& t, Wait why);
   /// After waiting on events itself: the time since `since` (its local time then) was idle.
@@ -106,6 +109,8 @@ class Processor : public sc_core::sc_module {
   SliceSink& trace_;
 
  private:
+  template <class Events>
+  void idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
   sc_core::sc_time& account(Wait why) {
     return why == Wait::kData ? accounts_.waiting_for_data : accounts_.waiting_for_work;
   }

@@ -36,7 +36,9 @@ inline sc_core::sc_time times(const sc_core::sc_time& t, std::uint64_t n) {
 inline sc_core::sc_time plus(const sc_core::sc_time& a, const sc_core::sc_time& b) {
   sc_core::sc_time::value_type v = 0;
   if (__builtin_add_overflow(a.value(), b.value(), &v)) time_overflow();
-  return sc_core::sc_time::from_value(v);
+  sc_core::sc_time sum(a);  // += is inline; from_value is a call into the library, with checks
+  sum += b;
+  return sum;
 }
 
 inline sc_core::sc_time from_ps(std::int64_t ps) {

@@ -77,14 +77,14 @@ class PertProcessor : public modules::Processor {
 
   /// Waits until `until` (if known) or until one of `events` fires, whichever comes first.
   /// The time counts as latency if `for_bus`, else as pipeline wait.
-  void idle(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
-            bool for_bus) {
+  template <class Events>  // sc_core::sc_event or sc_core::sc_event_or_list
+  void idle(std::optional<sc_core::sc_time> until, const Events& events, bool for_bus) {
     Processor::idle(until, events, for_bus ? Wait::kData : Wait::kWork);
   }
   /// Waits as idle() does, starved: broadcast data is awaited, but the processor has room for
   /// another ray and none has come. Accounted as waiting for work, reported as `starved`.
-  void idle_starved(std::optional<sc_core::sc_time> until,
-                    const sc_core::sc_event_or_list& events) {
+  template <class Events>
+  void idle_starved(std::optional<sc_core::sc_time> until, const Events& events) {
     const sc_core::sc_time before = clock_.now();
     Processor::idle(until, events, Wait::kWork);
     starved_ += clock_.now() - before;

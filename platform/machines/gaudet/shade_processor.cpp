@@ -110,6 +110,9 @@ void ShadeProcessor::send(RayTicket& t, const sc_core::sc_time& since) {
 
 void ShadeProcessor::run() {
   begin_frame();
+  // What it idles on, built once (a list built for each wait allocates).
+  const sc_core::sc_event_or_list idle_on =
+      input.fifo.put_event() | port_.changed_event() | out_queue_->get_event();
   bool vision_left = true;
   for (;;) {
     const sc_core::sc_time now = clock_.now();
@@ -172,8 +175,7 @@ void ShadeProcessor::run() {
     earliest(port_.next_arrival());
     const bool want_send = !backlog_.empty() || (vision_left && !free_trees_.empty());
     if (want_send) earliest(out_queue_->next_room_time());
-    idle(next, input.fifo.put_event() | port_.changed_event() | out_queue_->get_event(),
-         !awaiting_.empty());
+    idle(next, idle_on, !awaiting_.empty());
   }
   finished_ = true;
   finish_time_ = clock_.now();

@@ -160,6 +160,10 @@ void ShellProcessor::finish(int slot) {
 
 void ShellProcessor::run() {
   begin_frame();
+  // What it idles on, built once (a list built for each wait allocates).
+  const sc_core::sc_event_or_list starved_on = port_.changed_event() | input.fifo.put_event();
+  const sc_core::sc_event_or_list idle_on =
+      port_.changed_event() | input.fifo.put_event() | out_queue_->get_event();
   for (;;) {
     const sc_core::sc_time now = clock_.now();
     // A finished search goes on to the PrimProcessor when its queue has room.
@@ -220,9 +224,9 @@ void ShellProcessor::run() {
     // (L1060-L1062: waiting that a new ray could overlap is not latency).
     const bool for_bus = !waiting_.empty();
     if (for_bus && slot_free && done_.empty())
-      idle_starved(next, port_.changed_event() | input.fifo.put_event());
+      idle_starved(next, starved_on);
     else
-      idle(next, port_.changed_event() | input.fifo.put_event() | out_queue_->get_event(), for_bus);
+      idle(next, idle_on, for_bus);
   }
 }
 
