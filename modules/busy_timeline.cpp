@@ -4,18 +4,12 @@
 
 namespace rtsim::modules {
 
-namespace {
-/// ceil(a / b) without overflowing a + b.
-std::uint64_t ceil_div(std::uint64_t a, std::uint64_t b) { return a / b + (a % b != 0 ? 1 : 0); }
-}  // namespace
-
 void BusyTimeline::merge_pairs() {
   // In place: bin i/2 takes bins i and i+1 (no allocation; this runs once per doubling of
   // the recorded span, on up to kMaxBins bins).
   const std::size_t n = busy_.size();
   for (std::size_t i = 0; i < n; i += 2) busy_[i / 2] = busy_[i] + (i + 1 < n ? busy_[i + 1] : 0);
   busy_.resize((n + 1) / 2);
-  width_ *= 2;
   ++shift_;
 }
 
@@ -46,12 +40,8 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
 
 void BusyTimeline::to_bins() {
   // Bins for the span so far with room to double once before the first merge.
-  width_ = 1;
   shift_ = 0;
-  while (ceil_div(last_ - first_, width_) > kMaxBins / 2) {
-    width_ *= 2;
-    ++shift_;
-  }
+  while (bins_for(last_ - first_) > kMaxBins / 2) ++shift_;
   origin_ = first_;
   busy_.assign(1, 0);
   binned_ = true;
@@ -60,22 +50,17 @@ void BusyTimeline::to_bins() {
 }
 
 void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
-  // The width is a power of two (1, doubled by merge_pairs): shifts, not divisions, on the path
-  // every busy interval of a frame takes.
-  const auto bins_to = [this](std::uint64_t ticks) {  // ceil(ticks / width_)
-    return (ticks >> shift_) + ((ticks & (width_ - 1)) != 0 ? 1 : 0);
-  };
   if (s < origin_) {
     // Earlier than anything so far: grow the bins to the left by whole bins.
-    std::uint64_t k = bins_to(origin_ - s);
+    std::uint64_t k = bins_for(origin_ - s);
     while (busy_.size() + k > kMaxBins) {
       merge_pairs();
-      k = bins_to(origin_ - s);
+      k = bins_for(origin_ - s);
     }
     busy_.insert(busy_.begin(), static_cast<std::size_t>(k), 0);
-    origin_ -= k * width_;
+    origin_ -= k << shift_;
   }
-  while (bins_to(e - origin_) > kMaxBins) merge_pairs();
+  while (bins_for(e - origin_) > kMaxBins) merge_pairs();
   const std::uint64_t a = s - origin_;
   const std::uint64_t b = e - origin_;
   const std::size_t first = static_cast<std::size_t>(a >> shift_);
@@ -145,8 +130,8 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
   for (std::size_t i = 0; i < busy_.size(); ++i) {
     if (busy_[i] == 0) continue;
     // The bin, less what lies outside everything recorded (exact edges for the first and last).
-    const std::uint64_t x0 = std::max(origin_ + i * width_, first_);
-    const std::uint64_t x1 = std::min(origin_ + (i + 1) * width_, last_);
+    const std::uint64_t x0 = std::max(origin_ + (i << shift_), first_);
+    const std::uint64_t x1 = std::min(origin_ + ((i + 1) << shift_), last_);
     if (x1 <= x0) continue;
     spread(busy_[i], x0, x1);
   }

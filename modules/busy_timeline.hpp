@@ -68,7 +68,7 @@ class BusyTimeline {
 
   /// Total busy time recorded (exact: the bins hold integer ticks).
   sc_core::sc_time total() const;
-  std::uint64_t bin_width_ticks() const { return width_; }
+  std::uint64_t bin_width_ticks() const { return std::uint64_t{1} << shift_; }
   std::size_t bins() const { return busy_.size(); }
 
   /// Whether the intervals are kept (made while a KeepIntervals was alive).
@@ -86,10 +86,15 @@ class BusyTimeline {
   void merge_pairs();
   void add_to_bins(std::uint64_t s, std::uint64_t e);
   void to_bins();
+  /// ceil(ticks / the bin width): the bins `ticks` of time take.
+  std::uint64_t bins_for(std::uint64_t ticks) const {
+    return (ticks >> shift_) + ((ticks & ((std::uint64_t{1} << shift_) - 1)) != 0 ? 1 : 0);
+  }
   bool keep_ = false;
   std::vector<Interval> intervals_;
   std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
-  std::uint64_t width_ = 1;   ///< ticks per bin: a power of two, 1 << shift_
+  /// Ticks per bin: 1 << shift_. A power of two (merge_pairs doubles it), so the hot path of
+  /// every busy interval shifts instead of dividing.
   unsigned shift_ = 0;
   std::uint64_t first_ = 0;  ///< earliest start recorded
   std::uint64_t last_ = 0;   ///< latest end recorded
