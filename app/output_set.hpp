@@ -23,12 +23,17 @@ bool is_rtsim_output_name(std::string_view name);
 
 class OutputSet {
  public:
-  explicit OutputSet(std::filesystem::path dir);
+  /// Who else may keep files in DIR: `render`, `run` and `sweep` own their folder (it may hold
+  /// only what rtsim writes: check_output_folder); `describe` writes MACHINE.dot and .svg into
+  /// any folder the user names (docs/, say), so other files there are left alone.
+  enum class Folder : std::uint8_t { RunsOwn, Shared };
+  explicit OutputSet(std::filesystem::path dir, Folder folder = Folder::RunsOwn);
   ~OutputSet();
   OutputSet(const OutputSet&) = delete;
   OutputSet& operator=(const OutputSet&) = delete;
 
-  /// Where to write the file `name` now; it becomes DIR/name on commit().
+  /// Where to write the file `name` now; it becomes DIR/name on commit(). Staging a name twice
+  /// gives the same path (one file, moved once).
   std::filesystem::path stage(const std::string& name);
   /// Where a file staged as `name` is before commit() (for readers of staged files, such as
   /// the report); also a place for scratch files that must not be committed.
@@ -43,7 +48,10 @@ class OutputSet {
   void supersede(std::span<const std::string_view> names) {
     superseded_.assign(names.begin(), names.end());
   }
-  /// Move every staged file into place. Throws std::runtime_error on failure.
+  /// Move every staged file into place, all or none: the files it replaces (and those it
+  /// supersedes) are first moved aside into the staging folder, then the new ones in; if any
+  /// move fails (an immutable or undeletable file, say), what was moved is moved back and an
+  /// InputError names the file ("--out DIR", exit 2). The files moved aside are removed last.
   void commit();
   const std::filesystem::path& dir() const { return dir_; }
 
@@ -52,10 +60,14 @@ class OutputSet {
   std::filesystem::path staging_;
   std::vector<std::string> names_;
   std::vector<std::string_view> superseded_;
-  bool created_dir_ = false;
+  /// The outermost folder this set created (DIR or an ancestor of it, `--out a/b/c` in an empty
+  /// place creates a); empty when DIR existed. Without a commit, it goes again.
+  std::filesystem::path created_root_;
   bool committed_ = false;
   std::vector<std::uint64_t> interrupt_ids_;  ///< app/interrupt_cleanup.hpp registrations
   void forget_interrupt_paths();
+  /// Removes DIR and the ancestors up to created_root_ that this set created, if empty.
+  void remove_created_folders();
 };
 
 }  // namespace rtsim::app
