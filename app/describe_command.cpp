@@ -11,6 +11,7 @@
 #include <cxxabi.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,9 +26,11 @@
 
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
+#include "app/output_set.hpp"
 #include "app/scene_input.hpp"
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
+#include "common/spawn_logged.hpp"
 #include "modules/wiring.hpp"
 #include "platform/machine.hpp"
 
@@ -103,6 +106,22 @@ std::string parent_of(const std::string& name) {
 std::string leaf_of(const std::string& name) { return name.substr(name.rfind('.') + 1); }
 
 std::string dot_id(const std::string& name) { return "\"" + name + "\""; }
+
+/// A class of numbered siblings (node0 ... node4095, pert0 ... pert1023) with more than this many
+/// instances is drawn as its first kDrawnInstances and one box that counts the rest: Graphviz
+/// lays out a 64x64 array's 4096 nodes for minutes, and nobody reads such a picture. Up to 64
+/// (the thesis's 8 x 8 array) every instance is drawn. The text tree lists every module.
+constexpr std::size_t kMaxDrawnClassSize = 64;
+constexpr std::size_t kDrawnInstances = 8;
+
+/// "node12" -> {"node", 12}; a name without a number -> {name, npos}.
+std::pair<std::string, std::size_t> instance_of(const std::string& leaf) {
+  std::size_t digits = leaf.size();
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(leaf[digits - 1]))) --digits;
+  if (digits == leaf.size() || digits == 0 || leaf.size() - digits > 9)
+    return {leaf, std::string::npos};
+  return {leaf.substr(0, digits), std::stoul(leaf.substr(digits))};
+}
 
 std::string dot_escape(std::string s) {
   std::string out;
@@ -196,9 +215,38 @@ int run_describe(const DescribeArgs& args) {
       << "  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n"
       << "  label=\"" << dot_escape(machine.name() + ": " + machine.description())
       << "\";\n  labelloc=t;\n";
+  // Large classes: the instances past the first few are not drawn (kMaxDrawnClassSize); one
+  // box per class says how many more there are.
+  std::map<std::pair<std::string, std::string>, std::vector<std::pair<std::size_t, std::string>>>
+      classes;  // (parent, stem) -> (number, name)
+  for (const auto& [name, n] : nodes)
+    if (const auto [stem, number] = instance_of(leaf_of(name)); number != std::string::npos)
+      classes[{parent_of(name), stem}].emplace_back(number, name);
+  std::set<std::string> hidden;
+  std::map<std::string, std::vector<std::string>> more;  // parent -> boxes counting the rest
+  for (auto& [key, members] : classes) {
+    if (members.size() <= kMaxDrawnClassSize) continue;
+    std::sort(members.begin(), members.end());
+    for (std::size_t i = kDrawnInstances; i < members.size(); ++i) hidden.insert(members[i].second);
+    more[key.first].push_back(std::to_string(members.size() - kDrawnInstances) + " more " +
+                              key.second + " (" + leaf_of(members[kDrawnInstances].second) +
+                              " ... " + leaf_of(members.back().second) + ")");
+  }
+  const auto drawn = [&](std::string name) {
+    for (; !name.empty(); name = parent_of(name))
+      if (hidden.contains(name)) return false;
+    return true;
+  };
   std::set<std::string> has_children;
   for (const auto& [name, n] : nodes)
-    if (!parent_of(name).empty()) has_children.insert(parent_of(name));
+    if (!parent_of(name).empty() && drawn(name)) has_children.insert(parent_of(name));
+  std::size_t more_boxes = 0;
+  const auto emit_more = [&](const std::string& parent, const std::string& pad) {
+    if (const auto it = more.find(parent); it != more.end())
+      for (const auto& text : it->second)
+        dot << pad << dot_id("more_" + std::to_string(more_boxes++)) << " [label=\""
+            << dot_escape(text) << "\", style=\"rounded,dotted\"];\n";
+  };
   std::function<void(const std::string&, int)> emit = [&](const std::string& name, int depth) {
     const Node& n = nodes.at(name);
     const std::string pad(2 * static_cast<std::size_t>(depth) + 2, ' ');
@@ -214,7 +262,8 @@ int run_describe(const DescribeArgs& args) {
           << pad << "  style=rounded;\n"
           << pad << "  " << dot_id(name) << " [shape=point, style=invis];\n";
       for (const auto& [child, c] : nodes)
-        if (parent_of(child) == name) emit(child, depth + 1);
+        if (parent_of(child) == name && drawn(child)) emit(child, depth + 1);
+      emit_more(name, pad + "  ");
       dot << pad << "}\n";
     } else {
       dot << pad << dot_id(name) << " [label=\"" << label << "\""
@@ -222,9 +271,10 @@ int run_describe(const DescribeArgs& args) {
     }
   };
   for (const auto& [name, n] : nodes)
-    if (parent_of(name).empty()) emit(name, 0);
+    if (parent_of(name).empty() && drawn(name)) emit(name, 0);
+  emit_more("", "  ");
   for (const auto& [from, to, what] : reader.edges) {
-    if (!nodes.contains(from) || !nodes.contains(to)) continue;
+    if (!nodes.contains(from) || !nodes.contains(to) || !drawn(from) || !drawn(to)) continue;
     dot << "  " << dot_id(from) << " -> " << dot_id(to) << " [label=\"" << what << "\"";
     if (has_children.contains(from)) dot << ", ltail=" << dot_id("cluster_" + from);
     if (has_children.contains(to)) dot << ", lhead=" << dot_id("cluster_" + to);
@@ -232,26 +282,34 @@ int run_describe(const DescribeArgs& args) {
   }
   dot << "}\n";
 
-  namespace fs = std::filesystem;
-  fs::create_directories(args.out_dir);
-  const fs::path dot_path = fs::path(args.out_dir) / (machine.name() + ".dot");
-  const fs::path svg_path = fs::path(args.out_dir) / (machine.name() + ".svg");
+  // The files appear together or not at all; `dot` runs with no shell between it and the
+  // user's path, and Ctrl-C reaches it as it reaches rtsim (common/spawn_logged.hpp).
+  OutputSet out(args.out_dir, OutputSet::Folder::Shared);
+  const std::string dot_name = machine.name() + ".dot";
+  const std::string svg_name = machine.name() + ".svg";
   {
-    std::ofstream f(dot_path.string() + ".tmp", std::ios::binary);
+    std::ofstream f(out.stage(dot_name), std::ios::binary);
     f << dot.str();
-    if (!f) throw std::runtime_error("cannot write " + dot_path.string());
+    if (!f) throw std::runtime_error("cannot write " + out.staged_path(dot_name).string());
   }
-  fs::rename(dot_path.string() + ".tmp", dot_path);
-  std::cerr << "wrote " << dot_path.string() << "\n";
-  const std::string cmd =
-      "dot -Tsvg -o '" + svg_path.string() + ".tmp' '" + dot_path.string() + "' 2>/dev/null";
-  if (std::system("command -v dot >/dev/null 2>&1") != 0) {
+  std::string error;
+  const std::filesystem::path log = out.staged_path("dot.log");
+  const pid_t pid = spawn_logged({"dot", "-Tsvg", "-o", out.staged_path(svg_name).string(),
+                                  out.staged_path(dot_name).string()},
+                                 log, /*search_path=*/true, error);
+  const int status = pid < 0 ? -1 : wait_for_child(pid, error);
+  const bool no_dot = pid < 0 || (WIFEXITED(status) && WEXITSTATUS(status) == 127);
+  if (no_dot) {
     std::cerr << "no SVG: Graphviz's `dot` is not installed (Debian: apt install graphviz)\n";
-    return 0;
+  } else if (status < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("dot failed on " + dot_name + (error.empty() ? "" : ": " + error) +
+                             last_lines_of_file(log, 3));
+  } else {
+    out.stage(svg_name);
   }
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("dot failed on " + dot_path.string());
-  fs::rename(svg_path.string() + ".tmp", svg_path);
-  std::cerr << "wrote " << svg_path.string() << "\n";
+  out.commit();
+  std::cerr << "wrote " << (out.dir() / dot_name).string() << "\n";
+  if (!no_dot) std::cerr << "wrote " << (out.dir() / svg_name).string() << "\n";
   return 0;
 }
 

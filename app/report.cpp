@@ -59,19 +59,6 @@ std::string read_file(const fs::path& p) {
   return s.str();
 }
 
-/// Last `n` non-empty lines of `text`, joined with "; ".
-std::string last_lines(const std::string& text, int n) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) lines.push_back(line);
-  std::string out;
-  for (std::size_t i = lines.size() > static_cast<std::size_t>(n) ? lines.size() - n : 0;
-       i < lines.size(); ++i)
-    out += (out.empty() ? "" : "; ") + lines[i];
-  return out;
-}
-
 }  // namespace
 
 namespace {

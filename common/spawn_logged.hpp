@@ -10,6 +10,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,28 @@ inline int wait_for_child(pid_t pid, std::string& error) {
     }
   }
   return status;
+}
+
+/// Last `n` non-empty lines of `text`, joined with "; ": what a failed child said.
+inline std::string last_lines(const std::string& text, int n) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  std::string out;
+  for (std::size_t i = lines.size() > static_cast<std::size_t>(n) ? lines.size() - n : 0;
+       i < lines.size(); ++i)
+    out += (out.empty() ? "" : "; ") + lines[i];
+  return out;
+}
+
+/// The same of a child's log file: "" when it is empty or cannot be read, else ": LINES".
+inline std::string last_lines_of_file(const std::filesystem::path& log, int n) {
+  std::ifstream in(log, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string lines = last_lines(text.str(), n);
+  return lines.empty() ? "" : ": " + lines;
 }
 
 }  // namespace rtsim
