@@ -64,20 +64,37 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
   // Read the ID list the control processor loaded: {ID, address, size} per entry (L877).
   const auto& mem = memory.contents();
   slots_.clear();
-  std::uint32_t max_id = 0;
   for (std::size_t i = 0; i < ids; ++i) {
     const std::size_t at = i * entry_words;
     slots_.push_back(Slot{mem.at(at), mem.at(at + 2), mem.at(at + 1)});
-    max_id = std::max(max_id, mem.at(at));
   }
-  demand_.assign(slots_.empty() ? 0 : max_id + 1, 0);
-  listed_.assign(demand_.size(), false);
-  positions_.assign(demand_.size(), {});
+  // Keys for the listed IDs. The control processor numbers packets from 0, so a table by ID
+  // holds them; an ID far beyond the list's length (only a corrupted word) goes in a map.
+  constexpr std::size_t kDenseIdsPerSlot = 4;
+  key_by_id_.assign(
+      std::min<std::size_t>(kDenseIdsPerSlot * slots_.size() + 1024, std::size_t{0xFFFFFFFFu}),
+      kUnlisted);
+  key_by_large_id_.clear();
+  id_of_key_.clear();
+  positions_.clear();
+  demand_.clear();
   demanded_.clear();
+  total_demand_ = 0;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
-    listed_[slots_[i].id] = true;
-    positions_[slots_[i].id].push_back(static_cast<std::uint32_t>(i));
+    const std::uint32_t id = slots_[i].id;
+    std::uint32_t key = key_of(id);
+    if (key == kUnlisted) {
+      key = static_cast<std::uint32_t>(id_of_key_.size());
+      if (id < key_by_id_.size())
+        key_by_id_[id] = key;
+      else
+        key_by_large_id_.emplace(id, key);
+      id_of_key_.push_back(id);
+      positions_.emplace_back();
+    }
+    positions_[key].push_back(static_cast<std::uint32_t>(i));
   }
+  demand_.assign(id_of_key_.size(), 0);
   idle_cycle_packets_ = idle_cycle_words_ = 0;
   offset_.assign(1, sc_core::SC_ZERO_TIME);
   for (const Slot& s : slots_) {
@@ -102,14 +119,15 @@ sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
 void BroadcastProcessor::demand(std::uint32_t id, int delta) {
   // An ID the ID list does not hold (only with a corrupted memory) is never broadcast: its
   // requester waits for ever, and the loop must not spin through cycles looking for it.
-  if (id >= demand_.size() || !listed_[id]) return;
-  const bool was = demand_[id] > 0;
-  demand_[id] += delta;
+  const std::uint32_t key = key_of(id);
+  if (key == kUnlisted) return;
+  const bool was = demand_[key] > 0;
+  demand_[key] += delta;
   total_demand_ += delta;
-  const bool is = demand_[id] > 0;
-  if (is && !was) demanded_.push_back(id);
+  const bool is = demand_[key] > 0;
+  if (is && !was) demanded_.push_back(key);
   if (was && !is) {
-    const auto at = std::find(demanded_.begin(), demanded_.end(), id);
+    const auto at = std::find(demanded_.begin(), demanded_.end(), key);
     *at = demanded_.back();
     demanded_.pop_back();
   }
@@ -151,12 +169,12 @@ std::size_t BroadcastProcessor::next_wanted() {
   // is wanted by then (a register valid before its strobe).
   const std::size_t n = slots_.size();
   candidates_.clear();
-  for (const std::uint32_t id : demanded_)
-    for (const std::uint32_t p : positions_[id])
-      candidates_.emplace_back((p + n - cursor_.pos) % n, id);
+  for (const std::uint32_t key : demanded_)
+    for (const std::uint32_t p : positions_[key])
+      candidates_.emplace_back((p + n - cursor_.pos) % n, key);
   std::sort(candidates_.begin(), candidates_.end());
-  for (const auto& [d, id] : candidates_)
-    if (wanted(id, after(cursor_, d).t)) return d;
+  for (const auto& [d, key] : candidates_)
+    if (wanted(key, after(cursor_, d).t)) return d;
   return n;
 }
 
@@ -205,8 +223,9 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
   while (cursor_.t < t) pass(cursor_, !adaptive_, true);
 }
 
-bool BroadcastProcessor::wanted(std::uint32_t id, const sc_core::sc_time& t) const {
-  if (demand_[id] <= 0) return false;
+bool BroadcastProcessor::wanted(std::uint32_t key, const sc_core::sc_time& t) const {
+  if (demand_[key] <= 0) return false;
+  const std::uint32_t id = id_of_key_[key];
   return std::any_of(bics_.begin(), bics_.end(),
                      [&](const BusInterface* b) { return b->requested(id, t); });
 }
@@ -215,8 +234,9 @@ std::optional<sc_core::sc_time> BroadcastProcessor::first_request_time() const {
   std::optional<sc_core::sc_time> first;
   for (const BusInterface* b : bics_)
     for (const auto& r : b->registers_)
-      if (r.valid && r.id < demand_.size() && demand_[r.id] > 0 && (!first || r.from < *first))
-        first = r.from;
+      if (r.valid && (!first || r.from < *first))
+        if (const std::uint32_t key = key_of(r.id); key != kUnlisted && demand_[key] > 0)
+          first = r.from;
   return first;
 }
 

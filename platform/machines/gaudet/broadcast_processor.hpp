@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 #include <systemc>
+#include <unordered_map>
 #include <vector>
 
 #include "modules/busy_timeline.hpp"
@@ -107,8 +108,9 @@ class BroadcastProcessor : public sc_core::sc_module {
   /// The distance from the cursor to the first slot of the next cycle's worth whose ID some BIC
   /// holds in a register valid by then; the number of slots if there is none.
   std::size_t next_wanted();
-  /// Some BIC holds `id` in a register valid at `t`: its slot at `t` is worth a strobe.
-  bool wanted(std::uint32_t id, const sc_core::sc_time& t) const;
+  /// Some BIC holds the ID of `key` in a register valid at `t`: its slot at `t` is worth a
+  /// strobe.
+  bool wanted(std::uint32_t key, const sc_core::sc_time& t) const;
   /// The earliest time from which a register of some BIC holding a listed ID is valid.
   std::optional<sc_core::sc_time> first_request_time() const;
 
@@ -116,12 +118,26 @@ class BroadcastProcessor : public sc_core::sc_module {
   bool adaptive_;
   std::vector<BusInterface*> bics_;
   std::vector<Slot> slots_;
-  std::vector<int> demand_;   ///< by ID: valid registers holding it, over all BICs
-  std::vector<bool> listed_;  ///< by ID: the ID list holds it
-  /// By ID: its slots in the ID list (one, unless a corrupted memory lists it twice).
+  // The IDs the ID list holds, each under a key 0, 1, ... (its first slot's order): an ID is a
+  // 32-bit word of the BP's memory, and a corrupted one may be any value, so nothing is sized
+  // by the IDs' values.
+  static constexpr std::uint32_t kUnlisted = 0xFFFFFFFFu;
+  /// The key of `id`, or kUnlisted when the ID list does not hold it.
+  std::uint32_t key_of(std::uint32_t id) const {
+    if (id < key_by_id_.size()) return key_by_id_[id];
+    const auto it = key_by_large_id_.find(id);
+    return it == key_by_large_id_.end() ? kUnlisted : it->second;
+  }
+  /// By ID, for the IDs below kDenseIdsPerSlot x slots (the IDs the control processor gives).
+  std::vector<std::uint32_t> key_by_id_;
+  std::unordered_map<std::uint32_t, std::uint32_t> key_by_large_id_;  ///< the others
+  std::vector<std::uint32_t> id_of_key_;
+  std::vector<int> demand_;  ///< by key: valid registers holding its ID, over all BICs
+  /// By key: its slots in the ID list (one, unless a corrupted memory lists an ID twice).
   std::vector<std::vector<std::uint32_t>> positions_;
-  std::vector<std::uint32_t> demanded_;  ///< the IDs whose demand_ is positive, in no order
-  std::vector<std::pair<std::size_t, std::uint32_t>> candidates_;  ///< next_wanted's (distance, ID)
+  std::vector<std::uint32_t> demanded_;  ///< the keys whose demand_ is positive, in no order
+  std::vector<std::pair<std::size_t, std::uint32_t>>
+      candidates_;  ///< next_wanted's (distance, key)
   /// By slot: when it starts after the cycle's start, no packet sent but those the mode sends
   /// anyway (adaptive: none; direct: every one); offset_[slots] ends the last slot.
   std::vector<sc_core::sc_time> offset_;
