@@ -13,6 +13,7 @@
 #include "common/input_file.hpp"
 #include "common/leading_plus.hpp"
 #include "common/suggest.hpp"
+#include "platform/params/toml_file.hpp"
 #include "platform/params/toml_leaves.hpp"
 #include "platform/params/units.hpp"
 
@@ -421,12 +422,7 @@ void ParamRegistry::load_toml_file(const std::string& path) {
 }
 
 void ParamRegistry::load_toml_string(std::string_view text, const std::string& origin) {
-  toml::table root;
-  try {
-    root = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    throw InputError(origin, e.source().begin.line, std::string(e.description()));
-  }
+  const toml::table root = parse_toml(text, origin);
   const TomlLeaves leaves = toml_leaves_in_file_order(root);
   // One parameter set twice in one file (a quoted dotted key and a table, say): which one was
   // meant is not for us to guess.

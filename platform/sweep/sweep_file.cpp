@@ -14,6 +14,7 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/suggest.hpp"
+#include "platform/params/toml_file.hpp"
 #include "platform/params/toml_leaves.hpp"
 
 namespace rtsim::sweep {
@@ -525,12 +526,7 @@ void Reader::read_params(const toml::table& params, SweepFile& out) {
 }
 
 SweepFile Reader::read(std::string_view text) {
-  toml::table root;
-  try {
-    root = toml::parse(text, origin_);
-  } catch (const toml::parse_error& e) {
-    throw InputError(origin_, e.source().begin.line, std::string(e.description()));
-  }
+  const toml::table root = params::parse_toml(text, origin_);
   check_keys(root,
              {"name", "description", "machine", "machines", "scene", "scenes", "width", "height",
               "configs", "params", "axes"},
