@@ -325,7 +325,18 @@ int run_cli(int argc, char** argv) {
                    " largest changes)");
   df->add_option("--tolerance", diff.tolerance,
                  "Relative difference below which two numbers count as the same (e.g. 1e-9)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            // CLI::Range lets NaN through (every comparison with it is false).
+            double v = 0.0;
+            try {
+              v = std::stod(text);
+            } catch (const std::exception&) {
+              return "not a number: " + text;
+            }
+            return v >= 0.0 && v <= 1.0 ? "" : "a relative difference from 0 to 1, got " + text;
+          },
+          "FLOAT in [0 - 1]"))
       ->capture_default_str();
 
   DescribeArgs da;

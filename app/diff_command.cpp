@@ -1,33 +1,32 @@
 // `rtsim diff A B`: two runs compared (app/run_diff.hpp).
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/run_diff.hpp"
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
+#include "platform/sweep/stats_document.hpp"
 
 namespace rtsim::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A run folder's stats.json, or a stats.json file itself.
+/// A run folder's stats.json, or a stats.json file itself, checked before use.
 nlohmann::ordered_json read_stats(const std::string& given) {
   fs::path path = given;
-  if (fs::is_directory(path)) path /= "stats.json";
-  if (!fs::is_regular_file(path))
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) path /= "stats.json";
+  if (!fs::exists(path, ec))
     throw InputError(given, 0,
-                     fs::exists(given) ? "not a run folder: it has no stats.json"
-                                       : "no such file or folder (give a run's --out folder or "
-                                         "its stats.json)");
-  std::ifstream f(path);
-  try {
-    return nlohmann::ordered_json::parse(f);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not a stats.json: ") + e.what());
-  }
+                     fs::exists(given, ec) ? "not a run folder: it has no stats.json"
+                                           : "no such file or folder (give a run's --out folder "
+                                             "or its stats.json)");
+  return sweep::read_stats_json(
+      read_input_file(path.string(), "stats.json", sweep::kMaxStatsFileBytes, "kMaxStatsFileBytes"),
+      path.string());
 }
 
 std::string label(const std::string& given, const nlohmann::ordered_json& s) {

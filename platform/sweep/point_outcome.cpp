@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "platform/sweep/stats_document.hpp"
 #include "platform/validation/run_queue.hpp"
 
 namespace rtsim::sweep {
@@ -73,8 +74,8 @@ PointOutcome outcome_of(const validation::RunOutcome& run) {
     o.error = "exit status 0 but no stats.json";
     return o;
   }
-  if (!nlohmann::json::accept(*stats)) {
-    o.error = "exit status 0 but stats.json is not valid JSON";
+  if (const std::string problem = stats_json_problem(*stats); !problem.empty()) {
+    o.error = "exit status 0 but its stats.json is not one: " + problem;
     return o;
   }
   o.ok = true;
@@ -114,7 +115,8 @@ std::optional<PointOutcome> find_done(const fs::path& dir, const Point& point) {
   }
   const auto stats = read_text(dir / "stats.json");
   if (!stats) return std::nullopt;
-  if (!nlohmann::json::accept(*stats)) return std::nullopt;
+  // Anything but a stats.json rtsim could have written (damaged, replaced by hand): run again.
+  if (!stats_json_problem(*stats).empty()) return std::nullopt;
   o.ok = true;
   o.exit_code = 0;
   o.stats_text = *stats;

@@ -22,7 +22,9 @@
 #include <sstream>
 #include <thread>
 
+#include "common/end_with_parent.hpp"
 #include "common/spawn_logged.hpp"
+#include "platform/sweep/stats_document.hpp"
 
 namespace rtsim::validation {
 
@@ -115,13 +117,6 @@ RunOutcome not_run(const RunRequest& request) {
   out.status = "not run";
   out.failure = "not run: the queue was stopped";
   return out;
-}
-
-/// In a child just forked from `parent`: end (SIGTERM, so an rtsim child removes its partial
-/// outputs) when the parent does, however it ends; at once if it already has. Async-signal-safe.
-void end_with_parent(pid_t parent) {
-  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent died before the prctl
 }
 
 /// Starts the program `args` as spawn_logged does (no input, its output to `log`, the interrupt
@@ -241,16 +236,18 @@ RunOutcome finish(RunOutcome out, int status, double wall_s) {
     return out;
   }
   const fs::path stats = out.out_dir / "stats.json";
-  std::ifstream in(stats);
+  std::ifstream in(stats, std::ios::binary);
   if (!in) {
     out.failure = "exit status 0 but no " + stats.string();
     return out;
   }
-  try {
-    out.stats = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    out.failure = stats.string() + " is not valid JSON: " + e.what();
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (const std::string problem = sweep::stats_json_problem(text.str()); !problem.empty()) {
+    out.failure = stats.string() + " is not a stats.json: " + problem;
+    return out;
   }
+  out.stats = nlohmann::json::parse(text.str());
   return out;
 }
 

@@ -49,7 +49,8 @@ def main():
     shadow = primary if lights else 0
     reflected = primary // 2 if scene == "builtin:default" else 0
     total = primary + shadow + reflected
-    stats = {"machine": arg("--machine", "functional"), "scene": scene, "width": w, "height": h,
+    stats = {"command": cmd, "machine": arg("--machine", "functional"), "scene": scene,
+             "width": w, "height": h,
              "wall_time_s": 0.01,
              "rays": {"total": total, "primary": primary, "shadow": shadow,
                       "reflected": reflected, "refracted": 0},
