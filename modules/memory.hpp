@@ -17,10 +17,23 @@
 #include <tlm>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "modules/busy_timeline.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
+
+/// The most host memory the modelled memories of one run may take together: their sizes are
+/// parameters whose bounds are the machines' (a node's memory up to 10^9 words), but 64 nodes
+/// of 4 GB are more than this computer holds. A run that would pass it is refused while it is
+/// built, before it runs (docs/bad-input.md, "Resources").
+inline constexpr std::uint64_t kMaxModelledMemoryBytes = std::uint64_t{1} << 30;
+
+/// Bytes the Memory modules that exist now hold.
+inline std::uint64_t& modelled_memory_bytes() {
+  static std::uint64_t bytes = 0;
+  return bytes;
+}
 
 class Memory : public sc_core::sc_module {
  public:
@@ -30,12 +43,16 @@ class Memory : public sc_core::sc_module {
          sc_core::sc_time write_word_time, sc_core::sc_time read_line_time)
       : sc_core::sc_module(name),
         socket("socket"),
-        data_(words, 0),
+        data_(reserve_host_memory(words)),
         line_words_(line_words ? line_words : 1),
         write_word_time_(write_word_time),
         read_line_time_(read_line_time) {
     socket.register_b_transport(this, &Memory::b_transport);
   }
+
+  ~Memory() override { modelled_memory_bytes() -= data_.size() * sizeof(std::uint32_t); }
+  Memory(const Memory&) = delete;
+  Memory& operator=(const Memory&) = delete;
 
   const std::vector<std::uint32_t>& contents() const { return data_; }
   std::size_t size_words() const { return data_.size(); }
@@ -104,6 +121,24 @@ class Memory : public sc_core::sc_module {
                                   sc_core::sc_time_stamp() + delay);
     }
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+
+  /// `words` zero words, counted against kMaxModelledMemoryBytes; an InputError naming this
+  /// memory if they would pass it.
+  std::vector<std::uint32_t> reserve_host_memory(std::size_t words) {
+    const std::uint64_t bytes = static_cast<std::uint64_t>(words) * sizeof(std::uint32_t);
+    std::uint64_t& total = modelled_memory_bytes();
+    if (words > kMaxModelledMemoryBytes || total + bytes > kMaxModelledMemoryBytes)
+      throw InputError(name(), 0,
+                       "this memory of " + std::to_string(words) + " words, with the " +
+                           std::to_string(total >> 20) +
+                           " MiB of the memories built before it, would take more than the " +
+                           std::to_string(kMaxModelledMemoryBytes >> 20) +
+                           " MiB rtsim gives a run's modelled memories "
+                           "(kMaxModelledMemoryBytes); lower the parameter that sizes it "
+                           "(`rtsim list params --machine M '*memory*'`)");
+    total += bytes;
+    return std::vector<std::uint32_t>(words, 0);
   }
 
   std::vector<std::uint32_t> data_;
