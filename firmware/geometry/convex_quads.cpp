@@ -259,9 +259,10 @@ std::size_t convert_polygon(const std::vector<Vec3>& vertices, const std::vector
   // triangles index `vertices`, counter-clockwise about the polygon's Newell normal. Best-shaped
   // ears: they pair up into convex quads more often than the default walk's.
   const TriangulationResult tri = triangulate_polygon(vertices, EarChoice::BestShaped);
-  // Fewer than 3 distinct or non-collinear vertices, or no area (the reason texts tell apart
-  // which; the report counts them all as zero area, as before).
-  if (tri.rejected) return reject(PolygonRejection::ZeroArea);
+  // An outline that crosses itself; or fewer than 3 distinct or non-collinear vertices, or no
+  // area (the reason texts tell apart which; the report counts them all as zero area).
+  if (tri.rejected)
+    return reject(tri.not_simple ? PolygonRejection::NotSimple : PolygonRejection::ZeroArea);
   // Forced ears or triangles that do not tile the polygon: it crosses itself.
   if (tri.not_simple) return reject(PolygonRejection::NotSimple);
   if (tri.removed_duplicates > 0) {

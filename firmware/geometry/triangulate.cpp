@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "firmware/geometry/self_crossing.hpp"
 
 namespace rtsim::geometry {
 namespace {
@@ -463,6 +466,23 @@ TriangulationResult triangulate_polygon(const std::vector<Vec3>& vertices, EarCh
   }
   pts.clear();
   for (std::uint32_t id : ids) pts.push_back(project(vertices[id]));
+
+  // An outline that crosses itself has no one interior to triangulate (its Newell area counts
+  // the overlaps twice), and ear clipping on it forces ears in up to cubic time: rejected, on
+  // every path (the functional renderer and every machine triangulate here).
+  {
+    std::vector<Point2> outline;
+    outline.reserve(pts.size());
+    for (const P2& p : pts) outline.push_back({p.x, p.y});
+    if (const auto crossing = first_self_crossing(outline)) {
+      out.not_simple = true;
+      const auto edge = [&](std::size_t e) {
+        return std::to_string(ids[e] + 1) + "-" + std::to_string(ids[(e + 1) % ids.size()] + 1);
+      };
+      return reject("polygon crosses itself (its edges from vertex " + edge(crossing->first) +
+                    " and " + edge(crossing->second) + " cross)");
+    }
+  }
 
   EarClipper clipper(std::move(pts), std::move(ids), diameter, choice);
   clipper.run(out);

@@ -81,8 +81,9 @@ struct TriangulationResult {
   /// Vertices looked at by the ear tests: the work of ear clipping (tests/triangulate_test.cpp
   /// bounds it per vertex, so quadratic time on long polygons is caught without timing).
   std::size_t ear_vertex_tests = 0;
-  /// Set with the "no valid ear" or the area-mismatch warning: the polygon crosses itself (or is
-  /// numerically degenerate), so the triangles may overlap or leave gaps. Callers that need a
+  /// The polygon crosses itself: rejected when two edges cross (self_crossing.hpp); set with the
+  /// "no valid ear" or the area-mismatch warning when it passes through itself at a vertex (or
+  /// is numerically degenerate), so the triangles may overlap or leave gaps. Callers that need a
   /// simple polygon (the convex-quad converter) reject it on this flag.
   bool not_simple = false;
 
