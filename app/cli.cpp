@@ -9,6 +9,7 @@
 #include "app/interrupt_cleanup.hpp"
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
+#include "modules/sim_time.hpp"
 
 namespace rtsim::app {
 namespace {
@@ -369,6 +370,13 @@ int run_cli(int argc, char** argv) {
     return kExitFailure;
   } catch (const InputError& e) {
     std::cerr << "rtsim: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const modules::TimeOverflow& e) {
+    // Outside the simulation too (a load time or readout worked out from the parameters): the
+    // parameters describe a frame longer than SystemC's time, which is bad input.
+    std::cerr << "rtsim: error: " << e.what()
+              << ": the frame these parameters describe is longer than the simulator can count; "
+                 "shorten the times, the scene or the image\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rtsim: internal error: " << e.what() << "\n";

@@ -284,19 +284,9 @@ FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRe
   settings.shell_boxes_as_stored = true;  // what the ShellProcessors read out of their packets
   settings.prims_as_stored = true;        // what the PrimProcessors read out of theirs
   FunctionalTwin twin = make_functional_twin(scene, settings);
-  // Nothing left to broadcast: every primitive was degenerate and rejected. The PERT's data sets
-  // would be empty (no shell tree, no root packet to ask for), so say why instead.
-  if (twin.geometry->shapes.empty()) {
-    const auto& g = *twin.geometry;
-    throw InputError(
-        scene.name, 0,
-        "gaudet-pert: no primitive of this scene survives the repair of degenerate "
-        "geometry (" +
-            std::to_string(g.report.rejected) + " rejected" +
-            (g.report.messages.empty() ? std::string() : ", the first: " + g.report.messages[0]) +
-            "), so its data sets would be empty; `rtsim render` and vax-750 draw "
-            "the empty scene");
-  }
+  // Nothing left to broadcast: the PERT's data sets would be empty (no shell tree, no root
+  // packet to ask for).
+  require_surviving_primitives(name(), scene, twin, "its data sets would be empty");
   return twin;
 }
 

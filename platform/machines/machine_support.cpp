@@ -29,6 +29,18 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
   return twin;
 }
 
+void require_surviving_primitives(const std::string& machine, const scenes::Scene& scene,
+                                  const FunctionalTwin& twin, const std::string& what_is_empty) {
+  const auto& g = *twin.geometry;
+  if (!g.shapes.empty()) return;
+  throw InputError(
+      scene.name, 0,
+      machine + ": no primitive of this scene survives the repair of degenerate geometry (" +
+          std::to_string(g.report.rejected) + " rejected" +
+          (g.report.messages.empty() ? std::string() : ", the first: " + g.report.messages[0]) +
+          "), so " + what_is_empty + "; `rtsim render` and vax-750 draw the empty scene");
+}
+
 void begin_simulation(const params::ParamRegistry& r) {
   tlm::tlm_global_quantum::instance().set(modules::from_ps(r.get_time_ps("quantum")));
 }

@@ -12,6 +12,13 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
 /// the first sphere, cone or patch of `scene` otherwise.
 void require_polygons(const std::string& machine, const scenes::Scene& scene);
 
+/// A machine whose data sets would be empty without a primitive (its packets, its processors'
+/// memories) refuses a scene in which every primitive was rejected as degenerate: an InputError
+/// naming how many were rejected and the first reason. `rtsim render` and vax-750 draw such a
+/// scene as an empty image.
+void require_surviving_primitives(const std::string& machine, const scenes::Scene& scene,
+                                  const FunctionalTwin& twin, const std::string& what_is_empty);
+
 /// Sets the global TLM quantum from the parameter `quantum`. Call before building modules.
 void begin_simulation(const params::ParamRegistry& registry);
 

@@ -144,7 +144,9 @@ FunctionalTwin UllnerArray::make_twin(scenes::Scene& scene, const params::ParamR
   settings.accel = functional::AccelKind::Grid;
   settings.grid_divisions = n > 0 ? n : std::max(rows, cols);
   settings.grid_by_subvolume = true;
-  return make_functional_twin(scene, settings);
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  require_surviving_primitives(name(), scene, twin, "its processors would hold nothing");
+  return twin;
 }
 
 RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
