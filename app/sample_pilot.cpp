@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/interrupt_cleanup.hpp"
+#include "common/end_with_parent.hpp"
 #include "common/input_error.hpp"
 #include "common/spawn_logged.hpp"
 #include "platform/machines/frame_sample.hpp"
@@ -56,10 +57,13 @@ SamplePlan plan_sample(const platform::Machine& machine, scenes::Scene& scene,
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   const auto start = std::chrono::steady_clock::now();
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   if (pid == 0) {
-    // The child: its own simulation, its estimate down the pipe, and nothing else.
+    // The child: its own simulation, its estimate down the pipe, and nothing else; it ends
+    // with the run that started it (SIGTERM to the run would otherwise leave it running).
+    end_with_parent(parent);
     ::close(fds[0]);
     restart_interrupt_cleanup_after_fork();
     // 'J' and the estimate, or 'E' and the message of bad input (the parent reports it as its

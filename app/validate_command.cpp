@@ -13,6 +13,7 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/image_files.hpp"
+#include "app/interrupt_cleanup.hpp"
 #include "app/progress_bar.hpp"
 #include "common/seed_citation.hpp"
 #include "platform/validation/all_figures.hpp"
@@ -101,6 +102,9 @@ int run_validate(const ValidateArgs& args) {
                                : fs::absolute(args.out_dir);
   fs::create_directories(out_dir);
   const fs::path work_dir = make_temp_dir(out_dir, "runs-");
+  // Ctrl-C or SIGTERM before the results are written: the run folders go (and the temporary
+  // --out with them); the runs themselves end with this process (their parent-death signal).
+  const std::uint64_t interrupt_id = remove_on_interrupt(temporary_out ? out_dir : work_dir);
 
   std::cout << "rtsim validate: " << plan.figures.size() << " figures, " << plan.runs.size()
             << " runs, " << args.jobs << " at a time, " << (args.quick ? "quick" : "full")
@@ -188,6 +192,7 @@ int run_validate(const ValidateArgs& args) {
 
   // Run folders go unless asked for; a failed run's folder stays so its log can be read.
   const bool keep_runs = args.keep || failed_runs > 0;
+  forget_on_interrupt(interrupt_id);
   if (!keep_runs) fs::remove_all(work_dir);
   if (temporary_out && !keep_runs) {
     fs::remove_all(out_dir);

@@ -86,8 +86,12 @@ TEST(SweepFile, LinearRanges) {
             (Strings{"1", "11", "20", "30"}));
   EXPECT_EQ(axis_texts("param = \"x\"\nrange = { start = 0.0, stop = 1, count = 5 }\n"),
             (Strings{"0", "0.25", "0.5", "0.75", "1"}));
-  EXPECT_EQ(axis_texts("param = \"x\"\nrange = { start = 7, stop = 9, count = 1 }\n"),
+  // One value: start = stop. A count of 1 between two values named start alone, silently
+  // (issue 30 item 9): refused.
+  EXPECT_EQ(axis_texts("param = \"x\"\nrange = { start = 7, stop = 7, count = 1 }\n"),
             (Strings{"7"}));
+  EXPECT_THROW(axis_texts("param = \"x\"\nrange = { start = 7, stop = 9, count = 1 }\n"),
+               rtsim::InputError);
 }
 
 TEST(SweepFile, LogRanges) {

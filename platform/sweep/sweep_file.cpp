@@ -212,6 +212,10 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
   }
   if (log && step) fail(line, where + ": a log range takes 'count', not 'step'");
   if (!log && count && step) fail(line, where + ": give 'step' or 'count', not both");
+  if (count && *count == 1 && start.real != stop.real)
+    fail(line, where +
+                   ": 'count' = 1 names start alone, not stop; give a count from 2, or "
+                   "start = stop for one value");
 
   std::vector<double> raw;
   std::vector<std::int64_t> raw_integers;
@@ -240,10 +244,14 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
       }
     }
   } else if (count) {
+    // stop - start may overflow (-1e308 to 1e308): then each point is the weighted mean of the
+    // two, which cannot.
+    const bool span_finite = std::isfinite(stop.real - start.real);
     for (std::int64_t k = 0; k < *count; ++k) {
       const double t = *count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(*count - 1);
       raw.push_back(k == *count - 1 && *count > 1 ? stop.real
-                                                  : start.real + (stop.real - start.real) * t);
+                    : span_finite                 ? start.real + (stop.real - start.real) * t
+                                                  : start.real * (1.0 - t) + stop.real * t);
     }
   } else {
     const double s = step ? step->real : 1.0;  // {start = 0.5, stop = 3.5} is 0.5, 1.5, ...
@@ -267,6 +275,11 @@ std::vector<Value> Reader::range_values(const toml::table& range, const std::str
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
       raw.push_back(start.real + static_cast<double>(k) * s);
   }
+  for (const double x : raw)
+    if (!std::isfinite(x))
+      fail(line, where + " reaches " + exact_text(x) +
+                     ", beyond the range of a double; keep "
+                     "start, stop and step within +-1.7e308");
   // Integer log ranges round each point to the nearest integer.
   if (integers && log)
     for (double x : raw) raw_integers.push_back(static_cast<std::int64_t>(std::llround(x)));
@@ -499,6 +512,9 @@ void Reader::read_configs(const toml::node& node, SweepFile& out) const {
     if (path.is_relative()) path = base_dir_ / path;
     path = path.lexically_normal();
     std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+      fail(line, "config file " + in_quotes(s->get()) + " is not a regular file (" + path.string() +
+                     " is a folder, a device or a pipe)");
     if (!fs::is_regular_file(path, ec))
       fail(line, "config file " + in_quotes(s->get()) + " not found (looked for " + path.string() +
                      "; relative paths are read from the sweep file's folder)");
