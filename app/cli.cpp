@@ -308,8 +308,10 @@ int run_cli(int argc, char** argv) {
   l->add_option("--machine", list.machine, "With params: the machine whose parameters to list");
   l->add_flag("--changed", list.changed,
               "With params: only those whose value is not the default (set by --config or -p)");
-  l->add_option("--format", list.format, "With params: text, or markdown (docs/parameters.md)")
-      ->check(CLI::IsMember({"text", "markdown"}))
+  l->add_option("--format", list.format,
+                "With params: text, markdown (docs/parameters.md), or json (one object a "
+                "parameter: name, kind, value, default, unit, min, max, allowed, source)")
+      ->check(CLI::IsMember({"text", "markdown", "json"}))
       ->capture_default_str();
   add_config_options(l, list.config);
 

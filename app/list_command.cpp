@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
@@ -70,6 +71,27 @@ void list_params(const ListArgs& args) {
     std::cout << "every parameter"
               << (args.pattern.empty() ? "" : " matching '" + args.pattern + "'")
               << " is at its default\n";
+    return;
+  }
+  if (args.format == "json") {
+    // One object a parameter, for scripts (tests/hostile_input_test.cpp walks every bound).
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const auto& e : entries) {
+      nlohmann::ordered_json j;
+      j["name"] = e.name;
+      j["kind"] = params::kind_name(e.kind);
+      j["value"] = e.value_text;
+      j["default"] = e.default_text;
+      j["unit"] = e.unit;
+      j["min"] = e.min_text;
+      j["max"] = e.max_text;
+      j["allowed"] = e.allowed;
+      j["set_by"] = e.where_set;
+      j["description"] = e.description;
+      j["source"] = e.source;
+      all.push_back(std::move(j));
+    }
+    std::cout << all.dump(2) << "\n";
     return;
   }
   if (args.format == "markdown") {

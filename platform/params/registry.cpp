@@ -532,7 +532,10 @@ std::vector<ParamEntry> ParamRegistry::list() const {
                    .source = p.spec.source,
                    .where_set = p.where_set,
                    .instance_of = p.instance_of,
-                   .per_instance = p.spec.per_instance});
+                   .per_instance = p.spec.per_instance,
+                   .min_text = p.min ? format_value(kind, *p.min) : std::string(),
+                   .max_text = p.max ? format_value(kind, *p.max) : std::string(),
+                   .allowed = p.spec.allowed});
   }
   return out;
 }

@@ -78,6 +78,9 @@ struct ParamEntry {
   std::string where_set{};    ///< "default", "FILE:LINE" or "-p"
   std::string instance_of{};  ///< an instance's own value: the class parameter it overrides
   bool per_instance = false;  ///< a module's (ParamSpec::per_instance)
+  std::string min_text{};     ///< the inclusive bounds, written as values are; "" for none
+  std::string max_text{};
+  std::vector<std::string> allowed{};  ///< strings: the values allowed (empty: any)
 };
 
 namespace detail {
