@@ -240,6 +240,57 @@ std::optional<sc_core::sc_time> BroadcastProcessor::first_request_time() const {
   return first;
 }
 
+bool BroadcastProcessor::every_strobe_misses(const sc_core::sc_time& t) const {
+  for (const BusInterface* b : bics_) {
+    if (b->free_buffer(t) < 0) continue;
+    for (const auto& r : b->registers_)
+      if (r.valid && r.from < t)
+        if (const std::uint32_t key = key_of(r.id); key != kUnlisted && demand_[key] > 0)
+          return false;  // it would capture its packet
+  }
+  return true;
+}
+
+std::optional<sc_core::sc_time> BroadcastProcessor::next_change(const sc_core::sc_time& t) const {
+  std::optional<sc_core::sc_time> first;
+  const auto consider = [&first](const sc_core::sc_time& at) {
+    if (!first || at < *first) first = at;
+  };
+  for (const BusInterface* b : bics_) {
+    for (const auto& buffer : b->buffers_)
+      if (buffer.state == BusInterface::BufferState::kFree && buffer.at >= t) consider(buffer.at);
+    for (const auto& r : b->registers_)
+      if (r.valid && r.from >= t) consider(r.from);
+  }
+  return first;
+}
+
+void BroadcastProcessor::plan_missed_strobes() {
+  miss_plan_.clear();
+  for (const std::uint32_t key : demanded_) {
+    std::vector<BusInterface*> requesters;
+    for (BusInterface* b : bics_)
+      if (b->requested(id_of_key_[key], cursor_.t)) requesters.push_back(b);
+    if (!requesters.empty()) miss_plan_.emplace_back(key, std::move(requesters));
+  }
+}
+
+void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
+  // The slots' starts repeat every idle cycle (nothing is captured, so nothing is sent but what
+  // the mode sends anyway): each planned ID's slots are strobed once a cycle, each strobe a miss
+  // in every BIC that requests the ID.
+  const std::size_t n = slots_.size();
+  const std::uint64_t cycle = idle_cycle_.value();
+  for (const auto& [key, requesters] : miss_plan_)
+    for (const std::uint32_t p : positions_[key]) {
+      const sc_core::sc_time first = after(cursor_, (p + n - cursor_.pos) % n).t;
+      if (first >= end) continue;
+      const std::uint64_t strobes = (end - first).value() / cycle +
+                                    ((end - first).value() % cycle != 0 ? 1 : 0);
+      for (BusInterface* b : requesters) b->missed_ += strobes;
+    }
+}
+
 void BroadcastProcessor::run() {
   sc_core::wait(start_);
   if (slots_.empty()) return;
@@ -297,6 +348,26 @@ void BroadcastProcessor::run() {
     pass(cursor_, sent, true);
     // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
     if (cursor_.t > sc_core::sc_time_stamp()) sc_core::wait(cursor_.t - sc_core::sc_time_stamp());
+    // A wanted ID missed: every BIC that wants one may be full until its processor frees a
+    // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
+    // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a
+    // simulated second). Sleep until a wake or the next change the BICs already hold, and
+    // count the strobes slept through as the misses they were.
+    if (hitters_.empty()) {
+      const sc_core::sc_time now = sc_core::sc_time_stamp();
+      if (total_demand_ > 0 && every_strobe_misses(now)) {
+        const auto change = next_change(now);
+        if (!change || *change > now) {
+          plan_missed_strobes();
+          if (change)
+            sc_core::wait(*change - now, wake_);
+          else
+            sc_core::wait(wake_);
+          count_missed_strobes(sc_core::sc_time_stamp());
+          skip_to(sc_core::sc_time_stamp());
+        }
+      }
+    }
   }
 }
 

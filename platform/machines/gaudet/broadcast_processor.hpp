@@ -113,6 +113,18 @@ class BroadcastProcessor : public sc_core::sc_module {
   bool wanted(std::uint32_t key, const sc_core::sc_time& t) const;
   /// The earliest time from which a register of some BIC holding a listed ID is valid.
   std::optional<sc_core::sc_time> first_request_time() const;
+  /// Every BIC holding a demanded ID in a register valid before `t` has no buffer free before
+  /// `t`: a strobe at `t` of any wanted slot misses (no hit line, L920).
+  bool every_strobe_misses(const sc_core::sc_time& t) const;
+  /// The earliest time at or after `t` from which a strobe could see the BICs otherwise without
+  /// a wake: a buffer freed, or a register valid, from a later time (a processor's local time).
+  std::optional<sc_core::sc_time> next_change(const sc_core::sc_time& t) const;
+  /// While every strobe misses: the demanded IDs some BIC requests at the cursor, with the BICs
+  /// that request each (miss_plan_), as they are before the loop sleeps.
+  void plan_missed_strobes();
+  /// Counts, as misses in the BICs of miss_plan_, the strobes the loop would have made of their
+  /// slots from the cursor until `end` (not at it).
+  void count_missed_strobes(const sc_core::sc_time& end);
 
   BroadcastTiming timing_;
   bool adaptive_;
@@ -138,6 +150,7 @@ class BroadcastProcessor : public sc_core::sc_module {
   std::vector<std::uint32_t> demanded_;  ///< the keys whose demand_ is positive, in no order
   std::vector<std::pair<std::size_t, std::uint32_t>>
       candidates_;  ///< next_wanted's (distance, key)
+  std::vector<std::pair<std::uint32_t, std::vector<BusInterface*>>> miss_plan_;  ///< key, BICs
   /// By slot: when it starts after the cycle's start, no packet sent but those the mode sends
   /// anyway (adaptive: none; direct: every one); offset_[slots] ends the last slot.
   std::vector<sc_core::sc_time> offset_;
