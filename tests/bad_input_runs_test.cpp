@@ -105,17 +105,17 @@ TEST(BadInputRuns, AParameterSetTwiceInAConfigFileIsRejected) {
 }
 
 // Defect 4: grid limits the parameter check accepted, then "internal error", exit 1. The
-// divisions' bounds are now the grid's real limit (645^3 < 2^28 subvolumes), and a scene whose
+// divisions' bounds are now the grid's real limit (512^3 = 2^27 subvolumes), and a scene whose
 // subvolume references outgrow the grid's 32-bit offsets is bad input with what to change.
 TEST(BadInputRuns, GridLimitsAreTheParametersBoundsAndTooBigAScene) {
   const fs::path dir = scratch_dir("grid-limits");
   fs::create_directories(dir);
   const auto over = run_rtsim(
       "render --scene builtin:default -p render.accel=grid "
-      "-p render.grid.divisions=646 -q --out " +
+      "-p render.grid.divisions=513 -q --out " +
       (dir / "a").string());
   EXPECT_EQ(over.exit_code, 2) << over.output;
-  EXPECT_NE(over.output.find("from 0 to 645"), std::string::npos) << over.output;
+  EXPECT_NE(over.output.find("from 0 to 512"), std::string::npos) << over.output;
   const auto periph = run_rtsim(
       "run --machine ullner-peripheral -p peripheral.grid.divisions=1024 "
       "-q --out " +

@@ -45,9 +45,10 @@ struct CellIndex {
 };
 
 /// Largest number of subvolumes a grid may have. A 32-bit offset per cell plus the slot array
-/// must stay well inside the 2 GiB the million-polygon machine may use; 2^28 cells is 1 GiB
-/// of offsets, the point where a grid stops being "memory-lean". Assumption, not in the seed.
-inline constexpr std::size_t kMaxGridCells = std::size_t{1} << 28;
+/// must stay well inside the 2 GiB a run may use, and ullner-peripheral holds two grids (its
+/// functional twin's and its auxiliary processor's): 2^27 = 512^3 cells is 512 MiB of offsets
+/// each (at 2^28, 645^3 cells, a run took 2.6 GB). Assumption, not in the seed.
+inline constexpr std::size_t kMaxGridCells = std::size_t{1} << 27;
 
 /// A primitive whose bounds reach within this fraction of a cell width of a grid plane is also
 /// stored in the subvolume on the other side of that plane. Bounds from the kernels are tight,

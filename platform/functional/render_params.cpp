@@ -39,11 +39,11 @@ void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) 
                .kind = ParamKind::kInt,
                .default_value = "0",
                .min = "0",
-               .max = "645",
+               .max = "512",
                .unit = "per axis",
                .description = "Subvolumes per axis of the grid; 0 chooses from the primitive count "
-                              "(at most 645: 645^3 subvolumes is the grid's limit, kMaxGridCells "
-                              "= 2^28)",
+                              "(at most 512: 512^3 subvolumes is the grid's limit, kMaxGridCells "
+                              "= 2^27)",
                .source = "seed 000 L648-L654: Ullner's time model gives n_s = 1.10 cbrt(n_p) "
                          "(docs/parameters.md)"});
   }

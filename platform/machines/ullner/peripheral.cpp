@@ -50,10 +50,10 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
        .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
        .source = "assumption: the thesis does not say how the shadow-ray saving is "
                  "realised without subdivision (seed 000 L472; note §7.6)"});
-  peripheral.count("grid.divisions", "0", "0", "645", "per axis",
+  peripheral.count("grid.divisions", "0", "0", "512", "per axis",
                    "Subvolumes per axis of the grid auxiliary processor; 0 = none "
-                   "(brute force); at most 645 (645^3 subvolumes is the grid's limit, "
-                   "kMaxGridCells = 2^28)",
+                   "(brute force); at most 512 (512^3 subvolumes is the grid's limit, "
+                   "kMaxGridCells = 2^27)",
                    "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)");
   peripheral.declare({.name = "grid.dda",
                       .kind = ParamKind::kString,
