@@ -16,9 +16,10 @@ options:
   --seconds N      how long each target runs (libFuzzer -max_total_time; default 60)
   --jobs N         parallel build jobs (default 1)
   --build-dir DIR  the fuzz build folder (default build-fuzz; a folder of its own)
-  --max-len BYTES  largest scene input (nff, bpt; default 65536; longer seeds are truncated)
+  --max-len BYTES  largest scene input (nff, bpt; default 1048576; longer seeds are truncated)
   --toml-max-len BYTES
-                   largest config or sweep input (default 16384: they are written by hand)
+                   largest config or sweep input (default 1048576, the readers' own limit,
+                   kMaxConfigFileBytes: a 62 KB key once crashed the reader, past 16 KiB)
   --build-only     configure, build and lay out the corpora, run nothing
   -h, --help       this text
 
@@ -40,8 +41,8 @@ repo="$(pwd)"
 seconds=60
 jobs=1
 build_dir=build-fuzz
-max_len=65536
-toml_max_len=16384
+max_len=1048576
+toml_max_len=1048576
 build_only=0
 targets=()
 all_targets=(nff bpt config sweep)
