@@ -3,15 +3,21 @@
 // 1, a signal or a hang) and what must or must not be on disk afterwards. Issue 30's defects are
 // rows here, each marked with its item; the cases that need several steps (a sweep resumed, an
 // output set that cannot be committed) are tests of their own below the table.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -335,6 +341,115 @@ TEST(HostileInput, AnOutputSetThatCannotBeCommittedReplacesNothing) {
   EXPECT_EQ(rtsim::test::read_file(dir / "out/stats.json"), stats);
   for (const auto& e : fs::directory_iterator(dir / "out"))
     EXPECT_EQ(e.path().filename().string().find(".rtsim-partial"), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+/// Starts RTSIM_BINARY with `args` in `cwd` (output to /dev/null, TMPDIR=`cwd`); its pid.
+pid_t start_rtsim(const std::vector<std::string>& args, const fs::path& cwd) {
+  std::vector<std::string> text = {RTSIM_BINARY};
+  text.insert(text.end(), args.begin(), args.end());
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(cwd.c_str()) != 0) ::_exit(127);
+    ::setenv("TMPDIR", cwd.c_str(), 1);
+    const int null = ::open("/dev/null", O_RDWR);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (auto& a : text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// The pids whose parent is `pid` (from /proc).
+std::vector<pid_t> children_of(pid_t pid) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    // pid (comm) state ppid ...: the command may hold spaces, the last ')' ends it.
+    const std::size_t close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    if (ppid == pid) out.push_back(static_cast<pid_t>(std::stoi(name)));
+  }
+  return out;
+}
+
+bool alive(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && line.size() > close + 2 && line[close + 2] != 'Z';
+}
+
+// Item 9: SIGTERM to a run whose --sample-error pilot (a fork) is running ended the run and left
+// the pilot running. The pilot now ends with its parent.
+TEST(HostileInput, ThePilotOfSampleErrorEndsWithItsRun) {
+  const fs::path dir = rtsim::test::scratch_dir("hostile-pilot");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A pilot of about 4 s (a 32 x 32 array on a 512 x 512 frame): it is still running when its
+  // run is ended.
+  const pid_t run =
+      start_rtsim({"run", "--machine", "ullner-array", "--scene", "builtin:ullner-cubes", "-p",
+                   "array.rows=32", "-p", "array.cols=32", "--width", "512", "--height", "512",
+                   "-q", "--sample-error", "1%", "--out", "out"},
+                  dir);
+  std::vector<pid_t> pilots;
+  for (int i = 0; i < 200 && pilots.empty(); ++i) {  // up to 10 s for the pilot to start
+    ::usleep(50000);
+    pilots = children_of(run);
+  }
+  ASSERT_FALSE(pilots.empty()) << "the pilot never started";
+  ::usleep(500000);
+  ::kill(run, SIGTERM);
+  int status = 0;
+  ::waitpid(run, &status, 0);
+  bool gone = false;
+  for (int i = 0; i < 10 && !gone; ++i) {  // up to 0.5 s: the pilot itself runs for seconds
+    gone = std::none_of(pilots.begin(), pilots.end(), alive);
+    if (!gone) ::usleep(50000);
+  }
+  EXPECT_TRUE(gone) << "the pilot outlived its run";
+  for (const pid_t p : pilots) ::kill(p, SIGKILL);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+// Item 9: an interrupted validate left its temporary folder with the runs in it
+// (/tmp/rtsim-validate-*/runs-*). It removes them.
+TEST(HostileInput, AnInterruptedValidateLeavesNoFolders) {
+  const fs::path dir = rtsim::test::scratch_dir("hostile-validate");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const pid_t v = start_rtsim({"validate", "--quick", "--jobs", "1"}, dir);
+  bool started = false;
+  for (int i = 0; i < 200 && !started; ++i) {  // until its temporary folder has runs in it
+    ::usleep(50000);
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      if (e.path().filename().string().rfind("runs-", 0) == 0) started = true;
+  }
+  ASSERT_TRUE(started) << "validate made no run folder under TMPDIR";
+  ::kill(v, SIGTERM);
+  int status = 0;
+  ::waitpid(v, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  ::usleep(200000);  // its runs end with it (parent-death signal)
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  EXPECT_TRUE(left.empty()) << "left behind: " << left.front();
   fs::remove_all(dir);
 }
 
