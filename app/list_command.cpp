@@ -74,7 +74,7 @@ void list_params(const ListArgs& args) {
     return;
   }
   if (args.format == "json") {
-    // One object a parameter, for scripts (tests/hostile_input_test.cpp walks every bound).
+    // One object a parameter, for scripts (tests/param_bounds_test.cpp runs every bound).
     nlohmann::ordered_json all = nlohmann::ordered_json::array();
     for (const auto& e : entries) {
       nlohmann::ordered_json j;
