@@ -14,7 +14,7 @@ inline constexpr int kExitBadInput = 2;
 int run_cli(int argc, char** argv);
 
 /// run_cli in a child forked by `rtsim sweep` or `rtsim validate` for one run
-/// (validation::RunQueueOptions::in_process): `args` as a command line, argv[0] included.
+/// (runs::RunQueueOptions::in_process): `args` as a command line, argv[0] included.
 int run_cli_in_forked_child(const std::vector<std::string>& args);
 
 }  // namespace rtsim::app

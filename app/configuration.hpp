@@ -2,8 +2,8 @@
 // Builds the parameter registry of a command: compiled-in declarations (the common parameters
 // and, with a machine, its preset), then the --config files in order, then the -p overrides.
 #include "app/commands.hpp"
+#include "params/registry.hpp"
 #include "platform/machine.hpp"
-#include "platform/params/registry.hpp"
 
 namespace rtsim::app {
 

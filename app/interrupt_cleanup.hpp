@@ -16,7 +16,7 @@ namespace rtsim::app {
 /// signals unblocked (common/spawn_signals.hpp).
 void install_interrupt_cleanup();
 
-/// In a child forked to run one command in process (validation::RunQueueOptions::in_process):
+/// In a child forked to run one command in process (runs::RunQueueOptions::in_process):
 /// forgets the parent's registered paths and starts the child's own waiting thread (fork copies
 /// only the forking thread; the signals stay blocked).
 void restart_interrupt_cleanup_after_fork();

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/number_text.hpp"
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::app {
 

@@ -21,7 +21,7 @@
 #include "common/input_error.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/frame_sample.hpp"
-#include "platform/validation/validation.hpp"
+#include "platform/runs/run_request.hpp"
 
 namespace rtsim::app {
 
@@ -29,27 +29,27 @@ namespace {
 
 /// The command as a user would type it again (for the report).
 std::string command_line(const RunArgs& a) {
-  std::string s = "rtsim run --machine " + validation::shell_quote(a.machine) + " --scene " +
-                  validation::shell_quote(a.scene);
+  std::string s = "rtsim run --machine " + runs::shell_quote(a.machine) + " --scene " +
+                  runs::shell_quote(a.scene);
   if (a.width > 0) s += " --width " + std::to_string(a.width);
   if (a.height > 0) s += " --height " + std::to_string(a.height);
-  for (const auto& c : a.config.config_files) s += " --config " + validation::shell_quote(c);
-  for (const auto& p : a.config.overrides) s += " -p " + validation::shell_quote(p);
-  if (!a.quantum.empty()) s += " --quantum " + validation::shell_quote(a.quantum);
+  for (const auto& c : a.config.config_files) s += " --config " + runs::shell_quote(c);
+  for (const auto& p : a.config.overrides) s += " -p " + runs::shell_quote(p);
+  if (!a.quantum.empty()) s += " --quantum " + runs::shell_quote(a.quantum);
   if (a.spp > 0) s += " --spp " + std::to_string(a.spp);
   for (const auto& t : a.traces) s += " --trace " + t;
-  if (!a.trace_window.empty()) s += " --trace-window " + validation::shell_quote(a.trace_window);
-  for (const auto& m : a.trace_modules) s += " --trace-modules " + validation::shell_quote(m);
+  if (!a.trace_window.empty()) s += " --trace-window " + runs::shell_quote(a.trace_window);
+  for (const auto& m : a.trace_modules) s += " --trace-modules " + runs::shell_quote(m);
   if (a.trace_max_events != 0) s += " --trace-max-events " + std::to_string(a.trace_max_events);
   for (const auto& v : a.aovs) s += " --aov " + v;
   if (a.overhead) s += " --overhead";
   if (a.latency_probe) s += " --latency-probe";
   if (a.sample > 0) s += " --sample " + std::to_string(a.sample);
-  if (!a.sample_error.empty()) s += " --sample-error " + validation::shell_quote(a.sample_error);
+  if (!a.sample_error.empty()) s += " --sample-error " + runs::shell_quote(a.sample_error);
   if (a.sample_window > 0) s += " --sample-window " + std::to_string(a.sample_window);
   if (a.sample_warmup >= 0) s += " --sample-warmup " + std::to_string(a.sample_warmup);
-  for (const auto& f : a.faults) s += " --fault " + validation::shell_quote(f);
-  return s + " --report --out " + validation::shell_quote(a.out_dir);
+  for (const auto& f : a.faults) s += " --fault " + runs::shell_quote(f);
+  return s + " --report --out " + runs::shell_quote(a.out_dir);
 }
 
 /// --fault MEMORY:WORD:XOR (WORD decimal, XOR decimal or 0x hex, non-zero, 32 bits).

@@ -2,8 +2,8 @@
 // Loading the --scene argument with the seed parameter applied to the generators.
 #include <string>
 
-#include "platform/params/registry.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::app {
 

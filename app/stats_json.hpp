@@ -2,11 +2,11 @@
 // stats.json of a run. Schema documented in docs/stats.md; keys are stable.
 #include <nlohmann/json.hpp>
 
+#include "firmware/scene.hpp"
+#include "params/registry.hpp"
 #include "platform/functional/functional_renderer.hpp"
 #include "platform/functional/render_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
-#include "platform/params/registry.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::app {
 

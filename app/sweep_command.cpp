@@ -26,12 +26,12 @@
 #include "app/sweep_mpi.hpp"
 #include "app/sweep_report.hpp"
 #include "common/input_error.hpp"
+#include "platform/runs/run_queue.hpp"
 #include "platform/sweep/point_outcome.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_check.hpp"
 #include "platform/sweep/sweep_file.hpp"
 #include "platform/sweep/sweep_points.hpp"
-#include "platform/validation/run_queue.hpp"
 
 namespace rtsim::app {
 
@@ -146,7 +146,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   lock_output_folder(out);
 
   std::vector<sweep::PointOutcome> outcomes(n);
-  std::vector<validation::RunRequest> requests;
+  std::vector<runs::RunRequest> requests;
   std::vector<std::size_t> request_point;  // request i runs point request_point[i]
   for (const auto& p : plan.points) {
     if (!args.force) {
@@ -155,7 +155,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
         continue;
       }
     }
-    validation::RunRequest r;
+    runs::RunRequest r;
     r.key = p.key;
     r.args = p.args;
     requests.push_back(std::move(r));
@@ -183,7 +183,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     const std::string message = std::string("\nrtsim sweep: interrupted (") + sigabbrev_np(sig) +
                                 "): stopping the running points\n";
     (void)!::write(STDERR_FILENO, message.data(), message.size());
-    validation::stop_runs(SIGTERM);
+    runs::stop_runs(SIGTERM);
   });
   const auto start = std::chrono::steady_clock::now();
   {
@@ -215,7 +215,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
       if (!args.quiet) bar.update(++finished, static_cast<long>(requests.size()));
     };
 
-    validation::RunQueueOptions q;
+    runs::RunQueueOptions q;
     q.executable = executable_of(args);
     q.work_dir = points_dir;
     q.jobs = jobs;
@@ -225,7 +225,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     } else {
       std::unordered_map<std::string, std::size_t> request_of_key;  // run_all reports by key
       for (std::size_t i = 0; i < requests.size(); ++i) request_of_key[requests[i].key] = i;
-      q.on_finished = [&](const validation::RunOutcome& run, int, int) {
+      q.on_finished = [&](const runs::RunOutcome& run, int, int) {
         record(request_of_key.at(run.request.key), sweep::outcome_of(run));
       };
       // Points are forks of this process (no program start-up each), unless another rtsim
@@ -234,7 +234,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
         q.in_process = run_cli_in_forked_child;
         preload_image_module();  // once here, not in every point
       }
-      (void)validation::run_all(requests, q);
+      (void)runs::run_all(requests, q);
     }
   }
   const double wall =
@@ -321,14 +321,14 @@ int run_sweep_mpi(const SweepArgs& args) {
   if (session.rank() != 0) {
     // Rank 0 reads and checks the sweep; the others wait for its word, then run points.
     if (const int status = session.share_status(0); status != 0) return status;
-    validation::RunQueueOptions q;
+    runs::RunQueueOptions q;
     q.executable = executable_of(args);
     q.jobs = args.jobs > 0 ? args.jobs : 1;
     q.log_in_run_dir = true;
     // mpirun passes an interrupt on to every rank: a worker stops its points and reports them,
     // so rank 0 can write the table of what is done (a worker dying by the signal would make
     // mpirun end rank 0 first).
-    set_interrupt_handler([](int) { validation::stop_runs(SIGTERM); });
+    set_interrupt_handler([](int) { runs::stop_runs(SIGTERM); });
     session.work(q);
     return kExitOk;
   }

@@ -11,8 +11,8 @@
 #include <functional>
 #include <vector>
 
+#include "platform/runs/run_queue.hpp"
 #include "platform/sweep/point_outcome.hpp"
-#include "platform/validation/run_queue.hpp"
 
 namespace rtsim::app::mpi {
 
@@ -37,14 +37,13 @@ class Session {
   /// on the others, handing out the next request to whoever finishes first. `on_done(i, o)` is
   /// called on this thread for request i as results arrive. Returns when all requests are done
   /// and every other rank has been told to stop.
-  void dispatch(const std::vector<validation::RunRequest>& requests,
-                const validation::RunQueueOptions& local,
+  void dispatch(const std::vector<runs::RunRequest>& requests, const runs::RunQueueOptions& local,
                 const std::function<void(std::size_t, const sweep::PointOutcome&)>& on_done);
 
   /// Every other rank: asks rank 0 for work (`options.jobs` requests at once), runs each in its
   /// own process under options.executable, sends the outcomes, until told to stop. The
   /// folders are the ones rank 0 names.
-  void work(const validation::RunQueueOptions& options);
+  void work(const runs::RunQueueOptions& options);
 
  private:
   int rank_ = 0;

@@ -217,7 +217,7 @@ std::string reproduce(const SweepPlotSpec& s) {
   std::string cmd = "/usr/bin/python3 analysis/sweep_plot.py results.jsonl plot.png";
   for (const auto& a : s.script_args()) {
     cmd += ' ';
-    cmd += validation::shell_quote(a);
+    cmd += runs::shell_quote(a);
   }
   return cmd;
 }

@@ -1,7 +1,7 @@
 #include "app/trace_options.hpp"
 
 #include "common/input_error.hpp"
-#include "platform/params/units.hpp"
+#include "params/units.hpp"
 
 namespace rtsim::app {
 

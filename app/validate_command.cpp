@@ -16,8 +16,8 @@
 #include "app/interrupt_cleanup.hpp"
 #include "app/progress_bar.hpp"
 #include "common/seed_citation.hpp"
+#include "platform/runs/run_queue.hpp"
 #include "platform/validation/all_figures.hpp"
-#include "platform/validation/run_queue.hpp"
 #include "platform/validation/validation.hpp"
 
 namespace rtsim::app {
@@ -115,7 +115,7 @@ int run_validate(const ValidateArgs& args) {
   val::RunResults results;
   {
     ProgressBar bar("validate");
-    val::RunQueueOptions q;
+    runs::RunQueueOptions q;
     q.executable = executable;
     q.work_dir = work_dir;
     q.jobs = args.jobs;
@@ -127,7 +127,7 @@ int run_validate(const ValidateArgs& args) {
     q.on_finished = [&bar](const val::RunOutcome&, int done, int total) {
       bar.update(done, total);
     };
-    results = val::run_all(plan.runs, q);
+    results = runs::run_all(plan.runs, q);
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

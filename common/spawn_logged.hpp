@@ -1,6 +1,6 @@
 #pragma once
 // Starting a child program whose output goes to a log file, and waiting for it: the runs of
-// `rtsim sweep` and `rtsim validate` (platform/validation/run_queue.cpp) and the report's
+// `rtsim sweep` and `rtsim validate` (platform/runs/run_queue.cpp) and the report's
 // analysis scripts (app/report.cpp).
 #include <fcntl.h>
 #include <spawn.h>

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "params/registry.hpp"
 #include "platform/machine.hpp"
-#include "platform/params/registry.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::fuzz {
 

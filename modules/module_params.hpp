@@ -15,7 +15,7 @@
 #include <string_view>
 #include <systemc>
 
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::modules {
 

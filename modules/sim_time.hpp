@@ -1,6 +1,6 @@
 #pragma once
 // Time helpers. SystemC's time resolution is 1 ps (its default); every delay parameter is a
-// whole number of picoseconds (platform/params checks it), so sums and multiples are exact.
+// whole number of picoseconds (params/ checks it), so sums and multiples are exact.
 //
 // Simulated time is a 64-bit count of picoseconds: it ends 2^64 ps (about 213 days) after the
 // start. The kit's time arithmetic (times, plus, LocalClock) throws TimeOverflow where it would

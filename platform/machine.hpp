@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "firmware/scene.hpp"
 #include "firmware/tracer.hpp"
 #include "modules/trace/trace_filter.hpp"
+#include "params/registry.hpp"
 #include "platform/functional/functional_renderer.hpp"
 #include "platform/functional/render_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
-#include "platform/params/registry.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::platform {
 

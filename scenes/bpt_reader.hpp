@@ -19,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -4,7 +4,7 @@
 // double. Used to export generated scenes (builtin:...) and for round-trip tests.
 #include <string>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

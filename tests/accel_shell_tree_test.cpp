@@ -14,7 +14,7 @@
 #include "firmware/accel/primitive_bounds.hpp"
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 #include "tests/kernel_test_support.hpp"
 
 namespace rtsim::accel {

@@ -12,7 +12,7 @@
 #include "firmware/bounds.hpp"
 #include "firmware/math.hpp"
 #include "firmware/ray.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::bezier_test {
 

@@ -7,7 +7,7 @@
 #include <systemc>
 
 #include "modules/module_params.hpp"
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 namespace {
 

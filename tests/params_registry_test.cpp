@@ -10,7 +10,7 @@
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::params {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "platform/params/units.hpp"
+#include "params/units.hpp"
 
 namespace rtsim::params {
 namespace {

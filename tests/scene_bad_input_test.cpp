@@ -6,9 +6,9 @@
 
 #include <fstream>
 
+#include "common/splitmix64.hpp"
 #include "scene_test_support.hpp"
 #include "scenes/bpt_reader.hpp"
-#include "scenes/generators/splitmix64.hpp"
 #include "scenes/nff_reader.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_text.hpp"

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <set>
 
+#include "common/splitmix64.hpp"
 #include "common/suggest.hpp"
 #include "scene_test_support.hpp"
 #include "scenes/bpt_reader.hpp"
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/npp_scene.hpp"
-#include "scenes/generators/splitmix64.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_random.hpp"
 #include "scenes/nff_reader.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes::testing {
 

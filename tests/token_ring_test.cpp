@@ -15,7 +15,7 @@
 
 #include "modules/module_params.hpp"
 #include "modules/stats_registry.hpp"
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 #include "tests/systemc_test_support.hpp"
 
 namespace {

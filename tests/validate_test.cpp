@@ -12,9 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "common/csv_field.hpp"
+#include "platform/runs/run_queue.hpp"
 #include "platform/validation/all_figures.hpp"
 #include "platform/validation/curve_shape.hpp"
-#include "platform/validation/run_queue.hpp"
 #include "platform/validation/ullner_figures.hpp"
 #include "platform/validation/validation.hpp"
 #include "platform/validation/vax_figures.hpp"
@@ -22,6 +23,8 @@
 
 namespace fs = std::filesystem;
 using namespace rtsim::validation;
+using rtsim::csv_field;
+using rtsim::runs::run_all;
 using rtsim::test::read_file;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;

@@ -93,7 +93,7 @@ std::optional<Message> poll(int source) {
 /// A fixed pool of threads that run requests through the run queue, one process each.
 class LocalRunner {
  public:
-  LocalRunner(validation::RunQueueOptions options, int slots) : options_(std::move(options)) {
+  LocalRunner(runs::RunQueueOptions options, int slots) : options_(std::move(options)) {
     for (int i = 0; i < slots; ++i) threads_.emplace_back([this] { loop(); });
   }
   ~LocalRunner() {
@@ -105,7 +105,7 @@ class LocalRunner {
     for (auto& t : threads_) t.join();
   }
 
-  void submit(std::size_t job, validation::RunRequest request, fs::path work_dir) {
+  void submit(std::size_t job, runs::RunRequest request, fs::path work_dir) {
     {
       std::lock_guard lock(mutex_);
       queue_.push_back({job, std::move(request), std::move(work_dir)});
@@ -131,7 +131,7 @@ class LocalRunner {
  private:
   struct Job {
     std::size_t index;
-    validation::RunRequest request;
+    runs::RunRequest request;
     fs::path work_dir;
   };
 
@@ -145,15 +145,15 @@ class LocalRunner {
         job = std::move(queue_.front());
         queue_.pop_front();
       }
-      validation::RunQueueOptions o = options_;
+      runs::RunQueueOptions o = options_;
       o.work_dir = job.work_dir;
-      sweep::PointOutcome outcome = sweep::outcome_of(validation::run_request(job.request, o));
+      sweep::PointOutcome outcome = sweep::outcome_of(runs::run_request(job.request, o));
       std::lock_guard lock(mutex_);
       finished_.emplace_back(job.index, std::move(outcome));
     }
   }
 
-  validation::RunQueueOptions options_;
+  runs::RunQueueOptions options_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Job> queue_;
@@ -188,7 +188,7 @@ int Session::share_status(int status) {
 }
 
 void Session::dispatch(
-    const std::vector<validation::RunRequest>& requests, const validation::RunQueueOptions& local,
+    const std::vector<runs::RunRequest>& requests, const runs::RunQueueOptions& local,
     const std::function<void(std::size_t, const sweep::PointOutcome&)>& on_done) {
   const int local_slots = std::max(1, local.jobs);
   LocalRunner runner(local, local_slots);
@@ -206,7 +206,7 @@ void Session::dispatch(
   // ones handed out end (stopped) and are reported, every worker is sent its stops.
   std::size_t handed_out = requests.size();
   const auto reply = [&](int worker) {
-    if (validation::runs_stopped()) handed_out = std::min(handed_out, next);
+    if (runs::runs_stopped()) handed_out = std::min(handed_out, next);
     if (next < handed_out) {
       const auto& r = requests[next];
       const Json job = {
@@ -220,7 +220,7 @@ void Session::dispatch(
   };
 
   while (finished < std::min(handed_out, requests.size()) || !all_stopped()) {
-    if (validation::runs_stopped()) handed_out = std::min(handed_out, next);
+    if (runs::runs_stopped()) handed_out = std::min(handed_out, next);
     bool busy = false;
     for (auto& [job, outcome] : runner.take_finished()) {
       on_done(job, outcome);
@@ -246,7 +246,7 @@ void Session::dispatch(
   }
 }
 
-void Session::work(const validation::RunQueueOptions& options) {
+void Session::work(const runs::RunQueueOptions& options) {
   const int slots = std::max(1, options.jobs);
   LocalRunner runner(options, slots);
   const std::string ready = Json{{"slots", slots}}.dump();
@@ -266,7 +266,7 @@ void Session::work(const validation::RunQueueOptions& options) {
         continue;
       }
       const Json j = Json::parse(m->text);
-      validation::RunRequest r;
+      runs::RunRequest r;
       r.key = j.at("key").get<std::string>();
       r.args = j.at("args").get<std::vector<std::string>>();
       runner.submit(j.at("job").get<std::size_t>(), std::move(r),

@@ -23,7 +23,7 @@
 
 #include "firmware/accel/broadcast_image.hpp"
 #include "firmware/accel/shell_tree.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::accel {
 

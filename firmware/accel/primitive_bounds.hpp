@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "firmware/bounds.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::accel {
 

@@ -11,7 +11,7 @@
 #include "firmware/kernels/bezier_patch_math.hpp"
 #include "firmware/kernels/bezier_wang.hpp"
 #include "firmware/ray.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::kernels {
 

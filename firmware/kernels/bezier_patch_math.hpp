@@ -16,7 +16,7 @@
 
 #include "firmware/bounds.hpp"
 #include "firmware/math.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::kernels {
 

@@ -19,7 +19,7 @@
 #include "firmware/hit.hpp"
 #include "firmware/kernels/bezier_patch_math.hpp"
 #include "firmware/ray.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::kernels {
 

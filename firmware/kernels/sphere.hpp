@@ -23,7 +23,7 @@
 #include "firmware/hit.hpp"
 #include "firmware/math.hpp"
 #include "firmware/ray.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::kernels {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Pinhole camera from the NFF view block.
 #include "firmware/ray.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::shading {
 

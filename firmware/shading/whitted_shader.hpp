@@ -9,9 +9,9 @@
 
 #include "firmware/cost.hpp"
 #include "firmware/hit.hpp"
+#include "firmware/scene.hpp"
 #include "firmware/shading/shade_params.hpp"
 #include "firmware/shading/traced_ray.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::shading {
 

@@ -7,9 +7,9 @@
 
 #include "firmware/cost.hpp"
 #include "firmware/hit.hpp"
+#include "firmware/scene.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/shading/whitted_shader.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::tasks {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A view and lights for scenes whose files have none (.bpt patch files).
 #include "firmware/bounds.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::functional {
 

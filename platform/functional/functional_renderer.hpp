@@ -7,10 +7,10 @@
 #include <functional>
 #include <vector>
 
+#include "firmware/scene.hpp"
 #include "firmware/shading/shade_params.hpp"
 #include "firmware/trace_counters.hpp"
 #include "firmware/tracer.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::functional {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "firmware/shading/shade_params.hpp"
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::functional {
 

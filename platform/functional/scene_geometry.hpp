@@ -15,8 +15,8 @@
 #include "firmware/kernels/sphere.hpp"
 #include "firmware/kernels/triangle.hpp"
 #include "firmware/kernels/ullner_quad.hpp"
+#include "firmware/scene.hpp"
 #include "platform/functional/render_params.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::functional {
 

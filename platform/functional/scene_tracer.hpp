@@ -6,11 +6,11 @@
 #include "firmware/accel/shell_traversal.hpp"
 #include "firmware/accel/shell_tree.hpp"
 #include "firmware/accel/uniform_grid.hpp"
+#include "firmware/scene.hpp"
 #include "firmware/tracer.hpp"
 #include "platform/functional/candidate_test.hpp"
 #include "platform/functional/render_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
-#include "scenes/scene.hpp"
 
 namespace rtsim::functional {
 

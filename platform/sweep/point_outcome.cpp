@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "platform/runs/run_queue.hpp"
 #include "platform/sweep/stats_document.hpp"
-#include "platform/validation/run_queue.hpp"
 
 namespace rtsim::sweep {
 
@@ -58,14 +58,14 @@ PointOutcome PointOutcome::from_json(const nlohmann::json& j) {
   return o;
 }
 
-PointOutcome outcome_of(const validation::RunOutcome& run) {
+PointOutcome outcome_of(const runs::RunOutcome& run) {
   PointOutcome o;
   o.exit_code = run.exit_code;
   o.wall_s = run.wall_s;
   if (run.exit_code != 0) {
     o.error = run.status.empty() ? run.failure : run.status;
     if (run.status == "did not start") o.error += ": " + run.failure;
-    const std::string tail = one_line(validation::tail_of_file(run.log, kLogLinesInError));
+    const std::string tail = one_line(runs::tail_of_file(run.log, kLogLinesInError));
     if (!tail.empty()) o.error += ": " + tail;
     return o;
   }

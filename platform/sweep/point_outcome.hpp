@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "platform/runs/run_request.hpp"
 #include "platform/sweep/sweep_points.hpp"
-#include "platform/validation/validation.hpp"
 
 namespace rtsim::sweep {
 
@@ -29,7 +29,7 @@ struct PointOutcome {
 };
 
 /// From the run queue's record of a run (reads its stats.json and the tail of its log).
-PointOutcome outcome_of(const validation::RunOutcome& run);
+PointOutcome outcome_of(const runs::RunOutcome& run);
 
 /// Name of the marker a point's folder holds once its run succeeded.
 inline constexpr const char* kMarkerFile = "done.json";

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "platform/validation/validation.hpp"
+#include "common/csv_field.hpp"
 
 namespace rtsim::sweep {
 
@@ -53,7 +53,7 @@ namespace {
 
 std::string csv_cell(const Json& v) {
   if (v.is_null()) return "";
-  if (v.is_string()) return validation::csv_field(v.get<std::string>());
+  if (v.is_string()) return csv_field(v.get<std::string>());
   return v.dump();
 }
 
@@ -137,7 +137,7 @@ ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>&
 std::string to_csv(const ResultsTable& table) {
   std::ostringstream out;
   for (std::size_t c = 0; c < table.columns.size(); ++c)
-    out << (c ? "," : "") << validation::csv_field(table.columns[c]);
+    out << (c ? "," : "") << csv_field(table.columns[c]);
   out << "\n";
   for (const auto& row : table.rows) {
     for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << csv_cell(row[c]);

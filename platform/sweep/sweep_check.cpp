@@ -5,8 +5,8 @@
 #include <tuple>
 
 #include "common/input_error.hpp"
+#include "params/registry.hpp"
 #include "platform/machine.hpp"
-#include "platform/params/registry.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::sweep {

@@ -14,8 +14,8 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/suggest.hpp"
-#include "platform/params/toml_file.hpp"
-#include "platform/params/toml_leaves.hpp"
+#include "params/toml_file.hpp"
+#include "params/toml_leaves.hpp"
 
 namespace rtsim::sweep {
 

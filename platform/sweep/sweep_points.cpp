@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "platform/validation/validation.hpp"
+#include "platform/runs/run_request.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::sweep {
@@ -40,7 +40,7 @@ std::string Point::swept_text(std::string_view separator) const {
 }
 
 std::string Point::command_line() const {
-  validation::RunRequest r;
+  runs::RunRequest r;
   r.args = args;
   return r.command_line();
 }

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "platform/params/units.hpp"
+#include "params/units.hpp"
 #include "platform/validation/ullner_figures.hpp"
 
 namespace rtsim::validation {

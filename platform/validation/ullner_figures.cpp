@@ -7,7 +7,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "platform/params/units.hpp"
+#include "params/units.hpp"
 
 namespace rtsim::validation {
 

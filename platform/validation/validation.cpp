@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/csv_field.hpp"
 #include "common/seed_citation.hpp"
 
 namespace rtsim::validation {
@@ -92,25 +93,7 @@ bool is_group_member(const std::string& id, const std::string& group) {
 
 }  // namespace
 
-std::string shell_quote(const std::string& s) {
-  if (!s.empty() && s.find_first_of(" \t\"'\\$`|&;<>()*?[]{}~#!") == std::string::npos) return s;
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
-
 // ---- Runs and plans -------------------------------------------------------------------------
-
-std::string RunRequest::command_line() const {
-  std::string s = "rtsim";
-  for (const auto& a : args) s += " " + shell_quote(a);
-  return s;
-}
 
 const std::string& Plan::add_run(RunRequest run) {
   for (const auto& r : runs) {
@@ -415,16 +398,6 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
     arr.push_back(std::move(j));
   }
   return arr;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
 }
 
 std::string rows_to_csv(const std::vector<Row>& rows) {

@@ -3,9 +3,9 @@
 // with its line), the runs of the rtsim binary it needs, how its simulated value is read from
 // their stats.json, and the tolerance it is judged with and why.
 //
-// A Plan holds the runs and the figures. Runs are executed by run_queue.hpp (each `rtsim run`
-// is its own process: SystemC allows one simulation per process); evaluate() turns the runs'
-// results into one Row per figure; the rows are written as a text table, JSON and CSV.
+// A Plan holds the runs and the figures. Runs are executed by platform/runs/run_queue.hpp (each
+// `rtsim run` is its own process: SystemC allows one simulation per process); evaluate() turns the
+// runs' results into one Row per figure; the rows are written as a text table, JSON and CSV.
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -13,6 +13,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "platform/runs/run_request.hpp"
 
 namespace rtsim::validation {
 
@@ -41,38 +43,16 @@ struct Tolerance {
   std::string describe() const;
 };
 
-/// One invocation of the rtsim binary. The runner appends `--out FOLDER`.
-struct RunRequest {
-  std::string key;                ///< unique in a plan; also the name of its folder
-  std::vector<std::string> args;  ///< e.g. {"run", "--machine", "vax-750", "--scene", ...}
-  /// Expected relative run time; the queue starts the biggest first so the slowest runs do not
-  /// end up alone at the end.
-  double cost_hint = 1.0;
-  /// The command line as a user would type it (args shell-quoted where needed).
-  std::string command_line() const;
-};
+// The runs a plan needs are platform/runs' requests.
+using runs::RunOutcome;
+using runs::RunRequest;
+using runs::RunResults;
 
 /// `rtsim run --machine MACHINE --scene SCENE --width W --height H -q -p P...`: the request of a
 /// figure's run.
 RunRequest machine_run_request(std::string key, const std::string& machine,
                                const std::string& scene, int width, int height,
                                const std::vector<std::string>& params, double cost_hint);
-
-/// What came of one run.
-struct RunOutcome {
-  RunRequest request;
-  std::filesystem::path out_dir;  ///< the --out folder given to the run
-  std::filesystem::path log;      ///< its stdout and stderr
-  int exit_code = -1;             ///< -1: did not start or was killed by a signal
-  /// How the process ended, in words: "exit status 2", "killed by signal Segmentation fault",
-  /// "did not start".
-  std::string status;
-  double wall_s = 0.0;
-  std::string failure;                  ///< empty on success, else what went wrong
-  std::optional<nlohmann::json> stats;  ///< out_dir/stats.json, parsed, on success
-};
-
-using RunResults = std::map<std::string, RunOutcome>;
 
 /// Thrown by a figure's measure function when its value cannot be had (a run failed, a
 /// stats.json key is missing); the message goes into the row.
@@ -167,13 +147,8 @@ double stats_number(const RunResults& results, const std::string& key, const std
 
 /// Output.
 std::string format_number(double v);
-/// `s` as one word for a POSIX shell: as it is if it needs no quoting, else in single quotes
-/// (a quote inside written '\'').
-std::string shell_quote(const std::string& s);  ///< 4 significant digits, no exponent for 1e-3..1e6
 std::string format_table(const std::vector<Row>& rows);
 nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows);
 std::string rows_to_csv(const std::vector<Row>& rows);
-/// One field of a CSV line, quoted when it holds a comma, quote or line break.
-std::string csv_field(const std::string& s);
 
 }  // namespace rtsim::validation

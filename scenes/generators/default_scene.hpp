@@ -2,7 +2,7 @@
 // builtin:default — a small scene that exercises every shading path of the renderer and looks
 // good at a glance: a checkerboard floor of quads, a mirror sphere (Ks high), a glass sphere
 // (T high, ior 1.5), diffuse and glossy spheres, two lights, 512 x 512.
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -4,7 +4,7 @@
 // Wang, Lewis & Hung checked their pipeline (seed 002 L266). Built in so that `rtsim validate` and
 // the sweeps in configs/sweeps/ measure a real patch scene without a path to
 // shared/scenes/teapot.bpt, which holds the same patches.
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "scenes/generators/splitmix64.hpp"
+#include "common/splitmix64.hpp"
 
 namespace rtsim::scenes {
 

@@ -24,7 +24,7 @@
 #include <string_view>
 
 #include "firmware/bounds.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "common/splitmix64.hpp"
 #include "firmware/math.hpp"
-#include "scenes/generators/splitmix64.hpp"
 
 namespace rtsim::scenes {
 

@@ -5,7 +5,7 @@
 // shared/scenes/teapot-s2.nff). It is a polygon object in empty space whose screen coverage
 // follows the eye's distance: what pxpl5-raytrace's rows-against-squares figure needs (VOL2 Fig.
 // 9, seed 004 L369), with no path to shared/.
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/splitmix64.hpp"
 #include "scenes/generators/random_rotation.hpp"
-#include "scenes/generators/splitmix64.hpp"
 
 namespace rtsim::scenes {
 

@@ -11,7 +11,7 @@
 // - cubes may interpenetrate: "uniformly distributed" is read as independent placement.
 #include <cstdint>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/splitmix64.hpp"
 #include "scenes/generators/random_rotation.hpp"
-#include "scenes/generators/splitmix64.hpp"
 
 namespace rtsim::scenes {
 

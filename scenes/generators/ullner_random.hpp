@@ -27,7 +27,7 @@
 #include <optional>
 #include <string_view>
 
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::scenes {
 

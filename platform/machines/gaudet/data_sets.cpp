@@ -3,7 +3,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "scenes/generators/splitmix64.hpp"
+#include "common/splitmix64.hpp"
 
 namespace rtsim::platform::gaudet {
 namespace {
@@ -43,7 +43,7 @@ std::vector<std::uint32_t> id_order(std::size_t n) {
 
 /// Fisher-Yates with splitmix64: the same seed gives the same order everywhere.
 void shuffle(std::vector<std::uint32_t>& v, std::uint64_t seed) {
-  scenes::SplitMix64 rng(seed);
+  SplitMix64 rng(seed);
   for (std::size_t i = v.size(); i > 1; --i) {
     const std::size_t j = static_cast<std::size_t>(rng.next() % i);
     std::swap(v[i - 1], v[j]);

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "firmware/math.hpp"
-#include "scenes/scene.hpp"
+#include "firmware/scene.hpp"
 
 namespace rtsim::platform::pxpl5 {
 

@@ -1,4 +1,4 @@
-#include "platform/validation/run_queue.hpp"
+#include "platform/runs/run_queue.hpp"
 
 #include <fcntl.h>
 #include <sys/prctl.h>
@@ -26,7 +26,7 @@
 #include "common/spawn_logged.hpp"
 #include "platform/sweep/stats_document.hpp"
 
-namespace rtsim::validation {
+namespace rtsim::runs {
 
 namespace fs = std::filesystem;
 
@@ -391,4 +391,4 @@ RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOption
   return results;
 }
 
-}  // namespace rtsim::validation
+}  // namespace rtsim::runs

@@ -11,9 +11,9 @@
 #include <functional>
 #include <vector>
 
-#include "platform/validation/validation.hpp"
+#include "platform/runs/run_request.hpp"
 
-namespace rtsim::validation {
+namespace rtsim::runs {
 
 struct RunQueueOptions {
   std::filesystem::path executable;  ///< the rtsim binary
@@ -48,4 +48,4 @@ bool runs_stopped();
 /// Last `max_lines` lines of a text file ("" if it cannot be read).
 std::string tail_of_file(const std::filesystem::path& file, int max_lines);
 
-}  // namespace rtsim::validation
+}  // namespace rtsim::runs

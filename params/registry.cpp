@@ -1,4 +1,4 @@
-#include "platform/params/registry.hpp"
+#include "params/registry.hpp"
 
 #include <toml++/toml.h>
 
@@ -13,9 +13,9 @@
 #include "common/input_file.hpp"
 #include "common/leading_plus.hpp"
 #include "common/suggest.hpp"
-#include "platform/params/toml_file.hpp"
-#include "platform/params/toml_leaves.hpp"
-#include "platform/params/units.hpp"
+#include "params/toml_file.hpp"
+#include "params/toml_leaves.hpp"
+#include "params/units.hpp"
 
 namespace rtsim::params {
 namespace {

@@ -1,4 +1,4 @@
-#include "platform/params/units.hpp"
+#include "params/units.hpp"
 
 #include <algorithm>
 #include <array>

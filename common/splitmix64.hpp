@@ -1,11 +1,11 @@
 #pragma once
-// The scene generators' random source: SplitMix64 (Steele, Lea and Flood, "Fast splittable
-// pseudorandom number generators", OOPSLA 2014). Written here rather than taken from <random> so
-// a seed gives the same scene with every standard library: only integer arithmetic, and doubles
-// made from the top 53 bits.
+// The project's random source: SplitMix64 (Steele, Lea and Flood, "Fast splittable
+// pseudorandom number generators", OOPSLA 2014), for the scene generators and gaudet-pert's
+// shuffles. Written here rather than taken from <random> so a seed gives the same scene with
+// every standard library: only integer arithmetic, and doubles made from the top 53 bits.
 #include <cstdint>
 
-namespace rtsim::scenes {
+namespace rtsim {
 
 class SplitMix64 {
  public:
@@ -38,4 +38,4 @@ class SplitMix64 {
   std::uint64_t state_;
 };
 
-}  // namespace rtsim::scenes
+}  // namespace rtsim

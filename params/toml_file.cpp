@@ -1,4 +1,4 @@
-#include "platform/params/toml_file.hpp"
+#include "params/toml_file.hpp"
 
 #include <utility>
 #include <vector>

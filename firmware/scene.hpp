@@ -1,7 +1,9 @@
 #pragma once
 // The scene as read from a file or made by a generator: camera, lights, materials and primitives
 // in scene-file order. Nothing here is converted for a machine yet; firmware/ and platform/ turn
-// it into what a machine stores (triangles, Ullner quads, grid cells, shells and packets).
+// it into what a machine stores (triangles, Ullner quads, grid cells, shells and packets). The
+// data the firmware consumes lives with it, below scenes/ (the readers and generators that fill
+// it): the layers include only downwards.
 #include <array>
 #include <cstdint>
 #include <string>
