@@ -12,7 +12,7 @@
 #include "app/image_files.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
-#include "app/report.hpp"
+#include "app/run_report.hpp"
 #include "app/run_summary.hpp"
 #include "app/sample_pilot.hpp"
 #include "app/scene_input.hpp"

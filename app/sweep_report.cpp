@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/configuration.hpp"
+#include "app/number_text.hpp"
 #include "app/run_diff.hpp"
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
@@ -38,14 +39,6 @@ constexpr std::size_t kMaxLines = 12;
 constexpr double kLogSpan = 20.0;
 // Thumbnails are drawn this many pixels wide (pixels kept sharp).
 constexpr int kThumbPixels = 128;
-
-std::string read_text(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot read " + p.string());
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
@@ -565,7 +558,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
       if (shown == kSweepThumbnails) continue;
       std::string data;
       try {
-        data = read_text(png);
+        data = read_whole_file(png);
       } catch (const std::exception&) {
         ++without;
         continue;
@@ -664,7 +657,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
   // ---- The sweep file itself ----
   page.heading("The sweep file: " + file.origin);
   try {
-    std::string text = read_text(file.origin);
+    std::string text = read_whole_file(file.origin);
     if (text.size() > kMaxSweepText) text = text.substr(0, kMaxSweepText) + "\n...\n";
     page.raw(
         "<pre style=\"background:#f8f8f8;border:1px solid #ddd;padding:.6em;"

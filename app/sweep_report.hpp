@@ -13,7 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/report.hpp"
+#include "app/analysis_scripts.hpp"
+#include "app/html_report.hpp"
 #include "platform/sweep/point_outcome.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_file.hpp"

@@ -3,12 +3,11 @@
 // matplotlib are there and a note instead when they are not; and it opens in headless
 // Chromium (Debian's chromium package) with every picture decoded and no console message. A run
 // with --latency-probe gains the "Where a ray spends its time" table and plot.
-#include "app/report.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
+#include "app/run_report.hpp"
 #include "tests/report_test_support.hpp"
 #include "tests/test_support.hpp"
 

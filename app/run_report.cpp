@@ -1,303 +1,21 @@
-#include "app/report.hpp"
+#include "app/run_report.hpp"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <functional>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "app/number_text.hpp"
 #include "app/trace_options.hpp"
 #include "common/seed_citation.hpp"
-#include "common/spawn_logged.hpp"
 
 namespace rtsim::app {
 
 namespace fs = std::filesystem;
 // Ordered: a machine's figures keep the order stats.json has them in (shade, shell, prim).
 using json = nlohmann::ordered_json;
-
-// ---- Tools -----------------------------------------------------------------------------------
-
-ReportTools ReportTools::resolved() const {
-  ReportTools t = *this;
-  if (t.python.empty()) {
-    if (const char* env = std::getenv("RTSIM_PYTHON"); env && *env)
-      t.python = env;
-    else if (fs::exists("/usr/bin/python3"))
-      t.python = "/usr/bin/python3";
-    else
-      t.python = "python3";
-  }
-  if (t.analysis_dir.empty()) {
-    if (const char* env = std::getenv("RTSIM_ANALYSIS_DIR"); env && *env)
-      t.analysis_dir = env;
-    else
-      t.analysis_dir = fs::path(RTSIM_SOURCE_DIR) / "analysis";
-  }
-  if (t.scratch_dir.empty()) t.scratch_dir = fs::temp_directory_path() / "rtsim-report";
-  return t;
-}
-
-namespace {
-
-std::string read_file(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot read " + p.string());
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-}  // namespace
-
-namespace {
-
-/// A script started and not yet waited for.
-struct Launched {
-  pid_t pid = -1;
-  fs::path log;
-  std::string python, script;
-  ScriptResult failed_to_start;  ///< when pid is -1
-};
-
-Launched launch_script(const ReportTools& tools, const std::string& script,
-                       const std::vector<std::string>& args) {
-  Launched l;
-  l.python = tools.python;
-  l.script = script;
-  const fs::path script_path = tools.analysis_dir / script;
-  if (!fs::exists(script_path)) {
-    l.failed_to_start.message = "no analysis script " + script_path.string();
-    return l;
-  }
-  std::error_code ec;
-  fs::create_directories(tools.scratch_dir, ec);
-  l.log = tools.scratch_dir / (script + ".log");
-  std::vector<std::string> argv = {tools.python, script_path.string()};
-  argv.insert(argv.end(), args.begin(), args.end());
-  std::string error;
-  const pid_t pid = spawn_logged(std::move(argv), l.log, true, error);
-  if (pid < 0) {
-    l.failed_to_start.message = "cannot run " + tools.python + ": " + error;
-    return l;
-  }
-  l.pid = pid;
-  return l;
-}
-
-ScriptResult wait_for(const Launched& l) {
-  if (l.pid < 0) return l.failed_to_start;
-  ScriptResult res;
-  const int status = wait_for_child(l.pid, res.message);
-  if (status < 0) return res;
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-    res.ok = true;
-    return res;
-  }
-  std::string text;
-  try {
-    text = read_file(l.log);
-  } catch (const std::exception&) {
-  }
-  // posix_spawnp reports a missing interpreter as exit status 127 from the child.
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && text.empty())
-    res.message = "cannot run " + l.python;
-  else
-    res.message = l.python + " " + l.script + " failed" +
-                  (WIFEXITED(status) ? " (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
-                                     : " (killed by a signal)") +
-                  (text.empty() ? "" : ": " + last_lines(text, 2));
-  return res;
-}
-
-/// The report's plots, drawn at the same time: a first pass over the report starts every script
-/// it asks for and returns at once (that pass's page is thrown away); the second pass waits for
-/// each. Python's start-up and matplotlib's import (about a second) are paid once, not per plot.
-struct ScriptBatch {
-  bool starting = true;
-  std::map<std::string, Launched> launched;  ///< by script and arguments
-};
-ScriptBatch* batch = nullptr;
-
-}  // namespace
-
-ScriptResult run_analysis_script(const ReportTools& tools_in, const std::string& script,
-                                 const std::vector<std::string>& args) {
-  const ReportTools tools = tools_in.resolved();
-  std::string key = script;
-  for (const auto& a : args) key += '\0' + a;
-  if (batch && batch->starting) {
-    batch->launched.emplace(key, launch_script(tools, script, args));
-    return {false, "started"};
-  }
-  if (batch) {
-    if (auto it = batch->launched.find(key); it != batch->launched.end()) {
-      const ScriptResult r = wait_for(it->second);
-      batch->launched.erase(it);
-      return r;
-    }
-  }
-  return wait_for(launch_script(tools, script, args));
-}
-
-// ---- HTML ------------------------------------------------------------------------------------
-
-std::string base64(const std::string& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const auto a = static_cast<unsigned char>(bytes[i]);
-    const auto b = static_cast<unsigned char>(bytes[i + 1]);
-    const auto c = static_cast<unsigned char>(bytes[i + 2]);
-    out += kAlphabet[a >> 2];
-    out += kAlphabet[((a & 3) << 4) | (b >> 4)];
-    out += kAlphabet[((b & 15) << 2) | (c >> 6)];
-    out += kAlphabet[c & 63];
-  }
-  if (i + 1 == bytes.size()) {
-    const auto a = static_cast<unsigned char>(bytes[i]);
-    out += kAlphabet[a >> 2];
-    out += kAlphabet[(a & 3) << 4];
-    out += "==";
-  } else if (i + 2 == bytes.size()) {
-    const auto a = static_cast<unsigned char>(bytes[i]);
-    const auto b = static_cast<unsigned char>(bytes[i + 1]);
-    out += kAlphabet[a >> 2];
-    out += kAlphabet[((a & 3) << 4) | (b >> 4)];
-    out += kAlphabet[(b & 15) << 2];
-    out += '=';
-  }
-  return out;
-}
-
-std::string html_escape(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
-
-void HtmlReport::heading(const std::string& text) {
-  body_ += "<h2>" + html_escape(text) + "</h2>\n";
-}
-
-void HtmlReport::paragraph(const std::string& text) {
-  body_ += "<p>" + html_escape(text) + "</p>\n";
-}
-
-void HtmlReport::note(const std::string& text) {
-  body_ += "<p class=\"note\">" + html_escape(text) + "</p>\n";
-}
-
-void HtmlReport::key_values(const std::vector<std::pair<std::string, std::string>>& rows) {
-  body_ += "<table class=\"kv\">\n";
-  for (const auto& [k, v] : rows)
-    body_ += "<tr><th>" + html_escape(k) + "</th><td>" + html_escape(v) + "</td></tr>\n";
-  body_ += "</table>\n";
-}
-
-void HtmlReport::table(const std::vector<std::string>& head,
-                       const std::vector<std::vector<std::string>>& rows,
-                       const std::vector<bool>& emphasised) {
-  body_ += "<table>\n<tr>";
-  for (const auto& h : head) body_ += "<th>" + html_escape(h) + "</th>";
-  body_ += "</tr>\n";
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const bool em = r < emphasised.size() && emphasised[r];
-    body_ += em ? "<tr class=\"set\">" : "<tr>";
-    for (const auto& c : rows[r]) body_ += "<td>" + html_escape(c) + "</td>";
-    body_ += "</tr>\n";
-  }
-  body_ += "</table>\n";
-}
-
-void HtmlReport::image(const fs::path& png, const std::string& alt, const std::string& caption,
-                       bool pixelated) {
-  const std::string data = read_file(png);
-  body_ += std::string("<figure><img") + (pixelated ? " class=\"frame\"" : "") + " alt=\"" +
-           html_escape(alt) + "\" src=\"data:image/png;base64," + base64(data) + "\">";
-  if (!caption.empty()) body_ += "<figcaption>" + html_escape(caption) + "</figcaption>";
-  body_ += "</figure>\n";
-  ++images_;
-}
-
-std::string HtmlReport::html() const {
-  // The small script only checks that every picture decoded: it marks the page with the count
-  // (data-images-decoded, read by the headless-browser test) and logs a console error for a
-  // picture that did not.
-  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-         "<title>" +
-         html_escape(title_) +
-         "</title>\n<style>\n"
-         "body{font-family:sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;"
-         "color:#222}\n"
-         "h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}\n"
-         "table{border-collapse:collapse;font-size:.9em;margin:.5em 0}\n"
-         "td,th{border:1px solid #ddd;padding:.2em .5em;text-align:left;vertical-align:top}\n"
-         "th{background:#f4f4f4}table.kv th{width:16em}tr.set td{font-weight:bold}\n"
-         "figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}\n"
-         "img.frame{min-width:512px;image-rendering:pixelated}\n"
-         "figcaption{font-size:.85em;color:#555}\n"
-         ".note{background:#fff6d5;border-left:4px solid #e0b000;padding:.4em .8em}\n"
-         "</style>\n</head>\n<body>\n<h1>" +
-         html_escape(title_) + "</h1>\n" + body_ +
-         "<script>\n"
-         "window.addEventListener('load', function () {\n"
-         "  var imgs = document.querySelectorAll('img'), ok = 0;\n"
-         "  for (var i = 0; i < imgs.length; i++) {\n"
-         "    if (imgs[i].complete && imgs[i].naturalWidth > 0) ok++;\n"
-         "    else console.error('report: picture did not decode: ' + imgs[i].alt);\n"
-         "  }\n"
-         "  document.body.setAttribute('data-images-decoded', String(ok));\n"
-         "});\n"
-         "</script>\n</body>\n</html>\n";
-}
-
-void HtmlReport::write(const fs::path& path) const {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f << html();
-  f.close();
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
-// ---- The run report --------------------------------------------------------------------------
 
 namespace {
 
@@ -518,7 +236,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   const ReportTools tools = tools_in.resolved();
   json stats;
   try {
-    stats = json::parse(read_file(in.stats_json));
+    stats = json::parse(read_whole_file(in.stats_json));
   } catch (const json::exception& e) {
     throw std::runtime_error("report: " + in.stats_json.string() + " is not JSON: " + e.what());
   }
@@ -708,13 +426,10 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
         "stage reported (0 up to rounding when the machine reports everything). stats.json "
         "latency_probe; docs/stats.md says what each part means on each machine.");
     std::vector<std::vector<std::string>> rows;
-    // The stages in the file's order, as a ray meets them (json sorts its keys).
+    // The stages in the file's order, as a ray meets them (ordered_json keeps it).
     std::vector<std::string> order;
-    if (stages && stages->is_object()) {
-      const auto ordered = nlohmann::ordered_json::parse(read_file(in.stats_json));
-      for (const auto& [name, st] : ordered["latency_probe"]["stages"].items())
-        order.push_back(name);
-    }
+    if (stages && stages->is_object())
+      for (const auto& [name, st] : stages->items()) order.push_back(name);
     for (const std::string& name : order)
       if (const json& st = (*stages)[name]; st.is_object())
         rows.push_back({name, format_seconds(num(st, "queueing_s", 0.0)),
@@ -819,19 +534,10 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
 void write_run_report(const RunReportInputs& in, const fs::path& out_html,
                       const ReportTools& tools) {
   ScriptBatch scripts;
-  batch = &scripts;
-  try {
-    (void)run_report_page(in, tools);  // starts the plots
-    scripts.starting = false;
-    const HtmlReport page = run_report_page(in, tools);  // waits for them
-    batch = nullptr;
-    for (const auto& [_, l] : scripts.launched) (void)wait_for(l);  // none left, normally
-    page.write(out_html);
-  } catch (...) {
-    batch = nullptr;
-    for (const auto& [_, l] : scripts.launched) (void)wait_for(l);
-    throw;
-  }
+  (void)run_report_page(in, tools);  // starts the plots
+  scripts.collect();
+  const HtmlReport page = run_report_page(in, tools);  // waits for them
+  page.write(out_html);
 }
 
 }  // namespace rtsim::app
