@@ -309,8 +309,9 @@ int run_cli(int argc, char** argv) {
   l->add_flag("--changed", list.changed,
               "With params: only those whose value is not the default (set by --config or -p)");
   l->add_option("--format", list.format,
-                "With params: text, markdown (docs/parameters.md), or json (one object a "
-                "parameter: name, kind, value, default, unit, min, max, allowed, source)")
+                "text; with params also markdown (docs/parameters.md); json with params (one "
+                "object a parameter: name, kind, value, default, unit, min, max, allowed, "
+                "source) or machines (name, description, sample_scene)")
       ->check(CLI::IsMember({"text", "markdown", "json"}))
       ->capture_default_str();
   add_config_options(l, list.config);

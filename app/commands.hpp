@@ -59,7 +59,7 @@ struct DiffArgs {
 struct ListArgs {
   std::string what;
   std::string machine;
-  std::string format = "text";  ///< text | markdown
+  std::string format = "text";  ///< text | markdown (params) | json (params, machines)
   std::string pattern;          ///< params: only names matching this shell pattern ("": all)
   bool changed = false;         ///< params: only those whose value is not the default
   ConfigArgs config;

@@ -29,7 +29,17 @@ void list_scenes() {
   std::cout << "Files: .nff (Haines' Neutral File Format) and .bpt (bicubic Bezier patches).\n";
 }
 
-void list_machines() {
+void list_machines(const std::string& format) {
+  if (format == "json") {
+    // For scripts and tests: every registered machine, so none needs a list of its own.
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const platform::Machine* m : platform::machines())
+      all.push_back({{"name", m->name()},
+                     {"description", m->description()},
+                     {"sample_scene", m->sample_scene()}});
+    std::cout << all.dump(2) << "\n";
+    return;
+  }
   std::cout << "Machines (rtsim run --machine NAME; rtsim list params --machine NAME):\n";
   for (const platform::Machine* m : platform::machines())
     std::cout << "  " << std::left << std::setw(20) << m->name() << cite_seeds(m->description())
@@ -121,11 +131,16 @@ void list_params(const ListArgs& args) {
 }  // namespace
 
 int run_list(const ListArgs& args) {
+  if (args.format == "markdown" && args.what != "params")
+    throw InputError("list " + args.what, 0, "--format markdown is for `rtsim list params`");
+  if (args.format == "json" && args.what == "scenes")
+    throw InputError("list scenes", 0,
+                     "--format json is for `rtsim list params` and `rtsim list machines`");
   if (args.what != "params" && (!args.pattern.empty() || args.changed || !args.machine.empty()))
     throw InputError("list " + args.what, 0,
                      "a pattern, --machine and --changed go with `rtsim list params`");
   if (args.what == "scenes") list_scenes();
-  if (args.what == "machines") list_machines();
+  if (args.what == "machines") list_machines(args.format);
   if (args.what == "params") list_params(args);
   return kExitOk;
 }

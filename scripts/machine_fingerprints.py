@@ -25,8 +25,18 @@ DEFAULT_SCENES = [os.path.join(HERE, "..", "..", "shared", "scenes", n)
                   for n in ("balls-s1.nff", "balls-s2.nff", "balls-s3.nff", "teapot-s2.nff",
                             "teapot.bpt", "tetra-s3.nff")] + [
     "builtin:ullner-cubes", "builtin:npp-412", "builtin:ullner-random-1000"]
-MACHINES = ["vax-750", "ullner-peripheral", "gaudet-pert", "ullner-pipeline", "ullner-array",
-            "wang-bezier", "pxpl5-raytrace"]
+
+
+def machines(rtsim):
+    """Every machine the binary registers (`rtsim list machines --format json`; a binary from
+    before that option: its text listing), so a new machine needs no edit here."""
+    p = subprocess.run([rtsim, "list", "machines", "--format", "json"], capture_output=True,
+                       text=True)
+    if p.returncode == 0:
+        return [m["name"] for m in json.loads(p.stdout)]
+    p = subprocess.run([rtsim, "list", "machines"], capture_output=True, text=True, check=True)
+    names = [line.split()[0] for line in p.stdout.splitlines() if line.startswith("  ")]
+    return [n for n in names if n != "(none)"]
 
 
 def sha256(path):
@@ -60,7 +70,7 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-9)
     a = ap.parse_args()
     result = {}
-    for machine in MACHINES:
+    for machine in machines(a.rtsim):
         for scene in a.scene or DEFAULT_SCENES:
             key = machine + " " + os.path.basename(scene)
             result[key + " run"] = one(a.rtsim, "run", machine, scene, a.size, [])
