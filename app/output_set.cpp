@@ -163,8 +163,7 @@ void OutputSet::commit() {
   }
   // What goes away: the files this set replaces, and an earlier run's outputs that this one does
   // not write (a trace from a run with --trace beside the stats of one without).
-  std::vector<std::string> old;
-  for (const auto& name : names_) old.push_back(name);
+  std::vector<std::string> old = names_;
   for (const std::string_view s : superseded_)
     if (std::find(names_.begin(), names_.end(), s) == names_.end()) old.emplace_back(s);
   // Moves are undone newest first if one fails.

@@ -1,9 +1,9 @@
 #pragma once
-// report.html of a sweep (`rtsim sweep FILE --report`): one self-contained page (app/report.hpp's
-// HtmlReport) with the sweep file's text, its machines, scenes and axes, the results table
-// (every point: swept values, headline stats, wall time, status and error), sweep plots drawn by
-// analysis/sweep_plot.py from results.jsonl, thumbnails of the points' images, and every
-// parameter of each machine with where it was set and its documented source.
+// report.html of a sweep (`rtsim sweep FILE --report`): one self-contained page
+// (app/html_report.hpp's HtmlReport) with the sweep file's text, its machines, scenes and axes, the
+// results table (every point: swept values, headline stats, wall time, status and error), sweep
+// plots drawn by analysis/sweep_plot.py from results.jsonl, thumbnails of the points' images, and
+// every parameter of each machine with where it was set and its documented source.
 //
 // Written by rank 0 after the table (under MPI after gathering, when resuming over every
 // point): failed points are listed, not fatal. A plot that cannot be drawn adds a note.

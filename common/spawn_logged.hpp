@@ -1,7 +1,7 @@
 #pragma once
 // Starting a child program whose output goes to a log file, and waiting for it: the runs of
 // `rtsim sweep` and `rtsim validate` (platform/runs/run_queue.cpp) and the report's
-// analysis scripts (app/report.cpp).
+// analysis scripts (app/analysis_scripts.cpp).
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>

@@ -34,15 +34,6 @@ constexpr double kTimeoutS = 60.0;
 constexpr std::uint64_t kAddressSpace = std::uint64_t{8} << 30;
 constexpr long kMaxRssKib = 2L << 20;
 
-/// Every machine the binary registers (`rtsim list machines --format json`).
-std::vector<std::string> machines() {
-  const auto r = rtsim::test::run_rtsim("list machines --format json");
-  std::vector<std::string> out;
-  for (const auto& m : nlohmann::json::parse(r.output, nullptr, false))
-    out.push_back(m.value("name", std::string()));
-  return out;
-}
-
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p, std::ios::binary) << text;
@@ -198,9 +189,9 @@ std::vector<Case> cases() {
                  const auto s = rtsim::test::read_json(d / "out/render-star/stats.json");
                  return s["geometry"]["rejected"] == 1 ? "" : "the star was not rejected";
                }});
-  const std::vector<std::string> all_machines = machines();
+  const auto all_machines = rtsim::test::registered_machines();
   EXPECT_GE(all_machines.size(), 7u);
-  for (const auto& m : all_machines) {
+  for (const auto& [m, sample_scene] : all_machines) {
     c.push_back({m + " on a self-crossing star", run(m, "star.nff"), {0, 2}});
     // Item 8: every machine on a scene where nothing survives.
     c.push_back({m + " on an all-degenerate scene", run(m, "degenerate.nff"), {0, 2}});

@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <ostream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -37,13 +36,7 @@ constexpr std::uint64_t kAddressSpace = std::uint64_t{8} << 30;
 /// reported, and counts as a failure: a value inside the bounds must not hang the program.
 constexpr double kTimeoutS = 120.0;
 
-struct MachineInfo {
-  std::string name;
-  std::string sample_scene;  ///< the machine's own (`rtsim describe` builds it on this)
-};
-
-/// gtest's name for a case in its output: the machine's.
-void PrintTo(const MachineInfo& m, std::ostream* os) { *os << m.name; }
+using rtsim::test::MachineInfo;
 
 /// The scene a machine's bounds are tried on: its sample scene, but for wang-bezier, whose
 /// sample scene has no patches to keep its pipeline busy.
@@ -83,14 +76,6 @@ std::vector<Setting> bound_settings(const nlohmann::json& params) {
       add(max.empty() ? open_upper_bound(kind) : max);
     }
   }
-  return out;
-}
-
-std::vector<MachineInfo> machines() {
-  const auto r = rtsim::test::run_rtsim("list machines --format json");
-  std::vector<MachineInfo> out;
-  for (const auto& m : nlohmann::json::parse(r.output, nullptr, false))
-    out.push_back({m.value("name", std::string()), m.value("sample_scene", std::string())});
   return out;
 }
 
@@ -162,7 +147,8 @@ TEST_P(ParamBounds, EveryParameterAtItsBoundsRunsOrIsRefusedWithinTwoGiB) {
   fs::remove_all(dir);
 }
 
-INSTANTIATE_TEST_SUITE_P(Machines, ParamBounds, testing::ValuesIn(machines()),
+INSTANTIATE_TEST_SUITE_P(Machines, ParamBounds,
+                         testing::ValuesIn(rtsim::test::registered_machines()),
                          [](const testing::TestParamInfo<MachineInfo>& i) {
                            return rtsim::test::gtest_param_name(i.param.name);
                          });

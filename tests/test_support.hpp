@@ -43,6 +43,24 @@ inline CommandResult run_rtsim(const std::string& args) {
   return run_shell(std::string(RTSIM_BINARY) + " " + args);
 }
 
+/// A machine the binary registers, as `rtsim list machines --format json` gives it.
+struct MachineInfo {
+  std::string name;
+  std::string sample_scene;  ///< the machine's own (`rtsim describe` builds it on this)
+};
+
+/// gtest's name for a parameter in its output: the machine's.
+inline void PrintTo(const MachineInfo& m, std::ostream* os) { *os << m.name; }
+
+/// Every machine the binary registers, so a test covers a new machine with no edit.
+inline std::vector<MachineInfo> registered_machines() {
+  const auto r = run_rtsim("list machines --format json");
+  std::vector<MachineInfo> out;
+  for (const auto& m : nlohmann::json::parse(r.output, nullptr, false))
+    out.push_back({m.value("name", std::string()), m.value("sample_scene", std::string())});
+  return out;
+}
+
 inline std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream ss;
