@@ -33,6 +33,7 @@
 #include "common/spawn_logged.hpp"
 #include "modules/wiring.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace rtsim::app {
 

@@ -13,6 +13,7 @@
 #include "common/seed_citation.hpp"
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::app {
@@ -36,7 +37,9 @@ void list_machines(const std::string& format) {
     for (const platform::Machine* m : platform::machines())
       all.push_back({{"name", m->name()},
                      {"description", m->description()},
-                     {"sample_scene", m->sample_scene()}});
+                     {"sample_scene", m->sample_scene()},
+                     {"test_runs", m->info().test_runs},
+                     {"benchmark_runs", m->info().benchmark_runs}});
     std::cout << all.dump(2) << "\n";
     return;
   }

@@ -14,6 +14,7 @@
 #include "app/stats_json.hpp"
 #include "platform/functional/functional_renderer.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "platform/machines/machine_support.hpp"
 
 namespace rtsim::app {

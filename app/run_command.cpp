@@ -20,6 +20,7 @@
 #include "app/trace_options.hpp"
 #include "common/input_error.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "platform/machines/frame_sample.hpp"
 #include "platform/runs/run_request.hpp"
 

@@ -18,6 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace rtsim::app {
 

@@ -17,7 +17,7 @@
 #include "app/progress_bar.hpp"
 #include "common/seed_citation.hpp"
 #include "platform/runs/run_queue.hpp"
-#include "platform/validation/all_figures.hpp"
+#include "platform/validation/figure_registry.hpp"
 #include "platform/validation/validation.hpp"
 
 namespace rtsim::app {

@@ -17,39 +17,37 @@ Writes OUT/pareto.json (every run) and prints the Markdown table of docs/pareto.
 import argparse
 import json
 import os
+import shlex
 import statistics
 import subprocess
 import sys
 import tempfile
 
 SIZE = 128
-# Three scenes a machine can hold (wang-bezier holds Bezier patches only: the teapot at three
-# sizes of frame instead).
-MACHINES = {
-    "vax-750": ["builtin:default", "builtin:ullner-cubes", "builtin:npp-412"],
-    "ullner-peripheral": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
-                          "builtin:ullner-sheets-1000"],
-    "ullner-pipeline": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
-                        "builtin:ullner-sheets-1000"],
-    "ullner-array": ["builtin:ullner-cubes", "builtin:ullner-random-1000",
-                     "builtin:ullner-sheets-1000"],
-    "gaudet-pert": ["builtin:npp-412", "builtin:npp-208", "builtin:default"],
-    "wang-bezier": ["builtin:teapot@64", "builtin:teapot@96", "builtin:teapot@128"],
-    "pxpl5-raytrace": ["builtin:default", "builtin:spd-teapot", "builtin:npp-412"],
-}
-# pxpl5-raytrace's windows are the regions its master hands out: lattice rows (128 of them) rather
-# than the default 64 x 64 squares, of which a 128 x 128 frame has 4.
-EXTRA = {"gaudet-pert": ["-p", "pert_count=8"], "pxpl5-raytrace": ["-p", "assign.scheme=rows"]}
+# Each machine's three runs are its registration's benchmark_runs (`rtsim list machines --format
+# json`): a scene and parameters, and a size where it is not SIZE x SIZE (wang-bezier holds
+# Bezier patches only: the teapot at three frame sizes).
 QUANTA = ["10 us", "1 ms"]
 SAMPLES = [2, 4, 8, 16]
 
 
-def run(rtsim, machine, scene, extra, out):
-    size = SIZE
-    if "@" in scene:
-        scene, size = scene.split("@")[0], int(scene.split("@")[1])
-    cmd = [rtsim, "run", "--machine", machine, "--scene", scene, "--width", str(size),
-           "--height", str(size), *EXTRA.get(machine, []), *extra, "-q", "--out", out]
+def registered_runs(rtsim):
+    """{machine: [argument lists]} from the binary's registrations."""
+    out = subprocess.run([rtsim, "list", "machines", "--format", "json"], capture_output=True,
+                         text=True, check=True).stdout
+    return {m["name"]: [shlex.split(r) for r in m.get("benchmark_runs", [])]
+            for m in json.loads(out)}
+
+
+def label(args):
+    """The scene a run's arguments name, with its size if it sets one ("builtin:teapot@64")."""
+    scene = args[args.index("--scene") + 1] if "--scene" in args else "?"
+    return scene + (f"@{args[args.index('--width') + 1]}" if "--width" in args else "")
+
+
+def run(rtsim, machine, args, extra, out):
+    size = [] if "--width" in args else ["--width", str(SIZE), "--height", str(SIZE)]
+    cmd = [rtsim, "run", "--machine", machine, *args, *size, *extra, "-q", "--out", out]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         return None
@@ -81,7 +79,7 @@ def main(argv):
     ap.add_argument("--rtsim", default="build/rtsim")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default="out/pareto")
-    ap.add_argument("--machines", nargs="*", default=list(MACHINES))
+    ap.add_argument("--machines", nargs="*", help="default: every machine the binary registers")
     ap.add_argument("--merge", metavar="PARETO_JSON",
                     help="an earlier run's pareto.json: its rows of the machines not run now "
                          "are kept, so one machine can be measured again")
@@ -91,12 +89,18 @@ def main(argv):
     settings = [("reference", [])] + [(f"quantum {q}", ["--quantum", q]) for q in QUANTA] + [
         (f"sample {k}", ["--sample", str(k)]) for k in SAMPLES] + [
         ("sample-error 1%", ["--sample-error", "1%"])]
+    runs_of = registered_runs(a.rtsim)
+    unknown = [m for m in (a.machines or []) if m not in runs_of]
+    if unknown:
+        ap.error(f"unknown machine(s) {', '.join(unknown)}; the binary has {', '.join(runs_of)}")
+    machines = a.machines or list(runs_of)
     with tempfile.TemporaryDirectory() as tmp:
-        for machine in a.machines:
-            for scene in MACHINES[machine]:
+        for machine in machines:
+            for args in runs_of[machine]:
+                scene = label(args)
                 ref = None
                 for name, extra in settings:
-                    runs = [run(a.rtsim, machine, scene, extra, os.path.join(tmp, "r"))
+                    runs = [run(a.rtsim, machine, args, extra, os.path.join(tmp, "r"))
                             for _ in range(a.repeat)]
                     runs = [s for s in runs if s]
                     if not runs:
@@ -122,9 +126,10 @@ def main(argv):
                           file=sys.stderr)
     if a.merge:
         with open(a.merge) as f:
-            earlier = [r for r in json.load(f) if r["machine"] not in a.machines]
-        order = list(MACHINES)
-        rows = sorted(earlier + rows, key=lambda r: order.index(r["machine"]))
+            earlier = [r for r in json.load(f) if r["machine"] not in machines]
+        order = list(runs_of)
+        rows = sorted(earlier + rows, key=lambda r: order.index(r["machine"])
+                      if r["machine"] in order else len(order))
     with open(os.path.join(a.out, "pareto.json"), "w") as f:
         json.dump(rows, f, indent=1)
     print_targets(rows)

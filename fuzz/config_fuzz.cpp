@@ -16,6 +16,7 @@
 #include "common/input_error.hpp"
 #include "params/registry.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace {
 

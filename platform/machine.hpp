@@ -78,16 +78,29 @@ struct RunResult {
   nlohmann::ordered_json stats;    ///< machine-specific keys merged into stats.json
 };
 
+/// What a machine's registration says of it (RegisterMachine, platform/machine_registry.hpp):
+/// how it is listed, and what the generic tests and the benchmarks run it on.
+struct MachineInfo {
+  std::string name;         ///< `--machine NAME`
+  std::string description;  ///< one line, citing its seed ("seed 004")
+  /// A small scene it can hold, which `rtsim describe` builds the module tree for.
+  std::string sample_scene;
+  /// The runs the generic tests make of it: a scene and parameters, no size, no output
+  /// (`--scene builtin:ullner-cubes -p array.rows=4`). The first is its small run, which every
+  /// generic test uses; the others vary its structure and trace agreement runs them too.
+  std::vector<std::string> test_runs;
+  /// The runs bench/pareto.py times it on, in the same form (three scenes it holds).
+  std::vector<std::string> benchmark_runs;
+};
+
 class Machine {
  public:
+  explicit Machine(MachineInfo info) : info_(std::move(info)) {}
   virtual ~Machine() = default;
-  virtual std::string name() const = 0;
-  virtual std::string description() const = 0;
-  /// A small scene it can hold, which `rtsim describe` builds the module tree for.
-  virtual std::string sample_scene() const = 0;
-  /// Declares every parameter the machine reads (with defaults citing the seed) in `registry`,
-  /// and no other: the render parameters its twin reads and `quantum` through
-  /// declare_common_params. What is not declared cannot be set (declare_params_of).
+  const MachineInfo& info() const { return info_; }
+  const std::string& name() const { return info_.name; }
+  const std::string& description() const { return info_.description; }
+  const std::string& sample_scene() const { return info_.sample_scene; }
   virtual void declare_params(params::ParamRegistry& registry) const = 0;
   /// Converts the scene as the machine would store it; throws InputError for scenes the
   /// machine cannot hold (with what and why).
@@ -111,12 +124,10 @@ class Machine {
   /// SystemC allows one simulation per process: call at most once.
   virtual RunResult run(scenes::Scene& scene, FunctionalTwin& twin,
                         const params::ParamRegistry& registry, const RunOptions& opts) const = 0;
-};
 
-/// All machines, by name.
-const std::vector<const Machine*>& machines();
-/// The machine called `name`, or InputError naming the closest ones.
-const Machine& find_machine(const std::string& name);
+ private:
+  MachineInfo info_;
+};
 
 /// Declares `quantum` (global TLM quantum) and the render/shade parameters of `use`: those the
 /// machine's functional twin reads.

@@ -3,7 +3,7 @@
 // The functional renderer tests the kernels of its own geometry. A machine whose search runs on
 // the functional structures but whose kernels read their operands out of the machine's memories
 // supplies its own test, so that its answers come from the words its transactions carried
-// (Ullner's peripheral: platform/machines/ullner/parameter_memory_test.hpp).
+// (Ullner's peripheral: platform/machines/ullner_peripheral/parameter_memory_test.hpp).
 #include <cstdint>
 
 #include "firmware/hit.hpp"

@@ -7,6 +7,7 @@
 #include "common/input_error.hpp"
 #include "params/registry.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::sweep {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "params/units.hpp"
+#include "platform/validation/figure_registry.hpp"
 #include "platform/validation/ullner_figures.hpp"
 
 namespace rtsim::validation {
@@ -48,6 +49,7 @@ double imbalance(const RunResults& r, const std::string& key) {
 
 }  // namespace
 
+namespace {
 void add_array_figures(Plan& plan, const PlanOptions& options) {
   const int side = options.quick ? 32 : 64;
   const std::string size = std::to_string(side) + "x" + std::to_string(side);
@@ -176,5 +178,9 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kArrayMachine, add_array_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

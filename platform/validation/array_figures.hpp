@@ -11,7 +11,4 @@ namespace rtsim::validation {
 /// Machine name of the array in `rtsim run`.
 inline constexpr const char* kArrayMachine = "ullner-array";
 
-/// Adds the array's figures (ids V17-V19) and their runs to the plan.
-void add_array_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "platform/validation/figure_registry.hpp"
+
 namespace rtsim::validation {
 namespace {
 
@@ -109,6 +111,7 @@ std::vector<int> gaudet_pert_counts(bool quick) {
   return {1, 2, 4, 8, 16, 32, 64};
 }
 
+namespace {
 void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
   const bool quick = options.quick;
   const int side = quick ? kSideQuick : kSideFull;
@@ -593,5 +596,9 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kGaudetMachine, add_gaudet_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

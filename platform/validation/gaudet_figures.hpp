@@ -13,6 +13,4 @@ inline constexpr const char* kGaudetMachine = "gaudet-pert";
 /// PERT counts of the speed-up curves.
 std::vector<int> gaudet_pert_counts(bool quick);
 
-void add_gaudet_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

@@ -4,6 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include "platform/validation/figure_registry.hpp"
+
 namespace rtsim::validation {
 
 namespace {
@@ -74,6 +76,7 @@ Measured frame_at_512(const ChainRun& c, int side) {
 
 }  // namespace
 
+namespace {
 void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
   const bool quick = options.quick;
   const int small = quick ? 24 : 48;
@@ -250,5 +253,9 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kPipelineMachine, add_pipeline_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

@@ -10,7 +10,4 @@ namespace rtsim::validation {
 /// Machine name of the pipeline in `rtsim run`.
 inline constexpr const char* kPipelineMachine = "ullner-pipeline";
 
-/// Adds the pipeline's figures (ids V12-V16) and their runs to the plan.
-void add_pipeline_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

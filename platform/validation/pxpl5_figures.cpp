@@ -4,6 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include "platform/validation/figure_registry.hpp"
+
 namespace rtsim::validation {
 
 namespace {
@@ -38,6 +40,7 @@ double frame_s(const RunResults& r, const std::string& key) {
 
 }  // namespace
 
+namespace {
 void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
   // The runs take about a second each at full size, so quick mode runs them as they are.
   const std::string vol2 =
@@ -228,5 +231,9 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kPxpl5Machine, add_pxpl5_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

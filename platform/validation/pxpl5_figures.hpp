@@ -10,7 +10,4 @@ namespace rtsim::validation {
 
 inline constexpr const char* kPxpl5Machine = "pxpl5-raytrace";
 
-/// Adds the figures X1-X5 and their runs to the plan.
-void add_pxpl5_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "params/units.hpp"
+#include "platform/validation/figure_registry.hpp"
 
 namespace rtsim::validation {
 
@@ -179,6 +180,7 @@ std::vector<CurvePoint> fig2_18_model_curve(const std::vector<int>& n_s,
   return c;
 }
 
+namespace {
 void add_ullner_figures(Plan& plan, const PlanOptions& options) {
   const bool quick = options.quick;
   const int side = quick ? kUllnerQuickSide : kUllnerFrameSide;
@@ -746,5 +748,9 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kUllnerMachine, add_ullner_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

@@ -40,8 +40,4 @@ std::vector<CurvePoint> fig2_18_model_curve(const std::vector<int>& n_s,
                                             const accel::UllnerGridModel& model = {},
                                             double n_p = kUllnerPolygons);
 
-/// Adds the peripheral's figures and runs (ids V1, V2a-d, V4, V5, V8a-f, V9a-c, V10, V11, G1)
-/// and the artifact fig2-18.csv to the plan.
-void add_ullner_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "platform/validation/figure_registry.hpp"
+
 namespace rtsim::validation {
 
 namespace {
@@ -78,6 +80,7 @@ double gaudet_fig1_4_rays() {
   return r0 * (std::pow(n, depth) - 1.0) / (n - 1.0) * (1.0 + lights);
 }
 
+namespace {
 void add_vax_figures(Plan& plan, const PlanOptions& options) {
   const bool quick = options.quick;
   const int dw = quick ? kDefaultWidthQuick : kDefaultWidthFull;
@@ -201,5 +204,9 @@ void add_vax_figures(Plan& plan, const PlanOptions& options) {
           },
   });
 }
+
+const RegisterFigures kRegistered(kVaxMachine, add_vax_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

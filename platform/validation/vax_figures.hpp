@@ -17,7 +17,4 @@ inline constexpr double kVaxRayTime = 710e-6;           ///< T_s
 inline constexpr double kGaudetFig14Objects = 1093;
 double gaudet_fig1_4_rays();
 
-/// Adds the baseline's figures (ids VAX1-VAX5) and their runs to the plan.
-void add_vax_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

@@ -4,6 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include "platform/validation/figure_registry.hpp"
+
 namespace rtsim::validation {
 
 namespace {
@@ -35,6 +37,7 @@ Figure figure(std::string id, std::string title, std::string seed_ref, std::stri
 
 }  // namespace
 
+namespace {
 void add_wang_figures(Plan& plan, const PlanOptions& options) {
   // The pipeline's timing does not depend on the frame: a small one does in both modes.
   const int side = options.quick ? 8 : 16;
@@ -107,5 +110,9 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
                                 Tolerance::relative(0.01, "1 / (3081 x 6 ns) = 5.41e4"), workload,
                                 soft, "wang.throughput_rpi_per_s", 1.0));
 }
+
+const RegisterFigures kRegistered(kWangMachine, add_wang_figures);
+
+}  // namespace
 
 }  // namespace rtsim::validation

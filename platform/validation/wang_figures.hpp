@@ -8,7 +8,4 @@ namespace rtsim::validation {
 
 inline constexpr const char* kWangMachine = "wang-bezier";
 
-/// Adds the figures W1-W3 and their runs to the plan.
-void add_wang_figures(Plan& plan, const PlanOptions& options);
-
 }  // namespace rtsim::validation

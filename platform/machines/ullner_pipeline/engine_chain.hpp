@@ -31,7 +31,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
 #include "platform/functional/scene_geometry.hpp"
-#include "platform/machines/ullner/messages.hpp"
+#include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
 #include "platform/machines/ullner_pipeline/polygon_load.hpp"
 

@@ -7,7 +7,7 @@
 //    its answer;
 //  * it computes the lighting itself: the pipeline "has no provision for assisting with the
 //    lighting model computations" (L715).
-#include "platform/machines/ullner/host.hpp"
+#include "platform/machines/ullner_peripheral/host.hpp"
 #include "platform/machines/ullner_pipeline/polygon_load.hpp"
 
 namespace rtsim::platform::ullner_pipeline {

@@ -1,0 +1,374 @@
+#include "platform/machines/gaudet_pert/broadcast_processor.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "common/input_error.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/wiring.hpp"
+
+namespace rtsim::platform::gaudet {
+
+void BroadcastProcessor::declare_params(const modules::ParamDecls& bus) {
+  bus.time("id_time", "1000 ns",
+           "Broadcast Processor: time to broadcast an ID and sample the hit line", "seed 001 L959");
+  bus.time("packet_overhead", "800 ns", "Broadcast Processor: overhead of sending a packet",
+           "seed 001 L960");
+  bus.time("word_time", "400 ns", "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
+           "seed 001 L883, L961");
+  bus.time("loop_reset", "400 ns",
+           "Broadcast Processor: time to reset the loop at the end of the ID list",
+           "seed 001 L962");
+}
+
+BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
+                                       const modules::ModuleParams& params,
+                                       std::size_t memory_words, sc_core::sc_time load_word_time,
+                                       bool adaptive)
+    : sc_core::sc_module(name),
+      // The BP streams its memory (L875): the loop's timings already include the reads, so a
+      // read costs no extra time here.
+      memory("memory", memory_words, 1, load_word_time, sc_core::SC_ZERO_TIME),
+      timing_{.id_slot = params.get_time("id_time"),
+              .packet_overhead = params.get_time("packet_overhead"),
+              .word_time = params.get_time("word_time"),
+              .loop_reset = params.get_time("loop_reset")},
+      adaptive_(adaptive) {
+  // A pass through the ID list that sends nothing must take time, or the loop never gets past
+  // a moment (it ran for ever before this check).
+  const bool sends_take_time =
+      timing_.packet_overhead > sc_core::SC_ZERO_TIME || timing_.word_time > sc_core::SC_ZERO_TIME;
+  if (timing_.id_slot == sc_core::SC_ZERO_TIME && timing_.loop_reset == sc_core::SC_ZERO_TIME &&
+      (adaptive_ || !sends_take_time)) {
+    std::string names = params.path();
+    names += ".id_time and ";
+    names += params.path();
+    names += ".loop_reset";
+    throw InputError(
+        names, 0,
+        "both are 0 s: a cycle through the ID list with nothing to send would take no "
+        "time, and the Broadcast Processor would never get past its first moment; give "
+        "either a time (defaults 1000 ns and 400 ns, seed 001 L959 and L962)");
+  }
+  SC_THREAD(run);
+}
+
+void BroadcastProcessor::attach(BusInterface& bic) {
+  modules::connect(name(), bic.name(), "broadcast");
+  bic.bus_ = this;
+  bics_.push_back(&bic);
+}
+
+void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
+                               std::uint32_t entry_words) {
+  // Read the ID list the control processor loaded: {ID, address, size} per entry (L877).
+  const auto& mem = memory.contents();
+  slots_.clear();
+  for (std::size_t i = 0; i < ids; ++i) {
+    const std::size_t at = i * entry_words;
+    slots_.push_back(Slot{mem.at(at), mem.at(at + 2), mem.at(at + 1)});
+  }
+  // Keys for the listed IDs. The control processor numbers packets from 0, so a table by ID
+  // holds them; an ID far beyond the list's length (only a corrupted word) goes in a map.
+  constexpr std::size_t kDenseIdsPerSlot = 4;
+  key_by_id_.assign(
+      std::min<std::size_t>(kDenseIdsPerSlot * slots_.size() + 1024, std::size_t{0xFFFFFFFFu}),
+      kUnlisted);
+  key_by_large_id_.clear();
+  id_of_key_.clear();
+  positions_.clear();
+  demand_.clear();
+  demanded_.clear();
+  total_demand_ = 0;
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    const std::uint32_t id = slots_[i].id;
+    std::uint32_t key = key_of(id);
+    if (key == kUnlisted) {
+      key = static_cast<std::uint32_t>(id_of_key_.size());
+      if (id < key_by_id_.size())
+        key_by_id_[id] = key;
+      else
+        key_by_large_id_.emplace(id, key);
+      id_of_key_.push_back(id);
+      positions_.emplace_back();
+    }
+    positions_[key].push_back(static_cast<std::uint32_t>(i));
+  }
+  demand_.assign(id_of_key_.size(), 0);
+  idle_cycle_packets_ = idle_cycle_words_ = 0;
+  offset_.assign(1, sc_core::SC_ZERO_TIME);
+  for (const Slot& s : slots_) {
+    sc_core::sc_time next = offset_.back() + timing_.id_slot;
+    if (!adaptive_) {
+      next += packet_time(s);
+      ++idle_cycle_packets_;
+      idle_cycle_words_ += s.words;
+    }
+    offset_.push_back(next);
+  }
+  idle_cycle_ = offset_.back() + timing_.loop_reset;
+  cursor_ = Cursor{0, t};
+  start_.notify(t > sc_core::sc_time_stamp() ? t - sc_core::sc_time_stamp()
+                                             : sc_core::SC_ZERO_TIME);
+}
+
+sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
+  return modules::times(timing_.id_slot, slots_.size()) + timing_.loop_reset;
+}
+
+void BroadcastProcessor::demand(std::uint32_t id, int delta) {
+  // An ID the ID list does not hold (only with a corrupted memory) is never broadcast: its
+  // requester waits for ever, and the loop must not spin through cycles looking for it.
+  const std::uint32_t key = key_of(id);
+  if (key == kUnlisted) return;
+  const bool was = demand_[key] > 0;
+  demand_[key] += delta;
+  total_demand_ += delta;
+  const bool is = demand_[key] > 0;
+  if (is && !was) demanded_.push_back(key);
+  if (was && !is) {
+    const auto at = std::find(demanded_.begin(), demanded_.end(), key);
+    *at = demanded_.back();
+    demanded_.pop_back();
+  }
+}
+
+sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
+  return timing_.packet_overhead + modules::times(timing_.word_time, s.words);
+}
+
+void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
+  const Slot& s = slots_[c.pos];
+  c.t += timing_.id_slot;
+  if (account) {
+    ++stats_.ids;
+    if (sent) {
+      ++stats_.packets;
+      stats_.packet_words += s.words;
+      stats_.packet_time += packet_time(s);
+      timeline_.add(c.t, packet_time(s));
+    }
+  }
+  if (sent) c.t += packet_time(s);
+  if (++c.pos == slots_.size()) {
+    c.pos = 0;
+    c.t += timing_.loop_reset;
+    if (account) ++stats_.cycles;
+  }
+}
+
+BroadcastProcessor::Cursor BroadcastProcessor::after(const Cursor& c, std::size_t d) const {
+  const std::size_t n = slots_.size();
+  if (c.pos + d < n) return Cursor{c.pos + d, c.t + (offset_[c.pos + d] - offset_[c.pos])};
+  return Cursor{c.pos + d - n, c.t + (idle_cycle_ - offset_[c.pos]) + offset_[c.pos + d - n]};
+}
+
+std::size_t BroadcastProcessor::next_wanted() {
+  // The first slot in the loop's order from the cursor whose ID is wanted by its time: the
+  // demanded IDs' slots, nearest first (the slots' times grow with their distance), until one
+  // is wanted by then (a register valid before its strobe).
+  const std::size_t n = slots_.size();
+  candidates_.clear();
+  for (const std::uint32_t key : demanded_)
+    for (const std::uint32_t p : positions_[key])
+      candidates_.emplace_back((p + n - cursor_.pos) % n, key);
+  std::sort(candidates_.begin(), candidates_.end());
+  for (const auto& [d, key] : candidates_)
+    if (wanted(key, after(cursor_, d).t)) return d;
+  return n;
+}
+
+void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
+  if (adaptive_) {
+    // Nothing is sent on the way: only IDs and cycles to count, so the slots' starts are
+    // worked out, not passed one by one.
+    if (cursor_.t >= t) return;
+    const std::size_t n = slots_.size();
+    const sc_core::sc_time cycle_start = cursor_.t - offset_[cursor_.pos];
+    // The first slot starting at or after t, counted in slots from this cycle's slot 0.
+    const std::uint64_t into = (t - cycle_start).value();
+    std::uint64_t cycles = into / idle_cycle_.value();
+    const sc_core::sc_time rest = sc_core::sc_time::from_value(into % idle_cycle_.value());
+    std::size_t k = static_cast<std::size_t>(
+        std::lower_bound(offset_.begin(), offset_.begin() + static_cast<std::ptrdiff_t>(n), rest) -
+        offset_.begin());
+    if (k == n) {  // past the last slot's start: slot 0 of the next cycle
+      k = 0;
+      ++cycles;
+    }
+    stats_.ids += cycles * n + k - cursor_.pos;
+    stats_.cycles += cycles;
+    cursor_.pos = k;
+    cursor_.t = cycle_start + modules::times(idle_cycle_, cycles) + offset_[k];
+    return;
+  }
+  // Slot by slot to the start of a cycle, whole idle cycles at once (each the same length),
+  // then slot by slot.
+  while (cursor_.t < t && cursor_.pos != 0) pass(cursor_, !adaptive_, true);
+  if (cursor_.t < t && idle_cycle_ > sc_core::SC_ZERO_TIME) {
+    const std::uint64_t k = (t - cursor_.t).value() / idle_cycle_.value();
+    // Non-adaptive idle cycles still send every packet: one interval a cycle is exact enough
+    // for utilisation windows (a window spans many cycles).
+    const sc_core::sc_time sent_per_cycle = idle_cycle_ - minimum_cycle();
+    if (sent_per_cycle > sc_core::SC_ZERO_TIME)
+      for (std::uint64_t i = 0; i < k; ++i)
+        timeline_.add(cursor_.t + modules::times(idle_cycle_, i), sent_per_cycle);
+    cursor_.t += modules::times(idle_cycle_, k);
+    stats_.cycles += k;
+    stats_.ids += k * slots_.size();
+    stats_.packets += k * idle_cycle_packets_;
+    stats_.packet_words += k * idle_cycle_words_;
+    stats_.packet_time += modules::times(idle_cycle_ - minimum_cycle(), k);
+  }
+  while (cursor_.t < t) pass(cursor_, !adaptive_, true);
+}
+
+bool BroadcastProcessor::wanted(std::uint32_t key, const sc_core::sc_time& t) const {
+  if (demand_[key] <= 0) return false;
+  const std::uint32_t id = id_of_key_[key];
+  return std::any_of(bics_.begin(), bics_.end(),
+                     [&](const BusInterface* b) { return b->requested(id, t); });
+}
+
+std::optional<sc_core::sc_time> BroadcastProcessor::first_request_time() const {
+  std::optional<sc_core::sc_time> first;
+  for (const BusInterface* b : bics_)
+    for (const auto& r : b->registers_)
+      if (r.valid && (!first || r.from < *first))
+        if (const std::uint32_t key = key_of(r.id); key != kUnlisted && demand_[key] > 0)
+          first = r.from;
+  return first;
+}
+
+bool BroadcastProcessor::every_strobe_misses(const sc_core::sc_time& t) const {
+  for (const BusInterface* b : bics_) {
+    if (b->free_buffer(t) < 0) continue;
+    for (const auto& r : b->registers_)
+      if (r.valid && r.from < t)
+        if (const std::uint32_t key = key_of(r.id); key != kUnlisted && demand_[key] > 0)
+          return false;  // it would capture its packet
+  }
+  return true;
+}
+
+std::optional<sc_core::sc_time> BroadcastProcessor::next_change(const sc_core::sc_time& t) const {
+  std::optional<sc_core::sc_time> first;
+  const auto consider = [&first](const sc_core::sc_time& at) {
+    if (!first || at < *first) first = at;
+  };
+  for (const BusInterface* b : bics_) {
+    for (const auto& buffer : b->buffers_)
+      if (buffer.state == BusInterface::BufferState::kFree && buffer.at >= t) consider(buffer.at);
+    for (const auto& r : b->registers_)
+      if (r.valid && r.from >= t) consider(r.from);
+  }
+  return first;
+}
+
+void BroadcastProcessor::plan_missed_strobes() {
+  miss_plan_.clear();
+  for (const std::uint32_t key : demanded_) {
+    std::vector<BusInterface*> requesters;
+    for (BusInterface* b : bics_)
+      if (b->requested(id_of_key_[key], cursor_.t)) requesters.push_back(b);
+    if (!requesters.empty()) miss_plan_.emplace_back(key, std::move(requesters));
+  }
+}
+
+void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
+  // The slots' starts repeat every idle cycle (nothing is captured, so nothing is sent but what
+  // the mode sends anyway): each planned ID's slots are strobed once a cycle, each strobe a miss
+  // in every BIC that requests the ID.
+  const std::size_t n = slots_.size();
+  const std::uint64_t cycle = idle_cycle_.value();
+  for (const auto& [key, requesters] : miss_plan_)
+    for (const std::uint32_t p : positions_[key]) {
+      const sc_core::sc_time first = after(cursor_, (p + n - cursor_.pos) % n).t;
+      if (first >= end) continue;
+      const std::uint64_t strobes = (end - first).value() / cycle +
+                                    ((end - first).value() % cycle != 0 ? 1 : 0);
+      for (BusInterface* b : requesters) b->missed_ += strobes;
+    }
+}
+
+void BroadcastProcessor::run() {
+  sc_core::wait(start_);
+  if (slots_.empty()) return;
+  for (;;) {
+    if (total_demand_ <= 0) {
+      sc_core::wait(wake_);
+      skip_to(sc_core::sc_time_stamp());
+      continue;
+    }
+    // The next slot whose ID some BIC holds in a register valid by then (at most one cycle
+    // ahead). A register is valid from its processor's local time, which may lie ahead of
+    // simulated time (a quantum > 0): a strobe before then could not match it.
+    const std::size_t n = next_wanted();
+    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    if (n == slots_.size()) {
+      // Every request is valid only from beyond this cycle: sleep until the first of them (or
+      // a new request), instead of strobing a cycle of slots no comparator can match yet.
+      const auto first = first_request_time();
+      sc_core::wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
+      skip_to(sc_core::sc_time_stamp());
+      continue;
+    }
+    const Cursor c = after(cursor_, n);
+    if (c.t > now) {
+      sc_core::wait(c.t - now, wake_);
+      // Woken early by a new request or a freed buffer: nothing was wanted before now.
+      if (sc_core::sc_time_stamp() < c.t) {
+        skip_to(sc_core::sc_time_stamp());
+        continue;
+      }
+    }
+    skip_to(c.t);  // to the wanted slot, counting the ones before it
+    // The sync strobe: every BIC compares the ID with its registers (L920).
+    const Slot& s = slots_[cursor_.pos];
+    const sc_core::sc_time strobe = cursor_.t;
+    hitters_.clear();
+    for (BusInterface* b : bics_)
+      if (b->hit(s.id, strobe)) hitters_.push_back(b);
+    const bool sent = !hitters_.empty() || !adaptive_;
+    if (!hitters_.empty()) {
+      const sc_core::sc_time start = strobe + timing_.id_slot;
+      const sc_core::sc_time arrival = start + packet_time(s);
+      // The packet's words as the memory holds them (an entry pointing past the end sends
+      // what there is).
+      const std::span<const std::uint32_t> mem(memory.contents());
+      const std::size_t first = std::min<std::size_t>(s.address, mem.size());
+      const auto words = mem.subspan(first, std::min<std::size_t>(s.words, mem.size() - first));
+      for (BusInterface* b : hitters_)
+        b->capture(s.id, start, arrival, start + timing_.packet_overhead, timing_.word_time, words);
+      ++stats_.hit_packets;
+      stats_.captures += hitters_.size();
+      stats_.hit_packet_time += packet_time(s);
+      if (on_packet) on_packet(s.id, start, packet_time(s), hitters_.size());
+    }
+    pass(cursor_, sent, true);
+    // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
+    if (cursor_.t > sc_core::sc_time_stamp()) sc_core::wait(cursor_.t - sc_core::sc_time_stamp());
+    // A wanted ID missed: every BIC that wants one may be full until its processor frees a
+    // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
+    // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a
+    // simulated second). Sleep until a wake or the next change the BICs already hold, and
+    // count the strobes slept through as the misses they were.
+    if (hitters_.empty()) {
+      const sc_core::sc_time now = sc_core::sc_time_stamp();
+      if (total_demand_ > 0 && every_strobe_misses(now)) {
+        const auto change = next_change(now);
+        if (!change || *change > now) {
+          plan_missed_strobes();
+          if (change)
+            sc_core::wait(*change - now, wake_);
+          else
+            sc_core::wait(wake_);
+          count_missed_strobes(sc_core::sc_time_stamp());
+          skip_to(sc_core::sc_time_stamp());
+        }
+      }
+    }
+  }
+}
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,168 @@
+#pragma once
+// Gaudet's Broadcast Processor and its bus (seed 001 §5.1-5.3, L814-L895): a processor with its
+// own memory module holding one data set — first the ID list ({ID, address, size} per packet),
+// then the packets in successive locations (Fig. 5-5, L877-L879) — cycling for ever through the
+// ID list and broadcasting on a 32-bit bus with a sync strobe and a wired-OR hit line.
+//
+// The Fig. 5-6 loop (L893), with the simulator's timings (L957-L962):
+//   loop0: point at the start of the ID list
+//   loop1: broadcast the next ID (sync strobe), wait for the comparators, fetch the packet's
+//          address and size                                       -> id_slot (1000 ns)
+//          if the hit line is low, skip the packet (adaptive broadcasting, §5.1.2)
+//          start the streamed read                                 -> packet_overhead (800 ns)
+//   loop2: broadcast the packet word by word                       -> word_time (400 ns) a word
+//   check: at the end of the ID list reset the loop                -> loop_reset (400 ns)
+// Non-adaptive broadcasting sends every packet every cycle, hit or not (L837, L1047).
+//
+// The broadcast order is the order of the ID list in memory, which the control processor lays
+// out (breadth-first, depth-first or random, Fig. 6-11).
+//
+// Events only where order matters (DESIGN.md): the loop runs arithmetically through IDs that no
+// Bus Interface Controller holds, and the thread wakes only for an ID some BIC asked for (or a
+// new request). The bus is cycling all the time all the same: its statistics count every ID and
+// packet the loop went through.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <systemc>
+#include <unordered_map>
+#include <vector>
+
+#include "modules/busy_timeline.hpp"
+#include "modules/memory.hpp"
+#include "modules/module_params.hpp"
+#include "platform/machines/gaudet_pert/bus_interface.hpp"
+
+namespace rtsim::platform::gaudet {
+
+/// The loop's timings, read from the bus's parameters (declare_params).
+struct BroadcastTiming {
+  sc_core::sc_time id_slot, packet_overhead, word_time, loop_reset;
+};
+
+class BroadcastProcessor : public sc_core::sc_module {
+ public:
+  /// The data set's memory module; the control processor loads it through memory.socket.
+  modules::Memory memory;
+
+  /// Its parameters, under `bus` ("broadcast": every bus; "shell_bus": one): the timings of
+  /// the loop (L957-L962).
+  static void declare_params(const modules::ParamDecls& bus);
+
+  SC_HAS_PROCESS(BroadcastProcessor);
+  /// `params`: its own (ModuleParams under its name); `load_word_time` the control processor's
+  /// download rate into its memory.
+  BroadcastProcessor(sc_core::sc_module_name name, const modules::ModuleParams& params,
+                     std::size_t memory_words, sc_core::sc_time load_word_time, bool adaptive);
+
+  /// Elaboration: a BIC listening on this bus.
+  void attach(BusInterface& bic);
+
+  /// Starts the loop at `t` (absolute) on the ID list the control processor loaded: `ids`
+  /// entries of `entry_words` words from address 0.
+  void start(const sc_core::sc_time& t, std::size_t ids, std::uint32_t entry_words);
+
+  /// Minimum cycle time (nothing sent): mct of L1068-L1079.
+  sc_core::sc_time minimum_cycle() const;
+
+  struct Stats {
+    std::uint64_t ids = 0;             ///< IDs broadcast
+    std::uint64_t cycles = 0;          ///< completed passes through the ID list
+    std::uint64_t packets = 0;         ///< packets broadcast
+    std::uint64_t packet_words = 0;    ///< their words
+    std::uint64_t hit_packets = 0;     ///< packets some BIC captured
+    std::uint64_t captures = 0;        ///< packets captured, summed over BICs
+    sc_core::sc_time packet_time;      ///< time spent sending packets (overhead + words)
+    sc_core::sc_time hit_packet_time;  ///< of which packets some BIC captured
+  };
+  const Stats& stats() const { return stats_; }
+  /// When the bus carried packet words (Stats::packet_time over time), for utilisation windows.
+  const modules::BusyTimeline& timeline() const { return timeline_; }
+  /// Called for every packet some BIC captures (traces): id, start, duration, captures.
+  std::function<void(std::uint32_t, sc_core::sc_time, sc_core::sc_time, std::size_t)> on_packet;
+
+  /// Called by the BICs.
+  void demand(std::uint32_t id, int delta);
+  void wake() { wake_.notify(sc_core::SC_ZERO_TIME); }
+
+ private:
+  struct Slot {
+    std::uint32_t id = 0;
+    std::uint32_t words = 0;
+    std::uint32_t address = 0;  ///< of the packet's first word in memory
+  };
+  struct Cursor {
+    std::size_t pos = 0;
+    sc_core::sc_time t = sc_core::SC_ZERO_TIME;  ///< when slot `pos` starts
+  };
+  void run();
+  sc_core::sc_time packet_time(const Slot& s) const;
+  /// The slot at `c` passes with its packet sent (`sent`) or skipped; `account`: count it.
+  void pass(Cursor& c, bool sent, bool account);
+  /// Moves the cursor to the first slot starting at or after `t`; no ID there is wanted.
+  void skip_to(const sc_core::sc_time& t);
+  /// The cursor `d` slots after `c` (d < the slots in the list), no packet sent but those the
+  /// mode sends anyway: the slots' starts repeat cycle after cycle (offset_).
+  Cursor after(const Cursor& c, std::size_t d) const;
+  /// The distance from the cursor to the first slot of the next cycle's worth whose ID some BIC
+  /// holds in a register valid by then; the number of slots if there is none.
+  std::size_t next_wanted();
+  /// Some BIC holds the ID of `key` in a register valid at `t`: its slot at `t` is worth a
+  /// strobe.
+  bool wanted(std::uint32_t key, const sc_core::sc_time& t) const;
+  /// The earliest time from which a register of some BIC holding a listed ID is valid.
+  std::optional<sc_core::sc_time> first_request_time() const;
+  /// Every BIC holding a demanded ID in a register valid before `t` has no buffer free before
+  /// `t`: a strobe at `t` of any wanted slot misses (no hit line, L920).
+  bool every_strobe_misses(const sc_core::sc_time& t) const;
+  /// The earliest time at or after `t` from which a strobe could see the BICs otherwise without
+  /// a wake: a buffer freed, or a register valid, from a later time (a processor's local time).
+  std::optional<sc_core::sc_time> next_change(const sc_core::sc_time& t) const;
+  /// While every strobe misses: the demanded IDs some BIC requests at the cursor, with the BICs
+  /// that request each (miss_plan_), as they are before the loop sleeps.
+  void plan_missed_strobes();
+  /// Counts, as misses in the BICs of miss_plan_, the strobes the loop would have made of their
+  /// slots from the cursor until `end` (not at it).
+  void count_missed_strobes(const sc_core::sc_time& end);
+
+  BroadcastTiming timing_;
+  bool adaptive_;
+  std::vector<BusInterface*> bics_;
+  std::vector<Slot> slots_;
+  // The IDs the ID list holds, each under a key 0, 1, ... (its first slot's order): an ID is a
+  // 32-bit word of the BP's memory, and a corrupted one may be any value, so nothing is sized
+  // by the IDs' values.
+  static constexpr std::uint32_t kUnlisted = 0xFFFFFFFFu;
+  /// The key of `id`, or kUnlisted when the ID list does not hold it.
+  std::uint32_t key_of(std::uint32_t id) const {
+    if (id < key_by_id_.size()) return key_by_id_[id];
+    const auto it = key_by_large_id_.find(id);
+    return it == key_by_large_id_.end() ? kUnlisted : it->second;
+  }
+  /// By ID, for the IDs below kDenseIdsPerSlot x slots (the IDs the control processor gives).
+  std::vector<std::uint32_t> key_by_id_;
+  std::unordered_map<std::uint32_t, std::uint32_t> key_by_large_id_;  ///< the others
+  std::vector<std::uint32_t> id_of_key_;
+  std::vector<int> demand_;  ///< by key: valid registers holding its ID, over all BICs
+  /// By key: its slots in the ID list (one, unless a corrupted memory lists an ID twice).
+  std::vector<std::vector<std::uint32_t>> positions_;
+  std::vector<std::uint32_t> demanded_;  ///< the keys whose demand_ is positive, in no order
+  std::vector<std::pair<std::size_t, std::uint32_t>>
+      candidates_;  ///< next_wanted's (distance, key)
+  std::vector<std::pair<std::uint32_t, std::vector<BusInterface*>>> miss_plan_;  ///< key, BICs
+  /// By slot: when it starts after the cycle's start, no packet sent but those the mode sends
+  /// anyway (adaptive: none; direct: every one); offset_[slots] ends the last slot.
+  std::vector<sc_core::sc_time> offset_;
+  long total_demand_ = 0;
+  sc_core::sc_time idle_cycle_ = sc_core::SC_ZERO_TIME;  ///< one cycle with nothing wanted
+  std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;
+  Cursor cursor_;
+  sc_core::sc_event start_;
+  sc_core::sc_event wake_;
+  Stats stats_;
+  modules::BusyTimeline timeline_;
+  std::vector<BusInterface*> hitters_;
+};
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,442 @@
+// gaudet-pert: Gaudet's multi-PERT machine (seed 001, Chapters 4-6). N PERTs — each a ring of
+// ShadeProcessor -> ShellProcessor -> PrimProcessor (L841) — get the three disjoint data sets
+// (shade, shell, prim) from three Broadcast Processors cycling over three broadcast buses,
+// adaptively or not, or (the baseline) hold them in their own memories. A control processor
+// preprocesses the scene, loads the broadcasters and starts the frame. See docs/machines.md.
+#include <chrono>
+#include <memory>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "firmware/shading/camera.hpp"
+#include "firmware/tasks/pert_task_costs.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/functional/scene_tracer.hpp"
+#include "platform/machine_registry.hpp"
+#include "platform/machines/gaudet_pert/control_processor.hpp"
+#include "platform/machines/gaudet_pert/data_sets.hpp"
+#include "platform/machines/gaudet_pert/expected_latency.hpp"
+#include "platform/machines/gaudet_pert/pert.hpp"
+#include "platform/machines/gaudet_pert/prim_processor.hpp"
+#include "platform/machines/gaudet_pert/ray_probe.hpp"
+#include "platform/machines/gaudet_pert/shade_processor.hpp"
+#include "platform/machines/gaudet_pert/shell_processor.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+
+namespace rtsim::platform {
+
+class GaudetPert final : public Machine {
+ public:
+  using Machine::Machine;
+  void declare_params(params::ParamRegistry& registry) const override;
+  FunctionalTwin make_twin(scenes::Scene& scene,
+                           const params::ParamRegistry& registry) const override;
+  RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
+                const RunOptions& opts) const override;
+  /// A sampled window spans every PERT: each takes every N-th scanline (L938).
+  int sample_window_rows(const params::ParamRegistry& registry) const override {
+    return static_cast<int>(registry.get_int("pert_count"));
+  }
+};
+
+using gaudet::BroadcastMode;
+using gaudet::BroadcastOrder;
+using modules::from_ps;
+using params::ParamKind;
+
+namespace {
+
+constexpr const char* kKinds[] = {"shade", "shell", "prim"};
+
+accel::RecordWords read_words(const params::ParamRegistry& r) {
+  accel::RecordWords w;
+  auto u = [&r](const char* n) { return static_cast<std::uint32_t>(r.get_int(n)); };
+  w.id_list_entry = u("data.words.id_list_entry");
+  w.shell = u("data.words.shell");
+  w.prim_header = u("data.words.prim_header");
+  w.sphere = u("data.words.sphere");
+  w.polygon_fixed = u("data.words.polygon_fixed");
+  w.polygon_per_vertex = u("data.words.polygon_vertex");
+  w.shade = u("data.words.shade");
+  return w;
+}
+
+/// Everything of one run: the modules, built in elaboration order.
+struct PertPlatform {
+  BroadcastMode mode = BroadcastMode::kAdaptive;
+  BroadcastOrder order = BroadcastOrder::kBreadth;
+  std::vector<std::unique_ptr<gaudet::BroadcastProcessor>> buses;  // shade, shell, prim
+  std::vector<std::unique_ptr<gaudet::Pert>> perts;
+  std::unique_ptr<gaudet::ControlProcessor> control;
+
+  bool broadcasting() const { return mode != BroadcastMode::kDirect; }
+};
+
+nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
+  const double rays = static_cast<double>(std::max<std::uint64_t>(t.rays, 1));
+  return {{"rays", t.rays},
+          {"processing_per_ray_s", t.processing.to_seconds() / rays},
+          {"latency_per_ray_s", t.latency.to_seconds() / rays},
+          {"pipeline_wait_per_ray_s", t.pipeline_wait.to_seconds() / rays},
+          {"starved_per_ray_s", t.starved.to_seconds() / rays},
+          {"processing_s", t.processing.to_seconds()},
+          {"latency_s", t.latency.to_seconds()},
+          {"pipeline_wait_s", t.pipeline_wait.to_seconds()},
+          {"starved_s", t.starved.to_seconds()}};
+}
+
+/// stats.json's machine keys (scene_stats, gaudet); `stats` (the registry over the frame)
+/// receives the modules.
+nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::PertDataSets& sets,
+                                    const PertPlatform& p, const sc_core::sc_time& frame,
+                                    modules::StatsRegistry& stats) {
+  nlohmann::ordered_json out;
+  gaudet::TimeSplit totals[3];
+  std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
+  std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
+  std::uint64_t rejected = 0, prim_rejected = 0, rays_with_packets = 0, backlog_peak = 0;
+  sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
+  std::uint64_t first_packet_count = 0;
+  for (const auto& pert : p.perts) {
+    const gaudet::PertProcessor* procs[] = {pert->shade.get(), pert->shell.get(), pert->prim.get()};
+    for (int k = 0; k < 3; ++k) {
+      const gaudet::TimeSplit& t = procs[k]->split();
+      totals[k] += t;
+      auto& m = stats.processor(*procs[k]);
+      m.values["rays"] = static_cast<double>(t.rays);
+      m.values["latency_s"] = t.latency.to_seconds();
+      m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
+      m.values["starved_s"] = t.starved.to_seconds();
+      // Its Bus Interface Controller's counters (none for direct memory).
+      if (const auto* bic = dynamic_cast<const gaudet::BusInterface*>(pert->ports[k].get())) {
+        auto& b = stats.module(bic->name());
+        b.values["requests"] = static_cast<double>(bic->requests());
+        b.values["packets_received"] = static_cast<double>(bic->packets_received());
+        b.values["missed_no_buffer"] = static_cast<double>(bic->missed_no_buffer());
+        b.values["register_full"] = static_cast<double>(bic->register_full());
+        b.values["registers_in_use_peak"] = static_cast<double>(bic->registers_in_use_peak());
+      }
+    }
+    const auto& sh = *pert->shell;
+    box_tests += sh.box_tests();
+    shell_packets += sh.packets_processed();
+    shell_uses += sh.packet_uses();
+    overflow_peak = std::max(overflow_peak, sh.overflow_peak());
+    leaf_shells += sh.leaf_shells();
+    over_capacity += sh.rays_over_capacity();
+    rejected += sh.records_rejected();
+    prim_rejected += pert->prim->records_rejected();
+    const auto& pr = *pert->prim;
+    prim_packets += pr.packets_processed();
+    cancelled += pr.packets_cancelled();
+    rays_with_packets += pr.rays_with_packets();
+    first_packet_total += pr.first_packet_latency_total();
+    first_packet_count += pr.first_packets();
+    backlog_peak = std::max(backlog_peak, pert->shade->backlog_peak());
+    for (const auto& q : pert->queues())
+      stats.queue(std::string(pert->name()) + "." + q.name, *q.occupancy, q.depth);
+    for (const auto& link : pert->links) stats.link(*link);
+  }
+  nlohmann::ordered_json buses = nlohmann::ordered_json::object();
+  const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
+  for (std::size_t b = 0; b < p.buses.size(); ++b) {
+    const auto& bp = *p.buses[b];
+    const auto& s = bp.stats();
+    // Bus utilisation: the share of the frame the bus carried packet words (IDs go by
+    // whether or not anyone listens).
+    auto& m = stats.busy_module(bp.name(), s.packet_time, bp.timeline());
+    m.values["ids"] = static_cast<double>(s.ids);
+    m.values["cycles"] = static_cast<double>(s.cycles);
+    m.values["packets"] = static_cast<double>(s.packets);
+    m.values["packet_words"] = static_cast<double>(s.packet_words);
+    m.values["hit_packets"] = static_cast<double>(s.hit_packets);
+    m.values["captures"] = static_cast<double>(s.captures);
+    const double hits = static_cast<double>(std::max<std::uint64_t>(s.hit_packets, 1));
+    buses[kKinds[b]] = {
+        {"packets_in_data_set", set_of[b]->order.size()},
+        {"data_set_words", set_of[b]->memory.size()},
+        {"minimum_cycle_s", bp.minimum_cycle().to_seconds()},
+        {"mean_cycle_s", s.cycles ? frame.to_seconds() / static_cast<double>(s.cycles) : 0.0},
+        {"cycles", s.cycles},
+        {"packets_broadcast", s.packets},
+        {"hit_packets", s.hit_packets},
+        {"captures", s.captures},
+        {"mean_hit_packet_time_s", s.hit_packet_time.to_seconds() / hits},
+        {"utilization",
+         frame > sc_core::SC_ZERO_TIME ? s.packet_time.to_seconds() / frame.to_seconds() : 0.0}};
+  }
+  const auto counts = tree.counts();
+  out["scene_stats"] = {{"shells", counts.shells},
+                        {"shell_packets", counts.shell_packets},
+                        {"prims", counts.prims},
+                        {"prim_packets", counts.prim_packets}};
+  nlohmann::ordered_json g;
+  g["pert_count"] = p.perts.size();
+  g["broadcast_mode"] = gaudet::mode_name(p.mode);
+  g["broadcast_order"] = gaudet::order_name(p.order);
+  g["load_time_s"] = p.control->load_time().to_seconds();
+  g["words_loaded"] = p.control->words_loaded();
+  g["shade"] = split_json(totals[0]);
+  g["shade"]["backlog_peak"] = backlog_peak;
+  g["shell"] = split_json(totals[1]);
+  const double shell_rays = static_cast<double>(std::max<std::uint64_t>(totals[1].rays, 1));
+  g["shell"]["box_tests_per_ray"] = static_cast<double>(box_tests) / shell_rays;
+  g["shell"]["packets_per_ray"] = static_cast<double>(shell_uses) / shell_rays;
+  g["shell"]["packets_caught"] = shell_packets;
+  g["shell"]["leaf_shells_per_ray"] = static_cast<double>(leaf_shells) / shell_rays;
+  g["shell"]["rays_over_list_capacity"] = over_capacity;
+  g["shell"]["overflow_peak"] = overflow_peak;
+  g["shell"]["records_rejected"] = rejected;
+  g["prim"] = split_json(totals[2]);
+  const double prim_rays = static_cast<double>(std::max<std::uint64_t>(totals[2].rays, 1));
+  g["prim"]["packets_per_ray"] = static_cast<double>(prim_packets) / prim_rays;
+  g["prim"]["packets_cancelled"] = cancelled;
+  g["prim"]["rays_with_packets"] = rays_with_packets;
+  g["prim"]["records_rejected"] = prim_rejected;
+  const double fp_mean =
+      first_packet_count ? first_packet_total.to_seconds() / static_cast<double>(first_packet_count)
+                         : 0.0;
+  g["prim"]["first_packet_latency_s"] = fp_mean;
+  if (p.broadcasting()) {
+    const auto& s = p.buses[2]->stats();
+    gaudet::EalInputs in;
+    in.n = static_cast<int>(p.perts.size());
+    in.p = static_cast<double>(prim_packets);
+    in.r = static_cast<double>(rays_with_packets);
+    in.mct_s = p.buses[2]->minimum_cycle().to_seconds();
+    in.apt_s =
+        s.hit_packets ? s.hit_packet_time.to_seconds() / static_cast<double>(s.hit_packets) : 0.0;
+    g["prim"]["eal"] = {{"n", in.n},
+                        {"p", in.p},
+                        {"r", in.r},
+                        {"P2", gaudet::eal_two_packet_probability(in)},
+                        {"mct_s", in.mct_s},
+                        {"apt_s", in.apt_s},
+                        {"eal_s", gaudet::expected_average_latency_s(in)}};
+  }
+  g["buses"] = buses;
+  out["gaudet"] = g;
+  return out;
+}
+
+}  // namespace
+
+void GaudetPert::declare_params(params::ParamRegistry& r) const {
+  // Its twin always searches Gaudet's box-shell hierarchy (render.shells.* shape it) with the
+  // triangle kernel, and holds spheres and polygons only.
+  declare_common_params(r,
+                        {.accel = false, .shells = true, .polygon_kernel = false, .bezier = false});
+  // The machine's own: how many PERTs, how the data sets reach them, the words of their
+  // records. Every module declares its own below (DESIGN.md "Configuration").
+  const modules::ParamDecls machine(r, "", /*per_instance=*/false);
+  machine.count("pert_count", "1", "1", "1024", "PERTs",
+                "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
+                "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)");
+  machine.declare(
+      {.name = "broadcast.mode",
+       .kind = ParamKind::kString,
+       .default_value = "adaptive",
+       .allowed = {"adaptive", "non-adaptive", "direct"},
+       .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
+                      "non-adaptive: every packet every cycle; direct: no broadcast, "
+                      "every processor holds its whole data set",
+       .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
+  machine.declare({.name = "broadcast.order",
+                   .kind = ParamKind::kString,
+                   .default_value = "breadth",
+                   .allowed = {"breadth", "depth", "random"},
+                   .description = "Order of the ID lists: SHELL packets breadth-first or "
+                                  "depth-first over the hierarchy, or every data set shuffled",
+                   .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
+  machine.count("broadcast.random_seed", "1985", "0", "9223372036854775807", "",
+                "Seed of the shuffle of broadcast.order = random",
+                "assumption: the thesis does not say how its random order was drawn");
+  const std::string words_src =
+      "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); "
+      "the thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
+  const modules::ParamDecls words(r, "data.words", /*per_instance=*/false);
+  words.count("id_list_entry", "3", "3", "64", "words",
+              "Words of an ID list entry {ID, address, size}", "seed 001 L877; " + words_src);
+  words.count("shell", "8", "8", "64", "words",
+              "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
+  words.count("prim_header", "3", "3", "64", "words",
+              "Words of a PRIM record's header: prim_id, surface_index, type", words_src);
+  words.count("sphere", "4", "4", "64", "words", "Words of a sphere's PTYPE: centre[3], radius",
+              words_src);
+  words.count("polygon_fixed", "1", "1", "64", "words",
+              "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
+  words.count("polygon_vertex", "3", "3", "64", "words", "Words per polygon vertex", words_src);
+  words.count("shade", "9", "9", "64", "words",
+              "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]", words_src);
+
+  // The module tree: the buses (every bus's timing set by broadcast.*, one bus's by its name),
+  // the control processor and the PERTs (pert.* sets every PERT's, pert3.* one's).
+  r.declare_family({.cls = "broadcast", .members = {"shade_bus", "shell_bus", "prim_bus"}});
+  gaudet::BroadcastProcessor::declare_params(machine.sub("broadcast"));
+  gaudet::ControlProcessor::declare_params(machine.sub("control"));
+  r.declare_family({.cls = "pert", .count_param = "pert_count"});
+  gaudet::Pert::declare_params(machine.sub("pert"));
+}
+
+FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
+  // Spheres and polygons only (§4.3.6, L634-L636).
+  std::size_t other = 0;
+  std::uint32_t first_line = 0;
+  for (const auto& p : scene.primitives) {
+    if (p.kind == scenes::PrimitiveKind::Sphere || p.kind == scenes::PrimitiveKind::Polygon)
+      continue;
+    if (other++ == 0) first_line = p.source_line;
+  }
+  if (other > 0)
+    throw InputError(scene.name, first_line,
+                     "gaudet-pert holds spheres and polygons only (seed 001 L634-L636); this "
+                     "scene has " +
+                         std::to_string(other) +
+                         " cone/patch primitive(s). Use another machine (`rtsim list machines`)");
+  auto settings = functional::read_render_settings(r);
+  settings.accel = functional::AccelKind::Shells;  // the PERT's search is Gaudet's
+  settings.polygon_kernel = functional::PolygonKernel::Triangle;
+  settings.shell_boxes_as_stored = true;  // what the ShellProcessors read out of their packets
+  settings.prims_as_stored = true;        // what the PrimProcessors read out of theirs
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  // Nothing left to broadcast: the PERT's data sets would be empty (no shell tree, no root
+  // packet to ask for).
+  require_surviving_primitives(name(), scene, twin, "its data sets would be empty");
+  return twin;
+}
+
+RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
+                          const params::ParamRegistry& r, const RunOptions& opts) const {
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  MachineTrace& trace = run.trace();
+  const int w = run.width(), h = run.height();
+  PertPlatform p;
+  p.mode = gaudet::broadcast_mode(r.get_string("broadcast.mode"));
+  p.order = gaudet::broadcast_order(r.get_string("broadcast.order"));
+  const int pert_count = static_cast<int>(r.get_int("pert_count"));
+  const auto order_seed = static_cast<std::uint64_t>(r.get_int("broadcast.random_seed"));
+  const auto* search = dynamic_cast<const functional::ShellSearch*>(twin.tracer.get());
+  if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
+  const accel::ShellTree& tree = search->tree();
+  gaudet::PertDataSets sets;
+  const accel::RecordWords words = read_words(r);
+  try {
+    sets = gaudet::make_pert_data_sets(tree, *twin.geometry, scene, words, p.order, order_seed);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene.name, 0, std::string("gaudet-pert: ") + e.what());
+  }
+  const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
+  // The PrimProcessor's own test of each primitive (make_pert_data_sets accepted only these).
+  std::vector<Cost> test_cost;
+  for (const auto& shape : twin.geometry->shapes)
+    test_cost.push_back(std::holds_alternative<kernels::SphereKernel>(shape.shape)
+                            ? tasks::kPertSphereTestCost
+                            : tasks::kPertTriangleTestCost);
+
+  shading::PinholeCamera camera(scene.camera, w, h);
+  gaudet::ShadeShared shared;
+  shared.scene = &scene;
+  shared.shade = twin.settings.shade;
+  shared.frame = &frame;
+  shared.camera = &camera;
+  shared.packet_words = &sets.shade.packet_words;
+  shared.initial_rays_total = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
+  shared.opts = &opts;
+
+  // --latency-probe: every ray's journey around its ring (ray_probe.hpp).
+  gaudet::RayProbe probe(run.probe());
+  if (p.broadcasting()) {
+    const sc_core::sc_time load_word_time =
+        gaudet::ControlProcessor::load_word_time(modules::ModuleParams(r, "control"));
+    for (int b = 0; b < 3; ++b) {
+      const std::string bus_name = std::string(kKinds[b]) + "_bus";
+      auto bp = std::make_unique<gaudet::BroadcastProcessor>(
+          bus_name.c_str(), modules::ModuleParams(r, bus_name), set_of[b]->memory.size(),
+          load_word_time, p.mode == BroadcastMode::kAdaptive);
+      bp->on_packet = [&trace, bus_name](std::uint32_t id, sc_core::sc_time start,
+                                         sc_core::sc_time dur, std::size_t captures) {
+        trace.slice(bus_name, "packet", start, dur, {{"id", id}, {"captures", captures}});
+      };
+      p.buses.push_back(std::move(bp));
+    }
+  }
+  gaudet::PertContext context{.registry = r,
+                              .pert_count = pert_count,
+                              .shade = shared,
+                              .tree = tree,
+                              .geometry = *twin.geometry,
+                              .words = words,
+                              .sets = sets,
+                              .test_cost = test_cost,
+                              .buses = {},
+                              .counters = frame.counters(),
+                              .trace = trace,
+                              .probe = probe};
+  for (auto& bp : p.buses) context.buses.push_back(bp.get());
+  for (int i = 0; i < pert_count; ++i)
+    p.perts.push_back(
+        std::make_unique<gaudet::Pert>(("pert" + std::to_string(i)).c_str(), i, context));
+  const std::vector<const gaudet::DataSetImage*> loaded(std::begin(set_of), std::end(set_of));
+  std::vector<gaudet::ShadeProcessor*> shade_ptrs;
+  for (auto& pert : p.perts) shade_ptrs.push_back(pert->shade.get());
+  // Globals for spawning rays (L928): the camera (eye, look, up, angle, resolution: 12 words),
+  // and per light its position and intensity (6 words).
+  const std::uint64_t globals = 12 + 6 * scene.lights.size();
+  p.control = std::make_unique<gaudet::ControlProcessor>("control", r, context.buses, loaded,
+                                                         globals, shade_ptrs);
+  // The Shell and Prim processors test the SHELL and PRIM records their packets carry: a fault
+  // in those buses' memories reaches the image. (The SHADE records are not yet read from their
+  // words.)
+  std::vector<modules::Memory*> memories;
+  if (p.broadcasting()) memories = {&p.buses[1]->memory, &p.buses[2]->memory};
+  inject_faults(name(), opts.faults, memories);
+  for (auto& pert : p.perts) {
+    pert->shell->set_frame_start(p.control->frame_start());
+    pert->prim->set_frame_start(p.control->frame_start());
+  }
+
+  run.simulate();
+  // The simulation ends when nothing is left to happen. With every ray answered that is the end
+  // of the frame; otherwise some processor waits for a packet that never comes (a corrupted
+  // memory: an ID list entry pointing at no packet) and the image is not a frame.
+  if (shared.initial_rays_done != shared.initial_rays_total) {
+    const std::string what =
+        "gaudet-pert stopped with work outstanding: " + std::to_string(shared.initial_rays_done) +
+        " of " + std::to_string(shared.initial_rays_total) +
+        " initial rays answered; a processor waits for a packet its bus never broadcasts";
+    // With a fault injected that is the experiment's outcome (an ID list entry corrupted);
+    // without one it is a fault of the model.
+    if (!opts.faults.empty()) throw InputError("--fault", 0, what + " (the injected fault)");
+    throw std::logic_error(what);
+  }
+
+  const sc_core::sc_time frame_time = p.control->frame_time();
+  modules::StatsRegistry& stats = run.stats(p.control->load_time(), frame_time);
+  run.machine_stats() = gaudet_stats(tree, sets, p, frame_time, stats);
+  if (opts.progress)
+    opts.progress(static_cast<long>(shared.initial_rays_done),
+                  static_cast<long>(shared.initial_rays_total));
+  return run.finish(shared.latency, memories);
+}
+
+namespace {
+
+const RegisterMachine<GaudetPert> kRegistered(
+    {.name = "gaudet-pert",
+     .description =
+         "Gaudet's multi-PERT machine: N rings of Shade/Shell/Prim processors fed by three "
+         "broadcast buses (seed 001, SFU 1985)",
+     .sample_scene = "builtin:npp-412",
+     .test_runs = {"--scene builtin:npp-412 -p pert_count=2",
+                   "--scene builtin:npp-208 -p pert_count=3 -p broadcast.mode=non-adaptive",
+                   "--scene builtin:npp-412 -p pert_count=2 -p broadcast.mode=direct"},
+     .benchmark_runs = {"--scene builtin:npp-412 -p pert_count=8",
+                        "--scene builtin:npp-208 -p pert_count=8",
+                        "--scene builtin:default -p pert_count=8"}});
+
+}  // namespace
+}  // namespace rtsim::platform

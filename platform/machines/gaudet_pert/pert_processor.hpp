@@ -1,0 +1,128 @@
+#pragma once
+// What the three processors of a PERT have in common (seed 001 §5.2, L853-L863): an SJ16
+// microprocessor with a Weitek floating-point unit, timed from the firmware's reported costs
+// (modules::ProcessorTiming), with its own local clock (temporal decoupling).
+//
+// Its time splits the way Gaudet's performance model does (L1045):
+//   time = (processing/ray + latency/ray + pipelinewait/ray) x rays
+// processing: the processor computes; latency: it waits for broadcast data with nothing else
+// to do (L825, L833); pipelinewait: it waits for the next stage's queue to take a message or for
+// work from the previous stage. A fourth term, starved, is kept apart: the processor waits for
+// broadcast data while it could take on another ray but none has come (a ShellProcessor with a
+// free ray slot and an empty input queue). That wait is not the thesis's latency, which is
+// waiting with nothing else to do (L1060-L1062): had a ray come, the processor would have worked
+// on it during the wait. In the processor's accounts (modules::Processor) it is waiting for work.
+#include <optional>
+#include <string>
+#include <systemc>
+#include <utility>
+
+#include "firmware/cost.hpp"
+#include "modules/link.hpp"
+#include "modules/module_params.hpp"
+#include "modules/processor.hpp"
+#include "platform/machines/gaudet_pert/bus_interface.hpp"
+#include "platform/machines/gaudet_pert/ray_probe.hpp"
+#include "platform/machines/machine_trace.hpp"
+
+namespace rtsim::platform::gaudet {
+
+struct TimeSplit {
+  sc_core::sc_time processing = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time latency = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time pipeline_wait = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time starved = sc_core::SC_ZERO_TIME;
+  std::uint64_t rays = 0;  ///< rays this processor finished its part of
+  TimeSplit& operator+=(const TimeSplit& o) {
+    processing += o.processing;
+    latency += o.latency;
+    pipeline_wait += o.pipeline_wait;
+    starved += o.starved;
+    rays += o.rays;
+    return *this;
+  }
+};
+
+class PertProcessor : public modules::Processor {
+ public:
+  /// The parameters every kind has, under `processor` ("pert.shade"): the SJ16's clock and
+  /// cycles per operation (the same hardware in all three, L853-L863) and its BIC's.
+  static void declare_params(const modules::ParamDecls& processor,
+                             const BusInterface::IdRegisters& id_registers);
+
+  /// Its time in Gaudet's terms (L1045): processing = busy; latency = waiting for broadcast
+  /// data with nothing else to do; pipeline wait = waiting for work or for room in the next
+  /// stage's queue; starved = waiting for broadcast data with room for a ray that has not come
+  /// (part of the accounts' waiting for work). The four add up to the accounts' total.
+  TimeSplit split() const {
+    const auto& a = accounts();
+    return {.processing = a.busy,
+            .latency = a.waiting_for_data,
+            .pipeline_wait = a.waiting_for_work - starved_ + a.blocked,
+            .starved = starved_,
+            .rays = rays_};
+  }
+  /// Elaboration: the event that starts the frame (the control processor's).
+  void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
+  /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
+  void set_probe(RayProbe& p) { probe_ = &p; }
+  /// Elaboration: the link its messages cross to the next processor's queue (none: they arrive
+  /// as soon as they are written).
+  void set_output_link(modules::Link& link) { out_link_ = &link; }
+
+ protected:
+  /// Reads its parameters under its hierarchical name ("pert0.shade").
+  PertProcessor(const sc_core::sc_module_name& name, const params::ParamRegistry& registry,
+                MachineTrace& trace);
+
+  /// Waits until `until` (if known) or until one of `events` fires, whichever comes first.
+  /// The time counts as latency if `for_bus`, else as pipeline wait.
+  template <class Events>  // sc_core::sc_event or sc_core::sc_event_or_list
+  void idle(std::optional<sc_core::sc_time> until, const Events& events, bool for_bus) {
+    Processor::idle(until, events, for_bus ? Wait::kData : Wait::kWork);
+  }
+  /// Waits as idle() does, starved: broadcast data is awaited, but the processor has room for
+  /// another ray and none has come. Accounted as waiting for work, reported as `starved`.
+  template <class Events>
+  void idle_starved(std::optional<sc_core::sc_time> until, const Events& events) {
+    const sc_core::sc_time before = clock_.now();
+    Processor::idle(until, events, Wait::kWork);
+    starved_ += clock_.now() - before;
+  }
+  /// Waits for the frame to start.
+  void begin_frame();
+  /// compute() for ray `t` at `stage` (--latency-probe): the gap since the ray's cursor is
+  /// queueing at `stage` (unless the caller attributed it otherwise first), the compute service.
+  void compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
+    if (t.journey == modules::LatencyProbe::kNoJourney) {
+      compute(c, what);
+      return;
+    }
+    probe_->to(t, stage, RayProbe::Part::kQueueing, clock_.now());
+    compute(c, what);
+    probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
+  }
+  using Processor::compute_for;
+
+  /// A message of `words` 32-bit words that the processor wrote into its output FIFO since
+  /// `since` (until now) crosses the ring link: when it arrives at the next queue.
+  sc_core::sc_time over_link(unsigned words, const sc_core::sc_time& since) {
+    if (!out_link_) return clock_.now();
+    return out_link_->transfer(std::uint64_t{32} * words, since, clock_.now());
+  }
+  /// How long after leaving the sender a message arrives (0 without a link).
+  sc_core::sc_time link_latency() const {
+    return out_link_ ? out_link_->latency() : sc_core::SC_ZERO_TIME;
+  }
+
+  modules::ModuleParams params_;  ///< its own parameters, under its name
+  RayProbe* probe_;
+  std::uint64_t rays_ = 0;  ///< rays this processor finished its part of
+
+ private:
+  const sc_core::sc_event* frame_start_ = nullptr;
+  modules::Link* out_link_ = nullptr;
+  sc_core::sc_time starved_ = sc_core::SC_ZERO_TIME;  ///< see idle_starved()
+};
+
+}  // namespace rtsim::platform::gaudet

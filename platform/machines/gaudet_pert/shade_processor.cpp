@@ -1,0 +1,186 @@
+#include "platform/machines/gaudet_pert/shade_processor.hpp"
+
+#include "firmware/tasks/pert_task_costs.hpp"
+
+namespace rtsim::platform::gaudet {
+
+void ShadeProcessor::declare_params(const modules::ParamDecls& shade) {
+  PertProcessor::declare_params(
+      shade, {.value = "4",
+              .description = "ID registers of the ShadeProcessor's BIC",
+              .source = "assumption: \"multiple\" (L910); Shade puts at most one ID per ray"});
+  shade.count("rays_in_flight", "4", "1", "100000", "initial rays",
+              "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every ray "
+              "it spawns)",
+              "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
+              "(L738-L742) but a pipeline of three needs several in flight; see "
+              "docs/machines.md");
+}
+
+ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                               int pert, int pert_count, ShadeShared& shared, PacketPort& port,
+                               std::size_t input_depth, MachineTrace& trace)
+    : PertProcessor(name, registry, trace),
+      input("input", input_depth),
+      out("out"),
+      pert_(pert),
+      pert_count_(pert_count),
+      shared_(shared),
+      port_(port),
+      task_(*shared.scene, shared.shade),
+      y_(pert),
+      outstanding_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1), 0) {
+  for (std::size_t i = outstanding_.size(); i-- > 0;)
+    free_trees_.push_back(static_cast<std::uint32_t>(i));
+  SC_THREAD(run);
+}
+
+bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
+  const auto& f = *shared_.frame;
+  // This PERT's scanlines: pert, pert + N, pert + 2N, ... (L938).
+  while (!scanline_ || scanline_->done()) {
+    if (scanline_) y_ += pert_count_;
+    if (y_ >= f.height()) return false;
+    const auto first = static_cast<std::uint32_t>(y_) * static_cast<std::uint32_t>(f.width());
+    scanline_ = std::make_unique<tasks::VisionRayTask>(
+        *shared_.camera, f.width(), f.height(), f.spp(), first,
+        first + static_cast<std::uint32_t>(f.width()), f.detailed_rows());
+  }
+  ray = scanline_->next(sample);
+  return true;
+}
+
+void ShadeProcessor::shade(const PrimToShade& msg) {
+  const RayTicket& t = msg.ticket;
+  const Cost c = task_.on_result(t.ray, msg.found, msg.hit, shared_.frame->fb(), spawned_);
+  shared_.frame->counters().cost += c;
+  compute(c, "shade");
+  ++rays_;
+  for (const auto& s : spawned_) {
+    RayTicket child;
+    child.ray = s;
+    child.tree = t.tree;
+    child.t_min = task_.t_min(s);
+    backlog_.push_back(child);
+  }
+  backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
+  std::uint32_t& left = outstanding_[t.tree];
+  left += static_cast<std::uint32_t>(spawned_.size());
+  if (--left == 0) {
+    // Every ray of this initial ray is answered: the pixel sample is finished.
+    free_trees_.push_back(t.tree);
+    --trees_in_flight_;
+    ++shared_.initial_rays_done;
+    if (shared_.opts->progress && (shared_.initial_rays_done & 1023) == 0)
+      shared_.opts->progress(static_cast<long>(shared_.initial_rays_done),
+                             static_cast<long>(shared_.initial_rays_total));
+  }
+}
+
+void ShadeProcessor::receive(PrimToShade msg) {
+  RayTicket& t = msg.ticket;
+  // From the PrimProcessor's send to here the answer waited in the queue.
+  probe_->to(t, Stage::kPrimToShade, RayProbe::Part::kQueueing, clock_.now());
+  compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
+  shared_.frame->counters().count_ray(t.ray.kind);
+  shared_.latency.add(clock_.now() - t.sent);
+  probe_->end(t, clock_.now());
+  if (t.first_sample) shared_.frame->record_primary(t.ray.pixel, msg.found, msg.hit);
+  if (!msg.found || t.ray.kind == RayKind::Shadow) {
+    shade(msg);  // no surface to look up: light reached or blocked, or the background
+    return;
+  }
+  // The surface's characteristics come from the Shade bus (one ID per ray, L910).
+  const auto id = static_cast<std::uint32_t>(msg.hit.material);
+  auto& waiting = awaiting_[id];
+  waiting.push_back(std::move(msg));
+  if (waiting.size() > 1) return;
+  compute(tasks::kAskPacketCost, "ask");
+  if (!port_.request(id, clock_.now())) unasked_.push_back(id);
+}
+
+void ShadeProcessor::send(RayTicket& t, const sc_core::sc_time& since) {
+  t.id = next_id_++;
+  t.sent = clock_.now();  // ray_latency_s and the probe's journey start here
+  probe_->begin(t, t.sent);
+  ShadeToShell msg{t};
+  modules::send_message(out, msg, over_link(ShadeToShell::kWords, since),
+                        std::uint64_t{32} * ShadeToShell::kWords);
+}
+
+void ShadeProcessor::run() {
+  begin_frame();
+  // What it idles on, built once (a list built for each wait allocates).
+  const sc_core::sc_event_or_list idle_on =
+      input.fifo.put_event() | port_.changed_event() | out_queue_->get_event();
+  bool vision_left = true;
+  for (;;) {
+    const sc_core::sc_time now = clock_.now();
+    // Answers first: they finish pixels and free the ring.
+    if (input.fifo.has_item_by(now)) {
+      sc_core::sc_time taken;
+      PrimToShade msg = input.fifo.get(now, taken);
+      clock_.catch_up(taken);
+      receive(std::move(msg));
+      continue;
+    }
+    if (auto p = port_.take(now)) {
+      compute(tasks::words_cost((*shared_.packet_words)[p->id]) + tasks::kPacketBookkeepingCost,
+              "packet");
+      auto node = awaiting_.extract(p->id);
+      port_.release(*p, clock_.now());
+      if (!node.empty())
+        for (const auto& msg : node.mapped()) shade(msg);
+      continue;
+    }
+    if (!unasked_.empty() && port_.register_free(now)) {
+      compute(tasks::kAskPacketCost, "ask");
+      if (port_.request(unasked_.back(), clock_.now())) unasked_.pop_back();
+      continue;
+    }
+    const bool room = out_queue_->has_room_by(now);
+    // Spawned rays before new initial rays: they finish pixels.
+    if (room && !backlog_.empty()) {
+      RayTicket t = backlog_.front();
+      backlog_.pop_front();
+      const sc_core::sc_time since = clock_.now();
+      compute(tasks::words_cost(ShadeToShell::kWords), "send");
+      send(t, since);
+      continue;
+    }
+    if (room && vision_left && !free_trees_.empty()) {
+      RayTicket t;
+      int sample = 0;
+      if (!next_initial_ray(t.ray, sample)) {
+        vision_left = false;
+        continue;
+      }
+      const sc_core::sc_time since = clock_.now();
+      compute(tasks::VisionRayTask::kCost + tasks::words_cost(ShadeToShell::kWords), "spawn");
+      t.tree = free_trees_.back();
+      free_trees_.pop_back();
+      ++trees_in_flight_;
+      outstanding_[t.tree] = 1;
+      t.first_sample = sample == 0;
+      t.t_min = task_.t_min(t.ray);
+      send(t, since);
+      continue;
+    }
+    if (!vision_left && trees_in_flight_ == 0) break;
+    // Idle until an answer, a SHADE packet or room in the queue to the ShellProcessor.
+    std::optional<sc_core::sc_time> next = input.fifo.next_item_time();
+    auto earliest = [&next](std::optional<sc_core::sc_time> t) {
+      if (t && (!next || *t < *next)) next = t;
+    };
+    earliest(port_.next_arrival());
+    const bool want_send = !backlog_.empty() || (vision_left && !free_trees_.empty());
+    if (want_send) earliest(out_queue_->next_room_time());
+    idle(next, idle_on, !awaiting_.empty());
+  }
+  finished_ = true;
+  finish_time_ = clock_.now();
+  clock_.sync();
+  if (done_event_) done_event_->notify(sc_core::SC_ZERO_TIME);
+}
+
+}  // namespace rtsim::platform::gaudet

@@ -1,0 +1,233 @@
+#include "platform/machines/gaudet_pert/shell_processor.hpp"
+
+#include "firmware/accel/gaudet_data_sets.hpp"
+#include "firmware/tasks/pert_task_costs.hpp"
+
+namespace rtsim::platform::gaudet {
+
+void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
+  PertProcessor::declare_params(
+      shell, {.value = "1",
+              .description = "ID registers of the ShellProcessor's BIC (more IDs wait in its "
+                             "memory)",
+              .source = "assumption: not stated (L910: the ShellProcessor stores IDs continually, "
+                        "\"may potentially overflow\" and stacks the overflow in its own "
+                        "memory); 1 brings Fig. 6-10's latencies nearest the thesis's "
+                        "(scripts/gaudet_sensitivity.py, docs/validation.md)"});
+  shell.count("rays_in_flight", "1", "1", "100000", "rays",
+              "Rays a ShellProcessor searches at a time",
+              "assumption: not stated (note 001 §6.4); one, as \"no parallelism until the first "
+              "packet is retrieved\" (L1060) suggests, brings Figs. 6-10 and 6-11 nearest the "
+              "thesis (scripts/gaudet_sensitivity.py, docs/validation.md)");
+  shell.declare({.name = "root_local",
+                 .kind = params::ParamKind::kBool,
+                 .default_value = "true",
+                 .description = "The ShellProcessor holds packet 0 (the root's children) in its "
+                                "local memory and reads it there for every ray, not off the bus",
+                 .source = "seed 001 L662 (every ray needs the root's children), L863 (the local "
+                           "memory holds the globals)"});
+  BusInterface::declare_stream_param(
+      shell.sub("bic"), "true",
+      "seed 001 L920 (the hit line sets the buffer to start copying), L924 (the buffers are "
+      "FIFOs the SJ16 reads a word a cycle): a SHELL record is tested once its words are in");
+}
+
+ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
+                               const accel::ShellTree& tree,
+                               const std::vector<std::uint32_t>& packet_words,
+                               std::uint32_t record_words,
+                               std::span<const std::uint32_t> root_packet, PacketPort& port,
+                               std::size_t input_depth, TraceCounters& counters,
+                               MachineTrace& trace)
+    : PertProcessor(name, registry, trace),
+      input("input", input_depth),
+      out("out"),
+      tree_(tree),
+      packet_words_(packet_words),
+      record_words_(ShellProcessor::record_words(record_words)),
+      port_(port),
+      counters_(counters),
+      searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
+  // Loaded with the globals before the frame (L863): its time is not part of the frame.
+  root_local_ = params_.get_bool("root_local") && !packet_words_.empty();
+  if (root_local_) local_root_.assign(root_packet.begin(), root_packet.end());
+  SC_THREAD(run);
+}
+
+void ShellProcessor::ask(std::uint32_t packet, int search) {
+  compute_for(searches_[static_cast<std::size_t>(search)].ticket, Stage::kShell,
+              tasks::kAskPacketCost, "ask");
+  auto& w = waiting_[packet];
+  w.push_back(search);
+  if (w.size() > 1) return;  // already asked for by another ray
+  if (!port_.request(packet, clock_.now())) {
+    overflow_.push_back(packet);
+    overflow_peak_ = std::max<std::uint64_t>(overflow_peak_, overflow_.size());
+  }
+}
+
+void ShellProcessor::begin(ShadeToShell msg) {
+  int slot = 0;
+  while (searches_[static_cast<std::size_t>(slot)].active) ++slot;
+  Search& s = searches_[static_cast<std::size_t>(slot)];
+  s.active = true;
+  s.ticket = msg.ticket;
+  s.leaves.clear();
+  s.outstanding = 0;
+  const Ray& ray = s.ticket.ray.ray;
+  s.inv_dir = Vec3(1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z);
+  // Until now (taken) the ray waited in the input queue.
+  probe_->to(s.ticket, Stage::kShadeToShell, RayProbe::Part::kQueueing, clock_.now());
+  compute_for(s.ticket, Stage::kShell,
+              tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
+  if (!accel::shell_search_possible(tree_, ray, s.ticket.t_min, s.ticket.ray.t_max)) {
+    finish(slot);
+    return;
+  }
+  s.outstanding = 1;
+  if (!root_local_) {
+    ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+    return;
+  }
+  // SHELL_ARRAY[0] from its own memory, read at one cycle a word as a FIFO's (L863).
+  const std::vector<int> rays{slot};
+  const ReceivedPacket root{
+      .id = 0, .arrival = clock_.now(), .transfer_start = clock_.now(), .words = local_root_};
+  read_and_test(root, &rays);
+}
+
+void ShellProcessor::process(const ReceivedPacket& p) {
+  const auto node = waiting_.extract(p.id);
+  read_and_test(p, node.empty() ? nullptr : &node.mapped());
+  port_.release(p, clock_.now());
+}
+
+void ShellProcessor::read_and_test(const ReceivedPacket& p, const std::vector<int>* rays) {
+  ++packets_;
+  const sc_core::sc_time read_start = clock_.now();
+  compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
+  const sc_core::sc_time read_end = clock_.now();
+  if (rays) {
+    // The packet's SHELL records, read once for every ray waiting for it (as its words were).
+    shells_.clear();
+    for (std::size_t at = 0; at + record_words_ <= p.words.size(); at += record_words_) {
+      const accel::Shell shell = accel::decode_shell(p.words.subspan(at, record_words_));
+      if (shell.child_index < (shell.leaf ? tree_.prim_packet_count() : tree_.shell_packet_count()))
+        shells_.emplace_back(shell, at + record_words_);
+      else
+        ++rejected_;
+    }
+    const std::size_t sharing = rays->size();
+    for (std::size_t i = 0; i < sharing; ++i) {
+      const int slot = (*rays)[i];
+      Search& s = searches_[static_cast<std::size_t>(slot)];
+      ++packet_uses_;
+      // The packet was read once for every ray waiting for it: each gets its share.
+      probe_->packet_gap(s.ticket, Stage::kShell, Stage::kShellBus, p, read_start);
+      probe_->shared(s.ticket, Stage::kShell, read_start, read_end, i, sharing);
+      // SHELL by SHELL: a hit parent's child packet is asked for as soon as its box test is
+      // done, so the bus can bring it while the packet's other SHELLs are tested (L755-L757).
+      for (const auto& [shell, end] : shells_) {
+        // A streamed packet: its record is tested once its words are in (the first ray waits,
+        // the others find them in). Nothing else can be done meanwhile: latency.
+        idle_until(p.words_in(end), Wait::kData);
+        children_.clear();
+        const std::size_t before = s.leaves.size();
+        accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
+                              s.ticket.ray.t_max, s.leaves, children_);
+        ++box_tests_;
+        ++counters_.box_tests;
+        compute_for(
+            s.ticket, Stage::kShell,
+            accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),
+            "box test");
+        s.outstanding += static_cast<int>(children_.size());
+        for (const std::uint32_t c : children_) ask(c, slot);
+      }
+      if (--s.outstanding == 0) finish(slot);
+    }
+  }
+}
+
+void ShellProcessor::finish(int slot) {
+  Search& s = searches_[static_cast<std::size_t>(slot)];
+  compute_for(s.ticket, Stage::kShell, tasks::leaf_shell_sort_cost(s.leaves.size()), "sort");
+  accel::sort_leaf_shell_list(s.leaves);
+  leaf_shells_ += s.leaves.size();
+  if (s.leaves.size() > accel::kLeafShellListCapacity) ++over_capacity_;
+  done_.push_back(slot);
+}
+
+void ShellProcessor::run() {
+  begin_frame();
+  // What it idles on, built once (a list built for each wait allocates).
+  const sc_core::sc_event_or_list starved_on = port_.changed_event() | input.fifo.put_event();
+  const sc_core::sc_event_or_list idle_on =
+      port_.changed_event() | input.fifo.put_event() | out_queue_->get_event();
+  for (;;) {
+    const sc_core::sc_time now = clock_.now();
+    // A finished search goes on to the PrimProcessor when its queue has room.
+    if (!done_.empty() && out_queue_->has_room_by(now)) {
+      Search& s = searches_[static_cast<std::size_t>(done_.front())];
+      done_.pop_front();
+      ShellToPrim msg{s.ticket, std::move(s.leaves)};
+      s.leaves = {};
+      s.active = false;
+      // Ready since its sort: until the queue had room it waited for the queue, then for
+      // this processor.
+      if (const auto room = out_queue_->next_room_time())
+        probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
+      const sc_core::sc_time since = clock_.now();
+      compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
+      modules::send_message(out, msg, over_link(msg.words(), since),
+                            std::uint64_t{32} * msg.words());
+      ++rays_;
+      continue;
+    }
+    if (auto p = port_.take(now)) {
+      process(*p);
+      continue;
+    }
+    if (!overflow_.empty() && port_.register_free(now)) {
+      const std::uint32_t id = overflow_.back();
+      const sc_core::sc_time ask_start = clock_.now();
+      compute(tasks::kAskPacketCost, "ask");
+      // Asked for every ray waiting for the ID, which till now waited for an ID register.
+      if (const auto w = waiting_.find(id); w != waiting_.end()) {
+        for (std::size_t i = 0; i < w->second.size(); ++i) {
+          RayTicket& t = searches_[static_cast<std::size_t>(w->second[i])].ticket;
+          probe_->to(t, Stage::kShellBus, RayProbe::Part::kQueueing, ask_start);
+          probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w->second.size());
+        }
+      }
+      if (port_.request(id, clock_.now())) overflow_.pop_back();
+      continue;
+    }
+    const bool slot_free =
+        std::any_of(searches_.begin(), searches_.end(), [](const Search& s) { return !s.active; });
+    if (slot_free && input.fifo.has_item_by(now)) {
+      sc_core::sc_time taken;
+      ShadeToShell msg = input.fifo.get(now, taken);
+      clock_.catch_up(taken);
+      begin(std::move(msg));
+      continue;
+    }
+    // Nothing to do now: wait for a packet, a ray, or room in the output queue.
+    std::optional<sc_core::sc_time> next = port_.next_arrival();
+    auto earliest = [&next](std::optional<sc_core::sc_time> t) {
+      if (t && (!next || *t < *next)) next = t;
+    };
+    if (slot_free) earliest(input.fifo.next_item_time());
+    if (!done_.empty()) earliest(out_queue_->next_room_time());
+    // Waiting for a packet is latency only when the processor has nothing else it could do:
+    // with a ray slot free and no ray in its input queue, it is starved of rays instead
+    // (L1060-L1062: waiting that a new ray could overlap is not latency).
+    const bool for_bus = !waiting_.empty();
+    if (for_bus && slot_free && done_.empty())
+      idle_starved(next, starved_on);
+    else
+      idle(next, idle_on, for_bus);
+  }
+}
+
+}  // namespace rtsim::platform::gaudet

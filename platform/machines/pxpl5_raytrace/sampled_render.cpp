@@ -1,0 +1,50 @@
+#include "platform/machines/pxpl5_raytrace/sampled_render.hpp"
+
+#include <chrono>
+
+#include "platform/functional/frame_state.hpp"
+#include "platform/machines/pxpl5_raytrace/camera_path.hpp"
+#include "platform/machines/pxpl5_raytrace/region_cast.hpp"
+
+namespace rtsim::platform::pxpl5 {
+
+functional::RenderResult sampled_render(const scenes::Scene& scene, const Tracer& tracer,
+                                        const functional::RenderOptions& opts, Layout layout,
+                                        int frames, double spin_deg) {
+  const auto start = std::chrono::steady_clock::now();
+  layout.width = opts.width > 0 ? opts.width : scene.camera.width;
+  layout.height = opts.height > 0 ? opts.height : scene.camera.height;
+  const int w = layout.width, h = layout.height, spp = std::max(1, opts.spp);
+  const tasks::SampleLattice lattice = layout.lattice();
+  functional::FrameState frame(w, h, spp, opts.aov_id, opts.aov_depth);
+  tasks::ShadeTask shade(scene, opts.shade);
+  tasks::LatticeRayTask task(tracer, shade, frame.counters());
+  // The compositors' persistent array, whole: a frame's first copy of a position replaces the
+  // last frame's; a replicated copy in the same frame keeps the better (Compositor::run).
+  std::vector<tasks::LatticeSample> kept(lattice.size());
+  std::vector<int> written(kept.size(), -1);
+  const std::vector<Region> regions = layout.regions();
+  for (int fr = 0; fr < frames; ++fr) {
+    const shading::PinholeCamera camera(frame_camera(scene.camera, fr, frames, spin_deg), w, h);
+    const bool last_frame = fr == frames - 1;
+    for (const Region& g : regions)
+      cast_region(layout, task, camera, spp, g, fr, last_frame ? &frame : nullptr,
+                  [&](const tasks::LatticeSample& s) {
+                    tasks::keep_copy(kept[s.index], written[s.index], s, fr);
+                  });
+    if (opts.progress) opts.progress(fr + 1, frames);
+  }
+  const auto at = [&](int i, int j) -> const std::array<std::int64_t, 3>& {
+    return kept[lattice.index(i, j)].sum;
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      frame.fb().add_raw(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) +
+                             static_cast<std::uint32_t>(x),
+                         lattice.resample(x, y, at));
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return frame.finish(wall);
+}
+
+}  // namespace rtsim::platform::pxpl5

@@ -1,0 +1,353 @@
+// ullner-array: Ullner's ray-tracing array (seed 000 §2.5, L755-L895). An R x C grid of
+// processors on four bidirectional links; each owns a column of subvolumes along the depth axis
+// (or a skewed assignment, with wrap links) and a block of the frame buffer; rays travel as
+// messages between them, and the image is the sum of the contributions the result messages carry.
+#include <cmath>
+#include <memory>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/scene_tracer.hpp"
+#include "platform/machine_registry.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/ullner_array/array_node.hpp"
+
+namespace rtsim::platform {
+
+class UllnerArray final : public Machine {
+ public:
+  using Machine::Machine;
+  /// No warm-up: its processors start their own rays at once, so there is no fill to wait out,
+  /// and window completions bunch at the frame's end; a warm-up's windows only push the exact
+  /// start later (measured: an error of 6% became 108% on ullner-sheets-1000 at K = 8,
+  /// docs/sampling.md).
+  int sample_warmup_rays(const params::ParamRegistry&) const override { return 0; }
+  void declare_params(params::ParamRegistry& registry) const override;
+  FunctionalTwin make_twin(scenes::Scene& scene,
+                           const params::ParamRegistry& registry) const override;
+  RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
+                const RunOptions& opts) const override;
+};
+
+namespace {
+
+using ullner_array::Mapping;
+using ullner_array::SubvolumeMapping;
+
+/// Credit the host gives for each vision ray: a power of two large enough that a ray tree of
+/// any depth the shading allows can share it out (assumption; checked where it is shared).
+constexpr std::uint64_t kCreditPerRay = std::uint64_t{1} << 40;
+
+Mapping mapping_of(const std::string& s) {
+  return s == "skew" ? Mapping::kSkew : s == "torus" ? Mapping::kTorus : Mapping::kStraight;
+}
+
+/// The array's layout for the scene's view: the depth axis is the one most along the view
+/// (unless set), the columns run along the one most along the image's right, the rows down
+/// the image (so with the eye in front a pixel's processor owns the subvolumes its ray enters).
+SubvolumeMapping layout(const params::ParamRegistry& r, const scenes::Camera& cam) {
+  SubvolumeMapping m;
+  m.rows = static_cast<int>(r.get_int("array.rows"));
+  m.cols = static_cast<int>(r.get_int("array.cols"));
+  const int n = static_cast<int>(r.get_int("array.subvolumes"));
+  m.n = n > 0 ? n : std::max(m.rows, m.cols);
+  m.mapping = mapping_of(r.get_string("array.mapping"));
+  const Vec3 dir = glm::normalize(cam.at - cam.from);
+  Vec3 right = glm::cross(dir, cam.up);
+  if (glm::length(right) == 0.0) right = Vec3(1.0, 0.0, 0.0);
+  right = glm::normalize(right);
+  const Vec3 up = glm::cross(right, dir);
+  const std::string axis = r.get_string("array.depth_axis");
+  if (axis == "auto") {
+    m.depth_axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(dir[k]) > std::fabs(dir[m.depth_axis])) m.depth_axis = k;
+  } else {
+    m.depth_axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+  }
+  const int a = (m.depth_axis + 1) % 3, b = (m.depth_axis + 2) % 3;
+  m.col_axis = std::fabs(right[a]) >= std::fabs(right[b]) ? a : b;
+  m.row_axis = m.col_axis == a ? b : a;
+  m.flip_cols = right[m.col_axis] < 0.0;
+  m.flip_rows = up[m.row_axis] > 0.0;  // row 0 at the top of the image
+  return m;
+}
+
+}  // namespace
+
+void UllnerArray::declare_params(params::ParamRegistry& r) const {
+  // Its twin walks the array's own subvolume grid with Ullner's quad kernel, a subvolume at a
+  // time: no render.accel, grid, shells, polygon_kernel or bezier parameter is read.
+  declare_common_params(
+      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
+  const modules::ParamDecls array(r, "array", false);
+  array.count("rows", "8", "1", "64", "processors",
+              "Rows of processors in the array (at most 64: a thread a processor)",
+              "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)");
+  array.count("cols", "8", "1", "64", "processors",
+              "Columns of processors in the array (at most 64)", "seed 000 L773 (Fig. 2-25)");
+  array.count("subvolumes", "0", "0", "256", "per axis",
+              "Subvolumes per axis of the modelling space; 0: as many as the larger side of the "
+              "array (one column of subvolumes a processor, Fig. 2-26). More give each "
+              "processor several (L883-L889: 16 on an 8 x 8 array)",
+              "seed 000 L767-L779, L883-L889");
+  array.declare({.name = "mapping",
+                 .kind = params::ParamKind::kString,
+                 .default_value = "straight",
+                 .allowed = {"straight", "skew", "torus"},
+                 .description = "Subvolumes to processors: each a depth column (straight), "
+                                "layers shifted right with the side edges joined (skew), or "
+                                "shifted right and down in turn with both pairs joined (torus)",
+                 .source = "seed 000 L860-L881 (Figs. 2-26, 2-31, 2-32); the both-ways pattern "
+                           "is an assumption (docs/machines.md)"});
+  array.declare({.name = "depth_axis",
+                 .kind = params::ParamKind::kString,
+                 .default_value = "auto",
+                 .allowed = {"auto", "x", "y", "z"},
+                 .description = "The axis simulated inside the processors; auto: the one most "
+                                "along the view (the eye in front, Fig. 2-29)",
+                 .source = "seed 000 L779 (Fig. 2-26), L862"});
+  array.time("load.word_time", "1 us",
+             "Time for the host to broadcast one word of a polygon description (L787)",
+             "assumption: the thesis gives no host interface; a word a microsecond");
+  array.time("readout.pixel_time", "666.667 ns",
+             "Time to shift one pixel out of the distributed frame buffer in scan-line order "
+             "(L781)",
+             "assumption: 24 bits of colour, two 16-bit transfers at the memory cycle");
+  array.declare({.name = "interconnect",
+                 .kind = params::ParamKind::kString,
+                 .default_value = "mesh",
+                 .allowed = {"mesh", "ring"},
+                 .description = "How processors exchange messages: links to the four neighbours, "
+                                "a message copied hop by hop (mesh, L854), or one token ring "
+                                "(ring.*) carrying each message straight to its destination",
+                 .source = "seed 000 L854 (mesh); the ring is a what-if after Pixel-Planes 5's "
+                           "(seed 004 L284)"});
+  modules::TokenRing::declare_params(
+      modules::ParamDecls(r, "ring", false),
+      {.bandwidth = "48 Mbit/s",
+       .bandwidth_source = "assumption: one mesh link's rate (16 bits a 333 ns memory cycle), so "
+                           "the comparison is one shared medium against the mesh's many links",
+       .hop_latency = "333.333 ns",
+       .max_packet_bytes = "68",
+       .header_bytes = "4",
+       .service = "exhaustive",
+       .source = "assumption: a node passes the token or a packet's bits on in one memory cycle; "
+                 "a packet holds one 17-word message with a one-word header"});
+  array.count("fault.drop_result", "0", "0", "1000000000000", "messages",
+              "A fault for tests: the result message with this number (counted where results "
+              "are added) is lost; 0 loses none",
+              "assumption: fault injection, not a machine property");
+  ullner_array::ArrayNode::declare_params(modules::ParamDecls(r, "node"));
+}
+
+FunctionalTwin UllnerArray::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
+  require_polygons(name(), scene);
+  const int rows = static_cast<int>(r.get_int("array.rows"));
+  const int cols = static_cast<int>(r.get_int("array.cols"));
+  const int n = static_cast<int>(r.get_int("array.subvolumes"));
+  if (n > 0 && n < std::max(rows, cols))
+    throw InputError(r.where_set("array.subvolumes"), 0,
+                     "array.subvolumes = " + std::to_string(n) +
+                         " leaves processors without a "
+                         "subvolume on a " +
+                         std::to_string(rows) + " x " + std::to_string(cols) +
+                         " array: use at least " + std::to_string(std::max(rows, cols)) +
+                         " (or 0)");
+  auto settings = functional::read_render_settings(r);
+  settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
+  settings.accel = functional::AccelKind::Grid;
+  settings.grid_divisions = n > 0 ? n : std::max(rows, cols);
+  settings.grid_by_subvolume = true;
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  require_surviving_primitives(name(), scene, twin, "its processors would hold nothing");
+  return twin;
+}
+
+RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
+                           const params::ParamRegistry& r, const RunOptions& opts) const {
+  using ullner_array::ArrayNode;
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  const auto grid = functional::grid_of(*twin.tracer);
+  if (!grid) throw std::logic_error("ullner-array: its twin has no subvolume grid");
+
+  ullner_array::ArrayContext ctx;
+  ctx.mapping = layout(r, scene.camera);
+  const modules::MeshTopology topology(ctx.mapping.rows, ctx.mapping.cols, ctx.mapping.wrap_rows(),
+                                       ctx.mapping.wrap_cols());
+  const shading::PinholeCamera camera(scene.camera, run.width(), run.height());
+  ctx.topology = &topology;
+  ctx.grid = grid.get();
+  ctx.geometry = twin.geometry.get();
+  ctx.scene = &scene;
+  ctx.shade = twin.settings.shade;
+  ctx.frame = &frame;
+  ctx.camera = &camera;
+  // The vision rays of the rows simulated in detail (all of them unless --sample).
+  const std::uint64_t rays = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
+  ctx.credit_per_ray = kCreditPerRay;
+  while (ctx.credit_per_ray > 1 && rays > (std::uint64_t{1} << 62) / ctx.credit_per_ray)
+    ctx.credit_per_ray >>= 1;
+  ctx.total_credit = ctx.credit_per_ray * rays;
+  ctx.drop_result = static_cast<std::uint64_t>(r.get_int("array.fault.drop_result"));
+
+  // The load (L787-L789): the host broadcasts each polygon's words; every processor decides
+  // whether to keep it meanwhile. Before the frame.
+  const modules::ModuleParams node_params(r, "node");
+  const sc_core::sc_time cpu_cycle = modules::from_ps(static_cast<std::int64_t>(
+      std::max(1.0, std::round(1e12 / node_params.get_frequency_hz("clock")))));
+  const sc_core::sc_time per_polygon =
+      std::max(modules::times(modules::from_ps(r.get_time_ps("array.load.word_time")),
+                              ullner_array::kPolygonWords),
+               modules::times(cpu_cycle, node_params.get_count("cycles.keep_test")));
+  ctx.frame_start = modules::times(per_polygon, twin.geometry->shapes.size());
+
+  // Each processor must hold the polygons of its subvolumes (L835: 128 KB).
+  const std::size_t capacity = node_params.get_count("memory_words");
+  for (int i = 0; i < topology.nodes(); ++i) {
+    const std::size_t need =
+        ullner_array::subvolume_polygons(*grid, ctx.mapping, topology.node(i)).size() *
+        ullner_array::kPolygonWords;
+    if (need > capacity)
+      throw InputError(scene.name, 0,
+                       "processor node" + std::to_string(i) + " of the array would hold " +
+                           std::to_string(need / ullner_array::kPolygonWords) + " polygons (" +
+                           std::to_string(need) + " words) but its memory has " +
+                           std::to_string(capacity) +
+                           " words (node.memory_words); use more processors or subvolumes "
+                           "(array.rows, array.cols, array.subvolumes) or a larger memory");
+  }
+  // The interconnect: the mesh links of each processor, or one ring (its parameters are read
+  // either way, so a bad value is an error whichever is chosen).
+  const modules::TokenRing::Config ring_config =
+      modules::TokenRing::read_config(modules::ModuleParams(r, "ring"));
+  std::unique_ptr<modules::TokenRing> ring;
+  std::unique_ptr<modules::RingChannel<ullner_array::RayMessage>> ring_channel;
+  if (r.get_string("array.interconnect") == "ring") {
+    ring = std::make_unique<modules::TokenRing>(
+        "ring", ring_config, static_cast<std::size_t>(topology.nodes()),
+        std::vector<std::string>{"new", "vision", "shadow", "result", "credit"});
+    ring_channel =
+        std::make_unique<modules::RingChannel<ullner_array::RayMessage>>("ring_channel", *ring);
+    ctx.ring = ring_channel.get();
+  }
+  ullner_array::ArrayTally tally;
+  std::vector<std::unique_ptr<ArrayNode>> nodes;
+  nodes.reserve(static_cast<std::size_t>(topology.nodes()));
+  for (int i = 0; i < topology.nodes(); ++i)
+    nodes.push_back(std::make_unique<ArrayNode>(("node" + std::to_string(i)).c_str(), r, ctx, tally,
+                                                topology.node(i), run.trace()));
+  for (int i = 0; i < topology.nodes(); ++i) {
+    if (ring_channel) {
+      ring_channel->attach(static_cast<std::size_t>(i),
+                           *nodes[static_cast<std::size_t>(i)]->in[ullner_array::kRingPort]);
+      continue;
+    }
+    for (const modules::Direction d : modules::kDirections)
+      if (const auto m = topology.neighbour(topology.node(i), d))
+        nodes[static_cast<std::size_t>(i)]->connect(
+            d, *nodes[static_cast<std::size_t>(topology.index(*m))]);
+  }
+  std::vector<modules::Memory*> memories;
+  for (auto& n : nodes) memories.push_back(&n->memory);
+  inject_faults(name(), opts.faults, memories);
+  run.simulate();
+
+  if (!tally.done)
+    throw std::runtime_error("ullner-array: the termination detector never held all the credit");
+  const sc_core::sc_time compute = *tally.done - ctx.frame_start;
+  const sc_core::sc_time readout = modules::times(
+      modules::from_ps(r.get_time_ps("array.readout.pixel_time")),
+      static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height()));
+  const sc_core::sc_time frame_time = modules::plus(compute, readout);
+  modules::StatsRegistry& stats = run.stats(ctx.frame_start, frame_time);
+
+  static constexpr const char* kTypeNames[] = {"new", "vision", "shadow", "result", "credit"};
+  nlohmann::ordered_json busy = nlohmann::ordered_json::array();
+  std::array<std::uint64_t, 5> sent{};
+  std::uint64_t kept = 0, tests = 0, words = 0;
+  for (int row = 0; row < topology.rows(); ++row) {
+    nlohmann::ordered_json line = nlohmann::ordered_json::array();
+    for (int col = 0; col < topology.cols(); ++col) {
+      const ArrayNode& n = *nodes[static_cast<std::size_t>(topology.index({row, col}))];
+      auto& ns = stats.processor(n);
+      for (int t = 0; t < 5; ++t) {
+        ns.values[std::string("received_") + kTypeNames[t]] = static_cast<double>(n.received()[t]);
+        ns.values[std::string("sent_") + kTypeNames[t]] = static_cast<double>(n.sent()[t]);
+        sent[static_cast<std::size_t>(t)] += n.sent()[t];
+      }
+      ns.values["polygons"] = static_cast<double>(n.polygons());
+      ns.values["subvolumes_searched"] = static_cast<double>(n.subvolumes_searched());
+      ns.values["intersections"] = static_cast<double>(n.intersections());
+      ns.values["memory_busy_s"] = n.memory_busy().to_seconds();
+      ns.values["backlog_peak"] = static_cast<double>(n.backlog_peak());
+      auto& ps = stats.busy_module(std::string(n.name()) + ".pipeline", n.pipeline_busy(),
+                                   n.pipeline_timeline());
+      ps.values["words_fetched"] = static_cast<double>(n.words_fetched());
+      for (const modules::Direction d : modules::kDirections) {
+        const modules::Link* l = n.link(d);
+        if (!l) continue;
+        auto& ls = stats.link(*l);
+        for (int t = 0; t < 5; ++t)
+          ls.values[std::string("messages_") + kTypeNames[t]] =
+              static_cast<double>(n.sent_through(d)[static_cast<std::size_t>(t)]);
+      }
+      kept += n.polygons();
+      tests += n.intersections();
+      words += n.words_fetched();
+      line.push_back(frame_time > sc_core::SC_ZERO_TIME
+                         ? n.accounts().busy.to_seconds() / frame_time.to_seconds()
+                         : 0.0);
+    }
+    busy.push_back(std::move(line));
+  }
+  if (ring) ring->report(stats, "ring");
+  nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
+  for (int t = 0; t < 5; ++t) by_type[kTypeNames[t]] = sent[static_cast<std::size_t>(t)];
+  const auto& m = ctx.mapping;
+  nlohmann::ordered_json& res = run.machine_stats();
+  res["intersection_tests"] = tests;
+  res["array"] = {{"rows", m.rows},
+                  {"cols", m.cols},
+                  {"subvolumes", m.n},
+                  {"mapping", r.get_string("array.mapping")},
+                  {"interconnect", r.get_string("array.interconnect")},
+                  {"depth_axis", std::string(1, "xyz"[m.depth_axis])},
+                  {"polygons", twin.geometry->shapes.size()},
+                  {"polygons_kept", kept},
+                  {"load_time_s", ctx.frame_start.to_seconds()},
+                  {"compute_time_s", compute.to_seconds()},
+                  {"readout_time_s", readout.to_seconds()},
+                  {"words_fetched", words},
+                  {"messages_sent_by_type", std::move(by_type)},
+                  {"termination",
+                   {{"method", "credit recovery"},
+                    {"credit_message_hops", sent[4]},
+                    {"credit_bits", sent[4] * ullner_array::RayMessage::kWireBits}}},
+                  {"results_added", tally.results_added},
+                  {"results_dropped", tally.results_dropped},
+                  {"node_busy_fraction", std::move(busy)}};
+  return run.finish(tally.latency, memories);
+}
+
+namespace {
+
+const RegisterMachine<UllnerArray> kRegistered(
+    {.name = "ullner-array",
+     .description =
+         "Ullner's ray tracing array: a grid of processors, each a CPU with an intersection "
+         "unit owning a column of subvolumes, passing ray messages to its neighbours "
+         "(seed 000 §2.5)",
+     .sample_scene = "builtin:ullner-cubes",
+     .test_runs = {"--scene builtin:ullner-cubes",
+                   "--scene builtin:ullner-cubes -p array.rows=4 -p array.cols=4",
+                   "--scene builtin:ullner-cubes -p array.mapping=torus"},
+     .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
+                        "--scene builtin:ullner-sheets-1000"}});
+
+}  // namespace
+}  // namespace rtsim::platform

@@ -1,0 +1,178 @@
+// ullner-peripheral: Ullner's ray tracing peripheral (seed 000 §2.3, L458-L680) attached to a
+// medium-sized host. The host runs two tasks (vision-ray generation; result processing and
+// shading) with a ray queue and a result queue between it and the peripheral; the peripheral
+// fetches polygons from 20 parallel parameter memories into the intersection pipeline (13
+// logical stages; 17 or 33 physical, one intersection per 1/3 us), keeps the closest valid hit
+// (any hit for shadow rays), and has the lighting extension. With peripheral.grid.divisions > 0
+// the grid auxiliary processor feeds it the polygon addresses of the subvolumes along the ray.
+#include <chrono>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "modules/latency_probe.hpp"
+#include "modules/sim_time.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/machine_registry.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/ullner_peripheral/host.hpp"
+#include "platform/machines/ullner_peripheral/peripheral.hpp"
+
+namespace rtsim::platform {
+
+class UllnerPeripheral final : public Machine {
+ public:
+  using Machine::Machine;
+  void declare_params(params::ParamRegistry& registry) const override;
+  FunctionalTwin make_twin(scenes::Scene& scene,
+                           const params::ParamRegistry& registry) const override;
+  RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
+                const RunOptions& opts) const override;
+};
+
+using params::ParamKind;
+
+void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
+  // Its twin searches with the peripheral's own grid (peripheral.grid.*) and Ullner's quad
+  // kernel, and holds polygons only: no render.accel, render.grid, render.shells,
+  // render.polygon_kernel or bezier parameter is read.
+  declare_common_params(
+      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
+  // The module tree: the host and its peripheral, each declaring its own.
+  ullner::Host::declare_params(modules::ParamDecls(r, "host"));
+  ullner::Peripheral::declare_params(modules::ParamDecls(r, "peripheral"));
+}
+
+FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
+                                           const params::ParamRegistry& r) const {
+  // The peripheral holds convex quadrilaterals only (seed 000 L267): polygons are converted
+  // into convex quads and triangles-as-quads; anything else cannot be loaded.
+  require_polygons(name(), scene);
+  if (const auto a = r.get_int("peripheral.adder_stages"); a != 1 && a != 3)
+    throw InputError(r.where_set("peripheral.adder_stages"), 0,
+                     "peripheral.adder_stages must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), "
+                     "got " +
+                         std::to_string(a));
+  auto settings = functional::read_render_settings(r);
+  settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
+  const int n = static_cast<int>(r.get_int("peripheral.grid.divisions"));
+  settings.accel = n > 0 ? functional::AccelKind::Grid : functional::AccelKind::None;
+  settings.grid_divisions = n;
+  settings.dda_as_printed = r.get_string("peripheral.grid.dda") == "as-printed";
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  const auto capacity = static_cast<std::size_t>(r.get_int("peripheral.memory.polygons"));
+  if (twin.geometry->shapes.size() > capacity)
+    throw InputError(scene.name, 0,
+                     "the scene needs " + std::to_string(twin.geometry->shapes.size()) +
+                         " quadrilaterals but the parameter memories hold " +
+                         std::to_string(capacity) + " (peripheral.memory.polygons)");
+  return twin;
+}
+
+RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
+                                const params::ParamRegistry& r, const RunOptions& opts) const {
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  MachineTrace& trace = run.trace();
+  ullner::PeripheralSettings pc =
+      ullner::Peripheral::read_settings(modules::ModuleParams(r, "peripheral"));
+  const std::uint64_t quads = twin.geometry->shapes.size();
+  pc.modelling_space = twin.geometry->scene_bounds;
+  if (!scene.modelling_space.empty()) pc.modelling_space.extend(scene.modelling_space);
+
+  tasks::ShadeTask shade(scene, twin.settings.shade);
+  // One journey per ray from the host putting it into the ray queue to task 2 taking its
+  // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
+  modules::LatencyProbe& probe = run.probe();
+  // A ray meets the host's ray link first (the probe lists stages in the order they are named).
+  probe.stage("host.ray_link");
+  // The peripheral searches its own memories; the twin's tracer only checks afterwards.
+  ullner::Peripheral peripheral("peripheral", *twin.geometry, *twin.tracer, shade, quads, pc,
+                                frame.counters(), trace, probe, r);
+  inject_faults(name(), opts.faults, {&peripheral.parameters});
+  const ullner::HostAttachment attached{.ray_queue = peripheral.rays.fifo,
+                                        .ray_link_name = "host.ray_link",
+                                        .ray_link_params = "host.ray_link",
+                                        .lighting = {.enabled = pc.lighting,
+                                                     .interval = pc.intersect_interval,
+                                                     .adder_stages = pc.adder_stages,
+                                                     .rsqrt_stages = pc.rsqrt_stages}};
+  ullner::Host host("host", r, scene, twin.settings.shade, frame, attached, opts, trace,
+                    *twin.geometry, probe);
+  host.load_out.bind(peripheral.parameters.socket);
+  host.ray_out.bind(peripheral.rays.socket);
+  peripheral.result_out.bind(host.results.socket);
+  run.simulate();
+
+  const sc_core::sc_time frame_time = host.frame_time();
+  // Utilisation over time and queue occupancy over the frame (after the scene load).
+  modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
+  auto& hs = stats.processor(host);
+  hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
+  hs.values["results_processed"] = static_cast<double>(host.results_processed());
+  hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
+  stats.queue("peripheral.ray_queue", peripheral.rays.fifo.occupancy(), pc.ray_queue_depth);
+  stats.queue("host.result_queue", host.results.fifo.occupancy(), host.results.fifo.capacity());
+  auto& ps = stats.busy_module("peripheral.pipeline", peripheral.pipeline().busy(),
+                               peripheral.pipeline().timeline());
+  ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());
+  ps.values["stages"] = pc.pipeline_stages;
+  auto& ls = stats.busy_module("peripheral.lighting", host.lighting_unit().busy(),
+                               host.lighting_unit().timeline());
+  ls.values["inner_products"] = static_cast<double>(host.lighting_unit().issued());
+  if (pc.grid_divisions > 0) {
+    auto& as =
+        stats.busy_module("peripheral.aux", peripheral.aux_busy(), peripheral.aux_timeline());
+    as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
+    as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
+  }
+  stats.link(host.ray_link());
+  stats.link(peripheral.result_link());
+  auto& ms = stats.busy_module("peripheral.parameter_memories", peripheral.parameters.read_busy(),
+                               peripheral.parameters.read_timeline());
+  ms.values["polygons"] = static_cast<double>(quads);
+  ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
+  ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
+  nlohmann::ordered_json& res = run.machine_stats();
+  // What the hardware did: every polygon address fed to the pipe is an intersection.
+  res["intersection_tests"] = peripheral.pipeline().issued();
+
+  const double rays = static_cast<double>(std::max<std::uint64_t>(peripheral.rays_served(), 1));
+  const double issued = static_cast<double>(peripheral.pipeline().issued());
+  const double extent = functional::scene_extent(pc.modelling_space);
+  res["peripheral"] = {
+      {"polygons", quads},
+      {"intersect_interval_s",
+       issued > 0 ? peripheral.pipeline().busy().to_seconds() / issued : 0.0},
+      {"pipeline_stages", pc.pipeline_stages},
+      {"pipeline_latency_s", peripheral.pipeline().latency().to_seconds()},
+      {"time_per_ray_s", peripheral.service_time_total().to_seconds() / rays},
+      {"tests_per_ray", issued / rays},
+      {"dda_steps_per_ray", static_cast<double>(peripheral.dda_steps()) / rays},
+      {"subvolumes_visited_per_ray", static_cast<double>(peripheral.subvolumes_visited()) / rays},
+      {"mean_ray_travel", peripheral.primary_hits() > 0
+                              ? peripheral.primary_travel_sum() /
+                                    static_cast<double>(peripheral.primary_hits()) / extent
+                              : 0.0},
+      {"load_time_s", host.load_time().to_seconds()},
+      {"grid_divisions", pc.grid_divisions}};
+  return run.finish(host.latency(), {&peripheral.parameters});
+}
+
+namespace {
+
+const RegisterMachine<UllnerPeripheral> kRegistered(
+    {.name = "ullner-peripheral",
+     .description =
+         "Ullner's ray tracing peripheral with host, queues, 20 parameter memories, the "
+         "intersection pipeline, lighting extension and optional grid auxiliary processor "
+         "(seed 000 §2.3)",
+     .sample_scene = "builtin:ullner-cubes",
+     .test_runs = {"--scene builtin:ullner-cubes",
+                   "--scene builtin:ullner-random-1000 -p peripheral.grid.divisions=11"},
+     .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
+                        "--scene builtin:ullner-sheets-1000"}});
+
+}  // namespace
+}  // namespace rtsim::platform

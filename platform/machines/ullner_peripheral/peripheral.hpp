@@ -1,0 +1,97 @@
+#pragma once
+// Ullner's ray tracing peripheral (seed 000 §2.3.2, Fig. 2-11): polygon fetch from the 20
+// parameter memories, the intersection pipeline, closest-hit selection with validity bits, and
+// (optionally) the grid auxiliary processor in front of it (L592-L596).
+//
+// The answer for each ray comes from the parameter memories: the search (brute force, or the
+// auxiliary processor's grid walk) tests each candidate polygon on the words the fetch stage
+// reads out of line k (parameter_memory_test.hpp), as the host loaded them; the functional twin
+// only checks the image afterwards. The time is computed from what the hardware does for it:
+//  * brute force: every polygon streams through the pipe, one per intersect interval
+//    (L482, L588); shadow rays stream them all too unless peripheral.shadow_early_exit;
+//  * grid: the auxiliary processor steps t_d per subvolume visited (L654) and feeds the pipe
+//    the polygon addresses of each, through one extra indirection stage (L596).
+// The result leaves the pipe `latency` after its last polygon entered; the next ray's polygons
+// follow the previous ray's without a gap (the pipe is never flushed, L522-L528).
+#include <tlm_utils/simple_initiator_socket.h>
+
+#include <memory>
+#include <systemc>
+
+#include "firmware/tasks/shade_task.hpp"
+#include "firmware/tracer.hpp"
+#include "modules/latency_probe.hpp"
+#include "modules/link.hpp"
+#include "modules/local_clock.hpp"
+#include "modules/memory.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/module_params.hpp"
+#include "modules/pipelined_unit.hpp"
+#include "platform/machines/machine_trace.hpp"
+#include "platform/machines/ullner_peripheral/messages.hpp"
+#include "platform/machines/ullner_peripheral/parameter_memory_test.hpp"
+#include "platform/machines/ullner_peripheral/peripheral_settings.hpp"
+
+namespace rtsim::platform::ullner {
+
+class Peripheral : public sc_core::sc_module {
+ public:
+  modules::MessageQueue<RayRequest> rays;  ///< the ray queue (host -> peripheral)
+  /// The 20 parameter memories (seed 000 L544): polygon k's 20 words at line k, loaded by the
+  /// host through the dual-ported load path, read a whole line per cycle by the fetch stage.
+  modules::Memory parameters;
+  tlm_utils::simple_initiator_socket<Peripheral> result_out;  ///< to the host's result queue
+
+  /// Its parameters, under `peripheral` (the pipeline, the grid auxiliary processor, the
+  /// lighting devices, the parameter memories).
+  static void declare_params(const modules::ParamDecls& peripheral);
+  /// Their values, read once (the modelling space is the scene's: left empty).
+  static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
+
+  SC_HAS_PROCESS(Peripheral);
+  /// `geometry`: the host's copy of the scene; `twin_search`: the twin's search over it, whose
+  /// grid the auxiliary processor walks (shared, not built twice; the candidates' parameters
+  /// are read from `parameters`).
+  Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
+             const Tracer& twin_search, const tasks::ShadeTask& shade, std::uint64_t polygons,
+             const PeripheralSettings& config, TraceCounters& counters, MachineTrace& trace,
+             modules::LatencyProbe& probe, const params::ParamRegistry& registry);
+
+  const modules::PipelinedUnit& pipeline() const { return pipe_; }
+  const modules::Link& result_link() const { return result_link_; }
+  sc_core::sc_time aux_busy() const { return aux_busy_; }
+  const modules::BusyTimeline& aux_timeline() const { return aux_timeline_; }
+  std::uint64_t rays_served() const { return rays_; }
+  std::uint64_t dda_steps() const { return steps_; }
+  std::uint64_t subvolumes_visited() const { return cells_; }
+  sc_core::sc_time service_time_total() const { return service_total_; }
+  /// Sum of primary-ray hit distances and their count (mean ray travel d_r).
+  double primary_travel_sum() const { return travel_sum_; }
+  std::uint64_t primary_hits() const { return primary_hits_; }
+
+ private:
+  void run();
+
+  ParameterMemoryTest memory_test_;  ///< the pipe's test of a polygon, on `parameters`' words
+  std::unique_ptr<Tracer> search_;   ///< the grid walk or brute force, testing with memory_test_
+  const tasks::ShadeTask& shade_;
+  std::uint64_t polygons_;
+  PeripheralSettings config_;
+  TraceCounters& counters_;
+  MachineTrace& trace_;
+  modules::LocalClock clock_;
+  modules::PipelinedUnit pipe_;
+  /// `--latency-probe`: the stages a ray meets here, in order (aux only with the grid).
+  modules::LatencyProbe& probe_;
+  int probe_ray_queue_ = -1, probe_aux_ = -1, probe_memories_ = -1, probe_pipeline_ = -1;
+  modules::Link result_link_;  ///< the answers into the host's result queue
+  int probe_result_link_ = -1;
+  sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
+  modules::BusyTimeline aux_timeline_;
+  sc_core::sc_time service_total_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t rays_ = 0, steps_ = 0, cells_ = 0, primary_hits_ = 0;
+  double travel_sum_ = 0.0;
+};
+
+}  // namespace rtsim::platform::ullner

@@ -1,0 +1,209 @@
+// ullner-pipeline: Ullner's ray-tracing pipeline (seed 000 §2.4, L684-L753). One polygon
+// processor per polygon in a linear chain on bit-serial links; rays stream past the fixed
+// polygons and each processor overwrites the description's intersection fields when its polygon
+// is hit closer. The host at both ends (Fig. 2-23) is the peripheral's host, keeping many rays
+// in flight; it loads the polygons by shifting them down the chain, dummies in the spares.
+#include <algorithm>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "firmware/tasks/polygon_processor_task.hpp"
+#include "modules/stats_registry.hpp"
+#include "platform/functional/frame_state.hpp"
+#include "platform/machine_registry.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/ullner_pipeline/engine_chain.hpp"
+#include "platform/machines/ullner_pipeline/pipeline_host.hpp"
+
+namespace rtsim::platform {
+
+class UllnerPipeline final : public Machine {
+ public:
+  using Machine::Machine;
+  void declare_params(params::ParamRegistry& registry) const override;
+  FunctionalTwin make_twin(scenes::Scene& scene,
+                           const params::ParamRegistry& registry) const override;
+  RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
+                const RunOptions& opts) const override;
+};
+
+namespace {
+
+/// At most this many points along the chain in stats.json (`along_chain`): enough for a plot,
+/// small at 100,000 processors (assumption, not a seed figure).
+constexpr std::uint64_t kChainProfilePoints = 1000;
+
+/// Per-processor counts averaged over runs of neighbouring processors, per description.
+nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
+                                   double busy_fraction) {
+  const std::uint64_t n = chain.engines();
+  const std::uint64_t points = std::min(n, kChainProfilePoints);
+  const double per = static_cast<double>(std::max<std::uint64_t>(chain.descriptions(), 1));
+  nlohmann::ordered_json first = nlohmann::ordered_json::array(),
+                         overwrites = nlohmann::ordered_json::array(),
+                         answers = nlohmann::ordered_json::array();
+  for (std::uint64_t p = 0; p < points; ++p) {
+    const std::uint64_t lo = p * n / points, hi = (p + 1) * n / points;
+    double o = 0.0, a = 0.0;
+    for (std::uint64_t k = lo; k < hi; ++k) {
+      o += static_cast<double>(chain.overwrites()[k]);
+      a += static_cast<double>(chain.answers()[k]);
+    }
+    const double count = static_cast<double>(hi - lo) * per;
+    first.push_back(lo);
+    overwrites.push_back(o / count);
+    answers.push_back(a / count);
+  }
+  return {{"engines", n},
+          {"busy_fraction", busy_fraction},
+          {"first_engine", std::move(first)},
+          {"overwrites_per_description", std::move(overwrites)},
+          {"answers_per_description", std::move(answers)}};
+}
+
+}  // namespace
+
+using params::ParamKind;
+
+void UllnerPipeline::declare_params(params::ParamRegistry& r) const {
+  // Its twin searches by brute force with Ullner's quad kernel, as every ray passes every
+  // processor: no render.accel, grid, shells, polygon_kernel or bezier parameter is read.
+  declare_common_params(
+      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
+  ullner_pipeline::PipelineHost::declare_params(modules::ParamDecls(r, "host"));
+  ullner_pipeline::EngineChain::declare_params(modules::ParamDecls(r, "pipeline"));
+}
+
+FunctionalTwin UllnerPipeline::make_twin(scenes::Scene& scene,
+                                         const params::ParamRegistry& r) const {
+  // One processor a polygon, each holding a convex quadrilateral (seed 000 L267, L688).
+  require_polygons(name(), scene);
+  auto settings = functional::read_render_settings(r);
+  settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
+  settings.accel = functional::AccelKind::None;
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  const auto engines = static_cast<std::size_t>(r.get_int("pipeline.engines"));
+  if (twin.geometry->shapes.size() > engines)
+    throw InputError(scene.name, 0,
+                     "the scene needs " + std::to_string(twin.geometry->shapes.size()) +
+                         " quadrilaterals but the pipeline has " + std::to_string(engines) +
+                         " processors, one a polygon (set pipeline.engines to at least " +
+                         std::to_string(twin.geometry->shapes.size()) + ")");
+  // The processors test t > 0 (seed 000 L275) and hold nothing but their polygon: there is no
+  // hither plane to clip vision rays at, so the twin has none either (docs/machines.md).
+  scene.camera.hither = 0.0;
+  return twin;
+}
+
+RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
+                              const params::ParamRegistry& r, const RunOptions& opts) const {
+  using ullner_pipeline::EngineChain;
+  using ullner_pipeline::PipelineHost;
+  MachineRun run(name(), scene, twin, r, opts);
+  functional::FrameState& frame = run.frame();
+  const std::uint64_t polygons = twin.geometry->shapes.size();
+  Bounds space = twin.geometry->scene_bounds;
+  if (!scene.modelling_space.empty()) space.extend(scene.modelling_space);
+
+  // A ray meets the host's link into the chain first (the probe lists stages as named).
+  modules::LatencyProbe& probe = run.probe();
+  probe.stage("pipeline.link_in");
+  EngineChain chain("pipeline", r, *twin.geometry, polygons, frame.counters(), probe);
+  inject_faults(name(), opts.faults, {&chain.registers});
+  const ullner::HostAttachment attached{
+      .ray_queue = chain.input.fifo,
+      .ray_link_name = "pipeline.link_in",
+      .ray_link_params = "pipeline.link",
+      .ray_bits = tasks::RayDescription::kWireBits,
+      .max_in_flight = static_cast<std::uint64_t>(r.get_int("host.rays_in_flight")),
+      .lighting = {}};
+  PipelineHost host("host", r, scene, twin.settings.shade, frame, attached, opts, run.trace(),
+                    *twin.geometry, probe, chain.engines(), space);
+  host.load_out.bind(chain.load);
+  host.ray_out.bind(chain.input.socket);
+  chain.result_out.bind(host.results.socket);
+  run.simulate();
+
+  const sc_core::sc_time frame_time = host.frame_time();
+  const double frame_s = frame_time.to_seconds();
+  modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
+  auto& hs = stats.processor(host);
+  hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
+  hs.values["results_processed"] = static_cast<double>(host.results_processed());
+  hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
+  hs.values["in_flight_peak"] = static_cast<double>(host.in_flight_peak());
+  stats.queue("pipeline.input", chain.input.fifo.occupancy(), chain.input.fifo.capacity());
+  stats.queue("host.result_queue", host.results.fifo.occupancy(), host.results.fifo.capacity());
+  const std::uint64_t n = chain.engines();
+  const double descriptions = static_cast<double>(chain.descriptions());
+  std::uint64_t overwrites = 0, answers = 0;
+  for (std::uint64_t k = 0; k < n; ++k) {
+    overwrites += chain.overwrites()[k];
+    if (k < polygons) answers += chain.answers()[k];
+  }
+  // Every processor is busy one issue interval per description: the class's figures are each
+  // processor's (the first one's issue slots for the traces).
+  auto& es = stats.busy_module("pipeline.engine", chain.engine_busy(), chain.engine_timeline());
+  es.values["engines"] = static_cast<double>(n);
+  es.values["descriptions"] = descriptions;
+  es.values["overwrites"] = static_cast<double>(overwrites);
+  es.values["answers"] = static_cast<double>(answers);
+  es.values["dummies"] = static_cast<double>(n - polygons);
+  stats.link(host.ray_link());
+  if (n > 1) {
+    // The first inner link; the other N-2 carry the same descriptions at the same times, each
+    // one hop later.
+    auto& ls = stats.link(chain.inner_link());
+    ls.values["links"] = static_cast<double>(n - 1);
+    ls.values["bits_all_links"] =
+        static_cast<double>(chain.inner_link().bits()) * static_cast<double>(n - 1);
+  }
+  stats.link(chain.link_out());
+
+  const ullner_pipeline::ChainTiming& ct = chain.timing();
+  const auto& et = ct.engine();
+  const double rays = std::max(descriptions, 1.0);
+  const double busy_fraction = frame_s > 0 ? chain.engine_busy().to_seconds() / frame_s : 0.0;
+  // The chain empty: the host's link in, N-1 hops, the last processor passing it on with its
+  // result fields, the link out.
+  const double latency_s = ct.description_time().to_seconds() * 2 +
+                           ct.hop().to_seconds() * static_cast<double>(n - 1) +
+                           et.hop_latency.to_seconds() + et.compute_latency.to_seconds();
+  nlohmann::ordered_json& res = run.machine_stats();
+  res["intersection_tests"] = chain.descriptions() * n;
+  res["pipeline"] = {
+      {"engines", n},
+      {"polygons", polygons},
+      {"description_bits", tasks::RayDescription::kWireBits},
+      {"description_time_s", ct.description_time().to_seconds()},
+      {"hop_s", ct.hop().to_seconds()},
+      {"spacing_s", ct.spacing().to_seconds()},
+      {"latency_s", latency_s},
+      {"mean_transit_s", chain.transit_total().to_seconds() / rays},
+      {"time_per_ray_s", frame_s / rays},
+      {"rays", chain.descriptions()},
+      {"host_utilization", frame_s > 0 ? host.busy().to_seconds() / frame_s : 0.0},
+      {"chain_utilization", frame_s > 0 ? ct.spacing().to_seconds() * descriptions / frame_s : 0.0},
+      {"load_time_s", host.load_time().to_seconds()},
+      {"load_descriptions", chain.loaded()},
+      {"load_description_time_s", chain.polygon_time().to_seconds()},
+      {"along_chain", along_chain(chain, busy_fraction)}};
+  return run.finish(host.latency(), {&chain.registers});
+}
+
+namespace {
+
+const RegisterMachine<UllnerPipeline> kRegistered(
+    {.name = "ullner-pipeline",
+     .description = "Ullner's ray tracing pipeline: one intersection processor per polygon on "
+                    "bit-serial links, rays streaming past, host at both ends (seed 000 §2.4)",
+     .sample_scene = "builtin:ullner-cubes",
+     .test_runs =
+         {"--scene builtin:ullner-cubes",
+          "--scene builtin:ullner-sheets-10 -p pipeline.engines=10 -p host.clock=\"100 GHz\""},
+     .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
+                        "--scene builtin:ullner-sheets-1000"}});
+
+}  // namespace
+}  // namespace rtsim::platform
