@@ -103,6 +103,26 @@ class Processor : public sc_core::sc_module {
     idle(std::nullopt, answers.put_event(), Wait::kData);
   }
 
+  /// Blocked on output until `out` has room at its local time, so a put is accepted at once
+  /// (back-pressure from a full queue): until a known slot frees, or until its consumer takes
+  /// an item.
+  template <class T>
+  void wait_for_room(const TimedFifo<T>& out) {
+    while (!out.has_room_by(clock_.now())) {
+      // Not full: its next slot frees at a known time (later than now, or it would have room).
+      if (const std::optional<sc_core::sc_time> room = out.next_room_time()) {
+        blocked_until(*room);
+        continue;
+      }
+      // Full: catch up with simulated time first, and look again before waiting, or a take made
+      // meanwhile would be a notification missed.
+      const sc_core::sc_time since = clock_.now();
+      clock_.sync();
+      if (out.full()) sc_core::wait(out.get_event());
+      clock_.resync();
+      accounts_.blocked += clock_.now() - since;
+    }
+  }
   const ProcessorTiming& timing() const { return timing_; }
 
   LocalClock clock_;

@@ -31,7 +31,7 @@
 #include "firmware/shading/camera.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine.hpp"
-#include "platform/machines/gaudet/data_sets.hpp"
+#include "platform/machines/gaudet_pert/data_sets.hpp"
 #include "tests/machine_test_support.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-// gaudet-pert with the latency probe (platform/machines/gaudet/ray_probe.hpp): every ray's
+// gaudet-pert with the latency probe (platform/machines/gaudet_pert/ray_probe.hpp): every ray's
 // journey spans exactly the ray_latency_s window and is tiled by its stages' parts; the probe
 // changes neither the image nor any other statistic; the stage figures agree with the
 // processors' own accounting and move the way the broadcast mode says they must.
@@ -17,6 +17,7 @@
 
 #include "app/scene_input.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;

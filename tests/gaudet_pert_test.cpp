@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "platform/machines/gaudet/broadcast_processor.hpp"
-#include "platform/machines/gaudet/bus_interface.hpp"
-#include "platform/machines/gaudet/expected_latency.hpp"
+#include "platform/machines/gaudet_pert/broadcast_processor.hpp"
+#include "platform/machines/gaudet_pert/bus_interface.hpp"
+#include "platform/machines/gaudet_pert/expected_latency.hpp"
 #include "tests/systemc_test_support.hpp"
 #include "tests/test_support.hpp"
 

@@ -189,9 +189,10 @@ std::vector<Case> cases() {
                  const auto s = rtsim::test::read_json(d / "out/render-star/stats.json");
                  return s["geometry"]["rejected"] == 1 ? "" : "the star was not rejected";
                }});
-  const auto all_machines = rtsim::test::registered_machines();
+  const auto all_machines = rtsim::test::kit_machines();
   EXPECT_GE(all_machines.size(), 7u);
-  for (const auto& [m, sample_scene] : all_machines) {
+  for (const auto& machine : all_machines) {
+    const std::string& m = machine.name;
     c.push_back({m + " on a self-crossing star", run(m, "star.nff"), {0, 2}});
     // Item 8: every machine on a scene where nothing survives.
     c.push_back({m + " on an all-degenerate scene", run(m, "degenerate.nff"), {0, 2}});

@@ -35,7 +35,8 @@ struct LimitedRun {
   }
 };
 
-/// Runs RTSIM_BINARY with `args` in `cwd`, killed after `timeout_s`, its address space capped at
+/// Runs rtsim-kit (rtsim with the kit's minimal machine, test_support.hpp) with `args` in `cwd`,
+/// killed after `timeout_s`, its address space capped at
 /// `address_space_bytes` (0: no cap). No input (/dev/null).
 inline LimitedRun run_limited(const std::vector<std::string>& args,
                               const std::filesystem::path& cwd, double timeout_s,
@@ -43,7 +44,7 @@ inline LimitedRun run_limited(const std::vector<std::string>& args,
   LimitedRun r;
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) return r;
-  std::vector<std::string> argv_text = {RTSIM_BINARY};
+  std::vector<std::string> argv_text = {RTSIM_KIT_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : argv_text) argv.push_back(a.data());

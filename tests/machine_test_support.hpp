@@ -14,6 +14,7 @@
 
 #include "app/scene_input.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace rtsim::test {
 

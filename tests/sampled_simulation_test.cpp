@@ -18,27 +18,15 @@ using rtsim::test::scratch_dir;
 
 namespace {
 
-struct Case {
-  const char* machine;
-  const char* args;
-};
+class SampledSimulation : public testing::TestWithParam<rtsim::test::MachineInfo> {};
 
-TEST(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
-  for (const Case& c : {
-           Case{"vax-750", "--scene builtin:default --width 48 --height 48"},
-           Case{"ullner-peripheral", "--scene builtin:ullner-cubes --width 48 --height 48"},
-           Case{"ullner-pipeline", "--scene builtin:ullner-cubes --width 48 --height 48"},
-           Case{"ullner-array", "--scene builtin:ullner-cubes --width 48 --height 48"},
-           Case{"gaudet-pert", "--scene builtin:npp-412 --width 48 --height 48 -p pert_count=4"},
-           Case{"wang-bezier", "--scene builtin:teapot --width 32 --height 32"},
-           // Its windows are the regions its master hands out: a lattice row each.
-           Case{"pxpl5-raytrace",
-                "--scene builtin:default --width 48 --height 48 -p assign.scheme=rows"},
-       }) {
-    SCOPED_TRACE(c.machine);
-    const auto full = rtsim::test::run_machine(c.machine, "sample-full", c.args);
-    const auto sampled =
-        rtsim::test::run_machine(c.machine, "sample-4", std::string(c.args) + " --sample 4");
+TEST_P(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
+  const std::string& machine = GetParam().name;
+  const std::string args = GetParam().small_run() + " --width 48 --height 48";
+  {
+    SCOPED_TRACE(machine);
+    const auto full = rtsim::test::run_machine(machine, "sample-full", args);
+    const auto sampled = rtsim::test::run_machine(machine, "sample-4", args + " --sample 4");
     ASSERT_FALSE(full.empty() || sampled.empty());
     EXPECT_EQ(read_file(full.at("image_png").get<std::string>()),
               read_file(sampled.at("image_png").get<std::string>()));
@@ -50,7 +38,7 @@ TEST(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
     std::printf(
         "%-18s full %.6g s, sampled estimate %.6g s (%+.2f%%), 99.7%% CI [%.6g, %.6g] "
         "(+-%.2f%%), %d of %d windows\n",
-        c.machine, t, est, 100 * (est / t - 1), lo, hi,
+        machine.c_str(), t, est, 100 * (est / t - 1), lo, hi,
         100 * s["half_width_relative"].get<double>(), s["detailed_windows"].get<int>(),
         s["windows"].get<int>());
     EXPECT_DOUBLE_EQ(sampled["simulated_time_s"].get<double>(), est);
@@ -58,6 +46,10 @@ TEST(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
     EXPECT_GE(hi, t);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Machines, SampledSimulation,
+                         testing::ValuesIn(rtsim::test::kit_machines()),
+                         rtsim::test::machine_param_name);
 
 TEST(SampledSimulation, TheWindowsAreCutAsAsked) {
   const std::string args = "--scene builtin:ullner-cubes --width 32 --height 32";

@@ -43,22 +43,54 @@ inline CommandResult run_rtsim(const std::string& args) {
   return run_shell(std::string(RTSIM_BINARY) + " " + args);
 }
 
-/// A machine the binary registers, as `rtsim list machines --format json` gives it.
+/// Run `rtsim-kit`, the rtsim program with the kit's minimal machine registered beside the
+/// others (tests/kit_machine/): what the generic tests run every machine with.
+inline CommandResult run_kit(const std::string& args) {
+  return run_shell(std::string(RTSIM_KIT_BINARY) + " " + args);
+}
+
+/// A machine as `rtsim list machines --format json` gives it (its registration).
 struct MachineInfo {
   std::string name;
   std::string sample_scene;  ///< the machine's own (`rtsim describe` builds it on this)
+  /// Scene and parameters of the runs the generic tests make (no size); the first is the small
+  /// run every generic test uses.
+  std::vector<std::string> test_runs;
+  /// The first test run: `--scene SCENE -p ...`.
+  const std::string& small_run() const { return test_runs.front(); }
 };
 
 /// gtest's name for a parameter in its output: the machine's.
 inline void PrintTo(const MachineInfo& m, std::ostream* os) { *os << m.name; }
 
-/// Every machine the binary registers, so a test covers a new machine with no edit.
-inline std::vector<MachineInfo> registered_machines() {
-  const auto r = run_rtsim("list machines --format json");
+/// The machines `program` (RTSIM_BINARY or RTSIM_KIT_BINARY) registers, so a test covers a new
+/// machine with no edit. A machine with no test run is given its sample scene.
+inline std::vector<MachineInfo> machines_of(const std::string& program) {
+  const auto r = run_shell(program + " list machines --format json");
   std::vector<MachineInfo> out;
-  for (const auto& m : nlohmann::json::parse(r.output, nullptr, false))
-    out.push_back({m.value("name", std::string()), m.value("sample_scene", std::string())});
+  for (const auto& m : nlohmann::json::parse(r.output, nullptr, false)) {
+    MachineInfo info{m.value("name", std::string()), m.value("sample_scene", std::string()),
+                     m.value("test_runs", std::vector<std::string>())};
+    if (info.test_runs.empty()) info.test_runs.push_back("--scene " + info.sample_scene);
+    out.push_back(std::move(info));
+  }
   return out;
+}
+
+/// Every machine the rtsim program registers.
+inline std::vector<MachineInfo> registered_machines() { return machines_of(RTSIM_BINARY); }
+
+/// Every machine rtsim-kit registers: rtsim's and the minimal machine. The generic tests
+/// (describe, trace agreement, processor accounts, quantum, sampled simulation, unused
+/// parameters) are instantiated over these.
+inline std::vector<MachineInfo> kit_machines() { return machines_of(RTSIM_KIT_BINARY); }
+
+/// A GoogleTest parameter name for a machine.
+inline std::string machine_param_name(const testing::TestParamInfo<MachineInfo>& i) {
+  std::string name = i.param.name;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
 }
 
 inline std::string read_file(const std::filesystem::path& p) {
@@ -103,13 +135,14 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
-/// `rtsim run --machine MACHINE ARGS -q` into a scratch folder named after `tag`: its stats.json
+/// `rtsim-kit run --machine MACHINE ARGS -q` (any machine of rtsim, or the minimal one) into a
+/// scratch folder named after `tag`: its stats.json
 /// with "image_png" (the image's path) added; an empty object, and a failed expectation, if the
 /// run did not exit 0.
 inline nlohmann::ordered_json run_machine(const std::string& machine, const std::string& tag,
                                           const std::string& args) {
   const auto dir = scratch_dir(machine + "-" + tag);
-  const auto r = run_rtsim("run --machine " + machine + " " + args + " -q --out " + dir.string());
+  const auto r = run_kit("run --machine " + machine + " " + args + " -q --out " + dir.string());
   EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
   if (r.exit_code != 0) return {};
   auto stats = read_json(dir / "stats.json");

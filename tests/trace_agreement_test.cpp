@@ -19,9 +19,8 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 using rtsim::test::read_file;
-using rtsim::test::run_rtsim;
+using rtsim::test::run_kit;
 using rtsim::test::scratch_dir;
-using rtsim::test::shared_path;
 
 namespace {
 
@@ -118,64 +117,22 @@ double relative(long double got, double want) {
   return scale == 0 ? 0.0 : static_cast<double>(std::fabs(got - want) / scale);
 }
 
-/// The machines and, for each, runs that exercise its modules (small frames: seconds each).
-const std::map<std::string, std::vector<std::string>>& runs_per_machine() {
-  static const std::map<std::string, std::vector<std::string>> runs = {
-      {"vax-750",
-       {"--scene " + shared_path("scenes/tetra-s3.nff") + " --width 12 --height 12",
-        "--scene " + shared_path("scenes/balls-s2.nff") +
-            " --width 12 --height 12 -p vax.search=shells"}},
-      {"ullner-peripheral",
-       {"--scene builtin:ullner-cubes --width 24 --height 24",
-        "--scene builtin:ullner-random-1000 --width 24 --height 24 "
-        "-p peripheral.grid.divisions=11"}},
-      {"ullner-pipeline",
-       {"--scene builtin:ullner-cubes --width 24 --height 24",
-        "--scene builtin:ullner-sheets-10 --width 24 --height 24 -p pipeline.engines=10 "
-        "-p host.clock=\"100 GHz\""}},
-      {"ullner-array",
-       {"--scene builtin:ullner-cubes --width 24 --height 24 -p array.rows=4 -p array.cols=4",
-        "--scene builtin:ullner-cubes --width 24 --height 24 -p array.mapping=torus"}},
-      {"wang-bezier",
-       {"--scene " + shared_path("scenes/teapot.bpt") + " --width 16 --height 16",
-        "--scene builtin:default --width 16 --height 16 -p pipeline.culler.kind=software"}},
-      {"pxpl5-raytrace",
-       {"--scene builtin:default --width 32 --height 32 -p frames=2",
-        "--scene " + shared_path("scenes/balls-s1.nff") +
-            " --width 24 --height 24 -p assign.scheme=rows -p ring.service=gated"}},
-      {"gaudet-pert",
-       {"--scene " + shared_path("scenes/balls-s2.nff") + " --width 24 --height 24",
-        "--scene " + shared_path("scenes/balls-s2.nff") +
-            " --width 24 --height 24 -p pert_count=3 -p broadcast.mode=non-adaptive",
-        "--scene " + shared_path("scenes/tetra-s3.nff") +
-            " --width 16 --height 16 -p pert_count=2 -p broadcast.mode=direct"}},
-  };
-  return runs;
-}
+/// Each machine's test runs (its registration), on small frames: seconds each.
+constexpr const char* kSize = " --width 24 --height 24";
+
+class TraceAgreement : public testing::TestWithParam<rtsim::test::MachineInfo> {};
 
 }  // namespace
 
-TEST(TraceAgreement, EveryMachineIsCovered) {
-  const auto r = run_rtsim("list machines");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::istringstream lines(r.output);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("  ", 0) != 0) continue;
-    std::istringstream words(line);
-    std::string name;
-    words >> name;
-    if (name == "(none)") continue;
-    EXPECT_TRUE(runs_per_machine().count(name)) << name << " has no run in this test";
-  }
-}
-
-TEST(TraceAgreement, TracedSignalsHaveStatsJsonsMeansOnEveryMachine) {
-  for (const auto& [machine, runs] : runs_per_machine()) {
+TEST_P(TraceAgreement, TracedSignalsHaveStatsJsonsMeans) {
+  const std::string& machine = GetParam().name;
+  const std::vector<std::string>& runs = GetParam().test_runs;
+  {
     std::map<std::string, std::pair<double, std::string>> worst;  // file -> (error, signal)
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const fs::path dir = scratch_dir("agree-" + machine + "-" + std::to_string(k));
-      const auto r = run_rtsim("run --machine " + machine + " " + runs[k] +
-                               " --trace vcd,perfetto -q --out " + dir.string());
+      const auto r = run_kit("run --machine " + machine + " " + runs[k] + kSize +
+                             " --trace vcd,perfetto -q --out " + dir.string());
       ASSERT_EQ(r.exit_code, 0) << runs[k] << "\n" << r.output;
       EXPECT_EQ(r.output, "") << "no warning: nothing dropped";
       const json stats = json::parse(read_file(dir / "stats.json"));
@@ -230,3 +187,6 @@ TEST(TraceAgreement, TracedSignalsHaveStatsJsonsMeansOnEveryMachine) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Machines, TraceAgreement, testing::ValuesIn(rtsim::test::kit_machines()),
+                         rtsim::test::machine_param_name);

@@ -4,7 +4,8 @@
 //  * a name that another machine or the functional renderer reads, set from -p, a config file or
 //    a sweep file, stops the run before anything is written: exit 2, "not used by", and the
 //    closest names the machine does read.
-// The machines are called directly, each simulation in a forked child (one per process).
+// The machines are called directly, each simulation in a forked child (one per process); the
+// test program has the kit's minimal machine too (tests/kit_machine/), which is covered with them.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 
 #include "app/scene_input.hpp"
 #include "platform/machine.hpp"
+#include "platform/machine_registry.hpp"
 #include "tests/machine_test_support.hpp"
 #include "tests/test_support.hpp"
 

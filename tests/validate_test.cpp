@@ -14,8 +14,8 @@
 
 #include "common/csv_field.hpp"
 #include "platform/runs/run_queue.hpp"
-#include "platform/validation/all_figures.hpp"
 #include "platform/validation/curve_shape.hpp"
+#include "platform/validation/figure_registry.hpp"
 #include "platform/validation/ullner_figures.hpp"
 #include "platform/validation/validation.hpp"
 #include "platform/validation/vax_figures.hpp"
