@@ -85,14 +85,6 @@ inline std::vector<MachineInfo> registered_machines() { return machines_of(RTSIM
 /// parameters) are instantiated over these.
 inline std::vector<MachineInfo> kit_machines() { return machines_of(RTSIM_KIT_BINARY); }
 
-/// A GoogleTest parameter name for a machine.
-inline std::string machine_param_name(const testing::TestParamInfo<MachineInfo>& i) {
-  std::string name = i.param.name;
-  for (char& c : name)
-    if (c == '-') c = '_';
-  return name;
-}
-
 inline std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream ss;
@@ -124,6 +116,11 @@ inline std::string gtest_param_name(std::string name) {
   for (char& c : name)
     if (c == '-') c = '_';
   return name;
+}
+
+/// A GoogleTest parameter name for a machine.
+inline std::string machine_param_name(const testing::TestParamInfo<MachineInfo>& i) {
+  return gtest_param_name(i.param.name);
 }
 
 /// A fresh, empty folder under the build tree for one test's outputs.
