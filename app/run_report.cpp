@@ -171,6 +171,7 @@ bool has_windows(const json& stats) {
 /// (a machine's own figures: "peripheral", "vax", ...) gets a table.
 const std::set<std::string> kShownKeys = {"tool",
                                           "version",
+                                          "schema_version",
                                           "command",
                                           "machine",
                                           "scene",

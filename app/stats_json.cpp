@@ -61,6 +61,9 @@ ordered_json frame_stats_json(const std::string& command, const std::string& mac
   ordered_json j;
   j["tool"] = "rtsim";
   j["version"] = RTSIM_VERSION;
+  // The layout of this file (docs/stats.md, "Schema versions"): bumped when a key is renamed
+  // or moved. Files without it are schema 1.
+  j["schema_version"] = kStatsSchemaVersion;
   j["command"] = command;
   j["machine"] = machine;
   j["scene"] = scene.name;

@@ -10,6 +10,10 @@
 
 namespace rtsim::app {
 
+/// stats.json's layout: 2 since modules report their own statistics (queues have no busy time,
+/// host.job_latency_s, parameter_memories.words_written: docs/stats.md "Schema versions").
+inline constexpr int kStatsSchemaVersion = 2;
+
 /// The keys every run shares. `simulated_time_s` < 0 leaves that key out (functional render).
 nlohmann::ordered_json frame_stats_json(const std::string& command, const std::string& machine,
                                         const scenes::Scene& scene,

@@ -18,7 +18,7 @@
 #include <systemc>
 #include <vector>
 
-#include "modules/stats_registry.hpp"
+#include "modules/latency_recorder.hpp"
 
 namespace rtsim::modules {
 

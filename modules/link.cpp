@@ -44,7 +44,7 @@ sc_core::sc_time read_bit_time(const ModuleParams& params) {
 }  // namespace
 
 Link::Link(std::string name, const ModuleParams& params)
-    : name_(std::move(name)),
+    : StatGroup(std::move(name)),
       latency_(params.get_time("latency")),
       lanes_(std::max<std::size_t>(1, params.get_count("lanes"))),
       bit_time_(read_bit_time(params)) {}
@@ -58,10 +58,7 @@ sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& star
   const sc_core::sc_time begin = std::max(start, free_);
   waited_ += begin - start;
   const sc_core::sc_time done = std::max(plus(begin, serialisation(bits)), written);
-  if (done > begin) {
-    timeline_.add(begin, done - begin);
-    busy_ += done - begin;
-  }
+  if (done > begin) busy_.record(begin, done - begin);
   free_ = done;
   ++messages_;
   bits_ += bits;

@@ -6,7 +6,8 @@
 // bus (lanes 32) and a network hop are the same class with other parameters. A message that
 // finds the link busy waits (back-pressure on its sender: the time is counted); a sender that
 // produces the words more slowly than the link carries them holds the link until its last word
-// is written (the message cannot arrive before it exists).
+// is written (the message cannot arrive before it exists). It is the statistics group of its
+// name: busy while it carries bits, messages, bits, waited_s.
 //
 // Used by gaudet-pert (the queues of a PERT's ring) and ullner-peripheral (host <-> peripheral);
 // the ray-tracing pipeline's 13 bit-serial wires (seed 000 L727-L733) and the array's node links
@@ -15,12 +16,12 @@
 #include <string>
 #include <systemc>
 
-#include "modules/busy_timeline.hpp"
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 
 namespace rtsim::modules {
 
-class Link {
+class Link : public StatGroup {
  public:
   /// A machine preset's defaults for one link, with where they come from.
   struct Defaults {
@@ -39,7 +40,7 @@ class Link {
   /// links all read "pipeline.link").
   Link(std::string name, const ModuleParams& params);
 
-  const std::string& name() const { return name_; }
+  const std::string& name() const { return stat_path(); }
   const sc_core::sc_time& latency() const { return latency_; }
   /// Serialisation time of `bits`.
   sc_core::sc_time serialisation(std::uint64_t bits) const;
@@ -55,24 +56,23 @@ class Link {
     return transfer(bits, start, start);
   }
 
-  std::uint64_t messages() const { return messages_; }
-  std::uint64_t bits() const { return bits_; }
+  std::uint64_t messages() const { return messages_.value(); }
+  std::uint64_t bits() const { return bits_.value(); }
   /// Time it carried bits (its utilisation) and when.
-  sc_core::sc_time busy() const { return busy_; }
-  const BusyTimeline& timeline() const { return timeline_; }
+  sc_core::sc_time busy() const { return busy_.total(); }
+  const BusyTimeline& timeline() const { return busy_.timeline(); }
   /// Time messages waited for the link to be free (back-pressure).
-  sc_core::sc_time waited() const { return waited_; }
+  sc_core::sc_time waited() const { return waited_.value(); }
 
  private:
-  std::string name_;
   sc_core::sc_time latency_;
   std::uint64_t lanes_;
   sc_core::sc_time bit_time_;
   sc_core::sc_time free_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t messages_ = 0, bits_ = 0;
-  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time waited_ = sc_core::SC_ZERO_TIME;
-  BusyTimeline timeline_;
+  Busy busy_{*this, "time carrying bits (its utilisation)"};
+  Counter messages_{*this, "messages", "messages carried"};
+  Counter bits_{*this, "bits", "bits carried"};
+  Duration waited_{*this, "waited_s", "time messages waited for the link to be free"};
 };
 
 }  // namespace rtsim::modules

@@ -5,7 +5,8 @@
 // `line_words` words in parallel at `read_line_time` a line (Ullner's 20 parameter memories:
 // "one cycle reads a whole polygon", seed 000 L544). Streams the model only needs to time (a
 // pipeline fetching every polygon for every ray) are charged with account_line_reads(), which
-// advances the same counters without moving data.
+// advances the same counters without moving data. It is the statistics group of its name: busy
+// while its read port reads lines, words_written, lines_read and the load port's write_busy_s.
 // Used by ullner-peripheral (the parameter memories) and gaudet-pert (the Broadcast Processors'
 // memories); the array's node memories next.
 #include <tlm_utils/simple_target_socket.h>
@@ -18,8 +19,8 @@
 #include <vector>
 
 #include "common/input_error.hpp"
-#include "modules/busy_timeline.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/statistics.hpp"
 
 namespace rtsim::modules {
 
@@ -35,13 +36,14 @@ inline std::uint64_t& modelled_memory_bytes() {
   return bytes;
 }
 
-class Memory : public sc_core::sc_module {
+class Memory : public sc_core::sc_module, public StatGroup {
  public:
   tlm_utils::simple_target_socket<Memory> socket;
 
   Memory(sc_core::sc_module_name name, std::size_t words, unsigned line_words,
          sc_core::sc_time write_word_time, sc_core::sc_time read_line_time)
       : sc_core::sc_module(name),
+        StatGroup(sc_core::sc_module::name()),
         socket("socket"),
         data_(reserve_host_memory(words)),
         line_words_(line_words ? line_words : 1),
@@ -69,26 +71,20 @@ class Memory : public sc_core::sc_module {
     faults_.push_back({word, xor_mask, 0});
   }
   const std::vector<Fault>& faults() const { return faults_; }
-  std::uint64_t words_written() const { return words_written_; }
-  std::uint64_t lines_read() const { return lines_read_; }
-  sc_core::sc_time write_busy() const { return write_busy_; }
-  sc_core::sc_time read_busy() const { return read_busy_; }
+  std::uint64_t words_written() const { return words_written_.value(); }
+  std::uint64_t lines_read() const { return lines_read_.value(); }
+  sc_core::sc_time write_busy() const { return write_busy_.value(); }
+  sc_core::sc_time read_busy() const { return read_busy_.total(); }
 
-  /// `lines` line reads whose data the model does not need; returns their time.
-  sc_core::sc_time account_line_reads(std::uint64_t lines) {
+  /// `lines` line reads from `start` whose data the model does not need; returns their time.
+  sc_core::sc_time account_line_reads(std::uint64_t lines, const sc_core::sc_time& start) {
     lines_read_ += lines;
     const sc_core::sc_time t = times(read_line_time_, lines);
-    read_busy_ += t;
+    read_busy_.record(start, t);
     return t;
   }
-  /// The same, starting at `start`: also recorded in the read timeline.
-  sc_core::sc_time account_line_reads(std::uint64_t lines, const sc_core::sc_time& start) {
-    const sc_core::sc_time t = account_line_reads(lines);
-    read_timeline_.add(start, t);
-    return t;
-  }
-  /// When the read port was busy (reads charged with a start time, and b_transport reads).
-  const BusyTimeline& read_timeline() const { return read_timeline_; }
+  /// When the read port was busy (reads charged by account_line_reads, and b_transport reads).
+  const BusyTimeline& read_timeline() const { return read_busy_.timeline(); }
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
@@ -145,11 +141,10 @@ class Memory : public sc_core::sc_module {
   unsigned line_words_;
   sc_core::sc_time write_word_time_;
   sc_core::sc_time read_line_time_;
-  std::uint64_t words_written_ = 0;
-  std::uint64_t lines_read_ = 0;
-  sc_core::sc_time write_busy_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time read_busy_ = sc_core::SC_ZERO_TIME;
-  BusyTimeline read_timeline_;
+  Busy read_busy_{*this, "time its read port read lines (its utilisation)"};
+  Counter words_written_{*this, "words_written", "words written through its load port"};
+  Counter lines_read_{*this, "lines_read", "lines read"};
+  Duration write_busy_{*this, "write_busy_s", "time its load port wrote words"};
   std::vector<Fault> faults_;
 };
 

@@ -25,26 +25,37 @@ namespace rtsim::modules {
 template <class T>
 class MessageExtension : public tlm::tlm_extension<MessageExtension<T>> {
  public:
-  explicit MessageExtension(T* message = nullptr) : message_(message) {}
+  explicit MessageExtension(T* message = nullptr, std::uint64_t bits = 0)
+      : message_(message), bits_(bits) {}
   T* message() const { return message_; }
-  tlm::tlm_extension_base* clone() const override { return new MessageExtension(message_); }
+  /// Its size on the hardware (the payload's data length is this in whole bytes).
+  std::uint64_t bits() const { return bits_; }
+  tlm::tlm_extension_base* clone() const override { return new MessageExtension(message_, bits_); }
   void copy_from(const tlm::tlm_extension_base& other) override {
     message_ = static_cast<const MessageExtension&>(other).message_;
+    bits_ = static_cast<const MessageExtension&>(other).bits_;
   }
 
  private:
   T* message_;
+  std::uint64_t bits_;
 };
 
-/// The receiving end: a target socket in front of a bounded FIFO of T.
+/// The receiving end: a target socket in front of a bounded FIFO of T. Its statistics are its
+/// FIFO's, and the bits its messages carried (their size on the hardware), under its name or
+/// the name the machine's vocabulary gives the queue ("pert0.queue.shade_to_shell" for the
+/// SystemC module pert0.shell.input).
 template <class T>
 class MessageQueue : public sc_core::sc_module {
  public:
   tlm_utils::simple_target_socket<MessageQueue<T>> socket;
   TimedFifo<T> fifo;
 
-  MessageQueue(sc_core::sc_module_name name, std::size_t depth)
-      : sc_core::sc_module(name), socket("socket"), fifo(this->name(), depth) {
+  MessageQueue(sc_core::sc_module_name name, std::size_t depth, std::string stats_name = {})
+      : sc_core::sc_module(name),
+        socket("socket"),
+        fifo(stats_name.empty() ? std::string(this->name()) : std::move(stats_name), depth),
+        bits_(fifo, "bits", "bits its messages carried (their sizes on the hardware)") {
     socket.register_b_transport(this, &MessageQueue::b_transport);
   }
 
@@ -55,11 +66,13 @@ class MessageQueue : public sc_core::sc_module {
       gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
       return;
     }
+    bits_ += ext->bits();
     const sc_core::sc_time stamp = fifo.put(*ext->message(), sc_core::sc_time_stamp() + delay);
     const sc_core::sc_time now = sc_core::sc_time_stamp();
     delay = stamp > now ? stamp - now : sc_core::SC_ZERO_TIME;
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
+  Counter bits_;
 };
 
 namespace detail {
@@ -96,7 +109,7 @@ class PayloadPool {
 template <class Socket, class T>
 sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
                               std::uint64_t bits) {
-  MessageExtension<T> ext(&msg);
+  MessageExtension<T> ext(&msg, bits);
   tlm::tlm_generic_payload& gp = *detail::PayloadPool::take();
   gp.set_command(tlm::TLM_WRITE_COMMAND);
   gp.set_address(0);

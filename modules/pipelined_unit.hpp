@@ -1,24 +1,32 @@
 #pragma once
 // A pipelined arithmetic unit (Ullner's intersection pipeline, an inner-product unit): items
 // enter one per issue interval and leave `stages` stage times later. Time advances by
-// arithmetic, never by one event per item (DESIGN.md "Timing rules").
+// arithmetic, never by one event per item (DESIGN.md "Timing rules"). It is the statistics group
+// of its name: busy one issue interval per item, the items issued (named by its owner:
+// "intersections") and its stage count.
 // Used by ullner-peripheral (the intersection pipeline, the lighting unit); the ray-tracing
 // pipeline and Wang's Bezier pipeline next.
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <systemc>
 
-#include "modules/busy_timeline.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/statistics.hpp"
 
 namespace rtsim::modules {
 
-class PipelinedUnit {
+class PipelinedUnit : public StatGroup {
  public:
-  PipelinedUnit() = default;
-  /// `interval`: time between successive issues (also the stage time); `stages`: depth.
-  PipelinedUnit(sc_core::sc_time interval, unsigned stages)
-      : interval_(interval), stages_(stages) {}
+  /// `name`: its statistics group ("peripheral.pipeline"); `interval`: time between successive
+  /// issues (also the stage time); `stages`: depth; `items`: what it counts as issued
+  /// ("intersections", "inner_products").
+  PipelinedUnit(std::string name, sc_core::sc_time interval, unsigned stages,
+                std::string items = "issued")
+      : StatGroup(std::move(name)),
+        interval_(interval),
+        stages_(stages),
+        issued_(*this, std::move(items), "items issued") {}
 
   struct Batch {
     sc_core::sc_time first_issue;  ///< when the first item entered
@@ -40,7 +48,7 @@ class PipelinedUnit {
     b.done = b.next_free - interval_ + latency();
     next_free_ = b.next_free;
     issued_ += n;
-    timeline_.add(b.first_issue, b.next_free - b.first_issue);
+    busy_.record(b.first_issue, b.next_free - b.first_issue);
     return b;
   }
 
@@ -48,18 +56,19 @@ class PipelinedUnit {
   sc_core::sc_time latency() const { return times(interval_, stages_); }
   sc_core::sc_time interval() const { return interval_; }
   unsigned stages() const { return stages_; }
-  std::uint64_t issued() const { return issued_; }
+  std::uint64_t issued() const { return issued_.value(); }
   /// Busy time: one issue interval per item.
-  sc_core::sc_time busy() const { return times(interval_, issued_); }
+  sc_core::sc_time busy() const { return busy_.total(); }
   /// When it was busy: its issue slots, batch by batch.
-  const BusyTimeline& timeline() const { return timeline_; }
+  const BusyTimeline& timeline() const { return busy_.timeline(); }
 
  private:
   sc_core::sc_time interval_ = sc_core::SC_ZERO_TIME;
   unsigned stages_ = 1;
   sc_core::sc_time next_free_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t issued_ = 0;
-  BusyTimeline timeline_;
+  Busy busy_{*this, "issue slots used: one interval an item (its utilisation)"};
+  Counter issued_;
+  Computed stage_count_{*this, "stages", "its depth in stages", [this] { return stages_; }};
 };
 
 }  // namespace rtsim::modules

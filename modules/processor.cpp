@@ -3,15 +3,17 @@
 namespace rtsim::modules {
 
 Processor::Processor(const sc_core::sc_module_name& name, SliceSink& trace)
-    : sc_core::sc_module(name), trace_(trace), track_(this->name()) {}
+    : sc_core::sc_module(name),
+      StatGroup(sc_core::sc_module::name()),
+      trace_(trace),
+      track_(this->name()) {}
 
 void Processor::compute_for(const sc_core::sc_time& t, std::string_view what,
                             std::initializer_list<PerfettoTrace::Arg> args) {
   if (t == sc_core::SC_ZERO_TIME) return;
   trace_.slice(track_, what, clock_.now(), t, args);
-  timeline_.add(clock_.now(), t);
+  busy_.record(clock_.now(), t);
   clock_.advance(t);
-  accounts_.busy += t;
 }
 
 template <class Events>
@@ -53,7 +55,7 @@ void Processor::idle_until(const sc_core::sc_time& t, Wait why) {
 
 void Processor::blocked_until(const sc_core::sc_time& t) {
   if (t <= clock_.now()) return;
-  accounts_.blocked += t - clock_.now();
+  blocked_ += t - clock_.now();
   clock_.catch_up(t);
 }
 

@@ -8,8 +8,9 @@
 //   waiting   for data it asked for (a packet on a bus, an answer) or for work to arrive,
 //   blocked   on output: the next stage's queue had no room.
 // It keeps its own local time (temporal decoupling, LocalClock) and records each computation as
-// a Perfetto slice on its track and in its BusyTimeline (the source of stats.json's busy time
-// and the traces' busy signal alike).
+// a Perfetto slice on its track and in its Busy statistic (the source of stats.json's busy time
+// and the traces' busy signal alike). It is the statistics group of its name: a subclass
+// declares its own counters as members (modules/statistics.hpp).
 //
 // Used by gaudet-pert's Shade, Shell and Prim processors, ullner-peripheral's host and vax-750's
 // host; the next machines' engines and nodes are processors too.
@@ -23,11 +24,12 @@
 #include "modules/local_clock.hpp"
 #include "modules/processor_timing.hpp"
 #include "modules/slice_sink.hpp"
+#include "modules/statistics.hpp"
 #include "modules/timed_fifo.hpp"
 
 namespace rtsim::modules {
 
-class Processor : public sc_core::sc_module {
+class Processor : public sc_core::sc_module, public StatGroup {
  public:
   /// Why a processor is idle.
   enum class Wait {
@@ -41,9 +43,11 @@ class Processor : public sc_core::sc_module {
     sc_core::sc_time blocked = sc_core::SC_ZERO_TIME;
   };
 
-  const Accounts& accounts() const { return accounts_; }
+  Accounts accounts() const {
+    return {busy_.total(), waiting_for_data_.value(), waiting_for_work_.value(), blocked_.value()};
+  }
   /// When it computed, for utilisation windows and the traces' busy signal.
-  const BusyTimeline& timeline() const { return timeline_; }
+  const BusyTimeline& timeline() const { return busy_.timeline(); }
   /// Its local time (absolute).
   sc_core::sc_time now() const { return clock_.now(); }
 
@@ -120,7 +124,7 @@ class Processor : public sc_core::sc_module {
       clock_.sync();
       if (out.full()) sc_core::wait(out.get_event());
       clock_.resync();
-      accounts_.blocked += clock_.now() - since;
+      blocked_ += clock_.now() - since;
     }
   }
   const ProcessorTiming& timing() const { return timing_; }
@@ -131,12 +135,12 @@ class Processor : public sc_core::sc_module {
  private:
   template <class Events>
   void idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
-  sc_core::sc_time& account(Wait why) {
-    return why == Wait::kData ? accounts_.waiting_for_data : accounts_.waiting_for_work;
-  }
+  Duration& account(Wait why) { return why == Wait::kData ? waiting_for_data_ : waiting_for_work_; }
   ProcessorTiming timing_;
-  Accounts accounts_;
-  BusyTimeline timeline_;
+  Busy busy_{*this, "time computing (its utilisation)"};
+  Duration waiting_for_data_{*this, "waiting_for_data_s", "time idle for data it asked for"};
+  Duration waiting_for_work_{*this, "waiting_for_work_s", "time idle for work to arrive"};
+  Duration blocked_{*this, "blocked_s", "time blocked on output: the next queue was full"};
   std::string track_;  ///< its trace track: its hierarchical name
 };
 

@@ -7,6 +7,9 @@
 // a larger quantum buys speed with.
 //
 // Blocking calls wait() on an event, so they must be called from an SC_THREAD.
+// It is the statistics group of its name: its depth over time (queue.{capacity, mean_occupancy,
+// max_occupancy} and the traces' depth signal), the messages put, and the puts that waited for
+// a slot and how long (back-pressure on its producers).
 // Used by every machine's queues (MessageQueue).
 #include <cstdint>
 #include <deque>
@@ -15,22 +18,23 @@
 #include <systemc>
 #include <vector>
 
-#include "modules/occupancy.hpp"
+#include "modules/statistics.hpp"
 
 namespace rtsim::modules {
 
 template <class T>
-class TimedFifo {
+class TimedFifo : public StatGroup {
  public:
   /// A FIFO that is never full: a node's stockpile of messages in its memory (ullner-array).
-  static constexpr std::size_t kUnbounded = static_cast<std::size_t>(-1);
+  static constexpr std::size_t kUnbounded = Level::kUnbounded;
 
   TimedFifo(std::string name, std::size_t capacity)
-      : name_(std::move(name)),
+      : StatGroup(std::move(name)),
         capacity_(capacity ? capacity : 1),
-        slot_free_(capacity_ == kUnbounded ? 0 : capacity_) {}
+        slot_free_(capacity_ == kUnbounded ? 0 : capacity_),
+        depth_(*this, capacity_) {}
 
-  const std::string& name() const { return name_; }
+  const std::string& name() const { return stat_path(); }
   std::size_t capacity() const { return capacity_; }
   std::size_t size() const { return items_.size(); }
 
@@ -41,7 +45,7 @@ class TimedFifo {
   /// True if a slot is free at or before `t`.
   bool has_room_by(const sc_core::sc_time& t) const {
     if (capacity_ == kUnbounded) return true;
-    return items_.size() < capacity_ && slot_free_[put_count_ % capacity_] <= t;
+    return items_.size() < capacity_ && slot_free_[messages_.value() % capacity_] <= t;
   }
   bool full() const { return items_.size() >= capacity_; }
   /// When the oldest waiting item was (or will be) put; nothing if the FIFO is empty.
@@ -53,7 +57,7 @@ class TimedFifo {
   std::optional<sc_core::sc_time> next_room_time() const {
     if (capacity_ == kUnbounded) return sc_core::SC_ZERO_TIME;
     if (items_.size() >= capacity_) return std::nullopt;
-    return slot_free_[put_count_ % capacity_];
+    return slot_free_[messages_.value() % capacity_];
   }
   bool empty() const { return items_.empty(); }
 
@@ -62,10 +66,14 @@ class TimedFifo {
   sc_core::sc_time put(T item, sc_core::sc_time t) {
     while (items_.size() >= capacity_) sc_core::wait(got_);
     const sc_core::sc_time stamp =
-        capacity_ == kUnbounded ? t : std::max(t, slot_free_[put_count_ % capacity_]);
+        capacity_ == kUnbounded ? t : std::max(t, slot_free_[messages_.value() % capacity_]);
     items_.push_back(Entry{std::move(item), stamp});
-    ++put_count_;
-    occupancy_.put(stamp);
+    ++messages_;
+    if (stamp > t) {
+      ++waits_;
+      waited_ += stamp - t;
+    }
+    depth_.put(stamp);
     put_.notify(sc_core::SC_ZERO_TIME);
     return stamp;
   }
@@ -79,7 +87,7 @@ class TimedFifo {
     stamp = std::max(t, e.stamp);
     if (capacity_ != kUnbounded) slot_free_[get_count_ % capacity_] = stamp;
     ++get_count_;
-    occupancy_.got(stamp);
+    depth_.got(stamp);
     got_.notify(sc_core::SC_ZERO_TIME);
     return std::move(e.item);
   }
@@ -88,23 +96,24 @@ class TimedFifo {
   const sc_core::sc_event& put_event() const { return put_; }
   const sc_core::sc_event& get_event() const { return got_; }
 
-  std::uint64_t puts() const { return put_count_; }
-  const Occupancy& occupancy() const { return occupancy_; }
+  std::uint64_t puts() const { return messages_.value(); }
+  const Occupancy& occupancy() const { return depth_.occupancy(); }
 
  private:
   struct Entry {
     T item;
     sc_core::sc_time stamp;
   };
-  std::string name_;
   std::size_t capacity_;
   std::deque<Entry> items_;
   std::vector<sc_core::sc_time> slot_free_;  ///< per slot: when its last item was taken
-  std::uint64_t put_count_ = 0;
   std::uint64_t get_count_ = 0;
   sc_core::sc_event put_;
   sc_core::sc_event got_;
-  Occupancy occupancy_;
+  Level depth_;
+  Counter messages_{*this, "messages", "messages put"};
+  Counter waits_{*this, "waits", "puts that waited for a free slot"};
+  Duration waited_{*this, "waited_s", "time puts waited for a free slot (back-pressure)"};
 };
 
 /// Returns once `fifo` holds an item; a thread whose local time is `clock` (a LocalClock) first

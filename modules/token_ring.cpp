@@ -73,16 +73,20 @@ TokenRing::Config TokenRing::read_config(const ModuleParams& params) {
 TokenRing::TokenRing(sc_core::sc_module_name name, const Config& c, std::size_t nodes,
                      std::vector<std::string> classes)
     : sc_core::sc_module(name),
+      StatGroup(sc_core::sc_module::name()),
       bit_time_(c.bit_time),
       hop_(c.hop_latency),
       max_payload_(c.max_payload),
       header_(c.header),
       service_(c.service),
-      classes_(std::move(classes)),
+      classes_(classes.empty() ? std::vector<std::string>{"data"} : std::move(classes)),
       queues_(std::max<std::size_t>(1, nodes)),
       node_(queues_.size()) {
-  if (classes_.empty()) classes_.push_back("data");
-  class_bytes_.assign(classes_.size(), 0);
+  for (std::size_t k = 0; k < node_.size(); ++k)
+    node_waits_.push_back(std::make_unique<Computed>(*this, "wait_s.node" + std::to_string(k),
+                                                     "mean wait of node k's packets",
+                                                     [this, k] { return mean_wait_s(k); }));
+
   SC_THREAD(run);
 }
 
@@ -101,7 +105,8 @@ std::uint64_t TokenRing::send(std::size_t source, std::size_t destination, std::
     throw std::out_of_range(std::string(name()) + ": no node " +
                             std::to_string(std::max(source, destination)) + " on a ring of " +
                             std::to_string(queues_.size()));
-  const std::uint64_t id = messages_++;
+  const std::uint64_t id = messages_.value();
+  ++messages_;
   const sc_core::sc_time stamp = std::max(ready, sc_core::sc_time_stamp());
   const std::size_t cls = std::min(traffic_class, classes_.size() - 1);
   std::uint64_t left = std::max<std::uint64_t>(1, bytes);
@@ -125,15 +130,16 @@ bool TokenRing::eligible(std::size_t k, const sc_core::sc_time& t) const {
 }
 
 void TokenRing::set_holder(long level, const sc_core::sc_time& t) {
+  std::vector<LevelChange>& h = holder_.changes();
   const std::uint64_t v = t.value();
-  if (!holder_.empty() && holder_.back().t == v) {
-    holder_.back().level = level;
-    const long before = holder_.size() > 1 ? holder_[holder_.size() - 2].level : 0;
-    if (before == level) holder_.pop_back();
+  if (!h.empty() && h.back().t == v) {
+    h.back().level = level;
+    const long before = h.size() > 1 ? h[h.size() - 2].level : 0;
+    if (before == level) h.pop_back();
     return;
   }
-  const long now = holder_.empty() ? 0 : holder_.back().level;
-  if (now != level) holder_.push_back({v, level});
+  const long now = h.empty() ? 0 : h.back().level;
+  if (now != level) h.push_back({v, level});
 }
 
 void TokenRing::advance(std::uint64_t n) {
@@ -169,13 +175,12 @@ void TokenRing::serve() {
     const sc_core::sc_time start = time_;
     const sc_core::sc_time length = transmission(p.wire_bytes);
     time_ = plus(start, length);
-    timeline_.add(start, length);
-    busy_ += length;
+    busy_.record(start, length);
     set_holder(static_cast<long>(at_) + 1, start);
     ++packets_sent_;
     node_[at_].packets += 1;
     node_[at_].wait_s += (start - p.ready).to_seconds();
-    class_bytes_[p.traffic_class] += p.wire_bytes;
+    class_bytes_.add(p.traffic_class, p.wire_bytes);
     if (p.last && delivery_)
       delivery_(p.message, p.destination, plus(time_, times(hop_, hops(at_, p.destination))));
   }
@@ -254,21 +259,6 @@ double TokenRing::mean_wait_s() const {
     count += s.packets;
   }
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
-}
-
-ModuleStats& TokenRing::report(StatsRegistry& stats, const std::string& module_name) const {
-  ModuleStats& m = stats.busy_module(module_name, busy_, timeline_);
-  m.values["nodes"] = static_cast<double>(queues_.size());
-  m.values["messages"] = static_cast<double>(messages_);
-  m.values["packets"] = static_cast<double>(packets_sent_);
-  m.values["token_rotation_s"] = mean_rotation_s();
-  m.values["mean_wait_s"] = mean_wait_s();
-  for (std::size_t k = 0; k < node_.size(); ++k)
-    m.values["wait_s.node" + std::to_string(k)] = mean_wait_s(k);
-  for (std::size_t c = 0; c < classes_.size(); ++c)
-    m.values["bytes." + classes_[c]] = static_cast<double>(class_bytes_[c]);
-  m.level_sources.push_back({"holder", &holder_});
-  return m;
 }
 
 }  // namespace rtsim::modules

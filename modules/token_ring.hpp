@@ -26,21 +26,24 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <string>
 #include <systemc>
 #include <vector>
 
-#include "modules/busy_timeline.hpp"
 #include "modules/level_steps.hpp"
 #include "modules/module_params.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 
 namespace rtsim::modules {
 
 /// How long a node keeps the token.
 enum class RingService { kExhaustive, kGated, kOnePacket };
 
-class TokenRing : public sc_core::sc_module {
+/// The statistics group of its name: busy while transmitting (utilisation), messages, packets,
+/// the mean token rotation, the mean wait over all packets and per node, bytes per traffic
+/// class; and the holder signal for the traces.
+class TokenRing : public sc_core::sc_module, public StatGroup {
  public:
   /// A machine preset's defaults, with where they come from.
   struct Defaults {
@@ -95,10 +98,10 @@ class TokenRing : public sc_core::sc_module {
   std::size_t hops(std::size_t a, std::size_t b) const;
 
   // --- statistics ------------------------------------------------------------------------
-  std::uint64_t messages() const { return messages_; }
-  std::uint64_t packets() const { return packets_sent_; }
-  sc_core::sc_time busy() const { return busy_; }
-  const BusyTimeline& timeline() const { return timeline_; }
+  std::uint64_t messages() const { return messages_.value(); }
+  std::uint64_t packets() const { return packets_sent_.value(); }
+  sc_core::sc_time busy() const { return busy_.total(); }
+  const BusyTimeline& timeline() const { return busy_.timeline(); }
   /// Mean time between the token's passes at node 0 (0 before it came round twice).
   double mean_rotation_s() const;
   /// Mean wait of node k's packets, from being queued to the start of their transmission.
@@ -107,12 +110,7 @@ class TokenRing : public sc_core::sc_module {
   double mean_wait_s() const;
   std::uint64_t packets_sent(std::size_t node) const { return node_[node].packets; }
   /// Who transmits: node index + 1 while a node sends, 0 while none does (VCD `NAME.holder`).
-  const std::vector<LevelChange>& holder_changes() const { return holder_; }
-
-  /// Its statistics under `name` in `stats`: busy while transmitting (utilisation), messages,
-  /// packets, the mean token rotation, the mean wait over all packets and per node, bytes per
-  /// traffic class; and the holder signal for the traces.
-  ModuleStats& report(StatsRegistry& stats, const std::string& name) const;
+  const std::vector<LevelChange>& holder_changes() const { return holder_.changes(); }
 
  private:
   struct Packet {
@@ -152,14 +150,22 @@ class TokenRing : public sc_core::sc_module {
   std::size_t at_ = 0;                             ///< the node the token is at (or last passed)
   sc_core::sc_time time_ = sc_core::SC_ZERO_TIME;  ///< when it got there
 
-  std::uint64_t messages_ = 0, packets_sent_ = 0;
   std::uint64_t passes_at_0_ = 0;
   sc_core::sc_time first_pass_at_0_, last_pass_at_0_;
-  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
-  BusyTimeline timeline_;
   std::vector<NodeStats> node_;
-  std::vector<std::uint64_t> class_bytes_;
-  std::vector<LevelChange> holder_;
+
+  Busy busy_{*this, "time transmitting (its utilisation)"};
+  Counter messages_{*this, "messages", "messages sent"};
+  Counter packets_sent_{*this, "packets", "packets transmitted"};
+  Computed nodes_{*this, "nodes", "nodes on the ring", [this] { return queues_.size(); }};
+  Computed rotation_{*this, "token_rotation_s", "mean time between the token's passes at node 0",
+                     [this] { return mean_rotation_s(); }};
+  Computed mean_wait_{*this, "mean_wait_s",
+                      "mean wait of a packet from being queued to its transmission",
+                      [this] { return mean_wait_s(); }};
+  std::vector<std::unique_ptr<Computed>> node_waits_;  ///< wait_s.nodeK
+  CounterArray class_bytes_{*this, "bytes.", classes_, "bytes of a traffic class, headers in"};
+  LevelSignal holder_{*this, "holder", "node index + 1 while a node transmits, 0 while none"};
 };
 
 /// "exhaustive", "gated", "one_packet".

@@ -8,7 +8,6 @@
 
 #include "modules/busy_timeline.hpp"
 #include "modules/occupancy.hpp"
-#include "modules/stats_registry.hpp"
 
 extern "C" int sc_main(int, char*[]) { return 0; }
 
@@ -77,23 +76,6 @@ TEST(BusyTimeline, EmptyOrDegenerateFrameGivesNoWindows) {
   EXPECT_TRUE(t.windows(ps(0), ps(100), 0).values.empty());
   t.add(ps(5), ps(0));  // zero-length: nothing
   EXPECT_EQ(t.bins(), 0u);
-}
-
-TEST(StatsRegistry, WritesUtilizationWindowsOnlyWhenRecorded) {
-  rtsim::modules::StatsRegistry reg;
-  BusyTimeline t;
-  t.add(ps(0), ps(500));
-  auto& a = reg.module("a");
-  a.busy = ps(500);
-  a.windows = t.windows(ps(0), ps(1000), 2);
-  reg.module("b").busy = ps(10);
-  const auto j = reg.to_json(ps(1000));
-  ASSERT_TRUE(j["a"].contains("utilization_windows"));
-  EXPECT_EQ(j["a"]["utilization_windows"]["values"].size(), 2u);
-  EXPECT_DOUBLE_EQ(j["a"]["utilization_windows"]["values"][0].get<double>(), 1.0);
-  EXPECT_DOUBLE_EQ(j["a"]["utilization_windows"]["values"][1].get<double>(), 0.0);
-  EXPECT_DOUBLE_EQ(j["a"]["utilization_windows"]["window_s"].get<double>(), 500e-12);
-  EXPECT_FALSE(j["b"].contains("utilization_windows"));
 }
 
 TEST(Occupancy, PutsStampedOutOfOrderGiveTheTimeWeightedMean) {
@@ -176,24 +158,4 @@ TEST(BusyTimeline, KeepsItsIntervalsOnlyWhileATraceAsksAndTheyAddUpToTheTotal) {
     EXPECT_EQ(busy, t.total().value());
   }
   EXPECT_FALSE(BusyTimeline().keeps_intervals());
-}
-
-TEST(StatsRegistry, BusyModulesAndQueuesRememberTheirSources) {
-  BusyTimeline t;
-  t.add(ps(100), ps(400));
-  rtsim::modules::Occupancy q;
-  q.put(ps(100));
-  q.got(ps(300));
-  rtsim::modules::StatsRegistry reg(ps(100), ps(1100));
-  auto& m = reg.busy_module("unit", ps(400), t);
-  EXPECT_EQ(m.busy_source, &t);
-  EXPECT_EQ(m.windows.values.size(), rtsim::modules::kUtilizationWindows);
-  EXPECT_DOUBLE_EQ(m.windows.begin_s, 100e-12);
-  auto& qs = reg.queue("unit.queue", q, 4);
-  EXPECT_EQ(qs.occupancy_source, &q);
-  EXPECT_TRUE(qs.has_occupancy);
-  EXPECT_EQ(qs.capacity, 4u);
-  EXPECT_DOUBLE_EQ(qs.occupancy.mean, 200.0 / 1000.0);
-  EXPECT_EQ(reg.begin(), ps(100));
-  EXPECT_EQ(reg.end(), ps(1100));
 }

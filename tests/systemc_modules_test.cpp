@@ -11,7 +11,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/occupancy.hpp"
 #include "modules/pipelined_unit.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "tests/systemc_test_support.hpp"
 
 extern "C" int sc_main(int, char*[]) { return 0; }
@@ -24,7 +24,7 @@ using namespace rtsim::modules;
 TEST(PipelinedUnit, AdvancesTimeByArithmetic) {
   // Ullner's pipe: 17 stages at 1/3 us (seed 000 L588): 1000 polygons take 1000 intervals and
   // the last result leaves 17 stages after it entered.
-  PipelinedUnit pipe(sc_time(333333, sc_core::SC_PS), 17);
+  PipelinedUnit pipe("pipe", sc_time(333333, sc_core::SC_PS), 17);
   const auto a = pipe.issue(1000, sc_time(0, SC_NS));
   EXPECT_EQ(a.first_issue, sc_time(0, SC_NS));
   EXPECT_EQ(a.next_free, sc_time(333333000, sc_core::SC_PS));

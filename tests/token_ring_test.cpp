@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "modules/module_params.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "params/registry.hpp"
 #include "tests/systemc_test_support.hpp"
 

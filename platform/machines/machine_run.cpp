@@ -2,6 +2,7 @@
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_directory.hpp"
 #include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform {
@@ -64,26 +65,26 @@ void MachineRun::simulate() {
   }
 }
 
-modules::StatsRegistry& MachineRun::stats(const sc_core::sc_time& begin,
-                                          const sc_core::sc_time& frame_time) {
+void MachineRun::stats_over(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time) {
   frame_time_ = frame_time;
   result_.simulated_time_s = frame_time.to_seconds();
   if (sample_)
     sample_json_ = sample_->estimate(begin, begin + frame_time, result_.simulated_time_s);
-  return stats_.emplace(begin, begin + frame_time);
+  window_ = modules::StatWindow{begin, begin + frame_time};
 }
 
 RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
                              const std::vector<modules::Memory*>& fault_memories) {
-  if (!stats_) throw std::logic_error(machine_ + ": finish() before stats()");
+  if (!window_) throw std::logic_error(machine_ + ": finish() before stats_over()");
   // The machine's keys first were added by the machine; the common ones lead.
   nlohmann::ordered_json out;
-  out["modules"] = stats_->to_json(frame_time_);
+  // Every statistics group alive is one of this run's modules (one simulation a process).
+  out["modules"] = modules::StatDirectory::instance().to_json(*window_);
   out["ray_latency_s"] = ray_latency.to_json();
   for (auto& [key, value] : result_.stats.items()) out[key] = std::move(value);
   if (probe_.enabled()) out["latency_probe"] = probe_.to_json();
   if (!opts_.faults.empty()) out["faults"] = faults_json(fault_memories);
-  if (trace_.on()) out["trace"] = trace_.finish(*stats_);
+  if (trace_.on()) out["trace"] = trace_.finish(*window_);
   if (sample_) {
     out["sample"] = std::move(sample_json_);
     // The rows not simulated in detail, functionally: the image is whole.

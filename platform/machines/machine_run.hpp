@@ -7,11 +7,13 @@
 //   ... build the module tree (run.frame(), run.trace(), run.probe()) ...
 //   inject_faults(name(), opts.faults, memories);
 //   run.simulate();                                         // sc_start
-//   modules::StatsRegistry& stats = run.stats(frame_begin, frame_time);
-//   ... stats.busy_module(...), stats.queue(...), machine keys into run.result().stats ...
+//   run.stats_over(frame_begin, frame_time);                 // the frame of the statistics
+//   ... the machine's own keys into run.machine_stats() ...
 //   return run.finish(ray_latency, memories);               // modules, latency, trace, image
 //
-// Used by vax-750, ullner-peripheral and gaudet-pert.
+// The modules report themselves: stats.json's `modules` is every statistics group alive
+// (modules/stat_directory.hpp), written by finish().
+// Used by every machine.
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -19,8 +21,9 @@
 #include <vector>
 
 #include "modules/latency_probe.hpp"
+#include "modules/latency_recorder.hpp"
 #include "modules/memory.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/frame_sample.hpp"
@@ -56,9 +59,9 @@ class MachineRun {
   /// sc_stop(), which is no news).
   void simulate();
 
-  /// After simulate(): the statistics of the frame [begin, begin + frame_time] (the time before
-  /// `begin` is the scene load), which the machine fills with its modules.
-  modules::StatsRegistry& stats(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time);
+  /// After simulate(): the modules' statistics are taken over the frame
+  /// [begin, begin + frame_time] (the time before `begin` is the scene load).
+  void stats_over(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time);
 
   /// What the machine adds to stats.json besides its modules (its headline keys).
   nlohmann::ordered_json& machine_stats() { return result_.stats; }
@@ -78,7 +81,7 @@ class MachineRun {
   functional::FrameState frame_;
   MachineTrace trace_;
   modules::LatencyProbe probe_;
-  std::optional<modules::StatsRegistry> stats_;
+  std::optional<modules::StatWindow> window_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   RunResult result_;
   std::optional<FrameSample> sample_;  ///< --sample

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "modules/stat_directory.hpp"
+
 namespace rtsim::platform {
 
 namespace {
@@ -16,7 +18,6 @@ sc_core::sc_time time_of(std::uint64_t ticks) {
   return sc_core::sc_time::from_value(static_cast<sc_core::sc_time::value_type>(ticks));
 }
 
-constexpr const char* kBusy = "busy";
 constexpr const char* kDepth = "depth";
 
 struct Signal {
@@ -50,19 +51,14 @@ bool MachineTrace::keeps(std::string_view module, const sc_core::sc_time& start,
   return it->second;
 }
 
-nlohmann::ordered_json MachineTrace::finish(const modules::StatsRegistry& stats) {
+nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
   if (!on()) return nullptr;
   // The signals, from the sources of stats.json's numbers, by stats.json's names.
   std::vector<Signal> signals;
-  std::uint64_t last = stats.end().value();
-  for (const auto& [name, m] : stats.modules()) {
-    if (!filter_.keeps_module(name)) continue;
-    if (m.busy_source && m.busy_source->keeps_intervals())
-      signals.push_back({name, kBusy, m.busy_source->level_changes()});
-    if (m.occupancy_source) signals.push_back({name, kDepth, m.occupancy_source->depth_changes()});
-    for (const auto& [what, changes] : m.level_sources)
-      if (changes) signals.push_back({name, what, *changes});
-  }
+  std::uint64_t last = window.end.value();
+  for (modules::NamedSignal& s : modules::StatDirectory::instance().signals())
+    if (filter_.keeps_module(s.name))
+      signals.push_back({std::move(s.name), std::move(s.kind), std::move(s.changes)});
   for (const Signal& s : signals)
     if (!s.changes.empty()) last = std::max(last, s.changes.back().t);
   // What the traces cover: the window asked for, else from time 0 to the end of the frame (or
@@ -88,7 +84,7 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatsRegistry& stats)
     const auto pair = [](double a, double b) { return nlohmann::json::array({a, b}).dump(); };
     perfetto_->other_data("rtsim_window_s", pair(seconds_of(from), seconds_of(to)));
     perfetto_->other_data("rtsim_stats_interval_s",
-                          pair(stats.begin().to_seconds(), stats.end().to_seconds()));
+                          pair(window.begin.to_seconds(), window.end.to_seconds()));
     perfetto_->other_data("rtsim_modules", nlohmann::json(filter_.modules).dump());
   }
   if (vcd_) {
@@ -106,7 +102,7 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatsRegistry& stats)
 
   nlohmann::ordered_json j;
   j["window_s"] = {seconds_of(from), seconds_of(to)};
-  j["stats_interval_s"] = {stats.begin().to_seconds(), stats.end().to_seconds()};
+  j["stats_interval_s"] = {window.begin.to_seconds(), window.end.to_seconds()};
   j["modules"] = filter_.modules;
   j["max_events"] = max_events_;
   j["signals"] = signals.size();

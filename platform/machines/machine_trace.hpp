@@ -5,8 +5,8 @@
 //  * transactions: Perfetto slices a module emits as it works (slice(): a ray in the pipeline, a
 //    packet on a bus), streamed to the file during the simulation;
 //  * signals: each module's busy level and each queue's depth, written by finish() after the
-//    simulation from the very objects stats.json was summarised from (the StatsRegistry's
-//    BusyTimeline and Occupancy sources): VCD variables NAME.busy / NAME.depth, and Perfetto
+//    simulation from the very objects stats.json was summarised from (the Busy and Level
+//    statistics of the StatDirectory's groups): VCD variables NAME.busy / NAME.depth, and Perfetto
 //    counters of the same names. Their time-weighted means over the frame are stats.json's
 //    utilisation and mean occupancy (tests/trace_agreement_test.cpp).
 //
@@ -24,7 +24,7 @@
 
 #include "modules/busy_timeline.hpp"
 #include "modules/slice_sink.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "modules/trace/perfetto_trace.hpp"
 #include "modules/trace/trace_filter.hpp"
 #include "modules/trace/vcd_trace.hpp"
@@ -54,10 +54,10 @@ class MachineTrace final : public modules::SliceSink {
       perfetto_->slice(perfetto_->track(module), name, start, duration, args);
   }
 
-  /// After the simulation, with the run's statistics: writes the busy and depth signals of every
-  /// module of `stats` the filter keeps, closes the files and returns stats.json's `trace`
-  /// object (null when no trace was asked for). Call once.
-  nlohmann::ordered_json finish(const modules::StatsRegistry& stats);
+  /// After the simulation: writes the busy and depth signals of every statistics group alive
+  /// that the filter keeps, closes the files and returns stats.json's `trace` object (null when
+  /// no trace was asked for); `window` is the frame the statistics cover. Call once.
+  nlohmann::ordered_json finish(const modules::StatWindow& window);
 
  private:
   bool keeps(std::string_view module, const sc_core::sc_time& start,

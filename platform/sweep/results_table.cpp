@@ -16,8 +16,9 @@ using Json = nlohmann::ordered_json;
 
 // stats.json keys that are not stats columns: constant for a sweep, already leading columns, or
 // the whole parameter set (in each point's own stats.json).
-constexpr std::array<std::string_view, 8> kNotStats = {"tool",  "version", "command", "machine",
-                                                       "scene", "width",   "height",  "params"};
+constexpr std::array<std::string_view, 9> kNotStats = {"tool",    "version", "schema_version",
+                                                       "command", "machine", "scene",
+                                                       "width",   "height",  "params"};
 
 // The stats a reader looks for first, in this order; the rest follow sorted by name.
 constexpr std::array<std::string_view, 13> kHeadline = {

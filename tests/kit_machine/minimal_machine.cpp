@@ -60,7 +60,6 @@ class FrameBuffer : public modules::Processor {
   }
 
   sc_core::sc_time last_write() const { return last_write_; }
-  std::uint64_t words() const { return words_; }
 
  private:
   modules::ModuleParams params_;  // first: the queue's depth is read from it
@@ -87,7 +86,7 @@ class FrameBuffer : public modules::Processor {
   functional::FrameState& frame_;
   sc_core::sc_time write_time_;
   sc_core::sc_time last_write_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t words_ = 0;
+  modules::Counter words_{*this, "words", "pixel words written"};
 };
 
 /// Traces every ray (T_ray + T_test per intersection test) into its own accumulator and sends
@@ -212,11 +211,8 @@ class KitMinimal final : public Machine {
     inject_faults(name(), opts.faults, {});
     run.simulate();
 
-    modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, fb.last_write());
-    stats.processor(host);
-    stats.link(host.link);
-    stats.processor(fb).values["words"] = static_cast<double>(fb.words());
-    stats.queue(fb.in.fifo.name(), fb.in.fifo.occupancy(), fb.in.fifo.capacity());
+    // The modules report themselves: the host, its link, the frame buffer and its queue.
+    run.stats_over(sc_core::SC_ZERO_TIME, fb.last_write());
     return run.finish(host.latency(), {});
   }
 };

@@ -26,6 +26,7 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
                                        std::size_t memory_words, sc_core::sc_time load_word_time,
                                        bool adaptive)
     : sc_core::sc_module(name),
+      modules::StatGroup(sc_core::sc_module::name()),
       // The BP streams its memory (L875): the loop's timings already include the reads, so a
       // read costs no extra time here.
       memory("memory", memory_words, 1, load_word_time, sc_core::SC_ZERO_TIME),
@@ -141,19 +142,18 @@ void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
   const Slot& s = slots_[c.pos];
   c.t += timing_.id_slot;
   if (account) {
-    ++stats_.ids;
+    ++ids_;
     if (sent) {
-      ++stats_.packets;
-      stats_.packet_words += s.words;
-      stats_.packet_time += packet_time(s);
-      timeline_.add(c.t, packet_time(s));
+      ++packets_;
+      packet_words_ += s.words;
+      busy_.record(c.t, packet_time(s));
     }
   }
   if (sent) c.t += packet_time(s);
   if (++c.pos == slots_.size()) {
     c.pos = 0;
     c.t += timing_.loop_reset;
-    if (account) ++stats_.cycles;
+    if (account) ++cycles_;
   }
 }
 
@@ -196,8 +196,8 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
       k = 0;
       ++cycles;
     }
-    stats_.ids += cycles * n + k - cursor_.pos;
-    stats_.cycles += cycles;
+    ids_ += cycles * n + k - cursor_.pos;
+    cycles_ += cycles;
     cursor_.pos = k;
     cursor_.t = cycle_start + modules::times(idle_cycle_, cycles) + offset_[k];
     return;
@@ -212,13 +212,12 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
     const sc_core::sc_time sent_per_cycle = idle_cycle_ - minimum_cycle();
     if (sent_per_cycle > sc_core::SC_ZERO_TIME)
       for (std::uint64_t i = 0; i < k; ++i)
-        timeline_.add(cursor_.t + modules::times(idle_cycle_, i), sent_per_cycle);
+        busy_.record(cursor_.t + modules::times(idle_cycle_, i), sent_per_cycle);
     cursor_.t += modules::times(idle_cycle_, k);
-    stats_.cycles += k;
-    stats_.ids += k * slots_.size();
-    stats_.packets += k * idle_cycle_packets_;
-    stats_.packet_words += k * idle_cycle_words_;
-    stats_.packet_time += modules::times(idle_cycle_ - minimum_cycle(), k);
+    cycles_ += k;
+    ids_ += k * slots_.size();
+    packets_ += k * idle_cycle_packets_;
+    packet_words_ += k * idle_cycle_words_;
   }
   while (cursor_.t < t) pass(cursor_, !adaptive_, true);
 }
@@ -285,8 +284,8 @@ void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
     for (const std::uint32_t p : positions_[key]) {
       const sc_core::sc_time first = after(cursor_, (p + n - cursor_.pos) % n).t;
       if (first >= end) continue;
-      const std::uint64_t strobes = (end - first).value() / cycle +
-                                    ((end - first).value() % cycle != 0 ? 1 : 0);
+      const std::uint64_t strobes =
+          (end - first).value() / cycle + ((end - first).value() % cycle != 0 ? 1 : 0);
       for (BusInterface* b : requesters) b->missed_ += strobes;
     }
 }
@@ -340,9 +339,9 @@ void BroadcastProcessor::run() {
       const auto words = mem.subspan(first, std::min<std::size_t>(s.words, mem.size() - first));
       for (BusInterface* b : hitters_)
         b->capture(s.id, start, arrival, start + timing_.packet_overhead, timing_.word_time, words);
-      ++stats_.hit_packets;
-      stats_.captures += hitters_.size();
-      stats_.hit_packet_time += packet_time(s);
+      ++hit_packets_;
+      captures_ += hitters_.size();
+      hit_packet_time_ += packet_time(s);
       if (on_packet) on_packet(s.id, start, packet_time(s), hitters_.size());
     }
     pass(cursor_, sent, true);

@@ -29,9 +29,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "modules/busy_timeline.hpp"
 #include "modules/memory.hpp"
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -41,7 +41,9 @@ struct BroadcastTiming {
   sc_core::sc_time id_slot, packet_overhead, word_time, loop_reset;
 };
 
-class BroadcastProcessor : public sc_core::sc_module {
+/// The statistics group of its name: busy while the bus carries packet words (its utilisation),
+/// ids, cycles, packets, packet_words, hit_packets, captures.
+class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup {
  public:
   /// The data set's memory module; the control processor loads it through memory.socket.
   modules::Memory memory;
@@ -76,9 +78,10 @@ class BroadcastProcessor : public sc_core::sc_module {
     sc_core::sc_time packet_time;      ///< time spent sending packets (overhead + words)
     sc_core::sc_time hit_packet_time;  ///< of which packets some BIC captured
   };
-  const Stats& stats() const { return stats_; }
-  /// When the bus carried packet words (Stats::packet_time over time), for utilisation windows.
-  const modules::BusyTimeline& timeline() const { return timeline_; }
+  Stats stats() const {
+    return {ids_.value(),         cycles_.value(),   packets_.value(), packet_words_.value(),
+            hit_packets_.value(), captures_.value(), busy_.total(),    hit_packet_time_.value()};
+  }
   /// Called for every packet some BIC captures (traces): id, start, duration, captures.
   std::function<void(std::uint32_t, sc_core::sc_time, sc_core::sc_time, std::size_t)> on_packet;
 
@@ -160,8 +163,17 @@ class BroadcastProcessor : public sc_core::sc_module {
   Cursor cursor_;
   sc_core::sc_event start_;
   sc_core::sc_event wake_;
-  Stats stats_;
-  modules::BusyTimeline timeline_;
+  modules::Busy busy_{*this,
+                      "time the bus carried packet words (its utilisation; IDs go by "
+                      "whether or not anyone listens)"};
+  modules::Counter ids_{*this, "ids", "IDs broadcast"};
+  modules::Counter cycles_{*this, "cycles", "completed passes through the ID list"};
+  modules::Counter packets_{*this, "packets", "packets broadcast"};
+  modules::Counter packet_words_{*this, "packet_words", "their words"};
+  modules::Counter hit_packets_{*this, "hit_packets", "packets some BIC captured"};
+  modules::Counter captures_{*this, "captures", "packets captured, summed over BICs"};
+  modules::Duration hit_packet_time_{*this, "hit_packet_time_s",
+                                     "time spent sending packets some BIC captured"};
   std::vector<BusInterface*> hitters_;
 };
 

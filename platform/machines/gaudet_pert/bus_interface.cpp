@@ -32,7 +32,7 @@ void BusInterface::declare_stream_param(const modules::ParamDecls& bic, std::str
 }
 
 BusInterface::BusInterface(const modules::ModuleParams& params, std::uint32_t stream_unit_words)
-    : name_(params.path()),
+    : modules::StatGroup(params.path()),
       registers_(std::max<std::size_t>(params.get_count("id_registers"), 1)),
       buffers_(std::max<std::size_t>(params.get_count("buffers"), 1)),
       stream_unit_words_(stream_unit_words > 0 && params.get_bool("stream") ? stream_unit_words
@@ -47,7 +47,7 @@ bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
     ++requests_;
     const auto used = static_cast<std::size_t>(std::count_if(
         registers_.begin(), registers_.end(), [](const Register& x) { return x.valid; }));
-    peak_registers_ = std::max(peak_registers_, used);
+    peak_registers_.note(used);
     if (bus_) {
       bus_->demand(id, +1);
       bus_->wake();

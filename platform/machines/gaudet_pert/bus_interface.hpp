@@ -29,13 +29,14 @@
 #include <vector>
 
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 #include "platform/machines/gaudet_pert/packet_port.hpp"
 
 namespace rtsim::platform::gaudet {
 
 class BroadcastProcessor;
 
-class BusInterface final : public PacketPort {
+class BusInterface final : public PacketPort, public modules::StatGroup {
  public:
   /// How many ID registers a processor's BIC has by default, and why (the thesis says
   /// "multiple", L910: each processor's preset chooses).
@@ -52,7 +53,7 @@ class BusInterface final : public PacketPort {
   /// declared and set, a packet is taken once this many words are in; 0: never streams.
   explicit BusInterface(const modules::ModuleParams& params, std::uint32_t stream_unit_words = 0);
 
-  const std::string& name() const { return name_; }
+  const std::string& name() const { return stat_path(); }
 
   // Processor side (PacketPort).
   bool request(std::uint32_t id, const sc_core::sc_time& t) override;
@@ -79,12 +80,7 @@ class BusInterface final : public PacketPort {
 
   /// Some register holds `id`, valid at `t` (the comparator would match it then).
   bool requested(std::uint32_t id, const sc_core::sc_time& t) const;
-
-  std::uint64_t requests() const { return requests_; }
-  std::uint64_t packets_received() const { return received_; }
-  std::uint64_t missed_no_buffer() const { return missed_; }
-  std::uint64_t register_full() const { return register_full_; }
-  std::size_t registers_in_use_peak() const { return peak_registers_; }
+  std::uint64_t missed_no_buffer() const { return missed_.value(); }
 
  private:
   friend class BroadcastProcessor;
@@ -105,17 +101,18 @@ class BusInterface final : public PacketPort {
   };
   int free_buffer(const sc_core::sc_time& t) const;
 
-  std::string name_;
   std::vector<Register> registers_;
   std::vector<Buffer> buffers_;
   std::uint32_t stream_unit_words_ = 0;  ///< 0: packets are taken at full arrival
   BroadcastProcessor* bus_ = nullptr;
   sc_core::sc_event changed_;
-  std::uint64_t requests_ = 0;
-  std::uint64_t received_ = 0;
-  std::uint64_t missed_ = 0;
-  std::uint64_t register_full_ = 0;
-  std::size_t peak_registers_ = 0;
+  modules::Counter requests_{*this, "requests", "packet IDs its processor asked for"};
+  modules::Counter received_{*this, "packets_received", "packets captured into a buffer"};
+  modules::Counter missed_{*this, "missed_no_buffer",
+                           "broadcasts of a wanted packet that found no free buffer"};
+  modules::Counter register_full_{*this, "register_full",
+                                  "requests refused: every ID register in use"};
+  modules::Peak peak_registers_{*this, "registers_in_use_peak", "ID registers in use at once"};
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -11,7 +11,6 @@
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
 #include "modules/sim_time.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
@@ -88,11 +87,9 @@ nlohmann::ordered_json split_json(const gaudet::TimeSplit& t) {
           {"starved_s", t.starved.to_seconds()}};
 }
 
-/// stats.json's machine keys (scene_stats, gaudet); `stats` (the registry over the frame)
-/// receives the modules.
+/// stats.json's machine keys (scene_stats, gaudet): sums over the PERTs, the buses' figures.
 nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::PertDataSets& sets,
-                                    const PertPlatform& p, const sc_core::sc_time& frame,
-                                    modules::StatsRegistry& stats) {
+                                    const PertPlatform& p, const sc_core::sc_time& frame) {
   nlohmann::ordered_json out;
   gaudet::TimeSplit totals[3];
   std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
@@ -102,24 +99,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
   std::uint64_t first_packet_count = 0;
   for (const auto& pert : p.perts) {
     const gaudet::PertProcessor* procs[] = {pert->shade.get(), pert->shell.get(), pert->prim.get()};
-    for (int k = 0; k < 3; ++k) {
-      const gaudet::TimeSplit& t = procs[k]->split();
-      totals[k] += t;
-      auto& m = stats.processor(*procs[k]);
-      m.values["rays"] = static_cast<double>(t.rays);
-      m.values["latency_s"] = t.latency.to_seconds();
-      m.values["pipeline_wait_s"] = t.pipeline_wait.to_seconds();
-      m.values["starved_s"] = t.starved.to_seconds();
-      // Its Bus Interface Controller's counters (none for direct memory).
-      if (const auto* bic = dynamic_cast<const gaudet::BusInterface*>(pert->ports[k].get())) {
-        auto& b = stats.module(bic->name());
-        b.values["requests"] = static_cast<double>(bic->requests());
-        b.values["packets_received"] = static_cast<double>(bic->packets_received());
-        b.values["missed_no_buffer"] = static_cast<double>(bic->missed_no_buffer());
-        b.values["register_full"] = static_cast<double>(bic->register_full());
-        b.values["registers_in_use_peak"] = static_cast<double>(bic->registers_in_use_peak());
-      }
-    }
+    for (int k = 0; k < 3; ++k) totals[k] += procs[k]->split();
     const auto& sh = *pert->shell;
     box_tests += sh.box_tests();
     shell_packets += sh.packets_processed();
@@ -136,24 +116,12 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
     first_packet_total += pr.first_packet_latency_total();
     first_packet_count += pr.first_packets();
     backlog_peak = std::max(backlog_peak, pert->shade->backlog_peak());
-    for (const auto& q : pert->queues())
-      stats.queue(std::string(pert->name()) + "." + q.name, *q.occupancy, q.depth);
-    for (const auto& link : pert->links) stats.link(*link);
   }
   nlohmann::ordered_json buses = nlohmann::ordered_json::object();
   const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
   for (std::size_t b = 0; b < p.buses.size(); ++b) {
     const auto& bp = *p.buses[b];
-    const auto& s = bp.stats();
-    // Bus utilisation: the share of the frame the bus carried packet words (IDs go by
-    // whether or not anyone listens).
-    auto& m = stats.busy_module(bp.name(), s.packet_time, bp.timeline());
-    m.values["ids"] = static_cast<double>(s.ids);
-    m.values["cycles"] = static_cast<double>(s.cycles);
-    m.values["packets"] = static_cast<double>(s.packets);
-    m.values["packet_words"] = static_cast<double>(s.packet_words);
-    m.values["hit_packets"] = static_cast<double>(s.hit_packets);
-    m.values["captures"] = static_cast<double>(s.captures);
+    const auto s = bp.stats();
     const double hits = static_cast<double>(std::max<std::uint64_t>(s.hit_packets, 1));
     buses[kKinds[b]] = {
         {"packets_in_data_set", set_of[b]->order.size()},
@@ -415,8 +383,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   }
 
   const sc_core::sc_time frame_time = p.control->frame_time();
-  modules::StatsRegistry& stats = run.stats(p.control->load_time(), frame_time);
-  run.machine_stats() = gaudet_stats(tree, sets, p, frame_time, stats);
+  run.stats_over(p.control->load_time(), frame_time);
+  run.machine_stats() = gaudet_stats(tree, sets, p, frame_time);
   if (opts.progress)
     opts.progress(static_cast<long>(shared.initial_rays_done),
                   static_cast<long>(shared.initial_rays_total));

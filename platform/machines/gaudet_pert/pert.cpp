@@ -82,10 +82,4 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   prim->out.bind(shade->input.socket);
 }
 
-std::array<Pert::Queue, 3> Pert::queues() const {
-  return {{{"queue.shade_to_shell", &shell->input.fifo.occupancy(), shell->input.fifo.capacity()},
-           {"queue.shell_to_prim", &prim->input.fifo.occupancy(), prim->input.fifo.capacity()},
-           {"queue.prim_to_shade", &shade->input.fifo.occupancy(), shade->input.fifo.capacity()}}};
-}
-
 }  // namespace rtsim::platform::gaudet

@@ -47,15 +47,6 @@ class Pert : public sc_core::sc_module {
   /// PERT number `index` (it renders scanlines index, index + N, ..., L938).
   Pert(sc_core::sc_module_name name, int index, const PertContext& context);
 
-  /// The ring's queues, by the names their statistics and parameters have
-  /// (queue.shade_to_shell, ...), with the FIFO and its depth.
-  struct Queue {
-    const char* name;
-    const modules::Occupancy* occupancy;
-    std::size_t depth;
-  };
-  std::array<Queue, 3> queues() const;
-
   /// The ring's links, in front of those queues: shade_to_shell, shell_to_prim, prim_to_shade
   /// (pert0.link.shade_to_shell, ...).
   static constexpr const char* kLinks[] = {"shade_to_shell", "shell_to_prim", "prim_to_shade"};

@@ -55,12 +55,12 @@ class PertProcessor : public modules::Processor {
   /// stage's queue; starved = waiting for broadcast data with room for a ray that has not come
   /// (part of the accounts' waiting for work). The four add up to the accounts' total.
   TimeSplit split() const {
-    const auto& a = accounts();
+    const auto a = accounts();
     return {.processing = a.busy,
             .latency = a.waiting_for_data,
-            .pipeline_wait = a.waiting_for_work - starved_ + a.blocked,
-            .starved = starved_,
-            .rays = rays_};
+            .pipeline_wait = a.waiting_for_work - starved_.value() + a.blocked,
+            .starved = starved_.value(),
+            .rays = rays_.value()};
   }
   /// Elaboration: the event that starts the frame (the control processor's).
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
@@ -91,6 +91,15 @@ class PertProcessor : public modules::Processor {
   }
   /// Waits for the frame to start.
   void begin_frame();
+  /// The statistics name of its PERT's ring queue `which` ("shade_to_shell" ->
+  /// "pert0.queue.shade_to_shell"): the queue the thesis names, which the processor's input is.
+  std::string ring_queue(std::string_view which) const {
+    const std::string own = name();
+    std::string pert = own.substr(0, own.rfind('.'));
+    pert += ".queue.";
+    pert += which;
+    return pert;
+  }
   /// compute() for ray `t` at `stage` (--latency-probe): the gap since the ray's cursor is
   /// queueing at `stage` (unless the caller attributed it otherwise first), the compute service.
   void compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
@@ -117,12 +126,21 @@ class PertProcessor : public modules::Processor {
 
   modules::ModuleParams params_;  ///< its own parameters, under its name
   RayProbe* probe_;
-  std::uint64_t rays_ = 0;  ///< rays this processor finished its part of
+  modules::Counter rays_{*this, "rays", "rays this processor finished its part of"};
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
   modules::Link* out_link_ = nullptr;
-  sc_core::sc_time starved_ = sc_core::SC_ZERO_TIME;  ///< see idle_starved()
+  modules::Duration starved_{*this, "starved_s",
+                             "waiting for broadcast data with room for a ray that has not come"};
+  // Gaudet's split of its time (L1045): latency is waiting for data, pipeline wait the rest of
+  // its waiting but starved.
+  modules::Computed latency_{*this, "latency_s",
+                             "waiting for broadcast data with nothing else to do",
+                             [this] { return split().latency.to_seconds(); }};
+  modules::Computed pipeline_wait_{*this, "pipeline_wait_s",
+                                   "waiting for work or for room in the next stage's queue",
+                                   [this] { return split().pipeline_wait.to_seconds(); }};
 };
 
 }  // namespace rtsim::platform::gaudet

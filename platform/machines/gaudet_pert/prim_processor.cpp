@@ -20,7 +20,7 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRe
                              const std::vector<Cost>& test_cost, PacketPort& port,
                              std::size_t input_depth, TraceCounters& counters, MachineTrace& trace)
     : PertProcessor(name, registry, trace),
-      input("input", input_depth),
+      input("input", input_depth, ring_queue("shell_to_prim")),
       out("out"),
       geometry_(geometry),
       record_words_(record_words),

@@ -21,7 +21,7 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::Param
                                int pert, int pert_count, ShadeShared& shared, PacketPort& port,
                                std::size_t input_depth, MachineTrace& trace)
     : PertProcessor(name, registry, trace),
-      input("input", input_depth),
+      input("input", input_depth, ring_queue("prim_to_shade")),
       out("out"),
       pert_(pert),
       pert_count_(pert_count),

@@ -25,7 +25,7 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
 #include "modules/message_channel.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet_pert/messages.hpp"

@@ -40,7 +40,7 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::Param
                                std::size_t input_depth, TraceCounters& counters,
                                MachineTrace& trace)
     : PertProcessor(name, registry, trace),
-      input("input", input_depth),
+      input("input", input_depth, ring_queue("shade_to_shell")),
       out("out"),
       tree_(tree),
       packet_words_(packet_words),

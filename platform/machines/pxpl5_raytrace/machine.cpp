@@ -418,9 +418,7 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   if (host.done().size() != static_cast<std::size_t>(ctx.frames))
     throw std::runtime_error("pxpl5-raytrace: the frame buffer never had every pixel");
   const sc_core::sc_time end = host.done().back();
-  modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, end);
-  ring.report(stats, "ring");
-  stats.processor(master).values["assignments"] = static_cast<double>(master.assignments());
+  run.stats_over(sc_core::SC_ZERO_TIME, end);
   nlohmann::ordered_json workload = nlohmann::ordered_json::array();
   double most = 0;
   for (const auto& c : casters) most = std::max(most, c->accounts().busy.to_seconds());
@@ -428,18 +426,9 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (const auto& c : casters) {
     cast_last += c->cast_last_frame();
     covered_last += c->covered_last_frame();
-    auto& cs = stats.processor(*c);
-    cs.values["regions"] = static_cast<double>(c->regions());
-    cs.values["rays"] = static_cast<double>(c->rays());
-    cs.values["samples"] = static_cast<double>(c->samples());
     rays += c->rays();
     workload.push_back(most > 0 ? c->accounts().busy.to_seconds() / most : 0.0);
   }
-  for (const auto& c : compositors)
-    stats.processor(*c).values["samples"] = static_cast<double>(c->samples());
-  for (const auto& n : renderers) stats.processor(*n);
-  stats.processor(fb);
-  stats.processor(host);
   nlohmann::ordered_json frame_times = nlohmann::ordered_json::array();
   double sum = 0;
   for (std::size_t f = 0; f < host.done().size(); ++f) {

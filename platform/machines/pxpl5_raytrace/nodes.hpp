@@ -24,7 +24,7 @@
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
 #include "modules/processor_timing.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine.hpp"
 #include "platform/machines/frame_sample.hpp"
@@ -82,7 +82,6 @@ class MasterGp : public RingNode {
   SC_HAS_PROCESS(MasterGp);
   MasterGp(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
            Context& ctx, const sc_core::sc_time& assign_time);
-  std::uint64_t assignments() const { return assignments_; }
 
  private:
   void run();
@@ -94,7 +93,7 @@ class MasterGp : public RingNode {
   std::vector<double> cost_;  ///< by region id: its time in the previous frame
   std::vector<int> waiting_;  ///< casters whose request waits for the next frame
   int frame_ = -1;
-  std::uint64_t assignments_ = 0;
+  modules::Counter assignments_{*this, "assignments", "regions handed out"};
 };
 
 class RayCaster : public RingNode {
@@ -102,10 +101,8 @@ class RayCaster : public RingNode {
   SC_HAS_PROCESS(RayCaster);
   RayCaster(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
             Context& ctx, int number);
-  std::uint64_t regions() const { return regions_; }
-  /// Rays cast at lattice positions (each with its `spp` vision rays) and samples sent.
-  std::uint64_t rays() const { return rays_; }
-  std::uint64_t samples() const { return samples_; }
+  /// Rays cast at lattice positions (each with its `spp` vision rays).
+  std::uint64_t rays() const { return rays_.value(); }
   /// In the last frame: rays cast on the screen, and those whose primary ray hit something.
   std::uint64_t cast_last_frame() const { return cast_last_frame_; }
   std::uint64_t covered_last_frame() const { return covered_last_frame_; }
@@ -114,8 +111,11 @@ class RayCaster : public RingNode {
   void run();
   Context& ctx_;
   tasks::ShadeTask shade_;
-  std::uint64_t regions_ = 0, rays_ = 0, samples_ = 0;
   std::uint64_t cast_last_frame_ = 0, covered_last_frame_ = 0;
+  modules::Counter regions_{*this, "regions", "regions cast"};
+  modules::Counter rays_{*this, "rays",
+                         "rays cast at lattice positions (each with its spp vision rays)"};
+  modules::Counter samples_{*this, "samples", "samples sent to the compositors"};
 };
 
 class Compositor : public RingNode {
@@ -123,7 +123,6 @@ class Compositor : public RingNode {
   SC_HAS_PROCESS(Compositor);
   Compositor(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
              Context& ctx, int number, const sc_core::sc_time& sample_time);
-  std::uint64_t samples() const { return samples_; }
 
  private:
   void run();
@@ -132,7 +131,7 @@ class Compositor : public RingNode {
   Context& ctx_;
   int number_;
   sc_core::sc_time sample_time_;
-  std::uint64_t samples_ = 0;
+  modules::Counter samples_{*this, "samples", "samples composited"};
   /// By frame phase (0: the first frame, 1 + f mod period after): samples to wait for.
   std::vector<long> expected_;
 };

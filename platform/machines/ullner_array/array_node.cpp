@@ -17,7 +17,7 @@ using modules::times;
 
 namespace {
 
-int type_index(MessageType t) { return static_cast<int>(t); }
+std::size_t type_index(MessageType t) { return static_cast<std::size_t>(t); }
 
 /// Words of the 20 parameters a test needs at each step of Fig. 2-28 (L841): t (n_p, d_p), then
 /// u (its four coefficients: two vectors and two scalars), then v; a step that rejects stops the
@@ -109,7 +109,8 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
       position_(position),
       shade_(*context.scene, context.shade),
       dda_(*context.grid),
-      memory_port_("memory_port") {
+      memory_port_("memory_port"),
+      pipeline_(std::string(this->name()) + ".pipeline") {
   const modules::ModuleParams p(registry, "node");
   timing_ = Timing{.message = p.get_count("cycles.message"),
                    .route = p.get_count("cycles.route"),
@@ -139,6 +140,9 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
         std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
     links_[static_cast<int>(d)] = std::make_unique<modules::Link>(
         std::string(this->name()) + ".link_" + dir, modules::ModuleParams(registry, "node.link"));
+    sent_by_link_[static_cast<int>(d)] = std::make_unique<modules::CounterArray>(
+        *links_[static_cast<int>(d)], "messages_", message_type_names(),
+        "messages through the link, by type");
   }
   // Its frame-buffer block: the image rows and columns whose processor it is (L781).
   const int w = ctx_.frame->width(), h = ctx_.frame->height();
@@ -217,7 +221,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
   if (best >= 0) {
     sc_core::sc_time taken;
     msg = in[best]->fifo.get(now, taken);
-    ++received_[type_index(msg.type)];
+    received_.add(type_index(msg.type));
     return true;
   }
   if (!own_.empty()) {
@@ -254,7 +258,7 @@ void ArrayNode::run() {
     RayMessage msg;
     if (next_message(msg)) {
       process(std::move(msg));
-      backlog_peak_ = std::max(backlog_peak_, own_.size());
+      backlog_peak_.note(own_.size());
       continue;
     }
     // Out of work: what credit it holds goes back to the detector.
@@ -411,7 +415,7 @@ void ArrayNode::search(RayMessage& msg) {
   counters.dda_steps += walk.steps;
   subvolumes_ += cells;
   tests_ += tests;
-  words_fetched_ += words;
+  pipeline_.words_fetched += words;
 
   // The time: the CPU steps through its subvolumes and starts the unit on each; the unit's
   // fetches share the memory (two transfers a word) and issue at most one test a stage; the
@@ -425,8 +429,7 @@ void ArrayNode::search(RayMessage& msg) {
         plus(plus(start, std::max(fetch, issue)), times(timing_.stage_time, timing_.stages));
     memory_free_ = plus(start, fetch);
     memory_busy_ += fetch;
-    pipe_busy_ += std::max(fetch, issue);
-    pipe_timeline_.add(start, std::max(fetch, issue));
+    pipeline_.busy.record(start, std::max(fetch, issue));
     idle_until(done, Wait::kData);
   }
 
@@ -505,7 +508,7 @@ void ArrayNode::forward(RayMessage msg, const GridNode& to) {
   if (ctx_.ring) {
     // On a ring the message goes straight to its destination's port.
     const sc_core::sc_time start = copy_out();
-    ++sent_[type_index(msg.type)];
+    sent_.add(type_index(msg.type));
     const auto cls = static_cast<std::size_t>(type_index(msg.type));
     const auto me = static_cast<std::size_t>(ctx_.topology->index(position_));
     const auto dest = static_cast<std::size_t>(ctx_.topology->index(to));
@@ -531,8 +534,8 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   modules::Link& link = *links_[k];
   const sc_core::sc_time start = copy_out();
   const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
-  ++sent_[type_index(msg.type)];
-  ++sent_by_link_[k][type_index(msg.type)];
+  sent_.add(type_index(msg.type));
+  sent_by_link_[k]->add(type_index(msg.type));
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);
 }
 

@@ -41,7 +41,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
 #include "modules/ring_channel.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -116,25 +116,18 @@ class ArrayNode : public modules::Processor {
 
   modules::GridNode position() const { return position_; }
   std::size_t polygons() const { return lines_.size(); }
-  const modules::Link* link(modules::Direction d) const {
-    return links_[static_cast<int>(d)].get();
-  }
-  const modules::BusyTimeline& pipeline_timeline() const { return pipe_timeline_; }
-  sc_core::sc_time pipeline_busy() const { return pipe_busy_; }
-  sc_core::sc_time memory_busy() const { return memory_busy_; }
-  /// Messages sent through the output link in direction `d`, by type (MessageType order).
-  const std::array<std::uint64_t, 5>& sent_through(modules::Direction d) const {
-    return sent_by_link_[static_cast<int>(d)];
-  }
-  /// Messages received and sent, by type (MessageType order).
-  const std::array<std::uint64_t, 5>& received() const { return received_; }
-  const std::array<std::uint64_t, 5>& sent() const { return sent_; }
-  std::uint64_t subvolumes_searched() const { return subvolumes_; }
-  std::uint64_t intersections() const { return tests_; }
-  std::uint64_t words_fetched() const { return words_fetched_; }
-  std::size_t backlog_peak() const { return backlog_peak_; }
+  /// Messages sent, by type (MessageType order).
+  const modules::CounterArray& sent() const { return sent_; }
+  std::uint64_t intersections() const { return tests_.value(); }
+  std::uint64_t words_fetched() const { return pipeline_.words_fetched.value(); }
 
  private:
+  /// Its intersection unit's statistics ("node0.pipeline"): busy while it fetches or issues.
+  struct PipelineStats : modules::StatGroup {
+    using modules::StatGroup::StatGroup;
+    modules::Busy busy{*this, "time fetching polygons or issuing tests (its utilisation)"};
+    modules::Counter words_fetched{*this, "words_fetched", "polygon words fetched from memory"};
+  };
   struct Timing {
     std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test;
     sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
@@ -180,14 +173,21 @@ class ArrayNode : public modules::Processor {
   std::unique_ptr<tasks::VisionRayTask> vision_;
   std::uint64_t credit_held_ = 0;
   sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time memory_busy_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time pipe_busy_ = sc_core::SC_ZERO_TIME;
-  modules::BusyTimeline pipe_timeline_;
-  std::array<std::uint64_t, 5> received_{}, sent_{};
-  std::array<std::array<std::uint64_t, 5>, 4> sent_by_link_{};
-  std::uint64_t subvolumes_ = 0, tests_ = 0, words_fetched_ = 0;
-  std::size_t backlog_peak_ = 0;
   std::vector<shading::TracedRay> spawned_;
+
+  PipelineStats pipeline_;
+  /// Messages through the output link in each direction, by type: in the link's group.
+  std::array<std::unique_ptr<modules::CounterArray>, 4> sent_by_link_;
+  modules::CounterArray received_{*this, "received_", message_type_names(),
+                                  "messages taken, by type"};
+  modules::CounterArray sent_{*this, "sent_", message_type_names(), "messages sent, by type"};
+  modules::Computed polygons_{*this, "polygons", "polygons its memory holds",
+                              [this] { return lines_.size(); }};
+  modules::Counter subvolumes_{*this, "subvolumes_searched", "subvolumes searched"};
+  modules::Counter tests_{*this, "intersections", "ray/polygon tests of its unit"};
+  modules::Duration memory_busy_{*this, "memory_busy_s",
+                                 "time its memory was fetching polygons or copying messages out"};
+  modules::Peak backlog_peak_{*this, "backlog_peak", "rays spawned here waiting to be searched"};
 };
 
 }  // namespace rtsim::platform::ullner_array

@@ -8,7 +8,6 @@
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -264,9 +263,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
       modules::from_ps(r.get_time_ps("array.readout.pixel_time")),
       static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height()));
   const sc_core::sc_time frame_time = modules::plus(compute, readout);
-  modules::StatsRegistry& stats = run.stats(ctx.frame_start, frame_time);
+  run.stats_over(ctx.frame_start, frame_time);
 
-  static constexpr const char* kTypeNames[] = {"new", "vision", "shadow", "result", "credit"};
   nlohmann::ordered_json busy = nlohmann::ordered_json::array();
   std::array<std::uint64_t, 5> sent{};
   std::uint64_t kept = 0, tests = 0, words = 0;
@@ -274,28 +272,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     nlohmann::ordered_json line = nlohmann::ordered_json::array();
     for (int col = 0; col < topology.cols(); ++col) {
       const ArrayNode& n = *nodes[static_cast<std::size_t>(topology.index({row, col}))];
-      auto& ns = stats.processor(n);
-      for (int t = 0; t < 5; ++t) {
-        ns.values[std::string("received_") + kTypeNames[t]] = static_cast<double>(n.received()[t]);
-        ns.values[std::string("sent_") + kTypeNames[t]] = static_cast<double>(n.sent()[t]);
-        sent[static_cast<std::size_t>(t)] += n.sent()[t];
-      }
-      ns.values["polygons"] = static_cast<double>(n.polygons());
-      ns.values["subvolumes_searched"] = static_cast<double>(n.subvolumes_searched());
-      ns.values["intersections"] = static_cast<double>(n.intersections());
-      ns.values["memory_busy_s"] = n.memory_busy().to_seconds();
-      ns.values["backlog_peak"] = static_cast<double>(n.backlog_peak());
-      auto& ps = stats.busy_module(std::string(n.name()) + ".pipeline", n.pipeline_busy(),
-                                   n.pipeline_timeline());
-      ps.values["words_fetched"] = static_cast<double>(n.words_fetched());
-      for (const modules::Direction d : modules::kDirections) {
-        const modules::Link* l = n.link(d);
-        if (!l) continue;
-        auto& ls = stats.link(*l);
-        for (int t = 0; t < 5; ++t)
-          ls.values[std::string("messages_") + kTypeNames[t]] =
-              static_cast<double>(n.sent_through(d)[static_cast<std::size_t>(t)]);
-      }
+      for (std::size_t t = 0; t < sent.size(); ++t) sent[t] += n.sent()[t];
       kept += n.polygons();
       tests += n.intersections();
       words += n.words_fetched();
@@ -305,9 +282,9 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     }
     busy.push_back(std::move(line));
   }
-  if (ring) ring->report(stats, "ring");
   nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
-  for (int t = 0; t < 5; ++t) by_type[kTypeNames[t]] = sent[static_cast<std::size_t>(t)];
+  const std::vector<std::string> type_names = ullner_array::message_type_names();
+  for (std::size_t t = 0; t < sent.size(); ++t) by_type[type_names[t]] = sent[t];
   const auto& m = ctx.mapping;
   nlohmann::ordered_json& res = run.machine_stats();
   res["intersection_tests"] = tests;

@@ -11,7 +11,9 @@
 //    depth limit), one word each;
 //  * the termination detector's credit (two words), and a fifth type, credit, which returns it.
 #include <cstdint>
+#include <string>
 #include <systemc>
+#include <vector>
 
 #include "firmware/math.hpp"
 #include "firmware/shading/traced_ray.hpp"
@@ -20,6 +22,11 @@
 namespace rtsim::platform::ullner_array {
 
 enum class MessageType : std::uint8_t { kNew, kVision, kShadow, kResult, kCredit };
+
+/// The types' names in MessageType order, as statistics name them ("sent_vision").
+inline std::vector<std::string> message_type_names() {
+  return {"new", "vision", "shadow", "result", "credit"};
+}
 
 struct RayMessage {
   MessageType type = MessageType::kNew;

@@ -70,10 +70,12 @@ Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
       probe_(probe),
       probe_result_queue_(probe.stage(results.name())),
       ray_link_(attached.ray_link_name, modules::ModuleParams(registry, attached.ray_link_params)),
-      probe_ray_link_(probe.stage(ray_link_.name())),
-      // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564),
-      // at the peripheral's arithmetic rate (L584).
-      lighting_(attached.lighting.interval, 1 + 2 * attached.lighting.adder_stages) {
+      probe_ray_link_(probe.stage(ray_link_.name())) {
+  // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564), at the
+  // peripheral's arithmetic rate (L584).
+  if (!attached.lighting.unit_name.empty())
+    lighting_.emplace(attached.lighting.unit_name, attached.lighting.interval,
+                      1 + 2 * attached.lighting.adder_stages, "inner_products");
   set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
   SC_THREAD(run);
 }
@@ -88,7 +90,7 @@ sc_core::sc_time Host::result_time(const Cost& c) {
   const sc_core::sc_time host_part = timing().time_for(control);
   const std::uint64_t inner_products = (c.fp_mul + 2) / 3;
   const sc_core::sc_time start = clock_.now() + host_part;
-  auto batch = lighting_.issue(inner_products, start);
+  auto batch = lighting_->issue(inner_products, start);
   const sc_core::sc_time done =
       batch.done + times(lighting_devices_.interval, lighting_devices_.rsqrt_stages * c.fp_sqrt);
   return done - clock_.now();
@@ -108,7 +110,7 @@ void Host::send(RayRequest req) {
   probe_.add(req.journey, probe_ray_link_, modules::LatencyPart::kTransfer, req.arrived - req.sent);
   modules::send_message(ray_out, req, req.arrived, ray_bits_);
   ++outstanding_;
-  in_flight_peak_ = std::max(in_flight_peak_, outstanding_);
+  in_flight_peak_.note(outstanding_);
 }
 
 bool Host::may_send(const sc_core::sc_time& now) const {
@@ -169,9 +171,9 @@ void Host::run() {
         req.ray = s;
         backlog_.push_back(req);
       }
-      backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
-      if (opts_.progress && (results_processed_ & 1023) == 0)
-        opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
+      backlog_peak_.note(backlog_.size());
+      if (opts_.progress && (results_processed_.value() & 1023) == 0)
+        opts_.progress(static_cast<long>(vision_rays_.value()), static_cast<long>(total_vision));
       continue;
     }
     const bool room = may_send(now);
@@ -205,7 +207,7 @@ void Host::run() {
   frame_time_ = clock_.now() - frame_start_;
   clock_.sync();
   if (opts_.progress)
-    opts_.progress(static_cast<long>(vision_rays_), static_cast<long>(total_vision));
+    opts_.progress(static_cast<long>(vision_rays_.value()), static_cast<long>(total_vision));
 }
 
 }  // namespace rtsim::platform::ullner

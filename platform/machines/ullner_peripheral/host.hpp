@@ -12,6 +12,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <deque>
+#include <optional>
 #include <string>
 #include <systemc>
 
@@ -22,7 +23,7 @@
 #include "modules/pipelined_unit.hpp"
 #include "modules/processor.hpp"
 #include "modules/processor_timing.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
@@ -33,6 +34,9 @@ namespace rtsim::platform::ullner {
 
 /// The lighting extension's devices the host computes on (seed 000 L548-L566), if it has them.
 struct LightingDevices {
+  /// The inner-product unit's statistics group ("peripheral.lighting"); empty: the machine has
+  /// no lighting extension (then it is not enabled).
+  std::string unit_name{};
   bool enabled = false;
   sc_core::sc_time interval;  ///< the arithmetic's stage time (L584)
   unsigned adder_stages = 1;  ///< Fig. 2-17
@@ -78,12 +82,6 @@ class Host : public modules::Processor {
   sc_core::sc_time load_time() const { return frame_start_; }
   sc_core::sc_time busy() const { return accounts().busy; }
   const modules::LatencyRecorder& latency() const { return latency_; }
-  const modules::PipelinedUnit& lighting_unit() const { return lighting_; }
-  const modules::Link& ray_link() const { return ray_link_; }
-  std::uint64_t vision_rays() const { return vision_rays_; }
-  std::uint64_t results_processed() const { return results_processed_; }
-  std::uint64_t backlog_peak() const { return backlog_peak_; }
-  std::uint64_t in_flight_peak() const { return in_flight_peak_; }
 
  protected:
   /// Before the frame: puts the scene where the machine searches it (the peripheral: each
@@ -114,16 +112,17 @@ class Host : public modules::Processor {
   modules::Link ray_link_;  ///< host -> the peripheral's ray queue
   int probe_ray_link_;
 
-  modules::PipelinedUnit lighting_;  ///< the inner-product unit of the lighting extension
+  /// The inner-product unit of the lighting extension, if the machine has one.
+  std::optional<modules::PipelinedUnit> lighting_;
   std::deque<RayRequest> backlog_;
   std::uint64_t next_id_ = 0;
   std::uint64_t outstanding_ = 0;
-  std::uint64_t vision_rays_ = 0;
-  std::uint64_t results_processed_ = 0;
-  std::uint64_t backlog_peak_ = 0;
-  std::uint64_t in_flight_peak_ = 0;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   modules::LatencyRecorder latency_;
+  modules::Counter vision_rays_{*this, "vision_rays", "vision rays generated (task 1)"};
+  modules::Counter results_processed_{*this, "results_processed", "answers taken (task 2)"};
+  modules::Peak backlog_peak_{*this, "backlog_peak", "spawned rays waiting to be sent"};
+  modules::Peak in_flight_peak_{*this, "in_flight_peak", "rays sent and not yet answered"};
 };
 
 }  // namespace rtsim::platform::ullner

@@ -11,7 +11,6 @@
 #include "common/input_error.hpp"
 #include "modules/latency_probe.hpp"
 #include "modules/sim_time.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -94,7 +93,8 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   const ullner::HostAttachment attached{.ray_queue = peripheral.rays.fifo,
                                         .ray_link_name = "host.ray_link",
                                         .ray_link_params = "host.ray_link",
-                                        .lighting = {.enabled = pc.lighting,
+                                        .lighting = {.unit_name = "peripheral.lighting",
+                                                     .enabled = pc.lighting,
                                                      .interval = pc.intersect_interval,
                                                      .adder_stages = pc.adder_stages,
                                                      .rsqrt_stages = pc.rsqrt_stages}};
@@ -107,33 +107,7 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
 
   const sc_core::sc_time frame_time = host.frame_time();
   // Utilisation over time and queue occupancy over the frame (after the scene load).
-  modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
-  auto& hs = stats.processor(host);
-  hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
-  hs.values["results_processed"] = static_cast<double>(host.results_processed());
-  hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
-  stats.queue("peripheral.ray_queue", peripheral.rays.fifo.occupancy(), pc.ray_queue_depth);
-  stats.queue("host.result_queue", host.results.fifo.occupancy(), host.results.fifo.capacity());
-  auto& ps = stats.busy_module("peripheral.pipeline", peripheral.pipeline().busy(),
-                               peripheral.pipeline().timeline());
-  ps.values["intersections"] = static_cast<double>(peripheral.pipeline().issued());
-  ps.values["stages"] = pc.pipeline_stages;
-  auto& ls = stats.busy_module("peripheral.lighting", host.lighting_unit().busy(),
-                               host.lighting_unit().timeline());
-  ls.values["inner_products"] = static_cast<double>(host.lighting_unit().issued());
-  if (pc.grid_divisions > 0) {
-    auto& as =
-        stats.busy_module("peripheral.aux", peripheral.aux_busy(), peripheral.aux_timeline());
-    as.values["dda_steps"] = static_cast<double>(peripheral.dda_steps());
-    as.values["subvolumes_visited"] = static_cast<double>(peripheral.subvolumes_visited());
-  }
-  stats.link(host.ray_link());
-  stats.link(peripheral.result_link());
-  auto& ms = stats.busy_module("peripheral.parameter_memories", peripheral.parameters.read_busy(),
-                               peripheral.parameters.read_timeline());
-  ms.values["polygons"] = static_cast<double>(quads);
-  ms.values["words_loaded"] = static_cast<double>(peripheral.parameters.words_written());
-  ms.values["lines_read"] = static_cast<double>(peripheral.parameters.lines_read());
+  run.stats_over(host.load_time(), frame_time);
   nlohmann::ordered_json& res = run.machine_stats();
   // What the hardware did: every polygon address fed to the pipe is an intersection.
   res["intersection_tests"] = peripheral.pipeline().issued();

@@ -128,12 +128,16 @@ Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& 
       config_(config),
       counters_(counters),
       trace_(trace),
-      pipe_(config.intersect_interval, config.pipeline_stages),
+      pipe_(std::string(this->name()) + ".pipeline", config.intersect_interval,
+            config.pipeline_stages, "intersections"),
       probe_(probe),
       result_link_(modules::ModuleParams(registry, std::string(this->name()) + ".result_link")) {
   // Stages named by their stats.json module names, in the order a ray meets them.
   probe_ray_queue_ = probe.stage(rays.name());
-  if (config.grid_divisions > 0) probe_aux_ = probe.stage(std::string(this->name()) + ".aux");
+  if (config.grid_divisions > 0) {
+    aux_.emplace(std::string(this->name()) + ".aux");
+    probe_aux_ = probe.stage(aux_->stat_path());
+  }
   probe_memories_ = probe.stage(parameters.name());
   probe_pipeline_ = probe.stage(std::string(this->name()) + ".pipeline");
   probe_result_link_ = probe.stage(result_link_.name());
@@ -215,8 +219,7 @@ void Peripheral::run() {
       probe_.add(journey, probe_pipeline_, LatencyPart::kQueueing, batch.first_issue - fed);
       probe_.add(journey, probe_pipeline_, LatencyPart::kService, done - batch.first_issue);
       aux_free_ = std::max(start + walk, batch.next_free - feed);
-      aux_busy_ += aux_free_ - start;
-      aux_timeline_.add(start, aux_free_ - start);
+      aux_->busy.record(start, aux_free_ - start);
       // The aux's busy interval (its busy signal), and the walk nested in it.
       if (aux_free_ > start)
         trace_.slice("peripheral.aux", "ray", start, aux_free_ - start,
@@ -228,8 +231,8 @@ void Peripheral::run() {
         trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
                      batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", tests}});
       clock_.catch_up(aux_free_);
-      steps_ += steps;
-      cells_ += cells;
+      aux_->dda_steps += steps;
+      aux_->subvolumes_visited += cells;
     }
     service_total_ += done - start;
     res.service_start = start;

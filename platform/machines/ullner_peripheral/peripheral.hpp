@@ -16,6 +16,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <memory>
+#include <optional>
 #include <systemc>
 
 #include "firmware/tasks/shade_task.hpp"
@@ -58,18 +59,22 @@ class Peripheral : public sc_core::sc_module {
              modules::LatencyProbe& probe, const params::ParamRegistry& registry);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
-  const modules::Link& result_link() const { return result_link_; }
-  sc_core::sc_time aux_busy() const { return aux_busy_; }
-  const modules::BusyTimeline& aux_timeline() const { return aux_timeline_; }
   std::uint64_t rays_served() const { return rays_; }
-  std::uint64_t dda_steps() const { return steps_; }
-  std::uint64_t subvolumes_visited() const { return cells_; }
+  std::uint64_t dda_steps() const { return aux_ ? aux_->dda_steps.value() : 0; }
+  std::uint64_t subvolumes_visited() const { return aux_ ? aux_->subvolumes_visited.value() : 0; }
   sc_core::sc_time service_time_total() const { return service_total_; }
   /// Sum of primary-ray hit distances and their count (mean ray travel d_r).
   double primary_travel_sum() const { return travel_sum_; }
   std::uint64_t primary_hits() const { return primary_hits_; }
 
  private:
+  /// The grid auxiliary processor's statistics ("peripheral.aux").
+  struct AuxProcessor : modules::StatGroup {
+    using modules::StatGroup::StatGroup;
+    modules::Busy busy{*this, "time walking subvolumes and feeding addresses (its utilisation)"};
+    modules::Counter dda_steps{*this, "dda_steps", "steps of the 3D-DDA walk"};
+    modules::Counter subvolumes_visited{*this, "subvolumes_visited", "subvolumes walked through"};
+  };
   void run();
 
   ParameterMemoryTest memory_test_;  ///< the pipe's test of a polygon, on `parameters`' words
@@ -87,11 +92,12 @@ class Peripheral : public sc_core::sc_module {
   modules::Link result_link_;  ///< the answers into the host's result queue
   int probe_result_link_ = -1;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time aux_busy_ = sc_core::SC_ZERO_TIME;
-  modules::BusyTimeline aux_timeline_;
+  std::optional<AuxProcessor> aux_;  ///< with the grid
   sc_core::sc_time service_total_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t rays_ = 0, steps_ = 0, cells_ = 0, primary_hits_ = 0;
+  std::uint64_t rays_ = 0, primary_hits_ = 0;
   double travel_sum_ = 0.0;
+  modules::Computed polygons_stat_{parameters, "polygons", "polygons loaded (a line each)",
+                                   [this] { return polygons_; }};
 };
 
 }  // namespace rtsim::platform::ullner

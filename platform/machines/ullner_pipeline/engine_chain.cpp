@@ -78,7 +78,8 @@ EngineChain::EngineChain(sc_core::sc_module_name name, const params::ParamRegist
           modules::ModuleParams(registry, this->name()).get_count("engines")),
       polygon_time_(inner_link_.serialisation(PolygonDescription::kWireBits)),
       overwrites_(timing_.engines(), 0),
-      answers_(timing_.engines(), 0) {
+      answers_(timing_.engines(), 0),
+      engine_class_(std::string(this->name()) + ".engine") {
   load.register_b_transport(this, &EngineChain::load_transport);
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
@@ -88,8 +89,10 @@ EngineChain::EngineChain(sc_core::sc_module_name name, const params::ParamRegist
   SC_THREAD(run);
 }
 
-sc_core::sc_time EngineChain::engine_busy() const {
-  return times(timing_.engine().issue_interval, descriptions_);
+std::uint64_t EngineChain::sum(const std::vector<std::uint64_t>& v, std::uint64_t first_n) {
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < v.size() && k < first_n; ++k) total += v[k];
+  return total;
 }
 
 void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
@@ -160,7 +163,7 @@ void EngineChain::run() {
     const ullner::RayRequest req = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
     clock_.catch_up(accepted);
     next_accept = plus(accepted, engine.issue_interval);
-    engine_timeline_.add(accepted, engine.issue_interval);
+    engine_busy_.record(accepted, engine.issue_interval);
     ++descriptions_;
 
     // The data: the description passes every processor in chain order. The host injects

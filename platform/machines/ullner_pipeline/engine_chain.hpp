@@ -23,13 +23,13 @@
 #include "firmware/kernels/ullner_quad.hpp"
 #include "firmware/tasks/polygon_processor_task.hpp"
 #include "firmware/trace_counters.hpp"
-#include "modules/busy_timeline.hpp"
 #include "modules/latency_probe.hpp"
 #include "modules/link.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
@@ -63,19 +63,15 @@ class EngineChain : public sc_core::sc_module {
   std::uint64_t engines() const { return timing_.engines(); }
   const ChainTiming& timing() const { return timing_; }
   /// Descriptions every processor passed.
-  std::uint64_t descriptions() const { return descriptions_; }
+  std::uint64_t descriptions() const { return descriptions_.value(); }
   /// Busy time of each processor: one issue interval a description.
-  sc_core::sc_time engine_busy() const;
-  /// The first processor's issue slots (every processor's, shifted along the chain).
-  const modules::BusyTimeline& engine_timeline() const { return engine_timeline_; }
+  sc_core::sc_time engine_busy() const { return engine_busy_.total(); }
   /// Per processor: descriptions it overwrote, and answers it gave (the description left the
   /// chain naming it).
   const std::vector<std::uint64_t>& overwrites() const { return overwrites_; }
   const std::vector<std::uint64_t>& answers() const { return answers_; }
   /// The link from the first processor to the second (every inner link carries the same), and
   /// the last processor's link to the host.
-  const modules::Link& inner_link() const { return inner_link_; }
-  const modules::Link& link_out() const { return link_out_; }
   /// Polygon descriptions shifted in, and the time one takes over a link.
   std::uint64_t loaded() const { return loaded_; }
   sc_core::sc_time polygon_time() const { return polygon_time_; }
@@ -104,9 +100,33 @@ class EngineChain : public sc_core::sc_module {
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};  ///< registers' words_written() then
   std::vector<std::uint64_t> overwrites_, answers_;
-  modules::BusyTimeline engine_timeline_;
-  std::uint64_t descriptions_ = 0, loaded_ = 0;
+  std::uint64_t loaded_ = 0;
   sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;
+
+  // "pipeline.engine": the class of processors. Every processor is busy one issue interval per
+  // description, so the class's figures are each processor's; the busy signal is the first
+  // processor's issue slots (every processor's, shifted along the chain).
+  modules::StatGroup engine_class_;
+  modules::Busy engine_busy_{engine_class_, "each processor's issue slots (its utilisation)"};
+  modules::Counter descriptions_{engine_class_, "descriptions",
+                                 "descriptions every processor passed"};
+  modules::Computed engine_count_{engine_class_, "engines", "processors in the chain",
+                                  [this] { return engines(); }};
+  modules::Computed overwrites_sum_{engine_class_, "overwrites",
+                                    "descriptions a processor overwrote, over all processors",
+                                    [this] { return sum(overwrites_, engines()); }};
+  modules::Computed answers_sum_{engine_class_, "answers",
+                                 "answers a processor holding a polygon gave, over all of them",
+                                 [this] { return sum(answers_, polygons_); }};
+  modules::Computed dummies_{engine_class_, "dummies", "processors holding no polygon",
+                             [this] { return engines() - polygons_; }};
+  // The first inner link's group also counts the N-1 links that carry what it carries, each one
+  // hop later.
+  modules::Computed links_{inner_link_, "links", "inner links in the chain",
+                           [this] { return engines() - 1; }};
+  modules::Computed bits_all_links_{inner_link_, "bits_all_links", "bits over all inner links",
+                                    [this] { return inner_link_.bits() * (engines() - 1); }};
+  static std::uint64_t sum(const std::vector<std::uint64_t>& v, std::uint64_t first_n);
 };
 
 }  // namespace rtsim::platform::ullner_pipeline

@@ -8,7 +8,6 @@
 
 #include "common/input_error.hpp"
 #include "firmware/tasks/polygon_processor_task.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -127,39 +126,9 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
 
   const sc_core::sc_time frame_time = host.frame_time();
   const double frame_s = frame_time.to_seconds();
-  modules::StatsRegistry& stats = run.stats(host.load_time(), frame_time);
-  auto& hs = stats.processor(host);
-  hs.values["vision_rays"] = static_cast<double>(host.vision_rays());
-  hs.values["results_processed"] = static_cast<double>(host.results_processed());
-  hs.values["backlog_peak"] = static_cast<double>(host.backlog_peak());
-  hs.values["in_flight_peak"] = static_cast<double>(host.in_flight_peak());
-  stats.queue("pipeline.input", chain.input.fifo.occupancy(), chain.input.fifo.capacity());
-  stats.queue("host.result_queue", host.results.fifo.occupancy(), host.results.fifo.capacity());
+  run.stats_over(host.load_time(), frame_time);
   const std::uint64_t n = chain.engines();
   const double descriptions = static_cast<double>(chain.descriptions());
-  std::uint64_t overwrites = 0, answers = 0;
-  for (std::uint64_t k = 0; k < n; ++k) {
-    overwrites += chain.overwrites()[k];
-    if (k < polygons) answers += chain.answers()[k];
-  }
-  // Every processor is busy one issue interval per description: the class's figures are each
-  // processor's (the first one's issue slots for the traces).
-  auto& es = stats.busy_module("pipeline.engine", chain.engine_busy(), chain.engine_timeline());
-  es.values["engines"] = static_cast<double>(n);
-  es.values["descriptions"] = descriptions;
-  es.values["overwrites"] = static_cast<double>(overwrites);
-  es.values["answers"] = static_cast<double>(answers);
-  es.values["dummies"] = static_cast<double>(n - polygons);
-  stats.link(host.ray_link());
-  if (n > 1) {
-    // The first inner link; the other N-2 carry the same descriptions at the same times, each
-    // one hop later.
-    auto& ls = stats.link(chain.inner_link());
-    ls.values["links"] = static_cast<double>(n - 1);
-    ls.values["bits_all_links"] =
-        static_cast<double>(chain.inner_link().bits()) * static_cast<double>(n - 1);
-  }
-  stats.link(chain.link_out());
 
   const ullner_pipeline::ChainTiming& ct = chain.timing();
   const auto& et = ct.engine();

@@ -14,7 +14,7 @@
 #include "modules/module_params.hpp"
 #include "modules/processor.hpp"
 #include "modules/sim_time.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
@@ -105,7 +105,6 @@ class VaxHost : public modules::Processor {
                                 frame_.detailed_rows());
     tasks::ShadeTask shade(scene_, settings_.shade);
     std::vector<TracedRay> stack, spawned;
-    long rays = 0;
     std::uint64_t tests_seen = 0, boxes_seen = 0;
     while (!vision.done()) {
       int sample = 0;
@@ -131,7 +130,11 @@ class VaxHost : public modules::Processor {
             compute_for(cost, "ray", {{"pixel", r.pixel}, {"kind", static_cast<int>(r.kind)}});
             latency_.add(cost);
             probe_.end(journey, clock_.now());
-            if (opts_.progress && (++rays & 1023) == 0) opts_.progress(rays, rays);
+            ++rays_;
+            if (opts_.progress && (rays_.value() & 1023) == 0) {
+              const auto rays = static_cast<long>(rays_.value());
+              opts_.progress(rays, rays);
+            }
           });
     }
     frame_time_ = clock_.now();
@@ -151,6 +154,7 @@ class VaxHost : public modules::Processor {
   int probe_vax_;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   modules::LatencyRecorder latency_;
+  modules::Counter rays_{*this, "rays", "rays traced"};
 };
 
 }  // namespace
@@ -181,8 +185,7 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   inject_faults(name(), opts.faults, {});  // its answers come from no memory words
   run.simulate();
 
-  modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, host.frame_time());
-  stats.processor(host).values["rays"] = static_cast<double>(frame.counters().total_rays());
+  run.stats_over(sc_core::SC_ZERO_TIME, host.frame_time());
   nlohmann::ordered_json& res = run.machine_stats();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
   const bool brute = r.get_string("vax.search") == "brute-force";

@@ -105,7 +105,7 @@ void BezierHost::start(const shading::TracedRay& r, bool first_sample) {
   st.ray = r;
   st.first_sample = first_sample;
   st.started = clock_.now();
-  in_flight_peak_ = std::max<std::uint64_t>(in_flight_peak_, rays_.size());
+  in_flight_peak_.note(rays_.size());
   const double t_min = shade_.t_min(r);
   Cost cost;
   for (std::size_t k = 0; k < patch_slots_.size(); ++k) {

@@ -19,7 +19,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
 #include "modules/processor_timing.hpp"
-#include "modules/stats_registry.hpp"
+#include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
@@ -48,10 +48,6 @@ class BezierHost : public modules::Processor {
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
-  const modules::LatencyRecorder& job_latency() const { return job_latency_; }
-  std::uint64_t jobs_issued() const { return jobs_; }
-  std::uint64_t pairs_culled() const { return culled_; }
-  std::uint64_t rays_in_flight_peak() const { return in_flight_peak_; }
 
  private:
   struct RayState {
@@ -88,9 +84,14 @@ class BezierHost : public modules::Processor {
   std::vector<kernels::ControlNet<float>> nets_;  ///< patch_memory decoded
   std::uint64_t decoded_after_ = ~std::uint64_t{0};
   std::vector<shading::TracedRay> spawned_;
-  std::uint64_t next_id_ = 0, jobs_ = 0, culled_ = 0, in_flight_peak_ = 0;
+  std::uint64_t next_id_ = 0;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
-  modules::LatencyRecorder latency_, job_latency_;
+  modules::LatencyRecorder latency_;
+  modules::Counter jobs_{*this, "jobs_issued", "(ray, patch) jobs handed to the pipeline"};
+  modules::Counter culled_{*this, "pairs_culled", "(ray, patch) pairs culled by the patch's box"};
+  modules::Peak in_flight_peak_{*this, "rays_in_flight_peak", "rays with jobs outstanding"};
+  modules::Distribution job_latency_{
+      *this, "job_latency_s", "a job's time from entering the pipeline to its answer being read"};
 };
 
 }  // namespace rtsim::platform::wang_bezier

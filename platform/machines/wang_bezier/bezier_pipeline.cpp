@@ -57,6 +57,7 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
 BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
                                int loop_stages)
     : sc_core::sc_module(name),
+      modules::StatGroup(sc_core::sc_module::name()),
       input("input", 1),
       result_out("result_out"),
       loop_stages_(loop_stages) {
@@ -104,7 +105,7 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   for (const auto& s : stage0_) cycle_ = std::max(cycle_, s.time);
   for (const auto& s : loop_) cycle_ = std::max(cycle_, s.time);
   latency_ = times(cycle_, stage0_.size() + loop_.size() * static_cast<std::uint64_t>(loop_stages));
-  sub_timelines_.resize(loop_.size());
+  for (const auto& sub : loop_) substages_.push_back(std::make_unique<SubstageStats>(*this, sub));
   SC_THREAD(run);
 }
 
@@ -118,9 +119,9 @@ void BezierPipeline::run() {
     const PatchJob job = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
     clock_.catch_up(accepted);
     next_accept = plus(accepted, cycle_);
-    timeline_.add(accepted, cycle_);
+    busy_.record(accepted, cycle_);
     for (std::size_t k = 0; k < loop_.size(); ++k)
-      sub_timelines_[k].add(plus(accepted, times(cycle_, stage0_slots + k)), loop_[k].time);
+      substages_[k]->busy.record(plus(accepted, times(cycle_, stage0_slots + k)), loop_[k].time);
     ++jobs_;
 
     // The data: stage 0, every loop stage, the last stage's output.
@@ -138,7 +139,7 @@ void BezierPipeline::run() {
                                   [&](const sc_core::sc_time& l) { return l <= accepted; }),
                    leaving_.end());
     leaving_.push_back(leaves);
-    in_flight_peak_ = std::max<std::uint64_t>(in_flight_peak_, leaving_.size());
+    in_flight_peak_.note(leaving_.size());
     modules::send_message(result_out, res, leaves, JobResult::kWireBits);
   }
 }

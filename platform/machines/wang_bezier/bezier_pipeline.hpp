@@ -17,14 +17,15 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <systemc>
 #include <vector>
 
-#include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 #include "platform/machines/wang_bezier/messages.hpp"
 
 namespace rtsim::platform::wang_bezier {
@@ -38,7 +39,21 @@ struct Substage {
   sc_core::sc_time time;  ///< per job
 };
 
-class BezierPipeline : public sc_core::sc_module {
+/// A loop substage's statistics ("pipeline.split_u"): the first loop stage's, busy its time
+/// each job.
+struct SubstageStats : modules::StatGroup {
+  SubstageStats(const modules::StatGroup& pipeline, const Substage& s)
+      : modules::StatGroup(pipeline, s.name),
+        dsps(*this, "dsps", "DSPs of the substage (0: custom hardware)",
+             [d = s.dsps] { return d; }),
+        time_per_job(*this, "time_per_job_s", "its time for one job",
+                     [t = s.time] { return t.to_seconds(); }) {}
+  modules::Busy busy{*this, "its time each job (the first loop stage's)"};
+  modules::Computed dsps, time_per_job;
+};
+
+/// The statistics group "pipeline": busy a cycle a job, jobs, hits, in_flight_peak.
+class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
  public:
   modules::MessageQueue<PatchJob> input;  ///< stage 0's input: one job
   tlm_utils::simple_initiator_socket<BezierPipeline> result_out;
@@ -57,12 +72,7 @@ class BezierPipeline : public sc_core::sc_module {
   /// The slowest substage's time: one job a cycle.
   sc_core::sc_time cycle() const { return cycle_; }
   sc_core::sc_time latency() const { return latency_; }
-  std::uint64_t jobs() const { return jobs_; }
-  /// Its issue slots (a job a cycle) and the first loop stage's substages, each's busy intervals.
-  const modules::BusyTimeline& timeline() const { return timeline_; }
-  const std::vector<modules::BusyTimeline>& substage_timelines() const { return sub_timelines_; }
-  std::uint64_t jobs_hit() const { return hits_; }
-  std::uint64_t in_flight_peak() const { return in_flight_peak_; }
+  std::uint64_t jobs() const { return jobs_.value(); }
   const kernels::WangCounters& counters() const { return counters_; }
 
  private:
@@ -72,11 +82,13 @@ class BezierPipeline : public sc_core::sc_module {
   std::vector<Substage> stage0_, loop_;
   sc_core::sc_time cycle_, latency_;
   modules::LocalClock clock_;
-  modules::BusyTimeline timeline_;
-  std::vector<modules::BusyTimeline> sub_timelines_;
   std::vector<sc_core::sc_time> leaving_;  ///< when the jobs in flight leave, oldest first
-  std::uint64_t jobs_ = 0, hits_ = 0, in_flight_peak_ = 0;
   kernels::WangCounters counters_;
+  modules::Busy busy_{*this, "its issue slots: a cycle a job (its utilisation)"};
+  modules::Counter jobs_{*this, "jobs", "jobs taken"};
+  modules::Counter hits_{*this, "hits", "jobs answered with a hit"};
+  modules::Peak in_flight_peak_{*this, "in_flight_peak", "jobs in the pipeline at once"};
+  std::vector<std::unique_ptr<SubstageStats>> substages_;
 };
 
 }  // namespace rtsim::platform::wang_bezier

@@ -8,7 +8,6 @@
 #include <systemc>
 
 #include "firmware/shading/camera.hpp"
-#include "modules/stats_registry.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
@@ -77,30 +76,14 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   run.simulate();
 
   const sc_core::sc_time frame_time = host.frame_time();
-  modules::StatsRegistry& stats = run.stats(sc_core::SC_ZERO_TIME, frame_time);
-  auto& hs = stats.processor(host);
-  hs.values["jobs_issued"] = static_cast<double>(host.jobs_issued());
-  hs.values["pairs_culled"] = static_cast<double>(host.pairs_culled());
-  hs.values["rays_in_flight_peak"] = static_cast<double>(host.rays_in_flight_peak());
-  stats.queue("pipeline.input", pipeline.input.fifo.occupancy(), pipeline.input.fifo.capacity());
+  run.stats_over(sc_core::SC_ZERO_TIME, frame_time);
   const double jobs = static_cast<double>(pipeline.jobs());
-  auto& ps = stats.busy_module("pipeline", modules::times(pipeline.cycle(), pipeline.jobs()),
-                               pipeline.timeline());
-  ps.values["jobs"] = jobs;
-  ps.values["hits"] = static_cast<double>(pipeline.jobs_hit());
-  ps.values["in_flight_peak"] = static_cast<double>(pipeline.in_flight_peak());
   nlohmann::ordered_json substages = nlohmann::ordered_json::object();
-  for (std::size_t k = 0; k < pipeline.loop_substages().size(); ++k) {
-    const auto& s = pipeline.loop_substages()[k];
-    auto& ss = stats.busy_module("pipeline." + s.name, modules::times(s.time, pipeline.jobs()),
-                                 pipeline.substage_timelines()[k]);
-    ss.values["dsps"] = s.dsps;
-    ss.values["time_per_job_s"] = s.time.to_seconds();
+  for (const auto& s : pipeline.loop_substages())
     substages[s.name] = {{"dsps", s.dsps},
                          {"units", s.units},
                          {"cycles", s.cycles},
                          {"time_s", s.time.to_seconds()}};
-  }
   nlohmann::ordered_json stage0 = nlohmann::ordered_json::object();
   for (const auto& s : pipeline.stage0())
     stage0[s.name] = {{"dsps", s.dsps}, {"cycles", s.cycles}, {"time_s", s.time.to_seconds()}};
@@ -120,8 +103,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
                  {"pipeline_utilization", frame > 0 ? cycle * jobs / frame : 0.0},
                  {"dsps", dsps},
                  {"stage0", std::move(stage0)},
-                 {"substages", std::move(substages)},
-                 {"job_latency_s", host.job_latency().to_json()}};
+                 {"substages", std::move(substages)}};
   if (check) res["wang"]["accuracy"] = check->to_json();
   return run.finish(host.latency(), {&host.patch_memory});
 }

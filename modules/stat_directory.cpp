@@ -1,0 +1,69 @@
+#include "modules/stat_directory.hpp"
+
+#include <algorithm>
+
+namespace rtsim::modules {
+
+StatDirectory& StatDirectory::instance() {
+  static StatDirectory directory;
+  return directory;
+}
+
+void StatDirectory::add(const StatGroup& group) { groups_.emplace(group.stat_path(), &group); }
+
+void StatDirectory::remove(const StatGroup& group) {
+  auto [first, last] = groups_.equal_range(group.stat_path());
+  for (auto it = first; it != last; ++it)
+    if (it->second == &group) {
+      groups_.erase(it);
+      return;
+    }
+}
+
+std::map<std::string, StatReport> StatDirectory::reports(const StatWindow& window) const {
+  std::map<std::string, StatReport> out;
+  for (const auto& [name, group] : groups_) {
+    StatReport& r = out[name];
+    for (const Statistic* s : group->statistics()) s->report(r, window);
+  }
+  return out;
+}
+
+nlohmann::ordered_json report_json(const StatReport& r, const StatWindow& window) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  const double frame = (window.end - window.begin).to_seconds();
+  if (r.busy_reported) {
+    j["busy_s"] = r.busy.to_seconds();
+    j["utilization"] = frame > 0 ? r.busy.to_seconds() / frame : 0.0;
+  }
+  for (const auto& [k, v] : r.values) j[k] = v;
+  if (!r.queue.is_null()) j["queue"] = r.queue;
+  if (!r.windows.is_null()) j["utilization_windows"] = r.windows;
+  return j;
+}
+
+nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window) const {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const auto& [name, r] : reports(window)) out[name] = report_json(r, window);
+  return out;
+}
+
+std::vector<NamedSignal> StatDirectory::signals() const {
+  std::vector<NamedSignal> out;
+  std::vector<TraceSignal> of_group;
+  for (const auto& [name, group] : groups_) {
+    of_group.clear();
+    for (const Statistic* s : group->statistics()) s->signals(of_group);
+    for (auto& s : of_group) out.push_back({name, std::move(s.kind), std::move(s.changes)});
+  }
+  // Per name: the busy signal, the depth signal, then the others as their groups built them.
+  const auto rank = [](const NamedSignal& s) {
+    return s.kind == "busy" ? 0 : s.kind == "depth" ? 1 : 2;
+  };
+  std::stable_sort(out.begin(), out.end(), [&](const NamedSignal& a, const NamedSignal& b) {
+    return a.name != b.name ? a.name < b.name : rank(a) < rank(b);
+  });
+  return out;
+}
+
+}  // namespace rtsim::modules

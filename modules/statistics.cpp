@@ -1,0 +1,89 @@
+#include "modules/statistics.hpp"
+
+#include <stdexcept>
+
+#include "modules/stat_directory.hpp"
+
+namespace rtsim::modules {
+
+/// Utilisation windows a frame is cut into: enough to see phases (fill, steady state, drain) in
+/// a plot, few enough to keep stats.json small (assumption, not a seed figure).
+static constexpr std::size_t kUtilizationWindows = 100;
+
+StatGroup::StatGroup(std::string path) : path_(std::move(path)) {
+  StatDirectory::instance().add(*this);
+}
+
+StatGroup::StatGroup(const StatGroup& parent, std::string_view child)
+    : StatGroup(parent.stat_path().empty() ? std::string(child)
+                                           : parent.stat_path() + "." + std::string(child)) {}
+
+StatGroup::~StatGroup() { StatDirectory::instance().remove(*this); }
+
+Statistic::Statistic(StatGroup& group, std::string name, std::string description)
+    : name_(std::move(name)), description_(std::move(description)) {
+  group.statistics_.push_back(this);
+}
+
+void Counter::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = value_;
+}
+
+void CounterArray::report(StatReport& out, const StatWindow& /*window*/) const {
+  for (std::size_t k = 0; k < kinds_.size(); ++k) out.values[name() + kinds_[k]] = values_[k];
+}
+
+void Peak::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = value_;
+}
+
+void Scalar::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = value_;
+}
+
+void Duration::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = value_.to_seconds();
+}
+
+void Busy::report(StatReport& out, const StatWindow& window) const {
+  // One busy time a name: two would add, and their windows would overwrite each other.
+  if (out.busy_reported)
+    throw std::logic_error("two Busy statistics report under one name (" + name() + ")");
+  out.busy_reported = true;
+  out.busy = total_;
+  UtilizationWindows w = timeline_.windows(window.begin, window.end, kUtilizationWindows);
+  if (!w.values.empty())
+    out.windows = {{"begin_s", w.begin_s}, {"window_s", w.window_s}, {"values", w.values}};
+}
+
+void Busy::signals(std::vector<TraceSignal>& out) const {
+  if (timeline_.keeps_intervals()) out.push_back({"busy", timeline_.level_changes()});
+}
+
+void Level::report(StatReport& out, const StatWindow& window) const {
+  if (!out.queue.is_null())
+    throw std::logic_error("two Level statistics report under one name (" + name() + ")");
+  const Occupancy::Summary s = occupancy_.summarize(window.begin, window.end);
+  out.queue = {{"capacity", capacity_ == kUnbounded ? nlohmann::ordered_json(nullptr)
+                                                    : nlohmann::ordered_json(capacity_)},
+               {"mean_occupancy", s.mean},
+               {"max_occupancy", s.max}};
+}
+
+void Level::signals(std::vector<TraceSignal>& out) const {
+  out.push_back({"depth", occupancy_.depth_changes()});
+}
+
+void Distribution::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = recorder_.to_json();
+}
+
+void Computed::report(StatReport& out, const StatWindow& /*window*/) const {
+  out.values[name()] = value_();
+}
+
+void LevelSignal::signals(std::vector<TraceSignal>& out) const {
+  out.push_back({name(), changes_});
+}
+
+}  // namespace rtsim::modules

@@ -1,0 +1,139 @@
+// Module-owned statistics (modules/statistics.hpp) and the directory that writes stats.json's
+// `modules` from them (modules/stat_directory.hpp): each kind's value and key, the order of a
+// module's keys, groups of one name merged, child groups, the traces' signals, and groups
+// leaving the directory when they are destroyed. Plain arithmetic on sc_time, no simulation.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "modules/stat_directory.hpp"
+#include "modules/statistics.hpp"
+#include "modules/timed_fifo.hpp"
+
+extern "C" int sc_main(int, char*[]) { return 0; }
+
+using namespace rtsim::modules;
+using sc_core::sc_time;
+
+namespace {
+sc_time ps(std::uint64_t v) { return sc_time::from_value(v); }
+const StatWindow kFrame{ps(100), ps(1100)};
+
+nlohmann::ordered_json modules_json() { return StatDirectory::instance().to_json(kFrame); }
+
+struct Unit : StatGroup {
+  using StatGroup::StatGroup;
+  Busy busy{*this};
+  Counter jobs{*this, "jobs", "jobs"};
+  Peak peak{*this, "in_flight_peak", "in flight"};
+  Duration waited{*this, "waited_s", "waited"};
+  Scalar ratio{*this, "ratio", "a ratio"};
+  CounterArray by_kind{*this, "sent_", {"a", "b"}, "by kind"};
+  Computed stages{*this, "stages", "depth", [] { return 11; }};
+  Distribution latency{*this, "latency_s", "per job"};
+};
+}  // namespace
+
+TEST(Statistics, EachKindWritesItsValueUnderItsName) {
+  Unit u("unit");
+  u.busy.record(ps(100), ps(400));
+  ++u.jobs;
+  u.jobs += 2;
+  u.peak.note(5);
+  u.peak.note(3);
+  u.waited += ps(250);
+  u.ratio = 0.25;
+  u.by_kind.add(1, 7);
+  u.latency.add(ps(10));
+  const auto j = modules_json();
+  ASSERT_TRUE(j.contains("unit")) << j.dump();
+  const auto& m = j["unit"];
+  EXPECT_DOUBLE_EQ(m["busy_s"].get<double>(), 400e-12);
+  EXPECT_DOUBLE_EQ(m["utilization"].get<double>(), 0.4);
+  EXPECT_EQ(m["jobs"].get<std::uint64_t>(), 3u);
+  EXPECT_EQ(m["in_flight_peak"].get<std::uint64_t>(), 5u);
+  EXPECT_DOUBLE_EQ(m["waited_s"].get<double>(), 250e-12);
+  EXPECT_DOUBLE_EQ(m["ratio"].get<double>(), 0.25);
+  EXPECT_EQ(m["sent_a"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(m["sent_b"].get<std::uint64_t>(), 7u);
+  EXPECT_EQ(m["stages"].get<int>(), 11);
+  EXPECT_EQ(m["latency_s"]["count"].get<int>(), 1);
+  EXPECT_EQ(m["utilization_windows"]["values"].size(), 100u);
+  EXPECT_DOUBLE_EQ(m["utilization_windows"]["begin_s"].get<double>(), 100e-12);
+  // The order stats.json has always had: busy_s, utilization, the values by name, the windows.
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : m.items()) keys.push_back(k);
+  const std::vector<std::string> expected = {
+      "busy_s", "utilization", "in_flight_peak", "jobs",     "latency_s",          "ratio",
+      "sent_a", "sent_b",      "stages",         "waited_s", "utilization_windows"};
+  EXPECT_EQ(keys, expected);
+}
+
+TEST(Statistics, AGroupLeavesTheDirectoryWithItsObject) {
+  {
+    Unit u("short_lived");
+    EXPECT_TRUE(modules_json().contains("short_lived"));
+  }
+  EXPECT_FALSE(modules_json().contains("short_lived"));
+}
+
+TEST(Statistics, GroupsOfOneNameAreOneModuleAndChildrenAreNamedUnderTheirParent) {
+  StatGroup processor("pert0.shell");
+  Counter rays(processor, "rays", "rays");
+  StatGroup extra("pert0.shell");  // a subclass's counters, a second object: the same module
+  Counter tests(extra, "box_tests", "tests");
+  StatGroup bic(processor, "bic");
+  Counter requests(bic, "requests", "requests");
+  ++rays;
+  ++requests;
+  const auto j = modules_json();
+  EXPECT_EQ(j["pert0.shell"]["rays"].get<int>(), 1);
+  EXPECT_EQ(j["pert0.shell"]["box_tests"].get<int>(), 0);
+  EXPECT_EQ(j["pert0.shell.bic"]["requests"].get<int>(), 1);
+  // A group of counters only has no busy time to report.
+  EXPECT_FALSE(j["pert0.shell.bic"].contains("busy_s"));
+}
+
+TEST(Statistics, TwoBusyTimesUnderOneNameAreAModellingError) {
+  Unit a("twice"), b("twice");
+  EXPECT_THROW(modules_json(), std::logic_error);
+}
+
+TEST(Statistics, AQueueReportsItsDepthWaitsAndMessages) {
+  TimedFifo<int> q("host.queue", 2);
+  TimedFifo<int> unbounded("node0.in_e", TimedFifo<int>::kUnbounded);
+  // Without a simulation: puts into room only (a full FIFO would wait()).
+  q.put(1, ps(100));
+  q.put(2, ps(300));
+  sc_time taken;
+  q.get(ps(600), taken);
+  const auto j = modules_json();
+  const auto& m = j["host.queue"];
+  EXPECT_FALSE(m.contains("busy_s"));
+  EXPECT_EQ(m["messages"].get<int>(), 2);
+  EXPECT_EQ(m["waits"].get<int>(), 0);
+  EXPECT_EQ(m["queue"]["capacity"].get<int>(), 2);
+  EXPECT_EQ(m["queue"]["max_occupancy"].get<int>(), 2);
+  // 1 entry over [100, 300), 2 over [300, 600), 1 over [600, 1100): 2000 / 1000.
+  EXPECT_DOUBLE_EQ(m["queue"]["mean_occupancy"].get<double>(),
+                   1.0 * 200 / 1000 + 2.0 * 300 / 1000 + 1.0 * 500 / 1000);
+  EXPECT_TRUE(j["node0.in_e"]["queue"]["capacity"].is_null());
+}
+
+TEST(Statistics, SignalsComeByNameBusyThenDepthThenTheOthers) {
+  BusyTimeline::KeepIntervals keep;  // busy signals need the intervals
+  StatGroup ring("ring");
+  LevelSignal holder(ring, "holder", "who transmits");
+  Level depth(ring, 4);
+  Busy busy(ring);
+  busy.record(ps(0), ps(10));
+  depth.put(ps(5));
+  holder.change(5, 1);
+  std::vector<std::string> kinds;
+  for (const NamedSignal& s : StatDirectory::instance().signals())
+    if (s.name == "ring") kinds.push_back(s.kind);
+  EXPECT_EQ(kinds, (std::vector<std::string>{"busy", "depth", "holder"}));
+}
