@@ -25,6 +25,10 @@ equals VALUE (e.g. the 1-PERT run); a bare column name divides by that column ro
 
 --y may be given several times (e.g. each module's utilisation): one line per column (and per
 group), labelled by what differs between the column names.
+
+--band Y=LOW,HIGH shades, around the line of the --y column Y, the range from column LOW to
+column HIGH (a class of module instances: its mean drawn, from its least to its busiest
+instance shaded, module_classes.node*.utilization.mean=...min,...max).
 """
 
 import argparse
@@ -171,10 +175,26 @@ def groups_in_value_order(df, group):
     return sorted(groups, key=lambda item: common.value_order_key(item[0]))
 
 
+def _module_figure(column):
+    """(module or class, figure) of a per-module column: modules.host.utilization -> (host,
+    utilization); module_classes.node*.utilization.mean -> (node* (mean), utilization); else
+    None."""
+    parts = str(column).split(".")
+    if len(parts) >= 3 and parts[0] == "modules":
+        return ".".join(parts[1:-1]), parts[-1]
+    if len(parts) >= 4 and parts[0] == "module_classes" and parts[-1] == "mean":
+        return ".".join(parts[1:-2]) + " (mean)", parts[-2]
+    return None
+
+
 def short_names(columns):
     """What differs between dotted column names: modules.host.utilization and
     modules.peripheral.pipeline.utilization -> host, peripheral.pipeline (and the common
-    pattern modules.*.utilization)."""
+    pattern modules.*.utilization); a class's mean, module_classes.node*.utilization.mean, is
+    node* (mean) among them."""
+    figures = [_module_figure(c) for c in columns]
+    if len(columns) > 1 and all(figures) and len({f for _, f in figures}) == 1:
+        return [m for m, _ in figures], f"modules.*.{figures[0][1]}"
     parts = [str(c).split(".") for c in columns]
     if len(parts) < 2:
         return [str(c) for c in columns], None
@@ -211,6 +231,38 @@ def compute_multi(df, x, ys, group=None, ratio_to=None, ratio_mode="speedup"):
     return out, categories
 
 
+def parse_bands(bands, ys):
+    """{y: (low, high)} from --band Y=LOW,HIGH values; Y must be one of the --y columns."""
+    out = {}
+    for text in bands or []:
+        y, sep, rest = text.partition("=")
+        low, comma, high = rest.partition(",")
+        if not sep or not comma or not y or not low or not high:
+            raise common.InputProblem(f"--band {text}: expected Y=LOW,HIGH (three columns)")
+        if y not in ys:
+            raise common.InputProblem(f"--band {text}: {y} is not one of the --y columns")
+        out[y] = (low, high)
+    return out
+
+
+def compute_bands(df, x, ys, bands, group=None, categories=None):
+    """{label: (xs, lows, highs)} for the --y columns with a band, labelled as compute_multi
+    labels their lines."""
+    short = short_names(ys)[0] if len(ys) > 1 else [None]
+    out = {}
+    for y, name in zip(ys, short):
+        if y not in bands:
+            continue
+        low, _ = compute_series(df, x, bands[y][0], group, categories=categories)
+        high, _ = compute_series(df, x, bands[y][1], group, categories=categories)
+        for label, (xs, lo) in low.items():
+            if label not in high or list(high[label][0]) != list(xs):
+                continue
+            key = label if name is None else (name if label == "all" else f"{label}: {name}")
+            out[key] = (xs, lo, high[label][1])
+    return out
+
+
 def time_axes(df, args, categories):
     """(x is a time, y is a time): x when it has numbers and its column is named in seconds
     or its values are written in seconds ("250 ns"); y when every --y column is named in
@@ -223,9 +275,10 @@ def time_axes(df, args, categories):
     return bool(x_time), bool(y_time)
 
 
-def scale_times(series, x_time, y_time):
+def scale_times(series, x_time, y_time, bands=None):
     """The series in one time unit per time axis: ({label: (xs, ys)}, x unit, y unit), a unit
-    None for an axis that is not a time."""
+    None for an axis that is not a time; with `bands` ({label: (xs, lows, highs)}) also those,
+    in the same units, as a fourth value."""
     import numpy as np
 
     def unit_for(values):
@@ -236,7 +289,11 @@ def scale_times(series, x_time, y_time):
     yscale, yunit = unit_for([y for _, ys in series.values() for y in ys]) if y_time else (1, None)
     scaled = {k: (np.asarray(xs) * xscale, np.asarray(ys) * yscale)
               for k, (xs, ys) in series.items()}
-    return scaled, xunit, yunit
+    if bands is None:
+        return scaled, xunit, yunit
+    scaled_bands = {k: (np.asarray(xs) * xscale, np.asarray(lo) * yscale, np.asarray(hi) * yscale)
+                    for k, (xs, lo, hi) in bands.items()}
+    return scaled, xunit, yunit, scaled_bands
 
 
 def y_label(args, unit):
@@ -295,11 +352,12 @@ def format_y(ax, series, logy):
 _MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "*")
 
 
-def draw(series, categories, args):
-    """(fig, ax): one line per series, times in one unit per axis, the legend off the lines.
+def draw(series, categories, args, bands=None):
+    """(fig, ax): one line per series, times in one unit per axis, the legend off the lines,
+    a series' band ({label: (xs, lows, highs)}) shaded in its colour.
     args is the parsed command line with group_used, x_time and y_time set (see figure)."""
     plt = common.pyplot()
-    series, xunit, yunit = scale_times(series, args.x_time, args.y_time)
+    series, xunit, yunit, bands = scale_times(series, args.x_time, args.y_time, bands or {})
     fig, ax = plt.subplots(figsize=(7, 4.5))
     drawn = []
     for i, (label, (xs, ys)) in enumerate(series.items()):
@@ -307,9 +365,12 @@ def draw(series, categories, args):
         # own marker, and its legend entry says which line it equals.
         same = next((other for other, oxs, oys in drawn
                      if list(oxs) == list(xs) and list(oys) == list(ys)), None)
-        ax.plot(xs, ys, marker=_MARKERS[i % len(_MARKERS)], markersize=4,
-                linestyle="--" if same is not None else "-",
-                label=label if same is None else f"{label} (= {same})")
+        (line,) = ax.plot(xs, ys, marker=_MARKERS[i % len(_MARKERS)], markersize=4,
+                          linestyle="--" if same is not None else "-",
+                          label=label if same is None else f"{label} (= {same})")
+        if label in bands:
+            bxs, lo, hi = bands[label]
+            ax.fill_between(bxs, lo, hi, color=line.get_color(), alpha=0.2, linewidth=0)
         drawn.append((label, xs, ys))
     format_x(ax, series, categories, args.logx)
     format_y(ax, series, args.logy)
@@ -319,8 +380,8 @@ def draw(series, categories, args):
         ax.set_title(args.title)
     ax.grid(True, which="both", alpha=0.3)
     if list(series) != ["all"]:
-        common.place_legend(ax, title=", ".join(str(args.group_used).split(",")),
-                            fontsize="small" if len(series) <= 4 else "x-small")
+        title = ", ".join(str(args.group_used).split(",")) if args.group_used else None
+        common.place_legend(ax, title=title, fontsize="small" if len(series) <= 4 else "x-small")
     return fig, ax
 
 
@@ -343,6 +404,9 @@ def parse_args(argv):
                     help="plot y relative to a baseline row (COL=VALUE, per group) or column")
     ap.add_argument("--ratio-mode", default="speedup", choices=("speedup", "fraction"),
                     help="speedup: baseline / y (default); fraction: y / baseline")
+    ap.add_argument("--band", action="append", metavar="Y=LOW,HIGH",
+                    help="shade the range from column LOW to column HIGH around the line of --y "
+                         "column Y (a class's min..max around its mean); repeatable")
     ap.add_argument("--title", default=None)
     ap.add_argument("--xlabel", default=None)
     ap.add_argument("--ylabel", default=None)
@@ -360,12 +424,17 @@ def figure(args):
     elif group.lower() == "none":
         group = None
     args.group_used = group
+    bands = parse_bands(args.band, args.y)
+    if bands and args.ratio_to:
+        raise common.InputProblem("--band draws ranges of the columns themselves: not with "
+                                  "--ratio-to")
     series, categories = compute_multi(df, args.x, args.y, group, args.ratio_to, args.ratio_mode)
     if not series or all(len(xs) == 0 for xs, _ in series.values()):
         raise common.InputProblem(
             f"{args.input}: no successful rows with a value of {' or '.join(args.y)}")
     args.x_time, args.y_time = time_axes(df, args, categories)
-    return draw(series, categories, args)
+    band_series = compute_bands(df, args.x, args.y, bands, group, categories) if bands else {}
+    return draw(series, categories, args, band_series)
 
 
 def main(argv):

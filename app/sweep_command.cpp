@@ -205,6 +205,9 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
             fs::create_directories(dir);
             sweep::write_file_atomically(dir / "stats.json", o.stats_text);
           }
+          // Every module instance, for the classes the results table keeps as aggregates.
+          sweep::write_file_atomically(
+              dir / "modules.csv", sweep::modules_csv(nlohmann::ordered_json::parse(o.stats_text)));
           sweep::write_marker(dir, p, o);
         } catch (const std::exception& e) {
           // Called from the queue's threads: a full disk fails the point, not the sweep.

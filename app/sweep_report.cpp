@@ -17,6 +17,7 @@
 #include "app/run_diff.hpp"
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
+#include "modules/stat_classes.hpp"
 #include "platform/machine.hpp"
 #include "platform/machine_registry.hpp"
 
@@ -227,6 +228,8 @@ std::vector<std::string> SweepPlotSpec::script_args() const {
   if (logy) a.push_back("--logy");
   if (!title.empty()) a.insert(a.end(), {"--title", title});
   if (!ylabel.empty()) a.insert(a.end(), {"--ylabel", ylabel});
+  for (const auto& [column, low, high] : bands)
+    a.insert(a.end(), {"--band", column + "=" + low + "," + high});
   return a;
 }
 
@@ -348,27 +351,60 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
       if (ends_with(c, "time_per_ray_s") && !view.numbers(c).empty())
         add(stat_plot({c}, c, c + " (s)"));
 
-    // The busiest modules, fewer when there are several lines already.
-    std::vector<std::pair<double, std::string>> busy;
+    // The busiest modules, fewer when there are several lines already. A module of its own
+    // kind by its utilisation; a class of instances (node*, pert*.shell) by its mean, its
+    // min..max shaded: an instance's name (node16) means another node at another array size.
+    struct Busiest {
+      double hi;
+      std::string y;
+      std::array<std::string, 3> band;  ///< empty: a module of its own kind
+    };
+    std::vector<Busiest> busy;
+    const std::set<std::string> columns(table.columns.begin(), table.columns.end());
+    const std::string util = ".utilization";
     for (const auto& c : table.columns) {
-      if (!starts_with(c, "modules.") || !ends_with(c, ".utilization")) continue;
-      const auto v = view.numbers(c);
+      Busiest b;
+      if (starts_with(c, "modules.") && ends_with(c, util)) {
+        const std::string name = c.substr(8, c.size() - 8 - util.size());
+        const std::string cls = "module_classes." + modules::instance_class(name) + util;
+        if (columns.contains(cls + ".mean")) continue;  // drawn as its class
+        b.y = c;
+      } else if (starts_with(c, "module_classes.") && ends_with(c, util + ".mean")) {
+        const std::string base = c.substr(0, c.size() - 5);
+        b.y = c;
+        if (columns.contains(base + ".min") && columns.contains(base + ".max"))
+          b.band = {c, base + ".min", base + ".max"};
+      } else {
+        continue;
+      }
+      const auto v = view.numbers(b.band[0].empty() ? c : b.band[2]);
       if (v.empty()) continue;
-      const double hi = *std::max_element(v.begin(), v.end());
-      if (hi > 0.01) busy.emplace_back(hi, c);
+      b.hi = *std::max_element(v.begin(), v.end());
+      if (b.hi > 0.01) busy.push_back(std::move(b));
     }
     std::stable_sort(busy.begin(), busy.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
+                     [](const Busiest& a, const Busiest& b) { return a.hi > b.hi; });
     const std::size_t keep = lines >= 8 ? 1 : std::max<std::size_t>(2, 8 / lines);
     if (busy.size() > keep) busy.resize(keep);
     if (!busy.empty()) {
       std::vector<std::string> ys;
-      for (const auto& [hi, c] : busy) ys.push_back(c);
+      for (const auto& b : busy) ys.push_back(b.y);
       SweepPlotSpec s = stat_plot(std::move(ys), "Module utilisation",
                                   "utilisation (busy fraction of the frame)");
+      bool classes = false;
+      for (const auto& b : busy)
+        if (!b.band[0].empty()) {
+          s.bands.push_back(b.band);
+          classes = true;
+        }
       s.logy = false;
       s.caption = "Busy fraction of the frame of the " + std::to_string(busy.size()) +
-                  " busiest modules (modules.NAME.utilization)" + lines_text + "." + over;
+                  " busiest modules (modules.NAME.utilization" +
+                  (classes ? "; a class of instances, such as node*, by its mean over them, the "
+                             "range from the least to the busiest shaded: "
+                             "module_classes.CLASS.utilization"
+                           : "") +
+                  ")" + lines_text + "." + over;
       add(std::move(s));
     }
 

@@ -7,6 +7,7 @@
 //
 // Written by rank 0 after the table (under MPI after gathering, when resuming over every
 // point): failed points are listed, not fatal. A plot that cannot be drawn adds a note.
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -40,6 +41,8 @@ struct SweepPlotSpec {
   std::string title;
   std::string ylabel;   ///< empty: sweep_plot.py's
   std::string caption;  ///< under the picture
+  /// Shaded ranges: {y column, low column, high column} (a class's min..max around its mean).
+  std::vector<std::array<std::string, 3>> bands{};
 
   /// sweep_plot.py's arguments after INPUT and OUT.
   std::vector<std::string> script_args() const;

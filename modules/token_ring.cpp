@@ -82,11 +82,6 @@ TokenRing::TokenRing(sc_core::sc_module_name name, const Config& c, std::size_t 
       classes_(classes.empty() ? std::vector<std::string>{"data"} : std::move(classes)),
       queues_(std::max<std::size_t>(1, nodes)),
       node_(queues_.size()) {
-  for (std::size_t k = 0; k < node_.size(); ++k)
-    node_waits_.push_back(std::make_unique<Computed>(*this, "wait_s.node" + std::to_string(k),
-                                                     "mean wait of node k's packets",
-                                                     [this, k] { return mean_wait_s(k); }));
-
   SC_THREAD(run);
 }
 

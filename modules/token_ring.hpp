@@ -163,7 +163,13 @@ class TokenRing : public sc_core::sc_module, public StatGroup {
   Computed mean_wait_{*this, "mean_wait_s",
                       "mean wait of a packet from being queued to its transmission",
                       [this] { return mean_wait_s(); }};
-  std::vector<std::unique_ptr<Computed>> node_waits_;  ///< wait_s.nodeK
+  Computed node_waits_{*this, "wait_s_by_node", "mean wait of each node's packets, in ring order",
+                       [this] {
+                         nlohmann::ordered_json waits = nlohmann::ordered_json::array();
+                         for (std::size_t k = 0; k < node_.size(); ++k)
+                           waits.push_back(mean_wait_s(k));
+                         return waits;
+                       }};
   CounterArray class_bytes_{*this, "bytes.", classes_, "bytes of a traffic class, headers in"};
   LevelSignal holder_{*this, "holder", "node index + 1 while a node transmits, 0 while none"};
 };

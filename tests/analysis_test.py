@@ -131,6 +131,36 @@ class SweepPlotTest(ScratchTest):
         self.assertAlmostEqual(common.to_number("1.5 Gbit/s"), 1.5e9)
         self.assertIsNone(common.to_number("scanline"))
 
+    def test_a_class_band_is_shaded_around_its_mean(self):
+        path = os.path.join(self.dir, "classes.csv")
+        with open(path, "w") as f:
+            f.write("array.rows,status,modules.host.utilization,"
+                    "module_classes.node*.utilization.min,module_classes.node*.utilization.mean,"
+                    "module_classes.node*.utilization.max\n"
+                    "2,ok,0.2,0.1,0.5,0.9\n4,ok,0.3,0.05,0.4,0.95\n")
+        df = sweep_plot.read_results(path)
+        ys = ["module_classes.node*.utilization.mean", "modules.host.utilization"]
+        bands = sweep_plot.parse_bands(
+            ["module_classes.node*.utilization.mean=module_classes.node*.utilization.min,"
+             "module_classes.node*.utilization.max"], ys)
+        series, _ = sweep_plot.compute_multi(df, "array.rows", ys, None)
+        self.assertEqual(sorted(series), ["host", "node* (mean)"])
+        band = sweep_plot.compute_bands(df, "array.rows", ys, bands)
+        self.assertEqual(list(band), ["node* (mean)"])
+        xs, lo, hi = band["node* (mean)"]
+        np.testing.assert_allclose(xs, [2, 4])
+        np.testing.assert_allclose(lo, [0.1, 0.05])
+        np.testing.assert_allclose(hi, [0.9, 0.95])
+        out = os.path.join(self.dir, "band.png")
+        self.assertEqual(sweep_plot.main([path, out, "--x", "array.rows", "--y", ys[0], "--y", ys[1],
+                                          "--band", f"{ys[0]}=module_classes.node*.utilization.min,"
+                                          "module_classes.node*.utilization.max"]), 0)
+        self.assertTrue(os.path.getsize(out) > 0)
+        with self.assertRaises(common.InputProblem):
+            sweep_plot.parse_bands(["modules.host.utilization=a"], ys)
+        with self.assertRaises(common.InputProblem):
+            sweep_plot.parse_bands(["nope=a,b"], ys)
+
     def test_jsonl_nested_objects_become_dotted_columns(self):
         path = os.path.join(self.dir, "results.jsonl")
         with open(path, "w") as f:

@@ -132,6 +132,45 @@ TEST(SweepReportPlots, ChosenForEachAxisWithSpeedUpForACount) {
   EXPECT_TRUE(rtsim::app::choose_sweep_plots(file, t).empty());
 }
 
+TEST(SweepReportPlots, AClassOfInstancesIsDrawnAsItsMeanWithItsRangeShaded) {
+  // An array of 4 and of 16 nodes: node3 is another node at each size, so the busiest-module
+  // plot draws node* (its mean, min..max shaded), never an instance of it.
+  const auto file = rtsim::sweep::parse_sweep(
+      "machine = \"ullner-array\"\nscene = \"builtin:ullner-cubes\"\n"
+      "[[axes]]\nparam = \"array.rows\"\nvalues = [2, 4]\n",
+      "array.toml", ".");
+  rtsim::sweep::ResultsTable t;
+  t.columns = {"point",
+               "machine",
+               "scene",
+               "array.rows",
+               "status",
+               "simulated_time_s",
+               "modules.host.utilization",
+               "modules.node3.utilization",
+               "module_classes.node*.utilization.min",
+               "module_classes.node*.utilization.mean",
+               "module_classes.node*.utilization.max"};
+  t.rows.push_back(
+      {0, "ullner-array", "builtin:ullner-cubes", 2, "ok", 1.0, 0.2, 0.9, 0.1, 0.5, 0.9});
+  t.rows.push_back(
+      {1, "ullner-array", "builtin:ullner-cubes", 4, "ok", 0.5, 0.3, 0.7, 0.05, 0.4, 0.95});
+  const auto plots = rtsim::app::choose_sweep_plots(file, t);
+  const auto util = std::find_if(plots.begin(), plots.end(), [](const auto& p) {
+    return p.title.rfind("Module utilisation", 0) == 0;
+  });
+  ASSERT_NE(util, plots.end());
+  EXPECT_EQ(util->y, (std::vector<std::string>{"module_classes.node*.utilization.mean",
+                                               "modules.host.utilization"}));
+  ASSERT_EQ(util->bands.size(), 1u);
+  EXPECT_EQ(util->bands[0][1], "module_classes.node*.utilization.min");
+  const auto args = util->script_args();
+  EXPECT_NE(std::find(args.begin(), args.end(),
+                      "module_classes.node*.utilization.mean=module_classes.node*.utilization."
+                      "min,module_classes.node*.utilization.max"),
+            args.end());
+}
+
 TEST_F(SweepReport, PageHasEveryRowPlotsImagesAndParameters) {
   if (!matplotlib_available()) GTEST_SKIP() << "no /usr/bin/python3 with matplotlib";
   ASSERT_EQ(result_->exit_code, 0) << result_->output;

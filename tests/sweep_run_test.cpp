@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "tests/test_support.hpp"
 
@@ -212,4 +216,46 @@ TEST(SweepRun, ScenesAsAnAxisAndAPointKilledBySignal) {
   }
   EXPECT_NE(rows[0]["vax.objects"], rows[2]["vax.objects"]);
   fs::remove_all(dir);
+}
+
+TEST(SweepRun, ALargeArrayIsColumnsOfItsClassesAndItsInstancesAreInModulesCsv) {
+  // A 16 x 16 array as instances was 19,279 columns (more than a spreadsheet holds); its
+  // classes (node*, node*.link_e, ...) are a few hundred, at every size the sweep visits.
+  const fs::path dir = scratch_dir("sweep-array-classes");
+  fs::create_directories(dir);
+  const fs::path file = dir / "sizes.toml";
+  const fs::path out = dir / "out";
+  write(file,
+        "machine = \"ullner-array\"\nscene = \"builtin:ullner-cubes\"\nwidth = 32\nheight = 32\n"
+        "[[axes]]\nzip = [\n  { param = \"array.rows\", values = [4, 16] },\n"
+        "  { param = \"array.cols\", values = [4, 16] },\n]\n");
+  const auto r = run_rtsim("sweep " + file.string() + " -q --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream csv(out / "results.csv");
+  std::string header;
+  std::getline(csv, header);
+  std::vector<std::string> columns;
+  std::stringstream cells(header);
+  for (std::string c; std::getline(cells, c, ',');) columns.push_back(c);
+  std::printf("results.csv of a 4 x 4 and a 16 x 16 array: %zu columns (limit 300)\n",
+              columns.size());
+  EXPECT_LT(columns.size(), 300u);
+  for (const auto& c : columns) EXPECT_NE(c.rfind("modules.node", 0), 0u) << c;
+  for (const char* c :
+       {"module_classes.node*.utilization.mean", "module_classes.node*.utilization.max_instance",
+        "module_classes.node*.in_e.queue.mean_occupancy.max",
+        "module_classes.node*.sent_vision.mean", "module_classes.node*.instances"})
+    EXPECT_NE(std::find(columns.begin(), columns.end(), c), columns.end()) << c;
+
+  // Every instance is in the point's modules.csv: 256 nodes, each with its links, queues,
+  // memory and unit.
+  std::ifstream modules(out / "points" / "0001" / "modules.csv");
+  ASSERT_TRUE(modules) << "no modules.csv";
+  std::string line;
+  std::getline(modules, line);
+  EXPECT_EQ(line.rfind("module,class,", 0), 0u) << line;
+  int nodes = 0;
+  while (std::getline(modules, line))
+    if (line.find(",node*,") != std::string::npos) ++nodes;
+  EXPECT_EQ(nodes, 256);
 }

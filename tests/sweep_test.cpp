@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
+#include "modules/stat_classes.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_check.hpp"
 #include "platform/sweep/sweep_file.hpp"
@@ -357,6 +358,47 @@ TEST(SweepHelp, ExplainsTheFormatAndPointsToTheDocs) {
   for (const char* s : {"[[axes]]", "range = {", "scale = \"log\"", "zip = [", "[params]",
                         "docs/sweeps.md", "--mpi", "--jobs", "--out", "results.csv"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
+}
+
+TEST(ResultsTable, AClassOfManyInstancesOrOfAVaryingSizeIsColumnsOfItsAggregates) {
+  // node* has 3 instances in one point and 2 in the other: node2 would be another node at each
+  // size, so the table keeps the class's aggregates, never node0, node1, node2. pert*.shell
+  // has 2 instances in both: its instances stay columns, and its band is added.
+  const SweepFile f = parse(std::string(kHead) + "width = 8\n" +
+                            "[[axes]]\nparam = \"peripheral.grid.divisions\"\nvalues = [0, 4]\n");
+  const auto points = expand_points(f);
+  std::vector<PointOutcome> outcomes(2);
+  const auto stats = [](int nodes) {
+    nlohmann::ordered_json s = {{"simulated_time_s", 1.0}};
+    for (int k = 0; k < nodes; ++k)
+      s["modules"]["node" + std::to_string(k)] = {{"utilization", 0.1 * k}, {"sent", k}};
+    for (int k = 0; k < 2; ++k)
+      s["modules"]["pert" + std::to_string(k) + ".shell"] = {{"utilization", 0.5}, {"rays", 2}};
+    s["module_classes"] = rtsim::modules::class_aggregates(s["modules"]);
+    return s.dump();
+  };
+  for (int i = 0; i < 2; ++i) {
+    outcomes[i].ok = true;
+    outcomes[i].stats_text = stats(3 - i);
+  }
+  const ResultsTable t = make_results_table(f, points, outcomes);
+  const auto has = [&](const std::string& c) {
+    return std::find(t.columns.begin(), t.columns.end(), c) != t.columns.end();
+  };
+  for (const char* c :
+       {"module_classes.node*.instances", "module_classes.node*.utilization.min",
+        "module_classes.node*.utilization.mean", "module_classes.node*.utilization.max",
+        "module_classes.node*.utilization.max_instance", "module_classes.node*.sent.mean",
+        "modules.pert0.shell.rays", "module_classes.pert*.shell.utilization.mean"})
+    EXPECT_TRUE(has(c)) << c;
+  for (const char* c : {"modules.node0.utilization", "modules.node2.sent",
+                        "module_classes.node*.sent.max", "module_classes.pert*.shell.rays.mean"})
+    EXPECT_FALSE(has(c)) << c;
+
+  // Its instances are in each point's modules.csv.
+  const std::string m = modules_csv(nlohmann::ordered_json::parse(stats(3)));
+  EXPECT_EQ(m.substr(0, m.find('\n')), "module,class,utilization,sent,rays");
+  EXPECT_NE(m.find("\nnode2,node*,0.2"), std::string::npos) << m;
 }
 
 TEST(ResultsTable, OneRowPerPointWithSweptValuesStatsAndFailures) {

@@ -9,6 +9,7 @@
 #include <systemc>
 #include <vector>
 
+#include "modules/stat_classes.hpp"
 #include "modules/stat_directory.hpp"
 #include "modules/statistics.hpp"
 #include "modules/timed_fifo.hpp"
@@ -136,4 +137,41 @@ TEST(Statistics, SignalsComeByNameBusyThenDepthThenTheOthers) {
   for (const NamedSignal& s : StatDirectory::instance().signals())
     if (s.name == "ring") kinds.push_back(s.kind);
   EXPECT_EQ(kinds, (std::vector<std::string>{"busy", "depth", "holder"}));
+}
+
+TEST(StatClasses, AnInstancesClassIsItsNameWithoutTrailingDigits) {
+  EXPECT_EQ(instance_class("node12.link_e"), "node*.link_e");
+  EXPECT_EQ(instance_class("pert3.shell.bic"), "pert*.shell.bic");
+  EXPECT_EQ(instance_class("pert0.queue.shade_to_shell"), "pert*.queue.shade_to_shell");
+  EXPECT_EQ(instance_class("host"), "host");
+  EXPECT_EQ(instance_class("pipeline.split_u"), "pipeline.split_u");
+  EXPECT_EQ(instance_class("x.0"), "x.0");  // a part of digits only names no instance
+  EXPECT_EQ(instance_class(""), "");
+}
+
+TEST(StatClasses, AClassGivesMinMeanMaxSumAndItsBusiestInstance) {
+  const auto modules = nlohmann::ordered_json::parse(R"({
+      "host": {"busy_s": 1.0, "utilization": 0.5},
+      "node0": {"busy_s": 0.2, "utilization": 0.1, "sent_vision": 3,
+                "utilization_windows": {"begin_s": 0, "window_s": 1, "values": [0.1]}},
+      "node1": {"busy_s": 0.8, "utilization": 0.4, "sent_vision": 5},
+      "node2": {"busy_s": 0.8, "utilization": 0.4},
+      "node0.in_e": {"queue": {"capacity": null, "mean_occupancy": 0.5, "max_occupancy": 2}},
+      "node1.in_e": {"queue": {"capacity": null, "mean_occupancy": 1.5, "max_occupancy": 4}}})");
+  const auto c = class_aggregates(modules);
+  EXPECT_FALSE(c.contains("host"));  // one instance: no class
+  const auto& node = c["node*"];
+  EXPECT_EQ(node["instances"].get<int>(), 3);
+  EXPECT_DOUBLE_EQ(node["utilization"]["min"].get<double>(), 0.1);
+  EXPECT_DOUBLE_EQ(node["utilization"]["mean"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(node["utilization"]["max"].get<double>(), 0.4);
+  EXPECT_DOUBLE_EQ(node["utilization"]["sum"].get<double>(), 0.9);
+  EXPECT_EQ(node["utilization"]["max_instance"], "node1");  // ties: the first by name
+  EXPECT_EQ(node["sent_vision"]["instances_reporting"].get<int>(), 2);
+  EXPECT_DOUBLE_EQ(node["sent_vision"]["mean"].get<double>(), 4.0);
+  EXPECT_FALSE(node.contains("utilization_windows.begin_s"));
+  const auto& in = c["node*.in_e"];
+  EXPECT_DOUBLE_EQ(in["queue.mean_occupancy"]["mean"].get<double>(), 1.0);
+  EXPECT_EQ(in["queue.max_occupancy"]["max_instance"], "node1.in_e");
+  EXPECT_FALSE(in.contains("queue.capacity"));  // null: not a number
 }

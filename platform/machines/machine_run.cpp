@@ -2,6 +2,7 @@
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_classes.hpp"
 #include "modules/stat_directory.hpp"
 #include "platform/machines/machine_support.hpp"
 
@@ -80,6 +81,7 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
   nlohmann::ordered_json out;
   // Every statistics group alive is one of this run's modules (one simulation a process).
   out["modules"] = modules::StatDirectory::instance().to_json(*window_);
+  out["module_classes"] = modules::class_aggregates(out["modules"]);
   out["ray_latency_s"] = ray_latency.to_json();
   for (auto& [key, value] : result_.stats.items()) out[key] = std::move(value);
   if (probe_.enabled()) out["latency_probe"] = probe_.to_json();

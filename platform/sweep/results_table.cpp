@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/csv_field.hpp"
+#include "modules/stat_classes.hpp"
 
 namespace rtsim::sweep {
 
@@ -42,12 +43,108 @@ void flatten(const Json& j, const std::string& prefix,
   }
 }
 
+// A class of more instances than this is columns of its aggregates only: a 16 x 16 array's
+// nodes, links and queues as instances were 19,000 columns (spreadsheets stop at 16,384).
+constexpr std::size_t kInstanceColumnsUpTo = 16;
+
+// The aggregates the table keeps of every class, for the report's band of the class (min, mean,
+// max and the busiest instance); a class too large for instance columns keeps every key's mean.
+constexpr std::array<std::string_view, 2> kBandKeys = {"utilization", "queue.mean_occupancy"};
+
+void class_columns(const Json& classes, const std::set<std::string>& aggregated,
+                   std::vector<std::pair<std::string, Json>>& out) {
+  for (const auto& [name, c] : classes.items()) {
+    const std::string path = "module_classes." + name;
+    out.emplace_back(path + ".instances", c.value("instances", std::size_t{0}));
+    for (const auto& [key, agg] : c.items()) {
+      if (key == "instances" || !agg.is_object()) continue;
+      if (std::find(kBandKeys.begin(), kBandKeys.end(), key) != kBandKeys.end()) {
+        for (const char* a : {"min", "mean", "max", "max_instance"})
+          if (agg.contains(a)) out.emplace_back(path + "." + key + "." + a, agg[a]);
+      } else if (aggregated.contains(name) && agg.contains("mean")) {
+        out.emplace_back(path + "." + key + ".mean", agg["mean"]);
+      }
+    }
+  }
+}
+
+/// Each class's instance count in `stats` (module_classes).
+std::map<std::string, std::size_t> class_sizes(const Json& stats) {
+  std::map<std::string, std::size_t> sizes;
+  if (const auto c = stats.find("module_classes"); c != stats.end() && c->is_object())
+    for (const auto& [name, j] : c->items()) sizes[name] = j.value("instances", std::size_t{0});
+  return sizes;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, Json>> stats_leaves(const Json& stats) {
   std::vector<std::pair<std::string, Json>> out;
   flatten(stats, "", out);
   return out;
+}
+
+std::set<std::string> aggregated_classes(const std::vector<Json>& docs) {
+  std::map<std::string, std::set<std::size_t>> sizes;
+  for (const Json& d : docs)
+    for (const auto& [name, n] : class_sizes(d)) sizes[name].insert(n);
+  std::set<std::string> out;
+  for (const auto& [name, n] : sizes)
+    if (n.size() > 1 || *n.rbegin() > kInstanceColumnsUpTo) out.insert(name);
+  return out;
+}
+
+std::vector<std::pair<std::string, Json>> table_leaves(const Json& stats,
+                                                       const std::set<std::string>& aggregated) {
+  std::vector<std::pair<std::string, Json>> out;
+  for (const auto& [key, value] : stats.items()) {
+    if (std::find(kNotStats.begin(), kNotStats.end(), key) != kNotStats.end()) continue;
+    if (key == "modules" && value.is_object()) {
+      for (const auto& [name, m] : value.items()) {
+        if (aggregated.contains(modules::instance_class(name))) continue;
+        if (m.is_object())
+          flatten(m, "modules." + name, out);
+        else if (!m.is_array())
+          out.emplace_back("modules." + name, m);
+      }
+    } else if (key == "module_classes" && value.is_object()) {
+      class_columns(value, aggregated, out);
+    } else if (value.is_object()) {
+      flatten(value, key, out);
+    } else if (!value.is_array()) {
+      out.emplace_back(key, value);
+    }
+  }
+  return out;
+}
+
+std::string modules_csv(const Json& stats) {
+  const auto m = stats.find("modules");
+  if (m == stats.end() || !m->is_object()) return "module,class\n";
+  std::vector<std::string> keys;
+  std::set<std::string> seen;
+  std::vector<std::vector<std::pair<std::string, double>>> rows;
+  for (const auto& [name, module] : m->items()) {
+    rows.push_back(modules::numeric_leaves(module));
+    for (const auto& [k, v] : rows.back())
+      if (seen.insert(k).second) keys.push_back(k);
+  }
+  std::ostringstream out;
+  out << "module,class";
+  for (const auto& k : keys) out << "," << csv_field(k);
+  out << "\n";
+  std::size_t r = 0;
+  for (const auto& [name, module] : m->items()) {
+    const std::map<std::string, double> values(rows[r].begin(), rows[r].end());
+    ++r;
+    out << csv_field(name) << "," << csv_field(modules::instance_class(name));
+    for (const auto& k : keys) {
+      out << ",";
+      if (const auto v = values.find(k); v != values.end()) out << Json(v->second).dump();
+    }
+    out << "\n";
+  }
+  return out.str();
 }
 
 namespace {
@@ -79,15 +176,16 @@ ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>&
   std::vector<Json> docs(points.size());
   std::vector<std::map<std::string, Json>> stats(points.size());
   std::set<std::string> stat_names;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (outcomes[i].ok) docs[i] = Json::parse(outcomes[i].stats_text);
+  const std::set<std::string> aggregated = aggregated_classes(docs);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!outcomes[i].ok) continue;
-    docs[i] = Json::parse(outcomes[i].stats_text);
-    std::vector<std::pair<std::string, Json>> leaves;
-    flatten(docs[i], "", leaves);
-    for (auto& [path, value] : leaves) {
+    const std::vector<std::pair<std::string, Json>> leaves = table_leaves(docs[i], aggregated);
+    for (const auto& [path, value] : leaves) {
       std::string name = taken.contains(path) ? "stats." + path : path;
       stat_names.insert(name);
-      stats[i][name] = std::move(value);
+      stats[i][name] = value;
     }
   }
   std::vector<std::string> stat_columns;
