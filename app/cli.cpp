@@ -213,7 +213,8 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::Range(0, 1000000));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "
-                "has its answer) broken down by stage (module or queue) into queueing, service "
+                "has its answer; on pxpl5-raytrace each sample's, from its caster to its "
+                "compositor) broken down by stage (module or queue) into queueing, service "
                 "and transfer time: stats.json `latency_probe` (docs/stats.md); with --report, "
                 "a \"Where a ray spends its time\" section");
   run->add_option("--fault", runa.faults,

@@ -417,11 +417,16 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     const json* e2e = find(*probe, "end_to_end_s");
     const double mean = e2e && e2e->is_object() ? num(*e2e, "mean", 0.0) : 0.0;
     const double rest = num(*probe, "unattributed_s", 0.0);
+    const std::string unit =
+        probe->contains("unit") ? (*probe)["unit"].get<std::string>() : std::string("ray");
+    const std::string scope = probe->contains("scope")
+                                  ? (*probe)["scope"].get<std::string>()
+                                  : "from the ray entering the machine until the host has its "
+                                    "answer (the window of the ray latency above)";
     page.paragraph(
-        "Mean time per ray at each stage (module or queue, in the order a ray meets them) over " +
-        value_text((*probe)["rays"]) +
-        " rays, from the ray entering the machine until the host has its answer (the window "
-        "of the ray latency above): queueing is waiting for the stage, service the stage "
+        "Mean time per " + unit + " at each stage (module or queue, in the order a " + unit +
+        " meets them) over " + value_text((*probe)["rays"]) + " " + unit + "s, " + scope +
+        ": queueing is waiting for the stage, service the stage "
         "working on the ray, transfer moving its data. A ray that never met a stage counts 0 "
         "there; share is the stage's total over the end-to-end mean; unattributed is what no "
         "stage reported (0 up to rounding when the machine reports everything). stats.json "

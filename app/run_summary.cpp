@@ -108,12 +108,15 @@ void print_latency(std::ostream& out, const json& stats) {
   std::stable_sort(stages.begin(), stages.end(), [](const auto& a, const auto& b) {
     return number(*a.second, "share") > number(*b.second, "share");
   });
-  out << "  per ray     ";
+  const std::string unit = p.value("unit", std::string("ray"));
+  out << "  per " << unit << std::string(unit.size() < 8 ? 8 - unit.size() : 1, ' ');
   for (std::size_t i = 0; i < stages.size(); ++i)
     out << (i ? ", " : "") << stages[i].first << " "
         << format_seconds(number(*stages[i].second, "total_s")) << " ("
         << format_percent(number(*stages[i].second, "share")) << ")";
   out << "; unattributed " << format_seconds(number(p, "unattributed_s")) << "\n";
+  if (p.contains("scope") && p["scope"].is_string())
+    out << "              (" << p["scope"].get<std::string>() << ")\n";
 }
 
 }  // namespace

@@ -28,6 +28,17 @@ LatencyProbe::Journey LatencyProbe::begin(const sc_core::sc_time& now) {
   return j;
 }
 
+LatencyProbe::Journey LatencyProbe::fork(Journey j) {
+  if (j == kNoJourney) return kNoJourney;
+  const Journey k = begin(slots_[j].begin);
+  slots_[k].parts = slots_[j].parts;  // after begin(): it may have grown slots_
+  return k;
+}
+
+void LatencyProbe::drop(Journey j) {
+  if (j != kNoJourney) free_.push_back(j);
+}
+
 void LatencyProbe::add(Journey j, int stage, LatencyPart part, const sc_core::sc_time& dt) {
   if (j == kNoJourney) return;
   Slot& s = slots_[j];
@@ -62,6 +73,8 @@ void LatencyProbe::end(Journey j, const sc_core::sc_time& now) {
 nlohmann::ordered_json LatencyProbe::to_json() const {
   nlohmann::ordered_json j;
   j["rays"] = rays_;
+  j["unit"] = unit_;
+  if (!scope_.empty()) j["scope"] = scope_;
   j["end_to_end_s"] = end_to_end_.to_json();
   const long double n = rays_ > 0 ? static_cast<long double>(rays_) : 1.0L;
   const double mean_e2e = j["end_to_end_s"]["mean"].get<double>();

@@ -11,7 +11,7 @@
 // `unattributed_s`, so a stage a machine forgot to report shows up instead of hiding.
 //
 // Disabled (the default) every call is one branch: a machine calls the probe unconditionally.
-// Used by every machine (vax-750, ullner-peripheral, gaudet-pert).
+// Used by every machine.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -44,14 +44,29 @@ class LatencyProbe {
   void add(Journey j, int stage, LatencyPart part, const sc_core::sc_time& dt);
   /// Ends the journey at `now` and folds it into the totals; `j` may then be reused.
   void end(Journey j, const sc_core::sc_time& now);
+  /// A copy of journey `j` so far, for a ray it spawns whose latency counts from the same
+  /// start (ullner-array: a result and the shadow rays of one hit); kNoJourney for kNoJourney.
+  Journey fork(Journey j);
+  /// Forgets journey `j` without counting it: its ray ended with nothing to deliver (an
+  /// occluded shadow ray contributes nothing).
+  void drop(Journey j);
+
+  /// What a journey follows when it is not a ray ("sample": pxpl5-raytrace's), and where its
+  /// journey starts and ends when that is not the machine's ray latency window: stats.json
+  /// `unit` and `scope`, shown with the figures.
+  void describe(std::string unit, std::string scope) {
+    unit_ = std::move(unit);
+    scope_ = std::move(scope);
+  }
+  const std::string& unit() const { return unit_; }
 
   std::uint64_t rays() const { return rays_; }
   /// Journeys begun and not ended (a machine that loses rays shows them here).
   std::size_t in_flight() const { return slots_.size() - free_.size(); }
 
-  /// stats.json `latency_probe`: {rays, end_to_end_s: {count, mean, p50, p99, max, histogram},
-  /// unattributed_s, stages: {NAME: {queueing_s, service_s, transfer_s, total_s, p99_s, share}}}
-  /// — per-stage figures are means per ray (a ray that never met a stage counts 0 there);
+  /// stats.json `latency_probe`: {rays, unit, [scope], end_to_end_s: {count, mean, p50, p99, max,
+  /// histogram}, unattributed_s, stages: {NAME: {queueing_s, service_s, transfer_s, total_s, p99_s,
+  /// share}}} — per-stage figures are means per ray (a ray that never met a stage counts 0 there);
   /// p99_s is the 99th percentile of the stage's total; share = total_s / end-to-end mean.
   nlohmann::ordered_json to_json() const;
 
@@ -69,6 +84,8 @@ class LatencyProbe {
   };
 
   bool enabled_;
+  std::string unit_ = "ray";
+  std::string scope_;
   std::vector<StageTotals> stages_;
   std::vector<Slot> slots_;
   std::vector<Journey> free_;

@@ -84,7 +84,13 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
   out["module_classes"] = modules::class_aggregates(out["modules"]);
   out["ray_latency_s"] = ray_latency.to_json();
   for (auto& [key, value] : result_.stats.items()) out[key] = std::move(value);
-  if (probe_.enabled()) out["latency_probe"] = probe_.to_json();
+  if (probe_.enabled()) {
+    // A machine that follows none of its rays would print "0 rays" as if it had measured them.
+    if (probe_.rays() == 0)
+      throw std::logic_error(machine_ + ": --latency-probe followed no " + probe_.unit() +
+                             ": the machine does not report its " + probe_.unit() + "s' journeys");
+    out["latency_probe"] = probe_.to_json();
+  }
   if (!opts_.faults.empty()) out["faults"] = faults_json(fault_memories);
   if (trace_.on()) out["trace"] = trace_.finish(*window_);
   if (sample_) {

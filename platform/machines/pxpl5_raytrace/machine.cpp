@@ -375,6 +375,18 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.bypass_master = bypass == "all" || bypass == "casters-and-master";
   ctx.bypass_back_end = bypass == "all" || bypass == "all-but-master";
   ctx.corrupt_samples = static_cast<std::uint64_t>(r.get_int("fault.corrupt_samples"));
+  // --latency-probe follows samples: a caster traces a region in one go, and the renderers
+  // and the frame buffer work on whole tiles and frames, not on samples.
+  modules::LatencyProbe& probe = run.probe();
+  probe.describe("sample",
+                 "from its caster beginning its region to its compositor having composited it; "
+                 "the renderers and the frame buffer work on whole tiles and frames, so a "
+                 "sample's journey ends at its compositor");
+  ctx.probe = &probe;
+  ctx.stages = {.caster = probe.stage("caster*"),
+                .ring = probe.stage("ring"),
+                .inbox = probe.stage("compositor*.inbox"),
+                .compositor = probe.stage("compositor*")};
   if (opts.sample_every > 1) {
     // Sampled: every K-th region (in the master's order, which is screen order in a first
     // frame) in detail, the others cast functionally and handed to the compositors.

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <systemc>
 #include <vector>
 
 #include "firmware/tasks/region_sampling.hpp"
@@ -48,6 +49,9 @@ struct Message {
   double last_cost_s = 0;  ///< kRequest: time the sender spent on its previous region
   int last_region = -1;    ///< kRequest: that region's id
   std::vector<Sample> samples;
+  /// kSamples, --latency-probe (not on the wire): when its caster began the region and when it
+  /// handed the message to the ring.
+  sc_core::sc_time began, sent;
 };
 
 /// A samples, band or pixels message of frame `frame` carrying the samples gathered in `from`,

@@ -169,6 +169,8 @@ void RayCaster::run() {
       auto& samples = by_compositor[static_cast<std::size_t>(k)];
       if (samples.empty()) continue;
       Message out_msg = take_samples(Kind::kSamples, m.frame, samples);
+      out_msg.began = began;
+      out_msg.sent = clock_.now();
       if (++ctx_.samples_messages == ctx_.corrupt_samples) {
         // The fault: the first sample turns black, or white if it was black.
         auto& sum = out_msg.samples.front().sum;
@@ -211,6 +213,23 @@ Compositor::Compositor(sc_core::sc_module_name name, MachineTrace& trace,
   SC_THREAD(run);
 }
 
+void Compositor::probe_samples(const Message& m) {
+  modules::LatencyProbe* probe = ctx_.probe;
+  if (!probe || !probe->enabled()) return;
+  using modules::LatencyPart;
+  const auto& st = ctx_.stages;
+  // Every sample of the message went the same way: the region's cast (its samples are done
+  // together), the ring (waiting for the token and carried), the inbox, the compositing.
+  for (std::size_t k = 0; k < m.samples.size(); ++k) {
+    const auto j = probe->begin(m.began);
+    probe->add(j, st.caster, LatencyPart::kService, m.sent - m.began);
+    probe->add(j, st.ring, LatencyPart::kTransfer, last_delivered_ - m.sent);
+    probe->add(j, st.inbox, LatencyPart::kQueueing, last_taken_ - last_delivered_);
+    probe->add(j, st.compositor, LatencyPart::kService, clock_.now() - last_taken_);
+    probe->end(j, clock_.now());
+  }
+}
+
 long Compositor::expected(int frame) const {
   const int phase = frame == 0 ? 0 : 1 + frame % ctx_.layout.update_period;
   return expected_[static_cast<std::size_t>(phase)];
@@ -251,6 +270,7 @@ void Compositor::run() {
     if (!ctx_.bypass_back_end)
       compute_for(modules::times(sample_time_, m.samples.size()), "composite",
                   {{"samples", m.samples.size()}});
+    probe_samples(m);
     for (const Sample& s : m.samples) keep(s, m.frame);
     samples_ += m.samples.size();
     have += static_cast<long>(m.samples.size());

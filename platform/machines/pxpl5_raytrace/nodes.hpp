@@ -23,6 +23,7 @@
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tracer.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/processor_timing.hpp"
 #include "modules/statistics.hpp"
 #include "platform/functional/frame_state.hpp"
@@ -60,6 +61,13 @@ struct Context {
   /// With --sample, by compositor: the samples of the regions not simulated in detail, cast
   /// functionally (functional_regions.hpp), which it holds when the frame starts.
   std::vector<std::vector<Sample>> functional_samples;
+  /// --latency-probe: a sample's journey from its caster beginning its region to its
+  /// compositor having composited it (stages by class: caster*, ring, compositor*.inbox,
+  /// compositor*).
+  modules::LatencyProbe* probe = nullptr;
+  struct ProbeStages {
+    int caster = -1, ring = -1, inbox = -1, compositor = -1;
+  } stages;
 };
 
 class Host : public RingNode {
@@ -128,6 +136,8 @@ class Compositor : public RingNode {
   void run();
   /// Samples the casters send this compositor in frame `frame`.
   long expected(int frame) const;
+  /// --latency-probe: the journeys of the samples of `m`, composited now.
+  void probe_samples(const Message& m);
   Context& ctx_;
   int number_;
   sc_core::sc_time sample_time_;

@@ -59,11 +59,16 @@ class RingNode : public modules::Processor {
     waited_since(since, why);
     // A message stamped ahead (it is still on the ring until then).
     if (auto t = inbox.fifo.next_item_time(); t && *t > clock_.now()) idle_until(*t, why);
+    last_delivered_ = inbox.fifo.next_item_time().value_or(clock_.now());
     sc_core::sc_time taken;
     Message m = inbox.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);
+    last_taken_ = taken;
     return m;
   }
+  /// The message receive() returned last: when the ring delivered it into the inbox, and when
+  /// this node took it out (--latency-probe).
+  sc_core::sc_time last_delivered_, last_taken_;
 
  private:
   modules::RingChannel<Message>& ring_;

@@ -222,11 +222,15 @@ bool ArrayNode::next_message(RayMessage& msg) {
     sc_core::sc_time taken;
     msg = in[best]->fifo.get(now, taken);
     received_.add(type_index(msg.type));
+    // On a ring the journey ran from the copy out to the delivery into this port.
+    probe_to(msg, ctx_.stages.ring, modules::LatencyPart::kTransfer, best_t);
+    probe_to(msg, ctx_.stages.in, modules::LatencyPart::kQueueing, taken);
     return true;
   }
   if (!own_.empty()) {
     msg = std::move(own_.front());
     own_.pop_front();
+    probe_to(msg, ctx_.stages.node, modules::LatencyPart::kQueueing, now);
     return true;
   }
   // A new ray for its next pixel (L801), when it has nothing else to do.
@@ -247,6 +251,10 @@ bool ArrayNode::next_message(RayMessage& msg) {
   msg.first_sample = sample == 0;
   msg.credit = ctx_.credit_per_ray;
   msg.created = now;
+  if (ctx_.probe) {
+    msg.journey = ctx_.probe->begin(now);
+    msg.cursor = now;
+  }
   spend(timing_.new_ray, "new ray");
   return true;
 }
@@ -348,10 +356,22 @@ void ArrayNode::add_result(const RayMessage& msg) {
     ctx_.frame->fb().add(msg.ray.pixel, msg.contribution);
   }
   tally_.latency.add(clock_.now() - msg.created);
+  if (ctx_.probe && msg.journey != modules::LatencyProbe::kNoJourney) {
+    ctx_.probe->add(msg.journey, ctx_.stages.node, modules::LatencyPart::kService,
+                    clock_.now() - msg.cursor);
+    ctx_.probe->end(msg.journey, clock_.now());
+  }
   return_credit(msg.credit);
 }
 
 void ArrayNode::return_credit(std::uint64_t credit) { credit_held_ += credit; }
+
+void ArrayNode::probe_to(RayMessage& msg, int stage, modules::LatencyPart part,
+                         const sc_core::sc_time& t) {
+  if (msg.journey == modules::LatencyProbe::kNoJourney || stage < 0 || t <= msg.cursor) return;
+  ctx_.probe->add(msg.journey, stage, part, t - msg.cursor);
+  msg.cursor = t;
+}
 
 void ArrayNode::search(RayMessage& msg) {
   // Walk the ray's subvolumes from where it left off; search those this processor owns, each
@@ -422,6 +442,7 @@ void ArrayNode::search(RayMessage& msg) {
   // CPU waits for its interrupt.
   spend(timing_.subvolume * cells, "subvolumes");
   if (tests > 0) {
+    probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
     const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
     const sc_core::sc_time fetch = times(timing_.memory_cycle, 2 * words);
     const sc_core::sc_time issue = times(timing_.stage_time, tests);
@@ -430,6 +451,8 @@ void ArrayNode::search(RayMessage& msg) {
     memory_free_ = plus(start, fetch);
     memory_busy_ += fetch;
     pipeline_.busy.record(start, std::max(fetch, issue));
+    probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kQueueing, start);
+    probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kService, done);
     idle_until(done, Wait::kData);
   }
 
@@ -463,6 +486,7 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
   // nothing to send it is returned.
   const std::uint64_t outputs = (a.contributes ? 1 : 0) + spawned_.size();
   if (outputs == 0) {
+    if (ctx_.probe) ctx_.probe->drop(msg.journey);  // nothing of it reaches a pixel
     return_credit(msg.credit);
     return;
   }
@@ -487,10 +511,18 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
     m.created = msg.created;
     out.push_back(std::move(m));
   }
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    RayMessage& m = out[k];
+    // Each output's latency counts from the same ray's creation: the first continues its
+    // journey, the others continue copies of it.
+    m.journey = k == 0 || !ctx_.probe ? msg.journey : ctx_.probe->fork(msg.journey);
+    m.cursor = msg.cursor;
+  }
   for (auto& m : out) {
     m.credit = share + extra;
     extra = 0;
     spend(timing_.spawn, "spawn");
+    probe_to(m, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
     if (m.type == MessageType::kResult) {
       const GridNode owner = pixel_owner(m.ray.pixel);
       if (owner == position_)
@@ -505,9 +537,12 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
 
 void ArrayNode::forward(RayMessage msg, const GridNode& to) {
   spend(timing_.route, "route");
+  probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
   if (ctx_.ring) {
-    // On a ring the message goes straight to its destination's port.
+    // On a ring the message goes straight to its destination's port: the copy out waits for
+    // the memory, then the ring carries it (accounted where it is taken).
     const sc_core::sc_time start = copy_out();
+    probe_to(msg, ctx_.stages.ring, modules::LatencyPart::kQueueing, start);
     sent_.add(type_index(msg.type));
     const auto cls = static_cast<std::size_t>(type_index(msg.type));
     const auto me = static_cast<std::size_t>(ctx_.topology->index(position_));
@@ -534,6 +569,8 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   modules::Link& link = *links_[k];
   const sc_core::sc_time start = copy_out();
   const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
+  probe_to(msg, ctx_.stages.link, modules::LatencyPart::kQueueing, start);
+  probe_to(msg, ctx_.stages.link, modules::LatencyPart::kTransfer, arrived);
   sent_.add(type_index(msg.type));
   sent_by_link_[k]->add(type_index(msg.type));
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);

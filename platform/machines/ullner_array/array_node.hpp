@@ -80,6 +80,13 @@ struct ArrayContext {
   /// array.interconnect = ring: one token ring instead of the mesh links; a message goes from
   /// its sender straight to its destination (no processor on the way copies it). Null: mesh.
   modules::RingChannel<RayMessage>* ring = nullptr;
+  /// --latency-probe: a ray's journey from its creation to its contribution being added, by
+  /// class of stage (every node alike): the processor, its intersection unit, the links (or
+  /// the ring) and the input queues.
+  modules::LatencyProbe* probe = nullptr;
+  struct ProbeStages {
+    int node = -1, pipeline = -1, link = -1, ring = -1, in = -1;
+  } stages;
 };
 
 /// The input port of the ring (in[kRingPort]), after the four mesh ports.
@@ -148,6 +155,9 @@ class ArrayNode : public modules::Processor {
   void answer(const RayMessage& msg, bool found, const Hit& hit);
   void add_result(const RayMessage& msg);
   void return_credit(std::uint64_t credit);
+  /// --latency-probe: the time of `msg`'s journey since its cursor, up to `t`, was `part` at
+  /// `stage`.
+  void probe_to(RayMessage& msg, int stage, modules::LatencyPart part, const sc_core::sc_time& t);
   void spend(std::uint64_t cycles, std::string_view what);
   modules::GridNode pixel_owner(std::uint32_t pixel) const;
   const std::vector<kernels::UllnerQuadParams<double>>& held();

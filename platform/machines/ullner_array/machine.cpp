@@ -227,13 +227,25 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   std::unique_ptr<modules::TokenRing> ring;
   std::unique_ptr<modules::RingChannel<ullner_array::RayMessage>> ring_channel;
   if (r.get_string("array.interconnect") == "ring") {
-    ring = std::make_unique<modules::TokenRing>(
-        "ring", ring_config, static_cast<std::size_t>(topology.nodes()),
-        std::vector<std::string>{"new", "vision", "shadow", "result", "credit"});
+    ring = std::make_unique<modules::TokenRing>("ring", ring_config,
+                                                static_cast<std::size_t>(topology.nodes()),
+                                                ullner_array::message_type_names());
     ring_channel =
         std::make_unique<modules::RingChannel<ullner_array::RayMessage>>("ring_channel", *ring);
     ctx.ring = ring_channel.get();
   }
+  // --latency-probe: the stages of a ray by class (every node alike), in the order it meets
+  // them: made at a node, searched by its unit, carried on a link (or the ring) into the next
+  // node's input queue.
+  modules::LatencyProbe& probe = run.probe();
+  ctx.probe = &probe;
+  ctx.stages.node = probe.stage("node*");
+  ctx.stages.pipeline = probe.stage("node*.pipeline");
+  if (ring)
+    ctx.stages.ring = probe.stage("ring");
+  else
+    ctx.stages.link = probe.stage("node*.link_*");
+  ctx.stages.in = probe.stage(ring ? "node*.in_ring" : "node*.in_*");
   ullner_array::ArrayTally tally;
   std::vector<std::unique_ptr<ArrayNode>> nodes;
   nodes.reserve(static_cast<std::size_t>(topology.nodes()));

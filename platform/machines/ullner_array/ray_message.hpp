@@ -38,6 +38,10 @@ struct RayMessage {
   std::uint64_t credit = 0;   ///< the termination detector's share carried
   bool first_sample = false;  ///< a pixel's first vision ray: its answer fills the AOVs
   sc_core::sc_time created;   ///< when its ray was made (ray latency)
+  /// --latency-probe: its ray's journey (forked for what it spawns), and the time up to which
+  /// the journey is accounted. Not on the wire.
+  modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
+  sc_core::sc_time cursor;
 
   /// k, r, c, r0 (3), r_d (3), c (3) = 12 words (Fig. 2-27), + resume, far limit, generation,
   /// credit (2) = 17 words.

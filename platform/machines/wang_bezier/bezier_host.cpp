@@ -46,7 +46,7 @@ BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry
                        functional::FrameState& frame,
                        const modules::TimedFifo<PatchJob>& pipeline_input,
                        const functional::SceneGeometry& geometry, const RunOptions& opts,
-                       MachineTrace& trace, ReferenceCheck* check)
+                       MachineTrace& trace, modules::LatencyProbe& probe, ReferenceCheck* check)
     : modules::Processor(name, trace),
       job_out("job_out"),
       results("result_queue", modules::TimedFifo<JobResult>::kUnbounded),
@@ -57,6 +57,13 @@ BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry
       pipeline_input_(pipeline_input),
       geometry_(geometry),
       opts_(opts),
+      probe_(probe),
+      // Named in the order a ray meets them.
+      probe_host_(probe.stage(this->name())),
+      probe_input_(probe.stage(pipeline_input.name())),
+      probe_pipeline_(
+          probe.stage(pipeline_input.name().substr(0, pipeline_input.name().rfind('.')))),
+      probe_results_(probe.stage(results.name())),
       check_(check),
       shade_(scene, shade),
       window_(modules::ModuleParams(registry, this->name()).get_count("rays_in_flight")),
@@ -127,6 +134,7 @@ void BezierHost::start(const shading::TracedRay& r, bool first_sample) {
     ++st.outstanding;
   }
   compute(cost, "cull", {{"ray", id}});
+  st.culled = clock_.now();
   if (st.outstanding == 0) answer(id);
 }
 
@@ -170,7 +178,30 @@ void BezierHost::answer(std::uint64_t id) {
   cost += shading;
   compute(cost, "answer", {{"ray", id}, {"spawned", spawned_.size()}});
   latency_.add(clock_.now() - st.started);
+  probe_ray(st);
   for (const auto& sp : spawned_) backlog_.push_back(sp);
+}
+
+void BezierHost::probe_ray(const RayState& st) {
+  if (!probe_.enabled()) return;
+  using modules::LatencyPart;
+  const sc_core::sc_time now = clock_.now();
+  const auto j = probe_.begin(st.started);
+  if (st.answers.empty()) {  // every pair culled: the host alone
+    probe_.add(j, probe_host_, LatencyPart::kService, now - st.started);
+  } else {
+    // The host culls, then its last job waits among the others for the pipeline's input,
+    // until the host spends kJobCost issuing it.
+    const sc_core::sc_time issue = timing().time_for(kJobCost);
+    probe_.add(j, probe_host_, LatencyPart::kService, st.culled - st.started);
+    probe_.add(j, probe_host_, LatencyPart::kQueueing, st.last.sent - issue - st.culled);
+    probe_.add(j, probe_host_, LatencyPart::kService, issue);
+    probe_.add(j, probe_input_, LatencyPart::kQueueing, st.last.accepted - st.last.sent);
+    probe_.add(j, probe_pipeline_, LatencyPart::kService, st.last.left - st.last.accepted);
+    probe_.add(j, probe_results_, LatencyPart::kQueueing, st.last_taken - st.last.left);
+    probe_.add(j, probe_host_, LatencyPart::kService, now - st.last_taken);
+  }
+  probe_.end(j, now);
 }
 
 void BezierHost::run() {
@@ -190,6 +221,8 @@ void BezierHost::run() {
       job_latency_.add(taken - res.sent);
       RayState& st = rays_.at(res.ray);
       st.answers[res.slot] = res.result;
+      st.last = res;
+      st.last_taken = taken;
       if (--st.outstanding == 0) answer(res.ray);
       continue;
     }

@@ -15,6 +15,7 @@
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "modules/latency_probe.hpp"
 #include "modules/memory.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
@@ -44,7 +45,7 @@ class BezierHost : public modules::Processor {
              const scenes::Scene& scene, const shading::ShadeParams& shade,
              functional::FrameState& frame, const modules::TimedFifo<PatchJob>& pipeline_input,
              const functional::SceneGeometry& geometry, const RunOptions& opts, MachineTrace& trace,
-             ReferenceCheck* check = nullptr);
+             modules::LatencyProbe& probe, ReferenceCheck* check = nullptr);
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   const modules::LatencyRecorder& latency() const { return latency_; }
@@ -56,7 +57,15 @@ class BezierHost : public modules::Processor {
     std::uint32_t outstanding = 0;
     std::map<std::uint32_t, kernels::WangResult<float>> answers;  ///< by patch slot
     sc_core::sc_time started;
+    sc_core::sc_time culled;  ///< its pairs culled, its jobs queued
+    /// The job answered last (--latency-probe follows it: the ray waits for it), and when the
+    /// host took its result.
+    JobResult last;
+    sc_core::sc_time last_taken;
   };
+  /// --latency-probe: the ray's journey, along its last job: the host culling and queueing
+  /// its jobs, the pipeline's input, the pipeline, the result queue, the host answering.
+  void probe_ray(const RayState& st);
   void run();
   /// Writes every patch's control net into patch_memory (before the frame).
   void load_patches();
@@ -73,6 +82,8 @@ class BezierHost : public modules::Processor {
   const modules::TimedFifo<PatchJob>& pipeline_input_;
   const functional::SceneGeometry& geometry_;
   const RunOptions& opts_;
+  modules::LatencyProbe& probe_;
+  int probe_host_, probe_input_, probe_pipeline_, probe_results_;
   ReferenceCheck* check_;  ///< the accuracy study's, or none
   tasks::ShadeTask shade_;
   std::uint64_t window_;

@@ -131,10 +131,12 @@ void BezierPipeline::run() {
     res.ray = job.ray;
     res.slot = job.slot;
     res.sent = job.sent;
+    res.accepted = accepted;
     res.result = kernels::wang_output(w, loop_stages_, counters_);
     if (res.result.hit) ++hits_;
 
     const sc_core::sc_time leaves = plus(accepted, latency_);
+    res.left = leaves;
     leaving_.erase(std::remove_if(leaving_.begin(), leaving_.end(),
                                   [&](const sc_core::sc_time& l) { return l <= accepted; }),
                    leaving_.end());

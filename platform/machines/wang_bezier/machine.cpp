@@ -69,7 +69,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
     check.emplace(*twin.geometry, twin.settings.bezier_iterations, pixel_angle);
   }
   BezierHost host("host", r, scene, twin.settings.shade, run.frame(), pipeline.input.fifo,
-                  *twin.geometry, opts, run.trace(), check ? &*check : nullptr);
+                  *twin.geometry, opts, run.trace(), run.probe(), check ? &*check : nullptr);
   host.job_out.bind(pipeline.input.socket);
   inject_faults(name(), opts.faults, {&host.patch_memory});
   pipeline.result_out.bind(host.results.socket);

@@ -25,6 +25,9 @@ struct JobResult {
   std::uint32_t slot = 0;
   kernels::WangResult<float> result;
   sc_core::sc_time sent;  ///< when its job was issued (job latency)
+  /// When stage 0 took its job, and when it left the last stage (--latency-probe: timing
+  /// metadata, not on the wire).
+  sc_core::sc_time accepted, left;
   /// The centre (3 words), (u, v) and a hit flag.
   static constexpr std::uint64_t kWireBits = 32 * 6;
 };
