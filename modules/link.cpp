@@ -7,15 +7,23 @@
 
 namespace rtsim::modules {
 
+namespace {
+// Its parameters' names, each written once: declared with the preset's defaults, read below.
+constexpr const char* kLatency = "latency";
+constexpr const char* kLanes = "lanes";
+constexpr const char* kBitTime = "bit_time";
+constexpr const char* kBitRate = "bit_rate";
+}  // namespace
+
 void Link::declare_params(const ParamDecls& link, const Defaults& d) {
   const std::string& who = link.path();
-  link.time("latency", d.latency,
+  link.time(kLatency, d.latency,
             "Link " + who + ": time from a message's last bit leaving to its arrival", d.source);
-  link.count("lanes", d.lanes, "1", "65536", "lanes",
+  link.count(kLanes, d.lanes, "1", "65536", "lanes",
              "Link " + who + ": bits carried side by side (1: bit-serial, 32: word-parallel)",
              d.source);
   if (d.bit_rate.empty()) {
-    link.declare({.name = "bit_time",
+    link.declare({.name = kBitTime,
                   .kind = params::ParamKind::kTime,
                   .default_value = d.bit_time,
                   .min = "1 ps",
@@ -24,7 +32,7 @@ void Link::declare_params(const ParamDecls& link, const Defaults& d) {
                   .source = d.source});
     return;
   }
-  link.declare({.name = "bit_rate",
+  link.declare({.name = kBitRate,
                 .kind = params::ParamKind::kBitRate,
                 .default_value = d.bit_rate,
                 .min = "1 bit/s",
@@ -35,18 +43,17 @@ void Link::declare_params(const ParamDecls& link, const Defaults& d) {
 namespace {
 /// One bit time in whole picoseconds (the time resolution), from whichever the link declares.
 sc_core::sc_time read_bit_time(const ModuleParams& params) {
-  const std::string bit_time = params.path() + ".bit_time";
-  if (params.registry().contains(params.registry().class_path(bit_time)))
-    return std::max(from_ps(1), params.get_time("bit_time"));
+  if (params.registry().contains(params.registry().class_path(params.path_of(kBitTime))))
+    return std::max(from_ps(1), params.get_time(kBitTime));
   return from_ps(static_cast<std::int64_t>(
-      std::max(1.0, std::round(1e12 / params.get_bitrate_bps("bit_rate")))));
+      std::max(1.0, std::round(1e12 / params.get_bitrate_bps(kBitRate)))));
 }
 }  // namespace
 
 Link::Link(std::string name, const ModuleParams& params)
     : StatGroup(std::move(name)),
-      latency_(params.get_time("latency")),
-      lanes_(std::max<std::size_t>(1, params.get_count("lanes"))),
+      latency_(params.get_time(kLatency)),
+      lanes_(std::max<std::size_t>(1, params.get_count(kLanes))),
       bit_time_(read_bit_time(params)) {}
 
 sc_core::sc_time Link::serialisation(std::uint64_t bits) const {

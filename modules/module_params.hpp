@@ -15,6 +15,7 @@
 #include <string_view>
 #include <systemc>
 
+#include "modules/param.hpp"
 #include "params/registry.hpp"
 
 namespace rtsim::modules {
@@ -33,6 +34,11 @@ class ParamDecls {
 
   /// `spec.name` is relative to the module.
   void declare(params::ParamSpec spec) const;
+  /// Declares a typed parameter (modules/param.hpp), read back with ModuleParams::get.
+  template <class T>
+  void add(const Param<T>& p) const {
+    declare(p.spec());
+  }
   /// A time of at least 0 s ("400 ns").
   void time(std::string name, std::string value, std::string description, std::string source) const;
   /// An integer count in [min, max] of `unit`.
@@ -53,6 +59,21 @@ class ModuleParams {
   ModuleParams sub(std::string_view child) const;
   const std::string& path() const { return path_; }
   const params::ParamRegistry& registry() const { return *registry_; }
+
+  /// The value of a typed parameter this module declared (modules/param.hpp).
+  sc_core::sc_time get(const TimeParam& p) const { return get_time(p.name()); }
+  std::size_t get(const CountParam& p) const { return get_count(p.name()); }
+  std::int64_t get(const IntParam& p) const { return get_int(p.name()); }
+  double get(const RealParam& p) const { return get_double(p.name()); }
+  bool get(const FlagParam& p) const { return get_bool(p.name()); }
+  const std::string& get(const ChoiceParam& p) const { return get_string(p.name()); }
+  Frequency get(const FrequencyParam& p) const { return {get_frequency_hz(p.name())}; }
+  BitRate get(const BitRateParam& p) const { return {get_bitrate_bps(p.name())}; }
+
+  /// A parameter's full name ("array" + "subvolumes" -> "array.subvolumes"), for messages.
+  std::string path_of(std::string_view name) const { return full(name); }
+  /// Where its value was set ("default", "FILE:LINE", "-p"): for an error about it.
+  std::string where_set(std::string_view name) const { return registry_->where_set(full(name)); }
 
   std::int64_t get_int(std::string_view name) const;
   /// An int parameter declared with min >= 0.

@@ -81,6 +81,7 @@ nlohmann::ordered_json class_aggregates(const nlohmann::ordered_json& modules) {
     }
   }
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  auto& by_name = out.get_ref<nlohmann::ordered_json::object_t&>();  // unique names, appended
   for (const auto& [name, c] : classes) {
     if (c.instances < 2) continue;
     nlohmann::ordered_json j;
@@ -95,7 +96,7 @@ nlohmann::ordered_json class_aggregates(const nlohmann::ordered_json& modules) {
       if (a.count < c.instances) k["instances_reporting"] = a.count;
       j[key] = std::move(k);
     }
-    out[name] = std::move(j);
+    by_name.emplace_back(name, std::move(j));
   }
   return out;
 }

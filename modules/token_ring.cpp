@@ -21,15 +21,24 @@ const char* to_string(RingService s) {
   return "?";
 }
 
+namespace {
+// Its parameters' names, each written once: declared with the preset's defaults, read below.
+constexpr const char* kBandwidth = "bandwidth";
+constexpr const char* kHopLatency = "hop_latency";
+constexpr const char* kMaxPacketBytes = "max_packet_bytes";
+constexpr const char* kHeaderBytes = "header_bytes";
+constexpr const char* kService = "service";
+}  // namespace
+
 void TokenRing::declare_params(const ParamDecls& ring, const Defaults& d) {
   const std::string& who = ring.path();
-  ring.declare({.name = "bandwidth",
+  ring.declare({.name = kBandwidth,
                 .kind = params::ParamKind::kBitRate,
                 .default_value = d.bandwidth,
                 .min = "1 bit/s",
                 .description = "Token ring " + who + ": bits per second on the ring (shared)",
                 .source = d.bandwidth_source});
-  ring.declare({.name = "hop_latency",
+  ring.declare({.name = kHopLatency,
                 .kind = params::ParamKind::kTime,
                 .default_value = d.hop_latency,
                 .min = "1 ps",
@@ -38,12 +47,12 @@ void TokenRing::declare_params(const ParamDecls& ring, const Defaults& d) {
                                ": time for the token, or a packet's bits, to go from one node "
                                "to the next",
                 .source = d.source});
-  ring.count("max_packet_bytes", d.max_packet_bytes, "1", "1073741824", "bytes",
+  ring.count(kMaxPacketBytes, d.max_packet_bytes, "1", "1073741824", "bytes",
              "Token ring " + who + ": most payload bytes in one packet; longer messages are cut",
              d.source);
-  ring.count("header_bytes", d.header_bytes, "0", "65536", "bytes",
+  ring.count(kHeaderBytes, d.header_bytes, "0", "65536", "bytes",
              "Token ring " + who + ": bytes of header on every packet", d.source);
-  ring.declare({.name = "service",
+  ring.declare({.name = kService,
                 .kind = params::ParamKind::kString,
                 .default_value = d.service,
                 .allowed = {"exhaustive", "gated", "one_packet"},
@@ -63,11 +72,11 @@ RingService read_service(const std::string& s) {
 
 TokenRing::Config TokenRing::read_config(const ModuleParams& params) {
   return {.bit_time = from_ps(static_cast<std::int64_t>(
-              std::max(1.0, std::round(1e12 / params.get_bitrate_bps("bandwidth"))))),
-          .hop_latency = std::max(from_ps(1), params.get_time("hop_latency")),
-          .max_payload = std::max<std::uint64_t>(1, params.get_count("max_packet_bytes")),
-          .header = params.get_count("header_bytes"),
-          .service = read_service(params.get_string("service"))};
+              std::max(1.0, std::round(1e12 / params.get_bitrate_bps(kBandwidth))))),
+          .hop_latency = std::max(from_ps(1), params.get_time(kHopLatency)),
+          .max_payload = std::max<std::uint64_t>(1, params.get_count(kMaxPacketBytes)),
+          .header = params.get_count(kHeaderBytes),
+          .service = read_service(params.get_string(kService))};
 }
 
 TokenRing::TokenRing(sc_core::sc_module_name name, const Config& c, std::size_t nodes,

@@ -40,12 +40,25 @@ struct PixelWord {
 
 /// Takes pixel words from its queue and adds them into the image, `write_time` each.
 class FrameBuffer : public modules::Processor {
+  // Its parameters, each named once: declared by declare_params, read by the constructor.
+  static inline const modules::TimeParam kWriteTime{
+      {.name = "write_time",
+       .default_value = "1 us",
+       .description = "time to add one pixel word into the image",
+       .source = "assumption: the example machine models no seed"}};
+  static inline const modules::CountParam kQueueDepth{
+      {.name = "queue_depth",
+       .default_value = "4",
+       .min = "1",
+       .max = "1048576",
+       .unit = "words",
+       .description = "pixel words its input queue holds",
+       .source = "assumption: the example machine models no seed"}};
+
  public:
   static void declare_params(const modules::ParamDecls& fb) {
-    fb.time("write_time", "1 us", "time to add one pixel word into the image",
-            "assumption: the example machine models no seed");
-    fb.count("queue_depth", "4", "1", "1048576", "words", "pixel words its input queue holds",
-             "assumption: the example machine models no seed");
+    fb.add(kWriteTime);
+    fb.add(kQueueDepth);
   }
 
   SC_HAS_PROCESS(FrameBuffer);
@@ -53,9 +66,9 @@ class FrameBuffer : public modules::Processor {
               functional::FrameState& frame, MachineTrace& trace)
       : modules::Processor(name, trace),
         params_(registry, this->name()),
-        in("in", params_.get_count("queue_depth")),
+        in("in", params_.get(kQueueDepth)),
         frame_(frame),
-        write_time_(params_.get_time("write_time")) {
+        write_time_(params_.get(kWriteTime)) {
     SC_THREAD(run);
   }
 
@@ -92,12 +105,21 @@ class FrameBuffer : public modules::Processor {
 /// Traces every ray (T_ray + T_test per intersection test) into its own accumulator and sends
 /// each finished sample's pixel word to the frame buffer over its link.
 class Host : public modules::Processor {
+  static inline const modules::TimeParam kRayTime{
+      {.name = "ray_time",
+       .default_value = "20 us",
+       .description = "time to spawn and shade one ray",
+       .source = "assumption: the example machine models no seed"}};
+  static inline const modules::TimeParam kTestTime{
+      {.name = "test_time",
+       .default_value = "2 us",
+       .description = "time of one ray/primitive intersection test",
+       .source = "assumption: the example machine models no seed"}};
+
  public:
   static void declare_params(const modules::ParamDecls& host) {
-    host.time("ray_time", "20 us", "time to spawn and shade one ray",
-              "assumption: the example machine models no seed");
-    host.time("test_time", "2 us", "time of one ray/primitive intersection test",
-              "assumption: the example machine models no seed");
+    host.add(kRayTime);
+    host.add(kTestTime);
     modules::Link::declare_params(host.sub("link"),
                                   {.latency = "100 ns",
                                    .lanes = "8",
@@ -115,8 +137,8 @@ class Host : public modules::Processor {
       : modules::Processor(name, run.trace()),
         out("out"),
         params_(registry, this->name()),
-        ray_time_(params_.get_time("ray_time")),
-        test_time_(params_.get_time("test_time")),
+        ray_time_(params_.get(kRayTime)),
+        test_time_(params_.get(kTestTime)),
         link(params_.sub("link")),
         scene_(scene),
         twin_(twin),

@@ -43,53 +43,96 @@ std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
   return keep;
 }
 
+namespace {
+
+// A processor's parameters, each named once (every processor alike: the class `node`).
+const char* const kCpuSource =
+    "assumption: the thesis gives no MC68000 timings (seed 000 L835; note 000 §7.6): a few dozen "
+    "instructions of 4-10 cycles each";
+
+modules::CountParam cycles(const char* what, const char* value, const char* description) {
+  return modules::CountParam({.name = std::string("cycles.") + what,
+                              .default_value = value,
+                              .max = "1000000000",
+                              .unit = "cycles",
+                              .description = description,
+                              .source = kCpuSource});
+}
+
+const modules::FrequencyParam kClock(
+    {.name = "clock",
+     .default_value = "8 MHz",
+     .min = "1 Hz",
+     .description = "Clock of a processor's MC68000-class CPU",
+     .source = "seed 000 L835 (MC68000); assumption: 8 MHz, the part of 1982"});
+const modules::CountParam kMessageCycles = cycles(
+    "message", "120", "CPU cycles to take a message from a port buffer and dispatch on its type");
+const modules::CountParam kRouteCycles =
+    cycles("route", "80",
+           "CPU cycles to choose the port toward a processor and start the port's copy (routing "
+           "is in software, L854)");
+const modules::CountParam kSubvolumeCycles =
+    cycles("subvolume", "100",
+           "CPU cycles to step to the next subvolume along a ray (Appendix B) and start the "
+           "intersection unit on its polygons (L852)");
+const modules::CountParam kShadeCycles =
+    cycles("shade", "400",
+           "CPU cycles to shade a hit with the lighting unit (ambient, lights, reflection and "
+           "refraction terms, L809-L817)");
+const modules::CountParam kSpawnCycles = cycles(
+    "spawn", "80", "CPU cycles to format a new message (result, shadow, reflected, refracted)");
+const modules::CountParam kResultCycles =
+    cycles("result", "60", "CPU cycles to add a result's colour into the frame buffer (L809)");
+const modules::CountParam kNewRayCycles =
+    cycles("new_ray", "150", "CPU cycles to make a new ray for one of its pixels (L801)");
+const modules::CountParam kKeepTestCycles =
+    cycles("keep_test", "200",
+           "CPU cycles to decide whether a broadcast polygon touches its subvolumes (L787)");
+const modules::TimeParam kMemoryCycle(
+    {.name = "memory_cycle",
+     .default_value = "333.333 ns",
+     .description = "One 16-bit transfer of a processor's memory, shared by the CPU's ports and "
+                    "the intersection unit (a 32-bit word is two)",
+     .source = "seed 000 L835, L891 (16-bit path); assumption: the peripheral's 1/3 us cycle, as "
+               "L891's 40-processor estimate supposes"});
+const modules::CountParam kMemoryWords(
+    {.name = "memory_words",
+     .default_value = "32768",
+     .min = "1",
+     .max = "1000000000",
+     .unit = "words",
+     .description = "Words of a processor's memory for its polygons (128 KB)",
+     .source = "seed 000 L835"});
+const modules::TimeParam kStageTime(
+    {.name = "pipeline.stage_time",
+     .default_value = "333.333 ns",
+     .description = "Stage time of the intersection pipeline (one test issued per stage time at "
+                    "most)",
+     .source = "assumption: custom shift-and-add units (L837) pipelined to keep pace with the "
+               "memory, as L891 assumes"});
+const modules::CountParam kStages({.name = "pipeline.stages",
+                                   .default_value = "9",
+                                   .min = "1",
+                                   .max = "64",
+                                   .unit = "stages",
+                                   .description = "Stages of the intersection pipeline (Fig. 2-28)",
+                                   .source = "seed 000 L843-L850"});
+/// Its links to the neighbours (the class's: node.link.*).
+constexpr const char* kLinkClass = "link";
+
+}  // namespace
+
 void ArrayNode::declare_params(const modules::ParamDecls& node) {
-  const std::string cpu =
-      "assumption: the thesis gives no MC68000 timings (seed 000 L835; note 000 §7.6): a few "
-      "dozen instructions of 4-10 cycles each";
-  node.declare({.name = "clock",
-                .kind = params::ParamKind::kFrequency,
-                .default_value = "8 MHz",
-                .min = "1 Hz",
-                .description = "Clock of a processor's MC68000-class CPU",
-                .source = "seed 000 L835 (MC68000); assumption: 8 MHz, the part of 1982"});
-  node.count("cycles.message", "120", "0", "1000000000", "cycles",
-             "CPU cycles to take a message from a port buffer and dispatch on its type", cpu);
-  node.count("cycles.route", "80", "0", "1000000000", "cycles",
-             "CPU cycles to choose the port toward a processor and start the port's copy "
-             "(routing is in software, L854)",
-             cpu);
-  node.count("cycles.subvolume", "100", "0", "1000000000", "cycles",
-             "CPU cycles to step to the next subvolume along a ray (Appendix B) and start the "
-             "intersection unit on its polygons (L852)",
-             cpu);
-  node.count("cycles.shade", "400", "0", "1000000000", "cycles",
-             "CPU cycles to shade a hit with the lighting unit (ambient, lights, reflection and "
-             "refraction terms, L809-L817)",
-             cpu);
-  node.count("cycles.spawn", "80", "0", "1000000000", "cycles",
-             "CPU cycles to format a new message (result, shadow, reflected, refracted)", cpu);
-  node.count("cycles.result", "60", "0", "1000000000", "cycles",
-             "CPU cycles to add a result's colour into the frame buffer (L809)", cpu);
-  node.count("cycles.new_ray", "150", "0", "1000000000", "cycles",
-             "CPU cycles to make a new ray for one of its pixels (L801)", cpu);
-  node.count("cycles.keep_test", "200", "0", "1000000000", "cycles",
-             "CPU cycles to decide whether a broadcast polygon touches its subvolumes (L787)", cpu);
-  node.time("memory_cycle", "333.333 ns",
-            "One 16-bit transfer of a processor's memory, shared by the CPU's ports and the "
-            "intersection unit (a 32-bit word is two)",
-            "seed 000 L835, L891 (16-bit path); assumption: the peripheral's 1/3 us cycle, as "
-            "L891's 40-processor estimate supposes");
-  node.count("memory_words", "32768", "1", "1000000000", "words",
-             "Words of a processor's memory for its polygons (128 KB)", "seed 000 L835");
-  node.time("pipeline.stage_time", "333.333 ns",
-            "Stage time of the intersection pipeline (one test issued per stage time at most)",
-            "assumption: custom shift-and-add units (L837) pipelined to keep pace with the "
-            "memory, as L891 assumes");
-  node.count("pipeline.stages", "9", "1", "64", "stages",
-             "Stages of the intersection pipeline (Fig. 2-28)", "seed 000 L843-L850");
+  node.add(kClock);
+  for (const auto* p : {&kMessageCycles, &kRouteCycles, &kSubvolumeCycles, &kShadeCycles,
+                        &kSpawnCycles, &kResultCycles, &kNewRayCycles, &kKeepTestCycles})
+    node.add(*p);
+  node.add(kMemoryCycle);
+  node.add(kMemoryWords);
+  node.add(kStageTime);
+  node.add(kStages);
   modules::Link::declare_params(
-      node.sub("link"),
+      node.sub(kLinkClass),
       {.latency = "0 s",
        .lanes = "16",
        .bit_rate = "",
@@ -102,8 +145,8 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                      const ArrayContext& context, ArrayTally& tally, GridNode position,
                      MachineTrace& trace)
     : modules::Processor(name, trace),
-      memory("memory", modules::ModuleParams(registry, "node").get_count("memory_words"),
-             kPolygonWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      memory("memory", modules::ModuleParams(registry, kClass).get(kMemoryWords), kPolygonWords,
+             sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
       ctx_(context),
       tally_(tally),
       position_(position),
@@ -111,20 +154,20 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
       dda_(*context.grid),
       memory_port_("memory_port"),
       pipeline_(std::string(this->name()) + ".pipeline") {
-  const modules::ModuleParams p(registry, "node");
-  timing_ = Timing{.message = p.get_count("cycles.message"),
-                   .route = p.get_count("cycles.route"),
-                   .subvolume = p.get_count("cycles.subvolume"),
-                   .shade = p.get_count("cycles.shade"),
-                   .spawn = p.get_count("cycles.spawn"),
-                   .result = p.get_count("cycles.result"),
-                   .new_ray = p.get_count("cycles.new_ray"),
-                   .keep_test = p.get_count("cycles.keep_test"),
-                   .memory_cycle = p.get_time("memory_cycle"),
-                   .stage_time = p.get_time("pipeline.stage_time"),
-                   .stages = static_cast<unsigned>(p.get_count("pipeline.stages"))};
+  const modules::ModuleParams p(registry, kClass);
+  timing_ = Timing{.message = p.get(kMessageCycles),
+                   .route = p.get(kRouteCycles),
+                   .subvolume = p.get(kSubvolumeCycles),
+                   .shade = p.get(kShadeCycles),
+                   .spawn = p.get(kSpawnCycles),
+                   .result = p.get(kResultCycles),
+                   .new_ray = p.get(kNewRayCycles),
+                   .keep_test = p.get(kKeepTestCycles),
+                   .memory_cycle = p.get(kMemoryCycle),
+                   .stage_time = p.get(kStageTime),
+                   .stages = static_cast<unsigned>(p.get(kStages))};
   cycle_ = modules::from_ps(
-      static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get_frequency_hz("clock")))));
+      static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get(kClock).hz))));
   memory_port_.bind(memory.socket);
   const modules::MeshTopology& topo = *ctx_.topology;
   if (ctx_.ring)
@@ -138,8 +181,9 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
         ("in_" + dir).c_str(), modules::TimedFifo<RayMessage>::kUnbounded);
     out_[static_cast<int>(d)] =
         std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
-    links_[static_cast<int>(d)] = std::make_unique<modules::Link>(
-        std::string(this->name()) + ".link_" + dir, modules::ModuleParams(registry, "node.link"));
+    links_[static_cast<int>(d)] =
+        std::make_unique<modules::Link>(std::string(this->name()) + ".link_" + dir,
+                                        modules::ModuleParams(registry, kClass).sub(kLinkClass));
     sent_by_link_[static_cast<int>(d)] = std::make_unique<modules::CounterArray>(
         *links_[static_cast<int>(d)], "messages_", message_type_names(),
         "messages through the link, by type");
@@ -366,9 +410,9 @@ void ArrayNode::add_result(const RayMessage& msg) {
 
 void ArrayNode::return_credit(std::uint64_t credit) { credit_held_ += credit; }
 
-void ArrayNode::probe_to(RayMessage& msg, int stage, modules::LatencyPart part,
-                         const sc_core::sc_time& t) {
-  if (msg.journey == modules::LatencyProbe::kNoJourney || stage < 0 || t <= msg.cursor) return;
+void ArrayNode::account(RayMessage& msg, int stage, modules::LatencyPart part,
+                        const sc_core::sc_time& t) {
+  if (stage < 0 || t <= msg.cursor) return;
   ctx_.probe->add(msg.journey, stage, part, t - msg.cursor);
   msg.cursor = t;
 }

@@ -109,7 +109,9 @@ class ArrayNode : public modules::Processor {
   /// Its memory: its polygons, kPolygonWords words each (L835: 128 KB).
   modules::Memory memory;
 
-  /// Parameters of every processor, under `node` (the class: all processors alike).
+  /// The class name its parameters are declared and read under: all processors alike.
+  static constexpr const char* kClass = "node";
+  /// Parameters of every processor, under kClass.
   static void declare_params(const modules::ParamDecls& node);
 
   SC_HAS_PROCESS(ArrayNode);
@@ -156,8 +158,11 @@ class ArrayNode : public modules::Processor {
   void add_result(const RayMessage& msg);
   void return_credit(std::uint64_t credit);
   /// --latency-probe: the time of `msg`'s journey since its cursor, up to `t`, was `part` at
-  /// `stage`.
-  void probe_to(RayMessage& msg, int stage, modules::LatencyPart part, const sc_core::sc_time& t);
+  /// `stage` (a message followed by no journey costs a comparison).
+  void probe_to(RayMessage& msg, int stage, modules::LatencyPart part, const sc_core::sc_time& t) {
+    if (msg.journey != modules::LatencyProbe::kNoJourney) account(msg, stage, part, t);
+  }
+  void account(RayMessage& msg, int stage, modules::LatencyPart part, const sc_core::sc_time& t);
   void spend(std::uint64_t cycles, std::string_view what);
   modules::GridNode pixel_owner(std::uint32_t pixel) const;
   const std::vector<kernels::UllnerQuadParams<double>>& held();

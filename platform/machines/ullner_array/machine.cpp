@@ -36,6 +36,99 @@ namespace {
 using ullner_array::Mapping;
 using ullner_array::SubvolumeMapping;
 
+// The array's own parameters (array.*), each named once.
+const modules::CountParam kRows(
+    {.name = "rows",
+     .default_value = "8",
+     .min = "1",
+     .max = "64",
+     .unit = "processors",
+     .description = "Rows of processors in the array (at most 64: a "
+                    "thread a processor)",
+     .source = "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)"});
+const modules::CountParam kCols({.name = "cols",
+                                 .default_value = "8",
+                                 .min = "1",
+                                 .max = "64",
+                                 .unit = "processors",
+                                 .description = "Columns of processors in the array (at most 64)",
+                                 .source = "seed 000 L773 (Fig. 2-25)"});
+const modules::CountParam kSubvolumes(
+    {.name = "subvolumes",
+     .default_value = "0",
+     .max = "256",
+     .unit = "per axis",
+     .description = "Subvolumes per axis of the modelling space; 0: as many as the larger side of "
+                    "the array (one column of subvolumes a processor, Fig. 2-26). More give each "
+                    "processor several (L883-L889: 16 on an 8 x 8 array)",
+     .source = "seed 000 L767-L779, L883-L889"});
+const modules::ChoiceParam kMapping(
+    {.name = "mapping",
+     .default_value = "straight",
+     .allowed = {"straight", "skew", "torus"},
+     .description = "Subvolumes to processors: each a depth column (straight), layers shifted "
+                    "right with the side edges joined (skew), or shifted right and down in turn "
+                    "with both pairs joined (torus)",
+     .source = "seed 000 L860-L881 (Figs. 2-26, 2-31, 2-32); the both-ways pattern is an "
+               "assumption (docs/machines.md)"});
+const modules::ChoiceParam kDepthAxis(
+    {.name = "depth_axis",
+     .default_value = "auto",
+     .allowed = {"auto", "x", "y", "z"},
+     .description = "The axis simulated inside the processors; auto: the one most along the view "
+                    "(the eye in front, Fig. 2-29)",
+     .source = "seed 000 L779 (Fig. 2-26), L862"});
+const modules::TimeParam kLoadWordTime(
+    {.name = "load.word_time",
+     .default_value = "1 us",
+     .description = "Time for the host to broadcast one word of a polygon description (L787)",
+     .source = "assumption: the thesis gives no host interface; a word a microsecond"});
+const modules::TimeParam kReadoutPixelTime(
+    {.name = "readout.pixel_time",
+     .default_value = "666.667 ns",
+     .description = "Time to shift one pixel out of the distributed frame buffer in scan-line "
+                    "order (L781)",
+     .source = "assumption: 24 bits of colour, two 16-bit transfers at the memory cycle"});
+const modules::ChoiceParam kInterconnect(
+    {.name = "interconnect",
+     .default_value = "mesh",
+     .allowed = {"mesh", "ring"},
+     .description = "How processors exchange messages: links to the four neighbours, a message "
+                    "copied hop by hop (mesh, L854), or one token ring (ring.*) carrying each "
+                    "message straight to its destination",
+     .source = "seed 000 L854 (mesh); the ring is a what-if after Pixel-Planes 5's (seed 004 "
+               "L284)"});
+const modules::CountParam kDropResult(
+    {.name = "fault.drop_result",
+     .default_value = "0",
+     .max = "1000000000000",
+     .unit = "messages",
+     .description = "A fault for tests: the result message with this number (counted where "
+                    "results are added) is lost; 0 loses none",
+     .source = "assumption: fault injection, not a machine property"});
+/// The array's parameters are the machine's own, under this path; its ring's under kRing.
+constexpr const char* kArray = "array";
+constexpr const char* kRing = "ring";
+
+/// The array's size and its subvolumes per axis (0 given: the larger side); an InputError if
+/// some processor would have no subvolume.
+struct ArraySize {
+  int rows, cols, subvolumes;
+};
+ArraySize array_size(const params::ParamRegistry& r) {
+  const modules::ModuleParams a(r, kArray);
+  const int rows = static_cast<int>(a.get(kRows));
+  const int cols = static_cast<int>(a.get(kCols));
+  const int n = static_cast<int>(a.get(kSubvolumes));
+  if (n > 0 && n < std::max(rows, cols))
+    throw InputError(a.where_set(kSubvolumes.name()), 0,
+                     a.path_of(kSubvolumes.name()) + " = " + std::to_string(n) +
+                         " leaves processors without a subvolume on a " + std::to_string(rows) +
+                         " x " + std::to_string(cols) + " array: use at least " +
+                         std::to_string(std::max(rows, cols)) + " (or 0)");
+  return {rows, cols, n > 0 ? n : std::max(rows, cols)};
+}
+
 /// Credit the host gives for each vision ray: a power of two large enough that a ray tree of
 /// any depth the shading allows can share it out (assumption; checked where it is shared).
 constexpr std::uint64_t kCreditPerRay = std::uint64_t{1} << 40;
@@ -48,18 +141,19 @@ Mapping mapping_of(const std::string& s) {
 /// (unless set), the columns run along the one most along the image's right, the rows down
 /// the image (so with the eye in front a pixel's processor owns the subvolumes its ray enters).
 SubvolumeMapping layout(const params::ParamRegistry& r, const scenes::Camera& cam) {
+  const modules::ModuleParams array(r, kArray);
   SubvolumeMapping m;
-  m.rows = static_cast<int>(r.get_int("array.rows"));
-  m.cols = static_cast<int>(r.get_int("array.cols"));
-  const int n = static_cast<int>(r.get_int("array.subvolumes"));
-  m.n = n > 0 ? n : std::max(m.rows, m.cols);
-  m.mapping = mapping_of(r.get_string("array.mapping"));
+  const ArraySize size = array_size(r);
+  m.rows = size.rows;
+  m.cols = size.cols;
+  m.n = size.subvolumes;
+  m.mapping = mapping_of(array.get(kMapping));
   const Vec3 dir = glm::normalize(cam.at - cam.from);
   Vec3 right = glm::cross(dir, cam.up);
   if (glm::length(right) == 0.0) right = Vec3(1.0, 0.0, 0.0);
   right = glm::normalize(right);
   const Vec3 up = glm::cross(right, dir);
-  const std::string axis = r.get_string("array.depth_axis");
+  const std::string& axis = array.get(kDepthAxis);
   if (axis == "auto") {
     m.depth_axis = 0;
     for (int k = 1; k < 3; ++k)
@@ -82,51 +176,15 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
   // time: no render.accel, grid, shells, polygon_kernel or bezier parameter is read.
   declare_common_params(
       r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
-  const modules::ParamDecls array(r, "array", false);
-  array.count("rows", "8", "1", "64", "processors",
-              "Rows of processors in the array (at most 64: a thread a processor)",
-              "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)");
-  array.count("cols", "8", "1", "64", "processors",
-              "Columns of processors in the array (at most 64)", "seed 000 L773 (Fig. 2-25)");
-  array.count("subvolumes", "0", "0", "256", "per axis",
-              "Subvolumes per axis of the modelling space; 0: as many as the larger side of the "
-              "array (one column of subvolumes a processor, Fig. 2-26). More give each "
-              "processor several (L883-L889: 16 on an 8 x 8 array)",
-              "seed 000 L767-L779, L883-L889");
-  array.declare({.name = "mapping",
-                 .kind = params::ParamKind::kString,
-                 .default_value = "straight",
-                 .allowed = {"straight", "skew", "torus"},
-                 .description = "Subvolumes to processors: each a depth column (straight), "
-                                "layers shifted right with the side edges joined (skew), or "
-                                "shifted right and down in turn with both pairs joined (torus)",
-                 .source = "seed 000 L860-L881 (Figs. 2-26, 2-31, 2-32); the both-ways pattern "
-                           "is an assumption (docs/machines.md)"});
-  array.declare({.name = "depth_axis",
-                 .kind = params::ParamKind::kString,
-                 .default_value = "auto",
-                 .allowed = {"auto", "x", "y", "z"},
-                 .description = "The axis simulated inside the processors; auto: the one most "
-                                "along the view (the eye in front, Fig. 2-29)",
-                 .source = "seed 000 L779 (Fig. 2-26), L862"});
-  array.time("load.word_time", "1 us",
-             "Time for the host to broadcast one word of a polygon description (L787)",
-             "assumption: the thesis gives no host interface; a word a microsecond");
-  array.time("readout.pixel_time", "666.667 ns",
-             "Time to shift one pixel out of the distributed frame buffer in scan-line order "
-             "(L781)",
-             "assumption: 24 bits of colour, two 16-bit transfers at the memory cycle");
-  array.declare({.name = "interconnect",
-                 .kind = params::ParamKind::kString,
-                 .default_value = "mesh",
-                 .allowed = {"mesh", "ring"},
-                 .description = "How processors exchange messages: links to the four neighbours, "
-                                "a message copied hop by hop (mesh, L854), or one token ring "
-                                "(ring.*) carrying each message straight to its destination",
-                 .source = "seed 000 L854 (mesh); the ring is a what-if after Pixel-Planes 5's "
-                           "(seed 004 L284)"});
+  const modules::ParamDecls array(r, kArray, false);
+  for (const auto* p : {&kRows, &kCols, &kSubvolumes}) array.add(*p);
+  array.add(kMapping);
+  array.add(kDepthAxis);
+  array.add(kLoadWordTime);
+  array.add(kReadoutPixelTime);
+  array.add(kInterconnect);
   modules::TokenRing::declare_params(
-      modules::ParamDecls(r, "ring", false),
+      modules::ParamDecls(r, kRing, false),
       {.bandwidth = "48 Mbit/s",
        .bandwidth_source = "assumption: one mesh link's rate (16 bits a 333 ns memory cycle), so "
                            "the comparison is one shared medium against the mesh's many links",
@@ -136,30 +194,17 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
        .service = "exhaustive",
        .source = "assumption: a node passes the token or a packet's bits on in one memory cycle; "
                  "a packet holds one 17-word message with a one-word header"});
-  array.count("fault.drop_result", "0", "0", "1000000000000", "messages",
-              "A fault for tests: the result message with this number (counted where results "
-              "are added) is lost; 0 loses none",
-              "assumption: fault injection, not a machine property");
-  ullner_array::ArrayNode::declare_params(modules::ParamDecls(r, "node"));
+  array.add(kDropResult);
+  ullner_array::ArrayNode::declare_params(modules::ParamDecls(r, ullner_array::ArrayNode::kClass));
 }
 
 FunctionalTwin UllnerArray::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
   require_polygons(name(), scene);
-  const int rows = static_cast<int>(r.get_int("array.rows"));
-  const int cols = static_cast<int>(r.get_int("array.cols"));
-  const int n = static_cast<int>(r.get_int("array.subvolumes"));
-  if (n > 0 && n < std::max(rows, cols))
-    throw InputError(r.where_set("array.subvolumes"), 0,
-                     "array.subvolumes = " + std::to_string(n) +
-                         " leaves processors without a "
-                         "subvolume on a " +
-                         std::to_string(rows) + " x " + std::to_string(cols) +
-                         " array: use at least " + std::to_string(std::max(rows, cols)) +
-                         " (or 0)");
+  const ArraySize size = array_size(r);
   auto settings = functional::read_render_settings(r);
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
   settings.accel = functional::AccelKind::Grid;
-  settings.grid_divisions = n > 0 ? n : std::max(rows, cols);
+  settings.grid_divisions = size.subvolumes;
   settings.grid_by_subvolume = true;
   FunctionalTwin twin = make_functional_twin(scene, settings);
   require_surviving_primitives(name(), scene, twin, "its processors would hold nothing");
@@ -192,7 +237,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   while (ctx.credit_per_ray > 1 && rays > (std::uint64_t{1} << 62) / ctx.credit_per_ray)
     ctx.credit_per_ray >>= 1;
   ctx.total_credit = ctx.credit_per_ray * rays;
-  ctx.drop_result = static_cast<std::uint64_t>(r.get_int("array.fault.drop_result"));
+  ctx.drop_result = static_cast<std::uint64_t>(modules::ModuleParams(r, kArray).get(kDropResult));
 
   // The load (L787-L789): the host broadcasts each polygon's words; every processor decides
   // whether to keep it meanwhile. Before the frame.
@@ -200,7 +245,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time cpu_cycle = modules::from_ps(static_cast<std::int64_t>(
       std::max(1.0, std::round(1e12 / node_params.get_frequency_hz("clock")))));
   const sc_core::sc_time per_polygon =
-      std::max(modules::times(modules::from_ps(r.get_time_ps("array.load.word_time")),
+      std::max(modules::times(modules::ModuleParams(r, kArray).get(kLoadWordTime),
                               ullner_array::kPolygonWords),
                modules::times(cpu_cycle, node_params.get_count("cycles.keep_test")));
   ctx.frame_start = modules::times(per_polygon, twin.geometry->shapes.size());
@@ -223,11 +268,12 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   // The interconnect: the mesh links of each processor, or one ring (its parameters are read
   // either way, so a bad value is an error whichever is chosen).
   const modules::TokenRing::Config ring_config =
-      modules::TokenRing::read_config(modules::ModuleParams(r, "ring"));
+      modules::TokenRing::read_config(modules::ModuleParams(r, kRing));
   std::unique_ptr<modules::TokenRing> ring;
   std::unique_ptr<modules::RingChannel<ullner_array::RayMessage>> ring_channel;
-  if (r.get_string("array.interconnect") == "ring") {
-    ring = std::make_unique<modules::TokenRing>("ring", ring_config,
+  const std::string& interconnect = modules::ModuleParams(r, kArray).get(kInterconnect);
+  if (interconnect == "ring") {
+    ring = std::make_unique<modules::TokenRing>(kRing, ring_config,
                                                 static_cast<std::size_t>(topology.nodes()),
                                                 ullner_array::message_type_names());
     ring_channel =
@@ -242,7 +288,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.stages.node = probe.stage("node*");
   ctx.stages.pipeline = probe.stage("node*.pipeline");
   if (ring)
-    ctx.stages.ring = probe.stage("ring");
+    ctx.stages.ring = probe.stage(kRing);
   else
     ctx.stages.link = probe.stage("node*.link_*");
   ctx.stages.in = probe.stage(ring ? "node*.in_ring" : "node*.in_*");
@@ -272,7 +318,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     throw std::runtime_error("ullner-array: the termination detector never held all the credit");
   const sc_core::sc_time compute = *tally.done - ctx.frame_start;
   const sc_core::sc_time readout = modules::times(
-      modules::from_ps(r.get_time_ps("array.readout.pixel_time")),
+      modules::ModuleParams(r, kArray).get(kReadoutPixelTime),
       static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height()));
   const sc_core::sc_time frame_time = modules::plus(compute, readout);
   run.stats_over(ctx.frame_start, frame_time);
@@ -303,8 +349,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   res["array"] = {{"rows", m.rows},
                   {"cols", m.cols},
                   {"subvolumes", m.n},
-                  {"mapping", r.get_string("array.mapping")},
-                  {"interconnect", r.get_string("array.interconnect")},
+                  {"mapping", modules::ModuleParams(r, kArray).get(kMapping)},
+                  {"interconnect", interconnect},
                   {"depth_axis", std::string(1, "xyz"[m.depth_axis])},
                   {"polygons", twin.geometry->shapes.size()},
                   {"polygons_kept", kept},
