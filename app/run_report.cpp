@@ -10,6 +10,7 @@
 #include "app/number_text.hpp"
 #include "app/trace_options.hpp"
 #include "common/seed_citation.hpp"
+#include "modules/stat_classes.hpp"
 
 namespace rtsim::app {
 
@@ -187,6 +188,7 @@ const std::set<std::string> kShownKeys = {"tool",
                                           "modules",
                                           "ray_latency_s",
                                           "latency_probe",
+                                          "module_classes",
                                           "image",
                                           "firmware_cost",
                                           "scene_stats",
@@ -472,11 +474,19 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     page.heading(key);
     machine_section(page, key, v);
   }
-  // Modules.
+  // Modules. A class of many instances (an array's nodes) is one row of its aggregates: a
+  // row per node would be thousands.
   if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
     page.heading("Modules");
+    constexpr std::size_t kRowsPerClassUpTo = 16;
+    std::set<std::string> grouped;
+    const json* classes = find(stats, "module_classes");
+    if (classes && classes->is_object())
+      for (const auto& [name, c] : classes->items())
+        if (num(c, "instances", 0.0) > kRowsPerClassUpTo) grouped.insert(name);
     std::vector<std::vector<std::string>> rows;
     for (const auto& [name, m] : mods->items()) {
+      if (grouped.contains(modules::instance_class(name))) continue;
       std::string other;
       for (const auto& [k, v] : m.items()) {
         if (k == "busy_s" || k == "utilization" || k == "queue" || k == "utilization_windows")
@@ -491,6 +501,41 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
       rows.push_back({name, format_seconds(num(m, "busy_s", 0.0)),
                       format_number(100.0 * num(m, "utilization", 0.0), 4) + " %", queue, other});
     }
+    for (const std::string& name : grouped) {
+      const json& c = (*classes)[name];
+      const auto agg = [&](const char* key, const char* what) {
+        const json* a = find(c, key);
+        return a && a->is_object() ? num(*a, what, 0.0) : 0.0;
+      };
+      std::string util, queue, other;
+      if (const json* u = find(c, "utilization"); u && u->is_object())
+        util = "mean " + format_number(100.0 * num(*u, "mean", 0.0), 4) + " %, " +
+               format_number(100.0 * num(*u, "min", 0.0), 4) + " to " +
+               format_number(100.0 * num(*u, "max", 0.0), 4) + " % (" +
+               value_text((*u)["max_instance"]) + ")";
+      if (find(c, "queue.mean_occupancy"))
+        queue = "mean " + format_number(agg("queue.mean_occupancy", "mean"), 4) + ", max " +
+                format_number(agg("queue.max_occupancy", "max"), 4);
+      for (const auto& [k, a] : c.items()) {
+        if (k == "instances" || k == "busy_s" || k == "utilization" || k.rfind("queue.", 0) == 0 ||
+            !a.is_object())
+          continue;
+        // A peak is the largest instance's; a count or a time, the sum over them.
+        const bool peak = k.size() > 5 && k.compare(k.size() - 5, 5, "_peak") == 0;
+        other +=
+            (other.empty() ? "" : ", ") + k + " " +
+            (peak ? figure_text(k, a["max"]) + " at most" : figure_text(k, a["sum"]) + " in all");
+      }
+      rows.push_back({name + " (" + value_text(c["instances"]) + " instances)",
+                      find(c, "busy_s") ? "mean " + format_seconds(agg("busy_s", "mean")) : "",
+                      util, queue, other});
+    }
+    if (!grouped.empty())
+      page.paragraph("A class of more than " + std::to_string(kRowsPerClassUpTo) +
+                     " instances (node*: node0, node1, ...) is one row: its mean busy time, its "
+                     "utilisation's mean and range (the busiest instance in brackets), its "
+                     "queues' mean depth and its counts over all instances (stats.json "
+                     "module_classes; each instance is in stats.json modules).");
     page.table({"module", "busy", "utilisation", "queue occupancy", "counts"}, rows);
   }
 

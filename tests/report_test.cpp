@@ -127,6 +127,22 @@ TEST(Report, AMachinesOwnFiguresAreTablesNotRawJson) {
   EXPECT_EQ(g.find("...</td>"), std::string::npos);
 }
 
+TEST(Report, AClassOfManyInstancesIsOneRowOfItsAggregates) {
+  // A 16 x 16 array: 256 nodes, each with its links, queues, memory and unit, are a row a class,
+  // not 2,688 rows.
+  const auto dir = scratch_dir("report-array-classes");
+  const auto r = run_rtsim(
+      "run --machine ullner-array --scene builtin:ullner-cubes -p array.rows=16 "
+      "-p array.cols=16 --width 32 --height 32 -q --report --out " +
+      dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string page = read_file(dir / "report.html");
+  for (const char* s : {"node* (256 instances)", "node*.link_e (240 instances)", "module_classes"})
+    EXPECT_NE(page.find(s), std::string::npos) << s;
+  EXPECT_EQ(page.find(">node17<"), std::string::npos);
+  EXPECT_EQ(page.find(">node17.memory<"), std::string::npos);
+}
+
 TEST(Report, BadInputWritesNothing) {
   const auto dir = scratch_dir("report-bad");
   const auto r = run_rtsim("run --scene builtin:no-such-scene --report -q --out " + dir.string());
