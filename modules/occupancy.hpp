@@ -34,7 +34,9 @@ class Occupancy {
     long level = 0;
     std::uint64_t last = b;
     long double area = 0;
-    const std::vector<std::uint64_t> puts = sorted(puts_), gets = sorted(gets_);
+    std::vector<std::uint64_t> put_copy, get_copy;
+    const std::vector<std::uint64_t>& puts = in_order(puts_, put_copy);
+    const std::vector<std::uint64_t>& gets = in_order(gets_, get_copy);
     walk_level_steps(puts, gets, [&](std::uint64_t t, int delta) {
       t = std::clamp(t, b, e);
       area += static_cast<long double>(level) * static_cast<long double>(t - last);
@@ -49,13 +51,19 @@ class Occupancy {
 
   /// The depth over time, for traces: the same steps summarize() integrates.
   std::vector<LevelChange> depth_changes() const {
-    return level_changes(sorted(puts_), sorted(gets_));
+    std::vector<std::uint64_t> put_copy, get_copy;
+    return level_changes(in_order(puts_, put_copy), in_order(gets_, get_copy));
   }
 
  private:
-  static std::vector<std::uint64_t> sorted(std::vector<std::uint64_t> v) {
-    std::sort(v.begin(), v.end());
-    return v;
+  /// `v` itself when it is in time order (the usual case: a queue of millions of messages is
+  /// not copied), else `copy` filled with it sorted.
+  static const std::vector<std::uint64_t>& in_order(const std::vector<std::uint64_t>& v,
+                                                    std::vector<std::uint64_t>& copy) {
+    if (std::is_sorted(v.begin(), v.end())) return v;
+    copy = v;
+    std::sort(copy.begin(), copy.end());
+    return copy;
   }
 
   std::vector<std::uint64_t> puts_;
