@@ -5,6 +5,7 @@
 // termination detector's credit comes back whole.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -169,6 +170,31 @@ TEST(UllnerArray, OnARingTheImageIsTheSameAndTheRingCarriesEveryMessage) {
   const auto scope = vcd.find("$scope module ring $end");
   ASSERT_NE(scope, std::string::npos);
   EXPECT_NE(vcd.find(" holder $end", scope), std::string::npos);
+}
+
+TEST(UllnerArray, OnARingTheProbeFollowsEachContributionOverTheRing) {
+  // The generic probe test runs the mesh; on the ring a message goes from its copy out straight
+  // to its destination's port, and that time is the ring's (queueing for the memory, then
+  // transfer up to the delivery).
+  const auto dir = scratch_dir("array-ring-probe");
+  const auto r = run_rtsim(
+      "run --machine ullner-array --scene builtin:ullner-cubes -p array.interconnect=ring "
+      "--width 24 --height 24 --latency-probe -q --out " +
+      dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = read_json(dir / "stats.json");
+  const auto& p = s["latency_probe"];
+  EXPECT_EQ(p["rays"], s["ray_latency_s"]["count"]);
+  EXPECT_EQ(p["end_to_end_s"], s["ray_latency_s"]);
+  const double e2e = p["end_to_end_s"]["mean"].get<double>();
+  EXPECT_LE(std::abs(p["unattributed_s"].get<double>()), 1e-12 * e2e);
+  ASSERT_TRUE(p["stages"].contains("ring")) << p["stages"].dump();
+  EXPECT_FALSE(p["stages"].contains("node*.link_*"));
+  EXPECT_GT(p["stages"]["ring"]["transfer_s"].get<double>(), 0.0);
+  EXPECT_TRUE(p["stages"].contains("node*.in_ring"));
+  std::printf("ring: %g s of %g s end to end on the ring (share %g)\n",
+              p["stages"]["ring"]["total_s"].get<double>(), e2e,
+              p["stages"]["ring"]["share"].get<double>());
 }
 
 TEST(UllnerArray, ALostResultMessageChangesTheImage) {
