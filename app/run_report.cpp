@@ -478,12 +478,11 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   // row per node would be thousands.
   if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
     page.heading("Modules");
-    constexpr std::size_t kRowsPerClassUpTo = 16;
     std::set<std::string> grouped;
     const json* classes = find(stats, "module_classes");
     if (classes && classes->is_object())
       for (const auto& [name, c] : classes->items())
-        if (num(c, "instances", 0.0) > kRowsPerClassUpTo) grouped.insert(name);
+        if (num(c, "instances", 0.0) > modules::kInstancesShownUpTo) grouped.insert(name);
     std::vector<std::vector<std::string>> rows;
     for (const auto& [name, m] : mods->items()) {
       if (grouped.contains(modules::instance_class(name))) continue;
@@ -531,7 +530,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
                       util, queue, other});
     }
     if (!grouped.empty())
-      page.paragraph("A class of more than " + std::to_string(kRowsPerClassUpTo) +
+      page.paragraph("A class of more than " + std::to_string(modules::kInstancesShownUpTo) +
                      " instances (node*: node0, node1, ...) is one row: its mean busy time, its "
                      "utilisation's mean and range (the busiest instance in brackets), its "
                      "queues' mean depth and its counts over all instances (stats.json "

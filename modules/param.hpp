@@ -32,48 +32,34 @@ struct BitRate {
 };
 
 namespace detail {
+/// The registry kind a type is read as, and the lower bound it has unless a spec gives one.
+template <params::ParamKind Kind>
+struct KindOf {
+  static constexpr params::ParamKind kKind = Kind;
+  static constexpr const char* kMin = "";
+};
 template <class T>
 struct ParamKindOf;
 template <>
-struct ParamKindOf<sc_core::sc_time> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kTime;
+struct ParamKindOf<sc_core::sc_time> : KindOf<params::ParamKind::kTime> {
   static constexpr const char* kMin = "0 s";
 };
 template <>
-struct ParamKindOf<std::size_t> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kInt;
+struct ParamKindOf<std::size_t> : KindOf<params::ParamKind::kInt> {
   static constexpr const char* kMin = "0";
 };
 template <>
-struct ParamKindOf<std::int64_t> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kInt;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<std::int64_t> : KindOf<params::ParamKind::kInt> {};
 template <>
-struct ParamKindOf<double> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kDouble;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<double> : KindOf<params::ParamKind::kDouble> {};
 template <>
-struct ParamKindOf<bool> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kBool;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<bool> : KindOf<params::ParamKind::kBool> {};
 template <>
-struct ParamKindOf<std::string> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kString;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<std::string> : KindOf<params::ParamKind::kString> {};
 template <>
-struct ParamKindOf<Frequency> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kFrequency;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<Frequency> : KindOf<params::ParamKind::kFrequency> {};
 template <>
-struct ParamKindOf<BitRate> {
-  static constexpr params::ParamKind kKind = params::ParamKind::kBitRate;
-  static constexpr const char* kMin = "";
-};
+struct ParamKindOf<BitRate> : KindOf<params::ParamKind::kBitRate> {};
 }  // namespace detail
 
 /// A parameter read as a T: `spec` with its kind set by T (and T's lower bound if it gives

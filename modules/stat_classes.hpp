@@ -10,6 +10,7 @@
 // KEY is each number a module of the class reports (`queue.mean_occupancy` for nested ones;
 // arrays such as utilization_windows are left out), over the instances that report it.
 // Used by MachineRun (stats.json) and the sweep's results table.
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -17,6 +18,11 @@
 #include <vector>
 
 namespace rtsim::modules {
+
+/// A class of more instances than this is shown as its aggregates, not instance by instance, in
+/// a sweep's results table and a run's report (a 16 x 16 array's nodes, links and queues as
+/// instances were 19,000 columns, 2,688 report rows).
+inline constexpr std::size_t kInstancesShownUpTo = 16;
 
 /// The class of a module's name: the trailing digits of each dotted part become "*"
 /// ("node12.link_e" -> "node*.link_e", "pert3.shell.bic" -> "pert*.shell.bic").

@@ -51,10 +51,12 @@ nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window) const {
   return out;
 }
 
-std::vector<NamedSignal> StatDirectory::signals() const {
+std::vector<NamedSignal> StatDirectory::signals(
+    const std::function<bool(const std::string&)>& keep) const {
   std::vector<NamedSignal> out;
   std::vector<TraceSignal> of_group;
   for (const auto& [name, group] : groups_) {
+    if (!keep(name)) continue;
     of_group.clear();
     for (const Statistic* s : group->statistics()) s->signals(of_group);
     for (auto& s : of_group) out.push_back({name, std::move(s.kind), std::move(s.changes)});

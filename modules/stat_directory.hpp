@@ -10,6 +10,7 @@
 //           max_occupancy}, utilization_windows: {begin_s, window_s, values}}}
 // (docs/stats.md). SystemC runs one simulation per process, so one directory serves.
 // Used by MachineRun (every machine) and MachineTrace.
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -39,8 +40,9 @@ class StatDirectory {
   std::map<std::string, StatReport> reports(const StatWindow& window) const;
   /// stats.json `modules` over `window`.
   nlohmann::ordered_json to_json(const StatWindow& window) const;
-  /// The traces' level signals of every group, by name then kind.
-  std::vector<NamedSignal> signals() const;
+  /// The traces' level signals of every group whose name `keep` accepts, by name then kind
+  /// (a signal's changes are worked out only for a name kept).
+  std::vector<NamedSignal> signals(const std::function<bool(const std::string&)>& keep) const;
 
  private:
   std::multimap<std::string, const StatGroup*> groups_;

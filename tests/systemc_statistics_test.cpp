@@ -134,8 +134,11 @@ TEST(Statistics, SignalsComeByNameBusyThenDepthThenTheOthers) {
   depth.put(ps(5));
   holder.change(5, 1);
   std::vector<std::string> kinds;
-  for (const NamedSignal& s : StatDirectory::instance().signals())
-    if (s.name == "ring") kinds.push_back(s.kind);
+  for (const NamedSignal& s :
+       StatDirectory::instance().signals([](const std::string& n) { return n == "ring"; })) {
+    EXPECT_EQ(s.name, "ring");  // only the names kept
+    kinds.push_back(s.kind);
+  }
   EXPECT_EQ(kinds, (std::vector<std::string>{"busy", "depth", "holder"}));
 }
 

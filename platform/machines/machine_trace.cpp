@@ -56,9 +56,9 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
   // The signals, from the sources of stats.json's numbers, by stats.json's names.
   std::vector<Signal> signals;
   std::uint64_t last = window.end.value();
-  for (modules::NamedSignal& s : modules::StatDirectory::instance().signals())
-    if (filter_.keeps_module(s.name))
-      signals.push_back({std::move(s.name), std::move(s.kind), std::move(s.changes)});
+  for (modules::NamedSignal& s : modules::StatDirectory::instance().signals(
+           [this](const std::string& name) { return filter_.keeps_module(name); }))
+    signals.push_back({std::move(s.name), std::move(s.kind), std::move(s.changes)});
   for (const Signal& s : signals)
     if (!s.changes.empty()) last = std::max(last, s.changes.back().t);
   // What the traces cover: the window asked for, else from time 0 to the end of the frame (or

@@ -43,10 +43,6 @@ void flatten(const Json& j, const std::string& prefix,
   }
 }
 
-// A class of more instances than this is columns of its aggregates only: a 16 x 16 array's
-// nodes, links and queues as instances were 19,000 columns (spreadsheets stop at 16,384).
-constexpr std::size_t kInstanceColumnsUpTo = 16;
-
 // The aggregates the table keeps of every class, for the report's band of the class (min, mean,
 // max and the busiest instance); a class too large for instance columns keeps every key's mean.
 constexpr std::array<std::string_view, 2> kBandKeys = {"utilization", "queue.mean_occupancy"};
@@ -90,7 +86,7 @@ std::set<std::string> aggregated_classes(const std::vector<Json>& docs) {
     for (const auto& [name, n] : class_sizes(d)) sizes[name].insert(n);
   std::set<std::string> out;
   for (const auto& [name, n] : sizes)
-    if (n.size() > 1 || *n.rbegin() > kInstanceColumnsUpTo) out.insert(name);
+    if (n.size() > 1 || *n.rbegin() > modules::kInstancesShownUpTo) out.insert(name);
   return out;
 }
 

@@ -555,12 +555,12 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
     m.created = msg.created;
     out.push_back(std::move(m));
   }
+  // Each output's latency counts from the same ray's creation: the first continues its journey,
+  // the others continue copies of it, all copied before the first is sent on (it may end, and
+  // free, its journey at once).
   for (std::size_t k = 0; k < out.size(); ++k) {
-    RayMessage& m = out[k];
-    // Each output's latency counts from the same ray's creation: the first continues its
-    // journey, the others continue copies of it.
-    m.journey = k == 0 || !ctx_.probe ? msg.journey : ctx_.probe->fork(msg.journey);
-    m.cursor = msg.cursor;
+    out[k].journey = k == 0 || !ctx_.probe ? msg.journey : ctx_.probe->fork(msg.journey);
+    out[k].cursor = msg.cursor;
   }
   for (auto& m : out) {
     m.credit = share + extra;
