@@ -109,11 +109,24 @@ void restart_interrupt_cleanup_after_fork() {
 void install_interrupt_cleanup() {
   const sigset_t set = interrupt_signals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  // A fork while another thread holds the registry's lock would leave it locked for ever in the
+  // child (a sweep's in-process point): the fork waits for the lock and both sides release it.
+  pthread_atfork([] { registry_mutex().lock(); }, [] { registry_mutex().unlock(); },
+                 [] { registry_mutex().unlock(); });
   std::thread(wait_for_interrupt).detach();
 }
 
 std::uint64_t remove_on_interrupt(const fs::path& path) {
   std::lock_guard lock(registry_mutex());
+  const std::uint64_t id = next_id++;
+  registry().emplace(id, path);
+  return id;
+}
+
+std::uint64_t make_and_remove_on_interrupt(const fs::path& path,
+                                           const std::function<void()>& make) {
+  std::lock_guard lock(registry_mutex());
+  make();
   const std::uint64_t id = next_id++;
   registry().emplace(id, path);
   return id;

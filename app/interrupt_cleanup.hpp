@@ -34,6 +34,12 @@ void set_interrupt_handler(std::function<void(int sig)> handler);
 /// `path` is removed (with everything in it) if the process is interrupted before forget_on_
 /// interrupt(id). Paths are removed newest first.
 std::uint64_t remove_on_interrupt(const std::filesystem::path& path);
+/// Runs `make` (which creates `path`) and registers `path`, as one step the cleanup cannot come
+/// between: an interrupt either finds nothing made and nothing registered, or both (made first and
+/// registered after, a signal in between left the folder behind; registered first, the cleanup
+/// could remove it and `make` create it again before the process ended).
+std::uint64_t make_and_remove_on_interrupt(const std::filesystem::path& path,
+                                           const std::function<void()>& make);
 void forget_on_interrupt(std::uint64_t id);
 
 }  // namespace rtsim::app

@@ -93,21 +93,23 @@ OutputSet::OutputSet(fs::path dir, Folder folder) : dir_(std::move(dir)) {
     check_output_path(dir_);
   const std::string arg = "--out " + dir_.string();
   std::error_code ec;
+  // Each folder is made and registered for removal on an interrupt in one step (see
+  // make_and_remove_on_interrupt): an interrupt at any moment leaves neither behind.
   if (!fs::exists(dir_, ec)) {
     created_root_ = first_missing(dir_);
-    fs::create_directories(dir_, ec);
+    interrupt_ids_.push_back(
+        make_and_remove_on_interrupt(created_root_, [&] { fs::create_directories(dir_, ec); }));
     if (ec) {
+      forget_interrupt_paths();
       remove_created_folders();
       throw InputError(arg, 0, "cannot create the output folder: " + ec.message());
     }
   }
   staging_ = dir_ / (".rtsim-partial-" + std::to_string(::getpid()));
-  // Interrupted before commit(): the staging folder goes, and the folders this set made (newest
-  // first).
-  if (!created_root_.empty()) interrupt_ids_.push_back(remove_on_interrupt(created_root_));
-  interrupt_ids_.push_back(remove_on_interrupt(staging_));
-  fs::remove_all(staging_, ec);
-  fs::create_directories(staging_, ec);
+  interrupt_ids_.push_back(make_and_remove_on_interrupt(staging_, [&] {
+    fs::remove_all(staging_, ec);
+    fs::create_directories(staging_, ec);
+  }));
   if (ec) {
     forget_interrupt_paths();
     remove_created_folders();
@@ -131,10 +133,11 @@ void OutputSet::remove_created_folders() {
 }
 
 OutputSet::~OutputSet() {
-  forget_interrupt_paths();
+  // Removed before they are forgotten: an interrupt in between still finds them registered.
   std::error_code ec;
   fs::remove_all(staging_, ec);
   if (!committed_) remove_created_folders();
+  forget_interrupt_paths();
 }
 
 fs::path OutputSet::stage(const std::string& name) {
