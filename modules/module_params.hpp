@@ -69,6 +69,9 @@ class ModuleParams {
   const std::string& get(const ChoiceParam& p) const { return get_string(p.name()); }
   Frequency get(const FrequencyParam& p) const { return {get_frequency_hz(p.name())}; }
   BitRate get(const BitRateParam& p) const { return {get_bitrate_bps(p.name())}; }
+  DataSize get(const DataSizeParam& p) const {
+    return {registry_->get_data_size_bits(full(p.name()))};
+  }
 
   /// A parameter's full name ("array" + "subvolumes" -> "array.subvolumes"), for messages.
   std::string path_of(std::string_view name) const { return full(name); }

@@ -21,5 +21,6 @@ template class Param<bool>;
 template class Param<std::string>;
 template class Param<Frequency>;
 template class Param<BitRate>;
+template class Param<DataSize>;
 
 }  // namespace rtsim::modules

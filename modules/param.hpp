@@ -11,7 +11,8 @@
 //
 // The kind follows the type: TimeParam (sc_time, exact in picoseconds; at least 0 s unless
 // bounded otherwise), CountParam (std::size_t; at least 0), IntParam, RealParam, FlagParam,
-// ChoiceParam (a string, `allowed` values), FrequencyParam (Hz) and BitRateParam (bit/s).
+// ChoiceParam (a string, `allowed` values), FrequencyParam (Hz), BitRateParam (bit/s) and
+// DataSizeParam (bits).
 // Used by the kit's modules and every machine's.
 #include <cstdint>
 #include <string>
@@ -29,6 +30,11 @@ struct Frequency {
 /// A bit rate read from a BitRateParam, in bit/s.
 struct BitRate {
   double bps = 0.0;
+};
+/// A size of data read from a DataSizeParam, in bits.
+struct DataSize {
+  double bits = 0.0;
+  double bytes() const { return bits / 8.0; }
 };
 
 namespace detail {
@@ -60,6 +66,8 @@ template <>
 struct ParamKindOf<Frequency> : KindOf<params::ParamKind::kFrequency> {};
 template <>
 struct ParamKindOf<BitRate> : KindOf<params::ParamKind::kBitRate> {};
+template <>
+struct ParamKindOf<DataSize> : KindOf<params::ParamKind::kDataSize> {};
 }  // namespace detail
 
 /// A parameter read as a T: `spec` with its kind set by T (and T's lower bound if it gives
@@ -84,6 +92,7 @@ extern template class Param<bool>;
 extern template class Param<std::string>;
 extern template class Param<Frequency>;
 extern template class Param<BitRate>;
+extern template class Param<DataSize>;
 
 using TimeParam = Param<sc_core::sc_time>;
 using CountParam = Param<std::size_t>;
@@ -93,5 +102,6 @@ using FlagParam = Param<bool>;
 using ChoiceParam = Param<std::string>;
 using FrequencyParam = Param<Frequency>;
 using BitRateParam = Param<BitRate>;
+using DataSizeParam = Param<DataSize>;
 
 }  // namespace rtsim::modules

@@ -33,8 +33,8 @@ def runs(rtsim):
             yield f"{m['name']}-{i}", ["--machine", m["name"]] + shlex.split(r)
 
 
-def capture(rtsim, out):
-    for tag, args in runs(rtsim):
+def capture(rtsim, out, listed_by):
+    for tag, args in runs(listed_by):
         d = os.path.join(out, tag)
         subprocess.run([rtsim, "run", "--width", "24", "--height", "24", "-q", "--out", d] + args,
                        capture_output=True)
@@ -66,8 +66,9 @@ def main():
     a = ap.parse_args()
     root = a.out or tempfile.mkdtemp(prefix="rtsim-stats-compare-")
     old_dir, new_dir = os.path.join(root, "old"), os.path.join(root, "new")
-    capture(a.old, old_dir)
-    capture(a.new, new_dir)
+    # The runs are the new build's list (an older build may not list its machines as JSON).
+    capture(a.old, old_dir, a.new)
+    capture(a.new, new_dir, a.new)
     removed, changed, added = (collections.Counter() for _ in range(3))
     example = {}
     bad = False

@@ -19,6 +19,7 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
       machine_(std::move(machine)),
       scene_(scene),
       twin_(twin),
+      registry_(registry),
       opts_(opts),
       width_(or_default(opts.width, scene.camera.width)),
       height_(or_default(opts.height, scene.camera.height)),

@@ -4,7 +4,8 @@
 // machine's run() is then only what is its own:
 //
 //   MachineRun run(name(), scene, twin, registry, opts);     // frame, traces, quantum, probe
-//   ... build the module tree (run.frame(), run.trace(), run.probe()) ...
+//   ... build the module tree: each module takes `run` (frame, trace, probe, options,
+//       registry, scene, twin) and reads its own parameters ...
 //   inject_faults(name(), opts.faults, memories);
 //   run.simulate();                                         // sc_start
 //   run.stats_over(frame_begin, frame_time);                 // the frame of the statistics
@@ -54,6 +55,11 @@ class MachineRun {
   /// --latency-probe (disabled unless asked for): one journey per ray, stages named as modules.
   modules::LatencyProbe& probe() { return probe_; }
   const RunOptions& options() const { return opts_; }
+  /// The run's context, for a module's constructor: its parameters (ModuleParams over this),
+  /// the scene and the functional twin (tracer, render settings).
+  const params::ParamRegistry& registry() const { return registry_; }
+  const scenes::Scene& scene() const { return scene_; }
+  const FunctionalTwin& twin() const { return twin_; }
 
   /// Runs the simulation until nothing is left to happen (a machine ends its frame with
   /// sc_stop(), which is no news).
@@ -76,6 +82,7 @@ class MachineRun {
   std::string machine_;
   const scenes::Scene& scene_;
   const FunctionalTwin& twin_;
+  const params::ParamRegistry& registry_;
   const RunOptions& opts_;
   int width_, height_;
   functional::FrameState frame_;

@@ -6,8 +6,19 @@
 
 #include "firmware/math.hpp"
 #include "firmware/scene.hpp"
+#include "params/registry.hpp"
 
 namespace rtsim::platform::pxpl5 {
+
+/// A run's frames and the camera's path through them (frames, camera.spin, camera.distance).
+struct CameraPath {
+  int frames = 1;
+  double spin_deg = 0.0;  ///< the turn from one frame to the next
+  double distance = 1.0;  ///< the eye's distance from the point looked at, times the scene's
+
+  static void declare_params(params::ParamRegistry& r);
+  static CameraPath read(const params::ParamRegistry& r);
+};
 
 /// The eye moved along the line of sight to `distance` times its distance from the point looked
 /// at (camera.distance: VOL2's Fig. 9 varies screen coverage so, L369).

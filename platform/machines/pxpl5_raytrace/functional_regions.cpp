@@ -4,23 +4,24 @@
 
 namespace rtsim::platform::pxpl5 {
 
-std::vector<std::vector<Sample>> cast_functionally(const Context& ctx,
-                                                   const std::function<bool(int)>& functional,
+std::vector<std::vector<Sample>> cast_functionally(const Setup& setup, MachineRun& run,
+                                                   const std::function<bool(int)>& not_detailed,
                                                    bool cast_rays) {
-  const Layout& lay = ctx.layout;
+  const Layout& lay = setup.layout;
   const tasks::SampleLattice lattice = lay.lattice();
-  const int spp = ctx.frame->spp();
-  tasks::ShadeTask shade(*ctx.scene, ctx.shade);
-  tasks::LatticeRayTask task(*ctx.tracer, shade, ctx.frame->counters());
-  const shading::PinholeCamera& camera = ctx.cameras.front();
+  functional::FrameState& frame = run.frame();
+  const int spp = frame.spp();
+  tasks::ShadeTask shade(run.scene(), run.twin().settings.shade);
+  tasks::LatticeRayTask task(*run.twin().tracer, shade, frame.counters());
+  const shading::PinholeCamera& camera = setup.cameras.front();
   std::vector<std::vector<Sample>> by_compositor(static_cast<std::size_t>(lay.compositors));
   for (const Region& g : lay.regions()) {
-    if (!functional(g.id)) continue;
+    if (!not_detailed(g.id)) continue;
     const auto out = [&](const Sample& s) {
       by_compositor[static_cast<std::size_t>(lay.compositor_of_lattice_row(lattice.j_of(s.index)))]
           .push_back(s);
     };
-    cast_region(lay, task, camera, spp, g, 0, ctx.frame, out, cast_rays);
+    cast_region(lay, task, camera, spp, g, 0, &frame, out, cast_rays);
   }
   return by_compositor;
 }

@@ -11,12 +11,12 @@
 
 namespace rtsim::platform::pxpl5 {
 
-/// The samples of every region `functional(id)` names, by the compositor owning their rows, for
+/// The samples of every region `not_detailed(id)` names, by the compositor owning their rows, for
 /// a run of one frame (the primary hits recorded as the casters record them). With `cast`
 /// false (a --sample-error pilot, which wants only the estimate) the samples are blank: the
 /// same positions, no rays.
-std::vector<std::vector<Sample>> cast_functionally(const Context& ctx,
-                                                   const std::function<bool(int)>& functional,
+std::vector<std::vector<Sample>> cast_functionally(const Setup& setup, MachineRun& run,
+                                                   const std::function<bool(int)>& not_detailed,
                                                    bool cast = true);
 
 }  // namespace rtsim::platform::pxpl5

@@ -10,11 +10,14 @@
 
 #include "firmware/tasks/region_sampling.hpp"
 #include "firmware/tasks/sample_lattice.hpp"
+#include "params/registry.hpp"
 #include "platform/machines/pxpl5_raytrace/messages.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
 enum class Scheme { kRows, kSquares };
+/// "rows" or "squares": assign.scheme's value.
+const char* scheme_name(Scheme s);
 
 struct Layout {
   int width = 0, height = 0;
@@ -59,6 +62,13 @@ struct Layout {
   std::vector<Region> regions() const;
   /// Positions region `g` sends compositor k in frame `frame` (partial updating and all).
   long positions_sent(const Region& g, int k, int frame) const;
+
+  /// Declares what a layout is read from: caster_count, compositor_count, compositor.band_rows,
+  /// assign.scheme, assign.square, sampling.* and update.fraction.
+  static void declare_params(params::ParamRegistry& r);
+  /// The layout a run's parameters give (its size is the run's: set after), with the sampling
+  /// rule checked: a rule that cannot be followed is bad input (exit 2).
+  static Layout read(const params::ParamRegistry& r);
 };
 
 }  // namespace rtsim::platform::pxpl5

@@ -5,60 +5,101 @@
 
 #include "firmware/tasks/lattice_ray_task.hpp"
 #include "firmware/tasks/region_sampling.hpp"
+#include "modules/module_params.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
-std::uint64_t WireSizes::bytes(const Message& m) const {
-  switch (m.kind) {
-    case Kind::kSamples:
-    case Kind::kBand:
-      return header + sample * m.samples.size();
-    case Kind::kPixels:
-      return header + pixel * m.samples.size();
-    default:
-      return control;
-  }
-}
+namespace {
+
+// The nodes' costs, each named once (the seed gives none: note 004 A).
+const modules::TimeParam kAssignTime(
+    {.name = "assign_time",
+     .default_value = "20 us",
+     .max = "1 s",
+     .description = "Master GP time to take a request and hand out a region",
+     .source = "assumption: the seed gives no master GP costs (Fig. 5, L347, measures its limit "
+               "without numbers); 800 i860 cycles"});
+const modules::ChoiceParam kOrder(
+    {.name = "order",
+     .default_value = "cost",
+     .allowed = {"screen", "cost"},
+     .description = "Order the regions are handed out in: screen order, or descending cost in "
+                    "the previous frame (0th-order prediction)",
+     .source = "seed 004 L360"});
+const modules::TimeParam kSampleTime(
+    {.name = "sample_time",
+     .default_value = "500 ns",
+     .max = "1 s",
+     .description = "Compositor GP time per sample received (store it in its band)",
+     .source = "assumption: 20 i860 cycles a sample"});
+const modules::TimeParam kTileTime(
+    {.name = "tile_time",
+     .default_value = "1 ms",
+     .max = "1 s",
+     .description = "SIMD renderer time to resample its 128 x 128 tile (all pixels at once, "
+                    "whatever their content)",
+     .source = "assumption: the seed gives none (Fig. 6, L350, without numbers)"});
+const modules::TimeParam kPixelTime({.name = "pixel_time",
+                                     .default_value = "10 ns",
+                                     .max = "1 s",
+                                     .description = "Frame buffer time to write one display pixel",
+                                     .source = "assumption"});
+
+/// Where each is declared and read: its node's class (the master's order is the assignment's).
+constexpr const char* kMaster = "master";
+constexpr const char* kAssign = "assign";
+constexpr const char* kCompositor = "compositor";
+constexpr const char* kRenderer = "renderer";
+constexpr const char* kFrameBuffer = "frame_buffer";
+
+}  // namespace
 
 // --- Host ---------------------------------------------------------------------------------
 
-Host::Host(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-           Context& ctx)
-    : RingNode(name, trace, ring, ctx.layout.host(), ctx.sizes), ctx_(ctx) {
+Host::Host(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+           const Setup& setup)
+    : RingNode(name, run.trace(), ring, setup.layout.host(), setup.sizes),
+      run_(run),
+      setup_(setup) {
   SC_THREAD(run);
 }
 
 void Host::run() {
-  for (int f = 0; f < ctx_.frames; ++f) {
+  for (int f = 0; f < setup_.frames; ++f) {
     started_.push_back(clock_.now());
     Message start;
     start.kind = Kind::kStartFrame;
     start.frame = f;
-    send(ctx_.layout.master(), std::move(start));
+    send(setup_.layout.master(), std::move(start));
     for (;;) {
       const Message m = receive(Wait::kData);
       if (m.kind == Kind::kFrameDone && m.frame == f) break;
     }
     done_.push_back(clock_.now());
-    if (ctx_.opts && ctx_.opts->progress) ctx_.opts->progress(f + 1, ctx_.frames);
+    if (run_.options().progress) run_.options().progress(f + 1, setup_.frames);
   }
 }
 
 // --- Master GP ----------------------------------------------------------------------------
 
-MasterGp::MasterGp(sc_core::sc_module_name name, MachineTrace& trace,
-                   modules::RingChannel<Message>& ring, Context& ctx,
-                   const sc_core::sc_time& assign_time)
-    : RingNode(name, trace, ring, ctx.layout.master(), ctx.sizes),
-      ctx_(ctx),
-      assign_time_(assign_time) {
-  set_timing(ctx.gp_timing);
+void MasterGp::declare_params(params::ParamRegistry& r) {
+  modules::ParamDecls(r, kMaster, false).add(kAssignTime);
+  modules::ParamDecls(r, kAssign, false).add(kOrder);
+}
+
+MasterGp::MasterGp(sc_core::sc_module_name name, MachineRun& run,
+                   modules::RingChannel<Message>& ring, const Setup& setup)
+    : RingNode(name, run.trace(), ring, setup.layout.master(), setup.sizes),
+      setup_(setup),
+      assign_time_(modules::ModuleParams(run.registry(), kMaster).get(kAssignTime)),
+      cost_order_(modules::ModuleParams(run.registry(), kAssign).get(kOrder) == "cost") {
+  set_timing(setup.gp_timing);
   SC_THREAD(run);
 }
 
 void MasterGp::assign(int caster) {
-  if (!ctx_.bypass_master) compute_for(assign_time_, "assign", {{"caster", caster}});
+  if (!setup_.bypass.master) compute_for(assign_time_, "assign", {{"caster", caster}});
   Message a;
   a.kind = Kind::kAssign;
   a.frame = frame_;
@@ -72,13 +113,14 @@ void MasterGp::run() {
     const Message m = receive(Wait::kWork);
     if (m.kind == Kind::kStartFrame) {
       frame_ = m.frame;
-      regions_ = ctx_.layout.regions();
+      regions_ = setup_.layout.regions();
       // A sampled frame: the detailed regions only (the others were cast functionally).
-      if (ctx_.sample)
-        std::erase_if(regions_, [&](const Region& g) { return !ctx_.sample->detailed_unit(g.id); });
+      if (setup_.sample)
+        std::erase_if(regions_,
+                      [&](const Region& g) { return !setup_.sample->detailed_unit(g.id); });
       cost_.resize(regions_.size(), 0.0);
       // 0th-order cost prediction (L360): the costliest of the previous frame first.
-      if (ctx_.cost_order && frame_ > 0)
+      if (cost_order_ && frame_ > 0)
         std::stable_sort(regions_.begin(), regions_.end(), [&](const Region& a, const Region& b) {
           return cost_[static_cast<std::size_t>(a.id)] > cost_[static_cast<std::size_t>(b.id)];
         });
@@ -107,35 +149,39 @@ void MasterGp::run() {
 
 // --- Ray caster ---------------------------------------------------------------------------
 
-RayCaster::RayCaster(sc_core::sc_module_name name, MachineTrace& trace,
-                     modules::RingChannel<Message>& ring, Context& ctx, int number)
-    : RingNode(name, trace, ring, ctx.layout.caster(number), ctx.sizes),
-      ctx_(ctx),
-      shade_(*ctx.scene, ctx.shade) {
-  set_timing(ctx.gp_timing);
+RayCaster::RayCaster(sc_core::sc_module_name name, MachineRun& run,
+                     modules::RingChannel<Message>& ring, const Setup& setup, int number,
+                     SamplesFault& fault)
+    : RingNode(name, run.trace(), ring, setup.layout.caster(number), setup.sizes),
+      run_(run),
+      setup_(setup),
+      fault_(fault),
+      shade_(run.scene(), run.twin().settings.shade) {
+  set_timing(setup.gp_timing);
   SC_THREAD(run);
 }
 
 void RayCaster::run() {
   Message request;
   request.kind = Kind::kRequest;
-  send(ctx_.layout.master(), request);
-  const Layout& lay = ctx_.layout;
+  send(setup_.layout.master(), request);
+  const Layout& lay = setup_.layout;
   const tasks::SampleLattice lattice = lay.lattice();
-  const int spp = ctx_.frame->spp();
-  TraceCounters& counters = ctx_.frame->counters();
-  tasks::LatticeRayTask task(*ctx_.tracer, shade_, counters);
+  functional::FrameState& frame = run_.frame();
+  const int spp = frame.spp();
+  TraceCounters& counters = frame.counters();
+  tasks::LatticeRayTask task(*run_.twin().tracer, shade_, counters);
   std::vector<std::vector<Sample>> by_compositor(static_cast<std::size_t>(lay.compositors));
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kAssign) continue;
     const sc_core::sc_time began = clock_.now();
     const Region& g = m.region;
-    const bool last_frame = m.frame == ctx_.frames - 1;
-    const shading::PinholeCamera& camera = ctx_.cameras[static_cast<std::size_t>(m.frame)];
+    const bool last_frame = m.frame == setup_.frames - 1;
+    const shading::PinholeCamera& camera = setup_.cameras[static_cast<std::size_t>(m.frame)];
     const Cost before = counters.cost;
     const auto cast = [&](int i, int j) {
-      if (ctx_.bypass_casters) {
+      if (setup_.bypass.casters) {
         Sample none;  // by-pass code: the message, no ray (L333)
         none.index = lattice.index(i, j);
         return none;
@@ -145,7 +191,7 @@ void RayCaster::run() {
       return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
         if (pixel < 0) return;
         covered_last_frame_ += found;
-        ctx_.frame->record_primary(static_cast<std::uint32_t>(pixel), found, hit);
+        frame.record_primary(static_cast<std::uint32_t>(pixel), found, hit);
       });
     };
     const auto update = [&](int i, int j) {
@@ -161,7 +207,7 @@ void RayCaster::run() {
     rays_ += rays;
     Cost spent = counters.cost;
     spent -= before;
-    if (!ctx_.bypass_casters)
+    if (!setup_.bypass.casters)
       compute(spent, "region", {{"region", g.id}, {"pixels", g.w * g.h}, {"rays", rays}});
     ++regions_;
     // The samples go to the compositors owning their rows (L310).
@@ -171,17 +217,10 @@ void RayCaster::run() {
       Message out_msg = take_samples(Kind::kSamples, m.frame, samples);
       out_msg.began = began;
       out_msg.sent = clock_.now();
-      if (++ctx_.samples_messages == ctx_.corrupt_samples) {
-        // The fault: the first sample turns black, or white if it was black.
-        auto& sum = out_msg.samples.front().sum;
-        const bool black = sum[0] == 0 && sum[1] == 0 && sum[2] == 0;
-        const std::int64_t v =
-            black ? static_cast<std::int64_t>(shading::PixelAccumulator::kScale) * spp : 0;
-        sum = {v, v, v};
-      }
+      fault_.on_send(out_msg, spp);
       send(lay.compositor(k), std::move(out_msg));
     }
-    if (ctx_.sample) ctx_.sample->unit_done(g.id, began.value(), clock_.now().value());
+    if (setup_.sample) setup_.sample->unit_done(g.id, began.value(), clock_.now().value());
     Message next;
     next.kind = Kind::kRequest;
     next.frame = m.frame;
@@ -193,15 +232,19 @@ void RayCaster::run() {
 
 // --- Compositor ---------------------------------------------------------------------------
 
-Compositor::Compositor(sc_core::sc_module_name name, MachineTrace& trace,
-                       modules::RingChannel<Message>& ring, Context& ctx, int number,
-                       const sc_core::sc_time& sample_time)
-    : RingNode(name, trace, ring, ctx.layout.compositor(number), ctx.sizes),
-      ctx_(ctx),
+void Compositor::declare_params(params::ParamRegistry& r) {
+  modules::ParamDecls(r, kCompositor, false).add(kSampleTime);
+}
+
+Compositor::Compositor(sc_core::sc_module_name name, MachineRun& run,
+                       modules::RingChannel<Message>& ring, const Setup& setup, int number)
+    : RingNode(name, run.trace(), ring, setup.layout.compositor(number), setup.sizes),
+      run_(run),
+      setup_(setup),
       number_(number),
-      sample_time_(sample_time) {
-  set_timing(ctx.gp_timing);
-  const Layout& lay = ctx.layout;
+      sample_time_(modules::ModuleParams(run.registry(), kCompositor).get(kSampleTime)) {
+  set_timing(setup.gp_timing);
+  const Layout& lay = setup.layout;
   const std::vector<Region> regions = lay.regions();
   for (int phase = 0; phase <= lay.update_period; ++phase) {
     // Phase 0 is the first frame; phase p > 0 any frame f > 0 with f mod period = p - 1.
@@ -214,10 +257,10 @@ Compositor::Compositor(sc_core::sc_module_name name, MachineTrace& trace,
 }
 
 void Compositor::probe_samples(const Message& m) {
-  modules::LatencyProbe* probe = ctx_.probe;
-  if (!probe || !probe->enabled()) return;
+  modules::LatencyProbe* probe = &run_.probe();
+  if (!probe->enabled()) return;
   using modules::LatencyPart;
-  const auto& st = ctx_.stages;
+  const auto& st = setup_.stages;
   // Every sample of the message went the same way: the region's cast (its samples are done
   // together), the ring (waiting for the token and carried), the inbox, the compositing.
   for (std::size_t k = 0; k < m.samples.size(); ++k) {
@@ -231,12 +274,12 @@ void Compositor::probe_samples(const Message& m) {
 }
 
 long Compositor::expected(int frame) const {
-  const int phase = frame == 0 ? 0 : 1 + frame % ctx_.layout.update_period;
+  const int phase = frame == 0 ? 0 : 1 + frame % setup_.layout.update_period;
   return expected_[static_cast<std::size_t>(phase)];
 }
 
 void Compositor::run() {
-  const Layout& lay = ctx_.layout;
+  const Layout& lay = setup_.layout;
   const tasks::SampleLattice lattice = lay.lattice();
   // The persistent sample array of its bands (L379): the rows it owns, in order.
   std::vector<int> local_row(static_cast<std::size_t>(lattice.ny()), -1);
@@ -259,15 +302,15 @@ void Compositor::run() {
   };
   long have = 0;
   // A sampled frame: the regions not simulated in detail are here from the start.
-  if (!ctx_.functional_samples.empty())
-    for (const Sample& s : ctx_.functional_samples[static_cast<std::size_t>(number_)]) {
+  if (!setup_.functional_samples.empty())
+    for (const Sample& s : setup_.functional_samples[static_cast<std::size_t>(number_)]) {
       keep(s, 0);
       ++have;
     }
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kSamples) continue;
-    if (!ctx_.bypass_back_end)
+    if (!setup_.bypass.back_end)
       compute_for(modules::times(sample_time_, m.samples.size()), "composite",
                   {{"samples", m.samples.size()}});
     probe_samples(m);
@@ -293,18 +336,21 @@ void Compositor::run() {
 
 // --- Renderer -----------------------------------------------------------------------------
 
-Renderer::Renderer(sc_core::sc_module_name name, MachineTrace& trace,
-                   modules::RingChannel<Message>& ring, Context& ctx, int number,
-                   const sc_core::sc_time& tile_time)
-    : RingNode(name, trace, ring, ctx.layout.renderer(number), ctx.sizes),
-      ctx_(ctx),
+void Renderer::declare_params(params::ParamRegistry& r) {
+  modules::ParamDecls(r, kRenderer, false).add(kTileTime);
+}
+
+Renderer::Renderer(sc_core::sc_module_name name, MachineRun& run,
+                   modules::RingChannel<Message>& ring, const Setup& setup, int number)
+    : RingNode(name, run.trace(), ring, setup.layout.renderer(number), setup.sizes),
+      setup_(setup),
       number_(number),
-      tile_time_(tile_time) {
+      tile_time_(modules::ModuleParams(run.registry(), kRenderer).get(kTileTime)) {
   SC_THREAD(run);
 }
 
 void Renderer::run() {
-  const Layout& lay = ctx_.layout;
+  const Layout& lay = setup_.layout;
   const tasks::SampleLattice lattice = lay.lattice();
   const tasks::LatticeRange r = lay.lattice_of_renderer(number_);
   const int cols = r.i1 - r.i0;
@@ -330,7 +376,7 @@ void Renderer::run() {
     have = 0;
     // SIMD: the whole tile at once, whatever its content (L282): each display pixel from the
     // lattice positions around it.
-    if (!ctx_.bypass_back_end)
+    if (!setup_.bypass.back_end)
       compute_for(tile_time_, "resample", {{"pixels", (x1 - x0) * (y1 - y0)}});
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
@@ -346,34 +392,39 @@ void Renderer::run() {
 
 // --- Frame buffer -------------------------------------------------------------------------
 
-FrameBuffer::FrameBuffer(sc_core::sc_module_name name, MachineTrace& trace,
-                         modules::RingChannel<Message>& ring, Context& ctx,
-                         const sc_core::sc_time& pixel_time)
-    : RingNode(name, trace, ring, ctx.layout.frame_buffer(), ctx.sizes),
-      ctx_(ctx),
-      pixel_time_(pixel_time) {
+void FrameBuffer::declare_params(params::ParamRegistry& r) {
+  modules::ParamDecls(r, kFrameBuffer, false).add(kPixelTime);
+}
+
+FrameBuffer::FrameBuffer(sc_core::sc_module_name name, MachineRun& run,
+                         modules::RingChannel<Message>& ring, const Setup& setup)
+    : RingNode(name, run.trace(), ring, setup.layout.frame_buffer(), setup.sizes),
+      run_(run),
+      setup_(setup),
+      pixel_time_(modules::ModuleParams(run.registry(), kFrameBuffer).get(kPixelTime)) {
   SC_THREAD(run);
 }
 
 void FrameBuffer::run() {
-  const long all = static_cast<long>(ctx_.frame->width()) * ctx_.frame->height();
+  functional::FrameState& frame = run_.frame();
+  const long all = static_cast<long>(frame.width()) * frame.height();
   long have = 0;
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kPixels) continue;
-    if (!ctx_.bypass_back_end)
+    if (!setup_.bypass.back_end)
       compute_for(modules::times(pixel_time_, m.samples.size()), "write",
                   {{"pixels", m.samples.size()}});
     // The image is the last frame's: the pixels as they arrived.
-    if (m.frame == ctx_.frames - 1)
-      for (const Sample& s : m.samples) ctx_.frame->fb().add_raw(s.index, s.sum);
+    if (m.frame == setup_.frames - 1)
+      for (const Sample& s : m.samples) frame.fb().add_raw(s.index, s.sum);
     have += static_cast<long>(m.samples.size());
     if (have < all) continue;
     have = 0;
     Message done;
     done.kind = Kind::kFrameDone;
     done.frame = m.frame;
-    send(ctx_.layout.host(), std::move(done));
+    send(setup_.layout.host(), std::move(done));
   }
 }
 

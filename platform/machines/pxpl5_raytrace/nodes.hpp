@@ -14,88 +14,54 @@
 //                display pixels (at one sample a pixel, unchanged) and sends them on;
 //   FrameBuffer  writes the pixels that arrive into the image and tells the host when a frame
 //                is complete.
-// Costs are parameters (the seed gives none: Pxpl5Raytrace::declare_params says why each).
+// Each node takes the run (MachineRun) and the run's Setup, and declares and reads its own costs
+// (the seed gives none: each parameter's source says why its default).
 #include <map>
 #include <memory>
 #include <vector>
 
-#include "firmware/shading/camera.hpp"
-#include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/tasks/shade_task.hpp"
-#include "firmware/tracer.hpp"
-#include "modules/latency_probe.hpp"
-#include "modules/processor_timing.hpp"
 #include "modules/statistics.hpp"
-#include "platform/functional/frame_state.hpp"
-#include "platform/machine.hpp"
-#include "platform/machines/frame_sample.hpp"
-#include "platform/machines/pxpl5_raytrace/layout.hpp"
+#include "params/registry.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/pxpl5_raytrace/ring_node.hpp"
+#include "platform/machines/pxpl5_raytrace/samples_fault.hpp"
+#include "platform/machines/pxpl5_raytrace/setup.hpp"
 
 namespace rtsim::platform::pxpl5 {
-
-/// What the nodes share.
-struct Context {
-  Layout layout;  ///< where everyone is, the regions, the sampling rule
-  bool cost_order = true;
-  int frames = 1;
-  WireSizes sizes;
-  modules::ProcessorTiming gp_timing;           ///< an i860 GP's (gp.*)
-  std::vector<shading::PinholeCamera> cameras;  ///< one per frame
-  const Tracer* tracer = nullptr;
-  const scenes::Scene* scene = nullptr;
-  shading::ShadeParams shade;
-  functional::FrameState* frame = nullptr;  ///< the image: the last frame's pixels
-  const RunOptions* opts = nullptr;
-  /// By-pass code (L333-L337): these nodes keep their message passing and drop their compute
-  /// (a by-passed caster sends samples of no radiance, so the image is black).
-  bool bypass_casters = false, bypass_master = false, bypass_back_end = false;
-  /// A fault for tests: the samples message with this number (1, 2, ..., counted over all
-  /// casters) has its first sample changed on the ring (black, or white if it was black); 0 changes
-  /// none.
-  std::uint64_t corrupt_samples = 0;
-  std::uint64_t samples_messages = 0;
-  /// --sample (one frame): the regions simulated in detail, and when each was done (a caster
-  /// sent its samples); null without.
-  FrameSample* sample = nullptr;
-  /// With --sample, by compositor: the samples of the regions not simulated in detail, cast
-  /// functionally (functional_regions.hpp), which it holds when the frame starts.
-  std::vector<std::vector<Sample>> functional_samples;
-  /// --latency-probe: a sample's journey from its caster beginning its region to its
-  /// compositor having composited it (stages by class: caster*, ring, compositor*.inbox,
-  /// compositor*).
-  modules::LatencyProbe* probe = nullptr;
-  struct ProbeStages {
-    int caster = -1, ring = -1, inbox = -1, compositor = -1;
-  } stages;
-};
 
 class Host : public RingNode {
  public:
   SC_HAS_PROCESS(Host);
-  Host(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-       Context& ctx);
+  Host(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+       const Setup& setup);
   /// When each frame started and was complete in the frame buffer.
   const std::vector<sc_core::sc_time>& started() const { return started_; }
   const std::vector<sc_core::sc_time>& done() const { return done_; }
 
  private:
   void run();
-  Context& ctx_;
+  MachineRun& run_;
+  const Setup& setup_;
   std::vector<sc_core::sc_time> started_, done_;
 };
 
 class MasterGp : public RingNode {
  public:
   SC_HAS_PROCESS(MasterGp);
-  MasterGp(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-           Context& ctx, const sc_core::sc_time& assign_time);
+  /// master.assign_time and assign.order.
+  static void declare_params(params::ParamRegistry& r);
+  MasterGp(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+           const Setup& setup);
+  /// assign.order: "cost" or "screen".
+  const char* order() const { return cost_order_ ? "cost" : "screen"; }
 
  private:
   void run();
   void assign(int caster);
-  Context& ctx_;
+  const Setup& setup_;
   sc_core::sc_time assign_time_;
+  bool cost_order_;              ///< hands out the costliest regions of the previous frame first
   std::vector<Region> regions_;  ///< the frame's, in the order they are given out
   std::size_t next_ = 0;
   std::vector<double> cost_;  ///< by region id: its time in the previous frame
@@ -107,8 +73,8 @@ class MasterGp : public RingNode {
 class RayCaster : public RingNode {
  public:
   SC_HAS_PROCESS(RayCaster);
-  RayCaster(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-            Context& ctx, int number);
+  RayCaster(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+            const Setup& setup, int number, SamplesFault& fault);
   /// Rays cast at lattice positions (each with its `spp` vision rays).
   std::uint64_t rays() const { return rays_.value(); }
   /// In the last frame: rays cast on the screen, and those whose primary ray hit something.
@@ -117,7 +83,9 @@ class RayCaster : public RingNode {
 
  private:
   void run();
-  Context& ctx_;
+  MachineRun& run_;
+  const Setup& setup_;
+  SamplesFault& fault_;
   tasks::ShadeTask shade_;
   std::uint64_t cast_last_frame_ = 0, covered_last_frame_ = 0;
   modules::Counter regions_{*this, "regions", "regions cast"};
@@ -129,8 +97,10 @@ class RayCaster : public RingNode {
 class Compositor : public RingNode {
  public:
   SC_HAS_PROCESS(Compositor);
-  Compositor(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-             Context& ctx, int number, const sc_core::sc_time& sample_time);
+  /// compositor.sample_time (compositor.band_rows is the layout's).
+  static void declare_params(params::ParamRegistry& r);
+  Compositor(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+             const Setup& setup, int number);
 
  private:
   void run();
@@ -138,7 +108,8 @@ class Compositor : public RingNode {
   long expected(int frame) const;
   /// --latency-probe: the journeys of the samples of `m`, composited now.
   void probe_samples(const Message& m);
-  Context& ctx_;
+  MachineRun& run_;
+  const Setup& setup_;
   int number_;
   sc_core::sc_time sample_time_;
   modules::Counter samples_{*this, "samples", "samples composited"};
@@ -149,12 +120,14 @@ class Compositor : public RingNode {
 class Renderer : public RingNode {
  public:
   SC_HAS_PROCESS(Renderer);
-  Renderer(sc_core::sc_module_name name, MachineTrace& trace, modules::RingChannel<Message>& ring,
-           Context& ctx, int number, const sc_core::sc_time& tile_time);
+  /// renderer.tile_time.
+  static void declare_params(params::ParamRegistry& r);
+  Renderer(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+           const Setup& setup, int number);
 
  private:
   void run();
-  Context& ctx_;
+  const Setup& setup_;
   int number_;
   sc_core::sc_time tile_time_;
 };
@@ -162,13 +135,15 @@ class Renderer : public RingNode {
 class FrameBuffer : public RingNode {
  public:
   SC_HAS_PROCESS(FrameBuffer);
-  FrameBuffer(sc_core::sc_module_name name, MachineTrace& trace,
-              modules::RingChannel<Message>& ring, Context& ctx,
-              const sc_core::sc_time& pixel_time);
+  /// frame_buffer.pixel_time.
+  static void declare_params(params::ParamRegistry& r);
+  FrameBuffer(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
+              const Setup& setup);
 
  private:
   void run();
-  Context& ctx_;
+  MachineRun& run_;
+  const Setup& setup_;
   sc_core::sc_time pixel_time_;
 };
 

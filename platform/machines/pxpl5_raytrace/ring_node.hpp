@@ -9,19 +9,23 @@
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
 #include "modules/ring_channel.hpp"
+#include "params/registry.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/pxpl5_raytrace/messages.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
 /// Bytes each kind of message occupies on the ring (the seed gives none, note 004 A: a
-/// parameter each; see Pxpl5Raytrace::declare_params).
+/// parameter each, wire.*).
 struct WireSizes {
   std::uint64_t control = 16;  ///< start, request, assign, frame done
   std::uint64_t sample = 8;    ///< per sample (samples and band messages)
   std::uint64_t pixel = 4;     ///< per display pixel
   std::uint64_t header = 16;   ///< per sample, band or pixel message
   std::uint64_t bytes(const Message& m) const;
+
+  static void declare_params(params::ParamRegistry& r);
+  static WireSizes read(const params::ParamRegistry& r);
 };
 
 class RingNode : public modules::Processor {
