@@ -141,12 +141,33 @@ void ArrayNode::declare_params(const modules::ParamDecls& node) {
                  "bits a memory cycle, the memory's own path"});
 }
 
+namespace {
+/// One cycle of the CPU's clock, whole picoseconds.
+sc_core::sc_time cpu_cycle(const modules::ModuleParams& p) {
+  return modules::from_ps(
+      static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get(kClock).hz))));
+}
+}  // namespace
+
+sc_core::sc_time ArrayNode::keep_test_time(const params::ParamRegistry& registry) {
+  const modules::ModuleParams p(registry, kClass);
+  return modules::times(cpu_cycle(p), p.get(kKeepTestCycles));
+}
+
+std::size_t ArrayNode::memory_words(const params::ParamRegistry& registry) {
+  return modules::ModuleParams(registry, kClass).get(kMemoryWords);
+}
+
+std::string ArrayNode::memory_words_name() {
+  return std::string(kClass) + "." + kMemoryWords.name();
+}
+
 ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                      const ArrayContext& context, ArrayTally& tally, GridNode position,
                      MachineTrace& trace)
     : modules::Processor(name, trace),
-      memory("memory", modules::ModuleParams(registry, kClass).get(kMemoryWords), kPolygonWords,
-             sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      memory("memory", memory_words(registry), kPolygonWords, sc_core::SC_ZERO_TIME,
+             sc_core::SC_ZERO_TIME),
       ctx_(context),
       tally_(tally),
       position_(position),
@@ -166,8 +187,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                    .memory_cycle = p.get(kMemoryCycle),
                    .stage_time = p.get(kStageTime),
                    .stages = static_cast<unsigned>(p.get(kStages))};
-  cycle_ = modules::from_ps(
-      static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get(kClock).hz))));
+  cycle_ = cpu_cycle(p);
   memory_port_.bind(memory.socket);
   const modules::MeshTopology& topo = *ctx_.topology;
   if (ctx_.ring)

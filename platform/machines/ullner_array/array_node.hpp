@@ -113,6 +113,12 @@ class ArrayNode : public modules::Processor {
   static constexpr const char* kClass = "node";
   /// Parameters of every processor, under kClass.
   static void declare_params(const modules::ParamDecls& node);
+  /// The CPU's time to decide whether to keep one broadcast polygon (L787): the host's load
+  /// waits for the slowest of it and the broadcast.
+  static sc_core::sc_time keep_test_time(const params::ParamRegistry& registry);
+  /// Words of a processor's memory, and the parameter's full name (for a message).
+  static std::size_t memory_words(const params::ParamRegistry& registry);
+  static std::string memory_words_name();
 
   SC_HAS_PROCESS(ArrayNode);
   ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,

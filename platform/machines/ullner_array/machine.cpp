@@ -241,17 +241,15 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
 
   // The load (L787-L789): the host broadcasts each polygon's words; every processor decides
   // whether to keep it meanwhile. Before the frame.
-  const modules::ModuleParams node_params(r, "node");
-  const sc_core::sc_time cpu_cycle = modules::from_ps(static_cast<std::int64_t>(
-      std::max(1.0, std::round(1e12 / node_params.get_frequency_hz("clock")))));
   const sc_core::sc_time per_polygon =
       std::max(modules::times(modules::ModuleParams(r, kArray).get(kLoadWordTime),
                               ullner_array::kPolygonWords),
-               modules::times(cpu_cycle, node_params.get_count("cycles.keep_test")));
+               ullner_array::ArrayNode::keep_test_time(r));
   ctx.frame_start = modules::times(per_polygon, twin.geometry->shapes.size());
 
   // Each processor must hold the polygons of its subvolumes (L835: 128 KB).
-  const std::size_t capacity = node_params.get_count("memory_words");
+  const std::size_t capacity = ullner_array::ArrayNode::memory_words(r);
+  const modules::ModuleParams array(r, kArray);
   for (int i = 0; i < topology.nodes(); ++i) {
     const std::size_t need =
         ullner_array::subvolume_polygons(*grid, ctx.mapping, topology.node(i)).size() *
@@ -261,9 +259,11 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                        "processor node" + std::to_string(i) + " of the array would hold " +
                            std::to_string(need / ullner_array::kPolygonWords) + " polygons (" +
                            std::to_string(need) + " words) but its memory has " +
-                           std::to_string(capacity) +
-                           " words (node.memory_words); use more processors or subvolumes "
-                           "(array.rows, array.cols, array.subvolumes) or a larger memory");
+                           std::to_string(capacity) + " words (" +
+                           ullner_array::ArrayNode::memory_words_name() +
+                           "); use more processors or subvolumes (" + array.path_of(kRows.name()) +
+                           ", " + array.path_of(kCols.name()) + ", " +
+                           array.path_of(kSubvolumes.name()) + ") or a larger memory");
   }
   // The interconnect: the mesh links of each processor, or one ring (its parameters are read
   // either way, so a bad value is an error whichever is chosen).

@@ -31,13 +31,22 @@ void Host::declare_processor_params(const modules::ParamDecls& host) {
                  "\"medium-sized host\" (L462) with floating-point accelerator"});
 }
 
+namespace {
+const modules::CountParam kResultQueueDepth(
+    {.name = "result_queue_depth",
+     .default_value = "16",
+     .min = "1",
+     .max = "1000000",
+     .unit = "results",
+     .description = "Depth of the result queue from the peripheral to the host",
+     .source = "assumption: queue depths are not given (seed 000 L476)"});
+}  // namespace
+
 void Host::declare_params(const modules::ParamDecls& host) {
   declare_processor_params(host);
-  host.count("result_queue_depth", "16", "1", "1000000", "results",
-             "Depth of the result queue from the peripheral to the host",
-             "assumption: queue depths are not given (seed 000 L476)");
+  host.add(kResultQueueDepth);
   modules::Link::declare_params(
-      host.sub("ray_link"),
+      host.sub(kRayLink),
       {.latency = "0 s",
        .lanes = "32",
        .bit_rate = "3 Mbit/s",
@@ -45,38 +54,35 @@ void Host::declare_params(const modules::ParamDecls& host) {
                  "path at the peripheral's stage rate, one word per 1/3 us (L584)"});
 }
 
-Host::Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-           const scenes::Scene& scene, const shading::ShadeParams& shade,
-           functional::FrameState& frame, const HostAttachment& attached, const RunOptions& opts,
-           MachineTrace& trace, const functional::SceneGeometry& geometry,
-           modules::LatencyProbe& probe)
-    : modules::Processor(name, trace),
+Host::Host(sc_core::sc_module_name name, MachineRun& run, const HostAttachment& attached)
+    : modules::Processor(name, run.trace()),
       ray_out("ray_out"),
       load_out("load_out"),
       // With a window, every ray in flight has a slot reserved for its answer.
       results("result_queue",
               attached.max_in_flight > 0
                   ? attached.max_in_flight
-                  : modules::ModuleParams(registry, this->name()).get_count("result_queue_depth")),
-      geometry_(geometry),
-      scene_(scene),
-      shade_params_(shade),
-      frame_(frame),
+                  : modules::ModuleParams(run.registry(), this->name()).get(kResultQueueDepth)),
+      geometry_(*run.twin().geometry),
+      scene_(run.scene()),
+      shade_params_(run.twin().settings.shade),
+      frame_(run.frame()),
       ray_queue_(attached.ray_queue),
       lighting_devices_(attached.lighting),
       ray_bits_(attached.ray_bits),
       max_in_flight_(attached.max_in_flight),
-      opts_(opts),
-      probe_(probe),
-      probe_result_queue_(probe.stage(results.name())),
-      ray_link_(attached.ray_link_name, modules::ModuleParams(registry, attached.ray_link_params)),
-      probe_ray_link_(probe.stage(ray_link_.name())) {
+      opts_(run.options()),
+      probe_(run.probe()),
+      probe_result_queue_(probe_.stage(results.name())),
+      ray_link_(attached.ray_link_name,
+                modules::ModuleParams(run.registry(), attached.ray_link_params)),
+      probe_ray_link_(probe_.stage(ray_link_.name())) {
   // The inner-product device: 3 multipliers then two levels of adders (seed 000 L564), at the
   // peripheral's arithmetic rate (L584).
   if (!attached.lighting.unit_name.empty())
     lighting_.emplace(attached.lighting.unit_name, attached.lighting.interval,
                       1 + 2 * attached.lighting.adder_stages, "inner_products");
-  set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
+  set_timing(modules::read_processor_timing(modules::ModuleParams(run.registry(), this->name())));
   SC_THREAD(run);
 }
 

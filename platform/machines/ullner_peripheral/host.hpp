@@ -27,6 +27,7 @@
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner_peripheral/messages.hpp"
 
@@ -64,6 +65,9 @@ class Host : public modules::Processor {
   tlm_utils::simple_initiator_socket<Host> load_out;  ///< to the parameter memories' load port
   modules::MessageQueue<RayResult> results;           ///< the result queue
 
+  /// Its link into the peripheral's ray queue, under its name (and its parameters' path).
+  static constexpr const char* kRayLink = "ray_link";
+
   /// Its processor's clock and cycles (both machines' hosts: the same host, seed 000 L715).
   static void declare_processor_params(const modules::ParamDecls& host);
   /// The peripheral's host under `host`: its processor, its result queue and its ray link.
@@ -71,11 +75,8 @@ class Host : public modules::Processor {
 
   SC_HAS_PROCESS(Host);
   /// Reads its own parameters under its name (its result queue's depth unless `attached`
-  /// limits the rays in flight).
-  Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-       const scenes::Scene& scene, const shading::ShadeParams& shade, functional::FrameState& frame,
-       const HostAttachment& attached, const RunOptions& opts, MachineTrace& trace,
-       const functional::SceneGeometry& geometry, modules::LatencyProbe& probe);
+  /// limits the rays in flight); the scene, its geometry and the shading are the run's.
+  Host(sc_core::sc_module_name name, MachineRun& run, const HostAttachment& attached);
 
   /// From the end of the scene load to the host having the last answer.
   sc_core::sc_time frame_time() const { return frame_time_; }

@@ -30,7 +30,11 @@ class UllnerPeripheral final : public Machine {
                 const RunOptions& opts) const override;
 };
 
-using params::ParamKind;
+namespace {
+/// The module tree: the host and its peripheral (their names and their parameters' paths).
+constexpr const char* kHost = "host";
+constexpr const char* kPeripheral = "peripheral";
+}  // namespace
 
 void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
   // Its twin searches with the peripheral's own grid (peripheral.grid.*) and Ullner's quad
@@ -39,8 +43,8 @@ void UllnerPeripheral::declare_params(params::ParamRegistry& r) const {
   declare_common_params(
       r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
   // The module tree: the host and its peripheral, each declaring its own.
-  ullner::Host::declare_params(modules::ParamDecls(r, "host"));
-  ullner::Peripheral::declare_params(modules::ParamDecls(r, "peripheral"));
+  ullner::Host::declare_params(modules::ParamDecls(r, kHost));
+  ullner::Peripheral::declare_params(modules::ParamDecls(r, kPeripheral));
 }
 
 FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
@@ -48,34 +52,28 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
   // The peripheral holds convex quadrilaterals only (seed 000 L267): polygons are converted
   // into convex quads and triangles-as-quads; anything else cannot be loaded.
   require_polygons(name(), scene);
-  if (const auto a = r.get_int("peripheral.adder_stages"); a != 1 && a != 3)
-    throw InputError(r.where_set("peripheral.adder_stages"), 0,
-                     "peripheral.adder_stages must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), "
-                     "got " +
-                         std::to_string(a));
+  const ullner::PeripheralSettings pc =
+      ullner::Peripheral::read_settings(modules::ModuleParams(r, kPeripheral));
   auto settings = functional::read_render_settings(r);
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
-  const int n = static_cast<int>(r.get_int("peripheral.grid.divisions"));
-  settings.accel = n > 0 ? functional::AccelKind::Grid : functional::AccelKind::None;
-  settings.grid_divisions = n;
-  settings.dda_as_printed = r.get_string("peripheral.grid.dda") == "as-printed";
+  settings.accel =
+      pc.grid_divisions > 0 ? functional::AccelKind::Grid : functional::AccelKind::None;
+  settings.grid_divisions = pc.grid_divisions;
+  settings.dda_as_printed = pc.dda_as_printed;
   FunctionalTwin twin = make_functional_twin(scene, settings);
-  const auto capacity = static_cast<std::size_t>(r.get_int("peripheral.memory.polygons"));
-  if (twin.geometry->shapes.size() > capacity)
+  if (twin.geometry->shapes.size() > pc.memory_polygons)
     throw InputError(scene.name, 0,
                      "the scene needs " + std::to_string(twin.geometry->shapes.size()) +
                          " quadrilaterals but the parameter memories hold " +
-                         std::to_string(capacity) + " (peripheral.memory.polygons)");
+                         std::to_string(pc.memory_polygons) + " (" + pc.memory_polygons_name + ")");
   return twin;
 }
 
 RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
                                 const params::ParamRegistry& r, const RunOptions& opts) const {
   MachineRun run(name(), scene, twin, r, opts);
-  functional::FrameState& frame = run.frame();
-  MachineTrace& trace = run.trace();
   ullner::PeripheralSettings pc =
-      ullner::Peripheral::read_settings(modules::ModuleParams(r, "peripheral"));
+      ullner::Peripheral::read_settings(modules::ModuleParams(r, kPeripheral));
   const std::uint64_t quads = twin.geometry->shapes.size();
   pc.modelling_space = twin.geometry->scene_bounds;
   if (!scene.modelling_space.empty()) pc.modelling_space.extend(scene.modelling_space);
@@ -85,21 +83,21 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   // answer (ray_latency_s's window); the peripheral names its stages first, as a ray meets them.
   modules::LatencyProbe& probe = run.probe();
   // A ray meets the host's ray link first (the probe lists stages in the order they are named).
-  probe.stage("host.ray_link");
+  const std::string ray_link = std::string(kHost) + "." + ullner::Host::kRayLink;
+  probe.stage(ray_link);
   // The peripheral searches its own memories; the twin's tracer only checks afterwards.
-  ullner::Peripheral peripheral("peripheral", *twin.geometry, *twin.tracer, shade, quads, pc,
-                                frame.counters(), trace, probe, r);
+  ullner::Peripheral peripheral(kPeripheral, run, shade, pc);
   inject_faults(name(), opts.faults, {&peripheral.parameters});
-  const ullner::HostAttachment attached{.ray_queue = peripheral.rays.fifo,
-                                        .ray_link_name = "host.ray_link",
-                                        .ray_link_params = "host.ray_link",
-                                        .lighting = {.unit_name = "peripheral.lighting",
-                                                     .enabled = pc.lighting,
-                                                     .interval = pc.intersect_interval,
-                                                     .adder_stages = pc.adder_stages,
-                                                     .rsqrt_stages = pc.rsqrt_stages}};
-  ullner::Host host("host", r, scene, twin.settings.shade, frame, attached, opts, trace,
-                    *twin.geometry, probe);
+  const ullner::HostAttachment attached{
+      .ray_queue = peripheral.rays.fifo,
+      .ray_link_name = ray_link,
+      .ray_link_params = ray_link,
+      .lighting = {.unit_name = std::string(kPeripheral) + ".lighting",
+                   .enabled = pc.lighting,
+                   .interval = pc.intersect_interval,
+                   .adder_stages = pc.adder_stages,
+                   .rsqrt_stages = pc.rsqrt_stages}};
+  ullner::Host host(kHost, run, attached);
   host.load_out.bind(peripheral.parameters.socket);
   host.ray_out.bind(peripheral.rays.socket);
   peripheral.result_out.bind(host.results.socket);

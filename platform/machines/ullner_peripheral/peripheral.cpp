@@ -1,5 +1,6 @@
 #include "platform/machines/ullner_peripheral/peripheral.hpp"
 
+#include "common/input_error.hpp"
 #include "firmware/tasks/ray_tree.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_tracer.hpp"
@@ -7,85 +8,135 @@
 namespace rtsim::platform::ullner {
 
 using modules::times;
-using params::ParamKind;
+
+namespace {
+
+// The peripheral's parameters (peripheral.*), each named once.
+const modules::TimeParam kIntersectInterval(
+    {.name = "intersect_interval",
+     .default_value = "333.333 ns",
+     .min = "1 ps",
+     .description = "Issue interval (= stage time) of the intersection pipeline: one ray/polygon "
+                    "intersection per interval",
+     .source = "seed 000 L584, L588 (three results every microsecond)"});
+const modules::CountParam kAdderStages(
+    {.name = "adder_stages",
+     .default_value = "1",
+     .min = "1",
+     .max = "3",
+     .unit = "stages",
+     .description = "Pipeline stages of one floating-point addition (1 or 3); sets the physical "
+                    "depth 17 or 33 and the latency 5.6 or 11 us",
+     .source = "seed 000 L572-L578 (Fig. 2-17), L588"});
+const modules::IntParam kFetchStages(
+    {.name = "fetch_stages",
+     .default_value = "1",
+     .min = "0",
+     .max = "16",
+     .unit = "stages",
+     .description = "Stages of polygon fetch from the 20 parameter memories",
+     .source = "assumption: one memory cycle reads a whole polygon (seed 000 L544)"});
+const modules::IntParam kSelectStages(
+    {.name = "select_stages",
+     .default_value = "1",
+     .min = "0",
+     .max = "16",
+     .unit = "stages",
+     .description = "Stages of the closest-intersection selection (Fig. 2-11 stage 3)",
+     .source = "assumption: one compare-and-keep stage (seed 000 L484)"});
+const modules::CountParam kRayQueueDepth(
+    {.name = "ray_queue_depth",
+     .default_value = "16",
+     .min = "1",
+     .max = "1000000",
+     .unit = "rays",
+     .description = "Depth of the ray queue from the host to the peripheral",
+     .source = "assumption: queue depths are not given (seed 000 L476)"});
+const modules::FlagParam kShadowEarlyExit(
+    {.name = "shadow_early_exit",
+     .default_value = "false",
+     .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
+     .source = "assumption: the thesis does not say how the shadow-ray saving is realised "
+               "without subdivision (seed 000 L472; note §7.6)"});
+const modules::CountParam kGridDivisions(
+    {.name = "grid.divisions",
+     .default_value = "0",
+     .min = "0",
+     .max = "512",
+     .unit = "per axis",
+     .description = "Subvolumes per axis of the grid auxiliary processor; 0 = none (brute "
+                    "force); at most 512 (512^3 subvolumes is the grid's limit, kMaxGridCells = "
+                    "2^27)",
+     .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)"});
+const modules::ChoiceParam kGridDda(
+    {.name = "grid.dda",
+     .default_value = "corrected",
+     .allowed = {"corrected", "as-printed"},
+     .description = "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly as printed "
+                    "(wrong; for fidelity experiments)",
+     .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
+const modules::TimeParam kStepTime({.name = "grid.step_time",
+                                    .default_value = "1 us",
+                                    .description = "t_d: time to step to the next subvolume",
+                                    .source = "seed 000 L654"});
+const modules::CountParam kIndirectionStages(
+    {.name = "grid.indirection_stages",
+     .default_value = "1",
+     .min = "0",
+     .max = "16",
+     .unit = "stages",
+     .description = "Extra pipeline stage(s) of the subvolume address indirection",
+     .source = "seed 000 L596 (\"yet another pipeline stage\")"});
+const modules::FlagParam kLighting(
+    {.name = "lighting.enabled",
+     .default_value = "true",
+     .description = "Lighting extension: the host's vector arithmetic runs on the inner-product "
+                    "and reciprocal-square-root devices",
+     .source = "seed 000 L548-L566"});
+const modules::CountParam kRsqrtStages(
+    {.name = "lighting.rsqrt_stages",
+     .default_value = "2",
+     .min = "1",
+     .max = "16",
+     .unit = "stages",
+     .description = "Stages of the reciprocal-square-root device",
+     .source = "assumption: as the square root of Fig. 2-17 (seed 000 L576)"});
+const modules::CountParam kMemoryPolygons(
+    {.name = "memory.polygons",
+     .default_value = "1048576",
+     .min = "1",
+     .max = "100000000",
+     .unit = "polygons",
+     .description = "Capacity of the 20 parameter memories",
+     .source = "assumption: a million polygons (seed 000 note §7.5 S7)"});
+const modules::TimeParam kLoadWordTime(
+    {.name = "memory.load_word_time",
+     .default_value = "1 us",
+     .description = "Time to load one 32-bit parameter word through the dual-ported load path "
+                    "(before the frame; not part of the frame time)",
+     .source = "assumption: \"the port need not be fast\" (seed 000 L544)"});
+/// Its result link's parameters, under the peripheral's.
+constexpr const char* kResultLink = "result_link";
+
+}  // namespace
 
 void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
-  peripheral.declare({.name = "intersect_interval",
-                      .kind = ParamKind::kTime,
-                      .default_value = "333.333 ns",
-                      .min = "1 ps",
-                      .description =
-                          "Issue interval (= stage time) of the intersection pipeline: one "
-                          "ray/polygon intersection per interval",
-                      .source = "seed 000 L584, L588 (three results every microsecond)"});
-  peripheral.count("adder_stages", "1", "1", "3", "stages",
-                   "Pipeline stages of one floating-point addition (1 or 3); sets the "
-                   "physical depth 17 or 33 and the latency 5.6 or 11 us",
-                   "seed 000 L572-L578 (Fig. 2-17), L588");
-  peripheral.declare(
-      {.name = "fetch_stages",
-       .kind = ParamKind::kInt,
-       .default_value = "1",
-       .min = "0",
-       .max = "16",
-       .unit = "stages",
-       .description = "Stages of polygon fetch from the 20 parameter memories",
-       .source = "assumption: one memory cycle reads a whole polygon (seed 000 L544)"});
-  peripheral.declare(
-      {.name = "select_stages",
-       .kind = ParamKind::kInt,
-       .default_value = "1",
-       .min = "0",
-       .max = "16",
-       .unit = "stages",
-       .description = "Stages of the closest-intersection selection (Fig. 2-11 stage 3)",
-       .source = "assumption: one compare-and-keep stage (seed 000 L484)"});
-  peripheral.count("ray_queue_depth", "16", "1", "1000000", "rays",
-                   "Depth of the ray queue from the host to the peripheral",
-                   "assumption: queue depths are not given (seed 000 L476)");
-  peripheral.declare(
-      {.name = "shadow_early_exit",
-       .kind = ParamKind::kBool,
-       .default_value = "false",
-       .description = "Brute force: stop streaming polygons at a shadow ray's first hit",
-       .source = "assumption: the thesis does not say how the shadow-ray saving is "
-                 "realised without subdivision (seed 000 L472; note §7.6)"});
-  peripheral.count("grid.divisions", "0", "0", "512", "per axis",
-                   "Subvolumes per axis of the grid auxiliary processor; 0 = none "
-                   "(brute force); at most 512 (512^3 subvolumes is the grid's limit, "
-                   "kMaxGridCells = 2^27)",
-                   "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)");
-  peripheral.declare({.name = "grid.dda",
-                      .kind = ParamKind::kString,
-                      .default_value = "corrected",
-                      .allowed = {"corrected", "as-printed"},
-                      .description =
-                          "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly "
-                          "as printed (wrong; for fidelity experiments)",
-                      .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
-  peripheral.time("grid.step_time", "1 us", "t_d: time to step to the next subvolume",
-                  "seed 000 L654");
-  peripheral.count("grid.indirection_stages", "1", "0", "16", "stages",
-                   "Extra pipeline stage(s) of the subvolume address indirection",
-                   "seed 000 L596 (\"yet another pipeline stage\")");
-  peripheral.declare({.name = "lighting.enabled",
-                      .kind = ParamKind::kBool,
-                      .default_value = "true",
-                      .description = "Lighting extension: the host's vector arithmetic runs on the "
-                                     "inner-product and reciprocal-square-root devices",
-                      .source = "seed 000 L548-L566"});
-  peripheral.count("lighting.rsqrt_stages", "2", "1", "16", "stages",
-                   "Stages of the reciprocal-square-root device",
-                   "assumption: as the square root of Fig. 2-17 (seed 000 L576)");
-  peripheral.count("memory.polygons", "1048576", "1", "100000000", "polygons",
-                   "Capacity of the 20 parameter memories",
-                   "assumption: a million polygons (seed 000 note §7.5 S7)");
-  peripheral.time("memory.load_word_time", "1 us",
-                  "Time to load one 32-bit parameter word through the dual-ported "
-                  "load path (before the frame; not part of the frame time)",
-                  "assumption: \"the port need not be fast\" (seed 000 L544)");
+  peripheral.add(kIntersectInterval);
+  peripheral.add(kAdderStages);
+  peripheral.add(kFetchStages);
+  peripheral.add(kSelectStages);
+  peripheral.add(kRayQueueDepth);
+  peripheral.add(kShadowEarlyExit);
+  peripheral.add(kGridDivisions);
+  peripheral.add(kGridDda);
+  peripheral.add(kStepTime);
+  peripheral.add(kIndirectionStages);
+  peripheral.add(kLighting);
+  peripheral.add(kRsqrtStages);
+  peripheral.add(kMemoryPolygons);
+  peripheral.add(kLoadWordTime);
   modules::Link::declare_params(
-      peripheral.sub("result_link"),
+      peripheral.sub(kResultLink),
       {.latency = "0 s",
        .lanes = "32",
        .bit_rate = "3 Mbit/s",
@@ -95,43 +146,52 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
 
 PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
   PeripheralSettings c;
-  c.intersect_interval = p.get_time("intersect_interval");
-  c.adder_stages = static_cast<unsigned>(p.get_int("adder_stages"));
+  c.intersect_interval = p.get(kIntersectInterval);
+  c.adder_stages = static_cast<unsigned>(p.get(kAdderStages));
+  if (c.adder_stages != 1 && c.adder_stages != 3)
+    throw InputError(p.where_set(kAdderStages.name()), 0,
+                     p.path_of(kAdderStages.name()) +
+                         " must be 1 or 3 (Fig. 2-17, seed 000 L572-L578), got " +
+                         std::to_string(c.adder_stages));
   c.pipeline_stages = PeripheralSettings::stages_for_adder(c.adder_stages);
-  c.fetch_stages = static_cast<unsigned>(p.get_int("fetch_stages"));
-  c.select_stages = static_cast<unsigned>(p.get_int("select_stages"));
-  c.ray_queue_depth = p.get_count("ray_queue_depth");
-  c.shadow_early_exit = p.get_bool("shadow_early_exit");
-  c.grid_divisions = static_cast<int>(p.get_int("grid.divisions"));
-  c.step_time = p.get_time("grid.step_time");
-  c.indirection_stages = static_cast<unsigned>(p.get_int("grid.indirection_stages"));
-  c.lighting = p.get_bool("lighting.enabled");
-  c.rsqrt_stages = static_cast<unsigned>(p.get_int("lighting.rsqrt_stages"));
-  c.load_word_time = p.get_time("memory.load_word_time");
+  c.fetch_stages = static_cast<unsigned>(p.get(kFetchStages));
+  c.select_stages = static_cast<unsigned>(p.get(kSelectStages));
+  c.ray_queue_depth = p.get(kRayQueueDepth);
+  c.shadow_early_exit = p.get(kShadowEarlyExit);
+  c.grid_divisions = static_cast<int>(p.get(kGridDivisions));
+  c.dda_as_printed = p.get(kGridDda) == "as-printed";
+  c.step_time = p.get(kStepTime);
+  c.indirection_stages = static_cast<unsigned>(p.get(kIndirectionStages));
+  c.lighting = p.get(kLighting);
+  c.rsqrt_stages = static_cast<unsigned>(p.get(kRsqrtStages));
+  c.memory_polygons = p.get(kMemoryPolygons);
+  c.memory_polygons_name = p.path_of(kMemoryPolygons.name());
+  c.load_word_time = p.get(kLoadWordTime);
   return c;
 }
 
-Peripheral::Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
-                       const Tracer& twin_search, const tasks::ShadeTask& shade,
-                       std::uint64_t polygons, const PeripheralSettings& config,
-                       TraceCounters& counters, MachineTrace& trace, modules::LatencyProbe& probe,
-                       const params::ParamRegistry& registry)
+Peripheral::Peripheral(sc_core::sc_module_name name, MachineRun& run, const tasks::ShadeTask& shade,
+                       const PeripheralSettings& config)
     : sc_core::sc_module(name),
       rays("ray_queue", config.ray_queue_depth),
-      parameters("parameter_memories", polygons * kernels::kUllnerStoredWords,
+      parameters("parameter_memories",
+                 run.twin().geometry->shapes.size() * kernels::kUllnerStoredWords,
                  kernels::kUllnerStoredWords, config.load_word_time, config.intersect_interval),
       result_out("result_out"),
-      memory_test_(parameters, geometry),
-      search_(functional::make_tracer_sharing(twin_search, geometry, &memory_test_)),
+      memory_test_(parameters, *run.twin().geometry),
+      search_(
+          functional::make_tracer_sharing(*run.twin().tracer, *run.twin().geometry, &memory_test_)),
       shade_(shade),
-      polygons_(polygons),
+      polygons_(run.twin().geometry->shapes.size()),
       config_(config),
-      counters_(counters),
-      trace_(trace),
+      counters_(run.frame().counters()),
+      trace_(run.trace()),
       pipe_(std::string(this->name()) + ".pipeline", config.intersect_interval,
             config.pipeline_stages, "intersections"),
-      probe_(probe),
-      result_link_(modules::ModuleParams(registry, std::string(this->name()) + ".result_link")) {
+      probe_(run.probe()),
+      result_link_(
+          modules::ModuleParams(run.registry(), std::string(this->name()) + "." + kResultLink)) {
+  modules::LatencyProbe& probe = run.probe();
   // Stages named by their stats.json module names, in the order a ray meets them.
   probe_ray_queue_ = probe.stage(rays.name());
   if (config.grid_divisions > 0) {

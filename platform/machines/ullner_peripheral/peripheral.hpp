@@ -28,6 +28,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
 #include "modules/pipelined_unit.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_peripheral/parameter_memory_test.hpp"
@@ -50,13 +51,11 @@ class Peripheral : public sc_core::sc_module {
   static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
 
   SC_HAS_PROCESS(Peripheral);
-  /// `geometry`: the host's copy of the scene; `twin_search`: the twin's search over it, whose
-  /// grid the auxiliary processor walks (shared, not built twice; the candidates' parameters
-  /// are read from `parameters`).
-  Peripheral(sc_core::sc_module_name name, functional::SceneGeometry& geometry,
-             const Tracer& twin_search, const tasks::ShadeTask& shade, std::uint64_t polygons,
-             const PeripheralSettings& config, TraceCounters& counters, MachineTrace& trace,
-             modules::LatencyProbe& probe, const params::ParamRegistry& registry);
+  /// In `run`: the twin's geometry is the host's copy of the scene, and the twin's search over
+  /// it is the grid the auxiliary processor walks (shared, not built twice; the candidates'
+  /// parameters are read from `parameters`).
+  Peripheral(sc_core::sc_module_name name, MachineRun& run, const tasks::ShadeTask& shade,
+             const PeripheralSettings& config);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
   std::uint64_t rays_served() const { return rays_; }

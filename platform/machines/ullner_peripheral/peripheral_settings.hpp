@@ -3,6 +3,7 @@
 // Peripheral::read_settings from the parameters Peripheral::declare_params declares (the
 // defaults are there, not here), plus the modelling space the scene gives.
 #include <cstdint>
+#include <string>
 #include <systemc>
 
 #include "firmware/bounds.hpp"
@@ -18,11 +19,14 @@ struct PeripheralSettings {
   std::size_t ray_queue_depth;
   bool shadow_early_exit;
   int grid_divisions;          ///< 0: brute force
+  bool dda_as_printed;         ///< Appendix B's stepping exactly as printed (grid.dda)
   sc_core::sc_time step_time;  ///< t_d
   unsigned indirection_stages;
   bool lighting;
   unsigned rsqrt_stages;
   sc_core::sc_time load_word_time;
+  std::size_t memory_polygons;       ///< the parameter memories' capacity
+  std::string memory_polygons_name;  ///< its parameter, for a message
   /// The modelling space (the grid's box; the scene's bounds in brute force): d_r is measured
   /// from where a primary ray enters it, in units of its largest side.
   Bounds modelling_space;

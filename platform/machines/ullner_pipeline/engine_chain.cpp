@@ -12,33 +12,68 @@ using modules::plus;
 using modules::times;
 using tasks::RayDescription;
 
+namespace {
+
+// The chain's parameters (pipeline.*), each named once.
+const modules::CountParam kEngines(
+    {.name = "engines",
+     .default_value = "1000",
+     .min = "1",
+     .max = "1000000",
+     .unit = "processors",
+     .description = "Polygon processors in the chain (N): one polygon each; spare ones hold dummy "
+                    "polygons. Every ray passes all of them",
+     .source = "seed 000 L743 (a thousand processors); L751: ten thousand plausible, a million "
+               "almost certainly infeasible"});
+const modules::TimeParam kIssueInterval(
+    {.name = "issue_interval",
+     .default_value = "5 us",
+     .description = "Time between two ray descriptions a processor accepts: one shift-and-add "
+                    "floating-point operation, each operation of the intersection having its own "
+                    "unit, pipelined as the peripheral's (Fig. 2-17)",
+     .source = "seed 000 L723 and L2084-L2108: about 5 us per operation (24 integer additions of "
+               "100-200 ns, shifts at twice that rate, plus a pipelining allowance)"});
+const modules::TimeParam kHopLatency(
+    {.name = "hop_latency",
+     .default_value = "200 ns",
+     .description = "From a processor accepting a description to it starting to pass the "
+                    "description on: one bit-serial compare-and-select of the carried and the new "
+                    "fields. With the link's 4.8 us a hop is 5.0 us",
+     .source = "seed 000 L2108 (an integer addition: 100-200 ns); L733, L743: a hop is \"about "
+               "five microseconds\""});
+const modules::TimeParam kComputeLatency(
+    {.name = "compute_latency",
+     .default_value = "85 us",
+     .description = "From a description's ray fields arriving to the processor's own t, p_r, u, v "
+                    "being ready; the result fields trail the ray fields by this along the whole "
+                    "chain (each processor compares its t with the carried t, both ready this "
+                    "late)",
+     .source = "seed 000 L572-L588 (Fig. 2-17: 17 operations deep with one-stage additions) at 5 "
+               "us an operation (L723)"});
+/// A processor's class and the links' class, under the chain's path.
+constexpr const char* kEngine = "engine";
+constexpr const char* kLink = "link";
+
+std::string under(const sc_core::sc_module& m, const char* child) {
+  return std::string(m.name()) + "." + child;
+}
+
+}  // namespace
+
+std::size_t EngineChain::engines(const modules::ModuleParams& pipeline) {
+  return pipeline.get(kEngines);
+}
+
+std::string EngineChain::engines_name(const modules::ModuleParams& pipeline) {
+  return pipeline.path_of(kEngines.name());
+}
+
 void EngineChain::declare_params(const modules::ParamDecls& pipeline) {
-  pipeline.count("engines", "1000", "1", "1000000", "processors",
-                 "Polygon processors in the chain (N): one polygon each; spare ones hold dummy "
-                 "polygons. Every ray passes all of them",
-                 "seed 000 L743 (a thousand processors); L751: ten thousand plausible, a "
-                 "million almost certainly infeasible");
-  const modules::ParamDecls engine = pipeline.sub("engine");
-  engine.time("issue_interval", "5 us",
-              "Time between two ray descriptions a processor accepts: one shift-and-add "
-              "floating-point operation, each operation of the intersection having its own "
-              "unit, pipelined as the peripheral's (Fig. 2-17)",
-              "seed 000 L723 and L2084-L2108: about 5 us per operation (24 integer additions "
-              "of 100-200 ns, shifts at twice that rate, plus a pipelining allowance)");
-  engine.time("hop_latency", "200 ns",
-              "From a processor accepting a description to it starting to pass the description "
-              "on: one bit-serial compare-and-select of the carried and the new fields. With "
-              "the link's 4.8 us a hop is 5.0 us",
-              "seed 000 L2108 (an integer addition: 100-200 ns); L733, L743: a hop is \"about "
-              "five microseconds\"");
-  engine.time("compute_latency", "85 us",
-              "From a description's ray fields arriving to the processor's own t, p_r, u, v "
-              "being ready; the result fields trail the ray fields by this along the whole "
-              "chain (each processor compares its t with the carried t, both ready this late)",
-              "seed 000 L572-L588 (Fig. 2-17: 17 operations deep with one-stage additions) at "
-              "5 us an operation (L723)");
+  pipeline.add(kEngines);
+  const modules::ParamDecls engine = pipeline.sub(kEngine);
+  for (const auto* p : {&kIssueInterval, &kHopLatency, &kComputeLatency}) engine.add(*p);
   modules::Link::declare_params(
-      pipeline.sub("link"),
+      pipeline.sub(kLink),
       {.latency = "0 s",
        .lanes = "13",
        .bit_rate = "",
@@ -47,45 +82,42 @@ void EngineChain::declare_params(const modules::ParamDecls& pipeline) {
                  "handshake); \"about 150 nanoseconds per bit\" (20-200 ns by technology)"});
 }
 
-EngineChain::EngineChain(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                         const functional::SceneGeometry& geometry, std::uint64_t polygons,
-                         TraceCounters& counters, modules::LatencyProbe& probe)
+EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
     : sc_core::sc_module(name),
       input("input", 1),
       load("load"),
-      registers("polygon_registers",
-                modules::ModuleParams(registry, this->name()).get_count("engines") *
-                    PolygonDescription::kWords,
-                PolygonDescription::kWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      registers(
+          "polygon_registers",
+          engines(modules::ModuleParams(run.registry(), this->name())) * PolygonDescription::kWords,
+          PolygonDescription::kWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
       result_out("result_out"),
       registers_port_("registers_port"),
-      geometry_(geometry),
-      polygons_(polygons),
-      counters_(counters),
-      probe_(probe),
-      inner_link_(std::string(this->name()) + ".link",
-                  modules::ModuleParams(registry, std::string(this->name()) + ".link")),
-      link_out_(std::string(this->name()) + ".link_out",
-                modules::ModuleParams(registry, std::string(this->name()) + ".link")),
+      geometry_(*run.twin().geometry),
+      polygons_(run.twin().geometry->shapes.size()),
+      counters_(run.frame().counters()),
+      probe_(run.probe()),
+      inner_link_(under(*this, kLink), modules::ModuleParams(run.registry(), under(*this, kLink))),
+      link_out_(under(*this, "link_out"),
+                modules::ModuleParams(run.registry(), under(*this, kLink))),
       timing_(
           [&] {
-            const modules::ModuleParams engine(registry, std::string(this->name()) + ".engine");
-            return EngineTiming{.issue_interval = engine.get_time("issue_interval"),
-                                .hop_latency = engine.get_time("hop_latency"),
-                                .compute_latency = engine.get_time("compute_latency")};
+            const modules::ModuleParams engine(run.registry(), under(*this, kEngine));
+            return EngineTiming{.issue_interval = engine.get(kIssueInterval),
+                                .hop_latency = engine.get(kHopLatency),
+                                .compute_latency = engine.get(kComputeLatency)};
           }(),
           inner_link_.serialisation(RayDescription::kWireBits),
-          modules::ModuleParams(registry, this->name()).get_count("engines")),
+          engines(modules::ModuleParams(run.registry(), this->name()))),
       polygon_time_(inner_link_.serialisation(PolygonDescription::kWireBits)),
       overwrites_(timing_.engines(), 0),
       answers_(timing_.engines(), 0),
-      engine_class_(std::string(this->name()) + ".engine") {
+      engine_class_(under(*this, kEngine)) {
   load.register_b_transport(this, &EngineChain::load_transport);
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
-  probe_input_ = probe.stage(input.name());
-  probe_engines_ = probe.stage(std::string(this->name()) + ".engine");
-  probe_link_out_ = probe.stage(link_out_.name());
+  probe_input_ = probe_.stage(input.name());
+  probe_engines_ = probe_.stage(under(*this, kEngine));
+  probe_link_out_ = probe_.stage(link_out_.name());
   SC_THREAD(run);
 }
 

@@ -31,6 +31,7 @@
 #include "modules/module_params.hpp"
 #include "modules/statistics.hpp"
 #include "platform/functional/scene_geometry.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
 #include "platform/machines/ullner_pipeline/polygon_load.hpp"
@@ -54,11 +55,13 @@ class EngineChain : public sc_core::sc_module {
   static void declare_params(const modules::ParamDecls& pipeline);
 
   SC_HAS_PROCESS(EngineChain);
-  /// `geometry`: the host's copy of the scene (`polygons` of it are loaded; the host reads hits
-  /// on them with it).
-  EngineChain(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-              const functional::SceneGeometry& geometry, std::uint64_t polygons,
-              TraceCounters& counters, modules::LatencyProbe& probe);
+  /// Processors in a chain with parameters `pipeline`, and that parameter's full name.
+  static std::size_t engines(const modules::ModuleParams& pipeline);
+  static std::string engines_name(const modules::ModuleParams& pipeline);
+
+  /// The twin's geometry in `run` is the host's copy of the scene (all of it is loaded; the
+  /// host reads hits on them with it).
+  EngineChain(sc_core::sc_module_name name, MachineRun& run);
 
   std::uint64_t engines() const { return timing_.engines(); }
   const ChainTiming& timing() const { return timing_; }

@@ -63,15 +63,17 @@ nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
 
 }  // namespace
 
-using params::ParamKind;
+/// The module tree: the host and the chain (their names and their parameters' paths).
+constexpr const char* kHost = "host";
+constexpr const char* kPipeline = "pipeline";
 
 void UllnerPipeline::declare_params(params::ParamRegistry& r) const {
   // Its twin searches by brute force with Ullner's quad kernel, as every ray passes every
   // processor: no render.accel, grid, shells, polygon_kernel or bezier parameter is read.
   declare_common_params(
       r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
-  ullner_pipeline::PipelineHost::declare_params(modules::ParamDecls(r, "host"));
-  ullner_pipeline::EngineChain::declare_params(modules::ParamDecls(r, "pipeline"));
+  ullner_pipeline::PipelineHost::declare_params(modules::ParamDecls(r, kHost));
+  ullner_pipeline::EngineChain::declare_params(modules::ParamDecls(r, kPipeline));
 }
 
 FunctionalTwin UllnerPipeline::make_twin(scenes::Scene& scene,
@@ -82,12 +84,14 @@ FunctionalTwin UllnerPipeline::make_twin(scenes::Scene& scene,
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
   settings.accel = functional::AccelKind::None;
   FunctionalTwin twin = make_functional_twin(scene, settings);
-  const auto engines = static_cast<std::size_t>(r.get_int("pipeline.engines"));
+  const modules::ModuleParams pipeline(r, kPipeline);
+  const std::size_t engines = ullner_pipeline::EngineChain::engines(pipeline);
   if (twin.geometry->shapes.size() > engines)
     throw InputError(scene.name, 0,
                      "the scene needs " + std::to_string(twin.geometry->shapes.size()) +
                          " quadrilaterals but the pipeline has " + std::to_string(engines) +
-                         " processors, one a polygon (set pipeline.engines to at least " +
+                         " processors, one a polygon (set " +
+                         ullner_pipeline::EngineChain::engines_name(pipeline) + " to at least " +
                          std::to_string(twin.geometry->shapes.size()) + ")");
   // The processors test t > 0 (seed 000 L275) and hold nothing but their polygon: there is no
   // hither plane to clip vision rays at, so the twin has none either (docs/machines.md).
@@ -100,25 +104,24 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   using ullner_pipeline::EngineChain;
   using ullner_pipeline::PipelineHost;
   MachineRun run(name(), scene, twin, r, opts);
-  functional::FrameState& frame = run.frame();
   const std::uint64_t polygons = twin.geometry->shapes.size();
   Bounds space = twin.geometry->scene_bounds;
   if (!scene.modelling_space.empty()) space.extend(scene.modelling_space);
 
   // A ray meets the host's link into the chain first (the probe lists stages as named).
   modules::LatencyProbe& probe = run.probe();
-  probe.stage("pipeline.link_in");
-  EngineChain chain("pipeline", r, *twin.geometry, polygons, frame.counters(), probe);
+  const std::string link_in = std::string(kPipeline) + ".link_in";
+  probe.stage(link_in);
+  EngineChain chain(kPipeline, run);
   inject_faults(name(), opts.faults, {&chain.registers});
   const ullner::HostAttachment attached{
       .ray_queue = chain.input.fifo,
-      .ray_link_name = "pipeline.link_in",
-      .ray_link_params = "pipeline.link",
+      .ray_link_name = link_in,
+      .ray_link_params = std::string(kPipeline) + ".link",
       .ray_bits = tasks::RayDescription::kWireBits,
-      .max_in_flight = static_cast<std::uint64_t>(r.get_int("host.rays_in_flight")),
+      .max_in_flight = PipelineHost::rays_in_flight(modules::ModuleParams(r, kHost)),
       .lighting = {}};
-  PipelineHost host("host", r, scene, twin.settings.shade, frame, attached, opts, run.trace(),
-                    *twin.geometry, probe, chain.engines(), space);
+  PipelineHost host(kHost, run, attached, chain.engines(), space);
   host.load_out.bind(chain.load);
   host.ray_out.bind(chain.input.socket);
   chain.result_out.bind(host.results.socket);

@@ -10,37 +10,51 @@
 
 namespace rtsim::platform::ullner_pipeline {
 
+namespace {
+
+// The pipeline host's own parameters (host.*), each named once.
+const modules::CountParam kRaysInFlight(
+    {.name = "rays_in_flight",
+     .default_value = "16384",
+     .min = "1",
+     .max = "1000000",
+     .unit = "rays",
+     .description = "Rays the host has sent and not yet had answered, at most: it must \"pursue "
+                    "many successive ray tracing computations at once\"; each has a slot reserved "
+                    "for its answer, so the chain never waits for the host to read one",
+     .source = "seed 000 L715; assumption: enough for 10,000 processors (L751), each holding one "
+               "description, plus the result fields' lag"});
+const modules::RealParam kDummyDistance(
+    {.name = "dummy_distance",
+     .default_value = "1e6",
+     .min = "2",
+     .max = "1e12",
+     .unit = "extents",
+     .description = "Where the dummy polygons of spare processors lie: this many modelling-space "
+                    "extents from its centre (along +z), so every real polygon a ray meets is "
+                    "closer than a dummy",
+     .source = "seed 000 L719 (\"very far away from the scene model\"); assumption: far beyond "
+               "any eye or light a scene places"});
+
+}  // namespace
+
 void PipelineHost::declare_params(const modules::ParamDecls& host) {
   Host::declare_processor_params(host);
-  host.count("rays_in_flight", "16384", "1", "1000000", "rays",
-             "Rays the host has sent and not yet had answered, at most: it must \"pursue many "
-             "successive ray tracing computations at once\"; each has a slot reserved for its "
-             "answer, so the chain never waits for the host to read one",
-             "seed 000 L715; assumption: enough for 10,000 processors (L751), each holding one "
-             "description, plus the result fields' lag");
-  host.declare({.name = "dummy_distance",
-                .kind = params::ParamKind::kDouble,
-                .default_value = "1e6",
-                .min = "2",
-                .max = "1e12",
-                .unit = "extents",
-                .description = "Where the dummy polygons of spare processors lie: this many "
-                               "modelling-space extents from its centre (along +z), so every "
-                               "real polygon a ray meets is closer than a dummy",
-                .source = "seed 000 L719 (\"very far away from the scene model\"); assumption: "
-                          "far beyond any eye or light a scene places"});
+  host.add(kRaysInFlight);
+  host.add(kDummyDistance);
 }
 
-PipelineHost::PipelineHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                           const scenes::Scene& scene, const shading::ShadeParams& shade,
-                           functional::FrameState& frame, const ullner::HostAttachment& attached,
-                           const RunOptions& opts, MachineTrace& trace,
-                           const functional::SceneGeometry& geometry, modules::LatencyProbe& probe,
-                           std::uint64_t engines, const Bounds& modelling_space)
-    : Host(name, registry, scene, shade, frame, attached, opts, trace, geometry, probe),
+std::uint64_t PipelineHost::rays_in_flight(const modules::ModuleParams& host) {
+  return host.get(kRaysInFlight);
+}
+
+PipelineHost::PipelineHost(sc_core::sc_module_name name, MachineRun& run,
+                           const ullner::HostAttachment& attached, std::uint64_t engines,
+                           const Bounds& modelling_space)
+    : Host(name, run, attached),
       engines_(engines),
       modelling_space_(modelling_space),
-      dummy_distance_(modules::ModuleParams(registry, this->name()).get_double("dummy_distance")) {}
+      dummy_distance_(modules::ModuleParams(run.registry(), this->name()).get(kDummyDistance)) {}
 
 PolygonDescription PipelineHost::dummy(const Bounds& space, double distance, std::uint32_t id) {
   const double e = functional::scene_extent(space);

@@ -20,12 +20,11 @@ class PipelineHost final : public ullner::Host {
 
   /// `attached`: the chain's input register and its first link; `engines`: processors in the
   /// chain (spares get dummies); `description_time`: a polygon description on a link.
-  PipelineHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-               const scenes::Scene& scene, const shading::ShadeParams& shade,
-               functional::FrameState& frame, const ullner::HostAttachment& attached,
-               const RunOptions& opts, MachineTrace& trace,
-               const functional::SceneGeometry& geometry, modules::LatencyProbe& probe,
-               std::uint64_t engines, const Bounds& modelling_space);
+  PipelineHost(sc_core::sc_module_name name, MachineRun& run,
+               const ullner::HostAttachment& attached, std::uint64_t engines,
+               const Bounds& modelling_space);
+  /// The window of rays in flight a host with parameters `host` keeps (its attachment's).
+  static std::uint64_t rays_in_flight(const modules::ModuleParams& host);
 
   /// Descriptions the chain shifted back out during the load (its previous contents).
   std::uint64_t returned() const { return returned_; }

@@ -40,57 +40,68 @@ using modules::plus;
 using modules::times;
 using shading::TracedRay;
 
+// The VAX's parameters (vax.*), each named once.
+const modules::TimeParam kIntersectionTime(
+    {.name = "intersection_time",
+     .default_value = "429 us",
+     .description = "T_i: average time of one ray/object intersection calculation on the "
+                    "VAX-11/750 with FPU",
+     .source = "seed 001 L317"});
+const modules::TimeParam kRayTime(
+    {.name = "ray_time",
+     .default_value = "710 us",
+     .description = "T_s: average time to spawn (and shade) one ray on the VAX-11/750",
+     .source = "seed 001 L318"});
+const modules::ChoiceParam kSearch(
+    {.name = "search",
+     .default_value = "brute-force",
+     .allowed = {"brute-force", "shells"},
+     .description = "brute-force: every ray pays T_i for every object (the cost model of seed "
+                    "001 L320-L326); shells: the sequential C renderer with Gaudet's box-shell "
+                    "hierarchy, paying T_i per primitive tested and vax.box_test_time per shell "
+                    "box tested (the baseline of the PERT speed-ups, L964)",
+     .source = "seed 001 L320-L326, L964"});
+const modules::TimeParam kBoxTestTime(
+    {.name = "box_test_time",
+     .default_value = "429 us",
+     .description = "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search = shells)",
+     .source = "assumption: the thesis measured only T_i, the average intersection calculation "
+               "(L317); a slab test costs about as many floating-point operations as a sphere "
+               "test, so T_b = T_i"});
+/// The VAX host's name, and its parameters' path.
+constexpr const char* kVax = "vax";
+
 /// The VAX running the whole ray tracer in one process: each ray costs T_s to spawn and shade
 /// plus T_i for each object of the scene (brute force).
 class VaxHost : public modules::Processor {
  public:
   /// Its parameters under `vax`: T_i, T_s, the search it runs and T_b.
   static void declare_params(const modules::ParamDecls& vax) {
-    vax.time("intersection_time", "429 us",
-             "T_i: average time of one ray/object intersection calculation on "
-             "the VAX-11/750 with FPU",
-             "seed 001 L317");
-    vax.time("ray_time", "710 us",
-             "T_s: average time to spawn (and shade) one ray on the VAX-11/750", "seed 001 L318");
-    vax.declare({.name = "search",
-                 .kind = params::ParamKind::kString,
-                 .default_value = "brute-force",
-                 .allowed = {"brute-force", "shells"},
-                 .description =
-                     "brute-force: every ray pays T_i for every object (the cost model of "
-                     "seed 001 L320-L326); shells: the sequential C renderer with Gaudet's "
-                     "box-shell hierarchy, paying T_i per primitive tested and "
-                     "vax.box_test_time per shell box tested (the baseline of the PERT "
-                     "speed-ups, L964)",
-                 .source = "seed 001 L320-L326, L964"});
-    vax.time("box_test_time", "429 us",
-             "T_b: time of one ray/shell box test on the VAX-11/750 (vax.search "
-             "= shells)",
-             "assumption: the thesis measured only T_i, the average intersection "
-             "calculation (L317); a slab test costs about as many floating-point "
-             "operations as a sphere test, so T_b = T_i");
+    for (const auto* p : {&kIntersectionTime, &kRayTime, &kBoxTestTime}) vax.add(*p);
+    vax.add(kSearch);
+  }
+  /// Whether the run's VAX searches with Gaudet's shells (else brute force).
+  static bool shells(const params::ParamRegistry& registry) {
+    return modules::ModuleParams(registry, kVax).get(kSearch) == "shells";
   }
 
   SC_HAS_PROCESS(VaxHost);
-  /// Reads its parameters under its name.
-  VaxHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-          const scenes::Scene& scene, const Tracer& tracer, functional::FrameState& frame,
-          const functional::RenderSettings& settings, std::uint64_t objects, const RunOptions& opts,
-          MachineTrace& trace, modules::LatencyProbe& probe)
-      : modules::Processor(name, trace),
-        scene_(scene),
-        tracer_(tracer),
-        frame_(frame),
-        settings_(settings),
-        params_(registry, this->name()),
-        ray_time_(params_.get_time("ray_time")),
-        test_time_(params_.get_time("intersection_time")),
-        box_time_(params_.get_time("box_test_time")),
-        brute_force_(params_.get_string("search") == "brute-force"),
+  /// The run's context; its parameters under its name.
+  VaxHost(sc_core::sc_module_name name, MachineRun& run, std::uint64_t objects)
+      : modules::Processor(name, run.trace()),
+        scene_(run.scene()),
+        tracer_(*run.twin().tracer),
+        frame_(run.frame()),
+        settings_(run.twin().settings),
+        params_(run.registry(), this->name()),
+        ray_time_(params_.get(kRayTime)),
+        test_time_(params_.get(kIntersectionTime)),
+        box_time_(params_.get(kBoxTestTime)),
+        brute_force_(!shells(run.registry())),
         objects_(objects),
-        opts_(opts),
-        probe_(probe),
-        probe_vax_(probe.stage(this->name())) {
+        opts_(run.options()),
+        probe_(run.probe()),
+        probe_vax_(probe_.stage(this->name())) {
     SC_THREAD(run);
   }
 
@@ -163,7 +174,7 @@ void Vax750::declare_params(params::ParamRegistry& r) const {
   // The VAX runs the ordinary software ray tracer: every render parameter is read.
   declare_common_params(r, {});
   // The VAX host, its only module, declares its own.
-  VaxHost::declare_params(modules::ParamDecls(r, "vax"));
+  VaxHost::declare_params(modules::ParamDecls(r, kVax));
 }
 
 FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
@@ -171,7 +182,7 @@ FunctionalTwin Vax750::make_twin(scenes::Scene& scene, const params::ParamRegist
   auto settings = functional::read_render_settings(r);
   // With shells, the VAX runs Gaudet's own search; brute force charges every object whatever
   // structure finds the answer (the image is the same).
-  if (r.get_string("vax.search") == "shells") settings.accel = functional::AccelKind::Shells;
+  if (VaxHost::shells(r)) settings.accel = functional::AccelKind::Shells;
   return make_functional_twin(scene, settings);
 }
 
@@ -180,21 +191,21 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
   MachineRun run(name(), scene, twin, r, opts);
   functional::FrameState& frame = run.frame();
   const std::uint64_t objects = scene.primitives.size();
-  VaxHost host("vax", r, scene, *twin.tracer, frame, twin.settings, objects, opts, run.trace(),
-               run.probe());
+  VaxHost host(kVax, run, objects);
   inject_faults(name(), opts.faults, {});  // its answers come from no memory words
   run.simulate();
 
   run.stats_over(sc_core::SC_ZERO_TIME, host.frame_time());
   nlohmann::ordered_json& res = run.machine_stats();
   // Brute force on the VAX: every ray is tested against every object (seed 001 L324).
-  const bool brute = r.get_string("vax.search") == "brute-force";
+  const bool brute = !VaxHost::shells(r);
+  const modules::ModuleParams vax(r, kVax);
   if (brute) res["intersection_tests"] = frame.counters().total_rays() * objects;
   res["vax"] = {
       {"objects", objects},
-      {"intersection_time_s", r.get_time_s("vax.intersection_time")},
-      {"ray_time_s", r.get_time_s("vax.ray_time")},
-      {"search", r.get_string("vax.search")},
+      {"intersection_time_s", vax.get(kIntersectionTime).to_seconds()},
+      {"ray_time_s", vax.get(kRayTime).to_seconds()},
+      {"search", vax.get(kSearch)},
       {"intersection_tests_charged",
        brute ? static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)
              : static_cast<double>(frame.counters().intersection_tests)},
