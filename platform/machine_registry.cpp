@@ -8,6 +8,7 @@
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 #include "platform/functional/render_params.hpp"
+#include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform {
 namespace {
@@ -66,16 +67,7 @@ const Machine& find_machine(const std::string& name) {
 
 void declare_common_params(params::ParamRegistry& r, const functional::RenderParamUse& use) {
   functional::declare_render_params(r, use);
-  r.declare({.name = "quantum",
-             .kind = params::ParamKind::kTime,
-             .default_value = "0 s",
-             .min = "0 s",
-             .max = "1 s",
-             .description = "Global TLM quantum: how far a thread may run ahead of simulated "
-                            "time. 0 is the reference setting (every interaction in time "
-                            "order); larger values run faster at a measured frame-time error "
-                            "(docs/quantum.md)",
-             .source = "assumption: TLM-2.0 loosely-timed coding style"});
+  declare_quantum_param(r);
 }
 
 }  // namespace rtsim::platform

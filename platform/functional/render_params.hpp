@@ -1,6 +1,7 @@
 #pragma once
 // The parameters of the functional renderer and of the shading model, declared in the registry
 // so they can be set from a config file or with -p, and listed by `rtsim list params`.
+#include <cstdint>
 #include <string>
 
 #include "firmware/shading/shade_params.hpp"
@@ -54,5 +55,7 @@ void declare_render_params(params::ParamRegistry& registry, const RenderParamUse
 /// Reads the declared ones; an undeclared group keeps RenderSettings' default (the machine that
 /// left it out sets that field itself).
 RenderSettings read_render_settings(const params::ParamRegistry& registry);
+/// scene.seed alone (the scene is generated before any twin is made).
+std::uint64_t read_scene_seed(const params::ParamRegistry& registry);
 
 }  // namespace rtsim::functional

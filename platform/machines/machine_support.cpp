@@ -5,6 +5,7 @@
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
+#include "modules/module_params.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/auto_view.hpp"
 #include "platform/functional/scene_tracer.hpp"
@@ -41,8 +42,23 @@ void require_surviving_primitives(const std::string& machine, const scenes::Scen
           "), so " + what_is_empty + "; `rtsim render` and vax-750 draw the empty scene");
 }
 
+namespace {
+const modules::TimeParam kQuantum(
+    {.name = "quantum",
+     .default_value = "0 s",
+     .max = "1 s",
+     .description = "Global TLM quantum: how far a thread may run ahead of simulated time. 0 is "
+                    "the reference setting (every interaction in time order); larger values run "
+                    "faster at a measured frame-time error (docs/quantum.md)",
+     .source = "assumption: TLM-2.0 loosely-timed coding style"});
+}  // namespace
+
+void declare_quantum_param(params::ParamRegistry& r) {
+  modules::ParamDecls(r, "", false).add(kQuantum);
+}
+
 void begin_simulation(const params::ParamRegistry& r) {
-  tlm::tlm_global_quantum::instance().set(modules::from_ps(r.get_time_ps("quantum")));
+  tlm::tlm_global_quantum::instance().set(modules::ModuleParams(r, "").get(kQuantum));
 }
 
 void require_polygons(const std::string& machine, const scenes::Scene& scene) {

@@ -21,6 +21,8 @@ void require_surviving_primitives(const std::string& machine, const scenes::Scen
 
 /// Sets the global TLM quantum from the parameter `quantum`. Call before building modules.
 void begin_simulation(const params::ParamRegistry& registry);
+/// Declares `quantum`, the TLM global quantum begin_simulation sets (every machine's).
+void declare_quantum_param(params::ParamRegistry& registry);
 
 /// Elaboration: injects `faults` into the named ones of `memories` (the memories whose words
 /// the machine's answers are computed from). A fault naming another memory, or a word past the

@@ -9,16 +9,34 @@
 
 namespace rtsim::platform::gaudet {
 
+namespace {
+
+// A broadcast bus's parameters (broadcast.*, per bus), each named once.
+const modules::TimeParam kIdTime(
+    {.name = "id_time",
+     .default_value = "1000 ns",
+     .description = "Broadcast Processor: time to broadcast an ID and sample the hit line",
+     .source = "seed 001 L959"});
+const modules::TimeParam kPacketOverhead(
+    {.name = "packet_overhead",
+     .default_value = "800 ns",
+     .description = "Broadcast Processor: overhead of sending a packet",
+     .source = "seed 001 L960"});
+const modules::TimeParam kWordTime(
+    {.name = "word_time",
+     .default_value = "400 ns",
+     .description = "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
+     .source = "seed 001 L883, L961"});
+const modules::TimeParam kLoopReset(
+    {.name = "loop_reset",
+     .default_value = "400 ns",
+     .description = "Broadcast Processor: time to reset the loop at the end of the ID list",
+     .source = "seed 001 L962"});
+
+}  // namespace
+
 void BroadcastProcessor::declare_params(const modules::ParamDecls& bus) {
-  bus.time("id_time", "1000 ns",
-           "Broadcast Processor: time to broadcast an ID and sample the hit line", "seed 001 L959");
-  bus.time("packet_overhead", "800 ns", "Broadcast Processor: overhead of sending a packet",
-           "seed 001 L960");
-  bus.time("word_time", "400 ns", "Broadcast bus: time of one 32-bit packet word (2 BP cycles)",
-           "seed 001 L883, L961");
-  bus.time("loop_reset", "400 ns",
-           "Broadcast Processor: time to reset the loop at the end of the ID list",
-           "seed 001 L962");
+  for (const auto* p : {&kIdTime, &kPacketOverhead, &kWordTime, &kLoopReset}) bus.add(*p);
 }
 
 BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
@@ -30,10 +48,10 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
       // The BP streams its memory (L875): the loop's timings already include the reads, so a
       // read costs no extra time here.
       memory("memory", memory_words, 1, load_word_time, sc_core::SC_ZERO_TIME),
-      timing_{.id_slot = params.get_time("id_time"),
-              .packet_overhead = params.get_time("packet_overhead"),
-              .word_time = params.get_time("word_time"),
-              .loop_reset = params.get_time("loop_reset")},
+      timing_{.id_slot = params.get(kIdTime),
+              .packet_overhead = params.get(kPacketOverhead),
+              .word_time = params.get(kWordTime),
+              .loop_reset = params.get(kLoopReset)},
       adaptive_(adaptive) {
   // A pass through the ID list that sends nothing must take time, or the loop never gets past
   // a moment (it ran for ever before this check).
@@ -41,15 +59,15 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
       timing_.packet_overhead > sc_core::SC_ZERO_TIME || timing_.word_time > sc_core::SC_ZERO_TIME;
   if (timing_.id_slot == sc_core::SC_ZERO_TIME && timing_.loop_reset == sc_core::SC_ZERO_TIME &&
       (adaptive_ || !sends_take_time)) {
-    std::string names = params.path();
-    names += ".id_time and ";
-    names += params.path();
-    names += ".loop_reset";
-    throw InputError(
-        names, 0,
-        "both are 0 s: a cycle through the ID list with nothing to send would take no "
-        "time, and the Broadcast Processor would never get past its first moment; give "
-        "either a time (defaults 1000 ns and 400 ns, seed 001 L959 and L962)");
+    std::string names = params.path_of(kIdTime.name());
+    names += " and ";
+    names += params.path_of(kLoopReset.name());
+    throw InputError(names, 0,
+                     "both are 0 s: a cycle through the ID list with nothing to send would take "
+                     "no time, and the Broadcast Processor would never get past its first moment; "
+                     "give either a time (defaults " +
+                         kIdTime.spec().default_value + " and " + kLoopReset.spec().default_value +
+                         ", seed 001 L959 and L962)");
   }
   SC_THREAD(run);
 }

@@ -13,16 +13,16 @@ void BusInterface::declare_params(const modules::ParamDecls& bic, const IdRegist
   const std::size_t end = path.rfind('.');
   const std::size_t begin = path.rfind('.', end - 1) + 1;
   const std::string kind = path.substr(begin, end - begin);
-  bic.count("buffers", "2", "1", "64", "buffers",
+  bic.count(kBuffers, "2", "1", "64", "buffers",
             "FIFO packet buffers of the " + kind + " processor's BIC",
             "seed 001 L924 (double buffer)");
-  bic.count("id_registers", id_registers.value, "1", "4096", "registers", id_registers.description,
+  bic.count(kIdRegisters, id_registers.value, "1", "4096", "registers", id_registers.description,
             id_registers.source);
 }
 
 void BusInterface::declare_stream_param(const modules::ParamDecls& bic, std::string value,
                                         std::string source) {
-  bic.declare({.name = "stream",
+  bic.declare({.name = kStream,
                .kind = params::ParamKind::kBool,
                .default_value = std::move(value),
                .description = "The processor reads a packet's records as they stream into the "
@@ -33,10 +33,10 @@ void BusInterface::declare_stream_param(const modules::ParamDecls& bic, std::str
 
 BusInterface::BusInterface(const modules::ModuleParams& params, std::uint32_t stream_unit_words)
     : modules::StatGroup(params.path()),
-      registers_(std::max<std::size_t>(params.get_count("id_registers"), 1)),
-      buffers_(std::max<std::size_t>(params.get_count("buffers"), 1)),
-      stream_unit_words_(stream_unit_words > 0 && params.get_bool("stream") ? stream_unit_words
-                                                                            : 0) {}
+      registers_(std::max<std::size_t>(params.get_count(kIdRegisters), 1)),
+      buffers_(std::max<std::size_t>(params.get_count(kBuffers), 1)),
+      stream_unit_words_(stream_unit_words > 0 && params.get_bool(kStream) ? stream_unit_words
+                                                                           : 0) {}
 
 bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
   if (pending(id)) return true;  // the comparator matches it once for everyone who wants it

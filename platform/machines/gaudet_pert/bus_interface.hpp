@@ -45,6 +45,11 @@ class BusInterface final : public PacketPort, public modules::StatGroup {
   };
   /// Its parameters under `bic` ("pert.shell.bic"): `id_registers` and `buffers`.
   static void declare_params(const modules::ParamDecls& bic, const IdRegisters& id_registers);
+  /// Its parameters' names (each processor class gives its own defaults, so a name is the
+  /// constant here and the rest of its declaration is declare_params').
+  static constexpr const char* kBuffers = "buffers";
+  static constexpr const char* kIdRegisters = "id_registers";
+  static constexpr const char* kStream = "stream";
   /// `stream` under `bic`, for a processor that reads its packets record by record (the
   /// ShellProcessor): `value` "true" or "false", and why.
   static void declare_stream_param(const modules::ParamDecls& bic, std::string value,

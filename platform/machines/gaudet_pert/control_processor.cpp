@@ -12,15 +12,21 @@ namespace {
 constexpr std::size_t kLoadBurstWords = 256;
 }  // namespace
 
+namespace {
+const modules::TimeParam kLoadWordTime(
+    {.name = "load_word_time",
+     .default_value = "400 ns",
+     .description = "Control processor: time to download one word into a BP or PERT memory "
+                    "(before the frame; not part of the frame time)",
+     .source = "assumption: one bus word time (L883); the thesis gives no load rate"});
+}  // namespace
+
 void ControlProcessor::declare_params(const modules::ParamDecls& control) {
-  control.time("load_word_time", "400 ns",
-               "Control processor: time to download one word into a BP or PERT memory (before "
-               "the frame; not part of the frame time)",
-               "assumption: one bus word time (L883); the thesis gives no load rate");
+  control.add(kLoadWordTime);
 }
 
 sc_core::sc_time ControlProcessor::load_word_time(const modules::ModuleParams& control) {
-  return control.get_time("load_word_time");
+  return control.get(kLoadWordTime);
 }
 
 ControlProcessor::ControlProcessor(sc_core::sc_module_name name,

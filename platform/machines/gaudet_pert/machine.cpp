@@ -27,6 +27,79 @@
 
 namespace rtsim::platform {
 
+namespace {
+
+// The machine's own parameters, each named once: how many PERTs, how the data sets reach them,
+// the words of their records.
+const modules::CountParam kPertCount(
+    {.name = "pert_count",
+     .default_value = "1",
+     .min = "1",
+     .max = "1024",
+     .unit = "PERTs",
+     .description = "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
+     .source = "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)"});
+const modules::ChoiceParam kMode(
+    {.name = "broadcast.mode",
+     .default_value = "adaptive",
+     .allowed = {"adaptive", "non-adaptive", "direct"},
+     .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
+                    "non-adaptive: every packet every cycle; direct: no broadcast, every "
+                    "processor holds its whole data set",
+     .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
+const modules::ChoiceParam kOrder(
+    {.name = "broadcast.order",
+     .default_value = "breadth",
+     .allowed = {"breadth", "depth", "random"},
+     .description = "Order of the ID lists: SHELL packets breadth-first or depth-first over the "
+                    "hierarchy, or every data set shuffled",
+     .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
+const modules::CountParam kRandomSeed(
+    {.name = "broadcast.random_seed",
+     .default_value = "1985",
+     .min = "0",
+     .max = "9223372036854775807",
+     .description = "Seed of the shuffle of broadcast.order = random",
+     .source = "assumption: the thesis does not say how its random order was drawn"});
+
+const char* const kWordsSource =
+    "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); the "
+    "thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
+/// Words of one kind of record (data.words.*): at least `fewest`, the default.
+modules::CountParam words(const char* name, const char* fewest, const char* description,
+                          const std::string& source = kWordsSource) {
+  return modules::CountParam({.name = name,
+                              .default_value = fewest,
+                              .min = fewest,
+                              .max = "64",
+                              .unit = "words",
+                              .description = description,
+                              .source = source});
+}
+const modules::CountParam kIdListEntryWords =
+    words("id_list_entry", "3", "Words of an ID list entry {ID, address, size}",
+          std::string("seed 001 L877; ") + kWordsSource);
+const modules::CountParam kShellWords =
+    words("shell", "8", "Words of a SHELL record: leaf, child_index, max[3], min[3]");
+const modules::CountParam kPrimHeaderWords =
+    words("prim_header", "3", "Words of a PRIM record's header: prim_id, surface_index, type");
+const modules::CountParam kSphereWords =
+    words("sphere", "4", "Words of a sphere's PTYPE: centre[3], radius");
+const modules::CountParam kPolygonFixedWords = words(
+    "polygon_fixed", "1", "Words of a polygon's PTYPE besides its vertices: the vertex count");
+const modules::CountParam kPolygonVertexWords =
+    words("polygon_vertex", "3", "Words per polygon vertex");
+const modules::CountParam kShadeWords =
+    words("shade", "9", "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]");
+/// Where the words are declared and read.
+constexpr const char* kWords = "data.words";
+/// The module tree's classes: the buses, the control processor, the PERTs.
+constexpr const char* kBroadcast = "broadcast";
+constexpr const char* kControl = "control";
+constexpr const char* kPert = "pert";
+
+}  // namespace
+
 class GaudetPert final : public Machine {
  public:
   using Machine::Machine;
@@ -37,7 +110,7 @@ class GaudetPert final : public Machine {
                 const RunOptions& opts) const override;
   /// A sampled window spans every PERT: each takes every N-th scanline (L938).
   int sample_window_rows(const params::ParamRegistry& registry) const override {
-    return static_cast<int>(registry.get_int("pert_count"));
+    return static_cast<int>(modules::ModuleParams(registry, "").get(kPertCount));
   }
 };
 
@@ -51,15 +124,18 @@ namespace {
 constexpr const char* kKinds[] = {"shade", "shell", "prim"};
 
 accel::RecordWords read_words(const params::ParamRegistry& r) {
+  const modules::ModuleParams p(r, kWords);
+  const auto u = [&p](const modules::CountParam& n) {
+    return static_cast<std::uint32_t>(p.get(n));
+  };
   accel::RecordWords w;
-  auto u = [&r](const char* n) { return static_cast<std::uint32_t>(r.get_int(n)); };
-  w.id_list_entry = u("data.words.id_list_entry");
-  w.shell = u("data.words.shell");
-  w.prim_header = u("data.words.prim_header");
-  w.sphere = u("data.words.sphere");
-  w.polygon_fixed = u("data.words.polygon_fixed");
-  w.polygon_per_vertex = u("data.words.polygon_vertex");
-  w.shade = u("data.words.shade");
+  w.id_list_entry = u(kIdListEntryWords);
+  w.shell = u(kShellWords);
+  w.prim_header = u(kPrimHeaderWords);
+  w.sphere = u(kSphereWords);
+  w.polygon_fixed = u(kPolygonFixedWords);
+  w.polygon_per_vertex = u(kPolygonVertexWords);
+  w.shade = u(kShadeWords);
   return w;
 }
 
@@ -200,53 +276,22 @@ void GaudetPert::declare_params(params::ParamRegistry& r) const {
   // The machine's own: how many PERTs, how the data sets reach them, the words of their
   // records. Every module declares its own below (DESIGN.md "Configuration").
   const modules::ParamDecls machine(r, "", /*per_instance=*/false);
-  machine.count("pert_count", "1", "1", "1024", "PERTs",
-                "Number of PERTs (rings of Shade, Shell and Prim processors) in parallel",
-                "seed 001 L841, L1103 (1 to 8 and beyond in Figs. 6-12..6-14)");
-  machine.declare(
-      {.name = "broadcast.mode",
-       .kind = ParamKind::kString,
-       .default_value = "adaptive",
-       .allowed = {"adaptive", "non-adaptive", "direct"},
-       .description = "adaptive: a packet is sent only if some BIC raised the hit line; "
-                      "non-adaptive: every packet every cycle; direct: no broadcast, "
-                      "every processor holds its whole data set",
-       .source = "seed 001 L835-L837 (adaptive), L1047, L806 and L1103 (direct memory)"});
-  machine.declare({.name = "broadcast.order",
-                   .kind = ParamKind::kString,
-                   .default_value = "breadth",
-                   .allowed = {"breadth", "depth", "random"},
-                   .description = "Order of the ID lists: SHELL packets breadth-first or "
-                                  "depth-first over the hierarchy, or every data set shuffled",
-                   .source = "seed 001 L1019 (Fig. 6-11: breadth-first best)"});
-  machine.count("broadcast.random_seed", "1985", "0", "9223372036854775807", "",
-                "Seed of the shuffle of broadcast.order = random",
-                "assumption: the thesis does not say how its random order was drawn");
-  const std::string words_src =
-      "assumption: 32-bit words, one per int or float, COORD and RGB 3 words (note 001 §6.2); "
-      "the thesis gives the structs (Figs. 4-3, 4-5, 4-7) but no sizes";
-  const modules::ParamDecls words(r, "data.words", /*per_instance=*/false);
-  words.count("id_list_entry", "3", "3", "64", "words",
-              "Words of an ID list entry {ID, address, size}", "seed 001 L877; " + words_src);
-  words.count("shell", "8", "8", "64", "words",
-              "Words of a SHELL record: leaf, child_index, max[3], min[3]", words_src);
-  words.count("prim_header", "3", "3", "64", "words",
-              "Words of a PRIM record's header: prim_id, surface_index, type", words_src);
-  words.count("sphere", "4", "4", "64", "words", "Words of a sphere's PTYPE: centre[3], radius",
-              words_src);
-  words.count("polygon_fixed", "1", "1", "64", "words",
-              "Words of a polygon's PTYPE besides its vertices: the vertex count", words_src);
-  words.count("polygon_vertex", "3", "3", "64", "words", "Words per polygon vertex", words_src);
-  words.count("shade", "9", "9", "64", "words",
-              "Words of a SHADE record: k_s, k_d, n, reflectance[3], transmittance[3]", words_src);
+  machine.add(kPertCount);
+  machine.add(kMode);
+  machine.add(kOrder);
+  machine.add(kRandomSeed);
+  const modules::ParamDecls words(r, kWords, /*per_instance=*/false);
+  for (const auto* w : {&kIdListEntryWords, &kShellWords, &kPrimHeaderWords, &kSphereWords,
+                        &kPolygonFixedWords, &kPolygonVertexWords, &kShadeWords})
+    words.add(*w);
 
   // The module tree: the buses (every bus's timing set by broadcast.*, one bus's by its name),
   // the control processor and the PERTs (pert.* sets every PERT's, pert3.* one's).
-  r.declare_family({.cls = "broadcast", .members = {"shade_bus", "shell_bus", "prim_bus"}});
-  gaudet::BroadcastProcessor::declare_params(machine.sub("broadcast"));
-  gaudet::ControlProcessor::declare_params(machine.sub("control"));
-  r.declare_family({.cls = "pert", .count_param = "pert_count"});
-  gaudet::Pert::declare_params(machine.sub("pert"));
+  r.declare_family({.cls = kBroadcast, .members = {"shade_bus", "shell_bus", "prim_bus"}});
+  gaudet::BroadcastProcessor::declare_params(machine.sub(kBroadcast));
+  gaudet::ControlProcessor::declare_params(machine.sub(kControl));
+  r.declare_family({.cls = kPert, .count_param = kPertCount.name()});
+  gaudet::Pert::declare_params(machine.sub(kPert));
 }
 
 FunctionalTwin GaudetPert::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
@@ -283,10 +328,11 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   MachineTrace& trace = run.trace();
   const int w = run.width(), h = run.height();
   PertPlatform p;
-  p.mode = gaudet::broadcast_mode(r.get_string("broadcast.mode"));
-  p.order = gaudet::broadcast_order(r.get_string("broadcast.order"));
-  const int pert_count = static_cast<int>(r.get_int("pert_count"));
-  const auto order_seed = static_cast<std::uint64_t>(r.get_int("broadcast.random_seed"));
+  const modules::ModuleParams machine(r, "");
+  p.mode = gaudet::broadcast_mode(machine.get(kMode));
+  p.order = gaudet::broadcast_order(machine.get(kOrder));
+  const int pert_count = static_cast<int>(machine.get(kPertCount));
+  const auto order_seed = static_cast<std::uint64_t>(machine.get(kRandomSeed));
   const auto* search = dynamic_cast<const functional::ShellSearch*>(twin.tracer.get());
   if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
   const accel::ShellTree& tree = search->tree();
@@ -319,7 +365,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   gaudet::RayProbe probe(run.probe());
   if (p.broadcasting()) {
     const sc_core::sc_time load_word_time =
-        gaudet::ControlProcessor::load_word_time(modules::ModuleParams(r, "control"));
+        gaudet::ControlProcessor::load_word_time(modules::ModuleParams(r, kControl));
     for (int b = 0; b < 3; ++b) {
       const std::string bus_name = std::string(kKinds[b]) + "_bus";
       auto bp = std::make_unique<gaudet::BroadcastProcessor>(
@@ -347,14 +393,14 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (auto& bp : p.buses) context.buses.push_back(bp.get());
   for (int i = 0; i < pert_count; ++i)
     p.perts.push_back(
-        std::make_unique<gaudet::Pert>(("pert" + std::to_string(i)).c_str(), i, context));
+        std::make_unique<gaudet::Pert>((kPert + std::to_string(i)).c_str(), i, context));
   const std::vector<const gaudet::DataSetImage*> loaded(std::begin(set_of), std::end(set_of));
   std::vector<gaudet::ShadeProcessor*> shade_ptrs;
   for (auto& pert : p.perts) shade_ptrs.push_back(pert->shade.get());
   // Globals for spawning rays (L928): the camera (eye, look, up, angle, resolution: 12 words),
   // and per light its position and intensity (6 words).
   const std::uint64_t globals = 12 + 6 * scene.lights.size();
-  p.control = std::make_unique<gaudet::ControlProcessor>("control", r, context.buses, loaded,
+  p.control = std::make_unique<gaudet::ControlProcessor>(kControl, r, context.buses, loaded,
                                                          globals, shade_ptrs);
   // The Shell and Prim processors test the SHELL and PRIM records their packets carry: a fault
   // in those buses' memories reaches the image. (The SHADE records are not yet read from their

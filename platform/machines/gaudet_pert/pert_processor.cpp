@@ -27,7 +27,7 @@ void PertProcessor::declare_params(const modules::ParamDecls& processor,
        .source = "seed 001 L951 (5 MHz SJ16), L859 (Weitek FPU > 2.78 Mflops), L863 and L924 "
                  "(one cycle a streamed or FIFO word); cycles per FP operation calibrated on "
                  "Fig. 6-10 (L1025-L1030), same for the three processors (same hardware)"});
-  BusInterface::declare_params(processor.sub("bic"), id_registers);
+  BusInterface::declare_params(processor.sub(kBic), id_registers);
 }
 
 PertProcessor::PertProcessor(const sc_core::sc_module_name& name,

@@ -47,6 +47,8 @@ class PertProcessor : public modules::Processor {
  public:
   /// The parameters every kind has, under `processor` ("pert.shade"): the SJ16's clock and
   /// cycles per operation (the same hardware in all three, L853-L863) and its BIC's.
+  /// Its bus interface chip, under its name (and its parameters' path).
+  static constexpr const char* kBic = "bic";
   static void declare_params(const modules::ParamDecls& processor,
                              const BusInterface::IdRegisters& id_registers);
 

@@ -31,7 +31,7 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRe
       // broadcast order, not t order, so with one buffer a second packet could take the only
       // buffer while the ray waits for the first, for ever.
       ahead_(std::max<std::size_t>(
-          1, std::min<std::size_t>(2, params_.sub("bic").get_count("buffers")))),
+          1, std::min<std::size_t>(2, params_.sub(kBic).get_count(BusInterface::kBuffers)))),
       counters_(counters) {
   SC_THREAD(run);
 }

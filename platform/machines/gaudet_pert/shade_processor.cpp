@@ -4,17 +4,26 @@
 
 namespace rtsim::platform::gaudet {
 
+namespace {
+const modules::CountParam kRaysInFlight(
+    {.name = "rays_in_flight",
+     .default_value = "4",
+     .min = "1",
+     .max = "100000",
+     .unit = "initial rays",
+     .description = "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every "
+                    "ray it spawns)",
+     .source = "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
+               "(L738-L742) but a pipeline of three needs several in flight; see "
+               "docs/machines.md"});
+}  // namespace
+
 void ShadeProcessor::declare_params(const modules::ParamDecls& shade) {
   PertProcessor::declare_params(
       shade, {.value = "4",
               .description = "ID registers of the ShadeProcessor's BIC",
               .source = "assumption: \"multiple\" (L910); Shade puts at most one ID per ray"});
-  shade.count("rays_in_flight", "4", "1", "100000", "initial rays",
-              "Initial rays a ShadeProcessor keeps in its PERT at a time (each with every ray "
-              "it spawns)",
-              "assumption: Fig. 4-8 spawns a pixel's ray when the previous pixel is finished "
-              "(L738-L742) but a pipeline of three needs several in flight; see "
-              "docs/machines.md");
+  shade.add(kRaysInFlight);
 }
 
 ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
@@ -29,7 +38,7 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::Param
       port_(port),
       task_(*shared.scene, shared.shade),
       y_(pert),
-      outstanding_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1), 0) {
+      outstanding_(std::max<std::size_t>(params_.get(kRaysInFlight), 1), 0) {
   for (std::size_t i = outstanding_.size(); i-- > 0;)
     free_trees_.push_back(static_cast<std::uint32_t>(i));
   SC_THREAD(run);

@@ -5,6 +5,26 @@
 
 namespace rtsim::platform::gaudet {
 
+namespace {
+const modules::CountParam kRaysInFlight(
+    {.name = "rays_in_flight",
+     .default_value = "1",
+     .min = "1",
+     .max = "100000",
+     .unit = "rays",
+     .description = "Rays a ShellProcessor searches at a time",
+     .source = "assumption: not stated (note 001 §6.4); one, as \"no parallelism until the first "
+               "packet is retrieved\" (L1060) suggests, brings Figs. 6-10 and 6-11 nearest the "
+               "thesis (scripts/gaudet_sensitivity.py, docs/validation.md)"});
+const modules::FlagParam kRootLocal(
+    {.name = "root_local",
+     .default_value = "true",
+     .description = "The ShellProcessor holds packet 0 (the root's children) in its local memory "
+                    "and reads it there for every ray, not off the bus",
+     .source = "seed 001 L662 (every ray needs the root's children), L863 (the local memory "
+               "holds the globals)"});
+}  // namespace
+
 void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
   PertProcessor::declare_params(
       shell, {.value = "1",
@@ -14,20 +34,10 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
                         "\"may potentially overflow\" and stacks the overflow in its own "
                         "memory); 1 brings Fig. 6-10's latencies nearest the thesis's "
                         "(scripts/gaudet_sensitivity.py, docs/validation.md)"});
-  shell.count("rays_in_flight", "1", "1", "100000", "rays",
-              "Rays a ShellProcessor searches at a time",
-              "assumption: not stated (note 001 §6.4); one, as \"no parallelism until the first "
-              "packet is retrieved\" (L1060) suggests, brings Figs. 6-10 and 6-11 nearest the "
-              "thesis (scripts/gaudet_sensitivity.py, docs/validation.md)");
-  shell.declare({.name = "root_local",
-                 .kind = params::ParamKind::kBool,
-                 .default_value = "true",
-                 .description = "The ShellProcessor holds packet 0 (the root's children) in its "
-                                "local memory and reads it there for every ray, not off the bus",
-                 .source = "seed 001 L662 (every ray needs the root's children), L863 (the local "
-                           "memory holds the globals)"});
+  shell.add(kRaysInFlight);
+  shell.add(kRootLocal);
   BusInterface::declare_stream_param(
-      shell.sub("bic"), "true",
+      shell.sub(kBic), "true",
       "seed 001 L920 (the hit line sets the buffer to start copying), L924 (the buffers are "
       "FIFOs the SJ16 reads a word a cycle): a SHELL record is tested once its words are in");
 }
@@ -47,9 +57,9 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::Param
       record_words_(ShellProcessor::record_words(record_words)),
       port_(port),
       counters_(counters),
-      searches_(std::max<std::size_t>(params_.get_count("rays_in_flight"), 1)) {
+      searches_(std::max<std::size_t>(params_.get(kRaysInFlight), 1)) {
   // Loaded with the globals before the frame (L863): its time is not part of the frame.
-  root_local_ = params_.get_bool("root_local") && !packet_words_.empty();
+  root_local_ = params_.get(kRootLocal) && !packet_words_.empty();
   if (root_local_) local_root_.assign(root_packet.begin(), root_packet.end());
   SC_THREAD(run);
 }

@@ -25,6 +25,17 @@ std::size_t count_patches(const functional::SceneGeometry& g) {
 }
 }  // namespace
 
+namespace {
+const modules::CountParam kRaysInFlight(
+    {.name = "rays_in_flight",
+     .default_value = "4096",
+     .min = "1",
+     .max = "1000000",
+     .unit = "rays",
+     .description = "Rays the host keeps in flight (their jobs in the pipeline or waiting for it)",
+     .source = "assumption: enough to keep the pipeline's 56 jobs in flight busy"});
+}  // namespace
+
 void BezierHost::declare_params(const modules::ParamDecls& host) {
   modules::declare_processor_params(
       host, {.clock = "350 MHz",
@@ -36,42 +47,37 @@ void BezierHost::declare_params(const modules::ParamDecls& host) {
              .instruction = 1,
              .source = "assumption: the paper gives no host (note 002 §4); the 350 MHz "
                        "Pentium II on which it timed the blocks (seed 002 L274)"});
-  host.count("rays_in_flight", "4096", "1", "1000000", "rays",
-             "Rays the host keeps in flight (their jobs in the pipeline or waiting for it)",
-             "assumption: enough to keep the pipeline's 56 jobs in flight busy");
+  host.add(kRaysInFlight);
 }
 
-BezierHost::BezierHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                       const scenes::Scene& scene, const shading::ShadeParams& shade,
-                       functional::FrameState& frame,
-                       const modules::TimedFifo<PatchJob>& pipeline_input,
-                       const functional::SceneGeometry& geometry, const RunOptions& opts,
-                       MachineTrace& trace, modules::LatencyProbe& probe, ReferenceCheck* check)
-    : modules::Processor(name, trace),
+BezierHost::BezierHost(sc_core::sc_module_name name, MachineRun& run,
+                       const modules::TimedFifo<PatchJob>& pipeline_input, ReferenceCheck* check)
+    : modules::Processor(name, run.trace()),
       job_out("job_out"),
       results("result_queue", modules::TimedFifo<JobResult>::kUnbounded),
-      patch_memory("patch_memory", std::max<std::size_t>(1, count_patches(geometry)) * kNetWords,
+      patch_memory("patch_memory",
+                   std::max<std::size_t>(1, count_patches(*run.twin().geometry)) * kNetWords,
                    kNetWords, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
-      scene_(scene),
-      frame_(frame),
+      scene_(run.scene()),
+      frame_(run.frame()),
       pipeline_input_(pipeline_input),
-      geometry_(geometry),
-      opts_(opts),
-      probe_(probe),
+      geometry_(*run.twin().geometry),
+      opts_(run.options()),
+      probe_(run.probe()),
       // Named in the order a ray meets them.
-      probe_host_(probe.stage(this->name())),
-      probe_input_(probe.stage(pipeline_input.name())),
+      probe_host_(probe_.stage(this->name())),
+      probe_input_(probe_.stage(pipeline_input.name())),
       probe_pipeline_(
-          probe.stage(pipeline_input.name().substr(0, pipeline_input.name().rfind('.')))),
-      probe_results_(probe.stage(results.name())),
+          probe_.stage(pipeline_input.name().substr(0, pipeline_input.name().rfind('.')))),
+      probe_results_(probe_.stage(results.name())),
       check_(check),
-      shade_(scene, shade),
-      window_(modules::ModuleParams(registry, this->name()).get_count("rays_in_flight")),
+      shade_(run.scene(), run.twin().settings.shade),
+      window_(modules::ModuleParams(run.registry(), this->name()).get(kRaysInFlight)),
       memory_port_("memory_port") {
   memory_port_.bind(patch_memory.socket);
-  set_timing(modules::read_processor_timing(modules::ModuleParams(registry, this->name())));
-  for (std::uint32_t s = 0; s < geometry.shapes.size(); ++s)
-    if (std::holds_alternative<functional::PatchShape>(geometry.shapes[s].shape))
+  set_timing(modules::read_processor_timing(modules::ModuleParams(run.registry(), this->name())));
+  for (std::uint32_t s = 0; s < geometry_.shapes.size(); ++s)
+    if (std::holds_alternative<functional::PatchShape>(geometry_.shapes[s].shape))
       patch_slots_.push_back(s);
   SC_THREAD(run);
 }

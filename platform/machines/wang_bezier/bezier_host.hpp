@@ -24,6 +24,7 @@
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machine.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/wang_bezier/messages.hpp"
 #include "platform/machines/wang_bezier/reference_check.hpp"
@@ -41,11 +42,8 @@ class BezierHost : public modules::Processor {
   static void declare_params(const modules::ParamDecls& host);
 
   SC_HAS_PROCESS(BezierHost);
-  BezierHost(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-             const scenes::Scene& scene, const shading::ShadeParams& shade,
-             functional::FrameState& frame, const modules::TimedFifo<PatchJob>& pipeline_input,
-             const functional::SceneGeometry& geometry, const RunOptions& opts, MachineTrace& trace,
-             modules::LatencyProbe& probe, ReferenceCheck* check = nullptr);
+  BezierHost(sc_core::sc_module_name name, MachineRun& run,
+             const modules::TimedFifo<PatchJob>& pipeline_input, ReferenceCheck* check = nullptr);
 
   sc_core::sc_time frame_time() const { return frame_time_; }
   const modules::LatencyRecorder& latency() const { return latency_; }

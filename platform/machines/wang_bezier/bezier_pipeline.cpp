@@ -9,49 +9,112 @@ namespace rtsim::platform::wang_bezier {
 using modules::plus;
 using modules::times;
 
+namespace {
+
+// The pipeline's parameters (pipeline.*), each named once.
+const modules::TimeParam kCycleTime({.name = "cycle_time",
+                                     .default_value = "6 ns",
+                                     .description = "Clock period of the TMS320C6701 DSPs",
+                                     .source = "seed 002 L436"});
+
+/// A loop substage's pool of DSPs (Table 4): NAME.dsps and NAME.cycles, and the calls a job
+/// makes of it.
+struct Pool {
+  modules::CountParam dsps, cycles;
+  std::uint64_t units;
+  std::string name() const { return dsps.name().substr(0, dsps.name().find('.')); }
+};
+
+Pool pool(const std::string& name, const char* dsps, const char* cycles, std::uint64_t units,
+          const std::string& what, const char* source) {
+  return {modules::CountParam({.name = name + ".dsps",
+                               .default_value = dsps,
+                               .min = "1",
+                               .max = "100000",
+                               .unit = "DSPs",
+                               .description = "DSPs of the " + what + " substage",
+                               .source = source}),
+          modules::CountParam({.name = name + ".cycles",
+                               .default_value = cycles,
+                               .min = "1",
+                               .max = "1000000000",
+                               .unit = "cycles",
+                               .description = "DSP cycles of one call in the " + what + " substage",
+                               .source = source}),
+          units};
+}
+
+// A loop stage (Table 4): 4 patches split in u, their 8 halves in v, 16 subpatches x 2 planes
+// classified, 16 centres and distances, then the Culler.
+const Pool kSplitU = pool("split_u", "4", "182", 4, "SplitInHalf (u: 4 patches into 8 halves)",
+                          "seed 002 L437 (Table 4, substage 1)");
+const Pool kSplitV = pool("split_v", "8", "182", 8, "SplitInHalf (v: 8 halves into 16 subpatches)",
+                          "seed 002 L438 (Table 4, substage 2)");
+const Pool kHull = pool("hull", "32", "112", 32, "HullClassification (16 subpatches x 2 planes)",
+                        "seed 002 L439, L430 (112 cycles on one plane)");
+const Pool kCenterDistance =
+    pool("center_distance", "16", "130", 16, "PatchCenter + PatchDistance (16 subpatches)",
+         "seed 002 L440 (102 + 28 cycles, Table 3)");
+
+const modules::ChoiceParam kCullerKind(
+    {.name = "culler.kind",
+     .default_value = "asic",
+     .allowed = {"asic", "software"},
+     .description = "The Culler: the bitonic-network ASIC, or the software routine on one DSP "
+                    "(the implementation without custom hardware)",
+     .source = "seed 002 L302-L318, L432"});
+const modules::TimeParam kCullerDelay(
+    {.name = "culler.delay",
+     .default_value = "800 ns",
+     .description = "Delay of the Culler ASIC's 10-stage sorting network (not pipelined)",
+     .source = "seed 002 L318"});
+const modules::CountParam kCullerSoftwareCycles({.name = "culler.software_cycles",
+                                                 .default_value = "3081",
+                                                 .min = "1",
+                                                 .max = "1000000000",
+                                                 .unit = "cycles",
+                                                 .description = "DSP cycles of the software Culler",
+                                                 .source = "seed 002 L432 (Table 3)"});
+const modules::ChoiceParam kStage0Mapping(
+    {.name = "stage0.mapping",
+     .default_value = "split",
+     .allowed = {"split", "subdivider"},
+     .description = "Stage 0: SplitInHalf in u on 1 DSP then in v on 2, PlaneGenerator alongside "
+                    "(split), or PlaneGenerator and PatchSubdivider on one DSP (subdivider, 243 + "
+                    "36 cycles: the bottleneck)",
+     .source = "assumption: the paper gives no stage-0 mapping (note 002 §4.5); split keeps it "
+               "off the critical path"});
+const modules::CountParam kSubdividerCycles(
+    {.name = "stage0.subdivider_cycles",
+     .default_value = "243",
+     .min = "1",
+     .max = "1000000000",
+     .unit = "cycles",
+     .description = "DSP cycles of PatchSubdivider (Table 2's last step; the earlier ones: 11478, "
+                    "9018, 7803, 1284, 1257, 317)",
+     .source = "seed 002 L415-L427"});
+const modules::CountParam kPlaneCycles({.name = "stage0.plane_cycles",
+                                        .default_value = "36",
+                                        .min = "1",
+                                        .max = "1000000000",
+                                        .unit = "cycles",
+                                        .description = "DSP cycles of PlaneGenerator",
+                                        .source = "seed 002 L429 (Table 3)"});
+
+}  // namespace
+
 void BezierPipeline::declare_params(const modules::ParamDecls& p) {
-  p.time("cycle_time", "6 ns", "Clock period of the TMS320C6701 DSPs", "seed 002 L436");
-  const auto pool = [&](const std::string& name, const char* dsps, const char* cycles,
-                        const std::string& what, const std::string& source) {
-    p.count(name + ".dsps", dsps, "1", "100000", "DSPs", "DSPs of the " + what + " substage",
-            source);
-    p.count(name + ".cycles", cycles, "1", "1000000000", "cycles",
-            "DSP cycles of one call in the " + what + " substage", source);
-  };
-  pool("split_u", "4", "182", "SplitInHalf (u: 4 patches into 8 halves)",
-       "seed 002 L437 (Table 4, substage 1)");
-  pool("split_v", "8", "182", "SplitInHalf (v: 8 halves into 16 subpatches)",
-       "seed 002 L438 (Table 4, substage 2)");
-  pool("hull", "32", "112", "HullClassification (16 subpatches x 2 planes)",
-       "seed 002 L439, L430 (112 cycles on one plane)");
-  pool("center_distance", "16", "130", "PatchCenter + PatchDistance (16 subpatches)",
-       "seed 002 L440 (102 + 28 cycles, Table 3)");
-  p.declare({.name = "culler.kind",
-             .kind = params::ParamKind::kString,
-             .default_value = "asic",
-             .allowed = {"asic", "software"},
-             .description = "The Culler: the bitonic-network ASIC, or the software routine on "
-                            "one DSP (the implementation without custom hardware)",
-             .source = "seed 002 L302-L318, L432"});
-  p.time("culler.delay", "800 ns",
-         "Delay of the Culler ASIC's 10-stage sorting network (not pipelined)", "seed 002 L318");
-  p.count("culler.software_cycles", "3081", "1", "1000000000", "cycles",
-          "DSP cycles of the software Culler", "seed 002 L432 (Table 3)");
-  p.declare({.name = "stage0.mapping",
-             .kind = params::ParamKind::kString,
-             .default_value = "split",
-             .allowed = {"split", "subdivider"},
-             .description = "Stage 0: SplitInHalf in u on 1 DSP then in v on 2, PlaneGenerator "
-                            "alongside (split), or PlaneGenerator and PatchSubdivider on one DSP "
-                            "(subdivider, 243 + 36 cycles: the bottleneck)",
-             .source = "assumption: the paper gives no stage-0 mapping (note 002 §4.5); "
-                       "split keeps it off the critical path"});
-  p.count("stage0.subdivider_cycles", "243", "1", "1000000000", "cycles",
-          "DSP cycles of PatchSubdivider (Table 2's last step; the earlier ones: 11478, 9018, "
-          "7803, 1284, 1257, 317)",
-          "seed 002 L415-L427");
-  p.count("stage0.plane_cycles", "36", "1", "1000000000", "cycles", "DSP cycles of PlaneGenerator",
-          "seed 002 L429 (Table 3)");
+  p.add(kCycleTime);
+  for (const Pool* pool : {&kSplitU, &kSplitV, &kHull, &kCenterDistance}) {
+    p.add(pool->dsps);
+    p.add(pool->cycles);
+  }
+  p.add(kCullerKind);
+  p.add(kCullerDelay);
+  p.add(kCullerSoftwareCycles);
+  p.add(kStage0Mapping);
+  p.add(kSubdividerCycles);
+  p.add(kPlaneCycles);
 }
 
 BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
@@ -62,25 +125,22 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
       result_out("result_out"),
       loop_stages_(loop_stages) {
   const modules::ModuleParams p(r, this->name());
-  const sc_core::sc_time t = p.get_time("cycle_time");
-  const auto substage = [&](const std::string& n, std::uint64_t units) {
+  const sc_core::sc_time t = p.get(kCycleTime);
+  const auto substage = [&](const Pool& pool) {
     Substage s;
-    s.name = n;
-    s.dsps = static_cast<unsigned>(p.get_count(n + ".dsps"));
-    s.units = units;
-    s.cycles = p.get_count(n + ".cycles");
-    s.time = times(t, ((units + s.dsps - 1) / s.dsps) * s.cycles);
+    s.name = pool.name();
+    s.dsps = static_cast<unsigned>(p.get(pool.dsps));
+    s.units = pool.units;
+    s.cycles = p.get(pool.cycles);
+    s.time = times(t, ((s.units + s.dsps - 1) / s.dsps) * s.cycles);
     return s;
   };
-  // A loop stage (Table 4): 4 patches split in u, their 8 halves in v, 16 subpatches x 2
-  // planes classified, 16 centres and distances, then the Culler.
-  loop_ = {substage("split_u", 4), substage("split_v", 8), substage("hull", 32),
-           substage("center_distance", 16)};
+  loop_ = {substage(kSplitU), substage(kSplitV), substage(kHull), substage(kCenterDistance)};
   Substage culler;
   culler.name = "culler";
-  const sc_core::sc_time asic_delay = p.get_time("culler.delay");
-  const std::uint64_t software_cycles = p.get_count("culler.software_cycles");
-  if (p.get_string("culler.kind") == "asic") {
+  const sc_core::sc_time asic_delay = p.get(kCullerDelay);
+  const std::uint64_t software_cycles = p.get(kCullerSoftwareCycles);
+  if (p.get(kCullerKind) == "asic") {
     culler.time = asic_delay;
   } else {
     culler.dsps = 1;
@@ -90,10 +150,10 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   }
   loop_.push_back(culler);
   // Stage 0 (L284): the first split and the planes.
-  const std::uint64_t plane = p.get_count("stage0.plane_cycles");
-  const std::uint64_t subdivider = p.get_count("stage0.subdivider_cycles");
-  if (p.get_string("stage0.mapping") == "split") {
-    const std::uint64_t half = p.get_count("split_u.cycles");
+  const std::uint64_t plane = p.get(kPlaneCycles);
+  const std::uint64_t subdivider = p.get(kSubdividerCycles);
+  if (p.get(kStage0Mapping) == "split") {
+    const std::uint64_t half = p.get(kSplitU.cycles);
     stage0_ = {
         Substage{"stage0.split_u", 1, 1, std::max(half, plane), times(t, std::max(half, plane))},
         Substage{"stage0.split_v", 2, 2, half, times(t, half)}};

@@ -8,6 +8,7 @@
 #include <systemc>
 
 #include "firmware/shading/camera.hpp"
+#include "modules/module_params.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
@@ -26,24 +27,30 @@ class WangBezier final : public Machine {
                 const RunOptions& opts) const override;
 };
 
+namespace {
+const modules::FlagParam kAccuracyCheck(
+    {.name = "accuracy.check",
+     .default_value = "false",
+     .description = "Check every answer of the pipeline against the double-precision reference "
+                    "solver on the same job: hit/miss disagreement and hit-point error in patch "
+                    "sizes, per job and per primary ray, in stats.json wang.accuracy. Costs wall "
+                    "time (on the teapot a run takes about 1.5 times as long); changes neither "
+                    "the image nor the timing",
+     .source = "assumption: the paper compared with Bezier clipping and printed no number (seed "
+               "002 L264-L266); the trade-off of stage count against accuracy"});
+/// The module tree: the host and the pipeline (their names and their parameters' paths).
+constexpr const char* kHost = "host";
+constexpr const char* kPipeline = "pipeline";
+}  // namespace
+
 void WangBezier::declare_params(params::ParamRegistry& r) const {
   // Its twin is the functional renderer's brute-force search (every pair the host does not cull
   // goes through the pipeline) with Wang's kernel for patches and the host's kernel for the rest.
   declare_common_params(r,
                         {.accel = false, .shells = false, .polygon_kernel = true, .bezier = true});
-  wang_bezier::BezierHost::declare_params(modules::ParamDecls(r, "host"));
-  wang_bezier::BezierPipeline::declare_params(modules::ParamDecls(r, "pipeline"));
-  r.declare({.name = "accuracy.check",
-             .kind = params::ParamKind::kBool,
-             .default_value = "false",
-             .description = "Check every answer of the pipeline against the double-precision "
-                            "reference solver on the same job: hit/miss disagreement and hit-point "
-                            "error in patch sizes, per job and per primary ray, in stats.json "
-                            "wang.accuracy. Costs wall time (on the teapot a run takes about 1.5 "
-                            "times as long); changes neither the image nor the timing",
-             .source =
-                 "assumption: the paper compared with Bezier clipping and printed no "
-                 "number (seed 002 L264-L266); the trade-off of stage count against accuracy"});
+  wang_bezier::BezierHost::declare_params(modules::ParamDecls(r, kHost));
+  wang_bezier::BezierPipeline::declare_params(modules::ParamDecls(r, kPipeline));
+  modules::ParamDecls(r, "", false).add(kAccuracyCheck);
 }
 
 FunctionalTwin WangBezier::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
@@ -57,9 +64,9 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   using wang_bezier::BezierHost;
   using wang_bezier::BezierPipeline;
   MachineRun run(name(), scene, twin, r, opts);
-  BezierPipeline pipeline("pipeline", r, twin.settings.bezier_iterations);
+  BezierPipeline pipeline(kPipeline, r, twin.settings.bezier_iterations);
   std::optional<wang_bezier::ReferenceCheck> check;
-  if (r.get_bool("accuracy.check")) {
+  if (modules::ModuleParams(r, "").get(kAccuracyCheck)) {
     // The angle between the primary rays of two neighbouring pixels at the image's centre.
     const int w = run.frame().width(), h = run.frame().height();
     const shading::PinholeCamera camera(scene.camera, w, h);
@@ -68,8 +75,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
     const double pixel_angle = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(b - a)));
     check.emplace(*twin.geometry, twin.settings.bezier_iterations, pixel_angle);
   }
-  BezierHost host("host", r, scene, twin.settings.shade, run.frame(), pipeline.input.fifo,
-                  *twin.geometry, opts, run.trace(), run.probe(), check ? &*check : nullptr);
+  BezierHost host(kHost, run, pipeline.input.fifo, check ? &*check : nullptr);
   host.job_out.bind(pipeline.input.socket);
   inject_faults(name(), opts.faults, {&host.patch_memory});
   pipeline.result_out.bind(host.results.socket);
