@@ -10,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 #include "modules/sim_time.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace rtsim::app {
 namespace {
@@ -135,6 +136,7 @@ int run_cli(int argc, char** argv) {
       "run",
       "Run a machine model: SystemC/TLM-2.0 modules with annotated timing render one\n"
       "frame; writes the image, stats.json (frame time, utilisation, latency) and traces.");
+  runa.machine = platform::default_machine().name();
   run->add_option("--machine", runa.machine, "Machine (`rtsim list machines`)")
       ->capture_default_str();
   run->add_option("--scene", runa.scene, "Scene file (.nff, .bpt) or builtin:NAME")

@@ -25,7 +25,7 @@ struct RenderArgs {
 };
 
 struct RunArgs {
-  std::string machine = "ullner-peripheral";
+  std::string machine;  ///< --machine; the CLI starts it at the registry's default machine
   std::string scene = "builtin:ullner-cubes";
   std::string out_dir = "out/run";
   int width = 0;

@@ -115,7 +115,7 @@ class ParamRegistry {
   /// does not build (pert5.* with pert_count = 4), naming where it was set.
   void check_instances() const;
 
-  /// Who reads this registry ("ullner-peripheral", "the functional renderer") and the names that
+  /// Who reads this registry (a machine's name, "the functional renderer") and the names that
   /// exist elsewhere (another machine, the functional renderer) but that it does not read.
   /// Setting one of those from a config file or -p is an InputError saying it is not used, with
   /// the closest names that are (or `listing`, the command that lists them): a value nobody

@@ -91,6 +91,8 @@ struct MachineInfo {
   std::vector<std::string> test_runs;
   /// The runs bench/pareto.py times it on, in the same form (three scenes it holds).
   std::vector<std::string> benchmark_runs;
+  /// `rtsim run` without --machine runs this one (exactly one machine says so).
+  bool default_machine = false;
 };
 
 class Machine {

@@ -42,6 +42,19 @@ const std::vector<const Machine*>& machines() {
   return all;
 }
 
+const Machine& default_machine() {
+  const Machine* found = nullptr;
+  for (const Machine* m : machines()) {
+    if (!m->info().default_machine) continue;
+    if (found)
+      throw std::logic_error("two machines say they are the default: " + found->name() + " and " +
+                             m->name());
+    found = m;
+  }
+  if (!found) throw std::logic_error("no registered machine says it is the default");
+  return *found;
+}
+
 const Machine& find_machine(const std::string& name) {
   std::vector<std::string> owned;
   for (const Machine* m : machines()) {

@@ -4,7 +4,7 @@
 // its figures, its test and its docs page (docs/adding-a-machine.md):
 //
 //   const RegisterMachine<Vax750> kRegistered({
-//       .name = "vax-750",
+//       .name = "vax-750",  // (the one place the name is written)
 //       .description = "... (seed 001 L317-L318)",
 //       .sample_scene = "builtin:npp-412",
 //       .test_runs = {"--scene builtin:npp-412", "--scene builtin:default -p vax.search=shells"},
@@ -37,5 +37,8 @@ struct RegisterMachine {
 const std::vector<const Machine*>& machines();
 /// The machine called `name`, or InputError naming the closest ones.
 const Machine& find_machine(const std::string& name);
+/// The machine whose registration says `.default_machine = true` (`rtsim run` without
+/// --machine); none or two is a programming error.
+const Machine& default_machine();
 
 }  // namespace rtsim::platform

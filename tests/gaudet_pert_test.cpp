@@ -9,11 +9,17 @@
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <systemc>
 
+#include "firmware/accel/gaudet_data_sets.hpp"
+#include "platform/functional/scene_tracer.hpp"
 #include "platform/machines/gaudet_pert/broadcast_processor.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
+#include "platform/machines/gaudet_pert/data_sets.hpp"
 #include "platform/machines/gaudet_pert/expected_latency.hpp"
+#include "tests/data_path_support.hpp"
+#include "tests/hostile_table.hpp"
 #include "tests/systemc_test_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -358,4 +364,124 @@ TEST(GaudetPert, ClassNamesSetEveryPertAndInstanceNamesOne) {
   const auto bad = run_rtsim(base + " -p pert2.shell.clock=4MHz -q --out " + dir.string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("pert_count is 2"), std::string::npos) << bad.output;
+}
+
+// gaudet-pert's own hostile rows (tests/hostile_table.hpp): issue 30 item 2, corrupted ID list
+// words, and faults that name no memory or a word past its end.
+TEST(GaudetPertHostile, EveryRowExitsAsAllowedWithinItsMemory) {
+  using rtsim::test::hostile_run;
+  using rtsim::test::LimitedRun;
+  std::vector<rtsim::test::HostileCase> c;
+  for (const char* memory : {"shell_bus.memory", "prim_bus.memory"})
+    for (const char* word : {"0", "1", "2", "3", "6", "9"})
+      for (const char* mask : {"0xFFFFFFFF", "0x80000000"})
+        c.push_back({std::string("--fault ") + memory + ":" + word + ":" + mask,
+                     hostile_run("gaudet-pert", "builtin:npp-412",
+                                 {"--fault", std::string(memory) + ":" + word + ":" + mask}),
+                     {0, 2}});
+  c.push_back(
+      {"--fault past the memory's end",
+       hostile_run("gaudet-pert", "builtin:npp-412", {"--fault", "prim_bus.memory:99999999:0x1"}),
+       {2}});
+  c.push_back(
+      {"--fault on no memory",
+       hostile_run("gaudet-pert", "builtin:npp-412", {"--fault", "prim_bus.memroy:0:0x1"}),
+       {2},
+       [](const fs::path&, const LimitedRun& r) { return rtsim::test::says(r, "did you mean"); }});
+  rtsim::test::run_hostile_table(scratch_dir("gaudet-hostile"), c);
+}
+
+// The ShellProcessors box-test the SHELL records in the packets their BICs caught; emptying the
+// box of the first SHELL in the Shell bus's memory hides its subtree. The PrimProcessors test
+// the PRIM records of theirs: a sphere whose radius word is corrupted to a huge value is hit by
+// every ray that reaches its leaf shell. A corrupted ID list stalls the machine: the run says so
+// (exit 2), writing nothing.
+TEST(GaudetPert, ShellBusMemoryWordChangesTheImage) {
+  // The first SHELL of packet 0 (the root's children, L662) as the Shell bus's memory holds it:
+  // flip the sign of one corner coordinate so that its box becomes empty; every ray then misses
+  // that shell's subtree. The ShellProcessors must take packet 0 off the bus for that
+  // (pert.shell.root_local=false; by default they read it from their own memory).
+  const fs::path dir = rtsim::test::scratch_dir("data-path-gaudet");
+  fs::create_directories(dir);
+  auto m = rtsim::test::prepare_machine("gaudet-pert", "builtin:npp-412");
+  const auto& twin = m->twin;
+  const auto& scene = m->scene;
+  const auto* search = dynamic_cast<const rtsim::functional::ShellSearch*>(twin.tracer.get());
+  ASSERT_NE(search, nullptr);
+  const auto sets = rtsim::platform::gaudet::make_pert_data_sets(
+      search->tree(), *twin.geometry, scene, {}, rtsim::platform::gaudet::BroadcastOrder::kBreadth,
+      1985);
+  // ID list entry 0 is {ID 0, address, size} in breadth order.
+  ASSERT_EQ(sets.shell.memory.at(0), 0u);
+  const std::uint32_t address = sets.shell.memory.at(1);
+  const auto shell = rtsim::accel::decode_shell(
+      std::span<const std::uint32_t>(sets.shell.memory).subspan(address, 8));
+  // max.x is word 2 of the record, min.x word 5: negating max.x empties the box if
+  // max.x > -min.x, negating min.x if min.x < -max.x.
+  const double lo = shell.box.lo.x, hi = shell.box.hi.x;
+  ASSERT_TRUE(hi > -lo || lo < -hi) << lo << " " << hi;
+  const std::uint64_t word = address + (hi > -lo ? 2u : 5u);
+  const std::vector<std::string> two = {"pert_count=2", "pert.shell.root_local=false"};
+  const rtsim::test::data_path::Frame clean = rtsim::test::data_path::simulate(
+      "gaudet-pert", "builtin:npp-412", two, {}, dir / "clean.bin");
+  const rtsim::test::data_path::Frame faulty = rtsim::test::data_path::simulate(
+      "gaudet-pert", "builtin:npp-412", two, {{"shell_bus.memory", word, 0x80000000u}},
+      dir / "faulty.bin");
+  ASSERT_TRUE(clean.ok && faulty.ok);
+  const std::size_t changed = rtsim::test::data_path::pixels_differing(clean, faulty);
+  std::printf(
+      "shell_bus.memory word %llu (SHELL 0 of packet 0, box x %g..%g) flipped: %zu of %d "
+      "pixels changed\n",
+      static_cast<unsigned long long>(word), lo, hi, changed,
+      rtsim::test::data_path::kSize * rtsim::test::data_path::kSize);
+  EXPECT_GT(changed, 0u);
+
+  // The first PRIM record of packet 0 in the Prim bus's memory, a sphere: raising its radius's
+  // exponent by 128 makes it enclose the whole scene, so every ray that reaches its leaf shell
+  // (the boxes still cull) hits it.
+  ASSERT_EQ(sets.prim.memory.at(0), 0u);
+  const std::uint32_t prim_address = sets.prim.memory.at(1);
+  ASSERT_EQ(sets.prim.memory.at(prim_address + 2),
+            static_cast<std::uint32_t>(rtsim::accel::PrimType::Sphere));
+  const std::uint64_t radius_word = prim_address + 6;  // prim_id, surface, type, centre[3], radius
+  const rtsim::test::data_path::Frame big = rtsim::test::data_path::simulate(
+      "gaudet-pert", "builtin:npp-412", two, {{"prim_bus.memory", radius_word, 0x40000000u}},
+      dir / "big.bin");
+  ASSERT_TRUE(big.ok);
+  const std::size_t changed_prim = rtsim::test::data_path::pixels_differing(clean, big);
+  std::printf(
+      "prim_bus.memory word %llu (radius of the first sphere) corrupted: %zu of %d pixels "
+      "changed\n",
+      static_cast<unsigned long long>(radius_word), changed_prim,
+      rtsim::test::data_path::kSize * rtsim::test::data_path::kSize);
+  EXPECT_GT(changed_prim, 0u);
+  fs::remove_all(dir);
+}
+
+TEST(DataPath, ACorruptedIdListStallsGaudetPertWithAClearError) {
+  // Word 0 of the Shell bus's memory is the ID of ID list entry 0 (packet 0): with it changed
+  // no slot carries packet 0, every ShellProcessor waits for it for ever, and the run must say
+  // so instead of writing a partial frame (or spinning through broadcast cycles).
+  const fs::path dir = rtsim::test::scratch_dir("fault-stall");
+  const auto r = run_rtsim(
+      "run --machine gaudet-pert --scene builtin:npp-412 --width 16 "
+      "--height 16 -q -p pert_count=2 --fault shell_bus.memory:0:0x1 --out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("stopped with work outstanding"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(GaudetPert, ACorruptedIdListStallsItWithAClearError) {
+  // Word 0 of the Shell bus's memory is the ID of ID list entry 0 (packet 0): with it changed
+  // no slot carries packet 0, every ShellProcessor waits for it for ever, and the run must say
+  // so instead of writing a partial frame (or spinning through broadcast cycles).
+  const fs::path dir = rtsim::test::scratch_dir("fault-stall");
+  const auto r = run_rtsim(
+      "run --machine gaudet-pert --scene builtin:npp-412 --width 16 "
+      "--height 16 -q -p pert_count=2 --fault shell_bus.memory:0:0x1 --out " +
+      dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("stopped with work outstanding"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
 }

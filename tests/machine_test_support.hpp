@@ -1,7 +1,8 @@
 #pragma once
 // Helpers for tests that call a machine directly (platform::find_machine) rather than through
 // the rtsim binary: SystemC allows one simulation per process, so each simulation runs in a
-// forked child; and the machine is set up as `rtsim run` sets it up.
+// forked child (run_in_child, tests/systemc_test_support.hpp); and the machine is set up as
+// `rtsim run` sets it up.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,30 +16,9 @@
 #include "app/scene_input.hpp"
 #include "platform/machine.hpp"
 #include "platform/machine_registry.hpp"
+#include "tests/systemc_test_support.hpp"
 
 namespace rtsim::test {
-
-/// Runs `body` in a forked child and returns its exit code (the body's return value; 3 if it
-/// threw, the message on stderr; -1 if the child died). A child that hangs is killed after
-/// `alarm_s` seconds, so the test fails instead of stalling.
-inline int run_in_child(const std::function<int()>& body, unsigned alarm_s = 120) {
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::alarm(alarm_s);
-    int code = 3;
-    try {
-      code = body();
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "in child: %s\n", e.what());
-    }
-    std::fflush(nullptr);
-    ::_exit(code);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 /// A machine as `rtsim run` prepares it: its parameters declared and `overrides` applied, the
 /// scene loaded, the functional twin made. Held by pointer: the twin refers to the scene.

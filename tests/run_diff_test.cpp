@@ -17,7 +17,7 @@ using Json = nlohmann::ordered_json;
 namespace {
 
 Json run_stats(double frame, double util, int grid) {
-  return Json::parse(R"({"machine": "ullner-peripheral", "scene": "builtin:ullner-cubes",
+  return Json::parse(R"({"machine": "a-machine", "scene": "builtin:ullner-cubes",
     "width": 64, "height": 64, "spp": 1, "simulated_time_s": )" +
                      std::to_string(frame) + R"(, "wall_time_s": 0.08,
     "ray_latency_s": {"mean": 0.0028, "p99": 0.0029},

@@ -103,7 +103,7 @@ TEST(SweepReportPlots, ChosenForEachAxisWithSpeedUpForACount) {
   for (const char* scene : {"builtin:npp-412", "builtin:npp-816", "builtin:npp-820"})
     for (int n : {1, 2, 4, 8, 16, 32, 64})
       t.rows.push_back(
-          {point++, "gaudet-pert", scene, n, "ok", 1.0 / n, 1e-5, 2.0, 0.9, 0.5, 0.0, 3e-4});
+          {point++, "a-machine", scene, n, "ok", 1.0 / n, 1e-5, 2.0, 0.9, 0.5, 0.0, 3e-4});
   const auto plots = rtsim::app::choose_sweep_plots(file, t);
   // One x axis (pert_count; the scene list gives the lines): frame time, speed-up, the per-ray
   // stat, utilisation, latency, wall time.
@@ -152,9 +152,9 @@ TEST(SweepReportPlots, AClassOfInstancesIsDrawnAsItsMeanWithItsRangeShaded) {
                "module_classes.node*.utilization.mean",
                "module_classes.node*.utilization.max"};
   t.rows.push_back(
-      {0, "ullner-array", "builtin:ullner-cubes", 2, "ok", 1.0, 0.2, 0.9, 0.1, 0.5, 0.9});
+      {0, "a-machine", "builtin:ullner-cubes", 2, "ok", 1.0, 0.2, 0.9, 0.1, 0.5, 0.9});
   t.rows.push_back(
-      {1, "ullner-array", "builtin:ullner-cubes", 4, "ok", 0.5, 0.3, 0.7, 0.05, 0.4, 0.95});
+      {1, "a-machine", "builtin:ullner-cubes", 4, "ok", 0.5, 0.3, 0.7, 0.05, 0.4, 0.95});
   const auto plots = rtsim::app::choose_sweep_plots(file, t);
   const auto util = std::find_if(plots.begin(), plots.end(), [](const auto& p) {
     return p.title.rfind("Module utilisation", 0) == 0;

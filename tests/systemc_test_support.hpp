@@ -28,7 +28,9 @@
 
 namespace rtsim::test {
 
-inline int run_in_child(const std::function<int()>& scenario) {
+/// A child that hangs is killed after `alarm_s` seconds (SIGALRM: 128 + 14), so the test fails
+/// instead of stalling.
+inline int run_in_child(const std::function<int()>& scenario, unsigned alarm_s = 120) {
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);  // nothing buffered is written twice
@@ -38,6 +40,7 @@ inline int run_in_child(const std::function<int()>& scenario) {
     return -1;
   }
   if (pid == 0) {
+    ::alarm(alarm_s);
     int code = 0;
     try {
       code = scenario();

@@ -111,7 +111,7 @@ inline std::string shared_path(const std::string& rel) {
   return std::string(RTSIM_SHARED_DIR) + "/" + rel;
 }
 
-/// A name (a machine's, a scene's) as a GoogleTest parameter name: "gaudet-pert" -> "gaudet_pert".
+/// A name (a machine's, a scene's) as a GoogleTest parameter name: "npp-412" -> "npp_412".
 inline std::string gtest_param_name(std::string name) {
   for (char& c : name)
     if (c == '-') c = '_';

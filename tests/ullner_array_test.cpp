@@ -4,14 +4,21 @@
 // array size and mapping; a lost result message or a corrupted polygon word changes it; the
 // termination detector's credit comes back whole.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "modules/mesh_topology.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
+#include "tests/child_processes.hpp"
+#include "tests/hostile_table.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -246,6 +253,77 @@ TEST(UllnerArray, BadSizesAreBadInput) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("node.memory_words"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
+}
+
+// The array's own hostile rows (tests/hostile_table.hpp runs them as hostile_input_test runs
+// the generic ones).
+TEST(UllnerArrayHostile, EveryRowExitsAsAllowedWithinItsMemory) {
+  using rtsim::test::absent;
+  using rtsim::test::hostile_run;
+  using rtsim::test::LimitedRun;
+  using rtsim::test::present;
+  std::vector<rtsim::test::HostileCase> c;
+  c.push_back(
+      {"describe: a 32 x 32 array is drawn with its class cut short",
+       {"describe", "ullner-array", "-p", "array.rows=32", "-p", "array.cols=32", "--out", "big"},
+       {0},
+       [](const fs::path& d, const LimitedRun&) {
+         std::ifstream f(d / "big/ullner-array.dot");
+         const std::string dot((std::istreambuf_iterator<char>(f)), {});
+         return dot.find("1016 more node") != std::string::npos
+                    ? present(d / "big/ullner-array.svg")
+                    : "the DOT file does not count the nodes it leaves out";
+       }});
+  // Issue 30 item 5: a memory the bounds allow but the computer cannot hold.
+  c.push_back(
+      {"node.memory_words at its bound",
+       hostile_run("ullner-array", "builtin:ullner-cubes", {"-p", "node.memory_words=1000000000"}),
+       {0, 2}});
+  // Item 8: times that overflow outside the simulation.
+  for (const char* p : {"array.load.word_time=1e6 s", "array.readout.pixel_time=1e6 s"})
+    c.push_back({p, hostile_run("ullner-array", "builtin:ullner-cubes", {"-p", p}), {2}});
+  // Item 9: a nested --out of a run refused while it runs leaves no folder.
+  c.push_back(
+      {"a nested --out of a run refused while it runs leaves no folder",
+       {"run", "--machine", "ullner-array", "--scene", "builtin:ullner-cubes", "--width", "8",
+        "--height", "8", "-q", "--out", "nest/a/b", "-p", "array.load.word_time=1e6 s"},
+       {2},
+       [](const fs::path& d, const LimitedRun&) { return absent(d / "nest"); }});
+  rtsim::test::run_hostile_table(scratch_dir("array-hostile"), c);
+}
+
+// Item 9: SIGTERM to a run whose --sample-error pilot (a fork) is running ended the run and left
+// the pilot running. The pilot now ends with its parent.
+TEST(UllnerArrayHostile, ThePilotOfSampleErrorEndsWithItsRun) {
+  const fs::path dir = rtsim::test::scratch_dir("hostile-pilot");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A pilot of about 4 s (a 32 x 32 array on a 512 x 512 frame): it is still running when its
+  // run is ended.
+  const pid_t run = rtsim::test::start_rtsim(
+      {"run", "--machine", "ullner-array", "--scene", "builtin:ullner-cubes", "-p", "array.rows=32",
+       "-p", "array.cols=32", "--width", "512", "--height", "512", "-q", "--sample-error", "1%",
+       "--out", "out"},
+      dir);
+  std::vector<pid_t> pilots;
+  for (int i = 0; i < 200 && pilots.empty(); ++i) {  // up to 10 s for the pilot to start
+    ::usleep(50000);
+    pilots = rtsim::test::children_of(run);
+  }
+  ASSERT_FALSE(pilots.empty()) << "the pilot never started";
+  ::usleep(500000);
+  ::kill(run, SIGTERM);
+  int status = 0;
+  ::waitpid(run, &status, 0);
+  bool gone = false;
+  for (int i = 0; i < 10 && !gone; ++i) {  // up to 0.5 s: the pilot itself runs for seconds
+    gone = std::none_of(pilots.begin(), pilots.end(), rtsim::test::alive);
+    if (!gone) ::usleep(50000);
+  }
+  EXPECT_TRUE(gone) << "the pilot outlived its run";
+  for (const pid_t p : pilots) ::kill(p, SIGKILL);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
 }
 
 }  // namespace

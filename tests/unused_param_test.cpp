@@ -57,14 +57,17 @@ TEST(UnusedParams, EveryMachineReadsEveryParameterItDeclares) {
 }
 
 TEST(UnusedParams, DeclaredSetsDiffer) {
-  // The check above is not vacuous: a name one machine reads is missing from another's set.
-  rtsim::params::ParamRegistry vax, peripheral;
-  rtsim::platform::declare_params_of(&rtsim::platform::find_machine("vax-750"), vax);
-  rtsim::platform::declare_params_of(&rtsim::platform::find_machine("ullner-peripheral"),
-                                     peripheral);
-  EXPECT_TRUE(vax.contains("render.grid.divisions"));
-  EXPECT_FALSE(peripheral.contains("render.grid.divisions"));
-  EXPECT_TRUE(peripheral.contains("peripheral.grid.divisions"));
+  // The check above is not vacuous: a name one machine reads is missing from another's set
+  // (render.grid.divisions: the twins that choose their search structure read it; those with a
+  // structure of their own do not declare it).
+  std::size_t with = 0, without = 0;
+  for (const auto* machine : rtsim::platform::machines()) {
+    rtsim::params::ParamRegistry r;
+    rtsim::platform::declare_params_of(machine, r);
+    ++(r.contains("render.grid.divisions") ? with : without);
+  }
+  EXPECT_GT(with, 0u);
+  EXPECT_GT(without, 0u);
 }
 
 TEST(UnusedParams, CommandLineOverrideStopsTheRun) {

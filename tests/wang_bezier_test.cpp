@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "tests/hostile_table.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -177,6 +178,15 @@ TEST(WangAccuracy, TheCheckSeesCorruptedControlPoints) {
   std::printf("wrong answers over reference hits: %.4f clean, %.4f corrupted\n", c, b);
   EXPECT_LT(c, 0.05);
   EXPECT_GT(b, 0.3);
+}
+
+// wang-bezier's own hostile rows (tests/hostile_table.hpp): issue 30 item 8, times that overflow
+// outside the simulation.
+TEST(WangBezierHostile, EveryRowExitsAsAllowedWithinItsMemory) {
+  std::vector<rtsim::test::HostileCase> c;
+  for (const char* p : {"pipeline.culler.delay=1e6 s", "pipeline.cycle_time=1e6 s"})
+    c.push_back({p, rtsim::test::hostile_run("wang-bezier", "builtin:teapot", {"-p", p}), {2}});
+  rtsim::test::run_hostile_table(rtsim::test::scratch_dir("wang-hostile"), c);
 }
 
 }  // namespace

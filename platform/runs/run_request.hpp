@@ -13,7 +13,7 @@ namespace rtsim::runs {
 /// One invocation of the rtsim binary. The runner appends `--out FOLDER`.
 struct RunRequest {
   std::string key;                ///< unique in a plan; also the name of its folder
-  std::vector<std::string> args;  ///< e.g. {"run", "--machine", "vax-750", "--scene", ...}
+  std::vector<std::string> args;  ///< e.g. {"run", "--machine", NAME, "--scene", ...}
   /// Expected relative run time; the queue starts the biggest first so the slowest runs do not
   /// end up alone at the end.
   double cost_hint = 1.0;

@@ -4,7 +4,7 @@
 // ranges, zipped lengths, duplicates); whether the parameters exist and their values fit is checked
 // against the machines' registries by check_sweep (sweep_check.hpp).
 //
-//   machine = "ullner-peripheral"             # or a list: an axis
+//   machine = "NAME"                          # or a list: an axis
 //   scene = "builtin:ullner-sheets-1000"      # or a list: an axis
 //   width = 64
 //   height = 64

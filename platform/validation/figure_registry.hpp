@@ -3,7 +3,7 @@
 // beside its machine's name, so a new machine's figures need no edit elsewhere:
 //
 //   void add_v4(Plan& plan, const PlanOptions& options) { ... plan.figures.push_back(...); }
-//   const RegisterFigures kV4("ullner-peripheral", add_v4);
+//   const RegisterFigures kRegistered(kUllnerMachine, add_ullner_figures);
 //
 // The plan holds them by machine name, and within a machine in the order its file registers
 // them (a file's static objects are built in the order they are written).

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "platform/validation/figure_registry.hpp"
+#include "platform/validation/vax_figures.hpp"
 
 namespace rtsim::validation {
 namespace {
@@ -51,7 +52,7 @@ RunRequest vax_request(const std::string& scene, int side) {
   r.key = "vax-shells-" + scene;
   r.args = {"run",
             "--machine",
-            "vax-750",
+            kVaxMachine,
             "--scene",
             "builtin:npp-" + scene,
             "--width",

@@ -144,7 +144,9 @@ const RegisterMachine<UllnerPeripheral> kRegistered(
      .test_runs = {"--scene builtin:ullner-cubes",
                    "--scene builtin:ullner-random-1000 -p peripheral.grid.divisions=11"},
      .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
-                        "--scene builtin:ullner-sheets-1000"}});
+                        "--scene builtin:ullner-sheets-1000"},
+     // The first machine of the thesis, and the simplest: what `rtsim run` runs unless told.
+     .default_machine = true});
 
 }  // namespace
 }  // namespace rtsim::platform
