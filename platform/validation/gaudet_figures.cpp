@@ -113,12 +113,44 @@ std::vector<int> gaudet_pert_counts(bool quick) {
 }
 
 namespace {
-void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
-  const bool quick = options.quick;
-  const int side = quick ? kSideQuick : kSideFull;
-  const std::string size = std::to_string(side) + "x" + std::to_string(side);
-  auto add = [&](const PertRun& p) { return plan.add_run(pert_request(p, side)); };
 
+/// The quad-tree scenes of Figs. 6-9 and 6-11 (builtin:npp-404..420).
+constexpr const char* kQuadScenes[] = {"404", "408", "412", "416", "420"};
+
+/// What every figure of gaudet-pert shares: the frame and how a PERT run is added to the plan
+/// (Plan::add_run keeps one run per key, and --only keeps the runs its figures name).
+struct GaudetPlan {
+  GaudetPlan(Plan&, const PlanOptions& options)
+      : quick(options.quick),
+        side(quick ? kSideQuick : kSideFull),
+        size(std::to_string(side) + "x" + std::to_string(side)) {}
+  std::string add(Plan& plan, const PertRun& p) const {
+    return plan.add_run(pert_request(p, side));
+  }
+  bool quick;
+  int side;
+  std::string size;
+};
+
+/// P6..P9: speed-ups over the VAX-11/750 and the multi-PERT curves, whose runs the figures and
+/// gaudet-speedup.csv share (added in the same order by each).
+struct SpeedUpCurves : GaudetPlan {
+  SpeedUpCurves(Plan& plan, const PlanOptions& options) : GaudetPlan(plan, options) {
+    ns = gaudet_pert_counts(quick);
+    curve_scenes = quick ? std::vector<std::string>{"412", "820"}
+                         : std::vector<std::string>{"412", "816", "820"};
+    for (const auto& s : curve_scenes) {
+      curve_runs.push_back(plan.add_run(vax_request(s, side)));
+      for (const char* m : {"direct", "non-adaptive", "adaptive"})
+        for (int n : ns) curve_runs.push_back(add(plan, PertRun{s, m, "breadth", n}));
+    }
+  }
+  std::vector<int> ns;
+  std::vector<std::string> curve_scenes, curve_runs;
+  std::string vax412 = "vax-shells-412";
+};
+
+void add_p1_test_scenes(Plan& plan, const PlanOptions&) {
   // ---- P1: Fig. 6-1, the test scenes (seed 001 L980-L989) ----
   struct Counts {
     const char* scene;
@@ -163,7 +195,12 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
 
+void add_p2_p3_shell_latency_by_tree(Plan& plan, const PlanOptions& options) {
+  const GaudetPlan g(plan, options);
+  const auto& size = g.size;
+  const auto add = [&](const PertRun& p) { return g.add(plan, p); };
   // ---- P2, P3: Fig. 6-10, ShellProcessor per ray on binary/quad/oct trees (L1025-L1030) ----
   const std::string k212 = add(PertRun{"212"}), k412 = add(PertRun{"412"}),
                     k812 = add(PertRun{"812"});
@@ -301,14 +338,18 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
                        "under 2 us: far below one oct packet's transfer (26.4 us), so nearly "
                        "every packet must be hidden behind processing, as the thesis's 0.5 says"),
       k812));
+}
 
+void add_p4_broadcast_order(Plan& plan, const PlanOptions& options) {
+  const GaudetPlan g(plan, options);
+  const auto& size = g.size;
+  const auto add = [&](const PertRun& p) { return g.add(plan, p); };
   // ---- P4: Fig. 6-11, broadcast order (L1032-L1039) ----
-  const char* four[] = {"404", "408", "412", "416", "420"};
   const double thesis_breadth[] = {5.1, 4.7, 5.0, 5.1, 4.9};
   const double thesis_depth[] = {11.4, 11.4, 12.0, 12.1, 11.9};
   const double thesis_random[] = {11.4, 11.3, 12.0, 11.9, 11.7};
   std::vector<std::string> breadth, depth, random;
-  for (const char* s : four) {
+  for (const char* s : kQuadScenes) {
     breadth.push_back(add(PertRun{s, "adaptive", "breadth"}));
     depth.push_back(add(PertRun{s, "adaptive", "depth"}));
     random.push_back(add(PertRun{s, "adaptive", "random"}));
@@ -355,10 +396,17 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
   };
   plan.figures.push_back(order_figure("P4a", "depth-first", depth, thesis_depth));
   plan.figures.push_back(order_figure("P4b", "random", random, thesis_random));
+}
 
+void add_p5_prim_time_by_mode(Plan& plan, const PlanOptions& options) {
+  const GaudetPlan g(plan, options);
+  const auto& size = g.size;
+  const auto add = [&](const PertRun& p) { return g.add(plan, p); };
   // ---- P5: Fig. 6-9, PrimProcessor time per ray by broadcast mode (L1011) ----
-  std::vector<std::string> nonadaptive, direct;
-  for (const char* s : four) {
+  // Adaptive breadth-first: Fig. 6-11's runs too (P4).
+  std::vector<std::string> breadth, nonadaptive, direct;
+  for (const char* s : kQuadScenes) {
+    breadth.push_back(add(PertRun{s, "adaptive", "breadth"}));
     nonadaptive.push_back(add(PertRun{s, "non-adaptive", "breadth"}));
     direct.push_back(add(PertRun{s, "direct", "breadth"}));
   }
@@ -420,24 +468,16 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
             return Measured{lo, "direct " + join(yd) + " us per ray"};
           },
   });
+}
 
-  // ---- P6..P9: speed-ups over the VAX-11/750 and the multi-PERT curves ----
-  const std::vector<int> ns = gaudet_pert_counts(quick);
-  const std::vector<std::string> curve_scenes = quick
-                                                    ? std::vector<std::string>{"412", "820"}
-                                                    : std::vector<std::string>{"412", "816", "820"};
-  const char* modes[] = {"direct", "non-adaptive", "adaptive"};
-  std::vector<std::string> curve_runs;
-  for (const auto& s : curve_scenes) {
-    curve_runs.push_back(plan.add_run(vax_request(s, side)));
-    for (const char* m : modes)
-      for (int n : ns) curve_runs.push_back(add(PertRun{s, m, "breadth", n}));
-  }
-  const std::string vax412 = "vax-shells-412";
+void add_p6_one_pert_over_the_vax(Plan& plan, const PlanOptions& options) {
+  const SpeedUpCurves curves(plan, options);
   // A single PERT had each processor's data in its own memory (L806): direct memory, no
   // broadcasting. The adaptive single PERT is printed beside it.
   const std::string one = PertRun{"412", "direct", "breadth", 1}.key();
   const std::string one_adaptive = PertRun{"412"}.key();
+  const auto& size = curves.size;
+  const auto& vax412 = curves.vax412;
   plan.figures.push_back(Figure{
       .id = "P6",
       .title = "One PERT against the VAX-11/750 (scene 412, each processor's data in its own "
@@ -462,6 +502,12 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
                                 format_number(speedup(r, vax412, one_adaptive)) + "x"};
           },
   });
+}
+
+void add_p7_eight_perts_over_the_vax(Plan& plan, const PlanOptions& options) {
+  const SpeedUpCurves curves(plan, options);
+  const auto& size = curves.size;
+  const auto& vax412 = curves.vax412;
   const std::string eight = PertRun{"412", "adaptive", "breadth", 8}.key();
   plan.figures.push_back(Figure{
       .id = "P7",
@@ -494,7 +540,12 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
                                 format_number(vax_s / predicted_s) + "x"};
           },
   });
-  letter = 'a';
+}
+
+void add_p8_first_packet_latency(Plan& plan, const PlanOptions& options) {
+  const SpeedUpCurves curves(plan, options);
+  const auto& size = curves.size;
+  char letter = 'a';
   for (int n : {8, 64}) {
     const std::string key = PertRun{"412", "adaptive", "breadth", n}.key();
     plan.figures.push_back(Figure{
@@ -524,13 +575,20 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
+
+void add_p9_speed_up_curves(Plan& plan, const PlanOptions& options) {
+  const SpeedUpCurves curves(plan, options);
+  const auto& quick = curves.quick;
+  const auto& size = curves.size;
+  const auto& curve_runs = curves.curve_runs;
   auto efficiency = [](const RunResults& r, const std::string& s, const std::string& mode, int n) {
     const double t1 = stats_number(r, PertRun{s, mode, "breadth", 1}.key(), "simulated_time_s");
     const double tn = stats_number(r, PertRun{s, mode, "breadth", n}.key(), "simulated_time_s");
     return t1 / tn / n;
   };
   const int mid = quick ? 8 : 16;
-  letter = 'a';
+  char letter = 'a';
   for (const char* m : {"direct", "non-adaptive"}) {
     const std::string mode = m;
     plan.figures.push_back(Figure{
@@ -575,6 +633,13 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
             return Measured{d / a};
           },
   });
+}
+
+void add_speedup_csv(Plan& plan, const PlanOptions& options) {
+  const SpeedUpCurves curves(plan, options);
+  const auto& curve_scenes = curves.curve_scenes;
+  const auto& curve_runs = curves.curve_runs;
+  const auto& ns = curves.ns;
   plan.artifacts.push_back(Artifact{
       .file_name = "gaudet-speedup.csv",
       .runs = curve_runs,
@@ -598,7 +663,16 @@ void add_gaudet_figures(Plan& plan, const PlanOptions& options) {
   });
 }
 
-const RegisterFigures kRegistered(kGaudetMachine, add_gaudet_figures);
+// In the order `rtsim validate` lists them.
+const RegisterFigures kP1TestScenes(kGaudetMachine, add_p1_test_scenes);
+const RegisterFigures kP2P3ShellLatencyByTree(kGaudetMachine, add_p2_p3_shell_latency_by_tree);
+const RegisterFigures kP4BroadcastOrder(kGaudetMachine, add_p4_broadcast_order);
+const RegisterFigures kP5PrimTimeByMode(kGaudetMachine, add_p5_prim_time_by_mode);
+const RegisterFigures kP6OnePertOverTheVax(kGaudetMachine, add_p6_one_pert_over_the_vax);
+const RegisterFigures kP7EightPertsOverTheVax(kGaudetMachine, add_p7_eight_perts_over_the_vax);
+const RegisterFigures kP8FirstPacketLatency(kGaudetMachine, add_p8_first_packet_latency);
+const RegisterFigures kP9SpeedUpCurves(kGaudetMachine, add_p9_speed_up_curves);
+const RegisterFigures kSpeedupCsv(kGaudetMachine, add_speedup_csv);
 
 }  // namespace
 

@@ -181,29 +181,101 @@ std::vector<CurvePoint> fig2_18_model_curve(const std::vector<int>& n_s,
 }
 
 namespace {
-void add_ullner_figures(Plan& plan, const PlanOptions& options) {
-  const bool quick = options.quick;
-  const int side = quick ? kUllnerQuickSide : kUllnerFrameSide;
-  const double rays = static_cast<double>(side) * side;
-  const std::string size = side_text(side);
-  // "No lighting effects" (L590): primary rays only.
-  const std::string no_lighting = "shade.max_depth=0";
-  const accel::UllnerGridModel thesis_model;  // L654 parameters
 
+/// What the peripheral's figures share: the frame, the workloads they describe and the runs
+/// they read. Every figure's function builds it, and its constructor adds the shared runs to the
+/// plan (Plan::add_run keeps one run per key, and --only keeps the runs its figures name), so
+/// each figure is a function of its own and the plan's runs come in the same order.
+struct PeripheralFigures {
+  PeripheralFigures(Plan& plan, const PlanOptions& options);
+
+  bool quick;
+  int side;
+  double rays;
+  std::string size;
+  // "No lighting effects" (L590): primary rays only.
+  std::string no_lighting = "shade.max_depth=0";
+  accel::UllnerGridModel thesis_model;  // L654 parameters
   // ---- Brute force (no subdivision), 1000 polygons ----
-  const std::string brute1 = plan.add_run(peripheral_run(
+  std::string brute1, brute3, brute_workload;
+  // ---- Fig. 2-18: grid subdivision on 1000 polygons ----
+  std::vector<int> divisions;
+  std::string sweep = "peripheral-grid";
+  std::vector<std::string> sweep_keys;
+  // The same sweep on random squares (every subvolume occupied, as the model's n_c assumes
+  // of its occupied ones): the curve's shape left of the minimum, which on the sheets is set by
+  // the empty space before the first sheet instead (docs/validation.md).
+  std::string random_sweep = "peripheral-grid-random";
+  std::vector<std::string> random_sweep_keys;
+  std::string random_sweep_workload, sweep_workload, sweep_note;
+  CurveShape model_shape;
+  std::string model_workload =
+      "the L652 formula with L654's parameters (t_i = 1/3 us, t_d = 1 us, t_l = 5.6 us, "
+      "d_r = 1/2, a_t = 2, n_p = 1000) at n_s = 1..30 (UllnerGridModel); no run";
+  std::string why_argmin =
+      "the curve is flat at its minimum (the model moves under 0.5% over n_s = 10..12 and 6% "
+      "at n_s = 8); polygons straddling subvolume faces are tested once per subvolume, which "
+      "the model's n_o (L642) ignores, so a few percent of difference moves the argmin by a "
+      "few divisions";
+  std::string why_minimum =
+      "the model leaves out what the simulated hardware adds to every ray: the fetch, "
+      "indirection and selection stages (0.67 us, 4.7% of 14.3), polygons that straddle a "
+      "subvolume face and are tested in both (L596), and subvolumes entered sideways by rays "
+      "that are not exactly along an axis (n_d = (n_s-1) d_r + 1, L614); each is a few percent";
+  std::string why_steeper =
+      "Ullner: \"much steeper on the left side of the minimum\", \"less costly to overestimate\" "
+      "(L656); a rise ratio above 1 between halving and doubling n_s is that statement. "
+      "Simulated on random squares, where every subvolume a ray crosses holds polygons as the "
+      "model's n_c (L618) assumes; on the two sheets the space before the first sheet is empty, "
+      "which flattens the left side";
+};
+
+PeripheralFigures::PeripheralFigures(Plan& plan, const PlanOptions& options)
+    : quick(options.quick),
+      side(quick ? kUllnerQuickSide : kUllnerFrameSide),
+      rays(static_cast<double>(side) * side),
+      size(side_text(side)),
+      divisions(fig2_18_divisions(quick)) {
+  brute1 = plan.add_run(peripheral_run(
       "peripheral-brute-adders1", kUllnerRandomScene, side,
       {"peripheral.grid.divisions=0", "peripheral.adder_stages=1", no_lighting}, rays * 340));
   // The latency of the 3-stage adders needs no big image: it is a property of the pipeline.
   constexpr int kLatencySide = 16;
-  const std::string brute3 = plan.add_run(
+  brute3 = plan.add_run(
       peripheral_run("peripheral-brute-adders3", kUllnerRandomScene, kLatencySide,
                      {"peripheral.grid.divisions=0", "peripheral.adder_stages=3", no_lighting},
                      kLatencySide * kLatencySide * 345.0));
-  const std::string brute_workload = std::string(kUllnerRandomScene) + " at " + size +
-                                     ", brute force (peripheral.grid.divisions=0), primary rays "
-                                     "only";
+  brute_workload = std::string(kUllnerRandomScene) + " at " + size +
+                   ", brute force (peripheral.grid.divisions=0), primary rays only";
+  for (int n : divisions) {
+    sweep_keys.push_back(
+        plan.add_run(peripheral_run(sweep_key(sweep, n), kUllnerSheetsScene, side,
+                                    {"peripheral.grid.divisions=" + std::to_string(n), no_lighting},
+                                    rays * thesis_model.time_per_ray_us(n, kUllnerPolygons))));
+  }
+  for (int n : divisions) {
+    random_sweep_keys.push_back(
+        plan.add_run(peripheral_run(sweep_key(random_sweep, n), kUllnerRandomScene, side,
+                                    {"peripheral.grid.divisions=" + std::to_string(n), no_lighting},
+                                    rays * thesis_model.time_per_ray_us(n, kUllnerPolygons))));
+  }
+  random_sweep_workload = std::string(kUllnerRandomScene) + " at " + size +
+                          ", peripheral.grid.divisions = n_s in {" + join_ints(divisions) +
+                          "}, primary rays only";
+  sweep_workload = std::string(kUllnerSheetsScene) + " at " + size +
+                   ", peripheral.grid.divisions = n_s in {" + join_ints(divisions) +
+                   "}, primary rays only";
+  sweep_note = quick ? "quick: n_s in {" + join_ints(divisions) + "} at " + size +
+                           " (time per ray is a mean per ray: independent of the image size)"
+                     : "n_s = 1..30 at " + size;
+  model_shape =
+      curve_shape(fig2_18_model_curve(all_divisions(1, 30), thesis_model, kUllnerPolygons));
+}
 
+void add_v1_issue_interval(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& brute1 = s.brute1;
+  const auto& brute_workload = s.brute_workload;
   plan.figures.push_back(Figure{
       .id = "V1",
       .title = "Intersection issue interval, pipe full",
@@ -224,7 +296,12 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                             "a ratio of times: independent of the image size"};
           },
   });
+}
 
+void add_v2_pipeline_depth_and_latency(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& brute1 = s.brute1;
+  const auto& brute3 = s.brute3;
   auto stages_figure = [&](std::string id, const std::string& key, int adders, double stages) {
     return Figure{
         .id = std::move(id),
@@ -278,7 +355,12 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
       Tolerance::relative(0.001,
                           "33 stages x 1/3 us = 11.0 us exactly; only the picosecond "
                           "rounding of the interval (333.333 ns) remains")));
+}
 
+void add_v4_time_per_ray(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& brute1 = s.brute1;
+  const auto& brute_workload = s.brute_workload;
   plan.figures.push_back(Figure{
       .id = "V4",
       .title = "Time per ray, brute force, 1000 polygons",
@@ -298,7 +380,13 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                             "a mean per ray: independent of the image size"};
           },
   });
+}
 
+void add_v5_frame_time(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& quick = s.quick;
+  const auto& side = s.side;
+  const auto& brute1 = s.brute1;
   plan.figures.push_back(Figure{
       .id = "V5",
       .title = "Frame 512x512, 1 ray/pixel, brute force",
@@ -324,45 +412,12 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                                 " x 262144 rays (frame time is linear in the ray count)"};
           },
   });
+}
 
-  // ---- Fig. 2-18: grid subdivision on 1000 polygons ----
-  const std::vector<int> divisions = fig2_18_divisions(quick);
-  const std::string sweep = "peripheral-grid";
-  std::vector<std::string> sweep_keys;
-  for (int n : divisions) {
-    sweep_keys.push_back(
-        plan.add_run(peripheral_run(sweep_key(sweep, n), kUllnerSheetsScene, side,
-                                    {"peripheral.grid.divisions=" + std::to_string(n), no_lighting},
-                                    rays * thesis_model.time_per_ray_us(n, kUllnerPolygons))));
-  }
-  // The same sweep on random squares (every subvolume occupied, as the model's n_c assumes
-  // of its occupied ones): the curve's shape left of the minimum, which on the sheets is set by
-  // the empty space before the first sheet instead (docs/validation.md).
-  const std::string random_sweep = "peripheral-grid-random";
-  std::vector<std::string> random_sweep_keys;
-  for (int n : divisions) {
-    random_sweep_keys.push_back(
-        plan.add_run(peripheral_run(sweep_key(random_sweep, n), kUllnerRandomScene, side,
-                                    {"peripheral.grid.divisions=" + std::to_string(n), no_lighting},
-                                    rays * thesis_model.time_per_ray_us(n, kUllnerPolygons))));
-  }
-  const std::string random_sweep_workload = std::string(kUllnerRandomScene) + " at " + size +
-                                            ", peripheral.grid.divisions = n_s in {" +
-                                            join_ints(divisions) + "}, primary rays only";
-  const std::string sweep_workload = std::string(kUllnerSheetsScene) + " at " + size +
-                                     ", peripheral.grid.divisions = n_s in {" +
-                                     join_ints(divisions) + "}, primary rays only";
-  const std::string sweep_note =
-      quick ? "quick: n_s in {" + join_ints(divisions) + "} at " + size +
-                  " (time per ray is a mean per ray: independent of the image size)"
-            : "n_s = 1..30 at " + size;
-  const std::vector<CurvePoint> model_curve =
-      fig2_18_model_curve(all_divisions(1, 30), thesis_model, kUllnerPolygons);
-  const CurveShape model_shape = curve_shape(model_curve);
-  const std::string model_workload =
-      "the L652 formula with L654's parameters (t_i = 1/3 us, t_d = 1 us, t_l = 5.6 us, "
-      "d_r = 1/2, a_t = 2, n_p = 1000) at n_s = 1..30 (UllnerGridModel); no run";
-
+void add_v8a_model_best_subdivision(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& model_shape = s.model_shape;
+  const auto& model_workload = s.model_workload;
   plan.figures.push_back(Figure{
       .id = "V8a",
       .title = "Fig. 2-18 model: best subdivision n_s",
@@ -380,6 +435,12 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.argmin, shape_note(model_shape, "us")};
           },
   });
+}
+
+void add_v8b_model_minimum(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& model_shape = s.model_shape;
+  const auto& model_workload = s.model_workload;
   plan.figures.push_back(Figure{
       .id = "V8b",
       .title = "Fig. 2-18 model: minimum time per ray",
@@ -397,17 +458,16 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.minimum, ""};
           },
   });
+}
 
-  const std::string why_argmin =
-      "the curve is flat at its minimum (the model moves under 0.5% over n_s = 10..12 and 6% "
-      "at n_s = 8); polygons straddling subvolume faces are tested once per subvolume, which "
-      "the model's n_o (L642) ignores, so a few percent of difference moves the argmin by a "
-      "few divisions";
-  const std::string why_minimum =
-      "the model leaves out what the simulated hardware adds to every ray: the fetch, "
-      "indirection and selection stages (0.67 us, 4.7% of 14.3), polygons that straddle a "
-      "subvolume face and are tested in both (L596), and subvolumes entered sideways by rays "
-      "that are not exactly along an axis (n_d = (n_s-1) d_r + 1, L614); each is a few percent";
+void add_v8c_simulated_best_subdivision(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
+  const auto& sweep_workload = s.sweep_workload;
+  const auto& sweep_note = s.sweep_note;
+  const auto& why_argmin = s.why_argmin;
   plan.figures.push_back(Figure{
       .id = "V8c",
       .title = "Fig. 2-18 simulated: best subdivision n_s",
@@ -424,6 +484,16 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             return Measured{shape.argmin, sweep_note};
           },
   });
+}
+
+void add_v8d_simulated_minimum(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& thesis_model = s.thesis_model;
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
+  const auto& sweep_workload = s.sweep_workload;
+  const auto& why_minimum = s.why_minimum;
   plan.figures.push_back(Figure{
       .id = "V8d",
       .title = "Fig. 2-18 simulated: minimum time per ray",
@@ -456,6 +526,15 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                     " (model 0.5)"};
           },
   });
+}
+
+void add_v8e_speed_up(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& brute1 = s.brute1;
+  const auto& brute_workload = s.brute_workload;
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
   {
     std::vector<std::string> runs = sweep_keys;
     runs.push_back(brute1);
@@ -480,7 +559,14 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
 
+void add_v8f_time_per_ray_formula(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
+  const auto& sweep_workload = s.sweep_workload;
   plan.figures.push_back(Figure{
       .id = "V8f",
       .title = "Time per ray = n_d t_d + n_i t_i + t_l of the run's counts",
@@ -516,13 +602,13 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                                                format_number(where->formula_us()) + " us by L648"};
           },
   });
+}
 
-  const std::string why_steeper =
-      "Ullner: \"much steeper on the left side of the minimum\", \"less costly to overestimate\" "
-      "(L656); a rise ratio above 1 between halving and doubling n_s is that statement. "
-      "Simulated on random squares, where every subvolume a ray crosses holds polygons as the "
-      "model's n_c (L618) assumes; on the two sheets the space before the first sheet is empty, "
-      "which flattens the left side";
+void add_v9a_model_steeper_left(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& model_shape = s.model_shape;
+  const auto& model_workload = s.model_workload;
+  const auto& why_steeper = s.why_steeper;
   plan.figures.push_back(Figure{
       .id = "V9a",
       .title = "Fig. 2-18 model: steeper left of the minimum",
@@ -539,6 +625,15 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.steepness, shape_note(model_shape, "us")};
           },
   });
+}
+
+void add_v9b_simulated_steeper_left(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& divisions = s.divisions;
+  const auto& random_sweep = s.random_sweep;
+  const auto& random_sweep_keys = s.random_sweep_keys;
+  const auto& random_sweep_workload = s.random_sweep_workload;
+  const auto& why_steeper = s.why_steeper;
   plan.figures.push_back(Figure{
       .id = "V9b",
       .title = "Fig. 2-18 simulated: steeper left of the minimum",
@@ -557,6 +652,14 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             return Measured{shape.steepness, shape_note(shape, "us")};
           },
   });
+}
+
+void add_v9c_stepping_dominates(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& thesis_model = s.thesis_model;
+  const auto& divisions = s.divisions;
+  const auto& sweep_keys = s.sweep_keys;
+  const auto& sweep_workload = s.sweep_workload;
   {
     const int n_max = divisions.back();
     const double model_share = ((n_max - 1) * thesis_model.d_r + 1.0) * thesis_model.t_d_us /
@@ -587,6 +690,16 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
+
+void add_v10_cubes_interior_minimum(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& quick = s.quick;
+  const auto& side = s.side;
+  const auto& rays = s.rays;
+  const auto& size = s.size;
+  const auto& no_lighting = s.no_lighting;
+  const auto& thesis_model = s.thesis_model;
   // ---- Fig. 2-19: the 83 cubes ----
   {
     const std::vector<int> cube_divisions = fig2_19_divisions(quick);
@@ -629,7 +742,14 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
 
+void add_v11_tests_fall(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
+  const auto& sweep_workload = s.sweep_workload;
   plan.figures.push_back(Figure{
       .id = "V11",
       .title = "Fig. 2-21: intersections per ray fall with n_s",
@@ -666,7 +786,15 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
                                 (where.empty() ? "" : "; no fall at" + where)};
           },
   });
+}
 
+void add_g1_golden_image(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& side = s.side;
+  const auto& rays = s.rays;
+  const auto& no_lighting = s.no_lighting;
+  const auto& brute1 = s.brute1;
+  const auto& brute_workload = s.brute_workload;
   // ---- Golden image: the machine's picture equals the functional renderer's ----
   {
     RunRequest render;
@@ -712,7 +840,14 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+}
 
+void add_fig2_18_csv(Plan& plan, const PlanOptions& options) {
+  const PeripheralFigures s(plan, options);
+  const auto& thesis_model = s.thesis_model;
+  const auto& divisions = s.divisions;
+  const auto& sweep = s.sweep;
+  const auto& sweep_keys = s.sweep_keys;
   // ---- fig2-18.csv: the two curves for plotting ----
   plan.artifacts.push_back(Artifact{
       .file_name = "fig2-18.csv",
@@ -749,7 +884,25 @@ void add_ullner_figures(Plan& plan, const PlanOptions& options) {
   });
 }
 
-const RegisterFigures kRegistered(kUllnerMachine, add_ullner_figures);
+// In the order `rtsim validate` lists them.
+const RegisterFigures kV1IssueInterval(kUllnerMachine, add_v1_issue_interval);
+const RegisterFigures kV2PipelineDepthAndLatency(kUllnerMachine, add_v2_pipeline_depth_and_latency);
+const RegisterFigures kV4TimePerRay(kUllnerMachine, add_v4_time_per_ray);
+const RegisterFigures kV5FrameTime(kUllnerMachine, add_v5_frame_time);
+const RegisterFigures kV8AModelBestSubdivision(kUllnerMachine, add_v8a_model_best_subdivision);
+const RegisterFigures kV8BModelMinimum(kUllnerMachine, add_v8b_model_minimum);
+const RegisterFigures kV8CSimulatedBestSubdivision(kUllnerMachine,
+                                                   add_v8c_simulated_best_subdivision);
+const RegisterFigures kV8DSimulatedMinimum(kUllnerMachine, add_v8d_simulated_minimum);
+const RegisterFigures kV8ESpeedUp(kUllnerMachine, add_v8e_speed_up);
+const RegisterFigures kV8FTimePerRayFormula(kUllnerMachine, add_v8f_time_per_ray_formula);
+const RegisterFigures kV9AModelSteeperLeft(kUllnerMachine, add_v9a_model_steeper_left);
+const RegisterFigures kV9BSimulatedSteeperLeft(kUllnerMachine, add_v9b_simulated_steeper_left);
+const RegisterFigures kV9CSteppingDominates(kUllnerMachine, add_v9c_stepping_dominates);
+const RegisterFigures kV10CubesInteriorMinimum(kUllnerMachine, add_v10_cubes_interior_minimum);
+const RegisterFigures kV11TestsFall(kUllnerMachine, add_v11_tests_fall);
+const RegisterFigures kG1GoldenImage(kUllnerMachine, add_g1_golden_image);
+const RegisterFigures kFig218Csv(kUllnerMachine, add_fig2_18_csv);
 
 }  // namespace
 
