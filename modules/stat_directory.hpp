@@ -14,8 +14,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "modules/stat_classes.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::modules {
@@ -43,6 +45,22 @@ class StatDirectory {
   /// The traces' level signals of every group whose name `keep` accepts, by name then kind
   /// (a signal's changes are worked out only for a name kept).
   std::vector<NamedSignal> signals(const std::function<bool(const std::string&)>& keep) const;
+
+  /// The statistics of type S named `stat` of every module of class `cls` (stat_classes.hpp:
+  /// "pert*.shell"; a name without digits is a class of one), in name order: what a machine's
+  /// own section sums over a class (gaudet-pert's figures per ray over every PERT) without a
+  /// getter in the module.
+  template <class S>
+  std::vector<const S*> of_class(std::string_view cls, std::string_view stat) const {
+    std::vector<const S*> out;
+    for (const auto& [name, group] : groups_) {
+      if (instance_class(name) != cls) continue;
+      for (const Statistic* s : group->statistics())
+        if (s->name() == stat)
+          if (const auto* typed = dynamic_cast<const S*>(s)) out.push_back(typed);
+    }
+    return out;
+  }
 
  private:
   std::multimap<std::string, const StatGroup*> groups_;

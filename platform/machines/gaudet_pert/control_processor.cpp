@@ -36,6 +36,7 @@ ControlProcessor::ControlProcessor(sc_core::sc_module_name name,
                                    std::uint64_t globals_words,
                                    std::vector<ShadeProcessor*> shade_processors)
     : sc_core::sc_module(name),
+      modules::StatGroup(sc_core::sc_module::name()),
       load_word_time_(load_word_time(modules::ModuleParams(registry, this->name()))),
       buses_(std::move(buses)),
       sets_(std::move(sets)),

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "modules/module_params.hpp"
+#include "modules/statistics.hpp"
 #include "platform/machines/gaudet_pert/broadcast_processor.hpp"
 #include "platform/machines/gaudet_pert/data_sets.hpp"
 
@@ -17,7 +18,7 @@ namespace rtsim::platform::gaudet {
 
 class ShadeProcessor;
 
-class ControlProcessor : public sc_core::sc_module {
+class ControlProcessor : public sc_core::sc_module, public modules::StatGroup {
  public:
   /// Its parameters under `control`: the download rate.
   static void declare_params(const modules::ParamDecls& control);
@@ -35,7 +36,6 @@ class ControlProcessor : public sc_core::sc_module {
   const sc_core::sc_event& frame_start() const { return start_; }
   sc_core::sc_time load_time() const { return load_time_; }
   sc_core::sc_time frame_time() const { return frame_time_; }
-  std::uint64_t words_loaded() const { return words_loaded_; }
 
  private:
   void run();
@@ -50,7 +50,8 @@ class ControlProcessor : public sc_core::sc_module {
   sc_core::sc_event done_;
   sc_core::sc_time load_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t words_loaded_ = 0;
+  modules::Counter words_loaded_{*this, "words_loaded",
+                                 "words downloaded into the buses' and the PERTs' memories"};
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -11,6 +11,7 @@
 #include "firmware/shading/camera.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_directory.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
@@ -168,31 +169,41 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
                                     const PertPlatform& p, const sc_core::sc_time& frame) {
   nlohmann::ordered_json out;
   gaudet::TimeSplit totals[3];
-  std::uint64_t box_tests = 0, shell_packets = 0, shell_uses = 0, overflow_peak = 0;
-  std::uint64_t leaf_shells = 0, over_capacity = 0, prim_packets = 0, cancelled = 0;
-  std::uint64_t rejected = 0, prim_rejected = 0, rays_with_packets = 0, backlog_peak = 0;
-  sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
-  std::uint64_t first_packet_count = 0;
   for (const auto& pert : p.perts) {
     const gaudet::PertProcessor* procs[] = {pert->shade.get(), pert->shell.get(), pert->prim.get()};
     for (int k = 0; k < 3; ++k) totals[k] += procs[k]->split();
-    const auto& sh = *pert->shell;
-    box_tests += sh.box_tests();
-    shell_packets += sh.packets_processed();
-    shell_uses += sh.packet_uses();
-    overflow_peak = std::max(overflow_peak, sh.overflow_peak());
-    leaf_shells += sh.leaf_shells();
-    over_capacity += sh.rays_over_capacity();
-    rejected += sh.records_rejected();
-    prim_rejected += pert->prim->records_rejected();
-    const auto& pr = *pert->prim;
-    prim_packets += pr.packets_processed();
-    cancelled += pr.packets_cancelled();
-    rays_with_packets += pr.rays_with_packets();
-    first_packet_total += pr.first_packet_latency_total();
-    first_packet_count += pr.first_packets();
-    backlog_peak = std::max(backlog_peak, pert->shade->backlog_peak());
   }
+  // Over every PERT: the processors' own statistics, summed (or their peak) by class.
+  const auto& stats = modules::StatDirectory::instance();
+  const auto sum = [&stats](const char* cls, const char* stat) {
+    std::uint64_t total = 0;
+    for (const auto* c : stats.of_class<modules::Counter>(cls, stat)) total += c->value();
+    return total;
+  };
+  const auto peak = [&stats](const char* cls, const char* stat) {
+    std::uint64_t most = 0;
+    for (const auto* c : stats.of_class<modules::Peak>(cls, stat))
+      most = std::max(most, c->value());
+    return most;
+  };
+  const char* const shell = "pert*.shell";
+  const char* const prim = "pert*.prim";
+  const std::uint64_t box_tests = sum(shell, "box_tests"),
+                      shell_packets = sum(shell, "packets_caught");
+  const std::uint64_t shell_uses = sum(shell, "packet_uses"),
+                      leaf_shells = sum(shell, "leaf_shells");
+  const std::uint64_t overflow_peak = peak(shell, "overflow_peak");
+  const std::uint64_t over_capacity = sum(shell, "rays_over_list_capacity");
+  const std::uint64_t rejected = sum(shell, "records_rejected");
+  const std::uint64_t prim_rejected = sum(prim, "records_rejected");
+  const std::uint64_t prim_packets = sum(prim, "packets_caught"),
+                      cancelled = sum(prim, "packets_cancelled");
+  const std::uint64_t rays_with_packets = sum(prim, "rays_with_packets");
+  sc_core::sc_time first_packet_total = sc_core::SC_ZERO_TIME;
+  for (const auto* d : stats.of_class<modules::Duration>(prim, "first_packet_latency_total_s"))
+    first_packet_total += d->value();
+  const std::uint64_t first_packet_count = sum(prim, "first_packets");
+  const std::uint64_t backlog_peak = peak("pert*.shade", "backlog_peak");
   nlohmann::ordered_json buses = nlohmann::ordered_json::object();
   const gaudet::DataSetImage* set_of[] = {&sets.shade, &sets.shell, &sets.prim};
   for (std::size_t b = 0; b < p.buses.size(); ++b) {
@@ -222,7 +233,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
   g["broadcast_mode"] = gaudet::mode_name(p.mode);
   g["broadcast_order"] = gaudet::order_name(p.order);
   g["load_time_s"] = p.control->load_time().to_seconds();
-  g["words_loaded"] = p.control->words_loaded();
+  g["words_loaded"] = sum("control", "words_loaded");
   g["shade"] = split_json(totals[0]);
   g["shade"]["backlog_peak"] = backlog_peak;
   g["shell"] = split_json(totals[1]);

@@ -47,17 +47,6 @@ class PrimProcessor : public PertProcessor {
   /// Its parameters under `prim` ("pert.prim").
   static void declare_params(const modules::ParamDecls& prim);
 
-  std::uint64_t packets_processed() const { return packets_; }
-  std::uint64_t packets_cancelled() const { return cancelled_; }
-  std::uint64_t prim_tests() const { return prim_tests_; }
-  /// From asking for a ray's first packet to having it (L1060-L1062), summed over rays.
-  sc_core::sc_time first_packet_latency_total() const { return first_packet_total_; }
-  std::uint64_t first_packets() const { return first_packets_; }
-  /// Rays that needed at least one packet.
-  std::uint64_t rays_with_packets() const { return rays_with_packets_; }
-  /// PRIM records dropped: unreadable, or naming no primitive (only with corrupted memories).
-  std::uint64_t records_rejected() const { return rejected_; }
-
  private:
   void run();
   void serve(ShellToPrim& msg);
@@ -77,10 +66,19 @@ class PrimProcessor : public PertProcessor {
   TraceCounters& counters_;
 
   std::vector<bool> asked_;  ///< per list entry of the current ray
-  std::uint64_t packets_ = 0, cancelled_ = 0, prim_tests_ = 0, rays_with_packets_ = 0;
-  std::uint64_t rejected_ = 0;
-  sc_core::sc_time first_packet_total_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t first_packets_ = 0;
+  modules::Counter packets_{*this, "packets_caught", "packets read off the bus (or its memory)"};
+  modules::Counter cancelled_{*this, "packets_cancelled",
+                              "packets asked for and no longer needed (the ray's hit is nearer)"};
+  modules::Counter prim_tests_{*this, "prim_tests", "primitives tested against a ray"};
+  modules::Counter rays_with_packets_{*this, "rays_with_packets",
+                                      "rays that needed at least one packet"};
+  modules::Counter rejected_{*this, "records_rejected",
+                             "PRIM records dropped: unreadable, or naming no primitive (only "
+                             "with corrupted memories)"};
+  modules::Duration first_packet_total_{
+      *this, "first_packet_latency_total_s",
+      "from asking for a ray's first packet to having it (L1060-L1062), summed over rays"};
+  modules::Counter first_packets_{*this, "first_packets", "rays whose first packet came"};
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -72,7 +72,7 @@ void ShadeProcessor::shade(const PrimToShade& msg) {
     child.t_min = task_.t_min(s);
     backlog_.push_back(child);
   }
-  backlog_peak_ = std::max<std::uint64_t>(backlog_peak_, backlog_.size());
+  backlog_peak_.note(backlog_.size());
   std::uint32_t& left = outstanding_[t.tree];
   left += static_cast<std::uint32_t>(spawned_.size());
   if (--left == 0) {

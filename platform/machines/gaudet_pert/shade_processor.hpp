@@ -69,7 +69,6 @@ class ShadeProcessor : public PertProcessor {
   bool finished() const { return finished_; }
   sc_core::sc_time finish_time() const { return finish_time_; }
   std::uint64_t rays_sent() const { return next_id_; }
-  std::uint64_t backlog_peak() const { return backlog_peak_; }
 
  private:
   void run();
@@ -98,7 +97,8 @@ class ShadeProcessor : public PertProcessor {
   std::map<std::uint32_t, std::vector<PrimToShade>> awaiting_;  ///< SHADE packet -> answers
   std::vector<std::uint32_t> unasked_;                          ///< SHADE IDs not yet in a register
   std::vector<shading::TracedRay> spawned_;
-  std::uint64_t next_id_ = 0, backlog_peak_ = 0;
+  std::uint64_t next_id_ = 0;
+  modules::Peak backlog_peak_{*this, "backlog_peak", "rays spawned and waiting to enter the ring"};
   bool finished_ = false;
   sc_core::sc_time finish_time_ = sc_core::SC_ZERO_TIME;
 };

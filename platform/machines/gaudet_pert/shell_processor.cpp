@@ -72,7 +72,7 @@ void ShellProcessor::ask(std::uint32_t packet, int search) {
   if (w.size() > 1) return;  // already asked for by another ray
   if (!port_.request(packet, clock_.now())) {
     overflow_.push_back(packet);
-    overflow_peak_ = std::max<std::uint64_t>(overflow_peak_, overflow_.size());
+    overflow_peak_.note(overflow_.size());
   }
 }
 

@@ -59,16 +59,6 @@ class ShellProcessor : public PertProcessor {
   /// Elaboration: the queue `out` feeds (to see whether it has room).
   void set_output_queue(const modules::TimedFifo<ShellToPrim>& q) { out_queue_ = &q; }
 
-  std::uint64_t box_tests() const { return box_tests_; }
-  std::uint64_t packets_processed() const { return packets_; }
-  std::uint64_t packet_uses() const { return packet_uses_; }
-  std::uint64_t overflow_peak() const { return overflow_peak_; }
-  std::uint64_t leaf_shells() const { return leaf_shells_; }
-  std::uint64_t rays_over_capacity() const { return over_capacity_; }
-  /// SHELL records dropped because they point at no packet (only with corrupted memories),
-  /// once per packet caught.
-  std::uint64_t records_rejected() const { return rejected_; }
-
  private:
   struct Search {
     RayTicket ticket;
@@ -102,8 +92,19 @@ class ShellProcessor : public PertProcessor {
   /// The records of the packet being processed, each with the words it ends at (a streamed
   /// packet's record is tested once its words are in).
   std::vector<std::pair<accel::Shell, std::size_t>> shells_;
-  std::uint64_t box_tests_ = 0, packets_ = 0, packet_uses_ = 0, overflow_peak_ = 0;
-  std::uint64_t leaf_shells_ = 0, over_capacity_ = 0, rejected_ = 0;
+  modules::Counter box_tests_{*this, "box_tests", "SHELL boxes tested against a ray"};
+  modules::Counter packets_{*this, "packets_caught", "packets read off the bus (or its memory)"};
+  modules::Counter packet_uses_{*this, "packet_uses",
+                                "packets read for a ray (a packet caught "
+                                "once may serve several)"};
+  modules::Peak overflow_peak_{*this, "overflow_peak",
+                               "IDs stacked in its memory with no ID register free (L910)"};
+  modules::Counter leaf_shells_{*this, "leaf_shells", "leaf shells listed for the rays"};
+  modules::Counter over_capacity_{*this, "rays_over_list_capacity",
+                                  "rays with more leaf shells than the list to Prim holds"};
+  modules::Counter rejected_{*this, "records_rejected",
+                             "SHELL records dropped because they point at no packet (only with "
+                             "corrupted memories), once per packet caught"};
 };
 
 }  // namespace rtsim::platform::gaudet
