@@ -10,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "modules/module_params.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_directory.hpp"
 #include "modules/token_ring.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -171,13 +172,18 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   nlohmann::ordered_json workload = nlohmann::ordered_json::array();
   double most = 0;
   for (const auto& c : casters) most = std::max(most, c->accounts().busy.to_seconds());
-  std::uint64_t rays = 0, cast_last = 0, covered_last = 0;
-  for (const auto& c : casters) {
-    cast_last += c->cast_last_frame();
-    covered_last += c->covered_last_frame();
-    rays += c->rays();
+  for (const auto& c : casters)
     workload.push_back(most > 0 ? c->accounts().busy.to_seconds() / most : 0.0);
-  }
+  // Over every caster: their own counts, summed.
+  const auto casters_total = [](const char* stat) {
+    std::uint64_t total = 0;
+    for (const auto* c :
+         modules::StatDirectory::instance().of_class<modules::Counter>("caster*", stat))
+      total += c->value();
+    return total;
+  };
+  const std::uint64_t rays = casters_total("rays"), cast_last = casters_total("cast_last_frame"),
+                      covered_last = casters_total("covered_last_frame");
   nlohmann::ordered_json frame_times = nlohmann::ordered_json::array();
   double sum = 0;
   for (std::size_t f = 0; f < host.done().size(); ++f) {

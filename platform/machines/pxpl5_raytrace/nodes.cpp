@@ -190,7 +190,7 @@ void RayCaster::run() {
       if (pixel >= 0) ++cast_last_frame_;
       return task.cast(camera, lattice, i, j, spp, [&](bool found, const Hit& hit) {
         if (pixel < 0) return;
-        covered_last_frame_ += found;
+        if (found) ++covered_last_frame_;
         frame.record_primary(static_cast<std::uint32_t>(pixel), found, hit);
       });
     };

@@ -75,11 +75,6 @@ class RayCaster : public RingNode {
   SC_HAS_PROCESS(RayCaster);
   RayCaster(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
             const Setup& setup, int number, SamplesFault& fault);
-  /// Rays cast at lattice positions (each with its `spp` vision rays).
-  std::uint64_t rays() const { return rays_.value(); }
-  /// In the last frame: rays cast on the screen, and those whose primary ray hit something.
-  std::uint64_t cast_last_frame() const { return cast_last_frame_; }
-  std::uint64_t covered_last_frame() const { return covered_last_frame_; }
 
  private:
   void run();
@@ -87,7 +82,11 @@ class RayCaster : public RingNode {
   const Setup& setup_;
   SamplesFault& fault_;
   tasks::ShadeTask shade_;
-  std::uint64_t cast_last_frame_ = 0, covered_last_frame_ = 0;
+  modules::Counter cast_last_frame_{*this, "cast_last_frame",
+                                    "rays cast on the screen in the last frame"};
+  modules::Counter covered_last_frame_{
+      *this, "covered_last_frame",
+      "rays of the last frame whose primary ray hit something (the screen coverage's count)"};
   modules::Counter regions_{*this, "regions", "regions cast"};
   modules::Counter rays_{*this, "rays",
                          "rays cast at lattice positions (each with its spp vision rays)"};
