@@ -363,14 +363,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                             : tasks::kPertTriangleTestCost);
 
   shading::PinholeCamera camera(scene.camera, w, h);
-  gaudet::ShadeShared shared;
-  shared.scene = &scene;
-  shared.shade = twin.settings.shade;
-  shared.frame = &frame;
-  shared.camera = &camera;
-  shared.packet_words = &sets.shade.packet_words;
-  shared.initial_rays_total = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
-  shared.opts = &opts;
+  gaudet::FrameProgress progress(frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp()),
+                                 opts);
 
   // --latency-probe: every ray's journey around its ring (ray_probe.hpp).
   gaudet::RayProbe probe(run.probe());
@@ -389,17 +383,15 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
       p.buses.push_back(std::move(bp));
     }
   }
-  gaudet::PertContext context{.registry = r,
+  gaudet::PertContext context{.run = run,
                               .pert_count = pert_count,
-                              .shade = shared,
+                              .camera = camera,
                               .tree = tree,
-                              .geometry = *twin.geometry,
                               .words = words,
                               .sets = sets,
                               .test_cost = test_cost,
                               .buses = {},
-                              .counters = frame.counters(),
-                              .trace = trace,
+                              .progress = progress,
                               .probe = probe};
   for (auto& bp : p.buses) context.buses.push_back(bp.get());
   for (int i = 0; i < pert_count; ++i)
@@ -428,10 +420,10 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   // The simulation ends when nothing is left to happen. With every ray answered that is the end
   // of the frame; otherwise some processor waits for a packet that never comes (a corrupted
   // memory: an ID list entry pointing at no packet) and the image is not a frame.
-  if (shared.initial_rays_done != shared.initial_rays_total) {
+  if (!progress.complete()) {
     const std::string what =
-        "gaudet-pert stopped with work outstanding: " + std::to_string(shared.initial_rays_done) +
-        " of " + std::to_string(shared.initial_rays_total) +
+        "gaudet-pert stopped with work outstanding: " + std::to_string(progress.done()) + " of " +
+        std::to_string(progress.total()) +
         " initial rays answered; a processor waits for a packet its bus never broadcasts";
     // With a fault injected that is the experiment's outcome (an ID list entry corrupted);
     // without one it is a fault of the model.
@@ -442,10 +434,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = p.control->frame_time();
   run.stats_over(p.control->load_time(), frame_time);
   run.machine_stats() = gaudet_stats(tree, sets, p, frame_time);
-  if (opts.progress)
-    opts.progress(static_cast<long>(shared.initial_rays_done),
-                  static_cast<long>(shared.initial_rays_total));
-  return run.finish(shared.latency, memories);
+  progress.report();
+  return run.finish(progress.latency(), memories);
 }
 
 namespace {

@@ -60,7 +60,7 @@ void Pert::declare_params(const modules::ParamDecls& pert) {
 
 Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
     : sc_core::sc_module(name) {
-  const modules::ModuleParams params(c.registry, this->name());
+  const modules::ModuleParams params(c.run.registry(), this->name());
   constexpr const char* kKinds[] = {kShade, kShell, kPrim};
   const DataSetImage* set_of[] = {&c.sets.shade, &c.sets.shell, &c.sets.prim};
   // Its own memory's first access: what a packet costs when the PERT holds the data sets.
@@ -78,16 +78,9 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
                                                 set_of[k]->order.size(), c.words.id_list_entry);
     }
   }
-  shade = std::make_unique<ShadeProcessor>(kShade, c.registry, index, c.pert_count, c.shade,
-                                           *ports[0], params.get(kPrimToShade), c.trace);
-  shell = std::make_unique<ShellProcessor>(
-      kShell, c.registry, c.tree, c.sets.shell.packet_words, c.words.shell,
-      c.sets.shell.image.packet_count() > 0 ? c.sets.shell.image.packet(0)
-                                            : std::span<const std::uint32_t>{},
-      *ports[1], params.get(kShadeToShell), c.counters, c.trace);
-  prim = std::make_unique<PrimProcessor>(kPrim, c.registry, c.geometry, c.words,
-                                         c.sets.prim.packet_words, c.test_cost, *ports[2],
-                                         params.get(kShellToPrim), c.counters, c.trace);
+  shade = std::make_unique<ShadeProcessor>(kShade, c, index, *ports[0], params.get(kPrimToShade));
+  shell = std::make_unique<ShellProcessor>(kShell, c, *ports[1], params.get(kShadeToShell));
+  prim = std::make_unique<PrimProcessor>(kPrim, c, *ports[2], params.get(kShellToPrim));
   for (std::size_t k = 0; k < 3; ++k)
     links[k] = std::make_unique<modules::Link>(params.sub(kLink).sub(kLinks[k]));
   shade->set_output_link(*links[0]);

@@ -15,28 +15,12 @@
 #include "modules/module_params.hpp"
 #include "platform/machines/gaudet_pert/broadcast_processor.hpp"
 #include "platform/machines/gaudet_pert/data_sets.hpp"
+#include "platform/machines/gaudet_pert/pert_context.hpp"
 #include "platform/machines/gaudet_pert/prim_processor.hpp"
 #include "platform/machines/gaudet_pert/shade_processor.hpp"
 #include "platform/machines/gaudet_pert/shell_processor.hpp"
 
 namespace rtsim::platform::gaudet {
-
-/// What every PERT's firmware works on: built once by the machine, shared by the rings.
-struct PertContext {
-  const params::ParamRegistry& registry;
-  int pert_count;
-  ShadeShared& shade;
-  const accel::ShellTree& tree;
-  const functional::SceneGeometry& geometry;
-  const accel::RecordWords& words;
-  const PertDataSets& sets;
-  const std::vector<Cost>& test_cost;  ///< the PrimProcessor's test cost per shape
-  /// Shade, Shell and Prim broadcast buses; empty: direct memory.
-  std::vector<BroadcastProcessor*> buses;
-  TraceCounters& counters;
-  MachineTrace& trace;
-  RayProbe& probe;
-};
 
 class Pert : public sc_core::sc_module {
  public:

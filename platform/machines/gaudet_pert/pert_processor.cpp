@@ -30,9 +30,10 @@ void PertProcessor::declare_params(const modules::ParamDecls& processor,
   BusInterface::declare_params(processor.sub(kBic), id_registers);
 }
 
-PertProcessor::PertProcessor(const sc_core::sc_module_name& name,
-                             const params::ParamRegistry& registry, MachineTrace& trace)
-    : modules::Processor(name, trace), params_(registry, this->name()), probe_(&disabled_probe()) {
+PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& run)
+    : modules::Processor(name, run.trace()),
+      params_(run.registry(), this->name()),
+      probe_(&disabled_probe()) {
   set_timing(modules::read_processor_timing(params_));
 }
 

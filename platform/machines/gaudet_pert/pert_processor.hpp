@@ -23,6 +23,7 @@
 #include "modules/processor.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
 #include "platform/machines/gaudet_pert/ray_probe.hpp"
+#include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_trace.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -74,8 +75,8 @@ class PertProcessor : public modules::Processor {
 
  protected:
   /// Reads its parameters under its hierarchical name ("pert0.shade").
-  PertProcessor(const sc_core::sc_module_name& name, const params::ParamRegistry& registry,
-                MachineTrace& trace);
+  /// Reads its parameters under its name from the run's registry; traces to the run's trace.
+  PertProcessor(const sc_core::sc_module_name& name, MachineRun& run);
 
   /// Waits until `until` (if known) or until one of `events` fires, whichever comes first.
   /// The time counts as latency if `for_bus`, else as pipeline wait.

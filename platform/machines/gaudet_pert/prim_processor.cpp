@@ -13,26 +13,22 @@ void PrimProcessor::declare_params(const modules::ParamDecls& prim) {
                                                  "most two)"});
 }
 
-PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                             const functional::SceneGeometry& geometry,
-                             const accel::RecordWords& record_words,
-                             const std::vector<std::uint32_t>& packet_words,
-                             const std::vector<Cost>& test_cost, PacketPort& port,
-                             std::size_t input_depth, TraceCounters& counters, MachineTrace& trace)
-    : PertProcessor(name, registry, trace),
+PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const PertContext& c, PacketPort& port,
+                             std::size_t input_depth)
+    : PertProcessor(name, c.run),
       input("input", input_depth, ring_queue("shell_to_prim")),
       out("out"),
-      geometry_(geometry),
-      record_words_(record_words),
-      packet_words_(packet_words),
-      test_cost_(test_cost),
+      geometry_(*c.run.twin().geometry),
+      record_words_(c.words),
+      packet_words_(c.sets.prim.packet_words),
+      test_cost_(c.test_cost),
       port_(port),
       // At most two IDs ahead (L910, L1056), and no more than it has buffers: packets come in
       // broadcast order, not t order, so with one buffer a second packet could take the only
       // buffer while the ray waits for the first, for ever.
       ahead_(std::max<std::size_t>(
           1, std::min<std::size_t>(2, params_.sub(kBic).get_count(BusInterface::kBuffers)))),
-      counters_(counters) {
+      counters_(c.run.frame().counters()) {
   SC_THREAD(run);
 }
 

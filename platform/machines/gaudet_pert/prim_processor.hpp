@@ -27,6 +27,7 @@
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machines/gaudet_pert/messages.hpp"
 #include "platform/machines/gaudet_pert/packet_port.hpp"
+#include "platform/machines/gaudet_pert/pert_context.hpp"
 #include "platform/machines/gaudet_pert/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -39,11 +40,11 @@ class PrimProcessor : public PertProcessor {
   SC_HAS_PROCESS(PrimProcessor);
   /// `geometry`: the host's copy of the primitives (slot numbers, materials, vertex normals);
   /// `record_words`: the PRIM records' sizes.
-  PrimProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                const functional::SceneGeometry& geometry, const accel::RecordWords& record_words,
-                const std::vector<std::uint32_t>& packet_words, const std::vector<Cost>& test_cost,
-                PacketPort& port, std::size_t input_depth, TraceCounters& counters,
-                MachineTrace& trace);
+  /// Its data set (the PRIM packets, the record sizes, each shape's test cost) from `context`
+  /// and the twin's geometry (the host's copy, for reporting hits), read through `port`; its
+  /// input queue `input_depth` messages deep.
+  PrimProcessor(sc_core::sc_module_name name, const PertContext& context, PacketPort& port,
+                std::size_t input_depth);
   /// Its parameters under `prim` ("pert.prim").
   static void declare_params(const modules::ParamDecls& prim);
 

@@ -26,17 +26,19 @@ void ShadeProcessor::declare_params(const modules::ParamDecls& shade) {
   shade.add(kRaysInFlight);
 }
 
-ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                               int pert, int pert_count, ShadeShared& shared, PacketPort& port,
-                               std::size_t input_depth, MachineTrace& trace)
-    : PertProcessor(name, registry, trace),
+ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const PertContext& c, int pert,
+                               PacketPort& port, std::size_t input_depth)
+    : PertProcessor(name, c.run),
       input("input", input_depth, ring_queue("prim_to_shade")),
       out("out"),
       pert_(pert),
-      pert_count_(pert_count),
-      shared_(shared),
+      pert_count_(c.pert_count),
+      frame_(c.run.frame()),
+      camera_(c.camera),
+      packet_words_(c.sets.shade.packet_words),
+      progress_(c.progress),
       port_(port),
-      task_(*shared.scene, shared.shade),
+      task_(c.run.scene(), c.run.twin().settings.shade),
       y_(pert),
       outstanding_(std::max<std::size_t>(params_.get(kRaysInFlight), 1), 0) {
   for (std::size_t i = outstanding_.size(); i-- > 0;)
@@ -45,14 +47,14 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const params::Param
 }
 
 bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
-  const auto& f = *shared_.frame;
+  const auto& f = frame_;
   // This PERT's scanlines: pert, pert + N, pert + 2N, ... (L938).
   while (!scanline_ || scanline_->done()) {
     if (scanline_) y_ += pert_count_;
     if (y_ >= f.height()) return false;
     const auto first = static_cast<std::uint32_t>(y_) * static_cast<std::uint32_t>(f.width());
     scanline_ = std::make_unique<tasks::VisionRayTask>(
-        *shared_.camera, f.width(), f.height(), f.spp(), first,
+        camera_, f.width(), f.height(), f.spp(), first,
         first + static_cast<std::uint32_t>(f.width()), f.detailed_rows());
   }
   ray = scanline_->next(sample);
@@ -61,8 +63,8 @@ bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
 
 void ShadeProcessor::shade(const PrimToShade& msg) {
   const RayTicket& t = msg.ticket;
-  const Cost c = task_.on_result(t.ray, msg.found, msg.hit, shared_.frame->fb(), spawned_);
-  shared_.frame->counters().cost += c;
+  const Cost c = task_.on_result(t.ray, msg.found, msg.hit, frame_.fb(), spawned_);
+  frame_.counters().cost += c;
   compute(c, "shade");
   ++rays_;
   for (const auto& s : spawned_) {
@@ -79,10 +81,7 @@ void ShadeProcessor::shade(const PrimToShade& msg) {
     // Every ray of this initial ray is answered: the pixel sample is finished.
     free_trees_.push_back(t.tree);
     --trees_in_flight_;
-    ++shared_.initial_rays_done;
-    if (shared_.opts->progress && (shared_.initial_rays_done & 1023) == 0)
-      shared_.opts->progress(static_cast<long>(shared_.initial_rays_done),
-                             static_cast<long>(shared_.initial_rays_total));
+    progress_.tree_done();
   }
 }
 
@@ -91,10 +90,10 @@ void ShadeProcessor::receive(PrimToShade msg) {
   // From the PrimProcessor's send to here the answer waited in the queue.
   probe_->to(t, Stage::kPrimToShade, RayProbe::Part::kQueueing, clock_.now());
   compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
-  shared_.frame->counters().count_ray(t.ray.kind);
-  shared_.latency.add(clock_.now() - t.sent);
+  frame_.counters().count_ray(t.ray.kind);
+  progress_.ray_back(clock_.now() - t.sent);
   probe_->end(t, clock_.now());
-  if (t.first_sample) shared_.frame->record_primary(t.ray.pixel, msg.found, msg.hit);
+  if (t.first_sample) frame_.record_primary(t.ray.pixel, msg.found, msg.hit);
   if (!msg.found || t.ray.kind == RayKind::Shadow) {
     shade(msg);  // no surface to look up: light reached or blocked, or the background
     return;
@@ -134,8 +133,7 @@ void ShadeProcessor::run() {
       continue;
     }
     if (auto p = port_.take(now)) {
-      compute(tasks::words_cost((*shared_.packet_words)[p->id]) + tasks::kPacketBookkeepingCost,
-              "packet");
+      compute(tasks::words_cost(packet_words_[p->id]) + tasks::kPacketBookkeepingCost, "packet");
       auto node = awaiting_.extract(p->id);
       port_.release(*p, clock_.now());
       if (!node.empty())

@@ -30,22 +30,10 @@
 #include "platform/machine.hpp"
 #include "platform/machines/gaudet_pert/messages.hpp"
 #include "platform/machines/gaudet_pert/packet_port.hpp"
+#include "platform/machines/gaudet_pert/pert_context.hpp"
 #include "platform/machines/gaudet_pert/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
-
-/// What all ShadeProcessors share: the frame, the shading task's inputs, the progress count.
-struct ShadeShared {
-  const scenes::Scene* scene = nullptr;
-  shading::ShadeParams shade;
-  functional::FrameState* frame = nullptr;
-  const shading::PinholeCamera* camera = nullptr;
-  const std::vector<std::uint32_t>* packet_words = nullptr;  ///< SHADE packets
-  modules::LatencyRecorder latency;                          ///< per ray, around the ring
-  std::uint64_t initial_rays_total = 0;
-  std::uint64_t initial_rays_done = 0;
-  const RunOptions* opts = nullptr;
-};
 
 class ShadeProcessor : public PertProcessor {
  public:
@@ -56,9 +44,10 @@ class ShadeProcessor : public PertProcessor {
   static void declare_params(const modules::ParamDecls& shade);
 
   SC_HAS_PROCESS(ShadeProcessor);
-  ShadeProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry, int pert,
-                 int pert_count, ShadeShared& shared, PacketPort& port, std::size_t input_depth,
-                 MachineTrace& trace);
+  /// The ShadeProcessor of PERT number `pert`; its data set through `port`, its input queue
+  /// `input_depth` messages deep.
+  ShadeProcessor(sc_core::sc_module_name name, const PertContext& context, int pert,
+                 PacketPort& port, std::size_t input_depth);
 
   void set_output_queue(const modules::TimedFifo<ShadeToShell>& q) { out_queue_ = &q; }
   /// The control processor starts the frame at `t` and is told when this PERT is done.
@@ -82,7 +71,10 @@ class ShadeProcessor : public PertProcessor {
   bool next_initial_ray(shading::TracedRay& ray, int& sample);
 
   int pert_, pert_count_;
-  ShadeShared& shared_;
+  functional::FrameState& frame_;
+  const shading::PinholeCamera& camera_;
+  const std::vector<std::uint32_t>& packet_words_;  ///< SHADE packets
+  FrameProgress& progress_;
   PacketPort& port_;
   const modules::TimedFifo<ShadeToShell>* out_queue_ = nullptr;
   sc_core::sc_event* done_event_ = nullptr;

@@ -42,25 +42,24 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
       "FIFOs the SJ16 reads a word a cycle): a SHELL record is tested once its words are in");
 }
 
-ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                               const accel::ShellTree& tree,
-                               const std::vector<std::uint32_t>& packet_words,
-                               std::uint32_t record_words,
-                               std::span<const std::uint32_t> root_packet, PacketPort& port,
-                               std::size_t input_depth, TraceCounters& counters,
-                               MachineTrace& trace)
-    : PertProcessor(name, registry, trace),
+ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const PertContext& c, PacketPort& port,
+                               std::size_t input_depth)
+    : PertProcessor(name, c.run),
       input("input", input_depth, ring_queue("shade_to_shell")),
       out("out"),
-      tree_(tree),
-      packet_words_(packet_words),
-      record_words_(ShellProcessor::record_words(record_words)),
+      tree_(c.tree),
+      packet_words_(c.sets.shell.packet_words),
+      record_words_(ShellProcessor::record_words(c.words.shell)),
       port_(port),
-      counters_(counters),
+      counters_(c.run.frame().counters()),
       searches_(std::max<std::size_t>(params_.get(kRaysInFlight), 1)) {
   // Loaded with the globals before the frame (L863): its time is not part of the frame.
   root_local_ = params_.get(kRootLocal) && !packet_words_.empty();
-  if (root_local_) local_root_.assign(root_packet.begin(), root_packet.end());
+  if (root_local_) {
+    // Packet 0: the root's children (L662).
+    const auto root = c.sets.shell.image.packet(0);
+    local_root_.assign(root.begin(), root.end());
+  }
   SC_THREAD(run);
 }
 

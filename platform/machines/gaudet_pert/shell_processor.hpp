@@ -31,6 +31,7 @@
 #include "modules/message_channel.hpp"
 #include "platform/machines/gaudet_pert/messages.hpp"
 #include "platform/machines/gaudet_pert/packet_port.hpp"
+#include "platform/machines/gaudet_pert/pert_context.hpp"
 #include "platform/machines/gaudet_pert/pert_processor.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -44,11 +45,10 @@ class ShellProcessor : public PertProcessor {
   /// `tree`: what the control processor knows of the data sets (how many SHELL and PRIM
   /// packets there are); `record_words`: words per SHELL record.
   /// `root_packet`: packet 0's words, copied into its local memory if `root_local` is set.
-  ShellProcessor(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                 const accel::ShellTree& tree, const std::vector<std::uint32_t>& packet_words,
-                 std::uint32_t record_words, std::span<const std::uint32_t> root_packet,
-                 PacketPort& port, std::size_t input_depth, TraceCounters& counters,
-                 MachineTrace& trace);
+  /// Its data set (the SHELL packets, their shell tree and record size) from `context`, read
+  /// through `port`; its input queue `input_depth` messages deep.
+  ShellProcessor(sc_core::sc_module_name name, const PertContext& context, PacketPort& port,
+                 std::size_t input_depth);
   /// Its parameters under `shell` ("pert.shell").
   static void declare_params(const modules::ParamDecls& shell);
   /// Words of a SHELL record as it reads them, from the data sets' `data.words.shell`.
