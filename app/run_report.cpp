@@ -235,19 +235,10 @@ void write_trace_section(HtmlReport& page, const json& stats) {
 
 namespace {
 
-HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_in) {
-  const ReportTools tools = tools_in.resolved();
-  json stats;
-  try {
-    stats = json::parse(read_whole_file(in.stats_json));
-  } catch (const json::exception& e) {
-    throw std::runtime_error("report: " + in.stats_json.string() + " is not JSON: " + e.what());
-  }
+/// The headline numbers: machine, scene, image, frame and wall time, rays, latency.
+void headline_section(HtmlReport& page, const json& stats) {
   const std::string machine = str(stats, "machine");
   const std::string scene = str(stats, "scene");
-  HtmlReport page("rtsim " + str(stats, "command") + ": " + machine + " on " + scene);
-  if (!in.command_line.empty()) page.paragraph(in.command_line);
-
   // Headline numbers.
   std::vector<std::pair<std::string, std::string>> head;
   head.emplace_back("machine", machine);
@@ -277,14 +268,40 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
                                          value_text((*lat)["count"]) + " rays)");
   page.heading("Headline");
   page.key_values(head);
-  write_trace_section(page, stats);
+}
 
-  if (!in.image_png.empty() && fs::exists(in.image_png)) {
-    page.heading("Image");
-    page.image(in.image_png, "rendered image", "image.png", true);
-  }
+/// One plot a machine's own stats.json object draws through analysis/ (when it has `key`).
+struct MachinePlot {
+  const char* object;  ///< stats.json's machine object: "pipeline", "array", ...
+  const char* key;     ///< the key in it the plot reads
+  const char* script;  ///< analysis/SCRIPT, run on stats.json
+  const char* title;
+  const char* caption;
+};
 
-  // Plots through analysis/.
+const MachinePlot kMachinePlots[] = {
+    {"pipeline", "along_chain", "chain_profile.py", "busy fraction along the chain",
+     "Each polygon processor's busy fraction along the chain, and per ray description how often "
+     "it overwrote the description and gave the answer: the useful part of its work (stats.json "
+     "pipeline.along_chain; analysis/chain_profile.py)"},
+    {"array", "node_busy_fraction", "array_heatmap.py", "load balance of the array",
+     "Each processor's CPU busy fraction laid out as the array, and the utilisation of every "
+     "link toward its neighbour (stats.json array.node_busy_fraction and modules nodeK.link_D; "
+     "analysis/array_heatmap.py)"},
+    {"wang", "substages", "wang_substages.py", "the Bezier pipeline's substages",
+     "Each substage's time per job against the pipeline cycle (the slowest sets it), and the "
+     "busy fraction of its DSP pool over the frame beside the host's (stats.json wang.stage0, "
+     "wang.substages; analysis/wang_substages.py)"},
+    {"pxpl5", "caster_workload", "pxpl5_workload.py", "the ray casters' workloads",
+     "Each ray caster's busy time over the busiest's, with the regions it was given (VOL2's "
+     "Plate 4), and the bytes each traffic class put on the token ring (stats.json "
+     "pxpl5.caster_workload, modules ring; analysis/pxpl5_workload.py)"},
+};
+
+/// Utilisation over time, the latency histogram and the machine's own plots; what could not be
+/// drawn is said in a note.
+void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& in,
+                   const ReportTools& tools) {
   page.heading("Utilisation and latency");
   std::vector<std::string> problems;
   fs::create_directories(tools.scratch_dir);
@@ -332,58 +349,21 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     else
       problems.push_back(r.message);
   }
-  if (const json* pipe = find(stats, "pipeline"); pipe && find(*pipe, "along_chain")) {
-    const fs::path png = tools.scratch_dir / "chain_profile.png";
-    const auto r =
-        run_analysis_script(tools, "chain_profile.py", {in.stats_json.string(), png.string()});
+  for (const MachinePlot& plot : kMachinePlots) {
+    const json* object = find(stats, plot.object);
+    if (!object || !find(*object, plot.key)) continue;
+    const fs::path png = tools.scratch_dir / (fs::path(plot.script).stem().string() + ".png");
+    const auto r = run_analysis_script(tools, plot.script, {in.stats_json.string(), png.string()});
     if (r.ok)
-      page.image(png, "busy fraction along the chain",
-                 "Each polygon processor's busy fraction along the chain, and per ray "
-                 "description how often it overwrote the description and gave the answer: the "
-                 "useful part of its work (stats.json pipeline.along_chain; "
-                 "analysis/chain_profile.py)");
-    else
-      problems.push_back(r.message);
-  }
-  if (const json* arr = find(stats, "array"); arr && find(*arr, "node_busy_fraction")) {
-    const fs::path png = tools.scratch_dir / "array_heatmap.png";
-    const auto r =
-        run_analysis_script(tools, "array_heatmap.py", {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, "load balance of the array",
-                 "Each processor's CPU busy fraction laid out as the array, and the utilisation "
-                 "of every link toward its neighbour (stats.json array.node_busy_fraction and "
-                 "modules nodeK.link_D; analysis/array_heatmap.py)");
-    else
-      problems.push_back(r.message);
-  }
-  if (const json* w = find(stats, "wang"); w && find(*w, "substages")) {
-    const fs::path png = tools.scratch_dir / "wang_substages.png";
-    const auto r =
-        run_analysis_script(tools, "wang_substages.py", {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, "the Bezier pipeline's substages",
-                 "Each substage's time per job against the pipeline cycle (the slowest sets it), "
-                 "and the busy fraction of its DSP pool over the frame beside the host's "
-                 "(stats.json wang.stage0, wang.substages; analysis/wang_substages.py)");
-    else
-      problems.push_back(r.message);
-  }
-  if (const json* px = find(stats, "pxpl5"); px && find(*px, "caster_workload")) {
-    const fs::path png = tools.scratch_dir / "pxpl5_workload.png";
-    const auto r =
-        run_analysis_script(tools, "pxpl5_workload.py", {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, "the ray casters' workloads",
-                 "Each ray caster's busy time over the busiest's, with the regions it was given "
-                 "(VOL2's Plate 4), and the bytes each traffic class put on the token ring "
-                 "(stats.json pxpl5.caster_workload, modules ring; analysis/pxpl5_workload.py)");
+      page.image(png, plot.title, plot.caption);
     else
       problems.push_back(r.message);
   }
   if (!problems.empty()) page.note(missing_plots_note(problems));
+}
 
-  // `-p accuracy.check=true` on wang-bezier: the pipeline's answers against the reference.
+/// `-p accuracy.check=true` on wang-bezier: the pipeline's answers against the reference.
+void accuracy_section(HtmlReport& page, const json& stats) {
   if (const json* w = find(stats, "wang"); w && find(*w, "accuracy")) {
     page.heading("Accuracy against the reference solver");
     page.paragraph(
@@ -411,8 +391,11 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
                 "wrong / reference hits", "error p50 (patch sizes)", "p99", "p99 (pixels)"},
                rows);
   }
+}
 
-  // `--latency-probe`: the per-stage breakdown of a ray's latency.
+/// `--latency-probe`: the per-stage breakdown of a ray's latency.
+void latency_probe_section(HtmlReport& page, const json& stats, const RunReportInputs& in,
+                           const ReportTools& tools) {
   if (const json* probe = find(stats, "latency_probe"); probe && probe->is_object()) {
     page.heading("Where a ray spends its time");
     const json* stages = find(*probe, "stages");
@@ -467,15 +450,11 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     else
       page.note(missing_plots_note({r.message}));
   }
+}
 
-  // A machine's own figures and the other measured objects.
-  for (const auto& [key, v] : stats.items()) {
-    if (kShownKeys.count(key) || !v.is_object()) continue;
-    page.heading(key);
-    machine_section(page, key, v);
-  }
-  // Modules. A class of many instances (an array's nodes) is one row of its aggregates: a
-  // row per node would be thousands.
+/// Modules. A class of many instances (an array's nodes) is one row of its aggregates: a row
+/// per node would be thousands.
+void modules_section(HtmlReport& page, const json& stats) {
   if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
     page.heading("Modules");
     std::set<std::string> grouped;
@@ -537,22 +516,25 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
                      "module_classes; each instance is in stats.json modules).");
     page.table({"module", "busy", "utilisation", "queue occupancy", "counts"}, rows);
   }
+}
 
-  {
-    std::vector<std::pair<std::string, std::string>> kv;
-    for (const char* key : {"accel", "scene_stats", "geometry", "firmware_cost", "image"}) {
-      const json* o = find(stats, key);
-      if (!o || !o->is_object()) continue;
-      for (const auto& [k, x] : o->items())
-        kv.emplace_back(std::string(key) + "." + k, value_text(x));
-    }
-    if (!kv.empty()) {
-      page.heading("Scene and firmware");
-      page.key_values(kv);
-    }
+/// The scene's, the search structure's and the firmware's figures.
+void scene_section(HtmlReport& page, const json& stats) {
+  std::vector<std::pair<std::string, std::string>> kv;
+  for (const char* key : {"accel", "scene_stats", "geometry", "firmware_cost", "image"}) {
+    const json* o = find(stats, key);
+    if (!o || !o->is_object()) continue;
+    for (const auto& [k, x] : o->items())
+      kv.emplace_back(std::string(key) + "." + k, value_text(x));
   }
+  if (!kv.empty()) {
+    page.heading("Scene and firmware");
+    page.key_values(kv);
+  }
+}
 
-  // Parameters with their sources.
+/// Every parameter with its value, where it was set and its source.
+void parameters_section(HtmlReport& page, const json& stats, const RunReportInputs& in) {
   page.heading("Parameters");
   if (!in.params.empty()) {
     page.paragraph(
@@ -573,7 +555,37 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     for (const auto& [k, v] : ps->items()) rows.push_back({k, value_text(v)});
     page.table({"parameter", "value"}, rows);
   }
+}
 
+HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_in) {
+  const ReportTools tools = tools_in.resolved();
+  json stats;
+  try {
+    stats = json::parse(read_whole_file(in.stats_json));
+  } catch (const json::exception& e) {
+    throw std::runtime_error("report: " + in.stats_json.string() + " is not JSON: " + e.what());
+  }
+  HtmlReport page("rtsim " + str(stats, "command") + ": " + str(stats, "machine") + " on " +
+                  str(stats, "scene"));
+  if (!in.command_line.empty()) page.paragraph(in.command_line);
+  headline_section(page, stats);
+  write_trace_section(page, stats);
+  if (!in.image_png.empty() && fs::exists(in.image_png)) {
+    page.heading("Image");
+    page.image(in.image_png, "rendered image", "image.png", true);
+  }
+  plots_section(page, stats, in, tools);
+  accuracy_section(page, stats);
+  latency_probe_section(page, stats, in, tools);
+  // A machine's own figures and the other measured objects.
+  for (const auto& [key, v] : stats.items()) {
+    if (kShownKeys.count(key) || !v.is_object()) continue;
+    page.heading(key);
+    machine_section(page, key, v);
+  }
+  modules_section(page, stats);
+  scene_section(page, stats);
+  parameters_section(page, stats, in);
   page.paragraph("Written by " + str(stats, "tool") + " " + str(stats, "version") +
                  ". Every figure here is also in stats.json (schema: docs/stats.md).");
   return page;
