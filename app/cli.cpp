@@ -100,14 +100,10 @@ int run_cli_in_forked_child(const std::vector<std::string>& args) {
   return run_cli(static_cast<int>(copy.size()), argv.data());
 }
 
-int run_cli(int argc, char** argv) {
-  CLI::App app(kDescription, "rtsim");
-  app.footer(kFooter);
-  app.set_version_flag("--version", std::string("rtsim ") + RTSIM_VERSION);
-  app.require_subcommand(1);
+namespace {
 
-  RenderArgs render;
-  render.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+/// `rtsim render`: its options into `render`.
+CLI::App* add_render_command(CLI::App& app, RenderArgs& render) {
   auto* r = app.add_subcommand(
       "render",
       "Render a scene with the functional renderer: the firmware kernels and shading\n"
@@ -130,8 +126,11 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   r->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
   add_config_options(r, render.config);
+  return r;
+}
 
-  RunArgs runa;
+/// `rtsim run`: its options into `runa`.
+CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
   auto* run = app.add_subcommand(
       "run",
       "Run a machine model: SystemC/TLM-2.0 modules with annotated timing render one\n"
@@ -234,8 +233,11 @@ int run_cli(int argc, char** argv) {
                 "parameters with their sources");
   run->add_flag("-q,--quiet", runa.quiet, "Print nothing but errors");
   add_config_options(run, runa.config);
+  return run;
+}
 
-  SweepArgs sw;
+/// `rtsim sweep`: its options into `sw`.
+CLI::App* add_sweep_command(CLI::App& app, SweepArgs& sw) {
   auto* sweep = app.add_subcommand(
       "sweep",
       "Run a parameter sweep from a TOML file: each point of the product of its axes is one\n"
@@ -274,8 +276,11 @@ int run_cli(int argc, char** argv) {
                    "frame time, speed-up and largest changes against it (as `rtsim diff`)")
       ->check(CLI::NonNegativeNumber);
   sweep->add_flag("-q,--quiet", sw.quiet, "Print nothing but errors");
-  ValidateArgs va;
-  va.jobs = render.threads;
+  return sweep;
+}
+
+/// `rtsim validate`: its options into `va`.
+CLI::App* add_validate_command(CLI::App& app, ValidateArgs& va) {
   auto* validate = app.add_subcommand(
       "validate",
       "Reproduce the seeds' figures: run `rtsim run` (one process per simulation) and\n"
@@ -299,8 +304,11 @@ int run_cli(int argc, char** argv) {
   validate->add_flag("--list", va.list, "List the figures, their tolerances and why; run nothing");
   validate->add_option("--rtsim", va.rtsim, "The rtsim binary to run (default: this one)")
       ->check(CLI::ExistingFile);
+  return validate;
+}
 
-  ListArgs list;
+/// `rtsim list`: its options into `list`.
+CLI::App* add_list_command(CLI::App& app, ListArgs& list) {
   auto* l = app.add_subcommand("list", "List built-in scenes, machines, or parameters");
   l->add_option("what", list.what, "scenes | machines | params")
       ->required()
@@ -318,8 +326,11 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "markdown", "json"}))
       ->capture_default_str();
   add_config_options(l, list.config);
+  return l;
+}
 
-  DiffArgs diff;
+/// `rtsim diff`: its options into `diff`.
+CLI::App* add_diff_command(CLI::App& app, DiffArgs& diff) {
   auto* df = app.add_subcommand(
       "diff",
       "Compare two runs: the parameters that differ and every statistic that changed, with its\n"
@@ -345,8 +356,11 @@ int run_cli(int argc, char** argv) {
           },
           "FLOAT in [0 - 1]"))
       ->capture_default_str();
+  return df;
+}
 
-  DescribeArgs da;
+/// `rtsim describe`: its options into `da`.
+CLI::App* add_describe_command(CLI::App& app, DescribeArgs& da) {
   auto* d = app.add_subcommand(
       "describe",
       "Print a machine's module tree: each module with its parameters and statistics, and the "
@@ -357,6 +371,33 @@ int run_cli(int argc, char** argv) {
                 "The scene the machine is built for (default: a small one it can hold)");
   d->add_option("--out", da.out_dir, "Write MACHINE.dot and MACHINE.svg into this folder");
   add_config_options(d, da.config);
+  return d;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app(kDescription, "rtsim");
+  app.footer(kFooter);
+  app.set_version_flag("--version", std::string("rtsim ") + RTSIM_VERSION);
+  app.require_subcommand(1);
+
+  RenderArgs render;
+  render.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  RunArgs runa;
+  SweepArgs sw;
+  ValidateArgs va;
+  va.jobs = render.threads;
+  ListArgs list;
+  DiffArgs diff;
+  DescribeArgs da;
+  auto* r = add_render_command(app, render);
+  auto* run = add_run_command(app, runa);
+  auto* sweep = add_sweep_command(app, sw);
+  auto* validate = add_validate_command(app, va);
+  auto* l = add_list_command(app, list);
+  auto* df = add_diff_command(app, diff);
+  auto* d = add_describe_command(app, da);
 
   try {
     app.parse(argc, argv);
