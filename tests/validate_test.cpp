@@ -419,11 +419,11 @@ TEST(ValidateRunner, RunsInParallelAndReportsFailures) {
   std::vector<RunRequest> reqs;
   for (int i = 0; i < 5; ++i) {
     reqs.push_back({.key = "vax-" + std::to_string(i),
-                    .args = {"run", "--machine", "vax-750", "--scene", "builtin:default", "--width",
-                             std::to_string(4 + i), "--height", "4"},
+                    .args = {"run", "--machine", kVaxMachine, "--scene", "builtin:default",
+                             "--width", std::to_string(4 + i), "--height", "4"},
                     .cost_hint = double(i)});
   }
-  reqs.push_back({.key = "bad-fails", .args = {"run", "--machine", "vax-750"}});
+  reqs.push_back({.key = "bad-fails", .args = {"run", "--machine", kVaxMachine}});
   ScopedEnv fail("FAKE_RTSIM_FAIL", "-fails");
   int calls = 0, last_done = 0;
   const auto results = run_all(reqs, {.executable = kFake,

@@ -62,12 +62,12 @@ class FrameBuffer : public modules::Processor {
   }
 
   SC_HAS_PROCESS(FrameBuffer);
-  FrameBuffer(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-              functional::FrameState& frame, MachineTrace& trace)
-      : modules::Processor(name, trace),
-        params_(registry, this->name()),
+  /// Its parameters from the run's registry, under its name; it writes the run's frame.
+  FrameBuffer(sc_core::sc_module_name name, MachineRun& run)
+      : modules::Processor(name, run.trace()),
+        params_(run.registry(), this->name()),
         in("in", params_.get(kQueueDepth)),
-        frame_(frame),
+        frame_(run.frame()),
         write_time_(params_.get(kWriteTime)) {
     SC_THREAD(run);
   }
@@ -131,17 +131,15 @@ class Host : public modules::Processor {
 
   SC_HAS_PROCESS(Host);
   /// `queue`: the frame buffer's, which it waits on for room.
-  Host(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-       const scenes::Scene& scene, const FunctionalTwin& twin, MachineRun& run,
-       const modules::TimedFifo<PixelWord>& queue)
+  Host(sc_core::sc_module_name name, MachineRun& run, const modules::TimedFifo<PixelWord>& queue)
       : modules::Processor(name, run.trace()),
         out("out"),
-        params_(registry, this->name()),
+        params_(run.registry(), this->name()),
         ray_time_(params_.get(kRayTime)),
         test_time_(params_.get(kTestTime)),
         link(params_.sub("link")),
-        scene_(scene),
-        twin_(twin),
+        scene_(run.scene()),
+        twin_(run.twin()),
         queue_(queue),
         frame_(run.frame()),
         opts_(run.options()),
@@ -227,8 +225,9 @@ class KitMinimal final : public Machine {
   RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& r,
                 const RunOptions& opts) const override {
     MachineRun run(name(), scene, twin, r, opts);
-    FrameBuffer fb("frame_buffer", r, run.frame(), run.trace());
-    Host host("host", r, scene, twin, run, fb.in.fifo);
+    // Each module takes the run (its parameters, the scene, the twin, the frame, the trace).
+    FrameBuffer fb("frame_buffer", run);
+    Host host("host", run, fb.in.fifo);
     host.out.bind(fb.in.socket);
     inject_faults(name(), opts.faults, {});
     run.simulate();
