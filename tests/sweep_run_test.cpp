@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "platform/machine_registry.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -31,12 +32,15 @@ constexpr int kRays = 16 * 12;  // primary rays only (shade.max_depth = 0)
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
-// A sweep of the peripheral: grid divisions x adder stages. adder_stages = 2 is within the
+// A sweep of the peripheral (the default machine: the registry names it, not this test): grid
+// divisions x adder stages. adder_stages = 2 is within the
 // parameter's declared bounds (1..3), so the sweep passes its checks, but the machine accepts
 // only 1 or 3 (Fig. 2-17): those points fail at run time, as a real what-if sweep may.
+const std::string& peripheral() { return rtsim::platform::default_machine().name(); }
+
 std::string peripheral_sweep(const std::string& divisions) {
-  return "name = \"tiny\"\n"
-         "machine = \"ullner-peripheral\"\n"
+  return "name = \"tiny\"\nmachine = \"" + peripheral() +
+         "\"\n"
          "scene = \"builtin:ullner-sheets-1000\"\n"
          "width = 16\n"
          "height = 12\n"
@@ -70,7 +74,8 @@ TEST(SweepRun, RowsFailuresAndResuming) {
   // --list shows the four command lines and runs nothing.
   const auto listed = run_rtsim("sweep " + file.string() + " --list --out " + out.string());
   EXPECT_EQ(listed.exit_code, 0) << listed.output;
-  EXPECT_NE(listed.output.find("0003        rtsim run --machine ullner-peripheral --scene "
+  EXPECT_NE(listed.output.find("0003        rtsim run --machine " + peripheral() +
+                               " --scene "
                                "builtin:ullner-sheets-1000 --width 16 --height 12 -q -p "
                                "shade.max_depth=0 -p peripheral.grid.divisions=4 -p "
                                "peripheral.adder_stages=2"),
@@ -90,7 +95,7 @@ TEST(SweepRun, RowsFailuresAndResuming) {
     const int adders = i % 2 == 0 ? 1 : 2;
     SCOPED_TRACE("point " + std::to_string(i));
     EXPECT_EQ(r["point"], i);  // point order, not completion order
-    EXPECT_EQ(r["machine"], "ullner-peripheral");
+    EXPECT_EQ(r["machine"], peripheral());
     EXPECT_EQ(r["scene"], "builtin:ullner-sheets-1000");
     EXPECT_EQ(r["peripheral.grid.divisions"], divisions);
     EXPECT_EQ(r["peripheral.adder_stages"], adders);

@@ -9,6 +9,8 @@
 
 #include "common/input_error.hpp"
 #include "modules/stat_classes.hpp"
+#include "params/registry.hpp"
+#include "platform/machine_registry.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_check.hpp"
 #include "platform/sweep/sweep_file.hpp"
@@ -21,9 +23,33 @@ using namespace rtsim::sweep;
 
 namespace {
 
-constexpr const char* kHead =
-    "machine = \"ullner-peripheral\"\n"
-    "scene = \"builtin:ullner-cubes\"\n";
+/// The machines the sweeps here name, from the registry (none is written here): the default
+/// machine, whose peripheral.grid.divisions the axes sweep, and another that does not declare
+/// it but has render.grid.divisions (the name a sweep that sets it on that machine is pointed to).
+struct Machines {
+  std::string first, other;
+};
+const Machines& machines() {
+  static const Machines m = [] {
+    Machines out{rtsim::platform::default_machine().name(), ""};
+    for (const auto* machine : rtsim::platform::machines()) {
+      rtsim::params::ParamRegistry r;
+      rtsim::platform::declare_params_of(machine, r);
+      if (!r.contains("peripheral.grid.divisions") && r.contains("render.grid.divisions")) {
+        out.other = machine->name();
+        break;
+      }
+    }
+    EXPECT_FALSE(out.other.empty());
+    return out;
+  }();
+  return m;
+}
+const std::string& m1() { return machines().first; }
+const std::string& m2() { return machines().other; }
+
+/// A sweep of the first machine on builtin:ullner-cubes: lines 1 and 2.
+std::string head() { return "machine = \"" + m1() + "\"\nscene = \"builtin:ullner-cubes\"\n"; }
 
 SweepFile parse(const std::string& text) { return parse_sweep(text, "s.toml", "/base"); }
 
@@ -34,7 +60,7 @@ std::vector<std::string> texts(const AxisMember& m) {
 }
 
 std::vector<std::string> axis_texts(const std::string& axis_body) {
-  const SweepFile f = parse(std::string(kHead) + "[[axes]]\n" + axis_body);
+  const SweepFile f = parse(head() + "[[axes]]\n" + axis_body);
   EXPECT_EQ(f.axes.size(), 1u);
   return texts(f.axes.at(0).members.at(0));
 }
@@ -53,10 +79,17 @@ std::string error_of(const std::string& text) {
 
 using Strings = std::vector<std::string>;
 
+/// `name` with two letters in the middle swapped: a machine that does not exist, one edit away.
+std::string misspelt(std::string name) {
+  const std::size_t k = name.size() / 2;
+  std::swap(name[k], name[k + 1]);
+  return name;
+}
+
 }  // namespace
 
 TEST(SweepFile, ExplicitValuesKeepTheirTypes) {
-  const SweepFile f = parse(std::string(kHead) +
+  const SweepFile f = parse(head() +
                             "[[axes]]\nparam = \"peripheral.grid.divisions\"\n"
                             "values = [1, 2.5, \"400 ns\", true]\n");
   const auto& m = f.axes.at(0).members.at(0);
@@ -110,7 +143,7 @@ TEST(SweepFile, LogRanges) {
 }
 
 TEST(SweepFile, RangesWithAUnitGiveQuantities) {
-  const SweepFile f = parse(std::string(kHead) +
+  const SweepFile f = parse(head() +
                             "[[axes]]\nparam = \"x\"\n"
                             "range = { start = 100, stop = 400, step = 100, unit = \"ns\" }\n");
   const auto& m = f.axes.at(0).members.at(0);
@@ -119,14 +152,14 @@ TEST(SweepFile, RangesWithAUnitGiveQuantities) {
 }
 
 TEST(SweepFile, ProductOfMachinesScenesAxesAndZips) {
-  const SweepFile f = parse(
-      "machine = [\"vax-750\", \"ullner-peripheral\"]\n"
-      "scenes = [\"builtin:default\", \"builtin:ullner-cubes\", \"my.nff\"]\n"
-      "width = 16\nheight = 12\n"
-      "[params]\nshade.max_depth = 0\n"
-      "[[axes]]\nparam = \"render.spp\"\nvalues = [1, 2, 3, 4]\n"
-      "[[axes]]\nzip = [ { param = \"a.b\", values = [1, 2] },\n"
-      "        { param = \"c.d\", range = { start = 10, stop = 20, count = 2 } } ]\n");
+  const SweepFile f =
+      parse("machine = [\"" + m2() + "\", \"" + m1() + "\"]\n" +
+            "scenes = [\"builtin:default\", \"builtin:ullner-cubes\", \"my.nff\"]\n"
+            "width = 16\nheight = 12\n"
+            "[params]\nshade.max_depth = 0\n"
+            "[[axes]]\nparam = \"render.spp\"\nvalues = [1, 2, 3, 4]\n"
+            "[[axes]]\nzip = [ { param = \"a.b\", values = [1, 2] },\n"
+            "        { param = \"c.d\", range = { start = 10, stop = 20, count = 2 } } ]\n");
   ASSERT_EQ(f.axes.size(), 4u);  // machine, scene, render.spp, the zip
   EXPECT_EQ(f.point_count(), 2u * 3u * 4u * 2u);
   EXPECT_EQ(f.swept_params(), (Strings{"render.spp", "a.b", "c.d"}));
@@ -141,7 +174,7 @@ TEST(SweepFile, ProductOfMachinesScenesAxesAndZips) {
   EXPECT_EQ(at(1, "c.d"), "20");
   EXPECT_EQ(at(2, "render.spp"), "2");
   EXPECT_EQ(at(8, "scene"), "builtin:ullner-cubes");
-  EXPECT_EQ(at(24, "machine"), "ullner-peripheral");
+  EXPECT_EQ(at(24, "machine"), m1());
   EXPECT_EQ(at(47, "scene"), "my.nff");
   EXPECT_EQ(points[7].key, "0007");
   EXPECT_EQ(points[7].index, 7u);
@@ -149,29 +182,30 @@ TEST(SweepFile, ProductOfMachinesScenesAxesAndZips) {
   // The command line: run options, -q, fixed parameters, then swept ones; relative scene files
   // resolved against the sweep file's folder.
   EXPECT_EQ(points[47].args,
-            (Strings{"run", "--machine", "ullner-peripheral", "--scene", "/base/my.nff", "--width",
-                     "16", "--height", "12", "-q", "-p", "shade.max_depth=0", "-p", "render.spp=4",
-                     "-p", "a.b=2", "-p", "c.d=20"}));
+            (Strings{"run", "--machine", m1(), "--scene", "/base/my.nff", "--width", "16",
+                     "--height", "12", "-q", "-p", "shade.max_depth=0", "-p", "render.spp=4", "-p",
+                     "a.b=2", "-p", "c.d=20"}));
   EXPECT_EQ(points[47].command_line(),
-            "rtsim run --machine ullner-peripheral --scene /base/my.nff --width 16 --height 12 "
-            "-q -p shade.max_depth=0 -p render.spp=4 -p a.b=2 -p c.d=20");
+            "rtsim run --machine " + m1() +
+                " --scene /base/my.nff --width 16 --height 12 "
+                "-q -p shade.max_depth=0 -p render.spp=4 -p a.b=2 -p c.d=20");
 }
 
 TEST(SweepFile, NoAxesIsOnePointAndKeysGrowWithTheSweep) {
-  const SweepFile one = parse(kHead);
+  const SweepFile one = parse(head());
   EXPECT_EQ(one.point_count(), 1u);
   EXPECT_EQ(expand_points(one).at(0).key, "0000");
   const SweepFile big =
-      parse(std::string(kHead) + "[[axes]]\nparam = \"x\"\nrange = { start = 1, stop = 12000 }\n");
+      parse(head() + "[[axes]]\nparam = \"x\"\nrange = { start = 1, stop = 12000 }\n");
   const auto points = expand_points(big);
   EXPECT_EQ(points.front().key, "00000");
   EXPECT_EQ(points.back().key, "11999");
 }
 
 TEST(SweepFile, HashFollowsTheCommandLine) {
-  const auto a = expand_points(parse(std::string(kHead) + "[params]\n\"shade.max_depth\" = 1\n"));
-  const auto b = expand_points(parse(std::string(kHead) + "[params.shade]\nmax_depth = 1\n"));
-  const auto c = expand_points(parse(std::string(kHead) + "[params]\n\"shade.max_depth\" = 2\n"));
+  const auto a = expand_points(parse(head() + "[params]\n\"shade.max_depth\" = 1\n"));
+  const auto b = expand_points(parse(head() + "[params.shade]\nmax_depth = 1\n"));
+  const auto c = expand_points(parse(head() + "[params]\n\"shade.max_depth\" = 2\n"));
   EXPECT_EQ(a[0].hash().size(), 16u);
   EXPECT_EQ(a[0].hash(), b[0].hash());  // a nested table is the same parameter
   EXPECT_NE(a[0].hash(), c[0].hash());
@@ -180,11 +214,10 @@ TEST(SweepFile, HashFollowsTheCommandLine) {
 }
 
 TEST(SweepCheck, AcceptsValidParametersForEveryMachine) {
-  const SweepFile f = parse(
-      "machine = [\"vax-750\", \"ullner-peripheral\"]\n"
-      "scene = \"builtin:ullner-cubes\"\n"
-      "[params]\nquantum = \"10 us\"\n"
-      "[[axes]]\nparam = \"shade.max_depth\"\nvalues = [0, 3]\n");
+  const SweepFile f = parse("machine = [\"" + m2() + "\", \"" + m1() + "\"]\n" +
+                            "scene = \"builtin:ullner-cubes\"\n"
+                            "[params]\nquantum = \"10 us\"\n"
+                            "[[axes]]\nparam = \"shade.max_depth\"\nvalues = [0, 3]\n");
   EXPECT_NO_THROW(check_sweep(f, expand_points(f)));
 }
 
@@ -196,130 +229,127 @@ TEST(SweepCheck, EveryBadInputNamesTheLineAndWhatWasExpected) {
   };
   const std::string axis = "[[axes]]\n";
   const std::vector<Case> cases = {
-      {"toml syntax", "machine = \"vax-750\"\nscene = [1, ", "2: "},
-      {"unknown top-level key", std::string(kHead) + "widht = 3\n",
+      {"toml syntax", "machine = \"" + m2() + "\"\nscene = [1, ", "2: "},
+      {"unknown top-level key", head() + "widht = 3\n",
        "3: unknown key 'widht' in the sweep file; did you mean 'width'?"},
-      {"unknown key, no near name", std::string(kHead) + "zzz = 3\n",
+      {"unknown key, no near name", head() + "zzz = 3\n",
        "3: unknown key 'zzz' in the sweep file; expected one of 'name', "},
-      {"unknown parameter", std::string(kHead) + "[params]\n\"shade.max_dept\" = 2\n",
-       "4: on machine 'ullner-peripheral': unknown parameter 'shade.max_dept'; did you mean "
-       "'shade.max_depth'?"},
+      {"unknown parameter", head() + "[params]\n\"shade.max_dept\" = 2\n",
+       "4: on machine '" + m1() +
+           "': unknown parameter 'shade.max_dept'; did you mean "
+           "'shade.max_depth'?"},
       {"value out of range",
-       std::string(kHead) + axis + "param = \"peripheral.grid.divisions\"\nvalues = [1, -3]\n",
-       "5: on machine 'ullner-peripheral': parameter 'peripheral.grid.divisions' expects an "
-       "integer from 0 to"},
-      {"value of the wrong kind", std::string(kHead) + "[params]\nquantum = 5\n",
-       "4: on machine 'ullner-peripheral': parameter 'quantum': \"5\" has no unit"},
+       head() + axis + "param = \"peripheral.grid.divisions\"\nvalues = [1, -3]\n",
+       "5: on machine '" + m1() +
+           "': parameter 'peripheral.grid.divisions' expects an "
+           "integer from 0 to"},
+      {"value of the wrong kind", head() + "[params]\nquantum = 5\n",
+       "4: on machine '" + m1() + "': parameter 'quantum': \"5\" has no unit"},
       {"parameter of another machine",
-       "machine = [\"ullner-peripheral\", \"vax-750\"]\nscene = \"builtin:default\"\n" + axis +
+       "machine = [\"" + m1() + "\", \"" + m2() + "\"]\nscene = \"builtin:default\"\n" + axis +
            "param = \"peripheral.grid.divisions\"\nvalues = [1]\n",
-       "4: on machine 'vax-750': parameter 'peripheral.grid.divisions' is not used by vax-750 "
-       "(it would change nothing); did you mean 'render.grid.divisions'?"},
+       "4: on machine '" + m2() + "': parameter 'peripheral.grid.divisions' is not used by " +
+           m2() + " (it would change nothing); did you mean 'render.grid.divisions'?"},
       {"unknown machine",
-       "machine = [\"vax-750\", \"ullner-periferal\"]\nscene = \"builtin:default\"\n",
-       "1: unknown machine 'ullner-periferal'; did you mean 'ullner-peripheral'?"},
-      {"unknown builtin scene", "machine = \"vax-750\"\nscene = \"builtin:ullner-cube\"\n",
+       "machine = [\"" + m2() + "\", \"" + misspelt(m1()) + "\"]\nscene = \"builtin:default\"\n",
+       "1: unknown machine '" + misspelt(m1()) + "'; did you mean '" + m1() + "'?"},
+      {"unknown builtin scene", "machine = \"" + m2() + "\"\nscene = \"builtin:ullner-cube\"\n",
        "2: scene 'builtin:ullner-cube': unknown builtin scene 'ullner-cube'; did you mean "
        "builtin:ullner-cubes"},
-      {"missing scene file", "machine = \"vax-750\"\nscene = \"nothere.nff\"\n",
+      {"missing scene file", "machine = \"" + m2() + "\"\nscene = \"nothere.nff\"\n",
        "2: scene 'nothere.nff': /base/nothere.nff: cannot open scene file"},
       {"no machine", "scene = \"builtin:default\"\n", "0: the sweep names no machine"},
-      {"no scene", "machine = \"vax-750\"\n", "0: the sweep names no scene"},
+      {"no scene", "machine = \"" + m2() + "\"\n", "0: the sweep names no scene"},
       {"machine and machines",
-       "machine = \"vax-750\"\nmachines = [\"vax-750\"]\nscene = \"builtin:default\"\n",
+       "machine = \"" + m2() + "\"\nmachines = [\"" + m2() + "\"]\nscene = \"builtin:default\"\n",
        "2: give either 'machine' or 'machines', not both"},
       {"empty machine list", "machine = []\nscene = \"builtin:default\"\n",
        "1: 'machine' is an empty list"},
       {"machine not a string", "machine = 3\nscene = \"builtin:default\"\n",
        "1: 'machine' must be a name or a list of names; got an integer 3"},
-      {"width 0", std::string(kHead) + "width = 0\n",
+      {"width 0", head() + "width = 0\n",
        "3: 'width' must be an integer from 1 to 16384 (pixels); got 0"},
-      {"width as a list", std::string(kHead) + "width = [1, 2]\n",
+      {"width as a list", head() + "width = [1, 2]\n",
        "3: 'width' takes one value; to vary it, add an [[axes]] entry"},
-      {"run option in [params]", std::string(kHead) + "[params]\nwidth = 3\n",
+      {"run option in [params]", head() + "[params]\nwidth = 3\n",
        "4: 'width' is an option of `rtsim run`, not a parameter"},
-      {"list in [params]", std::string(kHead) + "[params]\n\"render.spp\" = [1, 2]\n",
+      {"list in [params]", head() + "[params]\n\"render.spp\" = [1, 2]\n",
        "4: [params] sets one value per parameter; to vary 'render.spp', add an [[axes]] entry"},
       {"set twice",
-       std::string(kHead) + "[params]\n\"render.spp\" = 1\n" + axis +
+       head() + "[params]\n\"render.spp\" = 1\n" + axis +
            "param = \"render.spp\"\nvalues = [1, 2]\n",
        "6: 'render.spp' is set or varied twice in this sweep"},
       {"two axes, one name",
-       std::string(kHead) + axis + "param = \"render.spp\"\nvalues = [1]\n" + axis +
+       head() + axis + "param = \"render.spp\"\nvalues = [1]\n" + axis +
            "param = \"render.spp\"\nvalues = [2]\n",
        "7: 'render.spp' is set or varied twice"},
-      {"[[axis]] for [[axes]]", std::string(kHead) + "[[axis]]\nparam = \"x\"\nvalues = [1]\n",
+      {"[[axis]] for [[axes]]", head() + "[[axis]]\nparam = \"x\"\nvalues = [1]\n",
        "3: unknown key 'axis' in the sweep file; did you mean 'axes'?"},
-      {"axis key typo", std::string(kHead) + axis + "param = \"render.spp\"\nvlaues = [1]\n",
+      {"axis key typo", head() + axis + "param = \"render.spp\"\nvlaues = [1]\n",
        "5: unknown key 'vlaues' in axis 1; did you mean 'values'?"},
-      {"axis without param", std::string(kHead) + axis + "values = [1]\n",
+      {"axis without param", head() + axis + "values = [1]\n",
        "3: axis 1 needs 'param' (the parameter it varies) or 'zip'"},
-      {"axis without values", std::string(kHead) + axis + "param = \"render.spp\"\n",
+      {"axis without values", head() + axis + "param = \"render.spp\"\n",
        "4: the axis of 'render.spp' needs 'values' (a list) or 'range'"},
       {"values and range",
-       std::string(kHead) + axis +
-           "param = \"render.spp\"\nvalues = [1]\nrange = { start = 1, stop = 2 }\n",
+       head() + axis + "param = \"render.spp\"\nvalues = [1]\nrange = { start = 1, stop = 2 }\n",
        "6: the axis of 'render.spp': give 'values' or 'range', not both"},
-      {"empty values", std::string(kHead) + axis + "param = \"render.spp\"\nvalues = []\n",
+      {"empty values", head() + axis + "param = \"render.spp\"\nvalues = []\n",
        "5: the axis of 'render.spp': 'values' is empty"},
-      {"value twice", std::string(kHead) + axis + "param = \"render.spp\"\nvalues = [1, 2, 1]\n",
+      {"value twice", head() + axis + "param = \"render.spp\"\nvalues = [1, 2, 1]\n",
        "5: the axis of 'render.spp' lists '1' twice"},
-      {"table as a value",
-       std::string(kHead) + axis + "param = \"render.spp\"\nvalues = [1, { a = 2 }]\n",
+      {"table as a value", head() + axis + "param = \"render.spp\"\nvalues = [1, { a = 2 }]\n",
        "5: a value of 'render.spp' must be a number, a string or true/false; got a table"},
-      {"range without stop",
-       std::string(kHead) + axis + "param = \"render.spp\"\nrange = { start = 1 }\n",
+      {"range without stop", head() + axis + "param = \"render.spp\"\nrange = { start = 1 }\n",
        "5: the range of 'render.spp' needs 'stop'"},
       {"range with step and count",
-       std::string(kHead) + axis +
+       head() + axis +
            "param = \"render.spp\"\nrange = { start = 1, stop = 4, step = 1, count = 4 }\n",
        "5: the range of 'render.spp': give 'step' or 'count', not both"},
       {"step 0",
-       std::string(kHead) + axis +
+       head() + axis +
            "param = \"render.spp\"\nrange = { start = 1, stop = 4, step = "
            "0 }\n",
        "5: the range of 'render.spp': 'step' must not be 0"},
       {"step away from stop",
-       std::string(kHead) + axis +
-           "param = \"render.spp\"\nrange = { start = 1, stop = 5, step = -1 }\n",
+       head() + axis + "param = \"render.spp\"\nrange = { start = 1, stop = 5, step = -1 }\n",
        "5: the range of 'render.spp': step -1 goes away from stop 5 (from start 1)"},
       {"range key typo",
-       std::string(kHead) + axis + "param = \"render.spp\"\nrange = { start = 1, stopp = 5 }\n",
+       head() + axis + "param = \"render.spp\"\nrange = { start = 1, stopp = 5 }\n",
        "5: unknown key 'stopp' in the range of 'render.spp'; did you mean 'stop'?"},
       {"bad scale",
-       std::string(kHead) + axis +
+       head() + axis +
            "param = \"render.spp\"\nrange = { start = 1, stop = 5, count = 2, scale = \"ln\" }\n",
        "5: the range of 'render.spp': scale must be \"linear\" or \"log\""},
       {"log without count",
-       std::string(kHead) + axis +
-           "param = \"render.spp\"\nrange = { start = 1, stop = 5, scale = \"log\" }\n",
+       head() + axis + "param = \"render.spp\"\nrange = { start = 1, stop = 5, scale = \"log\" }\n",
        "5: the range of 'render.spp': a log range needs 'count'"},
       {"log from 0",
-       std::string(kHead) + axis +
+       head() + axis +
            "param = \"render.spp\"\nrange = { start = 0, stop = 5, count = 3, scale = \"log\" }\n",
        "5: the range of 'render.spp': a log range needs start and stop above 0"},
       {"count 0",
-       std::string(kHead) + axis +
+       head() + axis +
            "param = \"render.spp\"\nrange = { start = 1, stop = 5, count "
            "= 0 }\n",
        "5: the range of 'render.spp': 'count' must be an integer from 1 to 100000"},
       {"range too long",
-       std::string(kHead) + axis + "param = \"render.spp\"\nrange = { start = 1, stop = 1e6 }\n",
+       head() + axis + "param = \"render.spp\"\nrange = { start = 1, stop = 1e6 }\n",
        "5: the range of 'render.spp' has 1000000 values, more than 100000"},
       {"product too big",
-       std::string(kHead) + axis + "param = \"a.b\"\nrange = { start = 1, stop = 1000 }\n" + axis +
+       head() + axis + "param = \"a.b\"\nrange = { start = 1, stop = 1000 }\n" + axis +
            "param = \"c.d\"\nrange = { start = 1, stop = 1000 }\n",
        "6: the sweep has more than 100000 points"},
       {"zip lengths differ",
-       std::string(kHead) + axis +
+       head() + axis +
            "zip = [\n  { param = \"render.spp\", values = [1, 2] },\n"
            "  { param = \"shade.max_depth\", values = [1, 2, 3] },\n]\n",
        "6: zipped axis: 'render.spp' has 2 values but 'shade.max_depth' has 3"},
-      {"zip with param", std::string(kHead) + axis + "param = \"x\"\nzip = []\n",
+      {"zip with param", head() + axis + "param = \"x\"\nzip = []\n",
        "4: unknown key 'param' in axis 1 (a zipped axis has only 'zip')"},
-      {"zip entry not a table", std::string(kHead) + axis + "zip = [1]\n",
+      {"zip entry not a table", head() + axis + "zip = [1]\n",
        "4: axis 1: each entry of 'zip' must be a table"},
-      {"config file missing", std::string(kHead) + "configs = [\"nothere.toml\"]\n",
+      {"config file missing", head() + "configs = [\"nothere.toml\"]\n",
        "3: config file 'nothere.toml' not found (looked for /base/nothere.toml"},
   };
   for (const auto& c : cases) {
@@ -333,12 +363,12 @@ TEST(SweepCheck, BadSweepExitsWithStatus2AndWritesNothing) {
   const fs::path dir = rtsim::test::scratch_dir("sweep-bad");
   fs::create_directories(dir);
   const fs::path file = dir / "bad.toml";
-  std::ofstream(file) << kHead << "[[axes]]\nparam = \"peripheral.grid.divisons\"\nvalues = [1]\n";
+  std::ofstream(file) << head() << "[[axes]]\nparam = \"peripheral.grid.divisons\"\nvalues = [1]\n";
   const fs::path out = dir / "out";
   const auto r = rtsim::test::run_rtsim("sweep " + file.string() + " --out " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(file.string() +
-                          ":4: on machine 'ullner-peripheral': unknown parameter "
+  EXPECT_NE(r.output.find(file.string() + ":4: on machine '" + m1() +
+                          "': unknown parameter "
                           "'peripheral.grid.divisons'; did you mean 'peripheral.grid.divisions'"),
             std::string::npos)
       << r.output;
@@ -364,7 +394,7 @@ TEST(ResultsTable, AClassOfManyInstancesOrOfAVaryingSizeIsColumnsOfItsAggregates
   // node* has 3 instances in one point and 2 in the other: node2 would be another node at each
   // size, so the table keeps the class's aggregates, never node0, node1, node2. pert*.shell
   // has 2 instances in both: its instances stay columns, and its band is added.
-  const SweepFile f = parse(std::string(kHead) + "width = 8\n" +
+  const SweepFile f = parse(head() + "width = 8\n" +
                             "[[axes]]\nparam = \"peripheral.grid.divisions\"\nvalues = [0, 4]\n");
   const auto points = expand_points(f);
   std::vector<PointOutcome> outcomes(2);
@@ -402,14 +432,14 @@ TEST(ResultsTable, AClassOfManyInstancesOrOfAVaryingSizeIsColumnsOfItsAggregates
 }
 
 TEST(ResultsTable, OneRowPerPointWithSweptValuesStatsAndFailures) {
-  const SweepFile f = parse(std::string(kHead) + "width = 8\n" +
+  const SweepFile f = parse(head() + "width = 8\n" +
                             "[[axes]]\nparam = \"peripheral.grid.divisions\"\nvalues = [0, 4]\n");
   const auto points = expand_points(f);
   std::vector<PointOutcome> outcomes(2);
   outcomes[0].ok = true;
   outcomes[0].exit_code = 0;
   outcomes[0].wall_s = 1.5;
-  outcomes[0].stats_text = R"({"tool": "rtsim", "machine": "ullner-peripheral", "width": 8,
+  outcomes[0].stats_text = R"({"tool": "rtsim", "machine": "a-machine", "width": 8,
       "height": 6, "simulated_time_s": 0.25, "rays": {"total": 48, "primary": 48},
       "modules": {"peripheral.pipeline": {"busy_s": 0.2, "utilization": 0.8}},
       "ray_latency_s": {"mean": 1e-5, "histogram": {"counts": [1, 2]}},
@@ -456,7 +486,8 @@ TEST(ResultsTable, OneRowPerPointWithSweptValuesStatsAndFailures) {
   EXPECT_TRUE(bad[11].is_null());
 
   const std::string csv = to_csv(t);
-  EXPECT_NE(csv.find("\n1,ullner-peripheral,builtin:ullner-cubes,8,,4,failed,2,\"exit status 2: "
+  EXPECT_NE(csv.find("\n1," + m1() +
+                     ",builtin:ullner-cubes,8,,4,failed,2,\"exit status 2: "
                      "rtsim: error: bad, really\",0.5,points/0001,,,,,,,,rtsim run "),
             std::string::npos)
       << csv;
