@@ -3,11 +3,11 @@
 // (platform/machines/<name>/machine.cpp), so adding a machine edits nothing outside its folder,
 // its figures, its test and its docs page (docs/adding-a-machine.md):
 //
-//   const RegisterMachine<Vax750> kRegistered({
-//       .name = "vax-750",  // (the one place the name is written)
-//       .description = "... (seed 001 L317-L318)",
+//   const RegisterMachine<MyMachine> kRegistered({
+//       .name = "my-machine",  // the one place its name is written
+//       .description = "... (seed NNN, the lines it models)",
 //       .sample_scene = "builtin:npp-412",
-//       .test_runs = {"--scene builtin:npp-412", "--scene builtin:default -p vax.search=shells"},
+//       .test_runs = {"--scene builtin:npp-412", "--scene builtin:default -p host.x=2"},
 //       .benchmark_runs = {...}});
 //
 // The platform library is linked whole into the programs (CMakeLists.txt), so no registration

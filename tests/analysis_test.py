@@ -91,13 +91,13 @@ class SweepPlotTest(ScratchTest):
         with open(self.csv, "w") as f:
             f.write("machine,scene,pert_count,link.bit_time,simulated_time_s,wall_time_s,"
                     "rays.total,modules.host.utilization,exit_status,error,unrelated\n"
-                    "gaudet-pert,builtin:npp-404,1,200 ns,8.0,1.5,100,0.9,0,,a\n"
-                    "gaudet-pert,builtin:npp-404,2,200 ns,4.0,1.2,100,0.8,0,,b\n"
-                    "gaudet-pert,builtin:npp-404,4,200 ns,2.5,1.1,100,0.7,0,,c\n"
-                    "gaudet-pert,builtin:npp-404,4,200 ns,1.5,1.1,100,0.7,0,,repeat\n"
-                    "gaudet-pert,builtin:npp-408,1,400 ns,10.0,2.0,100,0.9,0,,d\n"
-                    "gaudet-pert,builtin:npp-408,2,400 ns,6.0,2.0,100,0.8,0,,e\n"
-                    "gaudet-pert,builtin:npp-408,8,400 ns,,0,0,0,1,crashed,f\n")
+                    "machine-b,builtin:npp-404,1,200 ns,8.0,1.5,100,0.9,0,,a\n"
+                    "machine-b,builtin:npp-404,2,200 ns,4.0,1.2,100,0.8,0,,b\n"
+                    "machine-b,builtin:npp-404,4,200 ns,2.5,1.1,100,0.7,0,,c\n"
+                    "machine-b,builtin:npp-404,4,200 ns,1.5,1.1,100,0.7,0,,repeat\n"
+                    "machine-b,builtin:npp-408,1,400 ns,10.0,2.0,100,0.9,0,,d\n"
+                    "machine-b,builtin:npp-408,2,400 ns,6.0,2.0,100,0.8,0,,e\n"
+                    "machine-b,builtin:npp-408,8,400 ns,,0,0,0,1,crashed,f\n")
 
     def test_speed_up_per_scene_against_the_one_pert_row(self):
         df = sweep_plot.read_results(self.csv)
@@ -343,7 +343,7 @@ class LatencyHistogramTest(ScratchTest):
 
 class ArrayHeatmapTest(ScratchTest):
     def stats(self):
-        return {"machine": "ullner-array", "scene": "s",
+        return {"machine": "machine-c", "scene": "s",
                 "array": {"mapping": "straight", "depth_axis": "z", "subvolumes": 2,
                           "node_busy_fraction": [[0.5, 0.25], [0.125, 0.0]]},
                 "modules": {"node0.link_e": {"utilization": 0.2},
@@ -370,7 +370,7 @@ class ArrayHeatmapTest(ScratchTest):
             array_heatmap.array_series(bad)
         path = os.path.join(self.dir, "stats.json")
         with open(path, "w") as f:
-            json.dump({"machine": "vax-750"}, f)
+            json.dump({"machine": "machine-a"}, f)
         r = run_script("array_heatmap.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("node_busy_fraction", r.stderr)
@@ -378,7 +378,7 @@ class ArrayHeatmapTest(ScratchTest):
 
 class ChainProfileTest(ScratchTest):
     def stats(self):
-        return {"machine": "ullner-pipeline", "scene": "s", "pipeline": {
+        return {"machine": "machine-d", "scene": "s", "pipeline": {
             "engines": 6, "polygons": 4, "along_chain": {
                 "engines": 6, "busy_fraction": 0.25, "first_engine": [0, 2, 4],
                 "overwrites_per_description": [0.5, 0.125, 0.0],
@@ -406,7 +406,7 @@ class ChainProfileTest(ScratchTest):
             chain_profile.chain_series(bad)
         path = os.path.join(self.dir, "stats.json")
         with open(path, "w") as f:
-            json.dump({"machine": "vax-750"}, f)
+            json.dump({"machine": "machine-a"}, f)
         r = run_script("chain_profile.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("along_chain", r.stderr)
@@ -414,7 +414,7 @@ class ChainProfileTest(ScratchTest):
 
 class WangSubstagesTest(ScratchTest):
     def stats(self):
-        return {"machine": "wang-bezier", "scene": "s", "simulated_time_s": 1e-3,
+        return {"machine": "machine-e", "scene": "s", "simulated_time_s": 1e-3,
                 "modules": {"host": {"utilization": 0.75}},
                 "wang": {"loop_stages": 2, "cycle_s": 2e-6, "jobs": 250, "dsps": 9,
                          "stage0": {"stage0.split_u": {"dsps": 1, "cycles": 10, "time_s": 1e-6}},
@@ -441,7 +441,7 @@ class WangSubstagesTest(ScratchTest):
     def test_bad_input(self):
         path = os.path.join(self.dir, "stats.json")
         with open(path, "w") as f:
-            json.dump({"machine": "vax-750"}, f)
+            json.dump({"machine": "machine-a"}, f)
         r = run_script("wang_substages.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("wang.substages", r.stderr)
@@ -525,7 +525,7 @@ class ParetoPlotTest(ScratchTest):
     def test_png_and_bad_input(self):
         rows = [{"machine": m, "scene": sc, "setting": st, "frame_s": 1.0, "wall_s": w,
                  "speedup": 1.0 / w, "error": e, **extra}
-                for m in ("vax-750", "gaudet-pert")
+                for m in ("machine-a", "machine-b")
                 for sc in ("builtin:a", "builtin:b")
                 for st, w, e, extra in (("reference", 1.0, 0.0, {}),
                                         ("quantum 1 ms", 0.8, 0.0, {}),
@@ -547,7 +547,7 @@ class ParetoPlotTest(ScratchTest):
 
 class Pxpl5WorkloadTest(ScratchTest):
     def stats(self):
-        return {"machine": "pxpl5-raytrace", "scene": "s",
+        return {"machine": "machine-f", "scene": "s",
                 "pxpl5": {"caster_workload": [1.0, 0.5, 0.75], "scheme": "squares",
                           "order": "cost"},
                 "modules": {"caster0": {"regions": 4}, "caster1": {"regions": 2},
@@ -572,7 +572,7 @@ class Pxpl5WorkloadTest(ScratchTest):
     def test_bad_input(self):
         path = os.path.join(self.dir, "stats.json")
         with open(path, "w") as f:
-            json.dump({"machine": "vax-750"}, f)
+            json.dump({"machine": "machine-a"}, f)
         r = run_script("pxpl5_workload.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("caster_workload", r.stderr)
