@@ -11,6 +11,7 @@
 #include "app/trace_options.hpp"
 #include "common/seed_citation.hpp"
 #include "modules/stat_classes.hpp"
+#include "platform/machine_registry.hpp"
 
 namespace rtsim::app {
 
@@ -270,34 +271,6 @@ void headline_section(HtmlReport& page, const json& stats) {
   page.key_values(head);
 }
 
-/// One plot a machine's own stats.json object draws through analysis/ (when it has `key`).
-struct MachinePlot {
-  const char* object;  ///< stats.json's machine object: "pipeline", "array", ...
-  const char* key;     ///< the key in it the plot reads
-  const char* script;  ///< analysis/SCRIPT, run on stats.json
-  const char* title;
-  const char* caption;
-};
-
-const MachinePlot kMachinePlots[] = {
-    {"pipeline", "along_chain", "chain_profile.py", "busy fraction along the chain",
-     "Each polygon processor's busy fraction along the chain, and per ray description how often "
-     "it overwrote the description and gave the answer: the useful part of its work (stats.json "
-     "pipeline.along_chain; analysis/chain_profile.py)"},
-    {"array", "node_busy_fraction", "array_heatmap.py", "load balance of the array",
-     "Each processor's CPU busy fraction laid out as the array, and the utilisation of every "
-     "link toward its neighbour (stats.json array.node_busy_fraction and modules nodeK.link_D; "
-     "analysis/array_heatmap.py)"},
-    {"wang", "substages", "wang_substages.py", "the Bezier pipeline's substages",
-     "Each substage's time per job against the pipeline cycle (the slowest sets it), and the "
-     "busy fraction of its DSP pool over the frame beside the host's (stats.json wang.stage0, "
-     "wang.substages; analysis/wang_substages.py)"},
-    {"pxpl5", "caster_workload", "pxpl5_workload.py", "the ray casters' workloads",
-     "Each ray caster's busy time over the busiest's, with the regions it was given (VOL2's "
-     "Plate 4), and the bytes each traffic class put on the token ring (stats.json "
-     "pxpl5.caster_workload, modules ring; analysis/pxpl5_workload.py)"},
-};
-
 /// Utilisation over time, the latency histogram and the machine's own plots; what could not be
 /// drawn is said in a note.
 void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& in,
@@ -349,7 +322,13 @@ void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& i
     else
       problems.push_back(r.message);
   }
-  for (const MachinePlot& plot : kMachinePlots) {
+  // The machine's own plots, as its registration lists them (none for a machine this build
+  // does not know).
+  const platform::Machine* machine = nullptr;
+  for (const platform::Machine* m : platform::machines())
+    if (m->name() == str(stats, "machine")) machine = m;
+  for (const platform::ReportPlot& plot :
+       machine ? machine->info().report_plots : std::vector<platform::ReportPlot>{}) {
     const json* object = find(stats, plot.object);
     if (!object || !find(*object, plot.key)) continue;
     const fs::path png = tools.scratch_dir / (fs::path(plot.script).stem().string() + ".png");

@@ -80,6 +80,16 @@ struct RunResult {
 
 /// What a machine's registration says of it (RegisterMachine, platform/machine_registry.hpp):
 /// how it is listed, and what the generic tests and the benchmarks run it on.
+/// A plot `rtsim run --report` draws of the machine's own stats.json object, with an analysis/
+/// script run on stats.json.
+struct ReportPlot {
+  std::string object{};  ///< the machine's stats.json object ("pipeline", "array", ...)
+  std::string key{};     ///< drawn only when the object has this key
+  std::string script{};  ///< analysis/SCRIPT
+  std::string title{};
+  std::string caption{};
+};
+
 struct MachineInfo {
   std::string name;         ///< `--machine NAME`
   std::string description;  ///< one line, citing its seed ("seed 004")
@@ -93,6 +103,8 @@ struct MachineInfo {
   std::vector<std::string> benchmark_runs;
   /// `rtsim run` without --machine runs this one (exactly one machine says so).
   bool default_machine = false;
+  /// The plots of its own figures a run's report draws.
+  std::vector<ReportPlot> report_plots{};
 };
 
 class Machine {

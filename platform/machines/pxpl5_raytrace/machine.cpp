@@ -239,7 +239,16 @@ const RegisterMachine<Pxpl5Raytrace> kRegistered(
                    "--scene builtin:default -p assign.scheme=rows -p ring.service=gated"},
      .benchmark_runs = {"--scene builtin:default -p assign.scheme=rows",
                         "--scene builtin:spd-teapot -p assign.scheme=rows",
-                        "--scene builtin:npp-412 -p assign.scheme=rows"}});
+                        "--scene builtin:npp-412 -p assign.scheme=rows"},
+     .report_plots = {
+         {.object = "pxpl5",
+          .key = "caster_workload",
+          .script = "pxpl5_workload.py",
+          .title = "the ray casters' workloads",
+          .caption = "Each ray caster's busy time over the busiest's, with the regions "
+                     "it was given (VOL2's Plate 4), and the bytes each traffic class "
+                     "put on the token ring (stats.json pxpl5.caster_workload, modules "
+                     "ring; analysis/pxpl5_workload.py)"}}});
 
 }  // namespace
 }  // namespace rtsim::platform

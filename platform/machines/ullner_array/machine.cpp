@@ -382,7 +382,16 @@ const RegisterMachine<UllnerArray> kRegistered(
                    "--scene builtin:ullner-cubes -p array.rows=4 -p array.cols=4",
                    "--scene builtin:ullner-cubes -p array.mapping=torus"},
      .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
-                        "--scene builtin:ullner-sheets-1000"}});
+                        "--scene builtin:ullner-sheets-1000"},
+     .report_plots = {
+         {.object = "array",
+          .key = "node_busy_fraction",
+          .script = "array_heatmap.py",
+          .title = "load balance of the array",
+          .caption = "Each processor's CPU busy fraction laid out as the array, and the "
+                     "utilisation of every link toward its neighbour (stats.json "
+                     "array.node_busy_fraction and modules nodeK.link_D; "
+                     "analysis/array_heatmap.py)"}}});
 
 }  // namespace
 }  // namespace rtsim::platform

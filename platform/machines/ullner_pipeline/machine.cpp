@@ -175,7 +175,15 @@ const RegisterMachine<UllnerPipeline> kRegistered(
          {"--scene builtin:ullner-cubes",
           "--scene builtin:ullner-sheets-10 -p pipeline.engines=10 -p host.clock=\"100 GHz\""},
      .benchmark_runs = {"--scene builtin:ullner-cubes", "--scene builtin:ullner-random-1000",
-                        "--scene builtin:ullner-sheets-1000"}});
+                        "--scene builtin:ullner-sheets-1000"},
+     .report_plots = {{.object = "pipeline",
+                       .key = "along_chain",
+                       .script = "chain_profile.py",
+                       .title = "busy fraction along the chain",
+                       .caption = "Each polygon processor's busy fraction along the chain, and per "
+                                  "ray description how often it overwrote the description and "
+                                  "gave the answer: the useful part of its work (stats.json "
+                                  "pipeline.along_chain; analysis/chain_profile.py)"}}});
 
 }  // namespace
 }  // namespace rtsim::platform

@@ -125,8 +125,16 @@ const RegisterMachine<WangBezier> kRegistered(
      .test_runs = {"--scene builtin:teapot",
                    "--scene builtin:default -p pipeline.culler.kind=software"},
      .benchmark_runs = {"--scene builtin:teapot --width 64 --height 64",
-                        "--scene builtin:teapot --width 96 --height 96",
-                        "--scene builtin:teapot"}});
+                        "--scene builtin:teapot --width 96 --height 96", "--scene builtin:teapot"},
+     .report_plots = {
+         {.object = "wang",
+          .key = "substages",
+          .script = "wang_substages.py",
+          .title = "the Bezier pipeline's substages",
+          .caption = "Each substage's time per job against the pipeline cycle (the "
+                     "slowest sets it), and the busy fraction of its DSP pool over the "
+                     "frame beside the host's (stats.json wang.stage0, wang.substages; "
+                     "analysis/wang_substages.py)"}}});
 
 }  // namespace
 }  // namespace rtsim::platform
