@@ -129,7 +129,7 @@ std::uint64_t EngineChain::sum(const std::vector<std::uint64_t>& v, std::uint64_
 
 void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   const auto* ext = gp.get_extension<modules::MessageExtension<PolygonLoad>>();
-  if (!ext || !ext->message() || loaded_ >= engines()) {
+  if (!ext || !ext->message() || loaded_.value() >= engines()) {
     gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return;
   }
@@ -145,7 +145,7 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
   // After N presentations the j-th rests in processor N-1-j, and what leaves the chain at the
   // j-th is what processor N-1-j held before the load began: each line is written once, where
   // its description comes to rest (the shifting in between moves it unchanged).
-  const std::uint64_t line = engines() - 1 - loaded_;
+  const std::uint64_t line = engines() - 1 - loaded_.value();
   const auto& words = registers.contents();
   std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
               PolygonDescription::kWords, msg.returned.words.begin());

@@ -66,7 +66,6 @@ class EngineChain : public sc_core::sc_module {
   std::uint64_t engines() const { return timing_.engines(); }
   const ChainTiming& timing() const { return timing_; }
   /// Descriptions every processor passed.
-  std::uint64_t descriptions() const { return descriptions_.value(); }
   /// Busy time of each processor: one issue interval a description.
   sc_core::sc_time engine_busy() const { return engine_busy_.total(); }
   /// Per processor: descriptions it overwrote, and answers it gave (the description left the
@@ -76,7 +75,6 @@ class EngineChain : public sc_core::sc_module {
   /// The link from the first processor to the second (every inner link carries the same), and
   /// the last processor's link to the host.
   /// Polygon descriptions shifted in, and the time one takes over a link.
-  std::uint64_t loaded() const { return loaded_; }
   sc_core::sc_time polygon_time() const { return polygon_time_; }
   /// Sum over descriptions of the time from the first processor accepting it to its answer
   /// leaving the last one.
@@ -103,7 +101,6 @@ class EngineChain : public sc_core::sc_module {
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};  ///< registers' words_written() then
   std::vector<std::uint64_t> overwrites_, answers_;
-  std::uint64_t loaded_ = 0;
   sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;
 
   // "pipeline.engine": the class of processors. Every processor is busy one issue interval per
@@ -113,6 +110,8 @@ class EngineChain : public sc_core::sc_module {
   modules::Busy engine_busy_{engine_class_, "each processor's issue slots (its utilisation)"};
   modules::Counter descriptions_{engine_class_, "descriptions",
                                  "descriptions every processor passed"};
+  modules::Counter loaded_{engine_class_, "load_descriptions",
+                           "polygon descriptions shifted in before the frame"};
   modules::Computed engine_count_{engine_class_, "engines", "processors in the chain",
                                   [this] { return engines(); }};
   modules::Computed overwrites_sum_{engine_class_, "overwrites",

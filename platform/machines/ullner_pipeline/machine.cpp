@@ -8,6 +8,7 @@
 
 #include "common/input_error.hpp"
 #include "firmware/tasks/polygon_processor_task.hpp"
+#include "modules/stat_directory.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -35,10 +36,10 @@ constexpr std::uint64_t kChainProfilePoints = 1000;
 
 /// Per-processor counts averaged over runs of neighbouring processors, per description.
 nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
-                                   double busy_fraction) {
+                                   std::uint64_t descriptions, double busy_fraction) {
   const std::uint64_t n = chain.engines();
   const std::uint64_t points = std::min(n, kChainProfilePoints);
-  const double per = static_cast<double>(std::max<std::uint64_t>(chain.descriptions(), 1));
+  const double per = static_cast<double>(std::max<std::uint64_t>(descriptions, 1));
   nlohmann::ordered_json first = nlohmann::ordered_json::array(),
                          overwrites = nlohmann::ordered_json::array(),
                          answers = nlohmann::ordered_json::array();
@@ -131,7 +132,16 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   const double frame_s = frame_time.to_seconds();
   run.stats_over(host.load_time(), frame_time);
   const std::uint64_t n = chain.engines();
-  const double descriptions = static_cast<double>(chain.descriptions());
+  // The chain's own counts (its processors' class, pipeline.engine).
+  const auto count = [](const char* stat) {
+    std::uint64_t total = 0;
+    for (const auto* c :
+         modules::StatDirectory::instance().of_class<modules::Counter>("pipeline.engine", stat))
+      total += c->value();
+    return total;
+  };
+  const std::uint64_t passed = count("descriptions");
+  const double descriptions = static_cast<double>(passed);
 
   const ullner_pipeline::ChainTiming& ct = chain.timing();
   const auto& et = ct.engine();
@@ -143,7 +153,7 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
                            ct.hop().to_seconds() * static_cast<double>(n - 1) +
                            et.hop_latency.to_seconds() + et.compute_latency.to_seconds();
   nlohmann::ordered_json& res = run.machine_stats();
-  res["intersection_tests"] = chain.descriptions() * n;
+  res["intersection_tests"] = passed * n;
   res["pipeline"] = {
       {"engines", n},
       {"polygons", polygons},
@@ -154,13 +164,13 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
       {"latency_s", latency_s},
       {"mean_transit_s", chain.transit_total().to_seconds() / rays},
       {"time_per_ray_s", frame_s / rays},
-      {"rays", chain.descriptions()},
+      {"rays", passed},
       {"host_utilization", frame_s > 0 ? host.busy().to_seconds() / frame_s : 0.0},
       {"chain_utilization", frame_s > 0 ? ct.spacing().to_seconds() * descriptions / frame_s : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
-      {"load_descriptions", chain.loaded()},
+      {"load_descriptions", count("load_descriptions")},
       {"load_description_time_s", chain.polygon_time().to_seconds()},
-      {"along_chain", along_chain(chain, busy_fraction)}};
+      {"along_chain", along_chain(chain, passed, busy_fraction)}};
   return run.finish(host.latency(), {&chain.registers});
 }
 
