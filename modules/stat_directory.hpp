@@ -61,6 +61,12 @@ class StatDirectory {
     }
     return out;
   }
+  /// The sum of the Counters named `stat` over the modules of class `cls` (of_class).
+  std::uint64_t count_over(std::string_view cls, std::string_view stat) const {
+    std::uint64_t total = 0;
+    for (const Counter* c : of_class<Counter>(cls, stat)) total += c->value();
+    return total;
+  }
 
  private:
   std::multimap<std::string, const StatGroup*> groups_;

@@ -176,9 +176,7 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
   // Over every PERT: the processors' own statistics, summed (or their peak) by class.
   const auto& stats = modules::StatDirectory::instance();
   const auto sum = [&stats](const char* cls, const char* stat) {
-    std::uint64_t total = 0;
-    for (const auto* c : stats.of_class<modules::Counter>(cls, stat)) total += c->value();
-    return total;
+    return stats.count_over(cls, stat);
   };
   const auto peak = [&stats](const char* cls, const char* stat) {
     std::uint64_t most = 0;

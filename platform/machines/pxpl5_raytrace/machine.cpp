@@ -176,11 +176,7 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
     workload.push_back(most > 0 ? c->accounts().busy.to_seconds() / most : 0.0);
   // Over every caster: their own counts, summed.
   const auto casters_total = [](const char* stat) {
-    std::uint64_t total = 0;
-    for (const auto* c :
-         modules::StatDirectory::instance().of_class<modules::Counter>("caster*", stat))
-      total += c->value();
-    return total;
+    return modules::StatDirectory::instance().count_over("caster*", stat);
   };
   const std::uint64_t rays = casters_total("rays"), cast_last = casters_total("cast_last_frame"),
                       covered_last = casters_total("covered_last_frame");

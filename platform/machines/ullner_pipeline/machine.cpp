@@ -134,11 +134,7 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   const std::uint64_t n = chain.engines();
   // The chain's own counts (its processors' class, pipeline.engine).
   const auto count = [](const char* stat) {
-    std::uint64_t total = 0;
-    for (const auto* c :
-         modules::StatDirectory::instance().of_class<modules::Counter>("pipeline.engine", stat))
-      total += c->value();
-    return total;
+    return modules::StatDirectory::instance().count_over("pipeline.engine", stat);
   };
   const std::uint64_t passed = count("descriptions");
   const double descriptions = static_cast<double>(passed);

@@ -85,10 +85,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = host.frame_time();
   run.stats_over(sc_core::SC_ZERO_TIME, frame_time);
   // The pipeline's own count of jobs taken.
-  std::uint64_t taken = 0;
-  for (const auto* c :
-       modules::StatDirectory::instance().of_class<modules::Counter>(kPipeline, "jobs"))
-    taken += c->value();
+  const std::uint64_t taken = modules::StatDirectory::instance().count_over(kPipeline, "jobs");
   const double jobs = static_cast<double>(taken);
   nlohmann::ordered_json substages = nlohmann::ordered_json::object();
   for (const auto& s : pipeline.loop_substages())
