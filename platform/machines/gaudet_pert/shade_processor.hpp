@@ -57,7 +57,6 @@ class ShadeProcessor : public PertProcessor {
   }
   bool finished() const { return finished_; }
   sc_core::sc_time finish_time() const { return finish_time_; }
-  std::uint64_t rays_sent() const { return next_id_; }
 
  private:
   void run();

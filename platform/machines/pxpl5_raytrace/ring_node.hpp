@@ -33,7 +33,6 @@ class RingNode : public modules::Processor {
   modules::MessageQueue<Message> inbox;
 
   int index() const { return index_; }
-  std::uint64_t messages_sent() const { return sent_; }
 
  protected:
   RingNode(const sc_core::sc_module_name& name, MachineTrace& trace,
@@ -53,7 +52,6 @@ class RingNode : public modules::Processor {
     const auto cls = static_cast<std::size_t>(m.kind);
     ring_.send(static_cast<std::size_t>(index_), static_cast<std::size_t>(to), std::move(m), bytes,
                clock_.now(), cls);
-    ++sent_;
   }
 
   /// The next message that has arrived, waiting for one (idle, `why`) if none has.
@@ -78,7 +76,6 @@ class RingNode : public modules::Processor {
   modules::RingChannel<Message>& ring_;
   int index_;
   WireSizes sizes_;
-  std::uint64_t sent_ = 0;
 };
 
 }  // namespace rtsim::platform::pxpl5

@@ -131,10 +131,6 @@ class ArrayNode : public modules::Processor {
 
   modules::GridNode position() const { return position_; }
   std::size_t polygons() const { return lines_.size(); }
-  /// Messages sent, by type (MessageType order).
-  const modules::CounterArray& sent() const { return sent_; }
-  std::uint64_t intersections() const { return tests_.value(); }
-  std::uint64_t words_fetched() const { return pipeline_.words_fetched.value(); }
 
  private:
   /// Its intersection unit's statistics ("node0.pipeline"): busy while it fetches or issues.

@@ -8,6 +8,7 @@
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_directory.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -324,24 +325,27 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   run.stats_over(ctx.frame_start, frame_time);
 
   nlohmann::ordered_json busy = nlohmann::ordered_json::array();
-  std::array<std::uint64_t, 5> sent{};
-  std::uint64_t kept = 0, tests = 0, words = 0;
+  std::uint64_t kept = 0;
   for (int row = 0; row < topology.rows(); ++row) {
     nlohmann::ordered_json line = nlohmann::ordered_json::array();
     for (int col = 0; col < topology.cols(); ++col) {
       const ArrayNode& n = *nodes[static_cast<std::size_t>(topology.index({row, col}))];
-      for (std::size_t t = 0; t < sent.size(); ++t) sent[t] += n.sent()[t];
       kept += n.polygons();
-      tests += n.intersections();
-      words += n.words_fetched();
       line.push_back(frame_time > sc_core::SC_ZERO_TIME
                          ? n.accounts().busy.to_seconds() / frame_time.to_seconds()
                          : 0.0);
     }
     busy.push_back(std::move(line));
   }
-  nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
+  // The array's totals over its processors' own counters (node*.intersections, ...).
+  const modules::StatDirectory& stats = modules::StatDirectory::instance();
+  const std::uint64_t tests = stats.count_over("node*", "intersections");
+  const std::uint64_t words = stats.count_over("node*.pipeline", "words_fetched");
   const std::vector<std::string> type_names = ullner_array::message_type_names();
+  std::vector<std::uint64_t> sent(type_names.size(), 0);
+  for (const modules::CounterArray* c : stats.of_class<modules::CounterArray>("node*", "sent_"))
+    for (std::size_t t = 0; t < sent.size(); ++t) sent[t] += (*c)[t];
+  nlohmann::ordered_json by_type = nlohmann::ordered_json::object();
   for (std::size_t t = 0; t < sent.size(); ++t) by_type[type_names[t]] = sent[t];
   const auto& m = ctx.mapping;
   nlohmann::ordered_json& res = run.machine_stats();

@@ -11,6 +11,7 @@
 #include "common/input_error.hpp"
 #include "modules/latency_probe.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/stat_directory.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -110,22 +111,27 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
   // What the hardware did: every polygon address fed to the pipe is an intersection.
   res["intersection_tests"] = peripheral.pipeline().issued();
 
-  const double rays = static_cast<double>(std::max<std::uint64_t>(peripheral.rays_served(), 1));
+  const ullner::Peripheral::Served& served = peripheral.served();
+  const double rays = static_cast<double>(std::max<std::uint64_t>(served.rays.value(), 1));
   const double issued = static_cast<double>(peripheral.pipeline().issued());
   const double extent = functional::scene_extent(pc.modelling_space);
+  // The grid auxiliary processor's walk (a class of one; none with brute force).
+  const modules::StatDirectory& stats = modules::StatDirectory::instance();
+  const std::string aux = std::string(kPeripheral) + ".aux";
   res["peripheral"] = {
       {"polygons", quads},
       {"intersect_interval_s",
        issued > 0 ? peripheral.pipeline().busy().to_seconds() / issued : 0.0},
       {"pipeline_stages", pc.pipeline_stages},
       {"pipeline_latency_s", peripheral.pipeline().latency().to_seconds()},
-      {"time_per_ray_s", peripheral.service_time_total().to_seconds() / rays},
+      {"time_per_ray_s", served.service.value().to_seconds() / rays},
       {"tests_per_ray", issued / rays},
-      {"dda_steps_per_ray", static_cast<double>(peripheral.dda_steps()) / rays},
-      {"subvolumes_visited_per_ray", static_cast<double>(peripheral.subvolumes_visited()) / rays},
-      {"mean_ray_travel", peripheral.primary_hits() > 0
-                              ? peripheral.primary_travel_sum() /
-                                    static_cast<double>(peripheral.primary_hits()) / extent
+      {"dda_steps_per_ray", static_cast<double>(stats.count_over(aux, "dda_steps")) / rays},
+      {"subvolumes_visited_per_ray",
+       static_cast<double>(stats.count_over(aux, "subvolumes_visited")) / rays},
+      {"mean_ray_travel", served.primary_hits.value() > 0
+                              ? served.primary_travel.value() /
+                                    static_cast<double>(served.primary_hits.value()) / extent
                               : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};

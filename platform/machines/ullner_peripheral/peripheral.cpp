@@ -190,7 +190,8 @@ Peripheral::Peripheral(sc_core::sc_module_name name, MachineRun& run, const task
             config.pipeline_stages, "intersections"),
       probe_(run.probe()),
       result_link_(
-          modules::ModuleParams(run.registry(), std::string(this->name()) + "." + kResultLink)) {
+          modules::ModuleParams(run.registry(), std::string(this->name()) + "." + kResultLink)),
+      served_(this->name()) {
   modules::LatencyProbe& probe = run.probe();
   // Stages named by their stats.json module names, in the order a ray meets them.
   probe_ray_queue_ = probe.stage(rays.name());
@@ -212,7 +213,7 @@ void Peripheral::run() {
     sc_core::sc_time taken;
     RayRequest req = rays.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);
-    ++rays_;
+    ++served_.rays;
     const auto journey = req.journey;
     using modules::LatencyPart;
     probe_.add(journey, probe_ray_queue_, LatencyPart::kQueueing, taken - req.arrived);
@@ -228,8 +229,8 @@ void Peripheral::run() {
     double t_enter = 0.0, t_exit = 0.0;
     if (req.ray.kind == RayKind::Primary && res.found &&
         config_.modelling_space.intersect(req.ray.ray, 0.0, kInfinity, t_enter, t_exit)) {
-      travel_sum_ += res.hit.surface.t - t_enter;
-      ++primary_hits_;
+      served_.primary_travel += res.hit.surface.t - t_enter;
+      ++served_.primary_hits;
     }
 
     // The time.
@@ -294,7 +295,7 @@ void Peripheral::run() {
       aux_->dda_steps += steps;
       aux_->subvolumes_visited += cells;
     }
-    service_total_ += done - start;
+    served_.service += done - start;
     res.service_start = start;
     res.answered = done;
     // The answer crosses the result link into the host's result queue.

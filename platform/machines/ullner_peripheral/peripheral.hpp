@@ -58,13 +58,20 @@ class Peripheral : public sc_core::sc_module {
              const PeripheralSettings& config);
 
   const modules::PipelinedUnit& pipeline() const { return pipe_; }
-  std::uint64_t rays_served() const { return rays_; }
-  std::uint64_t dda_steps() const { return aux_ ? aux_->dda_steps.value() : 0; }
-  std::uint64_t subvolumes_visited() const { return aux_ ? aux_->subvolumes_visited.value() : 0; }
-  sc_core::sc_time service_time_total() const { return service_total_; }
-  /// Sum of primary-ray hit distances and their count (mean ray travel d_r).
-  double primary_travel_sum() const { return travel_sum_; }
-  std::uint64_t primary_hits() const { return primary_hits_; }
+
+  /// What it served, under its own name ("peripheral"): the machine's per-ray figures (Ullner's
+  /// t_r, n_i, d_r) are ratios of these.
+  struct Served : modules::StatGroup {
+    using modules::StatGroup::StatGroup;
+    modules::Counter rays{*this, "rays_served", "rays answered"};
+    modules::Duration service{*this, "service_time_s",
+                              "the sum over rays of the time from starting a ray to its answer"};
+    modules::Counter primary_hits{*this, "primary_hits", "primary rays that hit a polygon"};
+    modules::Scalar primary_travel{
+        *this, "primary_travel",
+        "the sum of primary rays' hit distances from the modelling space (scene units)"};
+  };
+  const Served& served() const { return served_; }
 
  private:
   /// The grid auxiliary processor's statistics ("peripheral.aux").
@@ -92,9 +99,7 @@ class Peripheral : public sc_core::sc_module {
   int probe_result_link_ = -1;
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
   std::optional<AuxProcessor> aux_;  ///< with the grid
-  sc_core::sc_time service_total_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t rays_ = 0, primary_hits_ = 0;
-  double travel_sum_ = 0.0;
+  Served served_;
   modules::Computed polygons_stat_{parameters, "polygons", "polygons loaded (a line each)",
                                    [this] { return polygons_; }};
 };

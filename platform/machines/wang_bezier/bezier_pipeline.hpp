@@ -72,7 +72,6 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   /// The slowest substage's time: one job a cycle.
   sc_core::sc_time cycle() const { return cycle_; }
   sc_core::sc_time latency() const { return latency_; }
-  const kernels::WangCounters& counters() const { return counters_; }
 
  private:
   void run();
