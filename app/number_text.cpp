@@ -48,7 +48,11 @@ std::string format_seconds(double s) {
 }
 
 bool names_seconds(std::string_view name) {
-  return name.ends_with("_s") || name.find("_s.") != std::string_view::npos;
+  // A rate ("rays_per_s", "throughput_rpi_per_s") is per second, not seconds.
+  const auto seconds = [](std::string_view n) { return !n.ends_with("_per_s"); };
+  if (name.ends_with("_s")) return seconds(name);
+  const std::size_t dot = name.find("_s.");
+  return dot != std::string_view::npos && seconds(name.substr(0, dot + 2));
 }
 
 std::string format_change(double relative) {

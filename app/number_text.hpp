@@ -14,7 +14,7 @@ std::string format_significant(double v, int digits = 4);
 /// picosecond (SystemC's resolution: rounding left-overs such as -2.7e-21) it is "0 s".
 std::string format_seconds(double s);
 /// Whether a stats.json name holds seconds: one ending in _s ("simulated_time_s"), or a statistic
-/// of one ("ray_latency_s.p99").
+/// of one ("ray_latency_s.p99"); not a rate ("rays_per_s").
 bool names_seconds(std::string_view name);
 /// A relative change as a signed percentage, 3 significant digits: 3.76 -> "+376%", -0.807 ->
 /// "-80.7%", 0 -> "0%".

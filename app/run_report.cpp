@@ -341,35 +341,35 @@ void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& i
   if (!problems.empty()) page.note(missing_plots_note(problems));
 }
 
-/// `-p accuracy.check=true` on wang-bezier: the pipeline's answers against the reference.
-void accuracy_section(HtmlReport& page, const json& stats) {
-  if (const json* w = find(stats, "wang"); w && find(*w, "accuracy")) {
-    page.heading("Accuracy against the reference solver");
-    page.paragraph(
-        "Every (ray, patch) job's answer, and every primary ray's nearest patch hit, compared "
-        "with the double-precision reference solver: missed (the reference hits, the pipeline "
-        "does not), phantom (the reverse), another surface (both hit, more than 8 final "
-        "subpatch widths apart); the error is the distance between the pipeline's point and the "
-        "reference's over the rest, in patch sizes (the control box's diagonal) and in pixels. "
-        "stats.json wang.accuracy; configs/sweeps/wang-accuracy.toml sweeps the stage count.");
-    std::vector<std::vector<std::string>> rows;
-    for (const char* kind : {"jobs", "rays"}) {
-      const json* a = find((*w)["accuracy"], kind);
-      if (!a || !a->is_object()) continue;
-      const json* pe = find(*a, "point_error");
-      const json* px = find(*a, "pixel_error");
-      rows.push_back({kind == std::string("jobs") ? "jobs" : "primary rays",
-                      value_text((*a)["compared"]), value_text((*a)["missed"]),
-                      value_text((*a)["phantom"]), value_text((*a)["another_surface"]),
-                      format_number(100.0 * num(*a, "wrong_of_hits", 0.0), 3) + " %",
-                      pe ? format_number(num(*pe, "p50", 0.0), 3) : "",
-                      pe ? format_number(num(*pe, "p99", 0.0), 3) : "",
-                      px ? format_number(num(*px, "p99", 0.0), 3) : ""});
-    }
-    page.table({"compared", "count", "missed", "phantom", "another surface",
-                "wrong / reference hits", "error p50 (patch sizes)", "p99", "p99 (pixels)"},
-               rows);
+/// A machine's answers checked against a reference solver (its object's `accuracy`, e.g. with
+/// `-p accuracy.check=true`): per job and per primary ray, what was missed, invented or found
+/// on another surface, and how far off the rest are.
+void accuracy_section(HtmlReport& page, const std::string& key, const json& accuracy) {
+  page.heading("Accuracy against the reference solver");
+  page.paragraph(
+      "Every job's answer, and every primary ray's nearest hit, compared with the "
+      "double-precision reference solver: missed (the reference hits, the machine does not), "
+      "phantom (the reverse), another surface (both hit, farther apart than the machine's "
+      "tolerance); the error is the distance between the machine's point and the reference's "
+      "over the rest, in object sizes and in pixels. stats.json " +
+      key + ".accuracy.");
+  std::vector<std::vector<std::string>> rows;
+  for (const char* kind : {"jobs", "rays"}) {
+    const json* a = find(accuracy, kind);
+    if (!a || !a->is_object()) continue;
+    const json* pe = find(*a, "point_error");
+    const json* px = find(*a, "pixel_error");
+    rows.push_back({kind == std::string("jobs") ? "jobs" : "primary rays",
+                    value_text((*a)["compared"]), value_text((*a)["missed"]),
+                    value_text((*a)["phantom"]), value_text((*a)["another_surface"]),
+                    format_number(100.0 * num(*a, "wrong_of_hits", 0.0), 3) + " %",
+                    pe ? format_number(num(*pe, "p50", 0.0), 3) : "",
+                    pe ? format_number(num(*pe, "p99", 0.0), 3) : "",
+                    px ? format_number(num(*px, "p99", 0.0), 3) : ""});
   }
+  page.table({"compared", "count", "missed", "phantom", "another surface", "wrong / reference hits",
+              "error p50 (object sizes)", "p99", "p99 (pixels)"},
+             rows);
 }
 
 /// `--latency-probe`: the per-stage breakdown of a ray's latency.
@@ -554,7 +554,10 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
     page.image(in.image_png, "rendered image", "image.png", true);
   }
   plots_section(page, stats, in, tools);
-  accuracy_section(page, stats);
+  for (const auto& [key, v] : stats.items())
+    if (const json* a = !kShownKeys.count(key) && v.is_object() ? find(v, "accuracy") : nullptr;
+        a && a->is_object())
+      accuracy_section(page, key, *a);
   latency_probe_section(page, stats, in, tools);
   // A machine's own figures and the other measured objects.
   for (const auto& [key, v] : stats.items()) {

@@ -54,6 +54,15 @@ nlohmann::json stats_of_a_run() {
 
 }  // namespace
 
+TEST(NumberText, ANameEndingInSecondsHoldsSecondsButARatePerSecondDoesNot) {
+  using rtsim::app::names_seconds;
+  EXPECT_TRUE(names_seconds("simulated_time_s"));
+  EXPECT_TRUE(names_seconds("ray_latency_s.p99"));
+  EXPECT_FALSE(names_seconds("throughput_rpi_per_s"));  // was shown as "254.4 h"
+  EXPECT_FALSE(names_seconds("rays_per_s.mean"));
+  EXPECT_FALSE(names_seconds("intersections"));
+}
+
 TEST(RunSummary, ModulesByUtilisationBottleneckOverheadAndNoExponents) {
   const std::string text =
       format_run_summary(stats_of_a_run(), {{"image", "out/run/image.png"}, {"stats", "s.json"}});
