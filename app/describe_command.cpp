@@ -133,21 +133,30 @@ std::string dot_escape(std::string s) {
   return out;
 }
 
-}  // namespace
+/// A machine's modules as describe prints and draws them.
+struct ModuleTree {
+  std::map<std::string, Node> nodes;                                  ///< by hierarchical name
+  std::set<std::tuple<std::string, std::string, std::string>> edges;  ///< from, to, what
+  std::vector<params::ParamEntry> entries;
+  std::vector<const params::ParamEntry*> machine_params;  ///< those of no one module
+  std::map<std::string, std::string> class_paths;         ///< module -> class path
+};
 
-int run_describe(const DescribeArgs& args) {
-  const platform::Machine& machine = platform::find_machine(args.machine);
-  auto registry = build_registry(args.config, &machine);
-  const std::string scene_spec = args.scene.empty() ? machine.sample_scene() : args.scene;
-  scenes::Scene scene = load_scene_with_seed(scene_spec, registry);
+/// Builds the machine on a tiny frame and reads its hierarchy, bindings, statistics and
+/// parameters: each parameter belongs to the deepest module whose class path holds it
+/// (pert.shell.clock: pert0.shell's, for every PERT); the rest are the machine's own.
+ModuleTree read_tree(const platform::Machine& machine, const params::ParamRegistry& registry,
+                     scenes::Scene& scene) {
   platform::FunctionalTwin twin = machine.make_twin(scene, registry);
-
   TreeReader reader("rtsim_describe");
   platform::RunOptions opts;
   opts.width = 4;  // a frame just large enough that every module works
   opts.height = 4;
   const platform::RunResult result = machine.run(scene, twin, registry, opts);
-  std::map<std::string, Node> nodes = reader.nodes;
+  ModuleTree tree;
+  tree.nodes = reader.nodes;
+  tree.edges = reader.edges;
+  auto& nodes = tree.nodes;
   if (result.stats.contains("modules"))
     for (const auto& [name, group] : result.stats["modules"].items()) {
       Node& n = nodes[name];
@@ -157,39 +166,39 @@ int run_describe(const DescribeArgs& args) {
   // Every node's ancestors exist (a statistics group's parent may be no module: "pert0.queue").
   for (auto it = nodes.begin(); it != nodes.end(); ++it)
     for (std::string p = parent_of(it->first); !p.empty(); p = parent_of(p)) nodes[p];
-  // Each parameter belongs to the deepest module whose class path holds it (pert.shell.clock:
-  // pert0.shell's, for every PERT); the rest are the machine's own.
-  const std::vector<params::ParamEntry> entries = registry.list();
-  std::vector<const params::ParamEntry*> machine_params;
-  std::map<std::string, std::string> class_paths;  // module -> class path
-  for (const auto& [name, n] : nodes) class_paths[name] = registry.class_path(name);
-  for (const auto& e : entries) {
+  tree.entries = registry.list();
+  for (const auto& [name, n] : nodes) tree.class_paths[name] = registry.class_path(name);
+  for (const auto& e : tree.entries) {
     if (!e.instance_of.empty()) continue;  // an instance's value: shown with its class's
-    std::string best;
     if (!e.per_instance) {  // the machine's own (pert_count, broadcast.mode, render.*)
-      machine_params.push_back(&e);
+      tree.machine_params.push_back(&e);
       continue;
     }
     // The deepest class path that holds it; of equal instances the first (pert0 for pert.*).
+    std::string best;
     std::size_t best_len = 0;
-    for (const auto& [name, cls] : class_paths) {
+    for (const auto& [name, cls] : tree.class_paths) {
       if (!e.name.starts_with(cls + ".") || cls.size() <= best_len) continue;
       best = name;
       best_len = cls.size();
     }
     if (best.empty())
-      machine_params.push_back(&e);
+      tree.machine_params.push_back(&e);
     else
       nodes[best].params.push_back(&e);
   }
+  return tree;
+}
 
-  // Text: the tree, indented by depth.
+/// The text tree, indented by depth, then the machine's parameters and the connections.
+std::string tree_text(const platform::Machine& machine, const std::string& scene_spec,
+                      const ModuleTree& tree) {
   std::ostringstream text;
   text << machine.name() << ": " << cite_seeds(machine.description()) << "\n";
   text << "Module tree (built for " << scene_spec
        << "); parameters by the name that sets every instance, with their values; "
           "statistics as stats.json `modules` reports them.\n\n";
-  for (const auto& [name, n] : nodes) {
+  for (const auto& [name, n] : tree.nodes) {
     const std::size_t depth = static_cast<std::size_t>(std::count(name.begin(), name.end(), '.'));
     const std::string indent(2 * depth, ' ');
     text << indent << leaf_of(name) << "  [" << (n.type.empty() ? "statistics group" : n.type)
@@ -198,19 +207,21 @@ int run_describe(const DescribeArgs& args) {
       text << indent << "    param " << p->name << " = " << p->value_text << "\n";
     if (!n.stats.empty()) {
       text << indent << "    stats";
-      for (const auto& s : n.stats) text << " " << s;
+      for (const auto& st : n.stats) text << " " << st;
       text << "\n";
     }
   }
   text << "\nMachine parameters:";
-  for (const auto* p : machine_params) text << " " << p->name;
+  for (const auto* p : tree.machine_params) text << " " << p->name;
   text << "\n\nConnections:\n";
-  for (const auto& [from, to, what] : reader.edges)
+  for (const auto& [from, to, what] : tree.edges)
     text << "  " << from << " -> " << to << "  (" << what << ")\n";
-  std::cout << text.str();
+  return text.str();
+}
 
-  if (args.out_dir.empty()) return 0;
-  // DOT: a cluster per module with children, a box per module without.
+/// The block diagram in DOT: a cluster per module with children, a box per module without.
+std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
+  const auto& nodes = tree.nodes;
   std::ostringstream dot;
   dot << "digraph " << dot_id(machine.name()) << " {\n  rankdir=LR;\n  compound=true;\n"
       << "  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n"
@@ -255,8 +266,8 @@ int run_describe(const DescribeArgs& args) {
     std::string label =
         dot_escape(leaf_of(name)) + "\\n" + (n.type.empty() ? "(statistics)" : n.type);
     for (const auto* p : n.params)
-      label +=
-          "\\n" + dot_escape(p->name.substr(class_paths[name].size() + 1) + " = " + p->value_text);
+      label += "\\n" + dot_escape(p->name.substr(tree.class_paths.at(name).size() + 1) + " = " +
+                                  p->value_text);
     if (has_children.contains(name)) {
       dot << pad << "subgraph " << dot_id("cluster_" + name) << " {\n"
           << pad << "  label=\"" << label << "\";\n"
@@ -274,7 +285,7 @@ int run_describe(const DescribeArgs& args) {
   for (const auto& [name, n] : nodes)
     if (parent_of(name).empty() && drawn(name)) emit(name, 0);
   emit_more("", "  ");
-  for (const auto& [from, to, what] : reader.edges) {
+  for (const auto& [from, to, what] : tree.edges) {
     if (!nodes.contains(from) || !nodes.contains(to) || !drawn(from) || !drawn(to)) continue;
     dot << "  " << dot_id(from) << " -> " << dot_id(to) << " [label=\"" << what << "\"";
     if (has_children.contains(from)) dot << ", ltail=" << dot_id("cluster_" + from);
@@ -282,15 +293,20 @@ int run_describe(const DescribeArgs& args) {
     dot << ", fontsize=8];\n";
   }
   dot << "}\n";
+  return dot.str();
+}
 
-  // The files appear together or not at all; `dot` runs with no shell between it and the
-  // user's path, and Ctrl-C reaches it as it reaches rtsim (common/spawn_logged.hpp).
-  OutputSet out(args.out_dir, OutputSet::Folder::Shared);
-  const std::string dot_name = machine.name() + ".dot";
-  const std::string svg_name = machine.name() + ".svg";
+/// Writes NAME.dot and, with Graphviz, NAME.svg into `out_dir`: together or not at all. `dot`
+/// runs with no shell between it and the user's path, and Ctrl-C reaches it as it reaches
+/// rtsim (common/spawn_logged.hpp).
+void write_diagram(const std::string& out_dir, const std::string& machine_name,
+                   const std::string& dot_text) {
+  OutputSet out(out_dir, OutputSet::Folder::Shared);
+  const std::string dot_name = machine_name + ".dot";
+  const std::string svg_name = machine_name + ".svg";
   {
     std::ofstream f(out.stage(dot_name), std::ios::binary);
-    f << dot.str();
+    f << dot_text;
     if (!f) throw std::runtime_error("cannot write " + out.staged_path(dot_name).string());
   }
   std::string error;
@@ -311,6 +327,18 @@ int run_describe(const DescribeArgs& args) {
   out.commit();
   std::cerr << "wrote " << (out.dir() / dot_name).string() << "\n";
   if (!no_dot) std::cerr << "wrote " << (out.dir() / svg_name).string() << "\n";
+}
+
+}  // namespace
+
+int run_describe(const DescribeArgs& args) {
+  const platform::Machine& machine = platform::find_machine(args.machine);
+  auto registry = build_registry(args.config, &machine);
+  const std::string scene_spec = args.scene.empty() ? machine.sample_scene() : args.scene;
+  scenes::Scene scene = load_scene_with_seed(scene_spec, registry);
+  const ModuleTree tree = read_tree(machine, registry, scene);
+  std::cout << tree_text(machine, scene_spec, tree);
+  if (!args.out_dir.empty()) write_diagram(args.out_dir, machine.name(), tree_dot(machine, tree));
   return 0;
 }
 

@@ -129,25 +129,29 @@ int list_points(const Plan& plan, const fs::path& out) {
   return kExitOk;
 }
 
-/// Runs the sweep (rank 0 under MPI): resume, run, table, summary.
-int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
-  const fs::path out = out_dir_of(args);
-  const fs::path points_dir = out / "points";
-  const std::size_t n = plan.points.size();
+/// Creates `out`/points and takes the folder's lock (another sweep writing into it is an error).
+void prepare_output_folder(const fs::path& out, const fs::path& points_dir) {
   check_output_folder(out);
-  {
-    std::error_code ec;
-    fs::create_directories(points_dir, ec);
-    if (ec || !fs::is_directory(points_dir, ec))
-      throw InputError("--out " + out.string(), 0,
-                       "cannot create " + points_dir.string() + ": " +
-                           (ec ? ec.message() : std::string("not a folder")));
-  }
+  std::error_code ec;
+  fs::create_directories(points_dir, ec);
+  if (ec || !fs::is_directory(points_dir, ec))
+    throw InputError("--out " + out.string(), 0,
+                     "cannot create " + points_dir.string() + ": " +
+                         (ec ? ec.message() : std::string("not a folder")));
   lock_output_folder(out);
+}
 
-  std::vector<sweep::PointOutcome> outcomes(n);
+/// The points to run now: every point not done before (all with --force). Request i runs point
+/// point_of[i].
+struct Pending {
   std::vector<runs::RunRequest> requests;
-  std::vector<std::size_t> request_point;  // request i runs point request_point[i]
+  std::vector<std::size_t> point_of;
+};
+
+/// The pending points, with the outcome of each point done before filled in.
+Pending pending_points(const SweepArgs& args, const Plan& plan, const fs::path& points_dir,
+                       std::vector<sweep::PointOutcome>& outcomes) {
+  Pending pending;
   for (const auto& p : plan.points) {
     if (!args.force) {
       if (auto done = sweep::find_done(points_dir / p.key, p)) {
@@ -158,17 +162,154 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     runs::RunRequest r;
     r.key = p.key;
     r.args = p.args;
-    requests.push_back(std::move(r));
-    request_point.push_back(p.index);
+    pending.requests.push_back(std::move(r));
+    pending.point_of.push_back(p.index);
   }
-  const std::size_t reused = n - requests.size();
-  const int jobs = args.jobs > 0 ? args.jobs : (session ? 1 : default_jobs());
+  return pending;
+}
 
-  fs::create_directories(points_dir);
+/// Keeps a point that ran well: its stats.json (a rank without a shared file system wrote it on
+/// its own disk), modules.csv (every module instance, for the classes the results table keeps
+/// as aggregates) and the marker that lets a re-run skip it. A point that cannot be recorded
+/// (a full disk) fails; the sweep goes on.
+void record_point(const fs::path& dir, const sweep::Point& p, sweep::PointOutcome& o) {
+  if (!o.ok) return;
+  try {
+    std::error_code ec;
+    if (!fs::exists(dir / "stats.json", ec)) {
+      fs::create_directories(dir);
+      sweep::write_file_atomically(dir / "stats.json", o.stats_text);
+    }
+    sweep::write_file_atomically(dir / "modules.csv",
+                                 sweep::modules_csv(nlohmann::ordered_json::parse(o.stats_text)));
+    sweep::write_marker(dir, p, o);
+  } catch (const std::exception& e) {
+    o.ok = false;
+    o.error = std::string("ran, but cannot record it: ") + e.what();
+  }
+}
+
+/// Runs the pending points `jobs` at a time (forks of this process, another rtsim binary, or
+/// the ranks of an MPI session), recording each as it finishes, with a progress bar.
+void run_points(const SweepArgs& args, const Plan& plan, const Pending& pending,
+                const fs::path& points_dir, int jobs, mpi::Session* session,
+                std::vector<sweep::PointOutcome>& outcomes) {
+  ProgressBar bar(args.quiet ? std::string() : "sweep",
+                  /*lines_when_not_a_terminal=*/!args.quiet);
+  std::mutex record_mutex;
+  long finished = 0;
+  // Called from the queue's threads.
+  const auto record = [&](std::size_t request, const sweep::PointOutcome& o) {
+    std::lock_guard lock(record_mutex);
+    const sweep::Point& p = plan.points[pending.point_of[request]];
+    outcomes[p.index] = o;
+    record_point(points_dir / p.key, p, outcomes[p.index]);
+    if (!args.quiet) bar.update(++finished, static_cast<long>(pending.requests.size()));
+  };
+
+  runs::RunQueueOptions q;
+  q.executable = executable_of(args);
+  q.work_dir = points_dir;
+  q.jobs = jobs;
+  q.log_in_run_dir = true;
+  if (session) {
+    session->dispatch(pending.requests, q, record);
+    return;
+  }
+  std::unordered_map<std::string, std::size_t> request_of_key;  // run_all reports by key
+  for (std::size_t i = 0; i < pending.requests.size(); ++i)
+    request_of_key[pending.requests[i].key] = i;
+  q.on_finished = [&](const runs::RunOutcome& run, int, int) {
+    record(request_of_key.at(run.request.key), sweep::outcome_of(run));
+  };
+  // Points are forks of this process (no program start-up each), unless another rtsim binary
+  // was asked for.
+  if (args.rtsim.empty()) {
+    q.in_process = run_cli_in_forked_child;
+    preload_image_module();  // once here, not in every point
+  }
+  (void)runs::run_all(pending.requests, q);
+}
+
+/// What execute() tells the user at the end.
+struct SweepEnd {
+  std::size_t points = 0, failed = 0, reused = 0;
+  double wall_s = 0.0;
+  std::string report_error;  ///< report.html could not be written
+};
+
+/// Writes report.html over every point of the table, run now or before, failed or not; the
+/// error text if it cannot.
+std::string write_report(const SweepArgs& args, const Plan& plan, const fs::path& out,
+                         const std::vector<sweep::PointOutcome>& outcomes,
+                         const sweep::ResultsTable& table, const SweepEnd& end, std::size_t run_now,
+                         mpi::Session* session) {
+  try {
+    OutputSet set(out);
+    SweepReportInputs in;
+    in.file = &plan.file;
+    in.points = &plan.points;
+    in.outcomes = &outcomes;
+    in.table = &table;
+    in.results_jsonl = out / "results.jsonl";
+    in.points_dir = out / "points";
+    in.command_line = command_line(args, out);
+    in.wall_s = end.wall_s;
+    in.run_now = run_now;
+    in.ranks = session ? session->size() : 0;
+    if (args.baseline >= 0) in.baseline = static_cast<std::size_t>(args.baseline);
+    ReportTools tools;
+    tools.scratch_dir = set.staged_path(".report-plots");
+    write_sweep_report(in, set.stage("report.html"), tools);
+    set.commit();
+    return {};
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+/// The closing lines: how many points are ok, the failed ones (the first kFailuresShown) and
+/// where the outputs are.
+void print_summary(const SweepArgs& args, const Plan& plan, const fs::path& out,
+                   const std::vector<sweep::PointOutcome>& outcomes, const SweepEnd& end) {
+  const std::size_t n = end.points;
+  std::cout << "rtsim sweep: " << n << (n == 1 ? " point: " : " points: ") << n - end.failed
+            << " ok (" << end.reused << " done before), " << end.failed << " failed; " << end.wall_s
+            << " s wall\n";
+  std::size_t shown = 0;
+  for (const auto& p : plan.points) {
+    const auto& o = outcomes[p.index];
+    if (o.ok) continue;
+    if (shown++ == kFailuresShown) {
+      std::cout << "  ... and " << end.failed - kFailuresShown << " more (results.csv has all)\n";
+      break;
+    }
+    std::cout << "  failed  point " << p.key << " (" << describe_point(p) << "): " << o.error
+              << "\n";
+  }
+  std::cout << "  table  " << (out / "results.csv").string() << "  "
+            << (out / "results.jsonl").string() << "\n"
+            << "  points " << (out / "points").string() << "/NNNN/ (stats.json, images, run.log)\n";
+  if (args.report && end.report_error.empty())
+    std::cout << "  report " << (out / "report.html").string() << "\n";
+}
+
+/// Runs the sweep (rank 0 under MPI): resume, run, table, summary.
+int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
+  const fs::path out = out_dir_of(args);
+  const fs::path points_dir = out / "points";
+  SweepEnd end;
+  end.points = plan.points.size();
+  prepare_output_folder(out, points_dir);
+
+  std::vector<sweep::PointOutcome> outcomes(end.points);
+  const Pending pending = pending_points(args, plan, points_dir, outcomes);
+  end.reused = end.points - pending.requests.size();
+  const int jobs = args.jobs > 0 ? args.jobs : (session ? 1 : default_jobs());
   if (!args.quiet) {
     std::cout << "rtsim sweep: " << (plan.file.name.empty() ? args.file : plan.file.name) << ": "
-              << n << (n == 1 ? " point, " : " points, ") << requests.size() << " to run ("
-              << reused << " done before), ";
+              << end.points << (end.points == 1 ? " point, " : " points, ")
+              << pending.requests.size() << " to run (" << end.reused << " done before), ";
     if (session)
       std::cout << session->size() << " MPI ranks, " << jobs << " at a time on each";
     else
@@ -186,66 +327,12 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     runs::stop_runs(SIGTERM);
   });
   const auto start = std::chrono::steady_clock::now();
-  {
-    ProgressBar bar(args.quiet ? std::string() : "sweep",
-                    /*lines_when_not_a_terminal=*/!args.quiet);
-    std::mutex record_mutex;
-    long finished = 0;
-    const auto record = [&](std::size_t request, const sweep::PointOutcome& o) {
-      std::lock_guard lock(record_mutex);
-      const sweep::Point& p = plan.points[request_point[request]];
-      outcomes[p.index] = o;
-      if (o.ok) {
-        const fs::path dir = points_dir / p.key;
-        try {
-          // A rank without a shared file system wrote stats.json on its own disk: keep a copy
-          // here, where the table, the marker and resuming live.
-          std::error_code ec;
-          if (!fs::exists(dir / "stats.json", ec)) {
-            fs::create_directories(dir);
-            sweep::write_file_atomically(dir / "stats.json", o.stats_text);
-          }
-          // Every module instance, for the classes the results table keeps as aggregates.
-          sweep::write_file_atomically(
-              dir / "modules.csv", sweep::modules_csv(nlohmann::ordered_json::parse(o.stats_text)));
-          sweep::write_marker(dir, p, o);
-        } catch (const std::exception& e) {
-          // Called from the queue's threads: a full disk fails the point, not the sweep.
-          outcomes[p.index].ok = false;
-          outcomes[p.index].error = std::string("ran, but cannot record it: ") + e.what();
-        }
-      }
-      if (!args.quiet) bar.update(++finished, static_cast<long>(requests.size()));
-    };
-
-    runs::RunQueueOptions q;
-    q.executable = executable_of(args);
-    q.work_dir = points_dir;
-    q.jobs = jobs;
-    q.log_in_run_dir = true;
-    if (session) {
-      session->dispatch(requests, q, record);
-    } else {
-      std::unordered_map<std::string, std::size_t> request_of_key;  // run_all reports by key
-      for (std::size_t i = 0; i < requests.size(); ++i) request_of_key[requests[i].key] = i;
-      q.on_finished = [&](const runs::RunOutcome& run, int, int) {
-        record(request_of_key.at(run.request.key), sweep::outcome_of(run));
-      };
-      // Points are forks of this process (no program start-up each), unless another rtsim
-      // binary was asked for.
-      if (args.rtsim.empty()) {
-        q.in_process = run_cli_in_forked_child;
-        preload_image_module();  // once here, not in every point
-      }
-      (void)runs::run_all(requests, q);
-    }
-  }
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run_points(args, plan, pending, points_dir, jobs, session, outcomes);
+  end.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int interrupted = interrupted_by.load();
   if (interrupted != 0) {
     // What was stopped or never started is not a failure of the point: it is still to run.
-    for (const std::size_t i : request_point)
+    for (const std::size_t i : pending.point_of)
       if (!outcomes[i].ok) {
         outcomes[i].interrupted = true;
         outcomes[i].error = "interrupted: not run to the end";
@@ -255,68 +342,23 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
   const auto table = sweep::make_results_table(plan.file, plan.points, outcomes);
   sweep::write_file_atomically(out / "results.csv", sweep::to_csv(table));
   sweep::write_file_atomically(out / "results.jsonl", sweep::to_jsonl(table));
-
-  std::size_t failed = 0;
-  for (const auto& o : outcomes) failed += o.ok ? 0 : 1;
+  for (const auto& o : outcomes) end.failed += o.ok ? 0 : 1;
   if (interrupted != 0) {
-    std::cerr << "rtsim sweep: interrupted: " << n - failed << " of " << n
+    std::cerr << "rtsim sweep: interrupted: " << end.points - end.failed << " of " << end.points
               << " points done; run the same command to resume\n"
               << "  table  " << (out / "results.csv").string() << " (the points done so far)\n";
     end_by_signal(interrupted);
   }
 
-  // The report covers every point of the table, run now or before, failed or not.
-  std::string report_error;
-  if (args.report) {
-    try {
-      OutputSet set(out);
-      SweepReportInputs in;
-      in.file = &plan.file;
-      in.points = &plan.points;
-      in.outcomes = &outcomes;
-      in.table = &table;
-      in.results_jsonl = out / "results.jsonl";
-      in.points_dir = points_dir;
-      in.command_line = command_line(args, out);
-      in.wall_s = wall;
-      in.run_now = requests.size();
-      in.ranks = session ? session->size() : 0;
-      if (args.baseline >= 0) in.baseline = static_cast<std::size_t>(args.baseline);
-      ReportTools tools;
-      tools.scratch_dir = set.staged_path(".report-plots");
-      write_sweep_report(in, set.stage("report.html"), tools);
-      set.commit();
-    } catch (const std::exception& e) {
-      report_error = e.what();
-    }
-  }
-
-  if (!args.quiet) {
-    std::cout << "rtsim sweep: " << n << (n == 1 ? " point: " : " points: ") << n - failed
-              << " ok (" << reused << " done before), " << failed << " failed; " << wall
-              << " s wall\n";
-    std::size_t shown = 0;
-    for (const auto& p : plan.points) {
-      const auto& o = outcomes[p.index];
-      if (o.ok) continue;
-      if (shown++ == kFailuresShown) {
-        std::cout << "  ... and " << failed - kFailuresShown << " more (results.csv has all)\n";
-        break;
-      }
-      std::cout << "  failed  point " << p.key << " (" << describe_point(p) << "): " << o.error
-                << "\n";
-    }
-    std::cout << "  table  " << (out / "results.csv").string() << "  "
-              << (out / "results.jsonl").string() << "\n"
-              << "  points " << points_dir.string() << "/NNNN/ (stats.json, images, run.log)\n";
-    if (args.report && report_error.empty())
-      std::cout << "  report " << (out / "report.html").string() << "\n";
-  }
-  if (!report_error.empty()) {
-    std::cerr << "rtsim: error: report.html: " << report_error << "\n";
+  if (args.report)
+    end.report_error =
+        write_report(args, plan, out, outcomes, table, end, pending.requests.size(), session);
+  if (!args.quiet) print_summary(args, plan, out, outcomes, end);
+  if (!end.report_error.empty()) {
+    std::cerr << "rtsim: error: report.html: " << end.report_error << "\n";
     return kExitFailure;
   }
-  return failed > 0 ? kExitFailure : kExitOk;
+  return end.failed > 0 ? kExitFailure : kExitOk;
 }
 
 int run_sweep_mpi(const SweepArgs& args) {
