@@ -271,6 +271,20 @@ void headline_section(HtmlReport& page, const json& stats) {
   page.key_values(head);
 }
 
+/// Runs analysis/`script` on stats.json into scratch/`png`: the image on the page, or the
+/// reason it could not be drawn in `problems`.
+void plot_from_stats(HtmlReport& page, const RunReportInputs& in, const ReportTools& tools,
+                     const std::string& script, const std::string& png_name,
+                     const std::string& title, const std::string& caption,
+                     std::vector<std::string>& problems) {
+  const fs::path png = tools.scratch_dir / png_name;
+  const auto r = run_analysis_script(tools, script, {in.stats_json.string(), png.string()});
+  if (r.ok)
+    page.image(png, title, caption);
+  else
+    problems.push_back(r.message);
+}
+
 /// Utilisation over time, the latency histogram and the machine's own plots; what could not be
 /// drawn is said in a note.
 void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& in,
@@ -311,32 +325,20 @@ void plots_section(HtmlReport& page, const json& stats, const RunReportInputs& i
     else
       problems.push_back(r.message);
   }
-  if (const json* lat = find(stats, "ray_latency_s"); lat && num(*lat, "count", 0) > 0) {
-    const fs::path png = tools.scratch_dir / "latency.png";
-    const auto r =
-        run_analysis_script(tools, "latency_histogram.py", {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, "ray latency histogram",
-                 "Per-ray latency from entering the ray queue to the host having the answer "
-                 "(analysis/latency_histogram.py)");
-    else
-      problems.push_back(r.message);
-  }
+  if (const json* lat = find(stats, "ray_latency_s"); lat && num(*lat, "count", 0) > 0)
+    plot_from_stats(page, in, tools, "latency_histogram.py", "latency.png", "ray latency histogram",
+                    "Per-ray latency from entering the ray queue to the host having the answer "
+                    "(analysis/latency_histogram.py)",
+                    problems);
   // The machine's own plots, as its registration lists them (none for a machine this build
   // does not know).
-  const platform::Machine* machine = nullptr;
-  for (const platform::Machine* m : platform::machines())
-    if (m->name() == str(stats, "machine")) machine = m;
+  const platform::Machine* machine = platform::machine_named(str(stats, "machine"));
   for (const platform::ReportPlot& plot :
        machine ? machine->info().report_plots : std::vector<platform::ReportPlot>{}) {
     const json* object = find(stats, plot.object);
     if (!object || !find(*object, plot.key)) continue;
-    const fs::path png = tools.scratch_dir / (fs::path(plot.script).stem().string() + ".png");
-    const auto r = run_analysis_script(tools, plot.script, {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, plot.title, plot.caption);
-    else
-      problems.push_back(r.message);
+    plot_from_stats(page, in, tools, plot.script, fs::path(plot.script).stem().string() + ".png",
+                    plot.title, plot.caption, problems);
   }
   if (!problems.empty()) page.note(missing_plots_note(problems));
 }
@@ -419,15 +421,13 @@ void latency_probe_section(HtmlReport& page, const json& stats, const RunReportI
                     e2e && e2e->is_object() ? format_seconds(num(*e2e, "p99", 0.0)) : ""});
     page.table({"stage", "queueing", "service", "transfer", "total", "share", "p99 of total"},
                rows);
-    const fs::path png = tools.scratch_dir / "latency_breakdown.png";
-    const auto r =
-        run_analysis_script(tools, "latency_breakdown.py", {in.stats_json.string(), png.string()});
-    if (r.ok)
-      page.image(png, "where a ray spends its time",
-                 "Mean queueing, service and transfer time per ray at each stage, the "
-                 "unattributed rest and the end-to-end mean (analysis/latency_breakdown.py)");
-    else
-      page.note(missing_plots_note({r.message}));
+    std::vector<std::string> problems;
+    plot_from_stats(page, in, tools, "latency_breakdown.py", "latency_breakdown.png",
+                    "where a ray spends its time",
+                    "Mean queueing, service and transfer time per ray at each stage, the "
+                    "unattributed rest and the end-to-end mean (analysis/latency_breakdown.py)",
+                    problems);
+    if (!problems.empty()) page.note(missing_plots_note(problems));
   }
 }
 

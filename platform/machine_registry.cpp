@@ -55,12 +55,16 @@ const Machine& default_machine() {
   return *found;
 }
 
+const Machine* machine_named(std::string_view name) {
+  for (const Machine* m : machines())
+    if (m->name() == name) return m;
+  return nullptr;
+}
+
 const Machine& find_machine(const std::string& name) {
+  if (const Machine* m = machine_named(name)) return *m;
   std::vector<std::string> owned;
-  for (const Machine* m : machines()) {
-    if (m->name() == name) return *m;
-    owned.push_back(m->name());
-  }
+  for (const Machine* m : machines()) owned.push_back(m->name());
   const std::vector<std::string_view> names(owned.begin(), owned.end());
   std::string msg = "unknown machine '" + name + "'";
   auto close = closest_names(name, names);

@@ -35,6 +35,8 @@ struct RegisterMachine {
 
 /// All registered machines, by name.
 const std::vector<const Machine*>& machines();
+/// The machine called `name`, or null (a stats.json from a build with other machines).
+const Machine* machine_named(std::string_view name);
 /// The machine called `name`, or InputError naming the closest ones.
 const Machine& find_machine(const std::string& name);
 /// The machine whose registration says `.default_machine = true` (`rtsim run` without

@@ -158,8 +158,8 @@ std::size_t ArrayNode::memory_words(const params::ParamRegistry& registry) {
   return modules::ModuleParams(registry, kClass).get(kMemoryWords);
 }
 
-std::string ArrayNode::memory_words_name() {
-  return std::string(kClass) + "." + kMemoryWords.name();
+std::string ArrayNode::memory_words_name(const params::ParamRegistry& registry) {
+  return modules::ModuleParams(registry, kClass).path_of(kMemoryWords.name());
 }
 
 ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,

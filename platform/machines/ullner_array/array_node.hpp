@@ -118,7 +118,7 @@ class ArrayNode : public modules::Processor {
   static sc_core::sc_time keep_test_time(const params::ParamRegistry& registry);
   /// Words of a processor's memory, and the parameter's full name (for a message).
   static std::size_t memory_words(const params::ParamRegistry& registry);
-  static std::string memory_words_name();
+  static std::string memory_words_name(const params::ParamRegistry& registry);
 
   SC_HAS_PROCESS(ArrayNode);
   ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,

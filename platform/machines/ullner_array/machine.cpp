@@ -261,7 +261,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                            std::to_string(need / ullner_array::kPolygonWords) + " polygons (" +
                            std::to_string(need) + " words) but its memory has " +
                            std::to_string(capacity) + " words (" +
-                           ullner_array::ArrayNode::memory_words_name() +
+                           ullner_array::ArrayNode::memory_words_name(r) +
                            "); use more processors or subvolumes (" + array.path_of(kRows.name()) +
                            ", " + array.path_of(kCols.name()) + ", " +
                            array.path_of(kSubvolumes.name()) + ") or a larger memory");
