@@ -91,17 +91,17 @@ inline std::size_t pixels_differing(const Frame& a, const Frame& b) {
 /// the polygon's plane through the origin) of the polygon the centre ray hits, in `memory` of
 /// `machine`, whose lines are `line_words` long with polygon k at line k: some pixels and the
 /// centre pixel change.
-inline void expect_centre_polygon_fault_shows(const std::string& machine, const std::string& memory,
-                                              std::uint64_t line_words) {
+inline void expect_centre_polygon_fault_shows(
+    const std::string& machine, const std::string& memory, std::uint64_t line_words,
+    std::uint64_t word_in_line = static_cast<std::size_t>(rtsim::kernels::QuadParam::d_p),
+    std::uint32_t mask = 0x80000000u) {
   const fs::path dir = rtsim::test::scratch_dir("data-path-" + machine);
   fs::create_directories(dir);
   const long slot = centre_slot(machine);
   ASSERT_GE(slot, 0) << "the centre ray of " << kScene << " hits nothing";
-  const std::uint64_t word = static_cast<std::uint64_t>(slot) * line_words +
-                             static_cast<std::size_t>(rtsim::kernels::QuadParam::d_p);
+  const std::uint64_t word = static_cast<std::uint64_t>(slot) * line_words + word_in_line;
   const Frame clean = simulate(machine, kScene, {}, {}, dir / "clean.bin");
-  const Frame faulty =
-      simulate(machine, kScene, {}, {{memory, word, 0x80000000u}}, dir / "faulty.bin");
+  const Frame faulty = simulate(machine, kScene, {}, {{memory, word, mask}}, dir / "faulty.bin");
   ASSERT_TRUE(clean.ok && faulty.ok);
   ASSERT_EQ(clean.rgb.size(), static_cast<std::size_t>(kSize * kSize * 3));
   const std::size_t changed = pixels_differing(clean, faulty);

@@ -166,6 +166,16 @@ TEST(UllnerPipeline, ProcessorPolygonChangesTheImage) {
       "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerStoredWords + 1);
 }
 
+// A processor that overwrites a description writes the identity word loaded into its registers
+// (L713, L717), not its place in the chain: the host shades the polygon that word names.
+// Flipping bit 1 of the centre polygon's identity makes the host shade a face of its cube at
+// right angles to it (bit 0 names the parallel face, which shades alike from both sides).
+TEST(UllnerPipeline, TheIdentityInTheRegistersNamesTheAnswer) {
+  rtsim::test::data_path::expect_centre_polygon_fault_shows(
+      "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerStoredWords + 1,
+      /*word_in_line=*/rtsim::kernels::kUllnerStoredWords, /*mask=*/0x2u);
+}
+
 // ullner-pipeline on a scene of alike rows: its queues fill over the frame's first ~512 rays,
 // and until then the windows go faster and unevenly. Sampled without a warm-up, those first
 // windows are a large part of a sparse sample (docs/pareto.md measured -1% at K = 16 on 128 x 128

@@ -164,9 +164,12 @@ const std::vector<kernels::UllnerQuadParams<double>>& EngineChain::polygons() {
   if (registers.words_written() == decoded_after_) return decoded_;
   const auto& words = registers.contents();
   decoded_.resize(engines());
-  for (std::uint64_t k = 0; k < engines(); ++k)
+  identities_.resize(engines());
+  for (std::uint64_t k = 0; k < engines(); ++k) {
     decoded_[k] = kernels::load_words(std::span<const std::uint32_t, kernels::kUllnerStoredWords>(
         words.data() + k * PolygonDescription::kWords, kernels::kUllnerStoredWords));
+    identities_[k] = words[k * PolygonDescription::kWords + PolygonDescription::kIdWord];
+  }
   decoded_after_ = registers.words_written();
   return decoded_;
 }
@@ -206,12 +209,16 @@ void EngineChain::run() {
     d.r1_minus_r0 = req.ray.ray.direction;
     d.t = req.ray.t_max;
     const auto ray = kernels::UllnerRay<double>::make(d.r0, d.r1_minus_r0);
+    // A processor that overwrites writes the identity its registers hold (L713, L717).
     const auto& held = polygons();
+    std::uint64_t answered_by = n;
     for (std::uint64_t k = 0; k < n; ++k)
-      if (tasks::pass_ray_description(d, ray, held[k], static_cast<std::uint32_t>(k)))
+      if (tasks::pass_ray_description(d, ray, held[k], identities_[k])) {
         ++overwrites_[k];
+        answered_by = k;
+      }
     counters_.intersection_tests += n;
-    if (d.i < n) ++answers_[d.i];
+    if (answered_by < n) ++answers_[answered_by];
 
     // The time: the first inner link carries it as every inner link does; the last processor
     // accepts it by ChainTiming's formula, and its complete description crosses the last link.

@@ -99,6 +99,7 @@ class EngineChain : public sc_core::sc_module {
   sc_core::sc_time polygon_time_;
   modules::LocalClock clock_;  ///< the first processor's time
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
+  std::vector<std::uint32_t> identities_;  ///< each processor's identity word, as decoded_
   std::uint64_t decoded_after_ = ~std::uint64_t{0};  ///< registers' words_written() then
   std::vector<std::uint64_t> overwrites_, answers_;
   sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;

@@ -103,16 +103,25 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   const double cycle = pipeline.cycle().to_seconds();
   const double frame = frame_time.to_seconds();
   nlohmann::ordered_json& res = run.machine_stats();
-  res["wang"] = {{"loop_stages", pipeline.loop_stages()},
-                 {"cycle_s", cycle},
-                 {"throughput_rpi_per_s", cycle > 0 ? 1.0 / cycle : 0.0},
-                 {"latency_s", pipeline.latency().to_seconds()},
-                 {"jobs", taken},
-                 {"measured_rpi_per_s", frame > 0 ? jobs / frame : 0.0},
-                 {"pipeline_utilization", frame > 0 ? cycle * jobs / frame : 0.0},
-                 {"dsps", dsps},
-                 {"stage0", std::move(stage0)},
-                 {"substages", std::move(substages)}};
+  nlohmann::ordered_json& w = res["wang"];
+  w["loop_stages"] = pipeline.loop_stages();
+  if (taken > 0) {
+    w["cycle_s"] = cycle;
+    w["throughput_rpi_per_s"] = cycle > 0 ? 1.0 / cycle : 0.0;
+    w["latency_s"] = pipeline.latency().to_seconds();
+  }
+  w["jobs"] = taken;
+  if (taken > 0) {
+    w["measured_rpi_per_s"] = frame > 0 ? jobs / frame : 0.0;
+    w["pipeline_utilization"] = frame > 0 ? cycle * jobs / frame : 0.0;
+  } else {
+    // A scene with no patch a ray could reach gives the pipeline nothing to do: it has no
+    // throughput to report (its cycle would only restate its parameters).
+    w["note"] = "no jobs: no ray reached a Bezier patch, so the pipeline did not run";
+  }
+  w["dsps"] = dsps;
+  w["stage0"] = std::move(stage0);
+  w["substages"] = std::move(substages);
   if (check) res["wang"]["accuracy"] = check->to_json();
   return run.finish(host.latency(), {&host.patch_memory});
 }
