@@ -50,8 +50,22 @@ const modules::TimeParam kComputeLatency(
                     "late)",
      .source = "seed 000 L572-L588 (Fig. 2-17: 17 operations deep with one-stage additions) at 5 "
                "us an operation (L723)"});
+const modules::ChoiceParam kModel(
+    {.name = "model",
+     .default_value = "chain",
+     .allowed = {"chain", "engines"},
+     .description = "How the processors are simulated: chain (each description's arrival at the "
+                    "last processor by ChainTiming's formula, one step a description) or engines "
+                    "(every processor a module that receives the description as a transaction, "
+                    "computes on it and times itself from its own state and its neighbour's "
+                    "handshake). Both give every ray the same times and the same image "
+                    "(tests/ullner_pipeline_test.cpp); engines also reports fill and drain along "
+                    "the chain",
+     .source = "model choice (DESIGN.md \"Timing rules\": a closed form only where a test shows "
+               "it identical to the structural run)"});
 /// A processor's class and the links' class, under the chain's path.
 constexpr const char* kEngine = "engine";
+constexpr const char* kLinkIn = "link_in";
 constexpr const char* kLink = "link";
 
 std::string under(const sc_core::sc_module& m, const char* child) {
@@ -70,16 +84,21 @@ std::string EngineChain::engines_name(const modules::ModuleParams& pipeline) {
 
 void EngineChain::declare_params(const modules::ParamDecls& pipeline) {
   pipeline.add(kEngines);
+  pipeline.add(kModel);
   const modules::ParamDecls engine = pipeline.sub(kEngine);
   for (const auto* p : {&kIssueInterval, &kHopLatency, &kComputeLatency}) engine.add(*p);
-  modules::Link::declare_params(
-      pipeline.sub(kLink),
-      {.latency = "0 s",
-       .lanes = "13",
-       .bit_rate = "",
-       .bit_time = "150 ns",
-       .source = "seed 000 L729-L733: bit-serial, one wire per value (13 each way plus "
-                 "handshake); \"about 150 nanoseconds per bit\" (20-200 ns by technology)"});
+  const modules::Link::Defaults bit_serial{
+      .latency = "0 s",
+      .lanes = "13",
+      .bit_rate = "",
+      .bit_time = "150 ns",
+      .source =
+          "seed 000 L729-L733: bit-serial, one wire per value (13 each way plus "
+          "handshake); \"about 150 nanoseconds per bit\" (20-200 ns by technology)"};
+  // The links between processors and to the host at the far end, and the host's link into the
+  // first processor (the same wires by default; apart, a what-if).
+  modules::Link::declare_params(pipeline.sub(kLink), bit_serial);
+  modules::Link::declare_params(pipeline.sub(kLinkIn), bit_serial);
 }
 
 EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
@@ -106,13 +125,14 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
                                 .hop_latency = engine.get(kHopLatency),
                                 .compute_latency = engine.get(kComputeLatency)};
           }(),
-          inner_link_.serialisation(RayDescription::kWireBits),
+          inner_link_.serialisation(RayDescription::kWireBits), inner_link_.latency(),
           engines(modules::ModuleParams(run.registry(), this->name()))),
       polygon_time_(inner_link_.serialisation(PolygonDescription::kWireBits)),
       overwrites_(timing_.engines(), 0),
       answers_(timing_.engines(), 0),
       engine_class_(under(*this, kEngine)) {
   load.register_b_transport(this, &EngineChain::load_transport);
+  if (modules::ModuleParams(run.registry(), this->name()).get(kModel) == "engines") build_engines();
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
   probe_input_ = probe_.stage(input.name());
@@ -186,9 +206,75 @@ ullner::RayResult EngineChain::read_answer(const ullner::RayRequest& req, const 
   return res;
 }
 
+void EngineChain::build_engines() {
+  // Every processor a module; the chain's end sockets at both ends (the host's input register
+  // feeds the first, the far end takes what leaves the last).
+  const std::uint64_t n = engines();
+  const HeldPolygons held{
+      .polygon = &decoded_, .identity = &identities_, .overwrites = &overwrites_};
+  engine_modules_.reserve(n);
+  for (std::uint64_t k = 0; k < n; ++k)
+    engine_modules_.push_back(std::make_unique<PolygonEngine>(
+        (std::string(kEngine) + std::to_string(k)).c_str(), k, timing_.engine(),
+        timing_.description_time(), timing_.link_latency(), held,
+        k == 0 && n > 1 ? &inner_link_ : nullptr));
+  to_first_ = std::make_unique<tlm_utils::simple_initiator_socket<EngineChain>>("to_first");
+  far_end_ = std::make_unique<tlm_utils::simple_target_socket<EngineChain>>("far_end");
+  to_first_->bind(engine_modules_.front()->in);
+  for (std::uint64_t k = 0; k + 1 < n; ++k) {
+    engine_modules_[k]->out.bind(engine_modules_[k + 1]->in);
+    engine_modules_[k]->set_next(engine_modules_[k + 1].get());
+  }
+  engine_modules_.back()->out.bind(*far_end_);
+  far_end_->register_b_transport(this, &EngineChain::far_end_transport);
+}
+
+void EngineChain::far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  far_end_ready_ = sc_core::sc_time_stamp() + delay;
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
+                                              const sc_core::sc_time& accepted) {
+  // The data: the description passes every processor in chain order, each writing the identity
+  // its registers hold when it overwrites (L713, L717).
+  const auto& held = polygons();
+  const std::uint64_t n = engines();
+  for (std::uint64_t k = 0; k < n; ++k)
+    if (tasks::pass_ray_description(msg.description, msg.ray, held[k], identities_[k])) {
+      ++overwrites_[k];
+      msg.last_writer = k;
+    }
+  // The time: the first inner link carries it as every inner link does; the last processor
+  // accepts it by ChainTiming's formula and is ready to pass it on a hop latency later.
+  if (n > 1)
+    inner_link_.transfer(RayDescription::kWireBits, plus(accepted, timing_.engine().hop_latency));
+  return plus(timing_.last_accepts(accepted), timing_.engine().hop_latency);
+}
+
+sc_core::sc_time EngineChain::through_engines(DescriptionInFlight& msg,
+                                              const sc_core::sc_time& accepted) {
+  // The description as a transaction: into the first processor's register, then each processor
+  // passes it on to the next (whose accept and computation follow), the last to the far end.
+  polygons();  // the processors' registers decoded, as the load left them
+  modules::MessageExtension<DescriptionInFlight> ext(&msg, RayDescription::kWireBits);
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_WRITE_COMMAND);
+  gp.set_address(0);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(&msg.description));
+  gp.set_data_length(sizeof(msg.description));
+  gp.set_streaming_width(sizeof(msg.description));
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_extension(&ext);
+  sc_core::sc_time delay = accepted - sc_core::sc_time_stamp();
+  (*to_first_)->b_transport(gp, delay);
+  for (auto& engine : engine_modules_) engine->pass_on(gp, delay);
+  gp.clear_extension(&ext);
+  return far_end_ready_;
+}
+
 void EngineChain::run() {
   const EngineTiming& engine = timing_.engine();
-  const std::uint64_t n = engines();
   sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
   for (;;) {
     modules::wait_for_item(input.fifo, clock_);
@@ -201,31 +287,24 @@ void EngineChain::run() {
     engine_busy_.record(accepted, engine.issue_interval);
     ++descriptions_;
 
-    // The data: the description passes every processor in chain order. The host injects
-    // (r0, r1) with t at the ray's far limit: infinity for vision rays (L704), the light's
-    // distance for shadow rays, so only an occluder before the light answers.
-    RayDescription d;
-    d.r0 = req.ray.ray.origin;
-    d.r1_minus_r0 = req.ray.ray.direction;
-    d.t = req.ray.t_max;
-    const auto ray = kernels::UllnerRay<double>::make(d.r0, d.r1_minus_r0);
-    // A processor that overwrites writes the identity its registers hold (L713, L717).
-    const auto& held = polygons();
-    std::uint64_t answered_by = n;
-    for (std::uint64_t k = 0; k < n; ++k)
-      if (tasks::pass_ray_description(d, ray, held[k], identities_[k])) {
-        ++overwrites_[k];
-        answered_by = k;
-      }
-    counters_.intersection_tests += n;
-    if (answered_by < n) ++answers_[answered_by];
+    // The host injects (r0, r1) with t at the ray's far limit: infinity for vision rays (L704),
+    // the light's distance for shadow rays, so only an occluder before the light answers.
+    DescriptionInFlight msg;
+    msg.request = req;
+    msg.description.r0 = req.ray.ray.origin;
+    msg.description.r1_minus_r0 = req.ray.ray.direction;
+    msg.description.t = req.ray.t_max;
+    msg.ray = kernels::UllnerRay<double>::make(msg.description.r0, msg.description.r1_minus_r0);
+    const sc_core::sc_time ready =
+        engine_modules_.empty() ? through_formula(msg, accepted) : through_engines(msg, accepted);
+    counters_.intersection_tests += engines();
+    if (msg.last_writer < engines()) ++answers_[msg.last_writer];
 
-    // The time: the first inner link carries it as every inner link does; the last processor
-    // accepts it by ChainTiming's formula, and its complete description crosses the last link.
-    if (n > 1) inner_link_.transfer(RayDescription::kWireBits, plus(accepted, engine.hop_latency));
-    const sc_core::sc_time last = timing_.last_accepts(accepted);
-    const sc_core::sc_time leaves = timing_.leaves(last);
-    ullner::RayResult res = read_answer(req, d);
+    // Its ray fields leave the last processor when it is ready; its result fields trail them by
+    // the compute latency (chain_timing.hpp), and the complete description crosses the last
+    // link to the host.
+    const sc_core::sc_time leaves = plus(ready, engine.compute_latency);
+    ullner::RayResult res = read_answer(req, msg.description);
     res.service_start = accepted;
     res.answered = leaves;
     res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves);

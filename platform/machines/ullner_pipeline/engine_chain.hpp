@@ -4,11 +4,14 @@
 // L729-L731); the host drives the unused input at one end and reads the unused output at the
 // other.
 //
-// The processors are identical, so the chain is one module with one thread, not N: for each ray
-// description the data passes every processor in order (each intersects the description it
-// received with the polygon in its registers and passes on the one it wrote, L702-L713), and the
-// time it reaches the far end is arithmetic (ChainTiming). Memory grows by a register line and two
-// counters a processor; wall time by one intersection a processor a ray (which the hardware does).
+// Two ways to simulate the processors (pipeline.model), with the same times for every ray:
+//  * chain: the processors are identical, so the chain steps each description through every
+//    processor's test in order (each intersects the description it received with the polygon in
+//    its registers and passes on the one it wrote, L702-L713) and the time it reaches the far end
+//    is arithmetic (ChainTiming). Memory grows by a register line and two counters a processor.
+//  * engines: every processor is a PolygonEngine module; the description travels from one to the
+//    next as a transaction and each times itself (polygon_engine.hpp).
+// Wall time grows by one intersection a processor a ray either way (which the hardware does).
 //
 // What the host reads is the description that came out of the last processor: its identity
 // field names the polygon (dummies' identities are ignored, L719) and its t and (u, v) the point;
@@ -17,6 +20,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include <cstdint>
+#include <memory>
 #include <systemc>
 #include <vector>
 
@@ -34,6 +38,7 @@
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
+#include "platform/machines/ullner_pipeline/polygon_engine.hpp"
 #include "platform/machines/ullner_pipeline/polygon_load.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
@@ -82,6 +87,14 @@ class EngineChain : public sc_core::sc_module {
 
  private:
   void run();
+  /// pipeline.model = engines: the processors as modules, bound in a chain.
+  void build_engines();
+  /// Carries `msg`, accepted by the first processor at `accepted`, through every processor:
+  /// returns when the last one is ready to pass it on (its ray fields). By the formula, or as a
+  /// transaction through the engines.
+  sc_core::sc_time through_formula(DescriptionInFlight& msg, const sc_core::sc_time& accepted);
+  sc_core::sc_time through_engines(DescriptionInFlight& msg, const sc_core::sc_time& accepted);
+  void far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   /// The processors' polygons as their registers hold them (decoded again after any write).
   const std::vector<kernels::UllnerQuadParams<double>>& polygons();
@@ -130,6 +143,20 @@ class EngineChain : public sc_core::sc_module {
   modules::Computed bits_all_links_{inner_link_, "bits_all_links", "bits over all inner links",
                                     [this] { return inner_link_.bits() * (engines() - 1); }};
   static std::uint64_t sum(const std::vector<std::uint64_t>& v, std::uint64_t first_n);
+
+  // pipeline.model = engines: the processors, and the chain's sockets at the host's end (into
+  // the first one's register) and at the far end (what leaves the last one, and when).
+  std::vector<std::unique_ptr<PolygonEngine>> engine_modules_;
+  std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_;
+  std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_;
+  sc_core::sc_time far_end_ready_ = sc_core::SC_ZERO_TIME;
+
+ public:
+  /// pipeline.model = engines: processor k's module (fill and drain along the chain); empty in
+  /// chain mode.
+  const std::vector<std::unique_ptr<PolygonEngine>>& engine_modules() const {
+    return engine_modules_;
+  }
 };
 
 }  // namespace rtsim::platform::ullner_pipeline

@@ -42,7 +42,10 @@ nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
   const double per = static_cast<double>(std::max<std::uint64_t>(descriptions, 1));
   nlohmann::ordered_json first = nlohmann::ordered_json::array(),
                          overwrites = nlohmann::ordered_json::array(),
-                         answers = nlohmann::ordered_json::array();
+                         answers = nlohmann::ordered_json::array(),
+                         first_accept = nlohmann::ordered_json::array(),
+                         last_accept = nlohmann::ordered_json::array(),
+                         waited = nlohmann::ordered_json::array();
   for (std::uint64_t p = 0; p < points; ++p) {
     const std::uint64_t lo = p * n / points, hi = (p + 1) * n / points;
     double o = 0.0, a = 0.0;
@@ -54,12 +57,25 @@ nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
     first.push_back(lo);
     overwrites.push_back(o / count);
     answers.push_back(a / count);
+    if (!chain.engine_modules().empty()) {
+      const auto& e = *chain.engine_modules()[lo];
+      first_accept.push_back(e.first_accept().to_seconds());
+      last_accept.push_back(e.last_accept().to_seconds());
+      waited.push_back(e.waited().to_seconds() / per);
+    }
   }
-  return {{"engines", n},
-          {"busy_fraction", busy_fraction},
-          {"first_engine", std::move(first)},
-          {"overwrites_per_description", std::move(overwrites)},
-          {"answers_per_description", std::move(answers)}};
+  nlohmann::ordered_json out = {{"engines", n},
+                                {"busy_fraction", busy_fraction},
+                                {"first_engine", std::move(first)},
+                                {"overwrites_per_description", std::move(overwrites)},
+                                {"answers_per_description", std::move(answers)}};
+  // pipeline.model = engines: where the chain fills and drains (each point's first processor).
+  if (!chain.engine_modules().empty()) {
+    out["first_accept_s"] = std::move(first_accept);
+    out["last_accept_s"] = std::move(last_accept);
+    out["waited_per_description_s"] = std::move(waited);
+  }
+  return out;
 }
 
 }  // namespace
@@ -118,7 +134,7 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   const ullner::HostAttachment attached{
       .ray_queue = chain.input.fifo,
       .ray_link_name = link_in,
-      .ray_link_params = std::string(kPipeline) + ".link",
+      .ray_link_params = link_in,
       .ray_bits = tasks::RayDescription::kWireBits,
       .max_in_flight = PipelineHost::rays_in_flight(modules::ModuleParams(r, kHost)),
       .lighting = {}};
@@ -145,7 +161,7 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   const double busy_fraction = frame_s > 0 ? chain.engine_busy().to_seconds() / frame_s : 0.0;
   // The chain empty: the host's link in, N-1 hops, the last processor passing it on with its
   // result fields, the link out.
-  const double latency_s = ct.description_time().to_seconds() * 2 +
+  const double latency_s = (ct.description_time() + ct.link_latency()).to_seconds() * 2 +
                            ct.hop().to_seconds() * static_cast<double>(n - 1) +
                            et.hop_latency.to_seconds() + et.compute_latency.to_seconds();
   nlohmann::ordered_json& res = run.machine_stats();

@@ -1,0 +1,106 @@
+#pragma once
+// One polygon processor of the chain as a module (`pipeline.model = engines`; seed 000 L690-L713,
+// Fig. 2-23): the ray description reaches it as a TLM transaction on its input socket, it
+// intersects the ray with the polygon its registers hold, overwrites the intersection fields if
+// that hit is closer than the carried t (writing the identity word loaded with its polygon), and
+// passes the description on through its output socket over its bit-serial link.
+//
+// Its timing is its own state's (the formulas of chain_timing.hpp, one processor at a time):
+//     accepts     E(j) = max(A(j), E(j-1) + issue_interval)         A: arrival in its register
+//     ready       R(j) = E(j) + hop_latency
+//     link starts S(j) = max(R(j), S(j-1) + serialisation, next's E(j-1) - link latency)
+//     arrives     A'(j) = S(j) + serialisation + link latency        at the next processor
+// The next processor's input register is free once it has accepted the previous description,
+// and must be by the time the first bit reaches it: the handshake (L729-L731) is that
+// processor's E(j-1), read through `next`. The chain's thread
+// carries each description from one processor to the next (loosely timed: no processor waits
+// in simulated time, each computes its times from its state and its neighbour's handshake).
+#include <cstdint>
+#include <systemc>
+#include <tlm>
+#include <vector>
+
+#include "firmware/kernels/ullner_quad.hpp"
+#include "firmware/tasks/polygon_processor_task.hpp"
+#include "modules/link.hpp"
+#include "platform/machines/ullner_peripheral/messages.hpp"
+#include "platform/machines/ullner_pipeline/chain_timing.hpp"
+
+namespace rtsim::platform::ullner_pipeline {
+
+/// What travels down the chain: the description's fields (Fig. 2-24, the words on the wire) and,
+/// for the model, the host's request it answers, the ray's set-up (a function of r0 and r1 every
+/// processor forms alike: formed once) and which processor wrote the fields last.
+struct DescriptionInFlight {
+  tasks::RayDescription description;
+  kernels::UllnerRay<double> ray;
+  ullner::RayRequest request;
+  std::uint64_t last_writer = ~std::uint64_t{0};  ///< no processor yet
+};
+
+/// The polygons the processors' registers hold, decoded (the chain's register file): processor k
+/// tests polygon[k] and writes identity[k].
+struct HeldPolygons {
+  const std::vector<kernels::UllnerQuadParams<double>>* polygon = nullptr;
+  const std::vector<std::uint32_t>* identity = nullptr;
+  /// Per processor: descriptions it overwrote (the chain's class statistics).
+  std::vector<std::uint64_t>* overwrites = nullptr;
+};
+
+class PolygonEngine : public sc_core::sc_module,
+                      public tlm::tlm_fw_transport_if<>,
+                      public tlm::tlm_bw_transport_if<> {
+ public:
+  tlm::tlm_target_socket<> in;      ///< from the previous processor (or the host's end)
+  tlm::tlm_initiator_socket<> out;  ///< to the next processor (or the chain's far end)
+
+  /// Processor `index` with `timing`; its output link carries a description in `serialisation`
+  /// and delivers it `link_latency` later. `recorded_link`, when given, is the kit link whose
+  /// statistics its output stands for (the first inner link, pipeline.link).
+  PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t index,
+                const EngineTiming& timing, const sc_core::sc_time& serialisation,
+                const sc_core::sc_time& link_latency, const HeldPolygons& held,
+                modules::Link* recorded_link);
+
+  /// The processor after this one (its handshake), at elaboration; none for the last.
+  void set_next(const PolygonEngine* next) { next_ = next; }
+  /// When its input register was last freed (it accepted a description then).
+  const sc_core::sc_time& register_free() const { return last_accept_; }
+  /// Passes on the description it has just computed, ready `delay` from now: over its link into
+  /// the next processor (which accepts and computes it: `delay` becomes when that one is ready),
+  /// or, for the last, to the chain's far end (`delay` unchanged).
+  void pass_on(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+
+  /// When it first and last accepted a description (fill and drain along the chain).
+  const sc_core::sc_time& first_accept() const { return first_accept_; }
+  const sc_core::sc_time& last_accept() const { return last_accept_; }
+  /// Time descriptions waited, ready, for its link or the next register.
+  const sc_core::sc_time& waited() const { return waited_; }
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
+                                     sc_core::sc_time&) override {
+    return tlm::TLM_COMPLETED;
+  }
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
+  unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
+  tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
+                                     sc_core::sc_time&) override {
+    return tlm::TLM_COMPLETED;
+  }
+  void invalidate_direct_mem_ptr(sc_dt::uint64, sc_dt::uint64) override {}
+
+  std::uint64_t index_;
+  EngineTiming timing_;
+  sc_core::sc_time serialisation_, link_latency_;
+  HeldPolygons held_;
+  modules::Link* recorded_link_;
+  const PolygonEngine* next_ = nullptr;
+  bool any_ = false;
+  sc_core::sc_time first_accept_ = sc_core::SC_ZERO_TIME, last_accept_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time link_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time waited_ = sc_core::SC_ZERO_TIME;
+};
+
+}  // namespace rtsim::platform::ullner_pipeline
