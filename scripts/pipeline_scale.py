@@ -4,6 +4,7 @@ its overhead over the functional render of the same frame (docs/benchmarks.md).
 
     scripts/pipeline_scale.py build/rtsim                      # N = 10 .. 100,000, 128x128
     scripts/pipeline_scale.py build/rtsim --engines 1000 10000 --repeats 5 --json scale.json
+    scripts/pipeline_scale.py build/rtsim --model engines     # every processor a module
 
 For each N: `rtsim run --machine ullner-pipeline -p pipeline.engines=N` on a scene of about N
 polygons (builtin:ullner-sheets-10 for 10, builtin:ullner-random-N above), under
@@ -53,6 +54,8 @@ def main():
     ap.add_argument("--engines", type=int, nargs="+", default=[10, 100, 1000, 10000, 100000])
     ap.add_argument("--size", type=int, default=128)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--model", choices=["chain", "engines"], default="chain",
+                    help="pipeline.model: the chain formula or a module per processor")
     ap.add_argument("--json", help="also write the measurements here")
     args = ap.parse_args()
     rows = []
@@ -63,7 +66,7 @@ def main():
         scene = scene_for(n)
         size = ["--width", str(args.size), "--height", str(args.size)]
         run = [args.rtsim, "run", "--machine", "ullner-pipeline", "--scene", scene,
-               "-p", f"pipeline.engines={n}"] + size
+               "-p", f"pipeline.engines={n}", "-p", f"pipeline.model={args.model}"] + size
         render = [args.rtsim, "render", "--machine", "ullner-pipeline", "--scene", scene,
                   "-p", f"pipeline.engines={n}"] + size
         runs = [timed(run) for _ in range(args.repeats)]

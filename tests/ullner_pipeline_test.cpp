@@ -193,6 +193,48 @@ TEST(UllnerPipeline, TheChainFormulaGivesEveryRayTheTimesOfTheEngines) {
   }
 }
 
+// Faults in flight: a word of every description corrupted as it enters a processor (the
+// identity entering the last one: every answer names another polygon; t entering processor 300:
+// the carried distance is wrong from there on), and a dead processor that passes descriptions
+// unchanged (the centre polygon's: the centre pixel shows what is behind it). Each changes the
+// image, the same way in both models, and a non-number never reaches a pixel.
+TEST(UllnerPipeline, FaultsInFlightAndADeadProcessorChangeTheImageAlikeInBothModels) {
+  const std::string scene = "--scene builtin:ullner-cubes --width 32 --height 32";
+  const auto clean = run_pipeline("fault-clean", scene);
+  ASSERT_FALSE(clean.empty());
+  const std::string clean_png = read_file(clean["image_png"].get<std::string>());
+  for (const auto& [tag, fault] :
+       {std::pair{"identity", std::string("--fault pipeline.engine999.in:12:0x2")},
+        std::pair{"distance", std::string("--fault pipeline.engine300.in:9:0x40000000")},
+        std::pair{"nan", std::string("--fault pipeline.engine300.in:9:0x7fc00000")},
+        std::pair{"dead", std::string("-p pipeline.fault.dead_engine=476")}}) {
+    std::map<std::string, std::string> png;
+    for (const std::string model : {"chain", "engines"}) {
+      const auto s = run_pipeline(std::string("fault-") + tag + "-" + model,
+                                  scene + " " + fault + " -p pipeline.model=" + model);
+      ASSERT_FALSE(s.empty()) << fault;
+      png[model] = read_file(s["image_png"].get<std::string>());
+      EXPECT_EQ(s["image"]["nonfinite_values"].get<int>(), 0) << fault;
+      if (fault.starts_with("--fault")) {
+        const auto& f = s["pipeline"]["faults_in_flight"][0];
+        std::printf("%s (%s): %s applied to %s descriptions\n", tag, model.c_str(),
+                    f["at"].get<std::string>().c_str(), f["applied"].dump().c_str());
+        EXPECT_GT(f["applied"].get<double>(), 0.0);
+      }
+    }
+    EXPECT_NE(png["chain"], clean_png) << fault << " left the image as it was";
+    EXPECT_EQ(png["chain"], png["engines"]) << fault << ": the models disagree";
+  }
+  // A processor or word that does not exist is bad input.
+  for (const std::string bad :
+       {"--fault pipeline.engine1000.in:12:1", "--fault pipeline.engine3.in:13:1",
+        "-p pipeline.fault.dead_engine=1000"}) {
+    const auto r = run_rtsim("run --machine ullner-pipeline " + scene + " " + bad + " -q --out " +
+                             scratch_dir("pipeline-fault-bad").string());
+    EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
+  }
+}
+
 TEST(UllnerPipeline, LoadShiftsEveryDescriptionThroughTheChain) {
   // Presentation j: the host formats it (26 words, 4 instructions: 60 cycles at 5 MHz = 12 us),
   // the link carries it (64 bit times = 9.6 us), the first processor passes its polygon on

@@ -1,8 +1,10 @@
 #include "platform/machines/ullner_pipeline/engine_chain.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 
+#include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_tracer.hpp"
 
@@ -63,6 +65,15 @@ const modules::ChoiceParam kModel(
                     "the chain",
      .source = "model choice (DESIGN.md \"Timing rules\": a closed form only where a test shows "
                "it identical to the structural run)"});
+const modules::IntParam kDeadEngine(
+    {.name = "fault.dead_engine",
+     .default_value = "-1",
+     .min = "-1",
+     .max = "999999",
+     .unit = "processor",
+     .description = "A fault: this processor is dead and passes every description on unchanged "
+                    "(its polygon is never found); -1 for none",
+     .source = "fault model (issue: faults in flight); a dead stage of a systolic chain"});
 /// A processor's class and the links' class, under the chain's path.
 constexpr const char* kEngine = "engine";
 constexpr const char* kLinkIn = "link_in";
@@ -85,6 +96,7 @@ std::string EngineChain::engines_name(const modules::ModuleParams& pipeline) {
 void EngineChain::declare_params(const modules::ParamDecls& pipeline) {
   pipeline.add(kEngines);
   pipeline.add(kModel);
+  pipeline.add(kDeadEngine);
   const modules::ParamDecls engine = pipeline.sub(kEngine);
   for (const auto* p : {&kIssueInterval, &kHopLatency, &kComputeLatency}) engine.add(*p);
   const modules::Link::Defaults bit_serial{
@@ -132,6 +144,12 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
       answers_(timing_.engines(), 0),
       engine_class_(under(*this, kEngine)) {
   load.register_b_transport(this, &EngineChain::load_transport);
+  const modules::ModuleParams self(run.registry(), this->name());
+  dead_engine_ = self.get(kDeadEngine);
+  if (dead_engine_ >= static_cast<std::int64_t>(engines()))
+    throw InputError(
+        self.path_of(kDeadEngine.name()), 0,
+        "the chain has processors 0 to " + std::to_string(engines() - 1) + " (pipeline.engines)");
   if (modules::ModuleParams(run.registry(), this->name()).get(kModel) == "engines") build_engines();
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
@@ -197,8 +215,9 @@ const std::vector<kernels::UllnerQuadParams<double>>& EngineChain::polygons() {
 ullner::RayResult EngineChain::read_answer(const ullner::RayRequest& req, const RayDescription& d) {
   ullner::RayResult res;
   res.request = req;
-  // A dummy's identity (or none) is no answer (L719).
-  res.found = d.i < polygons_;
+  // A dummy's identity (or none) is no answer (L719), nor is a point that is not a number (a
+  // description corrupted in flight).
+  res.found = d.i < polygons_ && std::isfinite(d.t) && std::isfinite(d.u) && std::isfinite(d.v);
   if (!res.found) return res;
   const auto& quad = std::get<kernels::UllnerQuadKernel>(geometry_.shapes[d.i].shape);
   functional::fill_hit(geometry_, d.i, quad.surface_at(d.t, d.u, d.v), res.hit);
@@ -226,6 +245,7 @@ void EngineChain::build_engines() {
     engine_modules_[k]->set_next(engine_modules_[k + 1].get());
   }
   engine_modules_.back()->out.bind(*far_end_);
+  if (dead_engine_ >= 0) engine_modules_[static_cast<std::size_t>(dead_engine_)]->set_dead(true);
   far_end_->register_b_transport(this, &EngineChain::far_end_transport);
 }
 
@@ -234,17 +254,31 @@ void EngineChain::far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_ti
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
+void EngineChain::set_faults(std::vector<DescriptionFault> faults) {
+  std::stable_sort(
+      faults.begin(), faults.end(),
+      [](const DescriptionFault& a, const DescriptionFault& b) { return a.engine < b.engine; });
+  faults_ = std::move(faults);
+  for (DescriptionFault& f : faults_)
+    if (!engine_modules_.empty()) engine_modules_[f.engine]->add_fault(f);
+}
+
 sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
                                               const sc_core::sc_time& accepted) {
   // The data: the description passes every processor in chain order, each writing the identity
   // its registers hold when it overwrites (L713, L717).
   const auto& held = polygons();
   const std::uint64_t n = engines();
-  for (std::uint64_t k = 0; k < n; ++k)
-    if (tasks::pass_ray_description(msg.description, msg.ray, held[k], identities_[k])) {
+  const auto dead = static_cast<std::uint64_t>(dead_engine_);  // -1: none
+  std::size_t fault = 0;
+  for (std::uint64_t k = 0; k < n; ++k) {
+    for (; fault < faults_.size() && faults_[fault].engine == k; ++fault) faults_[fault].apply(msg);
+    if (k != dead &&
+        tasks::pass_ray_description(msg.description, msg.ray, held[k], identities_[k])) {
       ++overwrites_[k];
       msg.last_writer = k;
     }
+  }
   // The time: the first inner link carries it as every inner link does; the last processor
   // accepts it by ChainTiming's formula and is ready to pass it on a hop latency later.
   if (n > 1)

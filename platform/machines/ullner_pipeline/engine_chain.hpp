@@ -69,6 +69,10 @@ class EngineChain : public sc_core::sc_module {
   EngineChain(sc_core::sc_module_name name, MachineRun& run);
 
   std::uint64_t engines() const { return timing_.engines(); }
+  /// Faults in flight (description_fault.hpp), before the simulation: applied by either model
+  /// where the description enters their processor.
+  void set_faults(std::vector<DescriptionFault> faults);
+  const std::vector<DescriptionFault>& faults() const { return faults_; }
   const ChainTiming& timing() const { return timing_; }
   /// Descriptions every processor passed.
   /// Busy time of each processor: one issue interval a description.
@@ -115,6 +119,9 @@ class EngineChain : public sc_core::sc_module {
   std::vector<std::uint32_t> identities_;  ///< each processor's identity word, as decoded_
   std::uint64_t decoded_after_ = ~std::uint64_t{0};  ///< registers' words_written() then
   std::vector<std::uint64_t> overwrites_, answers_;
+  std::vector<DescriptionFault> faults_;  ///< by processor
+  /// pipeline.fault.dead_engine: the processor that passes every description unchanged (-1: none).
+  std::int64_t dead_engine_ = -1;
   sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;
 
   // "pipeline.engine": the class of processors. Every processor is busy one issue interval per

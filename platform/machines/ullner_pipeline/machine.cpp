@@ -130,7 +130,10 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
   const std::string link_in = std::string(kPipeline) + ".link_in";
   probe.stage(link_in);
   EngineChain chain(kPipeline, run);
-  inject_faults(name(), opts.faults, {&chain.registers});
+  // Faults in flight on a processor's input, then those of the memory at rest.
+  std::vector<MemoryFault> at_rest = opts.faults;
+  chain.set_faults(ullner_pipeline::description_faults(kPipeline, chain.engines(), at_rest));
+  inject_faults(name(), at_rest, {&chain.registers});
   const ullner::HostAttachment attached{
       .ray_queue = chain.input.fifo,
       .ray_link_name = link_in,
@@ -183,6 +186,14 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
       {"load_descriptions", count("load_descriptions")},
       {"load_description_time_s", chain.polygon_time().to_seconds()},
       {"along_chain", along_chain(chain, passed, busy_fraction)}};
+  if (!chain.faults().empty()) {
+    nlohmann::ordered_json& in_flight = res["pipeline"]["faults_in_flight"];
+    for (const auto& f : chain.faults())
+      in_flight.push_back({{"at", f.name(kPipeline)},
+                           {"word", f.word},
+                           {"xor_mask", f.xor_mask},
+                           {"applied", f.applied}});
+  }
   return run.finish(host.latency(), {&chain.registers});
 }
 

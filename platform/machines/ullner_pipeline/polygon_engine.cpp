@@ -42,10 +42,11 @@ void PolygonEngine::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& 
   last_accept_ = accepted;
   any_ = true;
 
-  // The data: its polygon against the description it received (L702-L713).
+  // The data: its polygon against the description it received (L702-L713), as it received it.
   DescriptionInFlight& d = carried(gp);
-  if (tasks::pass_ray_description(d.description, d.ray, (*held_.polygon)[index_],
-                                  (*held_.identity)[index_])) {
+  for (DescriptionFault* f : faults_) f->apply(d);
+  if (!dead_ && tasks::pass_ray_description(d.description, d.ray, (*held_.polygon)[index_],
+                                            (*held_.identity)[index_])) {
     ++(*held_.overwrites)[index_];
     d.last_writer = index_;
   }

@@ -21,22 +21,11 @@
 #include <vector>
 
 #include "firmware/kernels/ullner_quad.hpp"
-#include "firmware/tasks/polygon_processor_task.hpp"
 #include "modules/link.hpp"
-#include "platform/machines/ullner_peripheral/messages.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
+#include "platform/machines/ullner_pipeline/description_fault.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
-
-/// What travels down the chain: the description's fields (Fig. 2-24, the words on the wire) and,
-/// for the model, the host's request it answers, the ray's set-up (a function of r0 and r1 every
-/// processor forms alike: formed once) and which processor wrote the fields last.
-struct DescriptionInFlight {
-  tasks::RayDescription description;
-  kernels::UllnerRay<double> ray;
-  ullner::RayRequest request;
-  std::uint64_t last_writer = ~std::uint64_t{0};  ///< no processor yet
-};
 
 /// The polygons the processors' registers hold, decoded (the chain's register file): processor k
 /// tests polygon[k] and writes identity[k].
@@ -61,6 +50,11 @@ class PolygonEngine : public sc_core::sc_module,
                 const EngineTiming& timing, const sc_core::sc_time& serialisation,
                 const sc_core::sc_time& link_latency, const HeldPolygons& held,
                 modules::Link* recorded_link);
+
+  /// Faults: `fault` corrupts every description entering it; a dead processor passes every
+  /// description on unchanged.
+  void add_fault(DescriptionFault& fault) { faults_.push_back(&fault); }
+  void set_dead(bool dead) { dead_ = dead; }
 
   /// The processor after this one (its handshake), at elaboration; none for the last.
   void set_next(const PolygonEngine* next) { next_ = next; }
@@ -97,6 +91,8 @@ class PolygonEngine : public sc_core::sc_module,
   HeldPolygons held_;
   modules::Link* recorded_link_;
   const PolygonEngine* next_ = nullptr;
+  std::vector<DescriptionFault*> faults_;
+  bool dead_ = false;
   bool any_ = false;
   sc_core::sc_time first_accept_ = sc_core::SC_ZERO_TIME, last_accept_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time link_free_ = sc_core::SC_ZERO_TIME;
