@@ -19,6 +19,7 @@
 #include "firmware/kernels/bezier_patch_math.hpp"
 #include "firmware/kernels/bezier_reference.hpp"
 #include "firmware/kernels/bezier_wang_blocks.hpp"
+#include "firmware/kernels/culler_network.hpp"
 #include "tests/bezier_teapot.hpp"
 
 namespace rtsim::kernels {
@@ -203,6 +204,41 @@ TEST(WangBlocks, CullerKeepsTheFourNearestValidKeys) {
   with_nan[5] = std::nan("");  // never kept
   ASSERT_EQ(Culler::select(with_nan, o2), 4);
   EXPECT_EQ(o2[0], 10);
+}
+
+// The Culler ASIC (L302-L318): a 16-input bitonic network, 10 stages, on tagged keys. Its
+// outputs are those of the software's selection sort at every key width (both sort the same
+// total order), on random keys with ties, zeros, flagged and NaN candidates; fewer key bits
+// change which four are kept.
+TEST(CullerNetwork, KeepsWhatTheSelectionSortKeepsAtEveryKeyWidth) {
+  EXPECT_EQ(rtsim::kernels::CullerNetwork::kStages, 10);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> near(1.0f, 1.001f);  // close distances: deep subpatches
+  std::uniform_int_distribution<int> kind(0, 9);
+  for (const int bits : {36, 24, 12, 5}) {
+    int differs_from_exact = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+      std::array<float, 16> keys;
+      for (auto& k : keys) {
+        const int c = kind(rng);
+        k = c == 0 ? -1.0f : c == 1 ? std::nanf("") : c == 2 ? 0.0f : c == 3 ? 1.0f : near(rng);
+      }
+      std::array<int, 4> net{}, sel{}, exact{};
+      const int n = rtsim::kernels::CullerNetwork::select(keys, net, bits);
+      ASSERT_EQ(n, Culler::select(keys, sel, bits)) << bits;
+      for (int i = 0; i < n; ++i) ASSERT_EQ(net[i], sel[i]) << bits << " trial " << trial;
+      Culler::select(keys, exact);
+      if (!std::equal(net.begin(), net.begin() + n, exact.begin())) ++differs_from_exact;
+    }
+    std::printf("%2d-bit keys: %d of 20000 sets keep other candidates than 36-bit keys\n", bits,
+                differs_from_exact);
+    if (bits == 36) {
+      EXPECT_EQ(differs_from_exact, 0);
+    }
+    if (bits <= 12) {
+      EXPECT_GT(differs_from_exact, 0);
+    }
+  }
 }
 
 // ---------------------------------------------------------------- the loop, counters, cost

@@ -48,6 +48,29 @@ TEST(WangBezier, ImageEqualsTheFunctionalRenderWhateverTheTiming) {
   }
 }
 
+// The Culler's key width (bezier.culler_key_bits): 36 bits (the default) sorts exactly; the
+// prototype's 12 bits (L316) tie near subpatches and keep others, which changes the image. The
+// twin culls with the same keys, so the machine's image is still the functional render's; and
+// the ASIC's network and the software's sort agree.
+TEST(WangBezier, TwelveBitCullerKeysChangeTheImageAndTheTwinFollows) {
+  const std::string base =
+      "--scene " + shared_path("scenes/teapot.bpt") + " --width 48 --height 48";
+  const auto exact = run_wang("keys36", base);
+  ASSERT_FALSE(exact.empty());
+  for (const char* culler : {"asic", "software"}) {
+    const auto s =
+        run_wang(std::string("keys12-") + culler, base +
+                                                      " -p bezier.culler_key_bits=12 --overhead -p "
+                                                      "pipeline.culler.kind=" +
+                                                      culler);
+    ASSERT_FALSE(s.empty());
+    EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << culler;
+    EXPECT_NE(read_file(s.at("image_png").get<std::string>()),
+              read_file(exact.at("image_png").get<std::string>()))
+        << culler << ": 12-bit keys left the image as 36-bit keys do";
+  }
+}
+
 TEST(WangBezier, ACorruptedControlPointChangesTheImage) {
   const std::string base =
       "--scene " + shared_path("scenes/teapot.bpt") + " --width 24 --height 24";

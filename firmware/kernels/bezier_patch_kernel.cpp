@@ -7,8 +7,8 @@
 namespace rtsim::kernels {
 
 template <typename T>
-BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& patch,
-                                                  int iterations) {
+BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& patch, int iterations,
+                                                  int culler_key_bits) {
   if (iterations < kWangMinIterations || iterations > kWangMaxIterations)
     throw std::invalid_argument(
         "Bezier pipeline iterations must be in [" + std::to_string(kWangMinIterations) + ", " +
@@ -17,6 +17,11 @@ BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& pat
   k.original_ = control_net_from(patch);
   k.net_ = convert_net<T>(k.original_);
   k.iterations_ = iterations;
+  if (culler_key_bits < Culler::kMinKeyBits || culler_key_bits > Culler::kKeyBits)
+    throw std::invalid_argument(
+        "Culler key bits must be in [" + std::to_string(Culler::kMinKeyBits) + ", " +
+        std::to_string(Culler::kKeyBits) + "], got " + std::to_string(culler_key_bits));
+  k.culler_.key_bits = culler_key_bits;
   // A net that is finite in double but overflows in float is as unusable as a NaN one.
   k.valid_ = is_finite_net(k.original_) && is_finite_net(k.net_);
   if (k.valid_) k.bounds_ = control_bounds(k.original_);
@@ -29,7 +34,7 @@ bool BezierPatchKernelT<T>::intersect(const Ray& ray, double t_min, double t_max
   const auto start = entry(ray, t_min, t_max);
   if (!start) return false;
   const WangResult<T> r =
-      wang_intersect<T>(net_, *start, Vec3T<T>(ray.direction), iterations_, counters);
+      wang_intersect<T>(net_, *start, Vec3T<T>(ray.direction), iterations_, counters, culler_);
   return finish(r, ray, t_min, t_max, hit);
 }
 

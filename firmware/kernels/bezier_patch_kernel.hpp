@@ -27,8 +27,9 @@ class BezierPatchKernelT {
 
   /// Throws std::invalid_argument if iterations is outside [kWangMinIterations,
   /// kWangMaxIterations]. A patch with non-finite control points is accepted and never hit.
-  static BezierPatchKernelT from(const scenes::BezierPatch& patch,
-                                 int iterations = kWangLoopStages);
+  /// `culler_key_bits`: the Culler's key width (Culler::kKeyBits: exact).
+  static BezierPatchKernelT from(const scenes::BezierPatch& patch, int iterations = kWangLoopStages,
+                                 int culler_key_bits = Culler::kKeyBits);
 
   /// Nearest hit with t in [t_min, t_max]. The pipeline only looks forward from its origin
   /// (eq. 21), so the ray enters it from O + t_min D (t_min < 0 or infinite: from O).
@@ -56,6 +57,7 @@ class BezierPatchKernelT {
   /// Box of the 16 control points (contains the patch).
   Bounds bounds() const { return bounds_; }
   int iterations() const { return iterations_; }
+  int culler_key_bits() const { return culler_.key_bits; }
   /// The cost of one job through this kernel's pipeline length.
   Cost pipeline_cost() const { return wang_pipeline_cost(iterations_); }
   const ControlNet<double>& original() const { return original_; }
@@ -65,6 +67,7 @@ class BezierPatchKernelT {
   ControlNet<T> net_;            ///< the pipeline's copy, in its precision
   Bounds bounds_;
   int iterations_ = kWangLoopStages;
+  CullerConfig culler_;
   bool valid_ = false;
 };
 

@@ -20,6 +20,7 @@
 #include "firmware/cost.hpp"
 #include "firmware/kernels/bezier_patch_math.hpp"
 #include "firmware/kernels/bezier_wang_blocks.hpp"
+#include "firmware/kernels/culler_network.hpp"
 #include "firmware/math.hpp"
 
 namespace rtsim::kernels {
@@ -76,6 +77,13 @@ constexpr Cost wang_pipeline_cost(int iterations) {
   return kWangStage0Cost + kWangLoopStageCost * static_cast<std::uint64_t>(iterations);
 }
 
+/// How the Culler sorts (step 4): its keys' bits (Culler::kKeyBits: exact) and whether by the
+/// ASIC's bitonic network or by the software's selection sort (the same outputs: a test shows it).
+struct CullerConfig {
+  int key_bits = Culler::kKeyBits;
+  bool network = false;
+};
+
 /// Result of the pipeline: the centre of the closest surviving subpatch (step 5), or no hit.
 template <typename T>
 struct WangResult {
@@ -121,7 +129,7 @@ WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<
 /// One loop stage (steps 2-4): every buffer1 patch into four, hull classification, centre and
 /// distance of each, and the Culler's four nearest -> buffer1. An empty job passes unchanged.
 template <typename T>
-void wang_loop_stage(WangJob<T>& job, WangCounters& counters) {
+void wang_loop_stage(WangJob<T>& job, WangCounters& counters, const CullerConfig& culler = {}) {
   if (job.n1 == 0) return;
   ++counters.iterations;
   // Step 2: every buffer1 patch into four -> buffer2.
@@ -144,7 +152,8 @@ void wang_loop_stage(WangJob<T>& job, WangCounters& counters) {
   counters.hull_tests += static_cast<std::uint64_t>(n2);
   // Step 4: the four nearest -> buffer1.
   std::array<int, Culler::kSurvivors> keep;
-  job.n1 = Culler::select(keys, keep);
+  job.n1 = culler.network ? CullerNetwork::select(keys, keep, culler.key_bits)
+                          : Culler::select(keys, keep, culler.key_bits);
   ++counters.culls;
   for (int k = 0; k < job.n1; ++k) {
     job.buffer1[k] = buffer2[keep[k]];
@@ -175,10 +184,11 @@ WangResult<T> wang_output(const WangJob<T>& job, int iterations, WangCounters& c
 /// The software loop stops once buffer1 is empty; the hardware's stages pass the empty job on.
 template <typename T>
 WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
-                             int iterations, WangCounters* counters = nullptr) {
+                             int iterations, WangCounters* counters = nullptr,
+                             const CullerConfig& culler = {}) {
   WangCounters local;
   WangJob<T> job = wang_stage0(net, o, d, local);
-  for (int it = 0; it < iterations && job.n1 > 0; ++it) wang_loop_stage(job, local);
+  for (int it = 0; it < iterations && job.n1 > 0; ++it) wang_loop_stage(job, local, culler);
   const WangResult<T> result = wang_output(job, iterations, local);
   if (counters) *counters += local;
   return result;
@@ -186,9 +196,10 @@ WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const 
 
 extern template WangResult<float> wang_intersect<float>(const ControlNet<float>&,
                                                         const Vec3T<float>&, const Vec3T<float>&,
-                                                        int, WangCounters*);
+                                                        int, WangCounters*, const CullerConfig&);
 extern template WangResult<double> wang_intersect<double>(const ControlNet<double>&,
                                                           const Vec3T<double>&,
-                                                          const Vec3T<double>&, int, WangCounters*);
+                                                          const Vec3T<double>&, int, WangCounters*,
+                                                          const CullerConfig&);
 
 }  // namespace rtsim::kernels

@@ -5,6 +5,7 @@
 // (what the code below really does, counted per call). Templated on the scalar type: the paper's
 // DSPs compute in IEEE single (L296), the renderer may use double.
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -184,6 +185,11 @@ struct PatchDistance {
 struct Culler {
   static constexpr int kCandidates = 16;  ///< buffer2 capacity (L256)
   static constexpr int kSurvivors = 4;    ///< N_i, buffer1 capacity (L253)
+  /// A sort key's bits: a single's 32 and the 4-bit tag (Fig. 11, L304); the fewest a key may
+  /// have (one distance bit). Below kKeyBits only the distance's top key_bits - 4 bits count
+  /// (culler_network.hpp: the prototype's 12-bit Culler, L316).
+  static constexpr int kKeyBits = 36;
+  static constexpr int kMinKeyBits = 5;
 
   /// Software version: partial selection sort, 4 passes over the keys, at most 15 + 14 + 13 + 12
   /// key comparisons; per pass 16 "already taken / flagged" tests and the bookkeeping (64
@@ -203,15 +209,24 @@ struct Culler {
   /// any valid distance (L306), and a flagged key is never kept. Equal keys keep the lower buffer2
   /// index first (the 4-bit patch index tag of the key, L304). Returns the number kept (0..4);
   /// out[0] is the nearest.
+  /// With `key_bits` < kKeyBits the distances compare on their single's top key_bits - 4 bits
+  /// (as the network does).
   template <typename T>
-  static int select(const std::array<T, kCandidates>& keys, std::array<int, kSurvivors>& out) {
+  static int select(const std::array<T, kCandidates>& keys, std::array<int, kSurvivors>& out,
+                    int key_bits = kKeyBits) {
+    const int dropped = kKeyBits - key_bits;
+    const auto less = [&](int a, int b) {
+      if (dropped == 0) return keys[a] < keys[b];
+      return (std::bit_cast<std::uint32_t>(static_cast<float>(keys[a])) >> dropped) <
+             (std::bit_cast<std::uint32_t>(static_cast<float>(keys[b])) >> dropped);
+    };
     std::uint32_t taken = 0;
     int kept = 0;
     for (; kept < kSurvivors; ++kept) {
       int best = -1;
       for (int i = 0; i < kCandidates; ++i) {
         if ((taken >> i) & 1u || !(keys[i] >= T(0))) continue;
-        if (best < 0 || keys[i] < keys[best]) best = i;
+        if (best < 0 || less(i, best)) best = i;
       }
       if (best < 0) break;
       taken |= 1u << best;

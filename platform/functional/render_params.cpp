@@ -65,6 +65,16 @@ const modules::IntParam kBezierIterations(
      .unit = "stages",
      .description = "Subdivision loop stages of Wang's ray/patch algorithm",
      .source = "seed 002 L284: the hardware has 10 loop stages"});
+const modules::IntParam kBezierCullerKeyBits(
+    {.name = "bezier.culler_key_bits",
+     .default_value = "36",
+     .min = "5",
+     .max = "36",
+     .unit = "bits",
+     .description = "Bits of the Culler's sort keys: a single's 32 and the 4-bit patch tag (36); "
+                    "fewer keep only the distance's top bits, so near subpatches tie and the tag "
+                    "decides (12: the prototype's scaled-down Culler). The twin culls alike",
+     .source = "seed 002 L304-L306 (36-bit keys), L316 (the 12-bit prototype)"});
 const modules::IntParam kSceneSeed(
     {.name = "scene.seed",
      .default_value = "0",
@@ -113,7 +123,10 @@ void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) 
     top.add(kShellBranching);
     top.add(kShellLeafSize);
   }
-  if (use.bezier) top.add(kBezierIterations);
+  if (use.bezier) {
+    top.add(kBezierIterations);
+    top.add(kBezierCullerKeyBits);
+  }
   top.add(kSceneSeed);
   top.add(kAmbient);
   top.add(kMaxDepth);
@@ -143,8 +156,10 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
     s.shell_branching = static_cast<int>(p.get(kShellBranching));
     s.shell_leaf_size = static_cast<int>(p.get(kShellLeafSize));
   }
-  if (r.contains(kBezierIterations.name()))
+  if (r.contains(kBezierIterations.name())) {
     s.bezier_iterations = static_cast<int>(p.get(kBezierIterations));
+    s.bezier_culler_key_bits = static_cast<int>(p.get(kBezierCullerKeyBits));
+  }
   s.scene_seed = read_scene_seed(r);
   s.shade.ambient = p.get(kAmbient);
   s.shade.max_depth = static_cast<int>(p.get(kMaxDepth));

@@ -34,7 +34,8 @@ struct RenderSettings {
   int shell_branching = 4;
   int shell_leaf_size = 8;
   int bezier_iterations = 10;
-  std::uint64_t scene_seed = 0;  ///< 0: each generator's own default seed
+  int bezier_culler_key_bits = 36;  ///< bezier.culler_key_bits
+  std::uint64_t scene_seed = 0;     ///< 0: each generator's own default seed
   shading::ShadeParams shade;
 };
 

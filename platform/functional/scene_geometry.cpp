@@ -140,8 +140,8 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
       }
       case scenes::PrimitiveKind::Patch:
         add(PatchShape{std::make_unique<const kernels::BezierPatchKernel>(
-                kernels::BezierPatchKernel::from(scene.patches[p.index],
-                                                 settings.bezier_iterations))},
+                kernels::BezierPatchKernel::from(scene.patches[p.index], settings.bezier_iterations,
+                                                 settings.bezier_culler_key_bits))},
             id, p.material);
         ++report.patches;
         break;

@@ -118,7 +118,7 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
 }
 
 BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
-                               int loop_stages)
+                               int loop_stages, int culler_key_bits)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       input("input", 1),
@@ -140,7 +140,9 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   culler.name = "culler";
   const sc_core::sc_time asic_delay = p.get(kCullerDelay);
   const std::uint64_t software_cycles = p.get(kCullerSoftwareCycles);
+  culler_.key_bits = culler_key_bits;
   if (p.get(kCullerKind) == "asic") {
+    culler_.network = true;  // the bitonic network (L310); the software sorts (Culler::select)
     culler.time = asic_delay;
   } else {
     culler.dsps = 1;
@@ -186,7 +188,7 @@ void BezierPipeline::run() {
 
     // The data: stage 0, every loop stage, the last stage's output.
     auto w = kernels::wang_stage0(job.net, job.o, job.d, counters_);
-    for (int s = 0; s < loop_stages_; ++s) kernels::wang_loop_stage(w, counters_);
+    for (int s = 0; s < loop_stages_; ++s) kernels::wang_loop_stage(w, counters_, culler_);
     JobResult res;
     res.ray = job.ray;
     res.slot = job.slot;

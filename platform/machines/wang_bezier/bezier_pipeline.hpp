@@ -62,9 +62,10 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   static void declare_params(const modules::ParamDecls& pipeline);
 
   SC_HAS_PROCESS(BezierPipeline);
-  /// `loop_stages`: N (bezier.iterations).
+  /// `loop_stages`: N (bezier.iterations); `culler_key_bits`: its sort keys' width
+  /// (bezier.culler_key_bits, as the twin's).
   BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                 int loop_stages);
+                 int loop_stages, int culler_key_bits);
 
   int loop_stages() const { return loop_stages_; }
   const std::vector<Substage>& stage0() const { return stage0_; }
@@ -77,6 +78,7 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   void run();
 
   int loop_stages_;
+  kernels::CullerConfig culler_;  ///< the ASIC's bitonic network or the software's sort
   std::vector<Substage> stage0_, loop_;
   sc_core::sc_time cycle_, latency_;
   modules::LocalClock clock_;
