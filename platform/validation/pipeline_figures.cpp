@@ -26,8 +26,9 @@ constexpr int kFrameSide = 512;
 const char* const kFastHost = "host.clock=100 GHz";
 
 RunRequest pipeline_run(std::string key, const std::string& scene, int side, int engines,
-                        std::vector<std::string> params) {
+                        std::vector<std::string> params, const std::string& model = "chain") {
   params.push_back("pipeline.engines=" + std::to_string(engines));
+  params.push_back("pipeline.model=" + model);
   // Every ray is tested by every processor.
   return machine_run_request(std::move(key), kPipelineMachine, scene, side, side, params,
                              2.0 * side * side * engines);
@@ -51,6 +52,31 @@ ChainRun read_chain(const RunResults& r, const std::string& key) {
   c.pixels = stats_number(r, key, "width") * stats_number(r, key, "height");
   if (!(c.rays > 1)) throw MeasureError("run " + key + " traced fewer than two rays");
   return c;
+}
+
+/// A figure's runs in both models: measured on the engines (a module per processor), and the
+/// chain formula's run must give the same frame and latency (the shortcut is exact, DESIGN.md
+/// "Timing rules"), or the row is an error.
+struct ModelRuns {
+  std::string engines, chain;
+};
+
+ModelRuns add_both_models(Plan& plan, const std::string& key, const std::string& scene, int side,
+                          int engines, const std::vector<std::string>& params) {
+  return {plan.add_run(pipeline_run(key + "-engines", scene, side, engines, params, "engines")),
+          plan.add_run(pipeline_run(key, scene, side, engines, params, "chain"))};
+}
+
+/// The engines run's figures, after checking the chain run agrees to the last bit.
+ChainRun read_models(const RunResults& r, const ModelRuns& runs) {
+  const ChainRun e = read_chain(r, runs.engines);
+  const ChainRun c = read_chain(r, runs.chain);
+  if (e.frame_s != c.frame_s || e.latency_s != c.latency_s || e.rays != c.rays)
+    throw MeasureError("pipeline.model = chain gives frame " + format_number(c.frame_s) +
+                       " s, latency " + format_number(c.latency_s) + " s where the engines give " +
+                       format_number(e.frame_s) + " s, " + format_number(e.latency_s) +
+                       " s: the chain formula is not exact here");
+  return e;
 }
 
 /// Time between rays with the chain full: the frame is the first ray's latency, then one
@@ -89,8 +115,8 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
   const char suffix[] = {'a', 'b', 'c'};
   for (std::size_t i = 0; i < lengths.size(); ++i) {
     const auto& [n, scene] = lengths[i];
-    const std::string key =
-        plan.add_run(pipeline_run("pipeline-n" + std::to_string(n), scene, small, n, {kFastHost}));
+    const ModelRuns key =
+        add_both_models(plan, "pipeline-n" + std::to_string(n), scene, small, n, {kFastHost});
     plan.figures.push_back(Figure{
         .id = std::string("V12") + suffix[i],
         .title = "Pipeline throughput, " + std::to_string(n) + " processors",
@@ -105,11 +131,12 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
             "\"about five microseconds\": the model's interval is max(5 us issue interval, "
             "32 bit times of 150 ns = 4.8 us) = 5.0 us for every length"),
         .workload = scene + " at " + size_text(small) + ", " + std::to_string(n) +
-                    " processors, host.clock = 100 GHz (the host keeps up)",
-        .runs = {key},
+                    " processors, host.clock = 100 GHz (the host keeps up); "
+                    "pipeline.model = engines, chain alike",
+        .runs = {key.engines, key.chain},
         .measure =
             [key](const RunResults& r) {
-              const ChainRun c = read_chain(r, key);
+              const ChainRun c = read_models(r, key);
               return Measured{
                   ray_interval_s(c) * kMicro,
                   "(frame - one latency) / (rays - 1) over " + format_number(c.rays) + " rays"};
@@ -117,7 +144,7 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
     });
   }
 
-  const std::string n1000 = "pipeline-n1000";
+  const ModelRuns n1000{"pipeline-n1000-engines", "pipeline-n1000"};
   plan.figures.push_back(Figure{
       .id = "V13",
       .title = "Pipeline latency, 1000 processors",
@@ -131,17 +158,17 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
           "N hops of about 5 us; the model adds the result fields' 85 us lag behind the ray "
           "fields and the host's two links (9.6 us): +1.8%"),
       .workload = "builtin:ullner-random-1000 at " + size_text(small) +
-                  ", 1000 processors, host.clock = 100 GHz",
-      .runs = {n1000},
+                  ", 1000 processors, host.clock = 100 GHz; pipeline.model = engines, chain alike",
+      .runs = {n1000.engines, n1000.chain},
       .measure =
           [n1000](const RunResults& r) {
-            return Measured{stats_number(r, n1000, "ray_latency_s.p50") * kMilli,
+            return Measured{read_models(r, n1000).latency_s * kMilli,
                             "median ray, from the host sending it to taking its answer"};
           },
   });
 
-  const std::string frame_key = plan.add_run(
-      pipeline_run("pipeline-frame", "builtin:ullner-random-1000", frame_side, 1000, {kFastHost}));
+  const ModelRuns frame_key = add_both_models(plan, "pipeline-frame", "builtin:ullner-random-1000",
+                                              frame_side, 1000, {kFastHost});
   plan.figures.push_back(Figure{
       .id = "V14",
       .title = "Pipeline frame, 512x512, one ray a pixel, 1000 polygons",
@@ -153,12 +180,13 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
       .tolerance = Tolerance::relative(
           0.05, "\"roughly\": 262,144 rays at the model's 5.0 us plus one 5.1 ms latency"),
       .workload = "builtin:ullner-random-1000 (1000 squares, no lights) at " +
-                  size_text(frame_side) + ", 1000 processors, host.clock = 100 GHz" +
+                  size_text(frame_side) +
+                  ", 1000 processors, host.clock = 100 GHz; pipeline.model = engines, chain alike" +
                   (quick ? "; extrapolated to 512x512 at the run's own interval" : ""),
-      .runs = {frame_key},
+      .runs = {frame_key.engines, frame_key.chain},
       .measure =
           [frame_key, frame_side](const RunResults& r) {
-            return frame_at_512(read_chain(r, frame_key), frame_side);
+            return frame_at_512(read_models(r, frame_key), frame_side);
           },
   });
 
@@ -168,9 +196,9 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
                                                   {3, kFullFrameSeconds}};
   for (std::size_t i = 0; i < aa.size(); ++i) {
     const auto& [spp, seed] = aa[i];
-    const std::string key = plan.add_run(pipeline_run(
-        "pipeline-lit-spp" + std::to_string(spp), "builtin:ullner-sheets-lit-1000", frame_side,
-        1000, {kFastHost, "render.spp=" + std::to_string(spp), "shade.max_depth=0"}));
+    const ModelRuns key = add_both_models(
+        plan, "pipeline-lit-spp" + std::to_string(spp), "builtin:ullner-sheets-lit-1000",
+        frame_side, 1000, {kFastHost, "render.spp=" + std::to_string(spp), "shade.max_depth=0"});
     plan.figures.push_back(Figure{
         .id = std::string("V15") + suffix[i],
         .title =
@@ -190,12 +218,13 @@ void add_pipeline_figures(Plan& plan, const PlanOptions& options) {
                 std::to_string(spp) + " vision rays a pixel"),
         .workload = "builtin:ullner-sheets-lit-1000 (968 quads, one light at the eye) at " +
                     size_text(frame_side) + ", render.spp = " + std::to_string(spp) +
-                    ", 1000 processors, host.clock = 100 GHz" +
+                    ", 1000 processors, host.clock = 100 GHz; pipeline.model = engines, chain "
+                    "alike" +
                     (quick ? "; extrapolated to 512x512 at the run's own interval" : ""),
-        .runs = {key},
+        .runs = {key.engines, key.chain},
         .measure =
             [key, frame_side](const RunResults& r) {
-              return frame_at_512(read_chain(r, key), frame_side);
+              return frame_at_512(read_models(r, key), frame_side);
             },
     });
   }
