@@ -71,6 +71,27 @@ TEST(WangBezier, TwelveBitCullerKeysChangeTheImageAndTheTwinFollows) {
   }
 }
 
+// A fault in flight: a control point's word of every job corrupted on its way into stage 0 (the
+// host's memory holds the right one). The pipeline computes on what it received: the image
+// changes, with no NaN pixel; a word a job does not have is bad input.
+TEST(WangBezier, AJobCorruptedInFlightChangesTheImage) {
+  const std::string base = "--scene builtin:teapot --width 32 --height 32";
+  const auto clean = run_wang("inflight-clean", base);
+  const auto bad = run_wang("inflight-bad", base + " --fault pipeline.input:7:0x00400000");
+  ASSERT_FALSE(clean.empty() || bad.empty());
+  const auto& f = bad["wang"]["faults_in_flight"][0];
+  std::printf("%s word %s: applied to %s jobs\n", f["at"].get<std::string>().c_str(),
+              f["word"].dump().c_str(), f["applied"].dump().c_str());
+  EXPECT_GT(f["applied"].get<double>(), 0.0);
+  EXPECT_EQ(bad["image"]["nonfinite_values"].get<int>(), 0);
+  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+            read_file(bad.at("image_png").get<std::string>()));
+  const auto r =
+      run_rtsim("run --machine wang-bezier " + base + " --fault pipeline.input:54:1 -q --out " +
+                scratch_dir("wang-inflight-word").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
 TEST(WangBezier, ACorruptedControlPointChangesTheImage) {
   const std::string base =
       "--scene " + shared_path("scenes/teapot.bpt") + " --width 24 --height 24";

@@ -178,7 +178,8 @@ void BezierPipeline::run() {
     modules::wait_for_item(input.fifo, clock_);
     // Stage 0 takes the job once the previous one is a cycle in.
     sc_core::sc_time accepted;
-    const PatchJob job = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
+    PatchJob job = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
+    for (JobFault& f : faults_) f.apply(job);  // as it arrived over the host's link
     clock_.catch_up(accepted);
     next_accept = plus(accepted, cycle_);
     busy_.record(accepted, cycle_);

@@ -26,6 +26,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
 #include "modules/statistics.hpp"
+#include "platform/machines/wang_bezier/job_fault.hpp"
 #include "platform/machines/wang_bezier/messages.hpp"
 
 namespace rtsim::platform::wang_bezier {
@@ -73,12 +74,16 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   /// The slowest substage's time: one job a cycle.
   sc_core::sc_time cycle() const { return cycle_; }
   sc_core::sc_time latency() const { return latency_; }
+  /// Faults in flight on its input (job_fault.hpp), before the simulation.
+  void set_faults(std::vector<JobFault> faults) { faults_ = std::move(faults); }
+  const std::vector<JobFault>& faults() const { return faults_; }
 
  private:
   void run();
 
   int loop_stages_;
   kernels::CullerConfig culler_;  ///< the ASIC's bitonic network or the software's sort
+  std::vector<JobFault> faults_;
   std::vector<Substage> stage0_, loop_;
   sc_core::sc_time cycle_, latency_;
   modules::LocalClock clock_;

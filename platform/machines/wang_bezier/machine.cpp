@@ -79,7 +79,10 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   }
   BezierHost host(kHost, run, pipeline.input.fifo, check ? &*check : nullptr);
   host.job_out.bind(pipeline.input.socket);
-  inject_faults(name(), opts.faults, {&host.patch_memory});
+  // Faults in flight on the pipeline's input, then those of the host's memory at rest.
+  std::vector<MemoryFault> at_rest = opts.faults;
+  pipeline.set_faults(wang_bezier::job_faults(pipeline.input.name(), at_rest));
+  inject_faults(name(), at_rest, {&host.patch_memory});
   pipeline.result_out.bind(host.results.socket);
   run.simulate();
 
@@ -124,6 +127,11 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   w["stage0"] = std::move(stage0);
   w["substages"] = std::move(substages);
   if (check) res["wang"]["accuracy"] = check->to_json();
+  for (const auto& f : pipeline.faults())
+    res["wang"]["faults_in_flight"].push_back({{"at", pipeline.input.name()},
+                                               {"word", f.word},
+                                               {"xor_mask", f.xor_mask},
+                                               {"applied", f.applied}});
   return run.finish(host.latency(), {&host.patch_memory});
 }
 
