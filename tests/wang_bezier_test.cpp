@@ -92,6 +92,37 @@ TEST(WangBezier, AJobCorruptedInFlightChangesTheImage) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
+// A what-if the paper leaves open (L318: "without any intra-stage pipelining"): with SplitInHalf
+// at 120 cycles (0.72 us) the 800 ns Culler sets the cycle; pipelining its 10 compare stages
+// (a job every 80 ns) hands the cycle to the next slowest substage, PatchCenter + PatchDistance
+// (130 cycles, 0.78 us), and each answer then spans two cycles. Measured with a host that keeps
+// up: the throughput rises with 1/cycle, the latency grows by a cycle a loop stage, the image
+// stays.
+TEST(WangBezier, APipelinedCullerHandsTheCycleToTheNextSlowestSubstage) {
+  const std::string base =
+      "--scene builtin:teapot --width 64 --height 64 -p host.clock=\"100 GHz\" "
+      "-p pipeline.split_u.cycles=120 -p pipeline.split_v.cycles=120";
+  const auto whole = run_wang("culler-whole", base);
+  const auto piped = run_wang("culler-piped", base + " -p pipeline.culler.pipelined=true");
+  ASSERT_FALSE(whole.empty() || piped.empty());
+  const auto& a = whole["wang"];
+  const auto& b = piped["wang"];
+  std::printf(
+      "Culler not pipelined: cycle %.4g us, measured %.4g RPI/s, latency %.4g us; "
+      "pipelined: cycle %.4g us, measured %.4g RPI/s, latency %.4g us (%s cycles)\n",
+      a["cycle_s"].get<double>() * 1e6, a["measured_rpi_per_s"].get<double>(),
+      a["latency_s"].get<double>() * 1e6, b["cycle_s"].get<double>() * 1e6,
+      b["measured_rpi_per_s"].get<double>(), b["latency_s"].get<double>() * 1e6,
+      b["culler_cycles"].dump().c_str());
+  EXPECT_DOUBLE_EQ(a["cycle_s"].get<double>(), 800e-9);
+  EXPECT_NEAR(b["cycle_s"].get<double>(), 780e-9, 1e-15);
+  EXPECT_EQ(b["culler_cycles"].get<int>(), 2);
+  EXPECT_GT(b["measured_rpi_per_s"].get<double>(), 1.02 * a["measured_rpi_per_s"].get<double>());
+  EXPECT_GT(b["latency_s"].get<double>(), a["latency_s"].get<double>());
+  EXPECT_EQ(read_file(whole.at("image_png").get<std::string>()),
+            read_file(piped.at("image_png").get<std::string>()));
+}
+
 TEST(WangBezier, ACorruptedControlPointChangesTheImage) {
   const std::string base =
       "--scene " + shared_path("scenes/teapot.bpt") + " --width 24 --height 24";

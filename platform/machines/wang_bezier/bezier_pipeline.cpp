@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "firmware/kernels/culler_network.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::wang_bezier {
@@ -68,6 +69,14 @@ const modules::TimeParam kCullerDelay(
      .default_value = "800 ns",
      .description = "Delay of the Culler ASIC's 10-stage sorting network (not pipelined)",
      .source = "seed 002 L318"});
+const modules::FlagParam kCullerPipelined(
+    {.name = "culler.pipelined",
+     .default_value = "false",
+     .description = "Pipeline the Culler ASIC's 10 compare stages: it takes a job every "
+                    "culler.delay / 10 and answers culler.delay later (spanning as many pipeline "
+                    "cycles as that needs); false: a job occupies it for the whole delay",
+     .source = "seed 002 L318: \"at most 800ns without any intra-stage pipelining\" (the "
+               "pipelined network is a what-if)"});
 const modules::CountParam kCullerSoftwareCycles({.name = "culler.software_cycles",
                                                  .default_value = "3081",
                                                  .min = "1",
@@ -111,6 +120,7 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
   }
   p.add(kCullerKind);
   p.add(kCullerDelay);
+  p.add(kCullerPipelined);
   p.add(kCullerSoftwareCycles);
   p.add(kStage0Mapping);
   p.add(kSubdividerCycles);
@@ -144,6 +154,11 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   if (p.get(kCullerKind) == "asic") {
     culler_.network = true;  // the bitonic network (L310); the software sorts (Culler::select)
     culler.time = asic_delay;
+    if (p.get(kCullerPipelined)) {
+      // A new job every compare stage; the answer still a whole delay later.
+      culler.time = asic_delay / static_cast<double>(kernels::CullerNetwork::kStages);
+      culler_delay_ = asic_delay;
+    }
   } else {
     culler.dsps = 1;
     culler.units = 1;
@@ -166,7 +181,11 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   cycle_ = sc_core::SC_ZERO_TIME;
   for (const auto& s : stage0_) cycle_ = std::max(cycle_, s.time);
   for (const auto& s : loop_) cycle_ = std::max(cycle_, s.time);
-  latency_ = times(cycle_, stage0_.size() + loop_.size() * static_cast<std::uint64_t>(loop_stages));
+  // A job moves one substage a cycle; a pipelined Culler's answer may take several.
+  culler_slots_ = 1;
+  while (times(cycle_, culler_slots_) < culler_delay_) ++culler_slots_;
+  latency_ = times(cycle_, stage0_.size() + (loop_.size() - 1 + culler_slots_) *
+                                                static_cast<std::uint64_t>(loop_stages));
   for (const auto& sub : loop_) substages_.push_back(std::make_unique<SubstageStats>(*this, sub));
   SC_THREAD(run);
 }

@@ -74,6 +74,8 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   /// The slowest substage's time: one job a cycle.
   sc_core::sc_time cycle() const { return cycle_; }
   sc_core::sc_time latency() const { return latency_; }
+  /// Pipeline cycles a job spends in each loop stage's Culler (1 unless it is pipelined).
+  std::uint64_t culler_slots() const { return culler_slots_; }
   /// Faults in flight on its input (job_fault.hpp), before the simulation.
   void set_faults(std::vector<JobFault> faults) { faults_ = std::move(faults); }
   const std::vector<JobFault>& faults() const { return faults_; }
@@ -86,6 +88,9 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   std::vector<JobFault> faults_;
   std::vector<Substage> stage0_, loop_;
   sc_core::sc_time cycle_, latency_;
+  /// A pipelined Culler's answer delay (zero otherwise) and the cycles it spans.
+  sc_core::sc_time culler_delay_ = sc_core::SC_ZERO_TIME;
+  std::uint64_t culler_slots_ = 1;
   modules::LocalClock clock_;
   std::vector<sc_core::sc_time> leaving_;  ///< when the jobs in flight leave, oldest first
   kernels::WangCounters counters_;

@@ -113,6 +113,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
     w["cycle_s"] = cycle;
     w["throughput_rpi_per_s"] = cycle > 0 ? 1.0 / cycle : 0.0;
     w["latency_s"] = pipeline.latency().to_seconds();
+    w["culler_cycles"] = pipeline.culler_slots();
   }
   w["jobs"] = taken;
   if (taken > 0) {
