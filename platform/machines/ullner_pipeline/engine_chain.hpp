@@ -73,17 +73,19 @@ class EngineChain : public sc_core::sc_module {
   /// where the description enters their processor.
   void set_faults(std::vector<DescriptionFault> faults);
   const std::vector<DescriptionFault>& faults() const { return faults_; }
+  /// pipeline.model = engines: processor k's module (fill and drain along the chain); empty in
+  /// chain mode.
+  const std::vector<std::unique_ptr<PolygonEngine>>& engine_modules() const {
+    return engine_modules_;
+  }
   const ChainTiming& timing() const { return timing_; }
-  /// Descriptions every processor passed.
   /// Busy time of each processor: one issue interval a description.
   sc_core::sc_time engine_busy() const { return engine_busy_.total(); }
   /// Per processor: descriptions it overwrote, and answers it gave (the description left the
   /// chain naming it).
   const std::vector<std::uint64_t>& overwrites() const { return overwrites_; }
   const std::vector<std::uint64_t>& answers() const { return answers_; }
-  /// The link from the first processor to the second (every inner link carries the same), and
-  /// the last processor's link to the host.
-  /// Polygon descriptions shifted in, and the time one takes over a link.
+  /// The time a polygon description takes over a link (the load).
   sc_core::sc_time polygon_time() const { return polygon_time_; }
   /// Sum over descriptions of the time from the first processor accepting it to its answer
   /// leaving the last one.
@@ -157,13 +159,6 @@ class EngineChain : public sc_core::sc_module {
   std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_;
   std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_;
   sc_core::sc_time far_end_ready_ = sc_core::SC_ZERO_TIME;
-
- public:
-  /// pipeline.model = engines: processor k's module (fill and drain along the chain); empty in
-  /// chain mode.
-  const std::vector<std::unique_ptr<PolygonEngine>>& engine_modules() const {
-    return engine_modules_;
-  }
 };
 
 }  // namespace rtsim::platform::ullner_pipeline
