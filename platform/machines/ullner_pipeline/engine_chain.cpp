@@ -269,15 +269,33 @@ sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
   // its registers hold when it overwrites (L713, L717).
   const auto& held = polygons();
   const std::uint64_t n = engines();
+  // Between faults and the dead processor, the description and the ray's set-up as locals (no
+  // aliasing to reload) and no test a processor.
   const auto dead = static_cast<std::uint64_t>(dead_engine_);  // -1: none
+  std::uint64_t k = 0;
   std::size_t fault = 0;
-  for (std::uint64_t k = 0; k < n; ++k) {
+  while (k < n) {
+    std::uint64_t until = std::min(n, dead >= k ? dead : n);
+    if (fault < faults_.size()) until = std::min(until, faults_[fault].engine);
+    RayDescription d = msg.description;
+    const kernels::UllnerRay<double> ray = msg.ray;
+    std::uint64_t last_writer = msg.last_writer;
+    for (; k < until; ++k)
+      if (tasks::pass_ray_description(d, ray, held[k], identities_[k])) {
+        ++overwrites_[k];
+        last_writer = k;
+      }
+    msg.description = d;
+    msg.last_writer = last_writer;
+    if (k == n) break;
+    // Processor k: the faults on its input, then its test unless it is dead.
     for (; fault < faults_.size() && faults_[fault].engine == k; ++fault) faults_[fault].apply(msg);
     if (k != dead &&
         tasks::pass_ray_description(msg.description, msg.ray, held[k], identities_[k])) {
       ++overwrites_[k];
       msg.last_writer = k;
     }
+    ++k;
   }
   // The time: the first inner link carries it as every inner link does; the last processor
   // accepts it by ChainTiming's formula and is ready to pass it on a hop latency later.
