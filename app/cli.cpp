@@ -226,7 +226,13 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
                   "often each was applied (docs/stats.md). Memories: "
                   "peripheral.parameter_memories (ullner-peripheral, 25 words a polygon), "
                   "shell_bus.memory and prim_bus.memory (gaudet-pert when broadcasting: the ID "
-                  "list, 3 words an entry, then the packets)");
+                  "list, 3 words an entry, then the packets), pipeline.polygon_registers "
+                  "(ullner-pipeline, 26 words a processor), host.patch_memory (wang-bezier, 48 "
+                  "words a patch); an unknown name lists the machine's. In flight, every "
+                  "message corrupted on its way: pipeline.engineK.in (ullner-pipeline: each ray "
+                  "description entering processor K, 13 words) and pipeline.input (wang-bezier: "
+                  "each job entering stage 0, 54 words), counted in stats.json "
+                  "pipeline.faults_in_flight and wang.faults_in_flight");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "
                 "numbers, utilisation and latency plots (analysis/, python3-matplotlib) and the "
