@@ -191,6 +191,13 @@ struct Culler {
   static constexpr int kKeyBits = 36;
   static constexpr int kMinKeyBits = 5;
 
+  /// A non-negative distance's key with `key_bits` bits, tag apart: its single's top
+  /// key_bits - 4 bits (the single's bit pattern orders non-negative values as the values do).
+  template <typename T>
+  static std::uint32_t kept_bits(T distance, int key_bits) {
+    return std::bit_cast<std::uint32_t>(static_cast<float>(distance)) >> (kKeyBits - key_bits);
+  }
+
   /// Software version: partial selection sort, 4 passes over the keys, at most 15 + 14 + 13 + 12
   /// key comparisons; per pass 16 "already taken / flagged" tests and the bookkeeping (64
   /// instructions). Memory: 16 keys read per pass, 4 indices written. (The paper's software used
@@ -214,11 +221,9 @@ struct Culler {
   template <typename T>
   static int select(const std::array<T, kCandidates>& keys, std::array<int, kSurvivors>& out,
                     int key_bits = kKeyBits) {
-    const int dropped = kKeyBits - key_bits;
     const auto less = [&](int a, int b) {
-      if (dropped == 0) return keys[a] < keys[b];
-      return (std::bit_cast<std::uint32_t>(static_cast<float>(keys[a])) >> dropped) <
-             (std::bit_cast<std::uint32_t>(static_cast<float>(keys[b])) >> dropped);
+      if (key_bits == kKeyBits) return keys[a] < keys[b];
+      return kept_bits(keys[a], key_bits) < kept_bits(keys[b], key_bits);
     };
     std::uint32_t taken = 0;
     int kept = 0;

@@ -11,7 +11,6 @@
 // The prototype's Culler was "a scaled-down (12-bit) version" (L316): `key_bits` below 36 keeps
 // only the distance's top key_bits - 4 bits, so nearby distances tie and the tag decides.
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <utility>
 
@@ -40,10 +39,7 @@ struct CullerNetwork {
     Key k;
     k.tag = static_cast<std::uint8_t>(tag);
     k.valid = distance >= T(0);  // NaN and the "behind" flag are not
-    if (k.valid) {
-      const int dropped = Culler::kKeyBits - key_bits;  // low bits of the single not kept
-      k.distance = std::bit_cast<std::uint32_t>(static_cast<float>(distance)) >> dropped;
-    }
+    if (k.valid) k.distance = Culler::kept_bits(distance, key_bits);
     return k;
   }
 

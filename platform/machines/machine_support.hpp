@@ -1,5 +1,7 @@
 #pragma once
 // Pieces every machine model shares.
+#include <vector>
+
 #include "modules/memory.hpp"
 #include "platform/machine.hpp"
 
@@ -29,6 +31,19 @@ void declare_quantum_param(params::ParamRegistry& registry);
 /// memory's end, is an InputError ("--fault ..."): nothing has run yet.
 void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
                    const std::vector<modules::Memory*>& memories);
+/// The faults of `faults` whose name `in_flight` accepts (a point where messages are corrupted on
+/// their way, not a memory at rest), taken out of `faults` in order; the rest stay for
+/// inject_faults.
+template <class Accepts>
+std::vector<MemoryFault> take_faults(std::vector<MemoryFault>& faults, Accepts in_flight) {
+  std::vector<MemoryFault> taken;
+  std::erase_if(faults, [&](const MemoryFault& f) {
+    if (!in_flight(f.memory)) return false;
+    taken.push_back(f);
+    return true;
+  });
+  return taken;
+}
 /// stats.json `faults`: [{memory, word, xor_mask, applied}] (empty: none injected).
 nlohmann::ordered_json faults_json(const std::vector<modules::Memory*>& memories);
 

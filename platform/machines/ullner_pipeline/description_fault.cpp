@@ -5,6 +5,7 @@
 #include <cctype>
 
 #include "common/input_error.hpp"
+#include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
 
@@ -47,16 +48,13 @@ void DescriptionFault::apply(DescriptionInFlight& m) {
 
 std::vector<DescriptionFault> description_faults(const std::string& chain, std::uint64_t engines,
                                                  std::vector<MemoryFault>& faults) {
-  std::vector<DescriptionFault> out;
   const std::string prefix = chain + ".engine";
-  for (auto it = faults.begin(); it != faults.end();) {
-    const std::string& name = it->memory;
-    if (!name.starts_with(prefix) || !name.ends_with(".in")) {
-      ++it;
-      continue;
-    }
-    const std::string arg = "--fault " + name + ":" + std::to_string(it->word);
-    const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - 3);
+  std::vector<DescriptionFault> out;
+  for (const MemoryFault& f : take_faults(faults, [&](const std::string& name) {
+         return name.starts_with(prefix) && name.ends_with(".in");
+       })) {
+    const std::string arg = "--fault " + f.memory + ":" + std::to_string(f.word);
+    const std::string digits = f.memory.substr(prefix.size(), f.memory.size() - prefix.size() - 3);
     const bool number = !digits.empty() && digits.size() <= 9 &&
                         std::all_of(digits.begin(), digits.end(), [](char c) {
                           return std::isdigit(static_cast<unsigned char>(c));
@@ -66,14 +64,13 @@ std::vector<DescriptionFault> description_faults(const std::string& chain, std::
                        "the chain has processors " + prefix + "0.in to " + prefix +
                            std::to_string(engines - 1) + ".in (" + std::to_string(engines) +
                            ", pipeline.engines)");
-    if (it->word >= tasks::RayDescription::kWords)
+    if (f.word >= tasks::RayDescription::kWords)
       throw InputError(arg, 0,
                        "a ray description has 13 words (0-2 r0, 3-5 r1 - r0, 6-8 p_r, 9 t, 10 u, "
                        "11 v, 12 the identity)");
     out.push_back({.engine = std::stoull(digits),
-                   .word = static_cast<unsigned>(it->word),
-                   .xor_mask = it->xor_mask});
-    it = faults.erase(it);
+                   .word = static_cast<unsigned>(f.word),
+                   .xor_mask = f.xor_mask});
   }
   return out;
 }

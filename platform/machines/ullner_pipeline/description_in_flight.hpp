@@ -5,17 +5,15 @@
 
 #include "firmware/kernels/ullner_quad.hpp"
 #include "firmware/tasks/polygon_processor_task.hpp"
-#include "platform/machines/ullner_peripheral/messages.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
 
 /// What travels down the chain: the description's fields (Fig. 2-24, the words on the wire) and,
-/// for the model, the host's request it answers, the ray's set-up (a function of r0 and r1 every
-/// processor forms alike: formed once) and which processor wrote the fields last.
+/// for the model, the ray's set-up (a function of r0 and r1 every processor forms alike: formed
+/// once) and which processor wrote the fields last.
 struct DescriptionInFlight {
   tasks::RayDescription description;
   kernels::UllnerRay<double> ray;
-  ullner::RayRequest request;
   std::uint64_t last_writer = ~std::uint64_t{0};  ///< no processor yet
 };
 

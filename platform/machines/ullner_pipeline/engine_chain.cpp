@@ -150,7 +150,7 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
     throw InputError(
         self.path_of(kDeadEngine.name()), 0,
         "the chain has processors 0 to " + std::to_string(engines() - 1) + " (pipeline.engines)");
-  if (modules::ModuleParams(run.registry(), this->name()).get(kModel) == "engines") build_engines();
+  if (self.get(kModel) == "engines") build_engines();
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
   probe_input_ = probe_.stage(input.name());
@@ -269,18 +269,18 @@ sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
   // its registers hold when it overwrites (L713, L717).
   const auto& held = polygons();
   const std::uint64_t n = engines();
-  // Between faults and the dead processor, the description and the ray's set-up as locals (no
-  // aliasing to reload) and no test a processor.
+  // Up to the next processor with a fault on its input, or the dead one, the description and
+  // the ray's set-up are locals (no aliasing to reload) and no processor is checked.
   const auto dead = static_cast<std::uint64_t>(dead_engine_);  // -1: none
   std::uint64_t k = 0;
   std::size_t fault = 0;
-  while (k < n) {
-    std::uint64_t until = std::min(n, dead >= k ? dead : n);
-    if (fault < faults_.size()) until = std::min(until, faults_[fault].engine);
+  for (;;) {
+    std::uint64_t stop = fault < faults_.size() ? faults_[fault].engine : n;
+    if (dead >= k && dead < stop) stop = dead;
     RayDescription d = msg.description;
     const kernels::UllnerRay<double> ray = msg.ray;
     std::uint64_t last_writer = msg.last_writer;
-    for (; k < until; ++k)
+    for (; k < stop; ++k)
       if (tasks::pass_ray_description(d, ray, held[k], identities_[k])) {
         ++overwrites_[k];
         last_writer = k;
@@ -288,14 +288,10 @@ sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
     msg.description = d;
     msg.last_writer = last_writer;
     if (k == n) break;
-    // Processor k: the faults on its input, then its test unless it is dead.
+    // Processor k: the faults on its input; then it tests (the next run starts with it) unless
+    // it is dead and passes the description on unchanged.
     for (; fault < faults_.size() && faults_[fault].engine == k; ++fault) faults_[fault].apply(msg);
-    if (k != dead &&
-        tasks::pass_ray_description(msg.description, msg.ray, held[k], identities_[k])) {
-      ++overwrites_[k];
-      msg.last_writer = k;
-    }
-    ++k;
+    if (k == dead) ++k;
   }
   // The time: the first inner link carries it as every inner link does; the last processor
   // accepts it by ChainTiming's formula and is ready to pass it on a hop latency later.
@@ -342,7 +338,6 @@ void EngineChain::run() {
     // The host injects (r0, r1) with t at the ray's far limit: infinity for vision rays (L704),
     // the light's distance for shadow rays, so only an occluder before the light answers.
     DescriptionInFlight msg;
-    msg.request = req;
     msg.description.r0 = req.ray.ray.origin;
     msg.description.r1_minus_r0 = req.ray.ray.direction;
     msg.description.t = req.ray.t_max;

@@ -3,6 +3,7 @@
 #include <bit>
 
 #include "common/input_error.hpp"
+#include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform::wang_bezier {
 
@@ -26,17 +27,13 @@ void JobFault::apply(PatchJob& job) {
 
 std::vector<JobFault> job_faults(const std::string& input, std::vector<MemoryFault>& faults) {
   std::vector<JobFault> out;
-  for (auto it = faults.begin(); it != faults.end();) {
-    if (it->memory != input) {
-      ++it;
-      continue;
-    }
-    if (it->word >= kJobWords)
-      throw InputError("--fault " + input + ":" + std::to_string(it->word), 0,
+  for (const MemoryFault& f :
+       take_faults(faults, [&](const std::string& name) { return name == input; })) {
+    if (f.word >= kJobWords)
+      throw InputError("--fault " + input + ":" + std::to_string(f.word), 0,
                        "a ray/patch job has " + std::to_string(kJobWords) +
                            " words (0-2 O, 3-5 D, 6-53 the 16 control points, 3 words each)");
-    out.push_back({.word = it->word, .xor_mask = it->xor_mask});
-    it = faults.erase(it);
+    out.push_back({.word = f.word, .xor_mask = f.xor_mask});
   }
   return out;
 }
