@@ -120,12 +120,25 @@ sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
   gp.set_dmi_allowed(false);
   gp.set_extension(&ext);
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  // The extension lives on this stack: cleared and the payload given back even when the
+  // receiver throws (a time overflow deep in a chain of modules), so no pooled payload is left
+  // pointing at it.
+  struct GiveBack {
+    tlm::tlm_generic_payload& gp;
+    MessageExtension<T>& ext;
+    ~GiveBack() {
+      gp.clear_extension(&ext);
+      detail::PayloadPool::give_back(&gp);
+    }
+  };
+  bool error = false;
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   sc_core::sc_time delay = t > now ? t - now : sc_core::SC_ZERO_TIME;
-  socket->b_transport(gp, delay);
-  gp.clear_extension(&ext);
-  const bool error = gp.is_response_error();
-  detail::PayloadPool::give_back(&gp);
+  {
+    const GiveBack give_back{gp, ext};
+    socket->b_transport(gp, delay);
+    error = gp.is_response_error();
+  }
   if (error) SC_REPORT_ERROR("rtsim/message", "a message reached a queue of another type");
   return sc_core::sc_time_stamp() + delay;
 }

@@ -109,20 +109,125 @@ struct WangJob {
   int n1 = 0;  ///< buffer1's occupancy
 };
 
-/// Stage 0 (step 1): planes U and V; the input patch into four -> buffer1.
+/// A loop stage's working sets as they pass between its substages (Table 4, L437-L441): the
+/// halves SplitInHalf in u made of buffer1's patches, buffer2 (their halves in v), each buffer2
+/// patch's hull verdict, centre and sort key. Stage 0 uses the first two on the input patch.
 template <typename T>
-WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
+struct WangStageWork {
+  /// 2 i and 2 i + 1: buffer1[i]'s left and right halves in u. Each keeps its parent's parameter
+  /// indices and level (split_v gives the quadrants theirs).
+  std::array<Subpatch<T>, 2 * Culler::kSurvivors> halves;
+  std::array<Subpatch<T>, Culler::kCandidates> buffer2;
+  std::array<bool, Culler::kCandidates> may_hit{};
+  std::array<Vec3T<T>, Culler::kCandidates> centers;
+  std::array<T, Culler::kCandidates> keys;
+  int n2 = 0;  ///< buffer2's occupancy: 4 n1
+};
+
+// The substages of a stage, each on the job and the working sets it received. A job whose
+// buffer1 is empty (every candidate culled) passes every substage unchanged. Run in order they
+// are one loop stage (wang_loop_stage) and give the same bits.
+
+/// Stage 0's PlaneGenerator (step 1): planes U and V; the input patch as the job's only patch.
+template <typename T>
+WangJob<T> wang_planes(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
                        WangCounters& counters) {
   ++counters.calls;
   WangJob<T> job;
   job.o = o;
   job.d = d;
   job.planes = PlaneGenerator::generate(o, d);
-  Subpatch<T> root;
-  root.net = net;
-  PatchSubdivider::subdivide(root, job.buffer1.data());
-  ++counters.subdivisions;
+  job.buffer1[0].net = net;
+  job.n1 = 1;
+  return job;
+}
+
+/// Substage 1 (L437): SplitInHalf in u of every buffer1 patch (one DSP each).
+template <typename T>
+void wang_split_u(const WangJob<T>& job, WangStageWork<T>& work) {
+  for (int i = 0; i < job.n1; ++i) {
+    const Subpatch<T>& parent = job.buffer1[i];
+    for (Subpatch<T>* half : {&work.halves[2 * i], &work.halves[2 * i + 1]}) {
+      half->iu = parent.iu;
+      half->iv = parent.iv;
+      half->level = parent.level;
+    }
+    split_u(parent.net, work.halves[2 * i].net, work.halves[2 * i + 1].net);
+  }
+}
+
+/// Substage 2 (L438): SplitInHalf in v of every half -> buffer2, four quadrants a buffer1 patch
+/// in eq. 11's order (PatchSubdivider::subdivide's, bit for bit).
+template <typename T>
+void wang_split_v(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& counters) {
+  for (int i = 0; i < job.n1; ++i) {
+    Subpatch<T>* out = &work.buffer2[4 * i];
+    split_v(work.halves[2 * i].net, out[kTL].net, out[kBL].net);
+    split_v(work.halves[2 * i + 1].net, out[kTR].net, out[kBR].net);
+    const Subpatch<T>& parent = work.halves[2 * i];
+    for (int q = 0; q < 4; ++q) {
+      out[q].iu = 2 * parent.iu + static_cast<std::uint32_t>(quadrant_u_half(q));
+      out[q].iv = 2 * parent.iv + static_cast<std::uint32_t>(quadrant_v_half(q));
+      out[q].level = parent.level + 1;
+    }
+  }
+  work.n2 = 4 * job.n1;
+  counters.subdivisions += static_cast<std::uint64_t>(job.n1);
+}
+
+/// Stage 0's output: its four quadrants are buffer1 (no hull test or cull in stage 0).
+template <typename T>
+void wang_stage0_output(WangJob<T>& job, const WangStageWork<T>& work) {
+  for (int q = 0; q < Culler::kSurvivors; ++q) job.buffer1[q] = work.buffer2[q];
   job.n1 = Culler::kSurvivors;
+}
+
+/// Substage 3 (L439): HullClassification of every buffer2 patch against both planes.
+template <typename T>
+void wang_hull(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& counters) {
+  if (job.n1 == 0) return;
+  for (int i = 0; i < work.n2; ++i)
+    work.may_hit[i] = HullClassification::classify(job.planes, work.buffer2[i].net).may_hit;
+  counters.hull_tests += static_cast<std::uint64_t>(work.n2);
+}
+
+/// Substage 4 (L440): PatchCenter and PatchDistance -> the sort keys. Empty slots and hull
+/// failures get the "behind" flag (see Culler::select).
+template <typename T>
+void wang_center_distance(const WangJob<T>& job, WangStageWork<T>& work) {
+  if (job.n1 == 0) return;
+  work.keys.fill(T(PatchDistance::kBehind));
+  for (int i = 0; i < work.n2; ++i) {
+    work.centers[i] = PatchCenter::center(work.buffer2[i].net);
+    const T dist = PatchDistance::distance(job.o, job.d, work.centers[i]);
+    work.keys[i] = work.may_hit[i] ? dist : T(PatchDistance::kBehind);
+  }
+}
+
+/// Substage 5 (L441, L302-L318): the Culler's four nearest -> buffer1.
+template <typename T>
+void wang_cull(WangJob<T>& job, const WangStageWork<T>& work, WangCounters& counters,
+               const CullerConfig& culler) {
+  if (job.n1 == 0) return;
+  std::array<int, Culler::kSurvivors> keep;
+  job.n1 = culler.network ? CullerNetwork::select(work.keys, keep, culler.key_bits)
+                          : Culler::select(work.keys, keep, culler.key_bits);
+  ++counters.culls;
+  for (int k = 0; k < job.n1; ++k) {
+    job.buffer1[k] = work.buffer2[keep[k]];
+    job.centers1[k] = work.centers[keep[k]];
+  }
+}
+
+/// Stage 0 (step 1): planes U and V; the input patch into four -> buffer1.
+template <typename T>
+WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
+                       WangCounters& counters) {
+  WangJob<T> job = wang_planes(net, o, d, counters);
+  WangStageWork<T> work;
+  wang_split_u(job, work);
+  wang_split_v(job, work, counters);
+  wang_stage0_output(job, work);
   return job;
 }
 
@@ -132,33 +237,12 @@ template <typename T>
 void wang_loop_stage(WangJob<T>& job, WangCounters& counters, const CullerConfig& culler = {}) {
   if (job.n1 == 0) return;
   ++counters.iterations;
-  // Step 2: every buffer1 patch into four -> buffer2.
-  std::array<Subpatch<T>, Culler::kCandidates> buffer2;
-  int n2 = 0;
-  for (int i = 0; i < job.n1; ++i, n2 += 4)
-    PatchSubdivider::subdivide(job.buffer1[i], &buffer2[n2]);
-  counters.subdivisions += static_cast<std::uint64_t>(job.n1);
-  // Step 3: hull classification, centre, distance -> sort keys. Empty slots and hull failures
-  // get the "behind" flag (see Culler::select).
-  std::array<T, Culler::kCandidates> keys;
-  std::array<Vec3T<T>, Culler::kCandidates> centers;
-  keys.fill(T(PatchDistance::kBehind));
-  for (int i = 0; i < n2; ++i) {
-    const HullClass hull = HullClassification::classify(job.planes, buffer2[i].net);
-    centers[i] = PatchCenter::center(buffer2[i].net);
-    const T dist = PatchDistance::distance(job.o, job.d, centers[i]);
-    keys[i] = hull.may_hit ? dist : T(PatchDistance::kBehind);
-  }
-  counters.hull_tests += static_cast<std::uint64_t>(n2);
-  // Step 4: the four nearest -> buffer1.
-  std::array<int, Culler::kSurvivors> keep;
-  job.n1 = culler.network ? CullerNetwork::select(keys, keep, culler.key_bits)
-                          : Culler::select(keys, keep, culler.key_bits);
-  ++counters.culls;
-  for (int k = 0; k < job.n1; ++k) {
-    job.buffer1[k] = buffer2[keep[k]];
-    job.centers1[k] = centers[keep[k]];
-  }
+  WangStageWork<T> work;
+  wang_split_u(job, work);
+  wang_split_v(job, work, counters);
+  wang_hull(job, work, counters);
+  wang_center_distance(job, work);
+  wang_cull(job, work, counters, culler);
 }
 
 /// Step 5, the last stage's output: the centre of the closest (the Culler put it first). An

@@ -110,6 +110,27 @@ const modules::CountParam kPlaneCycles({.name = "stage0.plane_cycles",
                                         .description = "DSP cycles of PlaneGenerator",
                                         .source = "seed 002 L429 (Table 3)"});
 
+const modules::ChoiceParam kAdvance(
+    {.name = "advance",
+     .default_value = "cycle",
+     .allowed = {"cycle", "when_done"},
+     .description = "How a job moves on: every substage holds it for whole pipeline cycles, the "
+                    "slowest substage's time (cycle: a lock-step pipeline, a job leaves after "
+                    "(stage 0's substages + 5 N) cycles), or as soon as the substage is done and "
+                    "the next buffer has room (when_done: self-timed, its latency the sum of "
+                    "the substages' times)",
+     .source = "seed 002 L437 (\"pipeline cycle\"); note 002 L341: the paper does not say how "
+               "substages hand on (the two latencies it allows)"});
+const modules::CountParam kBufferDepth(
+    {.name = "buffer_depth",
+     .default_value = "1",
+     .min = "1",
+     .max = "1024",
+     .unit = "jobs",
+     .description = "Jobs the buffer in front of each substage holds: a finished job waits in "
+                    "its substage until the next one's buffer has room",
+     .source = "assumption: the paper gives no buffering (note 002 L306: depth 1)"});
+
 }  // namespace
 
 void BezierPipeline::declare_params(const modules::ParamDecls& p) {
@@ -125,107 +146,143 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
   p.add(kStage0Mapping);
   p.add(kSubdividerCycles);
   p.add(kPlaneCycles);
+  p.add(kAdvance);
+  p.add(kBufferDepth);
 }
+
+namespace {
+
+/// A DSP pool's substage: `units` calls of `cycles` on `dsps` DSPs, ceil(units / dsps) rounds.
+SubstageSpec pool_spec(std::string name, SubstageWork work, unsigned dsps, std::uint64_t units,
+                       std::uint64_t cycles, const sc_core::sc_time& cycle_time) {
+  const sc_core::sc_time t = times(cycle_time, ((units + dsps - 1) / dsps) * cycles);
+  return {std::move(name), work, {dsps, units, cycles}, {t, t, t}};
+}
+
+}  // namespace
 
 BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
                                int loop_stages, int culler_key_bits)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       input("input", 1),
-      result_out("result_out"),
-      loop_stages_(loop_stages) {
+      result_out("result_out") {
   const modules::ModuleParams p(r, this->name());
   const sc_core::sc_time t = p.get(kCycleTime);
-  const auto substage = [&](const Pool& pool) {
-    Substage s;
-    s.name = pool.name();
-    s.dsps = static_cast<unsigned>(p.get(pool.dsps));
-    s.units = pool.units;
-    s.cycles = p.get(pool.cycles);
-    s.time = times(t, ((s.units + s.dsps - 1) / s.dsps) * s.cycles);
-    return s;
+  const auto loop_pool = [&](const Pool& pool, SubstageWork work) {
+    return pool_spec(pool.name(), work, static_cast<unsigned>(p.get(pool.dsps)), pool.units,
+                     p.get(pool.cycles), t);
   };
-  loop_ = {substage(kSplitU), substage(kSplitV), substage(kHull), substage(kCenterDistance)};
-  Substage culler;
-  culler.name = "culler";
-  const sc_core::sc_time asic_delay = p.get(kCullerDelay);
-  const std::uint64_t software_cycles = p.get(kCullerSoftwareCycles);
-  culler_.key_bits = culler_key_bits;
+  std::vector<SubstageSpec> loop = {loop_pool(kSplitU, SubstageWork::kSplitU),
+                                    loop_pool(kSplitV, SubstageWork::kSplitV),
+                                    loop_pool(kHull, SubstageWork::kHull),
+                                    loop_pool(kCenterDistance, SubstageWork::kCenterDistance)};
+  kernels::CullerConfig culler;
+  culler.key_bits = culler_key_bits;
   if (p.get(kCullerKind) == "asic") {
-    culler_.network = true;  // the bitonic network (L310); the software sorts (Culler::select)
-    culler.time = asic_delay;
-    if (p.get(kCullerPipelined)) {
-      // A new job every compare stage; the answer still a whole delay later.
-      culler.time = asic_delay / static_cast<double>(kernels::CullerNetwork::kStages);
-      culler_delay_ = asic_delay;
-    }
+    culler.network = true;  // the bitonic network (L310); the software sorts (Culler::select)
+    const sc_core::sc_time delay = p.get(kCullerDelay);
+    // Pipelined: a new job every compare stage, the answer still a whole delay later.
+    const sc_core::sc_time issue =
+        p.get(kCullerPipelined) ? delay / static_cast<double>(kernels::CullerNetwork::kStages)
+                                : delay;
+    loop.push_back({"culler", SubstageWork::kCull, {}, {delay, issue, delay}});
   } else {
-    culler.dsps = 1;
-    culler.units = 1;
-    culler.cycles = software_cycles;
-    culler.time = times(t, culler.cycles);
+    loop.push_back(pool_spec("culler", SubstageWork::kCull, 1, 1, p.get(kCullerSoftwareCycles), t));
   }
-  loop_.push_back(culler);
   // Stage 0 (L284): the first split and the planes.
+  std::vector<SubstageSpec> stage0;
   const std::uint64_t plane = p.get(kPlaneCycles);
-  const std::uint64_t subdivider = p.get(kSubdividerCycles);
   if (p.get(kStage0Mapping) == "split") {
+    // SplitInHalf in u on one DSP, PlaneGenerator on another alongside; then v on two.
     const std::uint64_t half = p.get(kSplitU.cycles);
-    stage0_ = {
-        Substage{"stage0.split_u", 1, 1, std::max(half, plane), times(t, std::max(half, plane))},
-        Substage{"stage0.split_v", 2, 2, half, times(t, half)}};
+    stage0 = {pool_spec("split_u", SubstageWork::kPlanesSplitU, 2, 2, std::max(half, plane), t),
+              pool_spec("split_v", SubstageWork::kSplitVOutput, 2, 2, half, t)};
   } else {
-    const std::uint64_t c = subdivider + plane;
-    stage0_ = {Substage{"stage0.subdivider", 1, 1, c, times(t, c)}};
+    stage0 = {pool_spec("subdivider", SubstageWork::kSubdivider, 1, 1,
+                        p.get(kSubdividerCycles) + plane, t)};
   }
-  cycle_ = sc_core::SC_ZERO_TIME;
-  for (const auto& s : stage0_) cycle_ = std::max(cycle_, s.time);
-  for (const auto& s : loop_) cycle_ = std::max(cycle_, s.time);
-  // A job moves one substage a cycle; a pipelined Culler's answer may take several.
-  culler_slots_ = 1;
-  while (times(cycle_, culler_slots_) < culler_delay_) ++culler_slots_;
-  latency_ = times(cycle_, stage0_.size() + (loop_.size() - 1 + culler_slots_) *
-                                                static_cast<std::uint64_t>(loop_stages));
-  for (const auto& sub : loop_) substages_.push_back(std::make_unique<SubstageStats>(*this, sub));
+  // The pipeline cycle: the slowest substage's issue interval (L437). Advancing by it, every
+  // substage holds a job whole cycles.
+  sc_core::sc_time cycle = sc_core::SC_ZERO_TIME;
+  for (const auto* specs : {&stage0, &loop})
+    for (const SubstageSpec& s : *specs) cycle = std::max(cycle, s.timing.issue);
+  if (p.get(kAdvance) == "cycle")
+    for (auto* specs : {&stage0, &loop})
+      for (SubstageSpec& s : *specs) {
+        std::uint64_t slots = 1;
+        while (times(cycle, slots) < s.timing.latency) ++slots;
+        s.timing.issue = cycle;
+        s.timing.latency = times(cycle, slots);
+      }
+  const std::size_t depth = p.get(kBufferDepth);
+  stage0_ = std::make_unique<PipelineStage>("stage0", stage0, depth, culler);
+  for (int s = 1; s <= loop_stages; ++s)
+    loops_.push_back(
+        std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop, depth, culler));
+  // Wire the chain: input -> stage 0 -> loop 1 -> ... -> loop N -> output.
+  for (const auto& sub : stage0_->substages()) chain_.push_back(sub.get());
+  for (const auto& stage : loops_)
+    for (const auto& sub : stage->substages()) chain_.push_back(sub.get());
+  entry_.bind(chain_.front()->in);
+  for (std::size_t k = 0; k + 1 < chain_.size(); ++k) {
+    chain_[k]->out.bind(chain_[k + 1]->in);
+    chain_[k]->set_next(chain_[k + 1]);
+  }
+  chain_.back()->out.bind(exit_);
+  exit_.register_b_transport(this, &BezierPipeline::leave);
   SC_THREAD(run);
 }
 
 void BezierPipeline::run() {
-  sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
-  const std::uint64_t stage0_slots = stage0_.size();
+  Substage& first = *chain_.front();
   for (;;) {
     modules::wait_for_item(input.fifo, clock_);
-    // Stage 0 takes the job once the previous one is a cycle in.
+    // Stage 0 takes the job once its first substage is free.
     sc_core::sc_time accepted;
-    PatchJob job = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
-    for (JobFault& f : faults_) f.apply(job);  // as it arrived over the host's link
+    JobInFlight& f = flight_;  // one job in the chain at a time: its payload reused
+    f.job = input.fifo.get(std::max(clock_.now(), first.free()), accepted);
+    for (JobFault& fault : faults_) fault.apply(f.job);  // as it arrived over the host's link
     clock_.catch_up(accepted);
-    next_accept = plus(accepted, cycle_);
-    busy_.record(accepted, cycle_);
-    for (std::size_t k = 0; k < loop_.size(); ++k)
-      substages_[k]->busy.record(plus(accepted, times(cycle_, stage0_slots + k)), loop_[k].time);
+    f.accepted = accepted;
+    f.waited = accepted > f.job.arrived;
     ++jobs_;
-
-    // The data: stage 0, every loop stage, the last stage's output.
-    auto w = kernels::wang_stage0(job.net, job.o, job.d, counters_);
-    for (int s = 0; s < loop_stages_; ++s) kernels::wang_loop_stage(w, counters_, culler_);
-    JobResult res;
-    res.ray = job.ray;
-    res.slot = job.slot;
-    res.sent = job.sent;
-    res.accepted = accepted;
-    res.result = kernels::wang_output(w, loop_stages_, counters_);
-    if (res.result.hit) ++hits_;
-
-    const sc_core::sc_time leaves = plus(accepted, latency_);
-    res.left = leaves;
-    leaving_.erase(std::remove_if(leaving_.begin(), leaving_.end(),
-                                  [&](const sc_core::sc_time& l) { return l <= accepted; }),
-                   leaving_.end());
-    leaving_.push_back(leaves);
-    in_flight_peak_.note(leaving_.size());
-    modules::send_message(result_out, res, leaves, JobResult::kWireBits);
+    modules::send_message(entry_, f, accepted, PatchJob::kWireBits);
+    busy_.record(accepted, first.free() - accepted);
   }
+}
+
+void BezierPipeline::leave(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  JobInFlight& f = *gp.get_extension<modules::MessageExtension<JobInFlight>>()->message();
+  const sc_core::sc_time left = sc_core::sc_time_stamp() + delay;
+  // Jobs leave in the order they entered: one that waited to enter left a cycle of the full
+  // pipeline after the one before it.
+  if (f.waited && jobs_.value() > 1) {
+    ++kept_full_;
+    kept_full_time_ += left - last_left_;
+  }
+  last_left_ = left;
+  const sc_core::sc_time transit = left - f.accepted;
+  transit_.add(transit);
+  if (shortest_transit_ == sc_core::SC_ZERO_TIME || transit < shortest_transit_)
+    shortest_transit_ = transit;
+  leaving_.erase(std::remove_if(leaving_.begin(), leaving_.end(),
+                                [&](const sc_core::sc_time& l) { return l <= f.accepted; }),
+                 leaving_.end());
+  leaving_.push_back(left);
+  in_flight_peak_.note(leaving_.size());
+
+  JobResult res;
+  res.ray = f.job.ray;
+  res.slot = f.job.slot;
+  res.sent = f.job.sent;
+  res.accepted = f.accepted;
+  res.left = left;
+  res.result = kernels::wang_output(f.w, loop_stages(), counters_);
+  if (res.result.hit) ++hits_;
+  modules::send_message(result_out, res, left, JobResult::kWireBits);
+  delay = sc_core::SC_ZERO_TIME;
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
 }  // namespace rtsim::platform::wang_bezier

@@ -6,17 +6,20 @@
 // PatchCenter + PatchDistance on 16, and the Culler (an ASIC of at most 800 ns, L318, or the
 // software routine of 3081 cycles, L432). TMS320C6701s at 6 ns a cycle (L436).
 //
-// Data flows through the stages: each job is stage 0's output carried through every loop stage
-// (kernels::wang_stage0, wang_loop_stage, wang_output on the control net and ray the job
-// brought); what leaves the last stage is the result the host reads.
+// Stage by stage (pipeline_stage.hpp, substage.hpp): stage 0's substages and each loop stage's
+// five are modules; a job enters stage 0 as a transaction from the pipeline's input queue, passes
+// every substage as a transaction carrying its payload (job_in_flight.hpp), each substage
+// computing its part on what it received, and leaves the last into the pipeline's output, which
+// sends the host the result (kernels::wang_output on what left). The timing is the substages':
+// each takes a job when it is free and hands it on when the next buffer has room, so a slower
+// substage sets the cycle and back-pressures the ones before it.
 //
-// Timing by arithmetic (every block's work is data-independent, L193): a substage with k DSPs
-// doing u units of c cycles takes ceil(u / k) c cycle times; the pipeline cycle is the slowest
-// substage, one job enters per cycle, and a job leaves after (stage 0's substages + 5 N) cycles.
-// One thread for the whole pipeline.
+// What it measures: jobs that left while the pipeline was kept full (each had waited at the
+// input for stage 0), and the time between them and their predecessors leaving: the pipeline's
+// steady-state throughput (W1, L437); each job's transit from stage 0 to the output.
 #include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
 
-#include <array>
 #include <memory>
 #include <string>
 #include <systemc>
@@ -28,32 +31,12 @@
 #include "modules/statistics.hpp"
 #include "platform/machines/wang_bezier/job_fault.hpp"
 #include "platform/machines/wang_bezier/messages.hpp"
+#include "platform/machines/wang_bezier/pipeline_stage.hpp"
 
 namespace rtsim::platform::wang_bezier {
 
-/// One kind of substage: its name, and the time it takes for a job.
-struct Substage {
-  std::string name;   ///< "split_u", ...: its parameters and statistics
-  unsigned dsps = 0;  ///< 0: custom hardware (the Culler ASIC)
-  std::uint64_t units = 0;
-  std::uint64_t cycles = 0;
-  sc_core::sc_time time;  ///< per job
-};
-
-/// A loop substage's statistics ("pipeline.split_u"): the first loop stage's, busy its time
-/// each job.
-struct SubstageStats : modules::StatGroup {
-  SubstageStats(const modules::StatGroup& pipeline, const Substage& s)
-      : modules::StatGroup(pipeline, s.name),
-        dsps(*this, "dsps", "DSPs of the substage (0: custom hardware)",
-             [d = s.dsps] { return d; }),
-        time_per_job(*this, "time_per_job_s", "its time for one job",
-                     [t = s.time] { return t.to_seconds(); }) {}
-  modules::Busy busy{*this, "its time each job (the first loop stage's)"};
-  modules::Computed dsps, time_per_job;
-};
-
-/// The statistics group "pipeline": busy a cycle a job, jobs, hits, in_flight_peak.
+/// The statistics group "pipeline": busy while stage 0 cannot take a job, jobs, hits,
+/// in_flight_peak, kept_full, kept_full_s, transit.
 class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
  public:
   modules::MessageQueue<PatchJob> input;  ///< stage 0's input: one job
@@ -68,37 +51,50 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& registry,
                  int loop_stages, int culler_key_bits);
 
-  int loop_stages() const { return loop_stages_; }
-  const std::vector<Substage>& stage0() const { return stage0_; }
-  const std::vector<Substage>& loop_substages() const { return loop_; }
-  /// The slowest substage's time: one job a cycle.
-  sc_core::sc_time cycle() const { return cycle_; }
-  sc_core::sc_time latency() const { return latency_; }
-  /// Pipeline cycles a job spends in each loop stage's Culler (1 unless it is pipelined).
-  std::uint64_t culler_slots() const { return culler_slots_; }
+  int loop_stages() const { return static_cast<int>(loops_.size()); }
+  const PipelineStage& stage0() const { return *stage0_; }
+  /// Loop stage 1's substages (all loop stages are alike).
+  const PipelineStage& first_loop() const { return *loops_.front(); }
+  /// Every substage, in the order a job passes them.
+  const std::vector<Substage*>& substages() const { return chain_; }
   /// Faults in flight on its input (job_fault.hpp), before the simulation.
   void set_faults(std::vector<JobFault> faults) { faults_ = std::move(faults); }
   const std::vector<JobFault>& faults() const { return faults_; }
 
+  /// Jobs that left while it was kept full, and the time between them and the jobs before
+  /// them leaving (their sum): its steady-state cycle, measured.
+  std::uint64_t kept_full() const { return kept_full_.value(); }
+  const sc_core::sc_time& kept_full_time() const { return kept_full_time_.value(); }
+  /// The shortest transit through it (a job that never waited inside), zero before any job.
+  const sc_core::sc_time& shortest_transit() const { return shortest_transit_; }
+
  private:
   void run();
+  /// The pipeline's output: the last substage hands a job here; its result goes to the host.
+  void leave(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
 
-  int loop_stages_;
-  kernels::CullerConfig culler_;  ///< the ASIC's bitonic network or the software's sort
   std::vector<JobFault> faults_;
-  std::vector<Substage> stage0_, loop_;
-  sc_core::sc_time cycle_, latency_;
-  /// A pipelined Culler's answer delay (zero otherwise) and the cycles it spans.
-  sc_core::sc_time culler_delay_ = sc_core::SC_ZERO_TIME;
-  std::uint64_t culler_slots_ = 1;
+  JobInFlight flight_;
+  std::unique_ptr<PipelineStage> stage0_;
+  std::vector<std::unique_ptr<PipelineStage>> loops_;
+  std::vector<Substage*> chain_;
+  tlm_utils::simple_initiator_socket<BezierPipeline> entry_{"entry"};
+  tlm_utils::simple_target_socket<BezierPipeline> exit_{"exit"};
   modules::LocalClock clock_;
   std::vector<sc_core::sc_time> leaving_;  ///< when the jobs in flight leave, oldest first
+  sc_core::sc_time last_left_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time shortest_transit_ = sc_core::SC_ZERO_TIME;
   kernels::WangCounters counters_;
-  modules::Busy busy_{*this, "its issue slots: a cycle a job (its utilisation)"};
+  modules::Busy busy_{*this, "stage 0 holding a job (it could take no other): its utilisation"};
   modules::Counter jobs_{*this, "jobs", "jobs taken"};
   modules::Counter hits_{*this, "hits", "jobs answered with a hit"};
   modules::Peak in_flight_peak_{*this, "in_flight_peak", "jobs in the pipeline at once"};
-  std::vector<std::unique_ptr<SubstageStats>> substages_;
+  modules::Counter kept_full_{*this, "kept_full",
+                              "jobs that left while it was kept full (each had waited at the "
+                              "input for stage 0)"};
+  modules::Duration kept_full_time_{*this, "kept_full_s",
+                                    "time between those jobs leaving and the jobs before them"};
+  modules::Distribution transit_{*this, "transit", "a job's time from stage 0 to the output"};
 };
 
 }  // namespace rtsim::platform::wang_bezier

@@ -91,42 +91,50 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   // The pipeline's own count of jobs taken.
   const std::uint64_t taken = modules::StatDirectory::instance().count_over(kPipeline, "jobs");
   const double jobs = static_cast<double>(taken);
-  nlohmann::ordered_json substages = nlohmann::ordered_json::object();
-  for (const auto& s : pipeline.loop_substages())
-    substages[s.name] = {{"dsps", s.dsps},
-                         {"units", s.units},
-                         {"cycles", s.cycles},
-                         {"time_s", s.time.to_seconds()}};
-  nlohmann::ordered_json stage0 = nlohmann::ordered_json::object();
-  for (const auto& s : pipeline.stage0())
-    stage0[s.name] = {{"dsps", s.dsps}, {"cycles", s.cycles}, {"time_s", s.time.to_seconds()}};
+  // Each substage's pool and time, from the modules (stage 0's, and loop stage 1's: the loop
+  // stages are alike).
+  const auto pools = [](const wang_bezier::PipelineStage& stage) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& s : stage.substages())
+      out[s->basename()] = {{"dsps", s->pool().dsps},
+                            {"units", s->pool().units},
+                            {"cycles", s->pool().cycles},
+                            {"time_s", s->timing().work.to_seconds()}};
+    return out;
+  };
   unsigned dsps = 0;
-  for (const auto& s : pipeline.stage0()) dsps += s.dsps + (s.name == "stage0.split_u" ? 1 : 0);
-  for (const auto& s : pipeline.loop_substages())
-    dsps += s.dsps * static_cast<unsigned>(pipeline.loop_stages());
-  const double cycle = pipeline.cycle().to_seconds();
+  for (const auto* s : pipeline.substages()) dsps += s->pool().dsps;
   const double frame = frame_time.to_seconds();
   nlohmann::ordered_json& res = run.machine_stats();
   nlohmann::ordered_json& w = res["wang"];
   w["loop_stages"] = pipeline.loop_stages();
-  if (taken > 0) {
-    w["cycle_s"] = cycle;
-    w["throughput_rpi_per_s"] = cycle > 0 ? 1.0 / cycle : 0.0;
-    w["latency_s"] = pipeline.latency().to_seconds();
-    w["culler_cycles"] = pipeline.culler_slots();
-  }
   w["jobs"] = taken;
+  if (pipeline.kept_full() > 0) {
+    // Measured: the time between jobs leaving while it was kept full.
+    const double cycle =
+        pipeline.kept_full_time().to_seconds() / static_cast<double>(pipeline.kept_full());
+    w["cycle_s"] = cycle;
+    w["throughput_rpi_per_s"] = 1.0 / cycle;
+    w["kept_full_jobs"] = pipeline.kept_full();
+  }
   if (taken > 0) {
+    w["latency_s"] = pipeline.shortest_transit().to_seconds();
     w["measured_rpi_per_s"] = frame > 0 ? jobs / frame : 0.0;
-    w["pipeline_utilization"] = frame > 0 ? cycle * jobs / frame : 0.0;
+    if (w.contains("cycle_s"))
+      w["pipeline_utilization"] =
+          w["measured_rpi_per_s"].get<double>() * w["cycle_s"].get<double>();
+    if (pipeline.kept_full() == 0)
+      w["note"] =
+          "the host never kept the pipeline full: no steady-state throughput measured "
+          "(a faster host: -p host.clock=\"100 GHz\")";
   } else {
     // A scene with no patch a ray could reach gives the pipeline nothing to do: it has no
-    // throughput to report (its cycle would only restate its parameters).
+    // throughput to report.
     w["note"] = "no jobs: no ray reached a Bezier patch, so the pipeline did not run";
   }
   w["dsps"] = dsps;
-  w["stage0"] = std::move(stage0);
-  w["substages"] = std::move(substages);
+  w["stage0"] = pools(pipeline.stage0());
+  w["substages"] = pools(pipeline.first_loop());
   if (check) res["wang"]["accuracy"] = check->to_json();
   for (const auto& f : pipeline.faults())
     res["wang"]["faults_in_flight"].push_back({{"at", pipeline.input.name()},
