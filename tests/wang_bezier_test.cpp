@@ -187,6 +187,26 @@ TEST(WangBezier, ASlowerSubstageSetsTheCycleAndBackPressuresTheOnesBefore) {
             read_file(pool.at("image_png").get<std::string>()));
 }
 
+// A link between substages (a what-if the paper leaves out): the widest hop, 847 words after
+// PatchCenter + PatchDistance, sets the cycle once its serialisation exceeds 1.092 us; the
+// image stays.
+TEST(WangBezier, ANarrowLinkBetweenSubstagesSetsTheCycle) {
+  const std::string base =
+      "--scene builtin:teapot --width 32 --height 32 -p host.clock=\"100 GHz\" -p "
+      "pipeline.interconnect=link";
+  const auto fast = run_wang("link-fast", base + " -p pipeline.link.bit_time=\"1 ns\"");
+  const auto slow = run_wang("link-slow", base + " -p pipeline.link.bit_time=\"2 ns\"");
+  ASSERT_FALSE(fast.empty() || slow.empty());
+  std::printf("link at 1 ns a bit: cycle %.4g us; at 2 ns: %.4g us (847 x 2 ns = 1.694)\n",
+              fast["wang"]["cycle_s"].get<double>() * 1e6,
+              slow["wang"]["cycle_s"].get<double>() * 1e6);
+  EXPECT_NEAR(fast["wang"]["cycle_s"].get<double>(), 1.092e-6, 1e-12);
+  EXPECT_NEAR(slow["wang"]["cycle_s"].get<double>(), 847 * 2e-9, 1e-12);
+  EXPECT_GT(slow["modules"]["pipeline.loop1.center_distance.link"]["busy_s"].get<double>(), 0.0);
+  EXPECT_EQ(read_file(fast.at("image_png").get<std::string>()),
+            read_file(slow.at("image_png").get<std::string>()));
+}
+
 TEST(WangBezier, ACorruptedControlPointChangesTheImage) {
   const std::string base =
       "--scene " + shared_path("scenes/teapot.bpt") + " --width 24 --height 24";

@@ -1,6 +1,7 @@
 #include "platform/machines/wang_bezier/bezier_pipeline.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "firmware/kernels/culler_network.hpp"
 #include "modules/sim_time.hpp"
@@ -130,6 +131,21 @@ const modules::CountParam kBufferDepth(
      .description = "Jobs the buffer in front of each substage holds: a finished job waits in "
                     "its substage until the next one's buffer has room",
      .source = "assumption: the paper gives no buffering (note 002 L306: depth 1)"});
+const modules::ChoiceParam kInterconnect(
+    {.name = "interconnect",
+     .default_value = "none",
+     .allowed = {"none", "link"},
+     .description = "Between substages: none (a job is in the next buffer the moment it is "
+                    "handed on: Table 4's assumption) or a kit link each (pipeline.link.*) "
+                    "carrying the job's words (up to 847 after PatchCenter + PatchDistance)",
+     .source = "assumption: the paper gives no interconnect (note 002 §4)"});
+constexpr const char* kLink = "link";
+const modules::Link::Defaults kLinkDefaults{
+    .latency = "0 s",
+    .lanes = "32",
+    .bit_rate = "",
+    .bit_time = "6 ns",
+    .source = "assumption: a 32-bit word a DSP cycle (6 ns, L436); the paper gives none"};
 
 }  // namespace
 
@@ -148,6 +164,8 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
   p.add(kPlaneCycles);
   p.add(kAdvance);
   p.add(kBufferDepth);
+  p.add(kInterconnect);
+  modules::Link::declare_params(p.sub(kLink), kLinkDefaults);
 }
 
 namespace {
@@ -216,10 +234,13 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
         s.timing.latency = times(cycle, slots);
       }
   const std::size_t depth = p.get(kBufferDepth);
-  stage0_ = std::make_unique<PipelineStage>("stage0", stage0, depth, culler);
+  std::optional<modules::ModuleParams> link;
+  if (p.get(kInterconnect) == "link") link.emplace(r, std::string(this->name()) + "." + kLink);
+  const modules::ModuleParams* links = link ? &*link : nullptr;
+  stage0_ = std::make_unique<PipelineStage>("stage0", stage0, depth, culler, links);
   for (int s = 1; s <= loop_stages; ++s)
-    loops_.push_back(
-        std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop, depth, culler));
+    loops_.push_back(std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop,
+                                                     depth, culler, links));
   // Wire the chain: input -> stage 0 -> loop 1 -> ... -> loop N -> output.
   for (const auto& sub : stage0_->substages()) chain_.push_back(sub.get());
   for (const auto& stage : loops_)

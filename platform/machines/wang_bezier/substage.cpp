@@ -11,7 +11,7 @@ using modules::plus;
 
 Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
                    const Timing& timing, std::size_t buffer_depth,
-                   const kernels::CullerConfig& culler)
+                   const kernels::CullerConfig& culler, const modules::ModuleParams* link)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       in("in"),
@@ -24,6 +24,7 @@ Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const
       taken_(depth_, sc_core::SC_ZERO_TIME) {
   in.bind(*this);
   out.bind(*this);
+  if (link) link_ = std::make_unique<modules::Link>(stat_path() + ".link", *link);
   if (work_ == SubstageWork::kCull)
     kept_ = std::make_unique<modules::Counter>(*this, "kept",
                                                "candidates it kept (at most 4 a job, L256)");
@@ -85,11 +86,14 @@ void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   if (next_) handed = std::max(ready, next_->taken_ago(depth_));
   blocked_ += handed - ready;
   free_ = std::max(plus(start, timing_.issue), handed - (timing_.latency - timing_.issue));
-  // The same transaction goes on, carrying what the next substage reads.
-  const unsigned bytes = static_cast<unsigned>(4 * words_after(work_));
+  // The same transaction goes on, carrying what the next substage reads, over its link if it
+  // has one.
+  const std::uint64_t words = words_after(work_);
+  const unsigned bytes = static_cast<unsigned>(4 * words);
   gp.set_data_length(bytes);
   gp.set_streaming_width(bytes);
-  delay = handed - sc_core::sc_time_stamp();
+  const sc_core::sc_time arrives = link_ ? link_->transfer(32 * words, handed) : handed;
+  delay = arrives - sc_core::sc_time_stamp();
   out->b_transport(gp, delay);
 }
 

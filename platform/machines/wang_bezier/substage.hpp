@@ -18,6 +18,10 @@
 // cycles (issue = the cycle, latency rounded up to cycles): the lock-step pipeline of the paper's
 // "pipeline cycle" (L437).
 //
+// With pipeline.interconnect = link its output is a kit Link (pipeline.link.*, statistics at
+// NAME.link): the job leaves at O(j) when the link is free, occupies it for its words'
+// serialisation and arrives at the next buffer the link's latency after its last bit.
+//
 // The pipeline's thread carries each job into stage 0 (loosely timed: no substage waits in
 // simulated time; each computes its times from its state and the next one's S').
 #include <cstdint>
@@ -28,6 +32,8 @@
 #include <vector>
 
 #include "firmware/kernels/bezier_wang.hpp"
+#include "modules/link.hpp"
+#include "modules/module_params.hpp"
 #include "modules/statistics.hpp"
 #include "platform/machines/wang_bezier/job_in_flight.hpp"
 
@@ -53,9 +59,11 @@ class Substage : public sc_core::sc_module,
     sc_core::sc_time latency;  ///< from taking a job to handing it on, unblocked
   };
 
-  /// `culler`: how a kCull substage sorts (the others ignore it).
+  /// `culler`: how a kCull substage sorts (the others ignore it); `link`: its output link's
+  /// parameters (pipeline.link), or none for an infinitely fast hand-over.
   Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
-           const Timing& timing, std::size_t buffer_depth, const kernels::CullerConfig& culler);
+           const Timing& timing, std::size_t buffer_depth, const kernels::CullerConfig& culler,
+           const modules::ModuleParams* link);
 
   /// The substage after this one (its input buffer), at elaboration; none for the last.
   void set_next(const Substage* next) { next_ = next; }
@@ -104,6 +112,7 @@ class Substage : public sc_core::sc_module,
                                   [this] { return timing_.work.to_seconds(); }};
   /// The Culler's survivors (candidate survival, note 002 §4.7).
   std::unique_ptr<modules::Counter> kept_;
+  std::unique_ptr<modules::Link> link_;
 };
 
 }  // namespace rtsim::platform::wang_bezier
