@@ -1,6 +1,7 @@
 #include "platform/machines/wang_bezier/substage.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "modules/message_channel.hpp"
 #include "modules/sim_time.hpp"
@@ -21,7 +22,8 @@ Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const
       timing_(timing),
       culler_(culler),
       depth_(std::max<std::size_t>(1, buffer_depth)),
-      taken_(depth_, sc_core::SC_ZERO_TIME) {
+      taken_(std::bit_ceil(depth_), sc_core::SC_ZERO_TIME),
+      ring_mask_(taken_.size() - 1) {
   in.bind(*this);
   out.bind(*this);
   if (link) link_ = std::make_unique<modules::Link>(stat_path() + ".link", *link);
@@ -32,7 +34,7 @@ Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const
 
 sc_core::sc_time Substage::taken_ago(std::size_t ago) const {
   if (ago == 0 || ago > count_ || ago > depth_) return sc_core::SC_ZERO_TIME;
-  return taken_[(count_ - ago) % depth_];
+  return taken_[(count_ - ago) & ring_mask_];
 }
 
 void Substage::compute(JobInFlight& f) {
@@ -75,7 +77,7 @@ void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   JobInFlight& f = *gp.get_extension<modules::MessageExtension<JobInFlight>>()->message();
   // S(j): the job is in its input buffer `delay` from now; it takes it once free.
   const sc_core::sc_time start = std::max(sc_core::sc_time_stamp() + delay, free_);
-  taken_[count_ % depth_] = start;
+  taken_[count_ & ring_mask_] = start;
   ++count_;
   ++jobs_;
   compute(f);

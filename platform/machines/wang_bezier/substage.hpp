@@ -97,8 +97,10 @@ class Substage : public sc_core::sc_module,
   kernels::CullerConfig culler_;
   const Substage* next_ = nullptr;
   std::size_t depth_;
-  /// Its last `depth_` take times (the previous substage's buffer room), a ring.
+  /// Its last `depth_` take times (the previous substage's buffer room), a ring of a power of
+  /// two at least that long.
   std::vector<sc_core::sc_time> taken_;
+  std::uint64_t ring_mask_;
   std::uint64_t count_ = 0;
   sc_core::sc_time free_ = sc_core::SC_ZERO_TIME;
   kernels::WangCounters counters_;
