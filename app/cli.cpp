@@ -230,8 +230,9 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
                   "(ullner-pipeline, 26 words a processor), host.patch_memory (wang-bezier, 48 "
                   "words a patch); an unknown name lists the machine's. In flight, every "
                   "message corrupted on its way: pipeline.engineK.in (ullner-pipeline: each ray "
-                  "description entering processor K, 13 words) and pipeline.input (wang-bezier: "
-                  "each job entering stage 0, 54 words), counted in stats.json "
+                  "description entering processor K, 13 words), pipeline.input (wang-bezier: "
+                  "each job entering stage 0, 54 words) and pipeline.loopK.in (wang-bezier: "
+                  "each job entering loop stage K, 206 words), counted in stats.json "
                   "pipeline.faults_in_flight and wang.faults_in_flight");
   run->add_flag("--report", runa.report,
                 "Also write report.html: one self-contained page with the image, headline "

@@ -93,6 +93,38 @@ TEST(WangBezier, AJobCorruptedInFlightChangesTheImage) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
+// Between stages: a word of every job corrupted as it enters loop stage 3 (a control point of
+// buffer1's second patch; a plane's word), or loop stage 2 dead (it passes every job on
+// unchanged). Each substage computes on what it received: the image changes, with no NaN pixel;
+// a stage or a word the pipeline does not have is bad input.
+TEST(WangBezier, AJobCorruptedBetweenStagesOrADeadStageChangesTheImage) {
+  const std::string base = "--scene builtin:teapot --width 32 --height 32";
+  const auto clean = run_wang("between-clean", base);
+  ASSERT_FALSE(clean.empty());
+  for (const char* fault :
+       {" --fault pipeline.loop3.in:70:0x00400000", " --fault pipeline.loop3.in:7:0x00800000",
+        " -p pipeline.fault.dead_stage=2"}) {
+    const auto bad = run_wang("between-bad", base + fault);
+    ASSERT_FALSE(bad.empty()) << fault;
+    if (bad["wang"].contains("faults_in_flight")) {
+      const auto& f = bad["wang"]["faults_in_flight"][0];
+      EXPECT_EQ(f["at"], "pipeline.loop3.in");
+      EXPECT_EQ(f["applied"], bad["wang"]["jobs"]) << fault;
+    }
+    EXPECT_EQ(bad["image"]["nonfinite_values"].get<int>(), 0) << fault;
+    EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+              read_file(bad.at("image_png").get<std::string>()))
+        << fault;
+  }
+  for (const char* wrong : {" --fault pipeline.loop11.in:0:1", " --fault pipeline.loop0.in:0:1",
+                            " --fault pipeline.loop3.in:206:1", " --fault pipeline.loopx.in:0:1",
+                            " -p pipeline.fault.dead_stage=11"}) {
+    const auto r = run_rtsim("run --machine wang-bezier " + base + wrong + " -q --out " +
+                             scratch_dir("wang-between-wrong").string());
+    EXPECT_EQ(r.exit_code, 2) << wrong << "\n" << r.output;
+  }
+}
+
 // A what-if the paper leaves open (L318: "without any intra-stage pipelining"): with SplitInHalf
 // at 120 cycles (0.72 us) the 800 ns Culler sets the cycle; pipelining its 10 compare stages
 // (a job every 80 ns) hands the cycle to the next slowest substage, PatchCenter + PatchDistance

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "common/input_error.hpp"
 #include "firmware/kernels/culler_network.hpp"
 #include "modules/sim_time.hpp"
 
@@ -131,6 +132,15 @@ const modules::CountParam kBufferDepth(
      .description = "Jobs the buffer in front of each substage holds: a finished job waits in "
                     "its substage until the next one's buffer has room",
      .source = "assumption: the paper gives no buffering (note 002 L306: depth 1)"});
+const modules::IntParam kDeadStage(
+    {.name = "fault.dead_stage",
+     .default_value = "0",
+     .min = "0",
+     .max = "30",
+     .unit = "loop stage",
+     .description = "A fault: this loop stage is dead and passes every job on unchanged (no "
+                    "split, no hull test, no cull; its timing stays); 0 for none",
+     .source = "fault model: a dead stage of the unrolled pipeline"});
 const modules::ChoiceParam kInterconnect(
     {.name = "interconnect",
      .default_value = "none",
@@ -165,6 +175,7 @@ void BezierPipeline::declare_params(const modules::ParamDecls& p) {
   p.add(kAdvance);
   p.add(kBufferDepth);
   p.add(kInterconnect);
+  p.add(kDeadStage);
   modules::Link::declare_params(p.sub(kLink), kLinkDefaults);
 }
 
@@ -241,6 +252,14 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   for (int s = 1; s <= loop_stages; ++s)
     loops_.push_back(std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop,
                                                      depth, culler, links));
+  if (const std::int64_t dead = p.get(kDeadStage); dead > 0) {
+    if (dead > loop_stages)
+      throw InputError(p.path_of(kDeadStage.name()), 0,
+                       "the pipeline has loop stages 1 to " + std::to_string(loop_stages) +
+                           " (bezier.iterations)");
+    for (const auto& sub : loops_[static_cast<std::size_t>(dead - 1)]->substages())
+      sub->set_dead(true);
+  }
   // Wire the chain: input -> stage 0 -> loop 1 -> ... -> loop N -> output.
   for (const auto& sub : stage0_->substages()) chain_.push_back(sub.get());
   for (const auto& stage : loops_)
@@ -255,6 +274,13 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
   SC_THREAD(run);
 }
 
+void BezierPipeline::set_faults(std::vector<JobFault> faults) {
+  faults_ = std::move(faults);
+  for (JobFault& f : faults_)
+    if (f.stage > 0)
+      loops_[static_cast<std::size_t>(f.stage - 1)]->substages().front()->add_fault(f);
+}
+
 void BezierPipeline::run() {
   Substage& first = *chain_.front();
   for (;;) {
@@ -263,7 +289,8 @@ void BezierPipeline::run() {
     sc_core::sc_time accepted;
     JobInFlight& f = flight_;  // one job in the chain at a time: its payload reused
     f.job = input.fifo.get(std::max(clock_.now(), first.free()), accepted);
-    for (JobFault& fault : faults_) fault.apply(f.job);  // as it arrived over the host's link
+    for (JobFault& fault : faults_)
+      if (fault.stage == 0) fault.apply(f.job);  // as it arrived over the host's link
     clock_.catch_up(accepted);
     f.accepted = accepted;
     f.waited = accepted > f.job.arrived;

@@ -57,8 +57,9 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   const PipelineStage& first_loop() const { return *loops_.front(); }
   /// Every substage, in the order a job passes them.
   const std::vector<Substage*>& substages() const { return chain_; }
-  /// Faults in flight on its input (job_fault.hpp), before the simulation.
-  void set_faults(std::vector<JobFault> faults) { faults_ = std::move(faults); }
+  /// Faults in flight on its input and its loop stages' (job_fault.hpp), before the
+  /// simulation.
+  void set_faults(std::vector<JobFault> faults);
   const std::vector<JobFault>& faults() const { return faults_; }
 
   /// Jobs that left while it was kept full, and the time between them and the jobs before

@@ -81,7 +81,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   host.job_out.bind(pipeline.input.socket);
   // Faults in flight on the pipeline's input, then those of the host's memory at rest.
   std::vector<MemoryFault> at_rest = opts.faults;
-  pipeline.set_faults(wang_bezier::job_faults(pipeline.input.name(), at_rest));
+  pipeline.set_faults(wang_bezier::job_faults(kPipeline, pipeline.loop_stages(), at_rest));
   inject_faults(name(), at_rest, {&host.patch_memory});
   pipeline.result_out.bind(host.results.socket);
   run.simulate();
@@ -137,7 +137,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   w["substages"] = pools(pipeline.first_loop());
   if (check) res["wang"]["accuracy"] = check->to_json();
   for (const auto& f : pipeline.faults())
-    res["wang"]["faults_in_flight"].push_back({{"at", pipeline.input.name()},
+    res["wang"]["faults_in_flight"].push_back({{"at", f.at(kPipeline)},
                                                {"word", f.word},
                                                {"xor_mask", f.xor_mask},
                                                {"applied", f.applied}});

@@ -80,7 +80,8 @@ void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   taken_[count_ & ring_mask_] = start;
   ++count_;
   ++jobs_;
-  compute(f);
+  for (JobFault* fault : faults_) fault->apply(f.w);  // as it arrived
+  if (!dead_) compute(f);
   busy_.record(start, timing_.work);
   // D(j), then O(j): the next buffer has room once the next substage took job j - depth.
   const sc_core::sc_time ready = plus(start, timing_.latency);

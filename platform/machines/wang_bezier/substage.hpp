@@ -35,6 +35,7 @@
 #include "modules/link.hpp"
 #include "modules/module_params.hpp"
 #include "modules/statistics.hpp"
+#include "platform/machines/wang_bezier/job_fault.hpp"
 #include "platform/machines/wang_bezier/job_in_flight.hpp"
 
 namespace rtsim::platform::wang_bezier {
@@ -64,6 +65,11 @@ class Substage : public sc_core::sc_module,
   Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
            const Timing& timing, std::size_t buffer_depth, const kernels::CullerConfig& culler,
            const modules::ModuleParams* link);
+
+  /// Faults: `fault` corrupts every job entering it; a dead substage passes every job on
+  /// unchanged (it computes nothing; its timing stays).
+  void add_fault(JobFault& fault) { faults_.push_back(&fault); }
+  void set_dead(bool dead) { dead_ = dead; }
 
   /// The substage after this one (its input buffer), at elaboration; none for the last.
   void set_next(const Substage* next) { next_ = next; }
@@ -96,6 +102,8 @@ class Substage : public sc_core::sc_module,
   Timing timing_;
   kernels::CullerConfig culler_;
   const Substage* next_ = nullptr;
+  std::vector<JobFault*> faults_;
+  bool dead_ = false;
   std::size_t depth_;
   /// Its last `depth_` take times (the previous substage's buffer room), a ring of a power of
   /// two at least that long.
