@@ -52,6 +52,18 @@ COLUMNS = {
 }
 
 
+def add_shares(row):
+    """Adds to a row of counts (both, missed, phantom, another) ref_hits and the shares of the
+    reference's hits: missed_share, phantom_share, another_share, disagreement (missed +
+    phantom) and wrong (all three)."""
+    ref_hits = row["both"] + row["missed"]
+    row["ref_hits"] = ref_hits
+    for k in ("missed", "phantom", "another"):
+        row[k + "_share"] = row[k] / ref_hits if ref_hits else 0.0
+    row["disagreement"] = (row["missed"] + row["phantom"]) / ref_hits if ref_hits else 0.0
+    row["wrong"] = row["disagreement"] + row["another_share"]
+
+
 def accuracy_table(df):
     """One dict per stage count (sorted), with the COLUMNS' keys plus ref_hits and the shares
     missed_share, phantom_share, another_share, disagreement (missed + phantom) over the
@@ -66,12 +78,7 @@ def accuracy_table(df):
         if any(v is None for v in row.values()):
             raise common.InputProblem(f"point with {STAGES}={r[cols['stages']]}: a value is "
                                       "missing (was the sweep run with accuracy.check = true?)")
-        ref_hits = row["both"] + row["missed"]
-        row["ref_hits"] = ref_hits
-        for k in ("missed", "phantom", "another"):
-            row[k + "_share"] = row[k] / ref_hits if ref_hits else 0.0
-        row["disagreement"] = (row["missed"] + row["phantom"]) / ref_hits if ref_hits else 0.0
-        row["wrong"] = row["disagreement"] + row["another_share"]
+        add_shares(row)
         row["width"] = 2.0 ** -(row["stages"] + 1)
         rows.append(row)
     rows.sort(key=lambda r: r["stages"])

@@ -33,7 +33,10 @@ def substage_rows(stats):
         for name, s in (w.get(part) or {}).items():
             if not isinstance(s, dict) or "time_s" not in s:
                 raise common.InputProblem(f"wang.{part}.{name}: expected an object with time_s")
-            label = name if part == "stage0" else f"loop.{name}"
+            if part == "substages":
+                label = f"loop.{name}"
+            else:  # "split_u", or "stage0.split_u" in stats.json written before 2026-12-03
+                label = name if name.startswith("stage0.") else f"stage0.{name}"
             rows.append((label, int(s.get("dsps", 0)), int(s.get("cycles", 0)),
                          float(s["time_s"])))
     if not rows:

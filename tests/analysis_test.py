@@ -40,6 +40,7 @@ import pxpl5_workload  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
 import wang_accuracy  # noqa: E402
+import wang_arithmetic  # noqa: E402
 import wang_substages  # noqa: E402
 
 PYTHON = sys.executable
@@ -417,7 +418,7 @@ class WangSubstagesTest(ScratchTest):
         return {"machine": "machine-e", "scene": "s", "simulated_time_s": 1e-3,
                 "modules": {"host": {"utilization": 0.75}},
                 "wang": {"loop_stages": 2, "cycle_s": 2e-6, "jobs": 250, "dsps": 9,
-                         "stage0": {"stage0.split_u": {"dsps": 1, "cycles": 10, "time_s": 1e-6}},
+                         "stage0": {"split_u": {"dsps": 1, "cycles": 10, "time_s": 1e-6}},
                          "substages": {
                              "split_u": {"dsps": 4, "units": 4, "cycles": 20, "time_s": 2e-6},
                              "culler": {"dsps": 0, "units": 0, "cycles": 0, "time_s": 8e-7}}}}
@@ -485,6 +486,49 @@ class WangAccuracyTest(ScratchTest):
         del row["wang.accuracy.rays.missed"]
         self.write([row])
         r = run_script("wang_accuracy.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("wang.accuracy.rays.missed", r.stderr)
+
+
+class WangArithmeticTest(ScratchTest):
+    def row(self, kind, bits, missed, phantom, another, p50):
+        a = "wang.accuracy.rays."
+        return {"point": bits, "status": "ok", "bezier.arithmetic": kind,
+                "bezier.fixed_bits": bits, a + "both": 400 - missed, a + "missed": missed,
+                a + "phantom": phantom, a + "another_surface": another,
+                a + "point_error.p50": p50, a + "point_error.p99": 4 * p50,
+                a + "pixel_error.p99": 0.1}
+
+    def write(self, rows):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for r in rows:
+                f.write(json.dumps(r) + "\n")
+
+    def test_table_and_png(self):
+        # 400 reference hits each; the narrow word loses 200, the wide ones 8 like float32.
+        self.write([self.row("fixed", 24, 4, 0, 4, 1e-4), self.row("float32", 24, 4, 0, 4, 1e-4),
+                    self.row("fixed", 12, 100, 60, 40, 3e-3)])
+        floats, fixed = wang_arithmetic.arithmetic_table(sweep_plot.read_results(self.dir))
+        self.assertEqual(list(floats), ["float32"])
+        self.assertEqual([r["bits"] for r in fixed], [12, 24])
+        self.assertAlmostEqual(fixed[0]["wrong"], 200 / 400)
+        self.assertAlmostEqual(floats["float32"]["wrong"], 8 / 400)
+        self.assertIn("| fixed 12 bits | 100 | 60 | 40 | 50.00% |",
+                      wang_arithmetic.markdown(floats, fixed))
+        out = os.path.join(self.dir, "a.png")
+        r = run_script("wang_arithmetic.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_a_sweep_without_fixed_point_or_the_check(self):
+        self.write([self.row("float32", 24, 4, 0, 4, 1e-4)])
+        r = run_script("wang_arithmetic.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no fixed-point point", r.stderr)
+        row = self.row("fixed", 16, 0, 0, 0, 1e-4)
+        del row["wang.accuracy.rays.missed"]
+        self.write([row])
+        r = run_script("wang_arithmetic.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("wang.accuracy.rays.missed", r.stderr)
 

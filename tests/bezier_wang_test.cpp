@@ -285,6 +285,37 @@ TEST(WangLoop, CountersFollowTheBuffersAndCostAddsUp) {
               (unsigned long long)full.mem_words, (unsigned long long)full.instructions);
 }
 
+// Fixed-point words (bezier.arithmetic = fixed): rounded to the nearest 2^-(bits - integer
+// bits), ties to even, saturating at the two's complement range; NaN stores as 0. On a flat
+// patch 24-bit words (16 below the point) still find the hit within a final subpatch; 10-bit
+// words (2 below the point) cannot tell the subpatches apart.
+TEST(WangArithmetic, FixedWordsRoundAndSaturate) {
+  const FixedWords w{.bits = 12, .integer_bits = 4};  // 8 fraction bits, range [-8, 8)
+  EXPECT_EQ(w(0.1), std::round(0.1 * 256) / 256);
+  EXPECT_EQ(w(1.0 / 512), 0.0);        // a half step: ties to even
+  EXPECT_EQ(w(3.0 / 512), 2.0 / 256);  // 1.5 steps: to 2
+  EXPECT_EQ(w(100.0), 8.0 - 1.0 / 256);
+  EXPECT_EQ(w(-100.0), -8.0);
+  EXPECT_EQ(w(std::nan("")), 0.0);
+  EXPECT_EQ(w(-kInfinity), -8.0);
+  const FixedWords exact{.bits = 53, .integer_bits = 8};
+  EXPECT_EQ(exact(0.1), std::ldexp(std::round(std::ldexp(0.1, 45)), -45));
+
+  const ControlNet<double> net = flat_net(-1, 1, -1, 1, 5);
+  const FixedWords wide{.bits = 24, .integer_bits = 8};
+  const auto hit = wang_intersect(net, Vec3(0.1, 0.2, 0), Vec3(0, 0, 1), 10, nullptr, {}, &wide);
+  ASSERT_TRUE(hit.hit);
+  EXPECT_NEAR(hit.point.x, 0.1, 2.0 / 2048);
+  EXPECT_NEAR(hit.point.y, 0.2, 2.0 / 2048);
+  const auto exact_hit = wang_intersect(net, Vec3(0.1, 0.2, 0), Vec3(0, 0, 1), 10);
+  EXPECT_EQ(hit.u, exact_hit.u);  // 2^-16 is far below the final subpatch (2^-10 here)
+  const FixedWords narrow{.bits = 10, .integer_bits = 8};
+  const auto coarse =
+      wang_intersect(net, Vec3(0.1, 0.2, 0), Vec3(0, 0, 1), 10, nullptr, {}, &narrow);
+  EXPECT_TRUE(!coarse.hit || std::abs(coarse.point.x - 0.1) > 2.0 / 2048 ||
+              std::abs(coarse.point.y - 0.2) > 2.0 / 2048);
+}
+
 // ---------------------------------------------------------------- the kernel adapter
 
 scenes::BezierPatch scene_patch(const ControlNet<double>& net) {

@@ -49,6 +49,36 @@ TEST(WangBezier, ImageEqualsTheFunctionalRenderWhateverTheTiming) {
   }
 }
 
+// The arithmetic (bezier.arithmetic): the pipeline computes in double, or stores every word it
+// writes as fixed point, on the jobs' single-precision words; the twin computes alike, so the
+// machine renders the twin's image at every width. Fixed point of 24 bits (16 below the point)
+// changes the image; 16 bits (8 below) loses most hits.
+TEST(WangBezier, EveryArithmeticGivesTheTwinsImage) {
+  const std::string base = "--scene builtin:teapot --width 48 --height 48 --overhead";
+  const auto single = run_wang("arith-float32", base);
+  ASSERT_FALSE(single.empty());
+  for (const char* arithmetic : {"float64", "fixed", "fixed -p bezier.fixed_bits=16",
+                                 "fixed -p bezier.fixed_bits=32 -p bezier.fixed_integer_bits=4"}) {
+    const auto s = run_wang("arith", base + " -p bezier.arithmetic=" + arithmetic);
+    ASSERT_FALSE(s.empty()) << arithmetic;
+    EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << arithmetic;
+    EXPECT_EQ(s["image"]["nonfinite_values"].get<int>(), 0) << arithmetic;
+    const bool same = read_file(s.at("image_png").get<std::string>()) ==
+                      read_file(single.at("image_png").get<std::string>());
+    std::printf("%-60s image %s float32's\n", arithmetic, same ? "equals" : "differs from");
+    if (std::string(arithmetic) == "fixed") {
+      EXPECT_FALSE(same) << "24-bit fixed point left the image as float32";
+    }
+  }
+  const auto r = run_rtsim(
+      "run --machine wang-bezier --scene builtin:teapot --width 8 --height 8 "
+      "-p bezier.arithmetic=fixed -p bezier.fixed_bits=8 -p "
+      "bezier.fixed_integer_bits=8 -q --out " +
+      scratch_dir("wang-arith-bad").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bezier.fixed_integer_bits"), std::string::npos) << r.output;
+}
+
 // The Culler's key width (bezier.culler_key_bits): 36 bits (the default) sorts exactly; the
 // prototype's 12 bits (L316) tie near subpatches and keep others, which changes the image. The
 // twin culls with the same keys, so the machine's image is still the functional render's; and

@@ -8,7 +8,8 @@ namespace rtsim::kernels {
 
 template <typename T>
 BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& patch, int iterations,
-                                                  int culler_key_bits) {
+                                                  int culler_key_bits,
+                                                  const WangArithmetic& arithmetic) {
   if (iterations < kWangMinIterations || iterations > kWangMaxIterations)
     throw std::invalid_argument(
         "Bezier pipeline iterations must be in [" + std::to_string(kWangMinIterations) + ", " +
@@ -22,6 +23,8 @@ BezierPatchKernelT<T> BezierPatchKernelT<T>::from(const scenes::BezierPatch& pat
         "Culler key bits must be in [" + std::to_string(Culler::kMinKeyBits) + ", " +
         std::to_string(Culler::kKeyBits) + "], got " + std::to_string(culler_key_bits));
   k.culler_.key_bits = culler_key_bits;
+  k.arithmetic_ = arithmetic;
+  k.wide_net_ = convert_net<double>(k.net_);
   // A net that is finite in double but overflows in float is as unusable as a NaN one.
   k.valid_ = is_finite_net(k.original_) && is_finite_net(k.net_);
   if (k.valid_) k.bounds_ = control_bounds(k.original_);
@@ -33,6 +36,13 @@ bool BezierPatchKernelT<T>::intersect(const Ray& ray, double t_min, double t_max
                                       WangCounters* counters) const {
   const auto start = entry(ray, t_min, t_max);
   if (!start) return false;
+  if (arithmetic_.wide()) {
+    // The job's single-precision words, computed on in double or stored as fixed point.
+    const WangResult<double> r = wang_intersect<double>(
+        wide_net_, Vec3T<double>(*start), Vec3T<double>(Vec3T<T>(ray.direction)), iterations_,
+        counters, culler_, arithmetic_.words());
+    return finish(r, ray, t_min, t_max, hit);
+  }
   const WangResult<T> r =
       wang_intersect<T>(net_, *start, Vec3T<T>(ray.direction), iterations_, counters, culler_);
   return finish(r, ray, t_min, t_max, hit);
@@ -55,7 +65,8 @@ std::optional<Vec3T<T>> BezierPatchKernelT<T>::entry(const Ray& ray, double t_mi
 }
 
 template <typename T>
-bool BezierPatchKernelT<T>::finish(const WangResult<T>& r, const Ray& ray, double t_min,
+template <typename R>
+bool BezierPatchKernelT<T>::finish(const WangResult<R>& r, const Ray& ray, double t_min,
                                    double t_max, SurfaceHit& hit) const {
   if (!r.hit) return false;
   const double t_enter = entry_t(t_min);
@@ -87,5 +98,11 @@ bool BezierPatchKernelT<T>::finish(const WangResult<T>& r, const Ray& ray, doubl
 
 template class BezierPatchKernelT<float>;
 template class BezierPatchKernelT<double>;
+template bool BezierPatchKernelT<float>::finish(const WangResult<float>&, const Ray&, double,
+                                                double, SurfaceHit&) const;
+template bool BezierPatchKernelT<float>::finish(const WangResult<double>&, const Ray&, double,
+                                                double, SurfaceHit&) const;
+template bool BezierPatchKernelT<double>::finish(const WangResult<double>&, const Ray&, double,
+                                                 double, SurfaceHit&) const;
 
 }  // namespace rtsim::kernels

@@ -15,9 +15,11 @@
 
 namespace rtsim::kernels {
 
-/// T is the precision of the pipeline arithmetic: float models the paper's DSPs (seed 002 L296),
-/// double is there for comparison. The measured position error at 10 iterations is the same in
-/// both (subdivision error ~1e-4 of the teapot size dwarfs float rounding, see
+/// T is the precision of the pipeline's words: float models the paper's DSPs (seed 002 L296),
+/// double is there for comparison. A float kernel may compute in another arithmetic
+/// (bezier.arithmetic, wang_arithmetic.hpp: double, or fixed point) on its single-precision
+/// words, as the machine's pipeline does. The measured position error at 10 iterations is the same
+/// in both (subdivision error ~1e-4 of the teapot size dwarfs float rounding, see
 /// tests/bezier_wang_test.cpp), so the default kernel is the faithful float one.
 template <typename T>
 class BezierPatchKernelT {
@@ -29,7 +31,8 @@ class BezierPatchKernelT {
   /// kWangMaxIterations]. A patch with non-finite control points is accepted and never hit.
   /// `culler_key_bits`: the Culler's key width (Culler::kKeyBits: exact).
   static BezierPatchKernelT from(const scenes::BezierPatch& patch, int iterations = kWangLoopStages,
-                                 int culler_key_bits = Culler::kKeyBits);
+                                 int culler_key_bits = Culler::kKeyBits,
+                                 const WangArithmetic& arithmetic = {});
 
   /// Nearest hit with t in [t_min, t_max]. The pipeline only looks forward from its origin
   /// (eq. 21), so the ray enters it from O + t_min D (t_min < 0 or infinite: from O).
@@ -48,7 +51,8 @@ class BezierPatchKernelT {
   /// it (O + t_min D, in its precision), nothing if the job cannot hit; and the hit from what
   /// the last stage output.
   std::optional<Vec3T<T>> entry(const Ray& ray, double t_min, double t_max) const;
-  bool finish(const WangResult<T>& r, const Ray& ray, double t_min, double t_max,
+  template <typename R>
+  bool finish(const WangResult<R>& r, const Ray& ray, double t_min, double t_max,
               SurfaceHit& hit) const;
   const ControlNet<T>& net() const { return net_; }
   /// Where a job enters the ray: t_min when it is a positive finite number, else 0.
@@ -58,6 +62,7 @@ class BezierPatchKernelT {
   Bounds bounds() const { return bounds_; }
   int iterations() const { return iterations_; }
   int culler_key_bits() const { return culler_.key_bits; }
+  const WangArithmetic& arithmetic() const { return arithmetic_; }
   /// The cost of one job through this kernel's pipeline length.
   Cost pipeline_cost() const { return wang_pipeline_cost(iterations_); }
   const ControlNet<double>& original() const { return original_; }
@@ -68,6 +73,8 @@ class BezierPatchKernelT {
   Bounds bounds_;
   int iterations_ = kWangLoopStages;
   CullerConfig culler_;
+  WangArithmetic arithmetic_;
+  ControlNet<double> wide_net_;  ///< net_'s words in double, for a wide arithmetic
   bool valid_ = false;
 };
 

@@ -6,9 +6,9 @@ namespace rtsim::kernels {
 // double as the functional renderer.
 template WangResult<float> wang_intersect<float>(const ControlNet<float>&, const Vec3T<float>&,
                                                  const Vec3T<float>&, int, WangCounters*,
-                                                 const CullerConfig&);
+                                                 const CullerConfig&, const FixedWords*);
 template WangResult<double> wang_intersect<double>(const ControlNet<double>&, const Vec3T<double>&,
                                                    const Vec3T<double>&, int, WangCounters*,
-                                                   const CullerConfig&);
+                                                   const CullerConfig&, const FixedWords*);
 
 }  // namespace rtsim::kernels

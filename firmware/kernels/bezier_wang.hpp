@@ -21,6 +21,7 @@
 #include "firmware/kernels/bezier_patch_math.hpp"
 #include "firmware/kernels/bezier_wang_blocks.hpp"
 #include "firmware/kernels/culler_network.hpp"
+#include "firmware/kernels/wang_arithmetic.hpp"
 #include "firmware/math.hpp"
 
 namespace rtsim::kernels {
@@ -126,25 +127,35 @@ struct WangStageWork {
 
 // The substages of a stage, each on the job and the working sets it received. A job whose
 // buffer1 is empty (every candidate culled) passes every substage unchanged. Run in order they
-// are one loop stage (wang_loop_stage) and give the same bits.
+// are one loop stage (wang_loop_stage) and give the same bits. `words`: the fixed-point word
+// format every word a block writes is stored in (wang_arithmetic.hpp); none for float and
+// double.
 
 /// Stage 0's PlaneGenerator (step 1): planes U and V; the input patch as the job's only patch.
 template <typename T>
 WangJob<T> wang_planes(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
-                       WangCounters& counters) {
+                       WangCounters& counters, const FixedWords* words = nullptr) {
   ++counters.calls;
   WangJob<T> job;
   job.o = o;
   job.d = d;
-  job.planes = PlaneGenerator::generate(o, d);
   job.buffer1[0].net = net;
+  store_words(words, job.o);  // the job's words, as stage 0 takes them in
+  store_words(words, job.d);
+  store_words(words, job.buffer1[0].net);
+  job.planes = PlaneGenerator::generate(job.o, job.d);
+  store_words(words, job.planes.n_u);
+  store_words(words, job.planes.e_u);
+  store_words(words, job.planes.n_v);
+  store_words(words, job.planes.e_v);
   job.n1 = 1;
   return job;
 }
 
 /// Substage 1 (L437): SplitInHalf in u of every buffer1 patch (one DSP each).
 template <typename T>
-void wang_split_u(const WangJob<T>& job, WangStageWork<T>& work) {
+void wang_split_u(const WangJob<T>& job, WangStageWork<T>& work,
+                  const FixedWords* words = nullptr) {
   for (int i = 0; i < job.n1; ++i) {
     const Subpatch<T>& parent = job.buffer1[i];
     for (Subpatch<T>* half : {&work.halves[2 * i], &work.halves[2 * i + 1]}) {
@@ -153,13 +164,16 @@ void wang_split_u(const WangJob<T>& job, WangStageWork<T>& work) {
       half->level = parent.level;
     }
     split_u(parent.net, work.halves[2 * i].net, work.halves[2 * i + 1].net);
+    store_words(words, work.halves[2 * i].net);
+    store_words(words, work.halves[2 * i + 1].net);
   }
 }
 
 /// Substage 2 (L438): SplitInHalf in v of every half -> buffer2, four quadrants a buffer1 patch
 /// in eq. 11's order (PatchSubdivider::subdivide's, bit for bit).
 template <typename T>
-void wang_split_v(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& counters) {
+void wang_split_v(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& counters,
+                  const FixedWords* words = nullptr) {
   for (int i = 0; i < job.n1; ++i) {
     Subpatch<T>* out = &work.buffer2[4 * i];
     split_v(work.halves[2 * i].net, out[kTL].net, out[kBL].net);
@@ -169,6 +183,7 @@ void wang_split_v(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& c
       out[q].iu = 2 * parent.iu + static_cast<std::uint32_t>(quadrant_u_half(q));
       out[q].iv = 2 * parent.iv + static_cast<std::uint32_t>(quadrant_v_half(q));
       out[q].level = parent.level + 1;
+      store_words(words, out[q].net);
     }
   }
   work.n2 = 4 * job.n1;
@@ -194,12 +209,15 @@ void wang_hull(const WangJob<T>& job, WangStageWork<T>& work, WangCounters& coun
 /// Substage 4 (L440): PatchCenter and PatchDistance -> the sort keys. Empty slots and hull
 /// failures get the "behind" flag (see Culler::select).
 template <typename T>
-void wang_center_distance(const WangJob<T>& job, WangStageWork<T>& work) {
+void wang_center_distance(const WangJob<T>& job, WangStageWork<T>& work,
+                          const FixedWords* words = nullptr) {
   if (job.n1 == 0) return;
   work.keys.fill(T(PatchDistance::kBehind));
   for (int i = 0; i < work.n2; ++i) {
     work.centers[i] = PatchCenter::center(work.buffer2[i].net);
-    const T dist = PatchDistance::distance(job.o, job.d, work.centers[i]);
+    store_words(words, work.centers[i]);
+    T dist = PatchDistance::distance(job.o, job.d, work.centers[i]);
+    store_words(words, dist);
     work.keys[i] = work.may_hit[i] ? dist : T(PatchDistance::kBehind);
   }
 }
@@ -222,11 +240,11 @@ void wang_cull(WangJob<T>& job, const WangStageWork<T>& work, WangCounters& coun
 /// Stage 0 (step 1): planes U and V; the input patch into four -> buffer1.
 template <typename T>
 WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
-                       WangCounters& counters) {
-  WangJob<T> job = wang_planes(net, o, d, counters);
+                       WangCounters& counters, const FixedWords* words = nullptr) {
+  WangJob<T> job = wang_planes(net, o, d, counters, words);
   WangStageWork<T> work;
-  wang_split_u(job, work);
-  wang_split_v(job, work, counters);
+  wang_split_u(job, work, words);
+  wang_split_v(job, work, counters, words);
   wang_stage0_output(job, work);
   return job;
 }
@@ -234,14 +252,15 @@ WangJob<T> wang_stage0(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<
 /// One loop stage (steps 2-4): every buffer1 patch into four, hull classification, centre and
 /// distance of each, and the Culler's four nearest -> buffer1. An empty job passes unchanged.
 template <typename T>
-void wang_loop_stage(WangJob<T>& job, WangCounters& counters, const CullerConfig& culler = {}) {
+void wang_loop_stage(WangJob<T>& job, WangCounters& counters, const CullerConfig& culler = {},
+                     const FixedWords* words = nullptr) {
   if (job.n1 == 0) return;
   ++counters.iterations;
   WangStageWork<T> work;
-  wang_split_u(job, work);
-  wang_split_v(job, work, counters);
+  wang_split_u(job, work, words);
+  wang_split_v(job, work, counters, words);
   wang_hull(job, work, counters);
-  wang_center_distance(job, work);
+  wang_center_distance(job, work, words);
   wang_cull(job, work, counters, culler);
 }
 
@@ -269,10 +288,10 @@ WangResult<T> wang_output(const WangJob<T>& job, int iterations, WangCounters& c
 template <typename T>
 WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const Vec3T<T>& d,
                              int iterations, WangCounters* counters = nullptr,
-                             const CullerConfig& culler = {}) {
+                             const CullerConfig& culler = {}, const FixedWords* words = nullptr) {
   WangCounters local;
-  WangJob<T> job = wang_stage0(net, o, d, local);
-  for (int it = 0; it < iterations && job.n1 > 0; ++it) wang_loop_stage(job, local, culler);
+  WangJob<T> job = wang_stage0(net, o, d, local, words);
+  for (int it = 0; it < iterations && job.n1 > 0; ++it) wang_loop_stage(job, local, culler, words);
   const WangResult<T> result = wang_output(job, iterations, local);
   if (counters) *counters += local;
   return result;
@@ -280,10 +299,11 @@ WangResult<T> wang_intersect(const ControlNet<T>& net, const Vec3T<T>& o, const 
 
 extern template WangResult<float> wang_intersect<float>(const ControlNet<float>&,
                                                         const Vec3T<float>&, const Vec3T<float>&,
-                                                        int, WangCounters*, const CullerConfig&);
+                                                        int, WangCounters*, const CullerConfig&,
+                                                        const FixedWords*);
 extern template WangResult<double> wang_intersect<double>(const ControlNet<double>&,
                                                           const Vec3T<double>&,
                                                           const Vec3T<double>&, int, WangCounters*,
-                                                          const CullerConfig&);
+                                                          const CullerConfig&, const FixedWords*);
 
 }  // namespace rtsim::kernels

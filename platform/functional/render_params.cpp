@@ -1,5 +1,6 @@
 #include "platform/functional/render_params.hpp"
 
+#include "common/input_error.hpp"
 #include "modules/module_params.hpp"
 
 namespace rtsim::functional {
@@ -75,6 +76,34 @@ const modules::IntParam kBezierCullerKeyBits(
                     "fewer keep only the distance's top bits, so near subpatches tie and the tag "
                     "decides (12: the prototype's scaled-down Culler). The twin culls alike",
      .source = "seed 002 L304-L306 (36-bit keys), L316 (the 12-bit prototype)"});
+const modules::ChoiceParam kBezierArithmetic(
+    {.name = "bezier.arithmetic",
+     .default_value = "float32",
+     .allowed = {"float32", "float64", "fixed"},
+     .description = "Arithmetic of Wang's pipeline: the DSPs' single precision, double, or fixed "
+                    "point (words of bezier.fixed_bits bits, bezier.fixed_integer_bits above the "
+                    "point: every word a block writes rounded and saturated). The jobs' words "
+                    "stay singles; the twin computes alike",
+     .source = "seed 002 L296 (the TMS320C6701's single precision); double and fixed point are "
+               "what-ifs"});
+const modules::IntParam kBezierFixedBits(
+    {.name = "bezier.fixed_bits",
+     .default_value = "24",
+     .min = "8",
+     .max = "53",
+     .unit = "bits",
+     .description = "Width of a fixed-point word (bezier.arithmetic = fixed), the sign included",
+     .source = "what-if: the paper's DSPs are floating point; 53 bits is all a double holds"});
+const modules::IntParam kBezierFixedIntegerBits(
+    {.name = "bezier.fixed_integer_bits",
+     .default_value = "8",
+     .min = "2",
+     .max = "32",
+     .unit = "bits",
+     .description = "Bits of a fixed-point word above the binary point, the sign included: "
+                    "words saturate at +-2^(bits - 1) (8: +-128, room for a scene of tens of "
+                    "units and the distances to it)",
+     .source = "what-if (the teapot spans about 6 units, its camera about 20 away)"});
 const modules::IntParam kSceneSeed(
     {.name = "scene.seed",
      .default_value = "0",
@@ -126,6 +155,9 @@ void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) 
   if (use.bezier) {
     top.add(kBezierIterations);
     top.add(kBezierCullerKeyBits);
+    top.add(kBezierArithmetic);
+    top.add(kBezierFixedBits);
+    top.add(kBezierFixedIntegerBits);
   }
   top.add(kSceneSeed);
   top.add(kAmbient);
@@ -159,6 +191,18 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
   if (r.contains(kBezierIterations.name())) {
     s.bezier_iterations = static_cast<int>(p.get(kBezierIterations));
     s.bezier_culler_key_bits = static_cast<int>(p.get(kBezierCullerKeyBits));
+    using Kind = kernels::WangArithmetic::Kind;
+    const std::string arithmetic = p.get(kBezierArithmetic);
+    s.bezier_arithmetic.kind = arithmetic == "float64" ? Kind::kFloat64
+                               : arithmetic == "fixed" ? Kind::kFixed
+                                                       : Kind::kFloat32;
+    s.bezier_arithmetic.fixed.bits = static_cast<int>(p.get(kBezierFixedBits));
+    s.bezier_arithmetic.fixed.integer_bits = static_cast<int>(p.get(kBezierFixedIntegerBits));
+    if (s.bezier_arithmetic.fixed.integer_bits >= s.bezier_arithmetic.fixed.bits)
+      throw InputError(std::string(kBezierFixedIntegerBits.name()), 0,
+                       "must be less than bezier.fixed_bits (" +
+                           std::to_string(s.bezier_arithmetic.fixed.bits) +
+                           "): a fixed-point word needs a bit below the point");
   }
   s.scene_seed = read_scene_seed(r);
   s.shade.ambient = p.get(kAmbient);

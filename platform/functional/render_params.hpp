@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "firmware/kernels/wang_arithmetic.hpp"
 #include "firmware/shading/shade_params.hpp"
 #include "params/registry.hpp"
 
@@ -34,8 +35,9 @@ struct RenderSettings {
   int shell_branching = 4;
   int shell_leaf_size = 8;
   int bezier_iterations = 10;
-  int bezier_culler_key_bits = 36;  ///< bezier.culler_key_bits
-  std::uint64_t scene_seed = 0;     ///< 0: each generator's own default seed
+  int bezier_culler_key_bits = 36;            ///< bezier.culler_key_bits
+  kernels::WangArithmetic bezier_arithmetic;  ///< bezier.arithmetic, .fixed_bits, ...
+  std::uint64_t scene_seed = 0;               ///< 0: each generator's own default seed
   shading::ShadeParams shade;
 };
 

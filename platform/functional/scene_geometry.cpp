@@ -141,7 +141,8 @@ SceneGeometry convert_scene(const scenes::Scene& scene, const RenderSettings& se
       case scenes::PrimitiveKind::Patch:
         add(PatchShape{std::make_unique<const kernels::BezierPatchKernel>(
                 kernels::BezierPatchKernel::from(scene.patches[p.index], settings.bezier_iterations,
-                                                 settings.bezier_culler_key_bits))},
+                                                 settings.bezier_culler_key_bits,
+                                                 settings.bezier_arithmetic))},
             id, p.material);
         ++report.patches;
         break;

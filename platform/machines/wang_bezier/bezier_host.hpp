@@ -53,7 +53,7 @@ class BezierHost : public modules::Processor {
     shading::TracedRay ray;
     bool first_sample = false;
     std::uint32_t outstanding = 0;
-    std::map<std::uint32_t, kernels::WangResult<float>> answers;  ///< by patch slot
+    std::map<std::uint32_t, kernels::WangResult<double>> answers;  ///< by patch slot
     sc_core::sc_time started;
     sc_core::sc_time culled;  ///< its pairs culled, its jobs queued
     /// The job answered last (--latency-probe follows it: the ray waits for it), and when the

@@ -191,11 +191,13 @@ SubstageSpec pool_spec(std::string name, SubstageWork work, unsigned dsps, std::
 }  // namespace
 
 BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& r,
-                               int loop_stages, int culler_key_bits)
+                               int loop_stages, int culler_key_bits,
+                               const kernels::WangArithmetic& arithmetic)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       input("input", 1),
-      result_out("result_out") {
+      result_out("result_out"),
+      arithmetic_(arithmetic) {
   const modules::ModuleParams p(r, this->name());
   const sc_core::sc_time t = p.get(kCycleTime);
   const auto loop_pool = [&](const Pool& pool, SubstageWork work) {
@@ -244,14 +246,16 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
         s.timing.issue = cycle;
         s.timing.latency = times(cycle, slots);
       }
-  const std::size_t depth = p.get(kBufferDepth);
   std::optional<modules::ModuleParams> link;
   if (p.get(kInterconnect) == "link") link.emplace(r, std::string(this->name()) + "." + kLink);
-  const modules::ModuleParams* links = link ? &*link : nullptr;
-  stage0_ = std::make_unique<PipelineStage>("stage0", stage0, depth, culler, links);
+  const Substage::Shared shared{.buffer_depth = p.get(kBufferDepth),
+                                .culler = culler,
+                                .arithmetic = arithmetic,
+                                .link = link ? &*link : nullptr};
+  stage0_ = std::make_unique<PipelineStage>("stage0", stage0, shared);
   for (int s = 1; s <= loop_stages; ++s)
-    loops_.push_back(std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop,
-                                                     depth, culler, links));
+    loops_.push_back(
+        std::make_unique<PipelineStage>(("loop" + std::to_string(s)).c_str(), loop, shared));
   if (const std::int64_t dead = p.get(kDeadStage); dead > 0) {
     if (dead > loop_stages)
       throw InputError(p.path_of(kDeadStage.name()), 0,
@@ -326,7 +330,19 @@ void BezierPipeline::leave(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   res.sent = f.job.sent;
   res.accepted = f.accepted;
   res.left = left;
-  res.result = kernels::wang_output(f.w, loop_stages(), counters_);
+  // What left the last stage, its words as the host reads them (a single's value is exact in
+  // double).
+  if (arithmetic_.wide()) {
+    res.result = kernels::wang_output(f.wide, loop_stages(), counters_);
+  } else {
+    const kernels::WangResult<float> r = kernels::wang_output(f.w, loop_stages(), counters_);
+    res.result = {.hit = r.hit,
+                  .point = Vec3T<double>(r.point),
+                  .u = r.u,
+                  .v = r.v,
+                  .level = r.level,
+                  .survivors = r.survivors};
+  }
   if (res.result.hit) ++hits_;
   modules::send_message(result_out, res, left, JobResult::kWireBits);
   delay = sc_core::SC_ZERO_TIME;

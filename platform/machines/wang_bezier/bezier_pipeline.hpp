@@ -47,9 +47,9 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
 
   SC_HAS_PROCESS(BezierPipeline);
   /// `loop_stages`: N (bezier.iterations); `culler_key_bits`: its sort keys' width
-  /// (bezier.culler_key_bits, as the twin's).
+  /// (bezier.culler_key_bits); `arithmetic`: bezier.arithmetic (all as the twin's).
   BezierPipeline(sc_core::sc_module_name name, const params::ParamRegistry& registry,
-                 int loop_stages, int culler_key_bits);
+                 int loop_stages, int culler_key_bits, const kernels::WangArithmetic& arithmetic);
 
   int loop_stages() const { return static_cast<int>(loops_.size()); }
   const PipelineStage& stage0() const { return *stage0_; }
@@ -74,6 +74,7 @@ class BezierPipeline : public sc_core::sc_module, public modules::StatGroup {
   /// The pipeline's output: the last substage hands a job here; its result goes to the host.
   void leave(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
 
+  kernels::WangArithmetic arithmetic_;
   std::vector<JobFault> faults_;
   JobInFlight flight_;
   std::unique_ptr<PipelineStage> stage0_;

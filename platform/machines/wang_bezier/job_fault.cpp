@@ -15,11 +15,15 @@ constexpr std::uint64_t kJobWords = PatchJob::kWireBits / 32;
 /// Words of a job between stages that a fault may change: O, D, the planes, buffer1's patches.
 constexpr std::uint64_t kStageWords = 6 + 8 + kernels::Culler::kSurvivors * 48;
 
-void flip(float& x, std::uint32_t mask) {
-  x = std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) ^ mask);
+/// A word on the wire (a single), its bits XORed: a wide arithmetic's word as it travels.
+template <typename T>
+void flip(T& x, std::uint32_t mask) {
+  x = static_cast<T>(
+      std::bit_cast<float>(std::bit_cast<std::uint32_t>(static_cast<float>(x)) ^ mask));
 }
 
-void flip_net(kernels::ControlNet<float>& net, std::uint64_t w, std::uint32_t mask) {
+template <typename T>
+void flip_net(kernels::ControlNet<T>& net, std::uint64_t w, std::uint32_t mask) {
   const std::uint64_t point = w / 3;
   flip(net.p[point / 4][point % 4][static_cast<int>(w % 3)], mask);
 }
@@ -36,19 +40,23 @@ void JobFault::apply(PatchJob& job) {
   flip_net(job.net, word - 6, xor_mask);
 }
 
-void JobFault::apply(kernels::WangJob<float>& job) {
+template <typename T>
+void JobFault::apply(kernels::WangJob<T>& job) {
   ++applied;
   if (word < 3) return flip(job.o[static_cast<int>(word)], xor_mask);
   if (word < 6) return flip(job.d[static_cast<int>(word - 3)], xor_mask);
   if (word < 14) {
-    kernels::RayPlanes<float>& p = job.planes;
-    float* plane_words[8] = {&p.n_u.x, &p.n_u.y, &p.n_u.z, &p.e_u,
-                             &p.n_v.x, &p.n_v.y, &p.n_v.z, &p.e_v};
+    kernels::RayPlanes<T>& p = job.planes;
+    T* plane_words[8] = {&p.n_u.x, &p.n_u.y, &p.n_u.z, &p.e_u,
+                         &p.n_v.x, &p.n_v.y, &p.n_v.z, &p.e_v};
     return flip(*plane_words[word - 6], xor_mask);
   }
   const std::uint64_t w = word - 14;
   flip_net(job.buffer1[w / 48].net, w % 48, xor_mask);
 }
+
+template void JobFault::apply(kernels::WangJob<float>&);
+template void JobFault::apply(kernels::WangJob<double>&);
 
 std::vector<JobFault> job_faults(const std::string& pipeline, int loop_stages,
                                  std::vector<MemoryFault>& faults) {

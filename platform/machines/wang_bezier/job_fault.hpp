@@ -29,7 +29,8 @@ struct JobFault {
   /// Where it strikes: "pipeline.input" or "pipeline.loopK.in".
   std::string at(const std::string& pipeline) const;
   void apply(PatchJob& job);
-  void apply(kernels::WangJob<float>& job);
+  template <typename T>
+  void apply(kernels::WangJob<T>& job);
 };
 
 /// The faults of `faults` on the pipeline `pipeline` ("pipeline") of `loop_stages` loop stages;

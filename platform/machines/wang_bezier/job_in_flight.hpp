@@ -25,9 +25,11 @@ enum class SubstageWork {
 };
 
 struct JobInFlight {
-  PatchJob job;  ///< as stage 0 received it: the ray's id, its slot, when it was sent
-  kernels::WangJob<float> w;
+  PatchJob job;               ///< as stage 0 received it: the ray's id, its slot, when it was sent
+  kernels::WangJob<float> w;  ///< in the DSPs' single precision (bezier.arithmetic float32)
   kernels::WangStageWork<float> work;
+  kernels::WangJob<double> wide;  ///< in double, or fixed point stored in double
+  kernels::WangStageWork<double> wide_work;
   sc_core::sc_time accepted;  ///< when stage 0 took it
   bool waited = false;        ///< it waited at the input for stage 0 (the pipeline was full)
 };

@@ -66,7 +66,7 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
   using wang_bezier::BezierPipeline;
   MachineRun run(name(), scene, twin, r, opts);
   BezierPipeline pipeline(kPipeline, r, twin.settings.bezier_iterations,
-                          twin.settings.bezier_culler_key_bits);
+                          twin.settings.bezier_culler_key_bits, twin.settings.bezier_arithmetic);
   std::optional<wang_bezier::ReferenceCheck> check;
   if (modules::ModuleParams(r, "").get(kAccuracyCheck)) {
     // The angle between the primary rays of two neighbouring pixels at the image's centre.

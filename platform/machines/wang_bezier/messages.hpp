@@ -23,7 +23,8 @@ struct PatchJob {
 struct JobResult {
   std::uint64_t ray = 0;
   std::uint32_t slot = 0;
-  kernels::WangResult<float> result;
+  /// What left the last stage (its single or wide words; a single is exact in double).
+  kernels::WangResult<double> result;
   sc_core::sc_time sent;  ///< when its job was issued (job latency)
   /// When stage 0 took its job, and when it left the last stage (--latency-probe: timing
   /// metadata, not on the wire).

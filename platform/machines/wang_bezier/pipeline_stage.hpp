@@ -24,12 +24,11 @@ class PipelineStage : public sc_core::sc_module {
  public:
   /// Its substages, in the order a job passes them (made here, so they are its children).
   PipelineStage(const sc_core::sc_module_name& name, const std::vector<SubstageSpec>& specs,
-                std::size_t buffer_depth, const kernels::CullerConfig& culler,
-                const modules::ModuleParams* link)
+                const Substage::Shared& shared)
       : sc_core::sc_module(name) {
     for (const SubstageSpec& s : specs)
-      substages_.push_back(std::make_unique<Substage>(s.name.c_str(), s.work, s.pool, s.timing,
-                                                      buffer_depth, culler, link));
+      substages_.push_back(
+          std::make_unique<Substage>(s.name.c_str(), s.work, s.pool, s.timing, shared));
   }
   const std::vector<std::unique_ptr<Substage>>& substages() const { return substages_; }
 

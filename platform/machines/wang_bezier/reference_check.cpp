@@ -79,7 +79,7 @@ nlohmann::ordered_json Agreement::to_json() const {
 }
 
 void ReferenceCheck::ray(const Ray& ray, double t_min, double t_max, bool primary,
-                         const std::map<std::uint32_t, kernels::WangResult<float>>& answers) {
+                         const std::map<std::uint32_t, kernels::WangResult<double>>& answers) {
   if (answers.empty()) return;
   const double t_enter = kernels::BezierPatchKernel::entry_t(t_min);
   const double no_footprint = std::numeric_limits<double>::quiet_NaN();

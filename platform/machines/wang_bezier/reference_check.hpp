@@ -71,7 +71,7 @@ class ReferenceCheck {
   /// not among them: their box cannot hold a hit). Each job is compared with the reference
   /// over [t_min, t_max]; for a primary ray (a pixel's first sample) also its nearest patch hit.
   void ray(const Ray& ray, double t_min, double t_max, bool primary,
-           const std::map<std::uint32_t, kernels::WangResult<float>>& answers);
+           const std::map<std::uint32_t, kernels::WangResult<double>>& answers);
 
   /// {jobs: Agreement over every job, rays: Agreement over the primary rays with at least one
   /// job}. Only primary rays: which secondary rays exist depends on the primary rays' answers.

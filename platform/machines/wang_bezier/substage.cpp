@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <type_traits>
 
 #include "modules/message_channel.hpp"
 #include "modules/sim_time.hpp"
@@ -11,8 +12,7 @@ namespace rtsim::platform::wang_bezier {
 using modules::plus;
 
 Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
-                   const Timing& timing, std::size_t buffer_depth,
-                   const kernels::CullerConfig& culler, const modules::ModuleParams* link)
+                   const Timing& timing, const Shared& shared)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       in("in"),
@@ -20,13 +20,14 @@ Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const
       work_(work),
       pool_(pool),
       timing_(timing),
-      culler_(culler),
-      depth_(std::max<std::size_t>(1, buffer_depth)),
+      culler_(shared.culler),
+      arithmetic_(shared.arithmetic),
+      depth_(std::max<std::size_t>(1, shared.buffer_depth)),
       taken_(std::bit_ceil(depth_), sc_core::SC_ZERO_TIME),
       ring_mask_(taken_.size() - 1) {
   in.bind(*this);
   out.bind(*this);
-  if (link) link_ = std::make_unique<modules::Link>(stat_path() + ".link", *link);
+  if (shared.link) link_ = std::make_unique<modules::Link>(stat_path() + ".link", *shared.link);
   if (work_ == SubstageWork::kCull)
     kept_ = std::make_unique<modules::Counter>(*this, "kept",
                                                "candidates it kept (at most 4 a job, L256)");
@@ -37,38 +38,48 @@ sc_core::sc_time Substage::taken_ago(std::size_t ago) const {
   return taken_[(count_ - ago) & ring_mask_];
 }
 
-void Substage::compute(JobInFlight& f) {
+template <typename T>
+void Substage::compute(const PatchJob& in, kernels::WangJob<T>& w,
+                       kernels::WangStageWork<T>& work) {
   using namespace kernels;
+  const FixedWords* words = arithmetic_.words();
+  // Stage 0 takes the job's single-precision words into the arithmetic.
+  const auto planes = [&] {
+    if constexpr (std::is_same_v<T, float>)
+      w = wang_planes(in.net, in.o, in.d, counters_, words);
+    else
+      w = wang_planes(convert_net<T>(in.net), Vec3T<T>(in.o), Vec3T<T>(in.d), counters_, words);
+  };
   switch (work_) {
     case SubstageWork::kPlanesSplitU:
-      f.w = wang_planes(f.job.net, f.job.o, f.job.d, counters_);
-      wang_split_u(f.w, f.work);
+      planes();
+      wang_split_u(w, work, words);
       return;
     case SubstageWork::kSplitVOutput:
-      wang_split_v(f.w, f.work, counters_);
-      wang_stage0_output(f.w, f.work);
+      wang_split_v(w, work, counters_, words);
+      wang_stage0_output(w, work);
       return;
     case SubstageWork::kSubdivider:
-      f.w = wang_planes(f.job.net, f.job.o, f.job.d, counters_);
-      wang_split_u(f.w, f.work);
-      wang_split_v(f.w, f.work, counters_);
-      wang_stage0_output(f.w, f.work);
+      planes();
+      wang_split_u(w, work, words);
+      wang_split_v(w, work, counters_, words);
+      wang_stage0_output(w, work);
       return;
     case SubstageWork::kSplitU:
-      wang_split_u(f.w, f.work);
+      wang_split_u(w, work, words);
       return;
     case SubstageWork::kSplitV:
-      wang_split_v(f.w, f.work, counters_);
+      wang_split_v(w, work, counters_, words);
       return;
     case SubstageWork::kHull:
-      wang_hull(f.w, f.work, counters_);
+      wang_hull(w, work, counters_);
       return;
     case SubstageWork::kCenterDistance:
-      wang_center_distance(f.w, f.work);
+      wang_center_distance(w, work, words);
       return;
     case SubstageWork::kCull:
-      wang_cull(f.w, f.work, counters_, culler_);
-      *kept_ += static_cast<std::uint64_t>(f.w.n1);
+      wang_cull(w, work, counters_, culler_);
+      *kept_ += static_cast<std::uint64_t>(w.n1);
       return;
   }
 }
@@ -80,8 +91,14 @@ void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   taken_[count_ & ring_mask_] = start;
   ++count_;
   ++jobs_;
-  for (JobFault* fault : faults_) fault->apply(f.w);  // as it arrived
-  if (!dead_) compute(f);
+  // The data, in the pipeline's arithmetic, as it arrived.
+  if (arithmetic_.wide()) {
+    for (JobFault* fault : faults_) fault->apply(f.wide);
+    if (!dead_) compute(f.job, f.wide, f.wide_work);
+  } else {
+    for (JobFault* fault : faults_) fault->apply(f.w);
+    if (!dead_) compute(f.job, f.w, f.work);
+  }
   busy_.record(start, timing_.work);
   // D(j), then O(j): the next buffer has room once the next substage took job j - depth.
   const sc_core::sc_time ready = plus(start, timing_.latency);

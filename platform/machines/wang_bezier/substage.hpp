@@ -60,11 +60,16 @@ class Substage : public sc_core::sc_module,
     sc_core::sc_time latency;  ///< from taking a job to handing it on, unblocked
   };
 
-  /// `culler`: how a kCull substage sorts (the others ignore it); `link`: its output link's
-  /// parameters (pipeline.link), or none for an infinitely fast hand-over.
+  /// What every substage of the pipeline shares.
+  struct Shared {
+    std::size_t buffer_depth = 1;                 ///< pipeline.buffer_depth
+    kernels::CullerConfig culler;                 ///< how a Culler sorts
+    kernels::WangArithmetic arithmetic;           ///< bezier.arithmetic, as the twin's
+    const modules::ModuleParams* link = nullptr;  ///< pipeline.link, or none (instant)
+  };
+
   Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
-           const Timing& timing, std::size_t buffer_depth, const kernels::CullerConfig& culler,
-           const modules::ModuleParams* link);
+           const Timing& timing, const Shared& shared);
 
   /// Faults: `fault` corrupts every job entering it; a dead substage passes every job on
   /// unchanged (it computes nothing; its timing stays).
@@ -84,7 +89,10 @@ class Substage : public sc_core::sc_module,
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
-  void compute(JobInFlight& f);
+  /// Its work on the job in the pipeline's arithmetic: `w` and `work` are the job's float or
+  /// wide (double) copies.
+  template <typename T>
+  void compute(const PatchJob& in, kernels::WangJob<T>& w, kernels::WangStageWork<T>& work);
   tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
                                      sc_core::sc_time&) override {
     return tlm::TLM_COMPLETED;
@@ -101,6 +109,7 @@ class Substage : public sc_core::sc_module,
   Pool pool_;
   Timing timing_;
   kernels::CullerConfig culler_;
+  kernels::WangArithmetic arithmetic_;
   const Substage* next_ = nullptr;
   std::vector<JobFault*> faults_;
   bool dead_ = false;
