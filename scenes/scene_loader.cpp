@@ -70,6 +70,9 @@ const std::vector<BuiltinScene>& builtin_scenes() {
     list.push_back({"spd-teapot",
                     "SPD's teapot scene: the same patches as 992 triangles with vertex normals "
                     "on a checkerboard, 2 lights"});
+    list.push_back({"spd-teapot-patches",
+                    "SPD's teapot scene with the teapot as its 32 Bezier patches: patches beside "
+                    "the checkerboard's 4 polygons, 2 lights"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -95,6 +98,7 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
   if (name == "teapot") return make_newell_teapot();
   if (name == "spd-teapot") return make_spd_teapot();
+  if (name == "spd-teapot-patches") return make_spd_teapot_patches();
   int n = 0;
   int pp = 0;
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);

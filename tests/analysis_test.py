@@ -508,14 +508,34 @@ class WangArithmeticTest(ScratchTest):
         # 400 reference hits each; the narrow word loses 200, the wide ones 8 like float32.
         self.write([self.row("fixed", 24, 4, 0, 4, 1e-4), self.row("float32", 24, 4, 0, 4, 1e-4),
                     self.row("fixed", 12, 100, 60, 40, 3e-3)])
-        floats, fixed = wang_arithmetic.arithmetic_table(sweep_plot.read_results(self.dir))
+        table = wang_arithmetic.arithmetic_table(sweep_plot.read_results(self.dir))
+        self.assertEqual(list(table), ["the sweep"])
+        floats, fixed = table["the sweep"]
         self.assertEqual(list(floats), ["float32"])
         self.assertEqual([r["bits"] for r in fixed], [12, 24])
         self.assertAlmostEqual(fixed[0]["wrong"], 200 / 400)
         self.assertAlmostEqual(floats["float32"]["wrong"], 8 / 400)
-        self.assertIn("| fixed 12 bits | 100 | 60 | 40 | 50.00% |",
-                      wang_arithmetic.markdown(floats, fixed))
+        self.assertIn("| the sweep | fixed 12 bits | 100 | 60 | 40 | 50.00% |",
+                      wang_arithmetic.markdown(table))
         out = os.path.join(self.dir, "a.png")
+        r = run_script("wang_arithmetic.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_a_series_per_scene_and_view(self):
+        rows = []
+        for scene in ("builtin:a", "builtin:b"):
+            for azimuth in (0, 120):
+                for kind, bits in (("float32", 24), ("fixed", 16), ("fixed", 24)):
+                    row = self.row(kind, bits, 4, 0, 4, 1e-4)
+                    row.update({"scene": scene, "view.azimuth_deg": azimuth})
+                    rows.append(row)
+        self.write(rows)
+        table = wang_arithmetic.arithmetic_table(sweep_plot.read_results(self.dir))
+        self.assertEqual(sorted(table), ["builtin:a, azimuth 0", "builtin:a, azimuth 120",
+                                         "builtin:b, azimuth 0", "builtin:b, azimuth 120"])
+        self.assertEqual([r["bits"] for r in table["builtin:b, azimuth 120"][1]], [16, 24])
+        out = os.path.join(self.dir, "s.png")
         r = run_script("wang_arithmetic.py", self.dir, out)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGoodPng(out)

@@ -79,6 +79,29 @@ TEST(WangBezier, EveryArithmeticGivesTheTwinsImage) {
   EXPECT_NE(r.output.find("bezier.fixed_integer_bits"), std::string::npos) << r.output;
 }
 
+// Other views (view.azimuth_deg, view.elevation_deg turn the eye about what it looks at) and
+// SPD's teapot scene with the teapot as patches beside its checkerboard's polygons: the machine
+// renders its twin's image in each, and a turned view is another image.
+TEST(WangBezier, OtherViewsAndAMixedSceneGiveTheTwinsImage) {
+  const std::string base = " --width 32 --height 32 --overhead";
+  const auto front = run_wang("view-0", "--scene builtin:teapot" + base);
+  ASSERT_FALSE(front.empty());
+  for (const char* view :
+       {"--scene builtin:teapot -p view.azimuth_deg=120",
+        "--scene builtin:teapot -p view.azimuth_deg=240 -p view.elevation_deg=-20",
+        "--scene builtin:spd-teapot-patches",
+        "--scene builtin:spd-teapot-patches -p "
+        "view.elevation_deg=30 -p bezier.arithmetic=fixed"}) {
+    const auto s = run_wang("view", view + base);
+    ASSERT_FALSE(s.empty()) << view;
+    EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << view;
+    EXPECT_GT(s["wang"]["jobs"].get<double>(), 0) << view;
+    EXPECT_NE(read_file(s.at("image_png").get<std::string>()),
+              read_file(front.at("image_png").get<std::string>()))
+        << view;
+  }
+}
+
 // The Culler's key width (bezier.culler_key_bits): 36 bits (the default) sorts exactly; the
 // prototype's 12 bits (L316) tie near subpatches and keep others, which changes the image. The
 // twin culls with the same keys, so the machine's image is still the functional render's; and

@@ -1,5 +1,6 @@
 #pragma once
-// A view and lights for scenes whose files have none (.bpt patch files).
+// A view and lights for scenes whose files have none (.bpt patch files), and other views of a
+// scene (view.azimuth_deg, view.elevation_deg).
 #include "firmware/bounds.hpp"
 #include "firmware/scene.hpp"
 
@@ -18,5 +19,11 @@ inline constexpr int kAutoViewResolution = 512;
 /// bounding sphere about fills the view; adds two white lights (key and fill) if the scene has
 /// none.
 void frame_automatically(scenes::Scene& scene, const Bounds& bounds);
+
+/// Turns the camera's eye about the point it looks at: `azimuth_deg` about its up vector
+/// (counter-clockwise seen from above), then `elevation_deg` toward up, the elevation kept
+/// within 89 degrees of the horizontal. Its distance, field of view and up stay. A camera
+/// looking along its up turns about an arbitrary horizontal.
+void turn_view(scenes::Camera& camera, double azimuth_deg, double elevation_deg);
 
 }  // namespace rtsim::functional

@@ -140,6 +140,25 @@ const modules::RealParam kLightIntensity(
      .description = "Intensity of each point light; 0 = 1/sqrt(number of lights)",
      .source = "assumption: keeps scenes with many lights from burning out"});
 
+const modules::RealParam kViewAzimuth(
+    {.name = "view.azimuth_deg",
+     .default_value = "0",
+     .min = "-360",
+     .max = "360",
+     .unit = "degrees",
+     .description = "Turns the eye about the vertical (the camera's up) through the point it "
+                    "looks at, counter-clockwise seen from above; lights stay",
+     .source = "a study setting (other views of a scene, or of a .bpt file's automatic one)"});
+const modules::RealParam kViewElevation(
+    {.name = "view.elevation_deg",
+     .default_value = "0",
+     .min = "-89",
+     .max = "89",
+     .unit = "degrees",
+     .description = "Raises the eye toward the camera's up (negative: lowers it) about the point "
+                    "it looks at, its elevation kept within 89 degrees of the horizontal",
+     .source = "a study setting (other views of a scene)"});
+
 }  // namespace
 
 void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) {
@@ -164,6 +183,8 @@ void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) 
   top.add(kMaxDepth);
   top.add(kContributionThreshold);
   top.add(kLightIntensity);
+  top.add(kViewAzimuth);
+  top.add(kViewElevation);
 }
 
 std::uint64_t read_scene_seed(const params::ParamRegistry& r) {
@@ -209,6 +230,8 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
   s.shade.max_depth = static_cast<int>(p.get(kMaxDepth));
   s.shade.contribution_threshold = p.get(kContributionThreshold);
   s.shade.light_intensity = p.get(kLightIntensity);
+  s.view_azimuth_deg = p.get(kViewAzimuth);
+  s.view_elevation_deg = p.get(kViewElevation);
   return s;
 }
 

@@ -38,6 +38,8 @@ struct RenderSettings {
   int bezier_culler_key_bits = 36;            ///< bezier.culler_key_bits
   kernels::WangArithmetic bezier_arithmetic;  ///< bezier.arithmetic, .fixed_bits, ...
   std::uint64_t scene_seed = 0;               ///< 0: each generator's own default seed
+  double view_azimuth_deg = 0.0;    ///< view.azimuth_deg: the eye turned about the vertical
+  double view_elevation_deg = 0.0;  ///< view.elevation_deg: the eye raised
   shading::ShadeParams shade;
 };
 

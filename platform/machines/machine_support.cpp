@@ -17,6 +17,8 @@ FunctionalTwin make_functional_twin(scenes::Scene& scene, const functional::Rend
   twin.settings = s;
   twin.geometry = std::make_unique<functional::SceneGeometry>(functional::convert_scene(scene, s));
   if (!scene.has_camera) functional::frame_automatically(scene, twin.geometry->scene_bounds);
+  if (s.view_azimuth_deg != 0.0 || s.view_elevation_deg != 0.0)
+    functional::turn_view(scene.camera, s.view_azimuth_deg, s.view_elevation_deg);
   twin.settings.shade.scene_extent = functional::scene_extent(twin.geometry->scene_bounds);
   try {
     twin.tracer = functional::make_tracer(*twin.geometry, scene, twin.settings);

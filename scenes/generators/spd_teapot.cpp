@@ -60,12 +60,11 @@ void add_polygon(Scene& s, std::vector<Vec3> vertices, std::vector<Vec3> normals
   s.polygons.push_back({std::move(vertices), std::move(normals)});
 }
 
-}  // namespace
-
-Scene make_spd_teapot(int steps) {
-  const Scene patches = make_newell_teapot();
+/// SPD's teapot scene without its teapot: the view, lights, background, materials (the teapot's
+/// is 2) and the checkerboard.
+Scene spd_teapot_setting(const char* name) {
   Scene s;
-  s.name = "builtin:spd-teapot";
+  s.name = name;
   // SPD teapot's view, lights and background (teapot-s2.nff lines 1-10).
   s.has_camera = true;
   s.camera.from = Vec3(4.86, 7.2, 5.4);
@@ -90,6 +89,14 @@ Scene make_spd_teapot(int steps) {
   square(0, -4, 0);
   square(-4, -4, 1);
   square(0, 0, 1);
+  return s;
+}
+
+}  // namespace
+
+Scene make_spd_teapot(int steps) {
+  const Scene patches = make_newell_teapot();
+  Scene s = spd_teapot_setting("builtin:spd-teapot");
   // The teapot: each patch on a steps x steps grid, two triangles a cell.
   for (const BezierPatch& patch : patches.patches) {
     std::vector<SurfacePoint> grid;
@@ -110,6 +117,17 @@ Scene make_spd_teapot(int steps) {
           add_polygon(s, {t[0]->p, t[1]->p, t[2]->p}, {t[0]->n, t[1]->n, t[2]->n}, 2);
         }
       }
+  }
+  return s;
+}
+
+Scene make_spd_teapot_patches() {
+  const Scene teapot = make_newell_teapot();
+  Scene s = spd_teapot_setting("builtin:spd-teapot-patches");
+  for (const BezierPatch& patch : teapot.patches) {
+    s.primitives.push_back(
+        {PrimitiveKind::Patch, static_cast<std::uint32_t>(s.patches.size()), 2, 0});
+    s.patches.push_back(patch);
   }
   return s;
 }

@@ -13,4 +13,9 @@ namespace rtsim::scenes {
 /// with no area (at the lid's and bottom's poles) are left out.
 Scene make_spd_teapot(int steps = 4);
 
+/// builtin:spd-teapot-patches: the same scene with the teapot kept as its 32 Bezier patches
+/// (as SPD's generator can also write it): patches beside polygons, for Wang's pipeline, whose
+/// host intersects the checkerboard itself.
+Scene make_spd_teapot_patches();
+
 }  // namespace rtsim::scenes
