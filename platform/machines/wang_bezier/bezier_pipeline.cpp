@@ -210,6 +210,9 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
                                     loop_pool(kCenterDistance, SubstageWork::kCenterDistance)};
   kernels::CullerConfig culler;
   culler.key_bits = culler_key_bits;
+  // Read whichever Culler and stage-0 mapping is chosen (so a misspelt name is always caught).
+  const std::uint64_t software_cycles = p.get(kCullerSoftwareCycles);
+  const std::uint64_t subdivider_cycles = p.get(kSubdividerCycles);
   if (p.get(kCullerKind) == "asic") {
     culler.network = true;  // the bitonic network (L310); the software sorts (Culler::select)
     const sc_core::sc_time delay = p.get(kCullerDelay);
@@ -219,7 +222,7 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
                                 : delay;
     loop.push_back({"culler", SubstageWork::kCull, {}, {delay, issue, delay}});
   } else {
-    loop.push_back(pool_spec("culler", SubstageWork::kCull, 1, 1, p.get(kCullerSoftwareCycles), t));
+    loop.push_back(pool_spec("culler", SubstageWork::kCull, 1, 1, software_cycles, t));
   }
   // Stage 0 (L284): the first split and the planes.
   std::vector<SubstageSpec> stage0;
@@ -230,8 +233,8 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
     stage0 = {pool_spec("split_u", SubstageWork::kPlanesSplitU, 2, 2, std::max(half, plane), t),
               pool_spec("split_v", SubstageWork::kSplitVOutput, 2, 2, half, t)};
   } else {
-    stage0 = {pool_spec("subdivider", SubstageWork::kSubdivider, 1, 1,
-                        p.get(kSubdividerCycles) + plane, t)};
+    stage0 = {
+        pool_spec("subdivider", SubstageWork::kSubdivider, 1, 1, subdivider_cycles + plane, t)};
   }
   // The pipeline cycle: the slowest substage's issue interval (L437). Advancing by it, every
   // substage holds a job whole cycles.
@@ -247,7 +250,16 @@ BezierPipeline::BezierPipeline(sc_core::sc_module_name name, const params::Param
         s.timing.latency = times(cycle, slots);
       }
   std::optional<modules::ModuleParams> link;
-  if (p.get(kInterconnect) == "link") link.emplace(r, std::string(this->name()) + "." + kLink);
+  if (p.get(kInterconnect) == "link") {
+    link.emplace(r, std::string(this->name()) + "." + kLink);
+  } else {
+    // Read (and so checked) whatever the interconnect: a link parameter set without it is
+    // harmless, not a misspelling.
+    const modules::ModuleParams unused(r, std::string(this->name()) + "." + kLink);
+    (void)unused.get_time("latency");
+    (void)unused.get_count("lanes");
+    (void)unused.get_time("bit_time");
+  }
   const Substage::Shared shared{.buffer_depth = p.get(kBufferDepth),
                                 .culler = culler,
                                 .arithmetic = arithmetic,
