@@ -19,18 +19,13 @@ PolygonEngine::PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t 
                              const EngineTiming& timing, const sc_core::sc_time& serialisation,
                              const sc_core::sc_time& link_latency, const HeldPolygons& held,
                              modules::Link* recorded_link)
-    : sc_core::sc_module(name),
-      in("in"),
-      out("out"),
+    : modules::ChainHop(name),
       index_(index),
       timing_(timing),
       serialisation_(serialisation),
       link_latency_(link_latency),
       held_(held),
-      recorded_link_(recorded_link) {
-  in.bind(*this);
-  out.bind(*this);
-}
+      recorded_link_(recorded_link) {}
 
 void PolygonEngine::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   // The description is in its input register `delay` from now; it accepts it an issue interval

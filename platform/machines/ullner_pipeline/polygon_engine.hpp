@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "firmware/kernels/ullner_quad.hpp"
+#include "modules/chain_hop.hpp"
 #include "modules/link.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
 #include "platform/machines/ullner_pipeline/description_fault.hpp"
@@ -36,13 +37,10 @@ struct HeldPolygons {
   std::vector<std::uint64_t>* overwrites = nullptr;
 };
 
-class PolygonEngine : public sc_core::sc_module,
-                      public tlm::tlm_fw_transport_if<>,
-                      public tlm::tlm_bw_transport_if<> {
+/// `in`: from the previous processor (or the host's end); `out`: to the next (or the chain's
+/// far end).
+class PolygonEngine : public modules::ChainHop {
  public:
-  tlm::tlm_target_socket<> in;      ///< from the previous processor (or the host's end)
-  tlm::tlm_initiator_socket<> out;  ///< to the next processor (or the chain's far end)
-
   /// Processor `index` with `timing`; its output link carries a description in `serialisation`
   /// and delivers it `link_latency` later. `recorded_link`, when given, is the kit link whose
   /// statistics its output stands for (the first inner link, pipeline.link).
@@ -73,17 +71,6 @@ class PolygonEngine : public sc_core::sc_module,
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
-  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
-                                     sc_core::sc_time&) override {
-    return tlm::TLM_COMPLETED;
-  }
-  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
-  unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
-  tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
-                                     sc_core::sc_time&) override {
-    return tlm::TLM_COMPLETED;
-  }
-  void invalidate_direct_mem_ptr(sc_dt::uint64, sc_dt::uint64) override {}
 
   std::uint64_t index_;
   EngineTiming timing_;

@@ -13,10 +13,8 @@ using modules::plus;
 
 Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const Pool& pool,
                    const Timing& timing, const Shared& shared)
-    : sc_core::sc_module(name),
+    : modules::ChainHop(name),
       modules::StatGroup(sc_core::sc_module::name()),
-      in("in"),
-      out("out"),
       work_(work),
       pool_(pool),
       timing_(timing),
@@ -25,8 +23,6 @@ Substage::Substage(const sc_core::sc_module_name& name, SubstageWork work, const
       depth_(std::max<std::size_t>(1, shared.buffer_depth)),
       taken_(std::bit_ceil(depth_), sc_core::SC_ZERO_TIME),
       ring_mask_(taken_.size() - 1) {
-  in.bind(*this);
-  out.bind(*this);
   if (shared.link) link_ = std::make_unique<modules::Link>(stat_path() + ".link", *shared.link);
   if (work_ == SubstageWork::kCull)
     kept_ = std::make_unique<modules::Counter>(*this, "kept",

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "firmware/kernels/bezier_wang.hpp"
+#include "modules/chain_hop.hpp"
 #include "modules/link.hpp"
 #include "modules/module_params.hpp"
 #include "modules/statistics.hpp"
@@ -40,14 +41,10 @@
 
 namespace rtsim::platform::wang_bezier {
 
-class Substage : public sc_core::sc_module,
-                 public modules::StatGroup,
-                 public tlm::tlm_fw_transport_if<>,
-                 public tlm::tlm_bw_transport_if<> {
+/// `in`: from the previous substage (or the pipeline's input); `out`: to the next (or the
+/// pipeline's output).
+class Substage : public modules::ChainHop, public modules::StatGroup {
  public:
-  tlm::tlm_target_socket<> in;      ///< from the previous substage (or the pipeline's input)
-  tlm::tlm_initiator_socket<> out;  ///< to the next substage (or the pipeline's output)
-
   /// Its resource: `dsps` DSPs (0: custom hardware) doing `units` calls of `cycles` a job.
   struct Pool {
     unsigned dsps = 0;
@@ -93,17 +90,6 @@ class Substage : public sc_core::sc_module,
   /// wide (double) copies.
   template <typename T>
   void compute(const PatchJob& in, kernels::WangJob<T>& w, kernels::WangStageWork<T>& work);
-  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
-                                     sc_core::sc_time&) override {
-    return tlm::TLM_COMPLETED;
-  }
-  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
-  unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
-  tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
-                                     sc_core::sc_time&) override {
-    return tlm::TLM_COMPLETED;
-  }
-  void invalidate_direct_mem_ptr(sc_dt::uint64, sc_dt::uint64) override {}
 
   SubstageWork work_;
   Pool pool_;
