@@ -227,7 +227,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
                   "peripheral.parameter_memories (ullner-peripheral, 25 words a polygon), "
                   "shell_bus.memory and prim_bus.memory (gaudet-pert when broadcasting: the ID "
                   "list, 3 words an entry, then the packets), pipeline.polygon_registers "
-                  "(ullner-pipeline, 26 words a processor), host.patch_memory (wang-bezier, 48 "
+                  "(ullner-pipeline, 21 words a processor), host.patch_memory (wang-bezier, 48 "
                   "words a patch); an unknown name lists the machine's. In flight, every "
                   "message corrupted on its way: pipeline.engineK.in (ullner-pipeline: each ray "
                   "description entering processor K, 13 words), pipeline.input (wang-bezier: "

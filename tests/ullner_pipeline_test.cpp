@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "firmware/kernels/ullner_quad_words.hpp"
+#include "firmware/kernels/ullner_description_words.hpp"
 #include "tests/data_path_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -236,17 +236,17 @@ TEST(UllnerPipeline, FaultsInFlightAndADeadProcessorChangeTheImageAlikeInBothMod
 }
 
 TEST(UllnerPipeline, LoadShiftsEveryDescriptionThroughTheChain) {
-  // Presentation j: the host formats it (26 words, 4 instructions: 60 cycles at 5 MHz = 12 us),
-  // the link carries it (64 bit times = 9.6 us), the first processor passes its polygon on
-  // (9.6 us) and accepts; the last description the chain held reaches the host N polygon times
-  // after the last presentation arrived.
+  // Presentation j: the host formats it (21 words, 4 instructions: 50 cycles at 5 MHz = 10 us),
+  // the link carries it (672 bits on 13 wires: 52 bit times = 7.8 us), the first processor
+  // passes its polygon on (7.8 us) and accepts; the last description the chain held reaches the
+  // host N polygon times after the last presentation arrived.
   for (const int engines : {500, 2000}) {
     const auto s = run_pipeline("load",
                                 "--scene builtin:ullner-cubes --width 8 --height 8 "
                                 "-p pipeline.engines=" +
                                     std::to_string(engines));
     ASSERT_FALSE(s.empty());
-    const double f = 12e-6, p = 9.6e-6, n = engines;
+    const double f = 10e-6, p = 7.8e-6, n = engines;
     const double want = (n - 1) * (f + 2 * p) + f + p + n * p;
     EXPECT_NEAR(s["pipeline"]["load_time_s"].get<double>(), want, 1e-9 * want) << engines;
     EXPECT_EQ(s["pipeline"]["load_descriptions"], engines);
@@ -276,9 +276,9 @@ TEST(UllnerPipeline, TooFewProcessorsIsBadInput) {
 TEST(UllnerPipeline, ProcessorPolygonChangesTheImage) {
   // The pipeline's twin searches the same quads in the same order as the peripheral's brute
   // force, and processor k holds slot k: its registers are a line of the polygon words and the
-  // identity (PolygonDescription).
+  // identity word (PolygonDescription, 21 words).
   rtsim::test::data_path::expect_centre_polygon_fault_shows(
-      "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerStoredWords + 1);
+      "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerDescriptionWords);
 }
 
 // A processor that overwrites a description writes the identity word loaded into its registers
@@ -287,8 +287,8 @@ TEST(UllnerPipeline, ProcessorPolygonChangesTheImage) {
 // right angles to it (bit 0 names the parallel face, which shades alike from both sides).
 TEST(UllnerPipeline, TheIdentityInTheRegistersNamesTheAnswer) {
   rtsim::test::data_path::expect_centre_polygon_fault_shows(
-      "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerStoredWords + 1,
-      /*word_in_line=*/rtsim::kernels::kUllnerStoredWords, /*mask=*/0x2u);
+      "ullner-pipeline", "pipeline.polygon_registers", rtsim::kernels::kUllnerDescriptionWords,
+      /*word_in_line=*/rtsim::kernels::kUllnerDescriptionIdWord, /*mask=*/0x2u);
 }
 
 // ullner-pipeline on a scene of alike rows: its queues fill over the frame's first ~512 rays,

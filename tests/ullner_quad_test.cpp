@@ -6,11 +6,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
 
 #include "firmware/geometry/convex_quads.hpp"
+#include "firmware/kernels/ullner_description_words.hpp"
 #include "firmware/kernels/ullner_quad_words.hpp"
 #include "tests/ullner_quad_reference.hpp"
 
@@ -725,6 +727,82 @@ TEST(UllnerQuadWords, TheKernelComputesOnWhatTheMemoriesHold) {
   line[kUllnerFlagsWord] ^= kUllnerFlagUParallel | kUllnerFlagVParallel;
   const bool hit_corrupt = k->intersect_with(load_words(line), ray, 0.0, kInfinity, hc);
   EXPECT_TRUE(!hit_corrupt || hc.u != h.u || hc.v != h.v);
+}
+
+// The pipeline's 21-word description (seed 000 L717) holds what the peripheral's 25-word line
+// holds, for every kind of quad the host prepares: quadratic families with either root,
+// parallel families (trapezoids, parallelograms), triangles with each edge collapsed (a pencil
+// and a deflated family), and near-triangles whose short edge is just too long to collapse.
+TEST(UllnerDescriptionWords, TwentyOneWordsHoldWhatThePeripheralsLineHolds) {
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> uni(-3.0, 3.0);
+  std::vector<std::array<Vec3, 4>> quads;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 o(uni(rng), uni(rng), uni(rng));
+    const Vec3 e1(1.0 + std::fabs(uni(rng)), 0.1 * uni(rng), 0.0);
+    const Vec3 e2(0.2 * uni(rng), 1.0 + std::fabs(uni(rng)), 0.0);
+    const double shrink = 0.2 + 0.25 * std::fabs(uni(rng));
+    quads.push_back({o, o + e1, o + e1 + e2 + Vec3(0.1 * uni(rng), 0.1 * uni(rng), 0), o + e2});
+    quads.push_back({o, o + e1, o + e1 + e2, o + e2});           // parallelogram
+    quads.push_back({o, o + e1, o + e2 + shrink * e1, o + e2});  // trapezoid
+    for (int c = 0; c < 4; ++c) {                                // triangles
+      std::array<Vec3, 4> t = {o, o + e1, o + e1 + e2, o + e2};
+      t[static_cast<std::size_t>((c + 1) % 4)] = t[static_cast<std::size_t>(c)];
+      quads.push_back(t);
+    }
+    const double tiny = 1e-7 * (1.0 + std::fabs(uni(rng)));  // near-triangle
+    quads.push_back({o, o + e1, o + e2 + (0.5 + tiny) * e1, o + e2 + (0.5 - tiny) * e1});
+  }
+  std::map<std::pair<int, int>, int> kinds;
+  std::uint32_t identity = 0;
+  for (const auto& q : quads) {
+    const auto k = UllnerQuadKernel::from(q[0], q[1], q[2], q[3]);
+    if (!k) continue;
+    const UllnerQuadParams<double>& P = k->params;
+    ++kinds[{static_cast<int>(P.u_family), static_cast<int>(P.v_family)}];
+    // Only a pencil has thresholds.
+    if (P.u_family != QuadFamily::Pencil) {
+      EXPECT_EQ(P.u_pole_b + P.u_pole_c, 0.0);
+    }
+    if (P.v_family != QuadFamily::Pencil) {
+      EXPECT_EQ(P.v_pole_b + P.v_pole_c, 0.0);
+    }
+    std::array<std::uint32_t, kUllnerStoredWords> line{};
+    store_words(P, line);
+    const UllnerQuadParams<double> want = load_words(line);
+    std::array<std::uint32_t, kernels::kUllnerDescriptionWords> words{};
+    identity = (identity * 2654435761u + 12345u) & kernels::kUllnerMaxIdentity;
+    kernels::describe(P, identity, words);
+    const kernels::UllnerDescribedPolygon got = kernels::read_description(words);
+    EXPECT_EQ(got.identity, identity);
+    for (std::size_t i = 0; i < kUllnerParamCount; ++i)
+      ASSERT_EQ(got.params.word[i], want.word[i]) << kUllnerParamNames[i];
+    ASSERT_EQ(got.params.u_parallel, want.u_parallel);
+    ASSERT_EQ(got.params.v_parallel, want.v_parallel);
+    ASSERT_EQ(got.params.u_plus_root, want.u_plus_root);
+    ASSERT_EQ(got.params.v_plus_root, want.v_plus_root);
+    ASSERT_EQ(got.params.u_pole_b, want.u_pole_b);
+    ASSERT_EQ(got.params.u_pole_c, want.u_pole_c);
+    ASSERT_EQ(got.params.v_pole_b, want.v_pole_b);
+    ASSERT_EQ(got.params.v_pole_c, want.v_pole_c);
+    // Any word decodes: a flipped family bit is another polygon, never a crash.
+    for (unsigned bit = 0; bit < 32; ++bit) {
+      auto bad = words;
+      bad[kernels::kUllnerDescriptionIdWord] ^= 1u << bit;
+      (void)kernels::read_description(bad);
+    }
+  }
+  // Every kind was made: quadratic x quadratic, parallel forms, and both pencil-deflated pairs.
+  const auto count = [&](QuadFamily u, QuadFamily v) {
+    return kinds[{static_cast<int>(u), static_cast<int>(v)}];
+  };
+  EXPECT_GT(count(QuadFamily::Quadratic, QuadFamily::Quadratic), 0);
+  EXPECT_GT(count(QuadFamily::Parallel, QuadFamily::Parallel), 0);
+  EXPECT_GT(count(QuadFamily::Pencil, QuadFamily::Deflated), 0);
+  EXPECT_GT(count(QuadFamily::Deflated, QuadFamily::Pencil), 0);
+  EXPECT_GT(count(QuadFamily::Parallel, QuadFamily::Quadratic) +
+                count(QuadFamily::Quadratic, QuadFamily::Parallel),
+            0);
 }
 
 }  // namespace

@@ -67,9 +67,16 @@ FamilyCoefficients thesis_family(const Vec3& n_lin, double d2, double d1, const 
     f.c0 = d0;
     f.family = parallel_kind;
     // B = n_lin.q + d1 and C = n_const.q + d0 vanish on two lines through the pencil's centre;
-    // |B| / |n_lin| and |C| / |n_const| are the distances to them.
-    f.pole_b = glm::length(n_lin) * size;
-    f.pole_c = glm::length(n_const) * size;
+    // |B| / |n_lin| and |C| / |n_const| are the distances to them. Only a pencil's centre is a
+    // point of the quad (its collapsed vertex, where -C / B is 0 / 0). Where two opposite edges
+    // are parallel but whole, the constant-x lines meet, if at all, beyond an edge longer than
+    // the collapse tolerance, and -C / B is a well-conditioned division everywhere on the quad:
+    // no pole to accept, so no threshold to store (which lets the pipeline's 21-word description
+    // carry every threshold there is, ullner_description_words.hpp).
+    if (parallel_kind == QuadFamily::Pencil) {
+      f.pole_b = glm::length(n_lin) * size;
+      f.pole_c = glm::length(n_const) * size;
+    }
   } else {
     // L370 / L404: prescaled by 1/(2 d2) and 1/d2 (L538-L542, with the 2d_u1 -> 2d_u2 erratum).
     f.a = n_lin / (2.0 * d2);

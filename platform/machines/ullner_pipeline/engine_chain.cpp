@@ -204,9 +204,11 @@ const std::vector<kernels::UllnerQuadParams<double>>& EngineChain::polygons() {
   decoded_.resize(engines());
   identities_.resize(engines());
   for (std::uint64_t k = 0; k < engines(); ++k) {
-    decoded_[k] = kernels::load_words(std::span<const std::uint32_t, kernels::kUllnerStoredWords>(
-        words.data() + k * PolygonDescription::kWords, kernels::kUllnerStoredWords));
-    identities_[k] = words[k * PolygonDescription::kWords + PolygonDescription::kIdWord];
+    kernels::UllnerDescribedPolygon held =
+        kernels::read_description(std::span<const std::uint32_t, PolygonDescription::kWords>(
+            words.data() + k * PolygonDescription::kWords, PolygonDescription::kWords));
+    decoded_[k] = held.params;
+    identities_[k] = held.identity;
   }
   decoded_after_ = registers.words_written();
   return decoded_;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <span>
 
-#include "firmware/kernels/ullner_quad_words.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_geometry.hpp"
@@ -56,17 +55,13 @@ PipelineHost::PipelineHost(sc_core::sc_module_name name, MachineRun& run,
       modelling_space_(modelling_space),
       dummy_distance_(modules::ModuleParams(run.registry(), this->name()).get(kDummyDistance)) {}
 
-PolygonDescription PipelineHost::dummy(const Bounds& space, double distance, std::uint32_t id) {
+kernels::UllnerQuadParams<double> PipelineHost::dummy(const Bounds& space, double distance) {
   const double e = functional::scene_extent(space);
   const Vec3 c = space.center() + Vec3(0.0, 0.0, distance * e);
   const double h = 0.5 * e;
   const auto quad = kernels::UllnerQuadKernel::from(c + Vec3(-h, -h, 0.0), c + Vec3(h, -h, 0.0),
                                                     c + Vec3(h, h, 0.0), c + Vec3(-h, h, 0.0));
-  PolygonDescription d;
-  kernels::store_words(quad->params, std::span<std::uint32_t, kernels::kUllnerStoredWords>(
-                                         d.words.data(), kernels::kUllnerStoredWords));
-  d.words[PolygonDescription::kIdWord] = id;
-  return d;
+  return quad->params;
 }
 
 void PipelineHost::load_scene() {
@@ -90,18 +85,13 @@ void PipelineHost::load_scene() {
       timing().time_for(Cost{.mem_words = PolygonDescription::kWords, .instructions = 4});
   const sc_core::sc_time on_link = link_to_machine().serialisation(PolygonDescription::kWireBits);
   sc_core::sc_time all_back = clock_.now();
-  const PolygonDescription far = dummy(modelling_space_, dummy_distance_, 0);
+  const kernels::UllnerQuadParams<double> dummy_params = dummy(modelling_space_, dummy_distance_);
   for (std::uint64_t j = 0; j < engines_; ++j) {
     const std::uint64_t slot = engines_ - 1 - j;
-    if (slot >= polygons) {
-      msg.presented = far;
-    } else {
-      const auto& quad = std::get<kernels::UllnerQuadKernel>(geometry_.shapes[slot].shape);
-      kernels::store_words(quad.params,
-                           std::span<std::uint32_t, kernels::kUllnerStoredWords>(
-                               msg.presented.words.data(), kernels::kUllnerStoredWords));
-    }
-    msg.presented.words[PolygonDescription::kIdWord] = static_cast<std::uint32_t>(slot);
+    const auto& params =
+        slot >= polygons ? dummy_params
+                         : std::get<kernels::UllnerQuadKernel>(geometry_.shapes[slot].shape).params;
+    kernels::describe(params, static_cast<std::uint32_t>(slot), msg.presented.words);
     clock_.advance(format);
     const sc_core::sc_time arrived = modules::plus(clock_.now(), on_link);
     sc_core::sc_time delay = arrived - sc_core::sc_time_stamp();

@@ -29,9 +29,9 @@ class PipelineHost final : public ullner::Host {
   /// Descriptions the chain shifted back out during the load (its previous contents).
   std::uint64_t returned() const { return returned_; }
 
-  /// The dummy polygon's description: a square one modelling-space extent wide, `distance`
-  /// extents from the space's centre along +z, identity `id`.
-  static PolygonDescription dummy(const Bounds& modelling_space, double distance, std::uint32_t id);
+  /// The dummy polygon: a square one modelling-space extent wide, `distance` extents from the
+  /// space's centre along +z.
+  static kernels::UllnerQuadParams<double> dummy(const Bounds& modelling_space, double distance);
 
  private:
   void load_scene() override;

@@ -7,17 +7,16 @@
 #include <cstdint>
 #include <systemc>
 
-#include "firmware/kernels/ullner_quad_words.hpp"
+#include "firmware/kernels/ullner_description_words.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
 
 /// "Five vector and five scalar values, as they did in the ray tracing peripheral ... an
-/// additional value that serves to identify the polygon" (L717): the peripheral's line of words
-/// (the 20 parameters plus the model's 4 pole thresholds and flag word, ullner_quad_words.hpp)
-/// and the identity.
+/// additional value that serves to identify the polygon" (L717): the 20 parameters and the word
+/// of the identity and the families' bits (ullner_description_words.hpp).
 struct PolygonDescription {
-  static constexpr unsigned kIdWord = kernels::kUllnerStoredWords;
-  static constexpr unsigned kWords = kernels::kUllnerStoredWords + 1;
+  static constexpr unsigned kIdWord = kernels::kUllnerDescriptionIdWord;
+  static constexpr unsigned kWords = kernels::kUllnerDescriptionWords;
   static constexpr std::uint64_t kWireBits = 32 * kWords;
   std::array<std::uint32_t, kWords> words{};
 };
