@@ -60,6 +60,14 @@ class TimedFifo : public StatGroup {
     return slot_free_[messages_.value() % capacity_];
   }
   bool empty() const { return items_.empty(); }
+  /// When message `n` (0: the first put) was taken out, if it has been and its slot has not been
+  /// reused since (n + capacity > messages taken); nothing otherwise. A producer that must know
+  /// when a slot frees before it can time its next put (a pipeline's far end) asks this.
+  std::optional<sc_core::sc_time> taken_at(std::uint64_t n) const {
+    if (capacity_ == kUnbounded || n >= get_count_ || n + capacity_ < get_count_)
+      return std::nullopt;
+    return slot_free_[n % capacity_];
+  }
 
   /// Put `item` at local time `t`; blocks while the FIFO is full. Returns the time the item
   /// actually entered (>= t: later if it had to wait for a slot).

@@ -135,17 +135,17 @@ nlohmann::json comparable(nlohmann::json s) {
   return s;
 }
 
-// pipeline.model = chain computes when a description reaches the last processor by
-// ChainTiming's formula; pipeline.model = engines passes it as a transaction through a module
-// per processor, each timing itself from its own state and the next one's handshake. The
-// formula is allowed only because it is exact: on three scenes, with a host that keeps up, a
-// slow host, a host with few rays in flight (the chain runs half empty), slow links (the links
-// set the pace), a link latency and a host link faster than the chain's (descriptions wait for
-// the first link), every ray enters and leaves the chain at the same times (trace.json's per-ray
-// slices and busy counters are byte-identical), the images are identical and so is every
-// statistic. (In a chain of identical processors no processor after the first ever waits for
-// its issue interval, chain_timing.hpp's induction: what this compares is the hops, the links'
-// waits, the far end and the data.)
+// pipeline.model = chain computes when descriptions enter and leave the chain by ChainTiming's
+// formulas; pipeline.model = engines passes each as a transaction through a module per
+// processor, each timing itself from its own state and its neighbours' handshakes. The formulas
+// are allowed only because they are exact: on three scenes, with a host that keeps up, a slow
+// host, a host with few rays in flight (the chain runs half empty), slow links (the links set
+// the pace), a link latency, a host link faster than the chain's (descriptions wait for the
+// first link), a hop latency longer than the issue interval (a processor holds one description),
+// and slow result consumers whose few result slots hold up the last processor and, through the
+// chain, the first (stalls included), every ray enters and leaves the chain at the same times
+// (trace.json's per-ray slices and busy counters are byte-identical), the images are identical
+// and so is every statistic.
 TEST(UllnerPipeline, TheChainFormulaGivesEveryRayTheTimesOfTheEngines) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"cubes-fast-host", "--scene builtin:ullner-cubes -p pipeline.engines=600" + kFastHost},
@@ -163,6 +163,22 @@ TEST(UllnerPipeline, TheChainFormulaGivesEveryRayTheTimesOfTheEngines) {
        "--scene builtin:ullner-random-100 -p pipeline.engines=100 -p "
        "pipeline.link_in.bit_time=\"50 ns\" -p pipeline.link.bit_time=\"300 ns\"" +
            kFastHost},
+      {"sheets-long-hop",
+       "--scene builtin:ullner-sheets-10 -p pipeline.engines=40 -p "
+       "pipeline.engine.hop_latency=\"7 us\"" +
+           kFastHost},
+      // Slow result consumers: one result slot, so the last processor holds every answer until
+      // the host has taken the one before; the hold backs up to the first processor.
+      {"sheets-slow-consumer",
+       "--scene builtin:ullner-sheets-10 -p pipeline.engines=12 -p host.clock=\"5 MHz\" -p "
+       "host.result_slots=1"},
+      {"random-rays-first",
+       "--scene builtin:ullner-random-100 -p pipeline.engines=100 -p host.clock=\"20 MHz\" -p "
+       "host.result_slots=2 -p host.answers_first=false -p pipeline.link_in.bit_time=\"1 ns\" "
+       "-p pipeline.link.latency=\"1 us\""},
+      {"cubes-rays-first",
+       "--scene builtin:ullner-cubes -p pipeline.engines=600 -p host.clock=\"5 MHz\" -p "
+       "host.result_slots=4 -p host.answers_first=false -p pipeline.link_in.bit_time=\"1 ns\""},
   };
   for (const auto& [tag, args] : cases) {
     std::map<std::string, nlohmann::json> by_model;
@@ -190,6 +206,18 @@ TEST(UllnerPipeline, TheChainFormulaGivesEveryRayTheTimesOfTheEngines) {
     const nlohmann::json diff = nlohmann::json::diff(comparable(c), comparable(e));
     EXPECT_TRUE(diff.empty()) << tag << ": " << diff.dump().substr(0, 2000);
     EXPECT_TRUE(e["pipeline"]["along_chain"].contains("first_accept_s")) << tag;
+    // The slow consumers hold up the last processor, and in sheets-slow-consumer the hold backs
+    // up to the first (else they would test no stall).
+    const auto& kept = c["pipeline"]["kept_full"];
+    std::printf("  kept full %s of descriptions; first processor held %.6g s, far end %.6g s\n",
+                kept["fraction"].dump().c_str(), kept["chain_held_s"].get<double>(),
+                kept["far_end_held_s"].get<double>());
+    if (tag.find("consumer") != std::string::npos || tag.find("rays-first") != std::string::npos) {
+      EXPECT_GT(kept["far_end_held_s"].get<double>(), 0.0) << tag;
+    }
+    if (tag == "sheets-slow-consumer") {
+      EXPECT_GT(kept["chain_held_s"].get<double>(), 0.0);
+    }
   }
 }
 

@@ -60,7 +60,8 @@ Host::Host(sc_core::sc_module_name name, MachineRun& run, const HostAttachment& 
       load_out("load_out"),
       // With a window, every ray in flight has a slot reserved for its answer.
       results("result_queue",
-              attached.max_in_flight > 0
+              attached.result_slots > 0 ? attached.result_slots
+              : attached.max_in_flight > 0
                   ? attached.max_in_flight
                   : modules::ModuleParams(run.registry(), this->name()).get(kResultQueueDepth)),
       geometry_(*run.twin().geometry),
@@ -71,6 +72,7 @@ Host::Host(sc_core::sc_module_name name, MachineRun& run, const HostAttachment& 
       lighting_devices_(attached.lighting),
       ray_bits_(attached.ray_bits),
       max_in_flight_(attached.max_in_flight),
+      answers_first_(attached.answers_first),
       opts_(run.options()),
       probe_(run.probe()),
       probe_result_queue_(probe_.stage(results.name())),
@@ -152,8 +154,10 @@ void Host::run() {
 
   for (;;) {
     const sc_core::sc_time now = clock_.now();
-    // Task 2: a result is waiting.
-    if (results.fifo.has_item_by(now)) {
+    const bool room = may_send(now);
+    // Task 2: a result is waiting (and, with rays first, no ray can be sent now).
+    if (results.fifo.has_item_by(now) &&
+        (answers_first_ || !room || (backlog_.empty() && vision.done()))) {
       sc_core::sc_time taken;
       RayResult res = results.fifo.get(now, taken);
       clock_.catch_up(taken);
@@ -182,7 +186,6 @@ void Host::run() {
         opts_.progress(static_cast<long>(vision_rays_.value()), static_cast<long>(total_vision));
       continue;
     }
-    const bool room = may_send(now);
     // Rays spawned by task 2 go first: they finish pixels.
     if (!backlog_.empty() && room) {
       RayRequest req = backlog_.front();

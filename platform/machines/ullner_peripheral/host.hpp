@@ -56,6 +56,12 @@ struct HostAttachment {
   /// Rays sent and not yet answered at most (0: no limit). The result queue then holds as many:
   /// every ray has a slot reserved for its answer, so the queue never blocks what answers.
   std::uint64_t max_in_flight = 0;
+  /// The result queue's slots when fewer than max_in_flight (0: as many): then what answers can
+  /// find it full and must hold its answer until the host takes one (back-pressure).
+  std::uint64_t result_slots = 0;
+  /// Task 2 (answers) before task 1 (rays), as the thesis orders them (L474-L476); false: the
+  /// host sends a ray whenever it can and takes an answer only when it cannot (a what-if).
+  bool answers_first = true;
   LightingDevices lighting;
 };
 
@@ -106,6 +112,7 @@ class Host : public modules::Processor {
   LightingDevices lighting_devices_;
   std::uint64_t ray_bits_;
   std::uint64_t max_in_flight_;
+  bool answers_first_;
   const RunOptions& opts_;
   sc_core::sc_time frame_start_ = sc_core::SC_ZERO_TIME;
   modules::LatencyProbe& probe_;

@@ -237,22 +237,22 @@ void EngineChain::build_engines() {
   for (std::uint64_t k = 0; k < n; ++k)
     engine_modules_.push_back(std::make_unique<PolygonEngine>(
         (std::string(kEngine) + std::to_string(k)).c_str(), k, timing_.engine(),
-        timing_.description_time(), timing_.link_latency(), held,
-        k == 0 && n > 1 ? &inner_link_ : nullptr));
+        timing_.description_time(), timing_.link_latency(), held));
   to_first_ = std::make_unique<tlm_utils::simple_initiator_socket<EngineChain>>("to_first");
-  far_end_ = std::make_unique<tlm_utils::simple_target_socket<EngineChain>>("far_end");
+  far_end_socket_ = std::make_unique<tlm_utils::simple_target_socket<EngineChain>>("far_end");
   to_first_->bind(engine_modules_.front()->in);
   for (std::uint64_t k = 0; k + 1 < n; ++k) {
     engine_modules_[k]->out.bind(engine_modules_[k + 1]->in);
     engine_modules_[k]->set_next(engine_modules_[k + 1].get());
   }
-  engine_modules_.back()->out.bind(*far_end_);
+  engine_modules_.back()->out.bind(*far_end_socket_);
   if (dead_engine_ >= 0) engine_modules_[static_cast<std::size_t>(dead_engine_)]->set_dead(true);
-  far_end_->register_b_transport(this, &EngineChain::far_end_transport);
+  far_end_socket_->register_b_transport(this, &EngineChain::far_end_transport);
 }
 
 void EngineChain::far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-  far_end_ready_ = sc_core::sc_time_stamp() + delay;
+  // What leaves the last processor: the chain delivers its answer (leave), in order.
+  (void)delay;
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
@@ -265,10 +265,25 @@ void EngineChain::set_faults(std::vector<DescriptionFault> faults) {
     if (!engine_modules_.empty()) engine_modules_[f.engine]->add_fault(f);
 }
 
-sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
-                                              const sc_core::sc_time& accepted) {
-  // The data: the description passes every processor in chain order, each writing the identity
-  // its registers hold when it overwrites (L713, L717).
+std::optional<sc_core::sc_time> EngineChain::ResultSlots::slot_free(std::uint64_t j) const {
+  if (!results || j < results->capacity()) return sc_core::SC_ZERO_TIME;
+  return results->taken_at(j - results->capacity());
+}
+
+sc_core::sc_time EngineChain::far_end_held() const {
+  return engine_modules_.empty() ? timing_.far_end_held() : engine_modules_.back()->far_end_held();
+}
+
+bool EngineChain::can_accept() const {
+  if (engine_modules_.empty()) return timing_.can_accept();
+  // The first processor knows when it passed the last description on once that one is in the
+  // second processor (or has left).
+  return in_chain_.empty() || in_chain_.back().started || in_chain_.back().at >= 1;
+}
+
+void EngineChain::through_processors(DescriptionInFlight& msg) {
+  // The description passes every processor in chain order, each writing the identity its
+  // registers hold when it overwrites (L713, L717).
   const auto& held = polygons();
   const std::uint64_t n = engines();
   // Up to the next processor with a fault on its input, or the dead one, the description and
@@ -295,75 +310,162 @@ sc_core::sc_time EngineChain::through_formula(DescriptionInFlight& msg,
     for (; fault < faults_.size() && faults_[fault].engine == k; ++fault) faults_[fault].apply(msg);
     if (k == dead) ++k;
   }
-  // The time: the first inner link carries it as every inner link does; the last processor
-  // accepts it by ChainTiming's formula and is ready to pass it on a hop latency later.
-  if (n > 1)
-    inner_link_.transfer(RayDescription::kWireBits, plus(accepted, timing_.engine().hop_latency));
-  return plus(timing_.last_accepts(accepted), timing_.engine().hop_latency);
 }
 
-sc_core::sc_time EngineChain::through_engines(DescriptionInFlight& msg,
-                                              const sc_core::sc_time& accepted) {
-  // The description as a transaction: into the first processor's register, then each processor
-  // passes it on to the next (whose accept and computation follow), the last to the far end.
+void EngineChain::accept_next() {
+  const EngineTiming& engine = timing_.engine();
+  // The first processor accepts the description once it has arrived, its previous one is an
+  // issue interval in and it has started passing that one on: that frees its input register
+  // for the host.
+  const sc_core::sc_time bound =
+      engine_modules_.empty() ? timing_.accept_bound() : engine_modules_.front()->accept_bound();
+  const sc_core::sc_time arrived = *input.fifo.next_item_time();
+  sc_core::sc_time accepted;
+  const ullner::RayRequest req = input.fifo.get(bound, accepted);
+  // Was the pipe kept full (L743)? The host kept it full when the next description was waiting
+  // as the processor became free; the processor waited for the chain ahead when it could not
+  // take the next one an issue interval after the last.
+  if (entered_ > 0) {
+    if (arrived > bound) {
+      host_starved_ += arrived - bound;
+    } else {
+      ++kept_full_;
+    }
+    const sc_core::sc_time issue = plus(last_entered_, engine.issue_interval);
+    if (accepted > std::max(arrived, issue)) chain_held_ += accepted - std::max(arrived, issue);
+  }
+  last_entered_ = accepted;
+  engine_busy_.record(accepted, engine.issue_interval);
+  ++descriptions_;
+  ++entered_;
+
+  // The host injects (r0, r1) with t at the ray's far limit: infinity for vision rays (L704),
+  // the light's distance for shadow rays, so only an occluder before the light answers.
+  InChain& d = in_chain_.emplace_back();
+  d.request = req;
+  d.accepted = accepted;
+  d.msg.description.r0 = req.ray.ray.origin;
+  d.msg.description.r1_minus_r0 = req.ray.ray.direction;
+  d.msg.description.t = req.ray.t_max;
+  d.msg.ray = kernels::UllnerRay<double>::make(d.msg.description.r0, d.msg.description.r1_minus_r0);
+  d.msg.at = accepted;
+  if (engine_modules_.empty()) {
+    // The data through every processor now; the times when the formulas allow (chain_timing).
+    through_processors(d.msg);
+    timing_.accept(accepted);
+    return;
+  }
+  // As a transaction into the first processor's register (accepted there at `accepted`); it
+  // moves on in advance().
+  d.ext = modules::MessageExtension<DescriptionInFlight>(&d.msg, RayDescription::kWireBits);
+  d.gp.set_command(tlm::TLM_WRITE_COMMAND);
+  d.gp.set_address(0);
+  d.gp.set_data_ptr(reinterpret_cast<unsigned char*>(&d.msg.description));
+  d.gp.set_data_length(sizeof(d.msg.description));
+  d.gp.set_streaming_width(sizeof(d.msg.description));
+  d.gp.set_byte_enable_ptr(nullptr);
+  d.gp.set_extension(&d.ext);
   polygons();  // the processors' registers decoded, as the load left them
-  modules::MessageExtension<DescriptionInFlight> ext(&msg, RayDescription::kWireBits);
-  tlm::tlm_generic_payload gp;
-  gp.set_command(tlm::TLM_WRITE_COMMAND);
-  gp.set_address(0);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(&msg.description));
-  gp.set_data_length(sizeof(msg.description));
-  gp.set_streaming_width(sizeof(msg.description));
-  gp.set_byte_enable_ptr(nullptr);
-  gp.set_extension(&ext);
-  sc_core::sc_time delay = accepted - sc_core::sc_time_stamp();
-  (*to_first_)->b_transport(gp, delay);
-  for (auto& engine : engine_modules_) engine->pass_on(gp, delay);
-  gp.clear_extension(&ext);
-  return far_end_ready_;
+  sc_core::sc_time none = sc_core::SC_ZERO_TIME;
+  (*to_first_)->b_transport(d.gp, none);
+}
+
+bool EngineChain::move(std::size_t i) {
+  InChain& d = in_chain_[i];
+  const InChain* ahead = i > 0 ? &in_chain_[i - 1] : nullptr;
+  const std::uint64_t n = engines();
+  PolygonEngine& here = *engine_modules_[d.at];
+  if (!d.started) {
+    if (d.at + 1 == n) {
+      // The last: its link starts once the host's result slot will be free.
+      const auto room = far_end_.slot_free(entered_ - in_chain_.size() + i);
+      if (ahead || !room) return false;
+      here.set_far_end_room(*room);
+    } else if (ahead && ahead->at < d.at + 1) {
+      return false;  // the next processor has not yet accepted the one ahead: no handshake
+    }
+    here.start(d.gp);
+    d.started = true;
+    return true;
+  }
+  if (d.at + 1 == n) {
+    here.hand_on(d.gp);  // to the far end
+    leave(d.msg.at);
+    return true;
+  }
+  // Into the next processor once it has started passing on the one ahead.
+  if (ahead && (ahead->at < d.at + 1 || (ahead->at == d.at + 1 && !ahead->started))) return false;
+  here.hand_on(d.gp);
+  ++d.at;
+  d.started = false;
+  return true;
+}
+
+void EngineChain::advance() {
+  if (engine_modules_.empty()) {
+    while (const auto start = timing_.next_leaving(far_end_)) leave(*start);
+    return;
+  }
+  // Oldest first, each as far as the one ahead allows; the oldest leaves when the host's end
+  // has room. A description leaving or moving can let the ones behind it move.
+  bool moved = true;
+  while (moved) {
+    moved = false;
+    for (std::size_t i = 0; i < in_chain_.size();) {
+      const std::size_t before = in_chain_.size();
+      if (!move(i)) {
+        ++i;
+        continue;
+      }
+      moved = true;
+      if (in_chain_.size() != before) i = 0;  // the oldest left
+    }
+  }
+}
+
+void EngineChain::leave(const sc_core::sc_time& start) {
+  InChain& d = in_chain_.front();
+  counters_.intersection_tests += engines();
+  if (d.msg.last_writer < engines()) ++answers_[d.msg.last_writer];
+  // Its ray fields leave the last processor when its link starts; its result fields trail them
+  // by the compute latency (chain_timing.hpp), and the complete description crosses the last
+  // link to the host.
+  const sc_core::sc_time leaves = plus(start, timing_.engine().compute_latency);
+  // The first inner link counts every description in order, from when the first processor
+  // handed it over (the N - 1 links after it carry the same, links_ and bits_all_links_).
+  if (engines() > 1)
+    inner_link_.transfer(RayDescription::kWireBits, engine_modules_.empty()
+                                                        ? timing_.take_first_handed()
+                                                        : d.msg.first_handed);
+  ullner::RayResult res = read_answer(d.request, d.msg.description);
+  res.service_start = d.accepted;
+  res.answered = leaves;
+  res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves);
+  transit_total_ += leaves - d.accepted;
+  using modules::LatencyPart;
+  probe_.add(d.request.journey, probe_input_, LatencyPart::kQueueing,
+             d.accepted - d.request.arrived);
+  probe_.add(d.request.journey, probe_engines_, LatencyPart::kService, leaves - d.accepted);
+  probe_.add(d.request.journey, probe_link_out_, LatencyPart::kTransfer, res.arrived - leaves);
+  in_chain_.pop_front();
+  // A result slot is free by now (the far end's handshake), so this never waits.
+  modules::send_message(result_out, res, res.arrived, RayDescription::kWireBits);
 }
 
 void EngineChain::run() {
-  const EngineTiming& engine = timing_.engine();
-  sc_core::sc_time next_accept = sc_core::SC_ZERO_TIME;
   for (;;) {
-    modules::wait_for_item(input.fifo, clock_);
-    // The first processor accepts the description once it has arrived and its previous one is
-    // an issue interval in: that frees its input register for the host.
-    sc_core::sc_time accepted;
-    const ullner::RayRequest req = input.fifo.get(std::max(clock_.now(), next_accept), accepted);
-    clock_.catch_up(accepted);
-    next_accept = plus(accepted, engine.issue_interval);
-    engine_busy_.record(accepted, engine.issue_interval);
-    ++descriptions_;
-
-    // The host injects (r0, r1) with t at the ray's far limit: infinity for vision rays (L704),
-    // the light's distance for shadow rays, so only an occluder before the light answers.
-    DescriptionInFlight msg;
-    msg.description.r0 = req.ray.ray.origin;
-    msg.description.r1_minus_r0 = req.ray.ray.direction;
-    msg.description.t = req.ray.t_max;
-    msg.ray = kernels::UllnerRay<double>::make(msg.description.r0, msg.description.r1_minus_r0);
-    const sc_core::sc_time ready =
-        engine_modules_.empty() ? through_formula(msg, accepted) : through_engines(msg, accepted);
-    counters_.intersection_tests += engines();
-    if (msg.last_writer < engines()) ++answers_[msg.last_writer];
-
-    // Its ray fields leave the last processor when it is ready; its result fields trail them by
-    // the compute latency (chain_timing.hpp), and the complete description crosses the last
-    // link to the host.
-    const sc_core::sc_time leaves = plus(ready, engine.compute_latency);
-    ullner::RayResult res = read_answer(req, msg.description);
-    res.service_start = accepted;
-    res.answered = leaves;
-    res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves);
-    transit_total_ += leaves - accepted;
-    using modules::LatencyPart;
-    probe_.add(req.journey, probe_input_, LatencyPart::kQueueing, accepted - req.arrived);
-    probe_.add(req.journey, probe_engines_, LatencyPart::kService, leaves - accepted);
-    probe_.add(req.journey, probe_link_out_, LatencyPart::kTransfer, res.arrived - leaves);
-    // The host reserved a slot for every ray in flight, so this never waits.
-    modules::send_message(result_out, res, res.arrived, RayDescription::kWireBits);
+    advance();
+    if (can_accept() && !input.fifo.empty()) {
+      accept_next();
+      continue;
+    }
+    if (in_chain_.empty()) {
+      modules::wait_for_item(input.fifo, clock_);
+      continue;
+    }
+    // Descriptions wait for the host to take answers (a slot at the far end), or the first
+    // processor for the next description.
+    sc_core::wait(input.fifo.put_event() | far_end_.results->get_event());
   }
 }
 

@@ -20,6 +20,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <systemc>
 #include <vector>
@@ -79,6 +80,18 @@ class EngineChain : public sc_core::sc_module {
     return engine_modules_;
   }
   const ChainTiming& timing() const { return timing_; }
+  /// The host's result queue, whose slots are the far end's registers (before simulating).
+  void set_result_queue(const modules::TimedFifo<ullner::RayResult>& results) {
+    far_end_.results = &results;
+  }
+  /// Whether the host kept the pipe full (L743): descriptions the first processor accepted as
+  /// soon as it could (the next one was waiting in its register), the time it stood ready with
+  /// its register empty, the time one waited there while the chain ahead was full, and the time
+  /// the last processor held answers ready for want of a result slot.
+  std::uint64_t kept_full() const { return kept_full_; }
+  sc_core::sc_time host_starved() const { return host_starved_; }
+  sc_core::sc_time chain_held() const { return chain_held_; }
+  sc_core::sc_time far_end_held() const;
   /// Busy time of each processor: one issue interval a description.
   sc_core::sc_time engine_busy() const { return engine_busy_.total(); }
   /// Per processor: descriptions it overwrote, and answers it gave (the description left the
@@ -92,14 +105,49 @@ class EngineChain : public sc_core::sc_module {
   sc_core::sc_time transit_total() const { return transit_total_; }
 
  private:
+  /// A description in the chain: accepted by the first processor, not yet left the last.
+  struct InChain {
+    ullner::RayRequest request;
+    DescriptionInFlight msg;
+    sc_core::sc_time accepted;
+    // pipeline.model = engines: the processor that accepted it last and whether it has started
+    // passing it on; the transaction that carries it.
+    std::uint64_t at = 0;
+    bool started = false;
+    modules::MessageExtension<DescriptionInFlight> ext{nullptr, tasks::RayDescription::kWireBits};
+    tlm::tlm_generic_payload gp;
+    InChain() = default;
+    InChain(const InChain&) = delete;
+    InChain& operator=(const InChain&) = delete;
+    /// The payload would free an extension still set on it: ext is a member, not its own.
+    ~InChain() {
+      if (gp.get_extension<modules::MessageExtension<DescriptionInFlight>>())
+        gp.clear_extension(&ext);
+    }
+  };
+  /// The far end's registers: a slot of the host's result queue for description j once the
+  /// host has taken the answer a queue's length before it.
+  struct ResultSlots final : FarEnd {
+    const modules::TimedFifo<ullner::RayResult>* results = nullptr;
+    std::optional<sc_core::sc_time> slot_free(std::uint64_t j) const override;
+  };
+
   void run();
   /// pipeline.model = engines: the processors as modules, bound in a chain.
   void build_engines();
-  /// Carries `msg`, accepted by the first processor at `accepted`, through every processor:
-  /// returns when the last one is ready to pass it on (its ray fields). By the formula, or as a
-  /// transaction through the engines.
-  sc_core::sc_time through_formula(DescriptionInFlight& msg, const sc_core::sc_time& accepted);
-  sc_core::sc_time through_engines(DescriptionInFlight& msg, const sc_core::sc_time& accepted);
+  /// The first processor can take the next description (it knows when it passed on the last).
+  bool can_accept() const;
+  /// The first processor takes the description waiting in its input register.
+  void accept_next();
+  /// Moves every description on as far as the ones ahead and the far end allow, and delivers
+  /// the answers of those that leave, in order.
+  void advance();
+  /// pipeline.model = engines: moves in_chain_[i] on; false when it cannot move.
+  bool move(std::size_t i);
+  /// The oldest description leaves the last processor, its link starting at `start`.
+  void leave(const sc_core::sc_time& start);
+  /// pipeline.model = chain: the description through every processor's data, in order.
+  void through_processors(DescriptionInFlight& msg);
   void far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   /// The processors' polygons as their registers hold them (decoded again after any write).
@@ -125,6 +173,13 @@ class EngineChain : public sc_core::sc_module {
   /// pipeline.fault.dead_engine: the processor that passes every description unchanged (-1: none).
   std::int64_t dead_engine_ = -1;
   sc_core::sc_time transit_total_ = sc_core::SC_ZERO_TIME;
+  std::deque<InChain> in_chain_;
+  std::uint64_t entered_ = 0;  ///< descriptions accepted by the first processor
+  ResultSlots far_end_;
+  std::uint64_t kept_full_ = 0;
+  sc_core::sc_time last_entered_ =
+      sc_core::SC_ZERO_TIME;  ///< the first processor's last acceptance
+  sc_core::sc_time host_starved_ = sc_core::SC_ZERO_TIME, chain_held_ = sc_core::SC_ZERO_TIME;
 
   // "pipeline.engine": the class of processors. Every processor is busy one issue interval per
   // description, so the class's figures are each processor's; the busy signal is the first
@@ -157,8 +212,7 @@ class EngineChain : public sc_core::sc_module {
   // the first one's register) and at the far end (what leaves the last one, and when).
   std::vector<std::unique_ptr<PolygonEngine>> engine_modules_;
   std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_;
-  std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_;
-  sc_core::sc_time far_end_ready_ = sc_core::SC_ZERO_TIME;
+  std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_socket_;
 };
 
 }  // namespace rtsim::platform::ullner_pipeline

@@ -140,11 +140,14 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
       .ray_link_params = link_in,
       .ray_bits = tasks::RayDescription::kWireBits,
       .max_in_flight = PipelineHost::rays_in_flight(modules::ModuleParams(r, kHost)),
+      .result_slots = PipelineHost::result_slots(modules::ModuleParams(r, kHost)),
+      .answers_first = PipelineHost::answers_first(modules::ModuleParams(r, kHost)),
       .lighting = {}};
   PipelineHost host(kHost, run, attached, chain.engines(), space);
   host.load_out.bind(chain.load);
   host.ray_out.bind(chain.input.socket);
   chain.result_out.bind(host.results.socket);
+  chain.set_result_queue(host.results.fifo);
   run.simulate();
 
   const sc_core::sc_time frame_time = host.frame_time();
@@ -185,6 +188,14 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
       {"load_time_s", host.load_time().to_seconds()},
       {"load_descriptions", count("load_descriptions")},
       {"load_description_time_s", chain.polygon_time().to_seconds()},
+      // "So long as the pipe is kept full" (L743), measured: at the host's end and the far end.
+      {"kept_full",
+       {{"descriptions", chain.kept_full()},
+        {"fraction",
+         passed > 1 ? static_cast<double>(chain.kept_full()) / (descriptions - 1) : 0.0},
+        {"host_starved_s", chain.host_starved().to_seconds()},
+        {"chain_held_s", chain.chain_held().to_seconds()},
+        {"far_end_held_s", chain.far_end_held().to_seconds()}}},
       {"along_chain", along_chain(chain, passed, busy_fraction)}};
   if (!chain.faults().empty()) {
     nlohmann::ordered_json& in_flight = res["pipeline"]["faults_in_flight"];

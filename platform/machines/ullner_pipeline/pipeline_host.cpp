@@ -23,6 +23,29 @@ const modules::CountParam kRaysInFlight(
                     "for its answer, so the chain never waits for the host to read one",
      .source = "seed 000 L715; assumption: enough for 10,000 processors (L751), each holding one "
                "description, plus the result fields' lag"});
+const modules::CountParam kResultSlots(
+    {.name = "result_slots",
+     .default_value = "0",
+     .min = "0",
+     .max = "1000000",
+     .unit = "answers",
+     .description = "Answers the host's end of the chain can hold until the host takes them; 0 "
+                    "for one per ray in flight (the chain never waits). Fewer make a host slow "
+                    "to take its answers hold up the last processor, and through it the chain: "
+                    "the thesis's \"so long as the pipe is kept full\" becomes a condition the "
+                    "run measures (pipeline.kept_full)",
+     .source = "seed 000 L743, L745 (a host that cannot \"deal with the responses\" as fast); "
+               "the thesis gives no size: a what-if"});
+const modules::FlagParam kAnswersFirst(
+    {.name = "answers_first",
+     .default_value = "true",
+     .description = "The host takes a waiting answer before it makes or sends a ray, as the "
+                    "thesis orders its two tasks; false: it sends whenever the chain's first "
+                    "register is free and takes answers only when it cannot (a host that floods "
+                    "the chain, whose answers then back up from the far end: with few "
+                    "host.result_slots, up to the first processor)",
+     .source = "seed 000 L474-L476 (task 2 whenever a result is waiting, task 1 otherwise); "
+               "false is a what-if"});
 const modules::RealParam kDummyDistance(
     {.name = "dummy_distance",
      .default_value = "1e6",
@@ -40,11 +63,22 @@ const modules::RealParam kDummyDistance(
 void PipelineHost::declare_params(const modules::ParamDecls& host) {
   Host::declare_processor_params(host);
   host.add(kRaysInFlight);
+  host.add(kResultSlots);
+  host.add(kAnswersFirst);
   host.add(kDummyDistance);
 }
 
 std::uint64_t PipelineHost::rays_in_flight(const modules::ModuleParams& host) {
   return host.get(kRaysInFlight);
+}
+
+bool PipelineHost::answers_first(const modules::ModuleParams& host) {
+  return host.get(kAnswersFirst);
+}
+
+std::uint64_t PipelineHost::result_slots(const modules::ModuleParams& host) {
+  const std::uint64_t slots = host.get(kResultSlots);
+  return slots == 0 ? 0 : std::min(slots, host.get(kRaysInFlight));
 }
 
 PipelineHost::PipelineHost(sc_core::sc_module_name name, MachineRun& run,

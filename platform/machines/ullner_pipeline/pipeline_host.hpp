@@ -24,6 +24,10 @@ class PipelineHost final : public ullner::Host {
                const ullner::HostAttachment& attached, std::uint64_t engines,
                const Bounds& modelling_space);
   /// The window of rays in flight a host with parameters `host` keeps (its attachment's).
+  /// Whether it takes waiting answers before making rays (host.answers_first).
+  static bool answers_first(const modules::ModuleParams& host);
+  /// Its result queue's slots when fewer than the rays in flight, else 0 (host.result_slots).
+  static std::uint64_t result_slots(const modules::ModuleParams& host);
   static std::uint64_t rays_in_flight(const modules::ModuleParams& host);
 
   /// Descriptions the chain shifted back out during the load (its previous contents).

@@ -17,60 +17,72 @@ DescriptionInFlight& carried(tlm::tlm_generic_payload& gp) {
 
 PolygonEngine::PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t index,
                              const EngineTiming& timing, const sc_core::sc_time& serialisation,
-                             const sc_core::sc_time& link_latency, const HeldPolygons& held,
-                             modules::Link* recorded_link)
+                             const sc_core::sc_time& link_latency, const HeldPolygons& held)
     : modules::ChainHop(name),
       index_(index),
       timing_(timing),
       serialisation_(serialisation),
       link_latency_(link_latency),
-      held_(held),
-      recorded_link_(recorded_link) {}
+      held_(held) {}
+
+sc_core::sc_time PolygonEngine::accept_bound() const {
+  if (!any_) return sc_core::SC_ZERO_TIME;
+  return std::max(plus(last_accept_, timing_.issue_interval), last_start_);
+}
 
 void PolygonEngine::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-  // The description is in its input register `delay` from now; it accepts it an issue interval
-  // after the previous one at the earliest (chain_timing.hpp: E).
-  const sc_core::sc_time arrived = sc_core::sc_time_stamp() + delay;
-  const sc_core::sc_time accepted =
-      any_ ? std::max(arrived, plus(last_accept_, timing_.issue_interval)) : arrived;
+  // The description is in its input register at its `at`; it accepts it an issue interval after
+  // the previous one at the earliest, and once it has started passing that one on (it holds one,
+  // chain_timing.hpp: E).
+  DescriptionInFlight& d = carried(gp);
+  const sc_core::sc_time accepted = std::max(d.at, accept_bound());
   if (!any_) first_accept_ = accepted;
   last_accept_ = accepted;
   any_ = true;
 
   // The data: its polygon against the description it received (L702-L713), as it received it.
-  DescriptionInFlight& d = carried(gp);
   for (DescriptionFault* f : faults_) f->apply(d);
   if (!dead_ && tasks::pass_ray_description(d.description, d.ray, (*held_.polygon)[index_],
                                             (*held_.identity)[index_])) {
     ++(*held_.overwrites)[index_];
     d.last_writer = index_;
   }
-  delay = plus(accepted, timing_.hop_latency) - sc_core::sc_time_stamp();
+  d.at = plus(accepted, timing_.hop_latency);
+  (void)delay;  // the time travels in the description (DescriptionInFlight::at)
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
-void PolygonEngine::pass_on(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+void PolygonEngine::start(tlm::tlm_generic_payload& gp) {
+  DescriptionInFlight& d = carried(gp);
+  const sc_core::sc_time ready = d.at;
+  sc_core::sc_time start;
   if (next_) {
     // Its link starts when the description is ready, the next processor's register is free
     // (that processor accepted the previous one) and the link has carried the previous one.
-    const sc_core::sc_time ready = sc_core::sc_time_stamp() + delay;
     // The next register must be free when the first bit reaches it, the link's latency after
     // the link starts. A description held by both the link and that register waits for the link.
     const sc_core::sc_time& reg_free = next_->register_free();
     const sc_core::sc_time reg_allows =
         next_->any_ && reg_free > link_latency_ ? reg_free - link_latency_ : sc_core::SC_ZERO_TIME;
     const sc_core::sc_time handed = reg_allows > link_free_ ? std::max(ready, reg_allows) : ready;
-    const sc_core::sc_time start = std::max(handed, link_free_);
-    waited_ += start - ready;
-    link_free_ = plus(start, serialisation_);
-    sc_core::sc_time arrives = plus(link_free_, link_latency_);
-    // The kit link its output stands for counts the same message (its own wait from `handed`).
-    if (recorded_link_ &&
-        recorded_link_->transfer(tasks::RayDescription::kWireBits, handed) != arrives)
-      SC_REPORT_ERROR("rtsim/ullner-pipeline", "a processor's link disagrees with its own");
-    delay = arrives - sc_core::sc_time_stamp();
+    start = std::max(handed, link_free_);
+    if (index_ == 0) d.first_handed = handed;  // the first link counts it from here (leave)
+    d.at = plus(plus(start, serialisation_), link_latency_);
+  } else {
+    // The last: a slot of the host's result queue must be free when its link starts.
+    const sc_core::sc_time unheld = std::max(ready, link_free_);
+    start = std::max(unheld, far_end_room_);
+    far_end_held_ += start - unheld;
+    d.at = start;
   }
-  out->b_transport(gp, delay);
+  waited_ += start - ready;
+  last_start_ = start;
+  link_free_ = plus(start, serialisation_);
+}
+
+void PolygonEngine::hand_on(tlm::tlm_generic_payload& gp) {
+  sc_core::sc_time none = sc_core::SC_ZERO_TIME;
+  out->b_transport(gp, none);
 }
 
 }  // namespace rtsim::platform::ullner_pipeline

@@ -5,16 +5,19 @@
 // that hit is closer than the carried t (writing the identity word loaded with its polygon), and
 // passes the description on through its output socket over its bit-serial link.
 //
-// Its timing is its own state's (the formulas of chain_timing.hpp, one processor at a time):
-//     accepts     E(j) = max(A(j), E(j-1) + issue_interval)         A: arrival in its register
+// Its timing is its own state's (the rules of chain_timing.hpp, one processor at a time):
+//     accepts     E(j) = max(A(j), E(j-1) + issue_interval, S(j-1))   A: arrival in its register;
+//                                                                      it holds one description
 //     ready       R(j) = E(j) + hop_latency
 //     link starts S(j) = max(R(j), S(j-1) + serialisation, next's E(j-1) - link latency)
 //     arrives     A'(j) = S(j) + serialisation + link latency        at the next processor
 // The next processor's input register is free once it has accepted the previous description,
 // and must be by the time the first bit reaches it: the handshake (L729-L731) is that
-// processor's E(j-1), read through `next`. The chain's thread
-// carries each description from one processor to the next (loosely timed: no processor waits
-// in simulated time, each computes its times from its state and its neighbour's handshake).
+// processor's E(j-1), read through `next`. The last processor's next register is a slot of the
+// host's result queue, which the chain gives it (set_far_end_room). The chain's thread carries
+// each description from one processor to the next as far as the one ahead of it allows
+// (loosely timed: no processor waits in simulated time; the times travel in the description,
+// DescriptionInFlight::at).
 #include <cstdint>
 #include <systemc>
 #include <tlm>
@@ -42,12 +45,10 @@ struct HeldPolygons {
 class PolygonEngine : public modules::ChainHop {
  public:
   /// Processor `index` with `timing`; its output link carries a description in `serialisation`
-  /// and delivers it `link_latency` later. `recorded_link`, when given, is the kit link whose
-  /// statistics its output stands for (the first inner link, pipeline.link).
+  /// and delivers it `link_latency` later.
   PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t index,
                 const EngineTiming& timing, const sc_core::sc_time& serialisation,
-                const sc_core::sc_time& link_latency, const HeldPolygons& held,
-                modules::Link* recorded_link);
+                const sc_core::sc_time& link_latency, const HeldPolygons& held);
 
   /// Faults: `fault` corrupts every description entering it; a dead processor passes every
   /// description on unchanged.
@@ -58,16 +59,27 @@ class PolygonEngine : public modules::ChainHop {
   void set_next(const PolygonEngine* next) { next_ = next; }
   /// When its input register was last freed (it accepted a description then).
   const sc_core::sc_time& register_free() const { return last_accept_; }
-  /// Passes on the description it has just computed, ready `delay` from now: over its link into
-  /// the next processor (which accepts and computes it: `delay` becomes when that one is ready),
-  /// or, for the last, to the chain's far end (`delay` unchanged).
-  void pass_on(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  /// The earliest it accepts its next description: an issue interval after the last, and once
+  /// it has started passing the last on (zero before the first).
+  sc_core::sc_time accept_bound() const;
+  /// The last processor: its link must not start before this (a slot of the host's result
+  /// queue is free then).
+  void set_far_end_room(const sc_core::sc_time& t) { far_end_room_ = t; }
+  /// Starts passing on the description it has computed (ready at its `at`) over its link: needs
+  /// the next processor's handshake (it has accepted the previous description). `at` becomes
+  /// when the description is in the next register, or for the last when its link starts.
+  void start(tlm::tlm_generic_payload& gp);
+  /// Hands it to the next processor, which accepts and computes it (needs that one to have
+  /// started passing on the previous description), or to the chain's far end.
+  void hand_on(tlm::tlm_generic_payload& gp);
 
   /// When it first and last accepted a description (fill and drain along the chain).
   const sc_core::sc_time& first_accept() const { return first_accept_; }
   const sc_core::sc_time& last_accept() const { return last_accept_; }
   /// Time descriptions waited, ready, for its link or the next register.
   const sc_core::sc_time& waited() const { return waited_; }
+  /// The last processor: time descriptions waited for a result slot alone.
+  const sc_core::sc_time& far_end_held() const { return far_end_held_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
@@ -76,14 +88,16 @@ class PolygonEngine : public modules::ChainHop {
   EngineTiming timing_;
   sc_core::sc_time serialisation_, link_latency_;
   HeldPolygons held_;
-  modules::Link* recorded_link_;
   const PolygonEngine* next_ = nullptr;
   std::vector<DescriptionFault*> faults_;
   bool dead_ = false;
   bool any_ = false;
   sc_core::sc_time first_accept_ = sc_core::SC_ZERO_TIME, last_accept_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time last_start_ = sc_core::SC_ZERO_TIME;  ///< S(j-1)
   sc_core::sc_time link_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time far_end_room_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time waited_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time far_end_held_ = sc_core::SC_ZERO_TIME;
 };
 
 }  // namespace rtsim::platform::ullner_pipeline
