@@ -400,6 +400,25 @@ class ChainProfileTest(ScratchTest):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGoodPng(out)
 
+    def test_busy_over_time_of_watched_processors(self):
+        stats = self.stats()
+        stats["pipeline"]["along_chain"]["busy_windows"] = {
+            "engines": [0, 3, 5], "begin_s": 0.001, "window_s": 0.0005,
+            "busy": [[1, 0.5, 0, 0], [0, 1, 0.5, 0], [0, 0, 1, 0.25]]}
+        engines, begin, width, rows = chain_profile.busy_windows(stats)
+        self.assertEqual(engines, [0, 3, 5])
+        self.assertEqual(rows[2], [0, 0, 1, 0.25])
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump(stats, f)
+        out = os.path.join(self.dir, "c.png")
+        r = run_script("chain_profile.py", path, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        stats["pipeline"]["along_chain"]["busy_windows"]["busy"] = [[1], [0, 1], [0]]
+        with self.assertRaises(Exception):
+            chain_profile.busy_windows(stats)
+
     def test_bad_input(self):
         bad = self.stats()
         bad["pipeline"]["along_chain"]["answers_per_description"] = [0.1]

@@ -130,7 +130,8 @@ nlohmann::json comparable(nlohmann::json s) {
        {"wall_time_s", "rays_per_second", "params", "image_bytes", "image_png", "command"})
     s.erase(key);
   auto& along = s["pipeline"]["along_chain"];
-  for (const char* key : {"first_accept_s", "last_accept_s", "waited_per_description_s"})
+  for (const char* key :
+       {"first_accept_s", "last_accept_s", "waited_per_description_s", "busy_windows"})
     along.erase(key);
   return s;
 }

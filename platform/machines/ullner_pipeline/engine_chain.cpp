@@ -74,6 +74,9 @@ const modules::IntParam kDeadEngine(
      .description = "A fault: this processor is dead and passes every description on unchanged "
                     "(its polygon is never found); -1 for none",
      .source = "fault model (issue: faults in flight); a dead stage of a systolic chain"});
+/// pipeline.model = engines: processors whose busy time is recorded over time, at most
+/// (assumption: enough rows for a picture of the chain filling and draining).
+constexpr std::uint64_t kWatchedEngines = 24;
 /// A processor's class and the links' class, under the chain's path.
 constexpr const char* kEngine = "engine";
 constexpr const char* kLinkIn = "link_in";
@@ -247,6 +250,14 @@ void EngineChain::build_engines() {
   }
   engine_modules_.back()->out.bind(*far_end_socket_);
   if (dead_engine_ >= 0) engine_modules_[static_cast<std::size_t>(dead_engine_)]->set_dead(true);
+  // Busy over time of a few processors along the chain (a timeline is up to 128 KiB, so not
+  // of every one of 10,000): where the chain fills and drains, and where a hold stops it.
+  const std::uint64_t watched = std::min<std::uint64_t>(n, kWatchedEngines);
+  watched_busy_.resize(watched);
+  for (std::uint64_t i = 0; i < watched; ++i) {
+    watched_.push_back(watched > 1 ? i * (n - 1) / (watched - 1) : 0);
+    engine_modules_[watched_.back()]->watch(&watched_busy_[i]);
+  }
   far_end_socket_->register_b_transport(this, &EngineChain::far_end_transport);
 }
 

@@ -79,6 +79,10 @@ class EngineChain : public sc_core::sc_module {
   const std::vector<std::unique_ptr<PolygonEngine>>& engine_modules() const {
     return engine_modules_;
   }
+  /// pipeline.model = engines: processors sampled evenly along the chain (the first and the
+  /// last among them), and when each was busy; empty in chain mode.
+  const std::vector<std::uint64_t>& watched() const { return watched_; }
+  const std::vector<modules::BusyTimeline>& watched_busy() const { return watched_busy_; }
   const ChainTiming& timing() const { return timing_; }
   /// The host's result queue, whose slots are the far end's registers (before simulating).
   void set_result_queue(const modules::TimedFifo<ullner::RayResult>& results) {
@@ -213,6 +217,8 @@ class EngineChain : public sc_core::sc_module {
   std::vector<std::unique_ptr<PolygonEngine>> engine_modules_;
   std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_;
   std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_socket_;
+  std::vector<std::uint64_t> watched_;
+  std::vector<modules::BusyTimeline> watched_busy_;
 };
 
 }  // namespace rtsim::platform::ullner_pipeline

@@ -35,8 +35,14 @@ namespace {
 constexpr std::uint64_t kChainProfilePoints = 1000;
 
 /// Per-processor counts averaged over runs of neighbouring processors, per description.
+/// Windows of the frame in `along_chain.busy_windows` (assumption: enough columns to see a
+/// chain of 1000 processors fill, about 5 ms, in a 1.3 s frame).
+constexpr std::size_t kBusyWindows = 64;
+
 nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
-                                   std::uint64_t descriptions, double busy_fraction) {
+                                   std::uint64_t descriptions, double busy_fraction,
+                                   const sc_core::sc_time& frame_begin,
+                                   const sc_core::sc_time& frame_end) {
   const std::uint64_t n = chain.engines();
   const std::uint64_t points = std::min(n, kChainProfilePoints);
   const double per = static_cast<double>(std::max<std::uint64_t>(descriptions, 1));
@@ -74,6 +80,17 @@ nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
     out["first_accept_s"] = std::move(first_accept);
     out["last_accept_s"] = std::move(last_accept);
     out["waited_per_description_s"] = std::move(waited);
+    // When a few processors along the chain were busy: the fill, a hold, the drain.
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    modules::UtilizationWindows w;
+    for (const auto& timeline : chain.watched_busy()) {
+      w = timeline.windows(frame_begin, frame_end, kBusyWindows);
+      rows.push_back(w.values);
+    }
+    out["busy_windows"] = {{"engines", chain.watched()},
+                           {"begin_s", w.begin_s},
+                           {"window_s", w.window_s},
+                           {"busy", std::move(rows)}};
   }
   return out;
 }
@@ -196,7 +213,8 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
         {"host_starved_s", chain.host_starved().to_seconds()},
         {"chain_held_s", chain.chain_held().to_seconds()},
         {"far_end_held_s", chain.far_end_held().to_seconds()}}},
-      {"along_chain", along_chain(chain, passed, busy_fraction)}};
+      {"along_chain",
+       along_chain(chain, passed, busy_fraction, host.load_time(), host.load_time() + frame_time)}};
   if (!chain.faults().empty()) {
     nlohmann::ordered_json& in_flight = res["pipeline"]["faults_in_flight"];
     for (const auto& f : chain.faults())

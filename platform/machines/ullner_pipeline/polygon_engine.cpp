@@ -39,6 +39,7 @@ void PolygonEngine::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& 
   if (!any_) first_accept_ = accepted;
   last_accept_ = accepted;
   any_ = true;
+  if (timeline_) timeline_->add(accepted, timing_.issue_interval);
 
   // The data: its polygon against the description it received (L702-L713), as it received it.
   for (DescriptionFault* f : faults_) f->apply(d);

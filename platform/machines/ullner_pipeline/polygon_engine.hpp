@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "firmware/kernels/ullner_quad.hpp"
+#include "modules/busy_timeline.hpp"
 #include "modules/chain_hop.hpp"
 #include "modules/link.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
@@ -54,6 +55,9 @@ class PolygonEngine : public modules::ChainHop {
   /// description on unchanged.
   void add_fault(DescriptionFault& fault) { faults_.push_back(&fault); }
   void set_dead(bool dead) { dead_ = dead; }
+  /// Records its issue slots (one issue interval from each acceptance) in `timeline`: when it
+  /// was busy, for fill and drain along the chain.
+  void watch(modules::BusyTimeline* timeline) { timeline_ = timeline; }
 
   /// The processor after this one (its handshake), at elaboration; none for the last.
   void set_next(const PolygonEngine* next) { next_ = next; }
@@ -90,6 +94,7 @@ class PolygonEngine : public modules::ChainHop {
   HeldPolygons held_;
   const PolygonEngine* next_ = nullptr;
   std::vector<DescriptionFault*> faults_;
+  modules::BusyTimeline* timeline_ = nullptr;
   bool dead_ = false;
   bool any_ = false;
   sc_core::sc_time first_accept_ = sc_core::SC_ZERO_TIME, last_accept_ = sc_core::SC_ZERO_TIME;
