@@ -83,6 +83,14 @@ class Memory : public sc_core::sc_module, public StatGroup {
     read_busy_.record(start, t);
     return t;
   }
+  /// `times` more writes of the `words` words from word `first` whose data the model does not
+  /// need to move (a machine that computes where shifted data comes to rest): the counters and
+  /// the faults' application counts advance as if they had been written.
+  void account_writes(std::uint64_t first, std::uint64_t words, std::uint64_t times) {
+    words_written_ += words * times;
+    for (auto& f : faults_)
+      if (f.word >= first && f.word < first + words) f.applied += times;
+  }
   /// When the read port was busy (reads charged by account_line_reads, and b_transport reads).
   const BusyTimeline& read_timeline() const { return read_busy_.timeline(); }
 

@@ -177,6 +177,13 @@ TEST(UllnerPipeline, TheChainFormulaGivesEveryRayTheTimesOfTheEngines) {
        "--scene builtin:ullner-random-100 -p pipeline.engines=100 -p host.clock=\"20 MHz\" -p "
        "host.result_slots=2 -p host.answers_first=false -p pipeline.link_in.bit_time=\"1 ns\" "
        "-p pipeline.link.latency=\"1 us\""},
+      // Faults in the registers at rest: a word corrupted in every description shifted through
+      // processor 100 (d_p) and 300 (the identity), and a link latency in the load's wave.
+      {"cubes-register-faults",
+       "--scene builtin:ullner-cubes -p pipeline.engines=600 --fault "
+       "pipeline.polygon_registers:2103:0x80000000 --fault pipeline.polygon_registers:6320:0x2 "
+       "-p pipeline.link.latency=\"300 ns\"" +
+           kFastHost},
       {"cubes-rays-first",
        "--scene builtin:ullner-cubes -p pipeline.engines=600 -p host.clock=\"5 MHz\" -p "
        "host.result_slots=4 -p host.answers_first=false -p pipeline.link_in.bit_time=\"1 ns\""},
@@ -268,18 +275,25 @@ TEST(UllnerPipeline, LoadShiftsEveryDescriptionThroughTheChain) {
   // Presentation j: the host formats it (21 words, 4 instructions: 50 cycles at 5 MHz = 10 us),
   // the link carries it (672 bits on 13 wires: 52 bit times = 7.8 us), the first processor
   // passes its polygon on (7.8 us) and accepts; the last description the chain held reaches the
-  // host N polygon times after the last presentation arrived.
+  // host N polygon times after the last presentation arrived. Every presentation moves every
+  // processor's description one on: N^2 register lines written. The engines pass the wave from
+  // processor to processor; the chain writes each line where its description comes to rest.
   for (const int engines : {500, 2000}) {
-    const auto s = run_pipeline("load",
-                                "--scene builtin:ullner-cubes --width 8 --height 8 "
-                                "-p pipeline.engines=" +
-                                    std::to_string(engines));
-    ASSERT_FALSE(s.empty());
-    const double f = 10e-6, p = 7.8e-6, n = engines;
-    const double want = (n - 1) * (f + 2 * p) + f + p + n * p;
-    EXPECT_NEAR(s["pipeline"]["load_time_s"].get<double>(), want, 1e-9 * want) << engines;
-    EXPECT_EQ(s["pipeline"]["load_descriptions"], engines);
-    EXPECT_EQ(s["modules"]["pipeline.engine"]["dummies"], engines - 498);
+    for (const std::string model : {"chain", "engines"}) {
+      const auto s = run_pipeline("load",
+                                  "--scene builtin:ullner-cubes --width 8 --height 8 "
+                                  "-p pipeline.engines=" +
+                                      std::to_string(engines) + " -p pipeline.model=" + model);
+      ASSERT_FALSE(s.empty());
+      const double f = 10e-6, p = 7.8e-6, n = engines;
+      const double want = (n - 1) * (f + 2 * p) + f + p + n * p;
+      EXPECT_NEAR(s["pipeline"]["load_time_s"].get<double>(), want, 1e-9 * want) << model;
+      EXPECT_EQ(s["pipeline"]["load_descriptions"], engines);
+      EXPECT_EQ(s["modules"]["pipeline.engine"]["dummies"], engines - 498);
+      EXPECT_EQ(s["modules"]["pipeline.polygon_registers"]["words_written"].get<double>(),
+                n * n * 21)
+          << model;
+    }
   }
 }
 

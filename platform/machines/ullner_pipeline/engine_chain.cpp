@@ -170,35 +170,90 @@ std::uint64_t EngineChain::sum(const std::vector<std::uint64_t>& v, std::uint64_
 
 void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   const auto* ext = gp.get_extension<modules::MessageExtension<PolygonLoad>>();
-  if (!ext || !ext->message() || loaded_.value() >= engines()) {
+  const std::uint64_t n = engines();
+  if (!ext || !ext->message() || loaded_.value() >= n) {
     gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return;
   }
   PolygonLoad& msg = *ext->message();
   // The description is in the first processor's input register. It passes its current polygon
-  // on (one polygon time on its output link), then accepts the new one; the processor behind
-  // it does the same a polygon time later, and so on, so the polygon that was in the last
-  // processor reaches the host N polygon times after this one arrived. The next description can
-  // come in once this one is accepted (the register is free).
+  // on (one polygon time on its link), then accepts the new one; the processor behind it does
+  // the same a polygon time (and a link latency) later, and so on, so the polygon that was in
+  // the last processor reaches the host N of those after this one arrived. The next
+  // description can come in once this one is accepted (the register is free).
   const sc_core::sc_time arrived = sc_core::sc_time_stamp() + delay;
-  const sc_core::sc_time accepted = plus(arrived, polygon_time_);
-  msg.returned_at = plus(arrived, times(polygon_time_, engines()));
-  // After N presentations the j-th rests in processor N-1-j, and what leaves the chain at the
-  // j-th is what processor N-1-j held before the load began: each line is written once, where
-  // its description comes to rest (the shifting in between moves it unchanged).
-  const std::uint64_t line = engines() - 1 - loaded_.value();
-  const auto& words = registers.contents();
-  std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
-              PolygonDescription::kWords, msg.returned.words.begin());
-  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
-  if (!modules::write_words(registers_port_, line * PolygonDescription::kWords,
-                            msg.presented.words.data(), PolygonDescription::kWords, unused)) {
-    gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
-    return;
+  sc_core::sc_time accepted;
+  if (engine_modules_.empty()) {
+    // The shortcut: each presentation's wave moves every description one processor on, so
+    // after N of them the j-th rests in processor N-1-j and what leaves the chain at the j-th is
+    // what processor N-1-j held before the load began. Each line is written where its
+    // description comes to rest, with what the lines before it did to it on its way (a faulty
+    // register word corrupts every description shifted through it), and at the end every line
+    // counts as written N times, as the engines write it (tests/ullner_pipeline_test.cpp shows
+    // both give the same registers, statistics and times). The returned words skip the faults
+    // of the lines they pass on their way out: only their number is used.
+    accepted = plus(arrived, polygon_time_);
+    msg.returned_at = plus(arrived, times(plus(polygon_time_, inner_link_.latency()), n));
+    const std::uint64_t line = n - 1 - loaded_.value();
+    const auto& words = registers.contents();
+    std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
+                PolygonDescription::kWords, msg.returned.words.begin());
+    PolygonDescription resting = msg.presented;
+    for (const auto& f : registers.faults())
+      if (f.word < line * PolygonDescription::kWords)
+        resting.words[f.word % PolygonDescription::kWords] ^= f.xor_mask;
+    exchange(line, resting);
+    if (loaded_.value() + 1 == n)
+      registers.account_writes(0, n * PolygonDescription::kWords, n - 1);
+  } else {
+    // The wave as transactions: into the first processor, from each to the next, and from the
+    // last back to the host.
+    LoadWave wave{.description = msg.presented, .at = arrived};
+    modules::MessageExtension<LoadWave> wave_ext(&wave, PolygonDescription::kWireBits);
+    tlm::tlm_generic_payload wave_gp;
+    wave_gp.set_command(tlm::TLM_WRITE_COMMAND);
+    wave_gp.set_address(0);
+    wave_gp.set_data_ptr(reinterpret_cast<unsigned char*>(wave.description.words.data()));
+    wave_gp.set_data_length(PolygonDescription::kWords * 4);
+    wave_gp.set_streaming_width(PolygonDescription::kWords * 4);
+    wave_gp.set_byte_enable_ptr(nullptr);
+    wave_gp.set_extension(&wave_ext);
+    sc_core::sc_time none = sc_core::SC_ZERO_TIME;
+    (*to_first_load_)->b_transport(wave_gp, none);
+    accepted = wave.accepted;
+    for (auto& engine : engine_modules_) engine->shift_on(wave_gp);
+    wave_gp.clear_extension(&wave_ext);
+    msg.returned = wave.description;
+    msg.returned_at = wave.at;
   }
   ++loaded_;
   delay = accepted - sc_core::sc_time_stamp();
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void EngineChain::load_back_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  // The last processor's previous polygon, back at the host (LoadWave::at says when).
+  (void)delay;
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void EngineChain::exchange(std::uint64_t line, PolygonDescription& words) {
+  PolygonDescription held;
+  std::copy_n(
+      registers.contents().begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
+      PolygonDescription::kWords, held.words.begin());
+  register_write_.set_command(tlm::TLM_WRITE_COMMAND);
+  register_write_.set_address(line * PolygonDescription::kWords * 4);
+  register_write_.set_data_ptr(reinterpret_cast<unsigned char*>(words.words.data()));
+  register_write_.set_data_length(PolygonDescription::kWords * 4);
+  register_write_.set_streaming_width(PolygonDescription::kWords * 4);
+  register_write_.set_byte_enable_ptr(nullptr);
+  register_write_.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  registers_port_->b_transport(register_write_, unused);
+  if (register_write_.is_response_error())
+    SC_REPORT_ERROR("rtsim/ullner-pipeline", "a polygon register write failed");
+  words = held;
 }
 
 const std::vector<kernels::UllnerQuadParams<double>>& EngineChain::polygons() {
@@ -249,6 +304,16 @@ void EngineChain::build_engines() {
     engine_modules_[k]->set_next(engine_modules_[k + 1].get());
   }
   engine_modules_.back()->out.bind(*far_end_socket_);
+  // The load's wave, through the same processors.
+  to_first_load_ =
+      std::make_unique<tlm_utils::simple_initiator_socket<EngineChain>>("to_first_load");
+  load_back_ = std::make_unique<tlm_utils::simple_target_socket<EngineChain>>("load_back");
+  to_first_load_->bind(engine_modules_.front()->load_in);
+  for (std::uint64_t k = 0; k + 1 < n; ++k)
+    engine_modules_[k]->load_out.bind(engine_modules_[k + 1]->load_in);
+  engine_modules_.back()->load_out.bind(*load_back_);
+  load_back_->register_b_transport(this, &EngineChain::load_back_transport);
+  for (auto& engine : engine_modules_) engine->hold_registers(this, polygon_time_);
   if (dead_engine_ >= 0) engine_modules_[static_cast<std::size_t>(dead_engine_)]->set_dead(true);
   // Busy over time of a few processors along the chain (a timeline is up to 128 KiB, so not
   // of every one of 10,000): where the chain fills and drains, and where a hold stops it.

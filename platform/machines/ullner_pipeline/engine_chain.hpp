@@ -44,7 +44,7 @@
 
 namespace rtsim::platform::ullner_pipeline {
 
-class EngineChain : public sc_core::sc_module {
+class EngineChain : public sc_core::sc_module, private RegisterFile {
  public:
   /// The first processor's input register: one description (the host is held until it is free).
   modules::MessageQueue<ullner::RayRequest> input;
@@ -154,11 +154,16 @@ class EngineChain : public sc_core::sc_module {
   void through_processors(DescriptionInFlight& msg);
   void far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  void load_back_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  /// A processor's registers, line `line` of `registers`: written through the load port (its
+  /// faults apply), what they held given back.
+  void exchange(std::uint64_t line, PolygonDescription& words) override;
   /// The processors' polygons as their registers hold them (decoded again after any write).
   const std::vector<kernels::UllnerQuadParams<double>>& polygons();
   ullner::RayResult read_answer(const ullner::RayRequest& req, const tasks::RayDescription& d);
 
   tlm_utils::simple_initiator_socket<EngineChain> registers_port_;  ///< the load's writes
+  tlm::tlm_generic_payload register_write_;  ///< reused: a load writes N^2 lines
   const functional::SceneGeometry& geometry_;
   std::uint64_t polygons_;
   TraceCounters& counters_;
@@ -217,6 +222,9 @@ class EngineChain : public sc_core::sc_module {
   std::vector<std::unique_ptr<PolygonEngine>> engine_modules_;
   std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_;
   std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> far_end_socket_;
+  // The load's wave: into the first processor's registers, and back to the host from the last.
+  std::unique_ptr<tlm_utils::simple_initiator_socket<EngineChain>> to_first_load_;
+  std::unique_ptr<tlm_utils::simple_target_socket<EngineChain>> load_back_;
   std::vector<std::uint64_t> watched_;
   std::vector<modules::BusyTimeline> watched_busy_;
 };

@@ -19,11 +19,39 @@ PolygonEngine::PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t 
                              const EngineTiming& timing, const sc_core::sc_time& serialisation,
                              const sc_core::sc_time& link_latency, const HeldPolygons& held)
     : modules::ChainHop(name),
+      load_in("load_in"),
+      load_out("load_out"),
       index_(index),
       timing_(timing),
       serialisation_(serialisation),
       link_latency_(link_latency),
-      held_(held) {}
+      held_(held) {
+  load_in.register_b_transport(this, &PolygonEngine::load_transport);
+}
+
+void PolygonEngine::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  // "This first processor passes its current polygon to the second processor before accepting
+  // the new polygon. Every processor in the pipeline behaves in a similar manner" (L717-L719):
+  // its link carries its polygon on (one polygon time), then it takes the new one in its place.
+  auto* ext = gp.get_extension<modules::MessageExtension<LoadWave>>();
+  if (!ext || !ext->message() || !registers_) {
+    gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return;
+  }
+  LoadWave& w = *ext->message();
+  const sc_core::sc_time start = std::max(w.at, load_link_free_);
+  load_link_free_ = plus(start, polygon_time_);
+  w.accepted = load_link_free_;
+  w.at = plus(load_link_free_, link_latency_);  // where its previous polygon arrives next
+  registers_->exchange(index_, w.description);
+  (void)delay;  // the time travels in the wave (LoadWave::at)
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void PolygonEngine::shift_on(tlm::tlm_generic_payload& gp) {
+  sc_core::sc_time none = sc_core::SC_ZERO_TIME;
+  load_out->b_transport(gp, none);
+}
 
 sc_core::sc_time PolygonEngine::accept_bound() const {
   if (!any_) return sc_core::SC_ZERO_TIME;

@@ -18,6 +18,9 @@
 // each description from one processor to the next as far as the one ahead of it allows
 // (loosely timed: no processor waits in simulated time; the times travel in the description,
 // DescriptionInFlight::at).
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+
 #include <cstdint>
 #include <systemc>
 #include <tlm>
@@ -29,6 +32,7 @@
 #include "modules/link.hpp"
 #include "platform/machines/ullner_pipeline/chain_timing.hpp"
 #include "platform/machines/ullner_pipeline/description_fault.hpp"
+#include "platform/machines/ullner_pipeline/polygon_load.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
 
@@ -45,6 +49,11 @@ struct HeldPolygons {
 /// far end).
 class PolygonEngine : public modules::ChainHop {
  public:
+  /// The load (L717-L719): a polygon description from the previous processor (or the host's
+  /// end), and this one's previous polygon on to the next (or back to the host).
+  tlm_utils::simple_target_socket<PolygonEngine> load_in;
+  tlm_utils::simple_initiator_socket<PolygonEngine> load_out;
+
   /// Processor `index` with `timing`; its output link carries a description in `serialisation`
   /// and delivers it `link_latency` later.
   PolygonEngine(const sc_core::sc_module_name& name, std::uint64_t index,
@@ -76,6 +85,14 @@ class PolygonEngine : public modules::ChainHop {
   /// Hands it to the next processor, which accepts and computes it (needs that one to have
   /// started passing on the previous description), or to the chain's far end.
   void hand_on(tlm::tlm_generic_payload& gp);
+  /// The load: its registers are `registers`' line `index`; a description takes `polygon_time`
+  /// on its link.
+  void hold_registers(RegisterFile* registers, const sc_core::sc_time& polygon_time) {
+    registers_ = registers;
+    polygon_time_ = polygon_time;
+  }
+  /// Passes the load's wave (its previous polygon, after load_in) on through load_out.
+  void shift_on(tlm::tlm_generic_payload& gp);
 
   /// When it first and last accepted a description (fill and drain along the chain).
   const sc_core::sc_time& first_accept() const { return first_accept_; }
@@ -87,6 +104,7 @@ class PolygonEngine : public modules::ChainHop {
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
+  void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
 
   std::uint64_t index_;
   EngineTiming timing_;
@@ -95,6 +113,9 @@ class PolygonEngine : public modules::ChainHop {
   const PolygonEngine* next_ = nullptr;
   std::vector<DescriptionFault*> faults_;
   modules::BusyTimeline* timeline_ = nullptr;
+  RegisterFile* registers_ = nullptr;
+  sc_core::sc_time polygon_time_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time load_link_free_ = sc_core::SC_ZERO_TIME;
   bool dead_ = false;
   bool any_ = false;
   sc_core::sc_time first_accept_ = sc_core::SC_ZERO_TIME, last_accept_ = sc_core::SC_ZERO_TIME;

@@ -21,6 +21,22 @@ struct PolygonDescription {
   std::array<std::uint32_t, kWords> words{};
 };
 
+/// pipeline.model = engines: the description a processor passes to the next during the load
+/// (its previous polygon), and when it arrives there; the first processor's acceptance.
+struct LoadWave {
+  PolygonDescription description;
+  sc_core::sc_time at = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time accepted = sc_core::SC_ZERO_TIME;
+};
+
+/// A processor's polygon registers (the chain's register memory): it passes the description it
+/// holds on and takes the one it received in its place.
+struct RegisterFile {
+  virtual ~RegisterFile() = default;
+  /// Processor `line`'s registers take `words`; `words` becomes what they held.
+  virtual void exchange(std::uint64_t line, PolygonDescription& words) = 0;
+};
+
 /// One presentation: the description the host sends in, and what comes back out of the far end.
 struct PolygonLoad {
   PolygonDescription presented;
