@@ -5,6 +5,7 @@
 #include <span>
 
 #include "common/input_error.hpp"
+#include "modules/extension_guard.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_tracer.hpp"
 
@@ -218,11 +219,12 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
     wave_gp.set_streaming_width(PolygonDescription::kWords * 4);
     wave_gp.set_byte_enable_ptr(nullptr);
     wave_gp.set_extension(&wave_ext);
+    const modules::ClearExtensionOnExit<modules::MessageExtension<LoadWave>> clear(wave_gp,
+                                                                                   wave_ext);
     sc_core::sc_time none = sc_core::SC_ZERO_TIME;
     (*to_first_load_)->b_transport(wave_gp, none);
     accepted = wave.accepted;
     for (auto& engine : engine_modules_) engine->shift_on(wave_gp);
-    wave_gp.clear_extension(&wave_ext);
     msg.returned = wave.description;
     msg.returned_at = wave.at;
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 
+#include "modules/extension_guard.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_geometry.hpp"
@@ -115,6 +116,7 @@ void PipelineHost::load_scene() {
   gp.set_streaming_width(PolygonDescription::kWords * 4);
   gp.set_byte_enable_ptr(nullptr);
   gp.set_extension(&ext);
+  const modules::ClearExtensionOnExit<modules::MessageExtension<PolygonLoad>> clear(gp, ext);
   const sc_core::sc_time format =
       timing().time_for(Cost{.mem_words = PolygonDescription::kWords, .instructions = 4});
   const sc_core::sc_time on_link = link_to_machine().serialisation(PolygonDescription::kWireBits);
@@ -137,7 +139,6 @@ void PipelineHost::load_scene() {
     all_back = std::max(all_back, msg.returned_at);
     ++returned_;
   }
-  gp.clear_extension(&ext);
   // Loaded when the last description the chain held is back at the host.
   clock_.catch_up(all_back);
 }
