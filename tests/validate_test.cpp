@@ -169,6 +169,28 @@ TEST(ValidateOutput, TableShowsEveryRowVerdictAndNotes) {
   EXPECT_NE(t.find("1 of 3 figures pass"), std::string::npos);
 }
 
+// A row that restates the model's parameters is printed apart and not counted as a figure,
+// though a disagreement still shows (and still fails the run's exit status).
+TEST(ValidateOutput, ParameterChecksArePrintedApartAndNotCountedAsFigures) {
+  std::vector<Row> rows;
+  rows.push_back(make_row(333.33, 339.0, Tolerance::relative(0.03, "")));
+  rows.push_back(make_row(1.092, 1.092, Tolerance::relative(0.01, "")));
+  rows.back().id = "W1c";
+  rows.back().parameter_check = true;
+  rows.push_back(make_row(0.8, 0.9, Tolerance::relative(0.01, "")));
+  rows.back().id = "W1g";
+  rows.back().parameter_check = true;
+  const std::string t = format_table(rows);
+  std::cout << t;
+  const auto apart = t.find("Parameter checks");
+  ASSERT_NE(apart, std::string::npos);
+  EXPECT_LT(t.find("X1"), apart);
+  EXPECT_GT(t.find("W1c"), apart);
+  EXPECT_NE(t.find("1 of 1 figures pass; 1 of 2 parameter checks agree"), std::string::npos);
+  EXPECT_FALSE(rows[2].as_expected());
+  EXPECT_EQ(rows_to_json(rows)[1]["parameter_check"], true);
+}
+
 TEST(ValidateOutput, JsonAndCsvHoldTheSameRows) {
   std::vector<Row> rows;
   rows.push_back(make_row(333.33, 339.0, Tolerance::relative(0.03, "pipeline fill, 1.7%")));
@@ -203,11 +225,13 @@ TEST(ValidateOutput, JsonAndCsvHoldTheSameRows) {
   EXPECT_FALSE(std::getline(in, extra));
   EXPECT_EQ(header,
             "id,title,seed_ref,unit,seed_value,seed_display,simulated_value,relative_error,"
-            "tolerance,pass,note,error");
+            "tolerance,pass,note,error,parameter_check");
   EXPECT_EQ(r1.rfind("X1,\"time per ray, brute force\",seed 000 L1,us,333.33,,339,", 0), 0u) << r1;
   EXPECT_NE(r1.find(",pass,"), std::string::npos);
   EXPECT_NE(r2.find(",fail,"), std::string::npos);
   EXPECT_NE(r2.find("\"no \"\"value\"\"\""), std::string::npos) << r2;
+  EXPECT_EQ(r1.substr(r1.size() - 3), ",no") << r1;
+  EXPECT_EQ(j[0]["parameter_check"], false);
   EXPECT_EQ(csv_field("plain"), "plain");
   EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
 }

@@ -170,7 +170,8 @@ std::vector<Row> evaluate(const Plan& plan, const RunResults& results) {
             .workload = f.workload,
             .seed_value = f.seed_value,
             .tolerance = f.tolerance,
-            .open = f.open};
+            .open = f.open,
+            .parameter_check = f.parameter_check};
     for (const auto& key : f.runs) {
       if (const RunRequest* r = plan.find_run(key)) row.commands.push_back(r->command_line());
     }
@@ -298,11 +299,15 @@ std::string pad(const std::string& s, std::size_t width) {
 
 }  // namespace
 
-std::string format_table(const std::vector<Row>& rows) {
+namespace {
+
+/// The table of `rows` (no notes, no summary).
+std::string rows_table(const std::vector<const Row*>& rows) {
   const std::vector<std::string> head = {"id",        "figure", "source",    "seed",
                                          "simulated", "error",  "tolerance", "result"};
   std::vector<std::vector<std::string>> cells;
-  for (const auto& r : rows) {
+  for (const Row* row : rows) {
+    const Row& r = *row;
     const auto rel = r.relative_error();
     cells.push_back({r.id, r.title, cite_seeds(r.seed_ref),
                      r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
@@ -328,6 +333,22 @@ std::string format_table(const std::vector<Row>& rows) {
   for (std::size_t c = 0; c < head.size(); ++c) rule.push_back(std::string(width[c], '-'));
   line(rule);
   for (const auto& row : cells) line(row);
+  return out.str();
+}
+
+}  // namespace
+
+std::string format_table(const std::vector<Row>& rows) {
+  // The figures, then apart the rows that only check the model's parameters against the seed.
+  std::vector<const Row*> figures, checks;
+  for (const auto& r : rows) (r.parameter_check ? checks : figures).push_back(&r);
+  std::ostringstream out;
+  out << rows_table(figures);
+  if (!checks.empty()) {
+    out << "\nParameter checks (the model's parameters against the seed's numbers: they restate "
+           "the configuration, so they are not reproductions and are not counted as figures)\n"
+        << rows_table(checks);
+  }
 
   bool any_note = false;
   for (const auto& r : rows) {
@@ -338,8 +359,13 @@ std::string format_table(const std::vector<Row>& rows) {
     if (!r.note.empty()) out << r.id << ": " << r.note << "\n";
   }
   const auto passed = static_cast<std::size_t>(
-      std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.pass(); }));
-  out << "\n" << passed << " of " << rows.size() << " figures pass";
+      std::count_if(figures.begin(), figures.end(), [](const Row* r) { return r->pass(); }));
+  out << "\n" << passed << " of " << figures.size() << " figures pass";
+  if (!checks.empty()) {
+    const auto agree = static_cast<std::size_t>(
+        std::count_if(checks.begin(), checks.end(), [](const Row* r) { return r->pass(); }));
+    out << "; " << agree << " of " << checks.size() << " parameter checks agree";
+  }
   std::size_t open_failing = 0;
   for (const auto& r : rows) {
     if (!r.pass() && !r.open.empty()) {
@@ -387,6 +413,7 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
     t["why"] = r.tolerance.why;
     j["tolerance"] = t;
     j["pass"] = r.pass();
+    j["parameter_check"] = r.parameter_check;
     if (r.open.empty())
       j["open"] = nullptr;
     else
@@ -403,7 +430,7 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
 std::string rows_to_csv(const std::vector<Row>& rows) {
   std::ostringstream out;
   out << "id,title,seed_ref,unit,seed_value,seed_display,simulated_value,relative_error,"
-         "tolerance,pass,note,error\n";
+         "tolerance,pass,note,error,parameter_check\n";
   for (const auto& r : rows) {
     const auto rel = r.relative_error();
     out << csv_field(r.id) << ',' << csv_field(r.title) << ',' << csv_field(r.seed_ref) << ','
@@ -411,7 +438,7 @@ std::string rows_to_csv(const std::vector<Row>& rows) {
         << csv_field(r.seed_display) << ',' << (r.simulated ? exact_number(*r.simulated) : "")
         << ',' << (rel ? exact_number(*rel) : "") << ',' << csv_field(r.tolerance.describe()) << ','
         << (r.pass() ? "pass" : "fail") << ',' << csv_field(r.note) << ',' << csv_field(r.error)
-        << "\n";
+        << ',' << (r.parameter_check ? "yes" : "no") << "\n";
   }
   return out.str();
 }

@@ -89,6 +89,10 @@ struct Figure {
   /// A known open figure: why the model does not reproduce it yet (docs/validation.md). It is
   /// still judged; a failure shows as "FAIL (open)" and validation.json carries the reason.
   std::string open{};
+  /// The row restates the model's parameters (a substage's cycles times the clock): it checks
+  /// that the configuration is the seed's, it does not reproduce a figure, so it cannot fail
+  /// unless a parameter is changed. Printed apart and not counted among the figures.
+  bool parameter_check = false;
 };
 
 /// A figure's verdict: a row of the table.
@@ -101,6 +105,7 @@ struct Row {
   std::string error{};                  ///< why there is no value (then the row fails)
   std::vector<std::string> commands{};  ///< command lines of its runs
   std::string open{};                   ///< Figure::open
+  bool parameter_check = false;         ///< Figure::parameter_check
 
   bool pass() const;
   /// Passes, or is a known open figure that fails with a value (an error still counts): what
