@@ -75,6 +75,9 @@ const modules::IntParam kDeadEngine(
      .description = "A fault: this processor is dead and passes every description on unchanged "
                     "(its polygon is never found); -1 for none",
      .source = "fault model (issue: faults in flight); a dead stage of a systolic chain"});
+/// pipeline.model = engines: the longest chain it builds, a module a processor (the load alone
+/// is N^2 register writes, about 0.15 us each: 60 s at this length).
+constexpr std::uint64_t kMaxEngineModules = 20000;
 /// pipeline.model = engines: processors whose busy time is recorded over time, at most
 /// (assumption: enough rows for a picture of the chain filling and draining).
 constexpr std::uint64_t kWatchedEngines = 24;
@@ -154,7 +157,17 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
     throw InputError(
         self.path_of(kDeadEngine.name()), 0,
         "the chain has processors 0 to " + std::to_string(engines() - 1) + " (pipeline.engines)");
-  if (self.get(kModel) == "engines") build_engines();
+  if (self.get(kModel) == "engines") {
+    if (engines() > kMaxEngineModules)
+      throw InputError(self.path_of(kModel.name()), 0,
+                       "the engines model makes every processor a module and shifts the load "
+                       "through all of them (N^2 register writes: about " +
+                           std::to_string(engines() / 1000 * (engines() / 1000) * 15 / 100) +
+                           " s here); it takes at most " + std::to_string(kMaxEngineModules) +
+                           " processors (" + engines_name(self) +
+                           "); pipeline.model=chain gives the same times for any length");
+    build_engines();
+  }
   registers_port_.bind(registers.socket);
   // A ray meets them in this order (after the host's link in).
   probe_input_ = probe_.stage(input.name());
