@@ -7,10 +7,15 @@
 // Two ways to simulate the processors (pipeline.model), with the same times for every ray:
 //  * chain: the processors are identical, so the chain steps each description through every
 //    processor's test in order (each intersects the description it received with the polygon in
-//    its registers and passes on the one it wrote, L702-L713) and the time it reaches the far end
-//    is arithmetic (ChainTiming). Memory grows by a register line and two counters a processor.
+//    its registers and passes on the one it wrote, L702-L713) and when it enters and leaves is
+//    arithmetic (ChainTiming, stalls included). Memory grows by a register line and two counters
+//    a processor. The load writes each description where it comes to rest.
 //  * engines: every processor is a PolygonEngine module; the description travels from one to the
-//    next as a transaction and each times itself (polygon_engine.hpp).
+//    next as a transaction and each times itself (polygon_engine.hpp); the load is a wave of
+//    transactions through them.
+// Both time descriptions lazily, as far as the one ahead allows, and a description leaves when
+// the host has freed a slot of its result queue (host.result_slots): a slow host's end holds the
+// chain up.
 // Wall time grows by one intersection a processor a ray either way (which the hardware does).
 //
 // What the host reads is the description that came out of the last processor: its identity

@@ -3,8 +3,8 @@
 // tasks, seed 000 L715) with what the pipeline asks of it:
 //  * it loads the scene by shifting polygon descriptions into the chain, dummies "very far away
 //    from the scene model" first for the spare processors (L717-L719);
-//  * it keeps many rays in flight (L715): up to host.rays_in_flight, each with room reserved for
-//    its answer;
+//  * it keeps many rays in flight (L715): up to host.rays_in_flight, by default each with room
+//    reserved for its answer (host.result_slots fewer: the chain can be held up);
 //  * it computes the lighting itself: the pipeline "has no provision for assisting with the
 //    lighting model computations" (L715).
 #include "platform/machines/ullner_peripheral/host.hpp"
