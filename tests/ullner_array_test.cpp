@@ -204,6 +204,42 @@ TEST(UllnerArray, OnARingTheProbeFollowsEachContributionOverTheRing) {
               p["stages"]["ring"]["share"].get<double>());
 }
 
+// Termination costs what it should (credit flows to the detector along a combining tree): at
+// 32x32 its messages are under 5% of the message hops, and no column is hot because of them.
+// Returning credit straight to processor (0,0) made 50% of the hops here and column 0 busy while
+// the rest idled. node.credit_quiet_time = 0 (send at once, still combined) must cost more hops.
+TEST(UllnerArray, TerminationIsASmallShareOfTheHopsAndHeatsNoColumn) {
+  const std::string args =
+      "--scene builtin:ullner-cubes --width 64 --height 64 -p array.rows=32 -p array.cols=32";
+  const auto quiet = run_array("term-quiet", args);
+  const auto eager = run_array("term-eager", args + " -p node.credit_quiet_time=0s");
+  ASSERT_FALSE(quiet.empty() || eager.empty());
+  const auto share = [](const nlohmann::json& s) {
+    double hops = 0.0;
+    for (const auto& [type, n] : s["array"]["messages_sent_by_type"].items())
+      hops += n.get<double>();
+    return s["array"]["termination"]["credit_message_hops"].get<double>() / hops;
+  };
+  const auto& busy = quiet["array"]["node_busy_fraction"];
+  std::vector<double> column(busy[0].size(), 0.0);
+  double mean = 0.0;
+  for (const auto& row : busy)
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      column[c] += row[c].get<double>() / static_cast<double>(busy.size());
+      mean += row[c].get<double>() / static_cast<double>(busy.size() * row.size());
+    }
+  std::printf(
+      "credit share of hops: %.2f%% (quiet), %.2f%% (at once); column 0 busy %.3f, "
+      "hottest column %.3f, mean %.3f\n",
+      100 * share(quiet), 100 * share(eager), column[0],
+      *std::max_element(column.begin(), column.end()), mean);
+  EXPECT_LT(share(quiet), 0.05);
+  EXPECT_GT(share(eager), share(quiet));
+  EXPECT_LT(column[0], 1.5 * mean);
+  EXPECT_EQ(read_file(quiet.at("image_png").get<std::string>()),
+            read_file(eager.at("image_png").get<std::string>()));
+}
+
 TEST(UllnerArray, ALostResultMessageChangesTheImage) {
   const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
   const auto clean = run_array("clean", args);

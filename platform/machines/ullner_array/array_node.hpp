@@ -16,9 +16,12 @@
 // Termination (the thesis gives no mechanism, L827): credit recovery. The host hands each
 // processor a credit for each vision ray of its pixels; a message carries credit, a processor
 // that spawns splits it among what it sends, and one that consumes a message (a result added,
-// a ray destroyed) keeps the credit and, when it runs out of work, returns what it holds to the
-// detector (processor 0) in a credit message that crosses the links like any other. The frame is
-// complete when the detector holds all the credit.
+// a ray destroyed) keeps the credit and, once it has been out of work for node.credit_quiet_time,
+// sends what it holds one hop toward the detector (processor 0) in a credit message that crosses
+// the link like any other. A processor that receives credit on its way adds it to its own, so
+// credit flows to the detector along a combining tree, not as one message per return across the
+// whole array (which made half the message hops and a hot column at 32x32). The frame is complete
+// when the detector holds all the credit.
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <array>
@@ -144,6 +147,7 @@ class ArrayNode : public modules::Processor {
     sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
     sc_core::sc_time stage_time;    ///< the intersection pipeline's
     unsigned stages;
+    sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
   };
   void run();
   void load();
@@ -189,6 +193,7 @@ class ArrayNode : public modules::Processor {
   std::size_t next_row_ = 0;
   std::unique_ptr<tasks::VisionRayTask> vision_;
   std::uint64_t credit_held_ = 0;
+  std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is
   sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
   std::vector<shading::TracedRay> spawned_;
 
