@@ -159,10 +159,10 @@ class Memory : public sc_core::sc_module, public StatGroup {
 /// Writes `n` words from `words` at word address `word` of the memory behind `port` (its load
 /// path) in one TLM write transaction, adding the access time to `delay` (loosely timed: the
 /// caller synchronises when it likes). False if the memory refused it (out of range).
+/// This one uses `gp`, which the caller keeps: a loop of many writes makes no payload each.
 template <class Socket>
-bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, std::size_t n,
-                 sc_core::sc_time& delay) {
-  tlm::tlm_generic_payload gp;
+bool write_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
+                 const std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
   gp.set_command(tlm::TLM_WRITE_COMMAND);
   gp.set_address(word * 4);
   gp.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<std::uint32_t*>(words)));
@@ -172,6 +172,13 @@ bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, s
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   port->b_transport(gp, delay);
   return !gp.is_response_error();
+}
+
+template <class Socket>
+bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, std::size_t n,
+                 sc_core::sc_time& delay) {
+  tlm::tlm_generic_payload gp;
+  return write_words(port, gp, word, words, n, delay);
 }
 
 }  // namespace rtsim::modules

@@ -95,8 +95,6 @@ class ChainTiming {
   /// Computes what `far_end` now allows; returns when the next description to leave starts
   /// passing on from the last processor, or nothing while it waits for a slot.
   std::optional<sc_core::sc_time> next_leaving(const FarEnd& far_end);
-  /// Descriptions that have left.
-  std::uint64_t left() const { return sl_count_; }
   /// Time the last processor held descriptions ready to leave for want of a result slot.
   sc_core::sc_time far_end_held() const { return held_; }
 

@@ -246,27 +246,14 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
-void EngineChain::load_back_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-  // The last processor's previous polygon, back at the host (LoadWave::at says when).
-  (void)delay;
-  gp.set_response_status(tlm::TLM_OK_RESPONSE);
-}
-
 void EngineChain::exchange(std::uint64_t line, PolygonDescription& words) {
   PolygonDescription held;
   std::copy_n(
       registers.contents().begin() + static_cast<std::ptrdiff_t>(line * PolygonDescription::kWords),
       PolygonDescription::kWords, held.words.begin());
-  register_write_.set_command(tlm::TLM_WRITE_COMMAND);
-  register_write_.set_address(line * PolygonDescription::kWords * 4);
-  register_write_.set_data_ptr(reinterpret_cast<unsigned char*>(words.words.data()));
-  register_write_.set_data_length(PolygonDescription::kWords * 4);
-  register_write_.set_streaming_width(PolygonDescription::kWords * 4);
-  register_write_.set_byte_enable_ptr(nullptr);
-  register_write_.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
-  registers_port_->b_transport(register_write_, unused);
-  if (register_write_.is_response_error())
+  if (!modules::write_words(registers_port_, register_write_, line * PolygonDescription::kWords,
+                            words.words.data(), PolygonDescription::kWords, unused))
     SC_REPORT_ERROR("rtsim/ullner-pipeline", "a polygon register write failed");
   words = held;
 }
@@ -327,7 +314,7 @@ void EngineChain::build_engines() {
   for (std::uint64_t k = 0; k + 1 < n; ++k)
     engine_modules_[k]->load_out.bind(engine_modules_[k + 1]->load_in);
   engine_modules_.back()->load_out.bind(*load_back_);
-  load_back_->register_b_transport(this, &EngineChain::load_back_transport);
+  load_back_->register_b_transport(this, &EngineChain::at_host_end);
   for (auto& engine : engine_modules_) engine->hold_registers(this, polygon_time_);
   if (dead_engine_ >= 0) engine_modules_[static_cast<std::size_t>(dead_engine_)]->set_dead(true);
   // Busy over time of a few processors along the chain (a timeline is up to 128 KiB, so not
@@ -338,11 +325,12 @@ void EngineChain::build_engines() {
     watched_.push_back(watched > 1 ? i * (n - 1) / (watched - 1) : 0);
     engine_modules_[watched_.back()]->watch(&watched_busy_[i]);
   }
-  far_end_socket_->register_b_transport(this, &EngineChain::far_end_transport);
+  far_end_socket_->register_b_transport(this, &EngineChain::at_host_end);
 }
 
-void EngineChain::far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-  // What leaves the last processor: the chain delivers its answer (leave), in order.
+void EngineChain::at_host_end(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  // What leaves the last processor: a description, whose answer the chain delivers in order
+  // (leave), or during the load its previous polygon (LoadWave::at says when it is back).
   (void)delay;
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
@@ -468,9 +456,10 @@ bool EngineChain::move(std::size_t i) {
   PolygonEngine& here = *engine_modules_[d.at];
   if (!d.started) {
     if (d.at + 1 == n) {
-      // The last: its link starts once the host's result slot will be free.
+      // The last: its link starts once a slot of the host's result queue is free.
+      if (ahead) return false;
       const auto room = far_end_.slot_free(entered_ - in_chain_.size() + i);
-      if (ahead || !room) return false;
+      if (!room) return false;
       here.set_far_end_room(*room);
     } else if (ahead && ahead->at < d.at + 1) {
       return false;  // the next processor has not yet accepted the one ahead: no handshake

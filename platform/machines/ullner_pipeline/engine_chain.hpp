@@ -157,9 +157,10 @@ class EngineChain : public sc_core::sc_module, private RegisterFile {
   void leave(const sc_core::sc_time& start);
   /// pipeline.model = chain: the description through every processor's data, in order.
   void through_processors(DescriptionInFlight& msg);
-  void far_end_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  /// What the last processor passes on (a description, or during the load its previous polygon)
+  /// reaches the host's end; the chain reads it from the payload's extension.
+  void at_host_end(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  void load_back_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   /// A processor's registers, line `line` of `registers`: written through the load port (its
   /// faults apply), what they held given back.
   void exchange(std::uint64_t line, PolygonDescription& words) override;

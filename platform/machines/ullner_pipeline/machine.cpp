@@ -34,11 +34,11 @@ namespace {
 /// small at 100,000 processors (assumption, not a seed figure).
 constexpr std::uint64_t kChainProfilePoints = 1000;
 
-/// Per-processor counts averaged over runs of neighbouring processors, per description.
 /// Windows of the frame in `along_chain.busy_windows` (assumption: enough columns to see a
 /// chain of 1000 processors fill, about 5 ms, in a 1.3 s frame).
 constexpr std::size_t kBusyWindows = 64;
 
+/// Per-processor counts averaged over runs of neighbouring processors, per description.
 nlohmann::ordered_json along_chain(const ullner_pipeline::EngineChain& chain,
                                    std::uint64_t descriptions, double busy_fraction,
                                    const sc_core::sc_time& frame_begin,
