@@ -297,10 +297,6 @@ std::string pad(const std::string& s, std::size_t width) {
   return w >= width ? s : s + std::string(width - w, ' ');
 }
 
-}  // namespace
-
-namespace {
-
 /// The table of `rows` (no notes, no summary).
 std::string rows_table(const std::vector<const Row*>& rows) {
   const std::vector<std::string> head = {"id",        "figure", "source",    "seed",
