@@ -94,6 +94,11 @@ class TokenRing : public sc_core::sc_module, public StatGroup {
   const sc_core::sc_time& hop_latency() const { return hop_; }
   /// Time to transmit a packet of `wire_bytes` (header included) at the ring's bandwidth.
   sc_core::sc_time transmission(std::uint64_t wire_bytes) const;
+  /// Bytes on the wire of a message of `bytes`: cut into packets, a header each.
+  std::uint64_t wire_bytes(std::uint64_t bytes) const {
+    const std::uint64_t packets = bytes == 0 ? 1 : (bytes + max_payload_ - 1) / max_payload_;
+    return bytes + packets * header_;
+  }
   /// Hops from node `a` to node `b` in ring order (0 for a == b).
   std::size_t hops(std::size_t a, std::size_t b) const;
 

@@ -253,17 +253,89 @@ TEST(UllnerArray, ALostResultMessageChangesTheImage) {
 }
 
 TEST(UllnerArray, ACorruptedPolygonWordInAProcessorsMemoryChangesTheImage) {
-  // Flip the sign of d_p (word 3) of every polygon line a centre processor holds.
+  // ullner-cubes has no corner normals: a processor's lines are 28 words from address 0 (the
+  // header, the 25 words of the peripheral's line, the identity, the material). Flip the sign
+  // of d_p (line word 4) of every line a centre processor holds; then, apart, the material
+  // number of every line: the shading reads it from the memory too.
   const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
   const auto clean = run_array("mem-clean", args);
   ASSERT_FALSE(clean.empty());
-  std::string faults;
-  for (int line = 0; line < 40; ++line)
-    faults += " --fault node27.memory:" + std::to_string(line * 26 + 3) + ":0x80000000";
-  const auto bad = run_array("mem-bad", args + faults);
-  ASSERT_FALSE(bad.empty());
-  EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
-            read_file(bad.at("image_png").get<std::string>()));
+  std::string d_p, material;
+  for (int line = 0; line < 40; ++line) {
+    d_p += " --fault node27.memory:" + std::to_string(line * 28 + 4) + ":0x80000000";
+    material += " --fault node27.memory:" + std::to_string(line * 28 + 27) + ":0x1";
+  }
+  for (const auto& [tag, faults] :
+       {std::pair{"mem-d_p", d_p}, std::pair{"mem-material", material}}) {
+    const auto bad = run_array(tag, args + faults);
+    ASSERT_FALSE(bad.empty());
+    EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+              read_file(bad.at("image_png").get<std::string>()))
+        << tag;
+  }
+}
+
+// The host broadcasts the scene through the array's links (L785-L797): every processor receives
+// every record, keeps the polygons of its own subvolumes (exactly what the subdivision lists for
+// them), and the load takes the time the slowest hop of the tree gives it: slower processors or
+// a slower host port lengthen it, the image stays the same.
+TEST(UllnerArray, TheHostsBroadcastLoadsEachProcessorThroughTheLinks) {
+  const std::string args =
+      "--scene builtin:ullner-cubes --width 16 --height 16 -p array.rows=4 -p array.cols=4";
+  const auto base = run_array("load-base", args);
+  const auto slow_cpu = run_array("load-cpu", args + " -p node.cycles.keep_test=2000");
+  const auto slow_host = run_array("load-host", args + " -p host.word_time=\"20 us\"");
+  ASSERT_FALSE(base.empty() || slow_cpu.empty() || slow_host.empty());
+  const auto& m = base["modules"];
+  const std::uint64_t records = m["host"]["records"].get<std::uint64_t>();
+  EXPECT_EQ(records, base["array"]["polygons"].get<std::uint64_t>() + 2);  // + attributes, view
+  std::uint64_t kept = 0;
+  double first_ready = 0.0, last_ready = 0.0;
+  for (int i = 0; i < 16; ++i) {
+    const auto& n = m["node" + std::to_string(i)];
+    EXPECT_EQ(n["load_records"].get<std::uint64_t>(), records) << i;
+    kept += n["polygons"].get<std::uint64_t>();
+    const double ready = n["frame_ready_s"].get<double>();
+    EXPECT_GE(ready, base["array"]["load_time_s"].get<double>()) << i;
+    if (i == 0) first_ready = ready;
+    if (i == 15) last_ready = ready;
+  }
+  EXPECT_EQ(kept, base["array"]["polygons_kept"].get<std::uint64_t>());
+  EXPECT_GT(last_ready, first_ready);  // the view reaches the far corner last
+  const double load = base["array"]["load_time_s"].get<double>();
+  std::printf("load %.4f s; keep test x10: %.4f s; host port 20 us a word: %.4f s\n", load,
+              slow_cpu["array"]["load_time_s"].get<double>(),
+              slow_host["array"]["load_time_s"].get<double>());
+  EXPECT_GT(slow_cpu["array"]["load_time_s"].get<double>(), 2.0 * load);
+  // The host's port bounds the load at 20 us a word: its words at least.
+  EXPECT_GE(slow_host["array"]["load_time_s"].get<double>(),
+            20e-6 * m["host"]["words"].get<double>() * 0.99);
+  for (const auto* other : {&slow_cpu, &slow_host})
+    EXPECT_EQ(read_file(base.at("image_png").get<std::string>()),
+              read_file(other->at("image_png").get<std::string>()));
+}
+
+// A word corrupted as the host sends it reaches every processor: a polygon's parameter or its
+// material changes the image; a word past the broadcast is refused.
+TEST(UllnerArray, ABroadcastPolygonCorruptedInFlightChangesTheImage) {
+  const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
+  const auto clean = run_array("bc-clean", args);
+  ASSERT_FALSE(clean.empty());
+  // Polygon 0's record: word 1 its first parameter (sign flipped), word 27 its material.
+  for (const char* fault : {"host.broadcast:1:0x80000000", "host.broadcast:27:0x1"}) {
+    const auto bad = run_array("bc-bad", args + " --fault " + fault);
+    ASSERT_FALSE(bad.empty()) << fault;
+    EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+              read_file(bad.at("image_png").get<std::string>()))
+        << fault;
+    EXPECT_EQ(bad["array"]["faults_in_flight"][0]["applied"], 1) << fault;
+  }
+  const fs::path out = scratch_dir("bc-refused");
+  const auto refused = run_rtsim("run --machine ullner-array " + args +
+                                 " --fault host.broadcast:99999999:1 -q --out " + out.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("the host broadcasts"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(out / "image.png"));
 }
 
 TEST(UllnerArray, BadSizesAreBadInput) {

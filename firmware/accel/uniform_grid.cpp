@@ -57,28 +57,16 @@ UniformGrid::UniformGrid(std::span<const Bounds> prim_bounds, const Bounds& scen
   // Two passes (count, then fill) so the only storage is the final CSR arrays.
   const std::size_t cells = n_.cells();
   offsets_.assign(cells + 1, 0);
-  struct Range {
-    int first[3];
-    int last[3];
-  };
-  auto range_of = [&](const Bounds& b, Range& r) {
-    if (!finite_box(b)) return false;
-    for (int a = 0; a < 3; ++a) {
-      if (!cell_range(b.lo[a], b.hi[a], box_.lo[a], cell_size_[a], n_[a], r.first[a], r.last[a]))
-        return false;
-    }
-    return true;
-  };
   std::uint64_t references = 0;
   for (const Bounds& b : prim_bounds) {
-    Range r;
-    if (!range_of(b, r)) {
+    CellIndex first, last;
+    if (!cells_touched(b, first, last)) {
       ++skipped_;
       continue;
     }
-    for (int z = r.first[2]; z <= r.last[2]; ++z)
-      for (int y = r.first[1]; y <= r.last[1]; ++y)
-        for (int x = r.first[0]; x <= r.last[0]; ++x) {
+    for (int z = first.z; z <= last.z; ++z)
+      for (int y = first.y; y <= last.y; ++y)
+        for (int x = first.x; x <= last.x; ++x) {
           ++offsets_[linear_index({x, y, z}) + 1];
           ++references;
         }
@@ -93,13 +81,20 @@ UniformGrid::UniformGrid(std::span<const Bounds> prim_bounds, const Bounds& scen
   // every list comes out sorted.
   std::vector<std::uint32_t> cursor(offsets_.begin(), offsets_.end() - 1);
   for (std::size_t slot = 0; slot < prim_bounds.size(); ++slot) {
-    Range r;
-    if (!range_of(prim_bounds[slot], r)) continue;
-    for (int z = r.first[2]; z <= r.last[2]; ++z)
-      for (int y = r.first[1]; y <= r.last[1]; ++y)
-        for (int x = r.first[0]; x <= r.last[0]; ++x)
+    CellIndex first, last;
+    if (!cells_touched(prim_bounds[slot], first, last)) continue;
+    for (int z = first.z; z <= last.z; ++z)
+      for (int y = first.y; y <= last.y; ++y)
+        for (int x = first.x; x <= last.x; ++x)
           slots_[cursor[linear_index({x, y, z})]++] = static_cast<std::uint32_t>(slot);
   }
+}
+
+bool UniformGrid::cells_touched(const Bounds& b, CellIndex& first, CellIndex& last) const {
+  if (!finite_box(b)) return false;
+  return cell_range(b.lo.x, b.hi.x, box_.lo.x, cell_size_.x, n_.x, first.x, last.x) &&
+         cell_range(b.lo.y, b.hi.y, box_.lo.y, cell_size_.y, n_.y, first.y, last.y) &&
+         cell_range(b.lo.z, b.hi.z, box_.lo.z, cell_size_.z, n_.z, first.z, last.z);
 }
 
 Bounds UniformGrid::cell_bounds(const CellIndex& c) const {

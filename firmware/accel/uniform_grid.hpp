@@ -89,6 +89,9 @@ class UniformGrid {
   }
   /// Bounds of one subvolume (planes from seed 000 L2122).
   Bounds cell_bounds(const CellIndex& c) const;
+  /// The block of subvolumes [first, last] that bounds `b` touch (the rule the lists are built
+  /// by, kCellMembershipMargin included); false if none (empty, non-finite or outside).
+  bool cells_touched(const Bounds& b, CellIndex& first, CellIndex& last) const;
 
   std::size_t primitive_count() const { return primitive_count_; }
   std::size_t skipped_count() const { return skipped_; }

@@ -350,12 +350,17 @@ bool UllnerQuadKernel::intersect_with(const UllnerQuadParams<double>& P, const R
   return true;
 }
 
-Vec3 UllnerQuadKernel::shading_normal_at(double u, double v, const Vec3& n_p) const {
-  if (!has_corner_normals) return n_p;
+Vec3 ullner_shading_normal(const Vec3& nrm_a, const Vec3& nrm_b, const Vec3& nrm_c,
+                           const Vec3& nrm_d, double u, double v, const Vec3& n_p) {
   // L452-L456: interpolate, then normalise ("must be normalized before it can be used").
   const Vec3 n = nrm_a * (u * v) + nrm_b * u + nrm_c * v + nrm_d;
   const double l = glm::length(n);
   return l > kUllnerMinShadingNormalLength && std::isfinite(l) ? n / l : n_p;
+}
+
+Vec3 UllnerQuadKernel::shading_normal_at(double u, double v, const Vec3& n_p) const {
+  if (!has_corner_normals) return n_p;
+  return ullner_shading_normal(nrm_a, nrm_b, nrm_c, nrm_d, u, v, n_p);
 }
 
 SurfaceHit UllnerQuadKernel::surface_at(double t, double u, double v) const {

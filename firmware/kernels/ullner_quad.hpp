@@ -112,6 +112,12 @@ inline constexpr double kUllnerConvexitySine = 1e-9;
 /// normals nearly cancel there; the geometric normal is used instead.
 inline constexpr double kUllnerMinShadingNormalLength = 1e-6;
 
+/// The shading normal at (u, v) of a quad whose corner normals are interpolated as
+/// nrm[0] uv + nrm[1] u + nrm[2] v + nrm[3] (seed 000 L452-L456), normalised; `n_p` where that
+/// nearly vanishes or is not finite.
+Vec3 ullner_shading_normal(const Vec3& nrm_a, const Vec3& nrm_b, const Vec3& nrm_c,
+                           const Vec3& nrm_d, double u, double v, const Vec3& n_p);
+
 // ---------------------------------------------------------------------------------------------
 // Kernel-side tolerances, per arithmetic type.
 // ---------------------------------------------------------------------------------------------

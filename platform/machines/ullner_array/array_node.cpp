@@ -6,7 +6,7 @@
 #include "firmware/accel/grid_traversal.hpp"
 #include "firmware/kernels/ullner_quad_words.hpp"
 #include "modules/sim_time.hpp"
-#include "platform/functional/scene_tracer.hpp"
+#include "platform/machines/ullner_array/broadcast_record.hpp"
 
 namespace rtsim::platform::ullner_array {
 
@@ -41,6 +41,33 @@ std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
   std::sort(keep.begin(), keep.end());
   keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
   return keep;
+}
+
+std::size_t load_words_needed(const accel::UniformGrid& grid, const SubvolumeMapping& mapping,
+                              const GridNode& node, const functional::SceneGeometry& geometry,
+                              std::size_t attribute_words, std::size_t view_words) {
+  // The memory fills in the order the records come: lines, attributes, lists, view; each
+  // record is received into the next free words first.
+  auto normals = [&](std::uint32_t slot) {
+    return std::get<kernels::UllnerQuadKernel>(geometry.shapes[slot].shape).has_corner_normals;
+  };
+  std::size_t used = 0, peak = 0;
+  for (const std::uint32_t slot : subvolume_polygons(grid, mapping, node))
+    used += polygon_line_words(normals(slot));
+  // A polygon it discards still passes through the buffer above the lines kept so far.
+  for (std::size_t slot = 0; slot < geometry.shapes.size(); ++slot)
+    peak = std::max(peak, polygon_record_words(normals(static_cast<std::uint32_t>(slot))));
+  peak += used;
+  used += attribute_words;
+  const accel::GridDivisions n = grid.divisions();
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        const accel::CellIndex c{x, y, z};
+        if (mapping.node_of(c) == node && !grid.cell(c).empty()) used += 1 + grid.cell(c).size();
+      }
+  used += view_words;
+  return std::max(peak, used);
 }
 
 namespace {
@@ -88,6 +115,10 @@ const modules::CountParam kNewRayCycles =
 const modules::CountParam kKeepTestCycles =
     cycles("keep_test", "200",
            "CPU cycles to decide whether a broadcast polygon touches its subvolumes (L787)");
+const modules::CountParam kSortCycles =
+    cycles("sort", "60",
+           "CPU cycles to enter one kept polygon into one of its subvolume lists after the load "
+           "(the sort that simulates the third dimension, L858)");
 const modules::TimeParam kMemoryCycle(
     {.name = "memory_cycle",
      .default_value = "333.333 ns",
@@ -135,8 +166,9 @@ constexpr const char* kLinkClass = "link";
 
 void ArrayNode::declare_params(const modules::ParamDecls& node) {
   node.add(kClock);
-  for (const auto* p : {&kMessageCycles, &kRouteCycles, &kSubvolumeCycles, &kShadeCycles,
-                        &kSpawnCycles, &kResultCycles, &kNewRayCycles, &kKeepTestCycles})
+  for (const auto* p :
+       {&kMessageCycles, &kRouteCycles, &kSubvolumeCycles, &kShadeCycles, &kSpawnCycles,
+        &kResultCycles, &kNewRayCycles, &kKeepTestCycles, &kSortCycles})
     node.add(*p);
   node.add(kMemoryCycle);
   node.add(kMemoryWords);
@@ -161,11 +193,6 @@ sc_core::sc_time cpu_cycle(const modules::ModuleParams& p) {
 }
 }  // namespace
 
-sc_core::sc_time ArrayNode::keep_test_time(const params::ParamRegistry& registry) {
-  const modules::ModuleParams p(registry, kClass);
-  return modules::times(cpu_cycle(p), p.get(kKeepTestCycles));
-}
-
 std::size_t ArrayNode::memory_words(const params::ParamRegistry& registry) {
   return modules::ModuleParams(registry, kClass).get(kMemoryWords);
 }
@@ -178,12 +205,12 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                      const ArrayContext& context, ArrayTally& tally, GridNode position,
                      MachineTrace& trace)
     : modules::Processor(name, trace),
-      memory("memory", memory_words(registry), kPolygonWords, sc_core::SC_ZERO_TIME,
-             sc_core::SC_ZERO_TIME),
+      memory("memory", memory_words(registry), 1, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
+      broadcast_in("broadcast_in"),
       ctx_(context),
       tally_(tally),
       position_(position),
-      shade_(*context.scene, context.shade),
+      shade_(local_, context.shade),
       dda_(*context.grid),
       memory_port_("memory_port"),
       pipeline_(std::string(this->name()) + ".pipeline") {
@@ -196,12 +223,14 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                    .result = p.get(kResultCycles),
                    .new_ray = p.get(kNewRayCycles),
                    .keep_test = p.get(kKeepTestCycles),
+                   .sort = p.get(kSortCycles),
                    .memory_cycle = p.get(kMemoryCycle),
                    .stage_time = p.get(kStageTime),
                    .stages = static_cast<unsigned>(p.get(kStages)),
                    .credit_quiet = p.get(kCreditQuietTime)};
   cycle_ = cpu_cycle(p);
   memory_port_.bind(memory.socket);
+  broadcast_in.register_b_transport(this, &ArrayNode::receive_record);
   const modules::MeshTopology& topo = *ctx_.topology;
   if (ctx_.ring)
     in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
@@ -221,6 +250,24 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
         *links_[static_cast<int>(d)], "messages_", message_type_names(),
         "messages through the link, by type");
   }
+  // Its ports in the broadcast's spanning tree (broadcast_children()).
+  auto hop = [&](const GridNode& child, const char* name, modules::Link* link) {
+    BroadcastHop h;
+    h.child = child;
+    h.socket = std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(name);
+    h.link = link;
+    broadcast_out_.push_back(std::move(h));
+  };
+  if (ctx_.ring) {
+    if (topo.index(position_) + 1 < topo.nodes())
+      hop(topo.node(topo.index(position_) + 1), "broadcast_ring", nullptr);
+  } else {
+    if (position_.row == 0 && position_.col + 1 < topo.cols())
+      hop({0, position_.col + 1}, "broadcast_e", links_[static_cast<int>(Direction::kEast)].get());
+    if (position_.row + 1 < topo.rows())
+      hop({position_.row + 1, position_.col}, "broadcast_s",
+          links_[static_cast<int>(Direction::kSouth)].get());
+  }
   // Its frame-buffer block: the image rows and columns whose processor it is (L781).
   const int w = ctx_.frame->width(), h = ctx_.frame->height();
   for (int y = 0; y < h; ++y)
@@ -238,6 +285,16 @@ void ArrayNode::connect(Direction d, ArrayNode& neighbour) {
   out_[static_cast<int>(d)]->bind(neighbour.in[static_cast<int>(modules::opposite(d))]->socket);
 }
 
+std::vector<GridNode> ArrayNode::broadcast_children() const {
+  std::vector<GridNode> out;
+  for (const auto& hop : broadcast_out_) out.push_back(hop.child);
+  return out;
+}
+
+void ArrayNode::connect_broadcast(std::size_t k, ArrayNode& child) {
+  broadcast_out_.at(k).socket->bind(child.broadcast_in);
+}
+
 void ArrayNode::spend(std::uint64_t cycles, std::string_view what) {
   compute_for(times(cycle_, cycles), what);
 }
@@ -249,35 +306,150 @@ GridNode ArrayNode::pixel_owner(std::uint32_t pixel) const {
   return {y * ctx_.topology->rows() / h, x * ctx_.topology->cols() / w};
 }
 
-void ArrayNode::load() {
-  // The host broadcasts every polygon (L787); this processor keeps those listed in one of its
-  // subvolumes, in its memory. The broadcast's timing is the machine's (all processors alike);
-  // the words are written here, through the memory's port, so a fault corrupts them.
-  const std::vector<std::uint32_t> keep = subvolume_polygons(*ctx_.grid, ctx_.mapping, position_);
-  if (keep.size() * kPolygonWords > memory.size_words())
-    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its polygons");
-  std::array<std::uint32_t, kPolygonWords> words{};
-  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
-  for (const std::uint32_t slot : keep) {
-    const auto& quad = std::get<kernels::UllnerQuadKernel>(ctx_.geometry->shapes[slot].shape);
-    kernels::store_words(quad.params, std::span<std::uint32_t, kernels::kUllnerStoredWords>(
-                                          words.data(), kernels::kUllnerStoredWords));
-    words[kernels::kUllnerStoredWords] = slot;
-    const auto line = static_cast<std::uint32_t>(slots_.size());
-    modules::write_words(memory_port_, static_cast<std::uint64_t>(line) * kPolygonWords,
-                         words.data(), kPolygonWords, unused);
-    lines_[slot] = line;
-    slots_.push_back(slot);
+void ArrayNode::receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  const auto* copy = gp.get_extension<BroadcastCopy>();
+  const std::size_t n = gp.get_data_length() / 4;
+  if (!copy || n == 0 || gp.get_data_length() % 4 != 0) {
+    gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return;
   }
+  if (next_free_ + n > memory.size_words())
+    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold the broadcast");
+  // The copy starts when the sender offers it and this processor's buffer and memory are free;
+  // the port writes the record into the buffer (a fault in this memory applies there).
+  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  const sc_core::sc_time start = std::max({plus(now, delay), buffer_free_, memory_free_});
+  const sc_core::sc_time arrived = plus(start, copy->duration);
+  memory_free_ = arrived;
+  load_memory_busy_ += copy->duration;
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  modules::write_words(memory_port_, next_free_,
+                       reinterpret_cast<const std::uint32_t*>(gp.get_data_ptr()), n, unused);
+  ++records_;
+  delay = start - now;
+  handle_record(next_free_, n, arrived);
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void ArrayNode::handle_record(std::uint64_t at, std::size_t n, const sc_core::sc_time& arrived) {
+  const std::span<const std::uint32_t> record(memory.contents().data() + at, n);
+  const sc_core::sc_time began = std::max(arrived, load_cpu_free_);
+  sc_core::sc_time t = plus(began, times(cycle_, timing_.message));
+  // Pass it on down the tree first (routing in software, L854), then decide on it (L787).
+  for (auto& hop : broadcast_out_) {
+    t = plus(t, times(cycle_, timing_.route));
+    pass_on(hop, record, t);
+  }
+  switch (record_kind(record[0])) {
+    case RecordKind::kPolygon:
+      t = plus(t, times(cycle_, timing_.keep_test));
+      if (keep(record, static_cast<std::uint32_t>(line_at_.size()))) {
+        line_at_.push_back(static_cast<std::uint32_t>(at));
+        next_free_ += n - std::min(n, kBoundsWords);  // the line stays; its bounds are not read
+      }
+      break;
+    case RecordKind::kAttributes:
+      read_attributes(record, local_);
+      next_free_ += n;
+      t = sort(t);
+      if (ctx_.ready) ctx_.ready->raise(t);
+      break;
+    case RecordKind::kView:
+      read_view(record, local_.camera);
+      next_free_ += n;
+      break;
+    case RecordKind::kNone:
+      break;  // a record it cannot read (a fault) is dropped
+  }
+  load_cpu_free_ = t;
+  load_busy_ += t - began;
+  buffer_free_ = std::max(t, memory_free_);  // the copies out of the buffer are done
+  frame_ready_ = t;
+}
+
+void ArrayNode::pass_on(BroadcastHop& hop, std::span<const std::uint32_t> record,
+                        const sc_core::sc_time& ready) {
+  // The copy holds the link (or the ring's segment) and this memory: on a link, its
+  // serialisation and latency; on the ring, the record's packets, headers and all, and a hop.
+  sc_core::sc_time duration, serialisation;
+  if (hop.link) {
+    serialisation = hop.link->serialisation(32 * static_cast<std::uint64_t>(record.size()));
+    duration = plus(serialisation, hop.link->latency());
+  } else {
+    const modules::TokenRing& ring = *ctx_.ring_medium;
+    serialisation = ring.transmission(ring.wire_bytes(record.size() * 4));
+    duration = plus(serialisation, ring.hop_latency());
+  }
+  const sc_core::sc_time offered = std::max({ready, memory_free_, hop.free});
+  const sc_core::sc_time start = offer_record(*hop.socket, record, offered, duration);
+  hop.free = plus(start, serialisation);
+  memory_free_ = hop.free;
+  load_link_busy_ += serialisation;
+  load_memory_busy_ += serialisation;
+}
+
+bool ArrayNode::keep(std::span<const std::uint32_t> record, std::uint32_t line) {
+  accel::CellIndex first, last;
+  if (!ctx_.grid->cells_touched(polygon_bounds(record), first, last)) return false;
+  bool kept = false;
+  for (int z = first.z; z <= last.z; ++z)
+    for (int y = first.y; y <= last.y; ++y)
+      for (int x = first.x; x <= last.x; ++x) {
+        const accel::CellIndex c{x, y, z};
+        if (!(ctx_.mapping.node_of(c) == position_)) continue;
+        pending_[ctx_.grid->linear_index(c)].push_back(line);
+        kept = true;
+      }
+  return kept;
+}
+
+sc_core::sc_time ArrayNode::sort(sc_core::sc_time t) {
+  // Each list: its count, then its line numbers, ascending (the order they came), written
+  // through the memory's port in subvolume order.
+  std::vector<std::size_t> cells;
+  cells.reserve(pending_.size());
+  for (const auto& [c, lines] : pending_) cells.push_back(c);
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::uint32_t> words;
+  std::uint64_t entries = 0;
+  for (const std::size_t c : cells) {
+    const auto& lines = pending_[c];
+    list_at_[c] = next_free_ + words.size();
+    words.push_back(static_cast<std::uint32_t>(lines.size()));
+    words.insert(words.end(), lines.begin(), lines.end());
+    entries += lines.size();
+  }
+  pending_.clear();
+  if (words.empty()) return t;
+  if (next_free_ + words.size() > memory.size_words())
+    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its subvolume lists");
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  modules::write_words(memory_port_, next_free_, words.data(), words.size(), unused);
+  next_free_ += words.size();
+  t = plus(t, times(cycle_, timing_.sort * entries));
+  const sc_core::sc_time start = std::max(t, memory_free_);
+  const sc_core::sc_time write = times(timing_.memory_cycle, 2 * words.size());
+  memory_free_ = plus(start, write);
+  load_memory_busy_ += write;
+  return memory_free_;
+}
+
+std::span<const std::uint32_t> ArrayNode::candidates(const accel::CellIndex& c) const {
+  const auto it = list_at_.find(ctx_.grid->linear_index(c));
+  if (it == list_at_.end()) return {};
+  const auto& words = memory.contents();
+  const std::uint64_t at = it->second;
+  const std::uint64_t count = std::min<std::uint64_t>(words[at], words.size() - at - 1);
+  return {words.data() + at + 1, static_cast<std::size_t>(count)};
 }
 
 const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
   if (memory.words_written() == decoded_after_) return decoded_;
   const auto& words = memory.contents();
-  decoded_.resize(slots_.size());
-  for (std::size_t k = 0; k < slots_.size(); ++k)
+  decoded_.resize(line_at_.size());
+  for (std::size_t k = 0; k < line_at_.size(); ++k)
     decoded_[k] = kernels::load_words(std::span<const std::uint32_t, kernels::kUllnerStoredWords>(
-        words.data() + k * kPolygonWords, kernels::kUllnerStoredWords));
+        words.data() + line_at_[k] + kLineParams, kernels::kUllnerStoredWords));
   decoded_after_ = memory.words_written();
   return decoded_;
 }
@@ -316,7 +488,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
     const std::uint32_t y = rows_[next_row_++];
     const int w = ctx_.frame->width();
     vision_ = std::make_unique<tasks::VisionRayTask>(
-        *ctx_.camera, w, ctx_.frame->height(), ctx_.frame->spp(),
+        *camera_, w, ctx_.frame->height(), ctx_.frame->spp(),
         y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(first_col_),
         y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(end_col_),
         ctx_.frame->detailed_rows());
@@ -337,8 +509,11 @@ bool ArrayNode::next_message(RayMessage& msg) {
 }
 
 void ArrayNode::run() {
-  load();
-  clock_.catch_up(ctx_.frame_start);
+  // The load ran in annotated time when the host broadcast; the frame starts once this
+  // processor has handled the view.
+  sc_core::wait(*ctx_.loaded);
+  camera_.emplace(local_.camera, ctx_.frame->width(), ctx_.frame->height());
+  clock_.catch_up(frame_ready_);
   for (;;) {
     RayMessage msg;
     if (next_message(msg)) {
@@ -478,29 +653,28 @@ void ArrayNode::search(RayMessage& msg) {
   SurfaceHit details;
   std::uint64_t cells = 0, tests = 0, words = 0;
   TraceCounters& counters = ctx_.frame->counters();
-  // The intersection unit's test of one polygon on the words this memory holds, fetching only
-  // what each step of Fig. 2-28 needs (L841).
-  auto test = [&](std::uint32_t slot, double lo, double hi) {
+  // The intersection unit's test of one polygon (a line number from the subvolume's list) on
+  // the words this memory holds, fetching only what each step of Fig. 2-28 needs (L841), after
+  // the list's entry.
+  auto test = [&](std::uint32_t line, double lo, double hi) {
+    if (line >= params.size()) return kInfinity;  // an entry no line has (a fault)
     ++tests;
     ++counters.intersection_tests;
-    const std::uint32_t line = lines_.at(slot);
     const auto& P = params[line];
     const auto res = kernels::intersect(P, ray, lo, hi);
-    words += kTWords + (res.t_valid ? kUWords : 0) + (res.t_valid && res.u_valid ? kVWords : 0);
+    words += 1 + kTWords + (res.t_valid ? kUWords : 0) + (res.t_valid && res.u_valid ? kVWords : 0);
     if (!res.hit()) return kInfinity;
-    const auto& quad = std::get<kernels::UllnerQuadKernel>(ctx_.geometry->shapes[slot].shape);
     details.t = res.t;
     details.u = res.u;
     details.v = res.v;
     details.geometric_normal = P.n_p();
-    details.shading_normal = quad.shading_normal_at(res.u, res.v, details.geometric_normal);
     return res.t;
   };
   accel::GridTraversalStats st;
   bool occluded = false;
   const auto walk = dda_.traverse(
       r.ray, t_min, r.t_max,
-      [&](const accel::CellIndex& c, std::span<const std::uint32_t> slots, double, double t_exit) {
+      [&](const accel::CellIndex& c, std::span<const std::uint32_t>, double, double t_exit) {
         if (step++ < msg.resume) return false;
         const GridNode owner = ctx_.mapping.node_of(c);
         if (!(owner == position_)) {
@@ -509,9 +683,11 @@ void ArrayNode::search(RayMessage& msg) {
           return true;
         }
         ++cells;
+        const std::span<const std::uint32_t> lines = candidates(c);
+        if (!lines.empty()) ++words;  // the list's count
         if (shadow) {
-          for (const std::uint32_t slot : slots) {
-            const double t = test(slot, t_min, r.t_max);
+          for (const std::uint32_t line : lines) {
+            const double t = test(line, t_min, r.t_max);
             if (t > t_min && t < r.t_max) {
               occluded = true;
               return true;
@@ -519,7 +695,7 @@ void ArrayNode::search(RayMessage& msg) {
           }
           return false;
         }
-        hit = accel::subvolume_closest_hit(slots, t_min, r.t_max, t_exit, test, st);
+        hit = accel::subvolume_closest_hit(lines, t_min, r.t_max, t_exit, test, st);
         return hit.valid();
       });
   counters.cells_visited += cells;
@@ -556,9 +732,28 @@ void ArrayNode::search(RayMessage& msg) {
     return;
   }
   Hit h;
-  if (hit.valid())
-    functional::fill_hit(*ctx_.geometry, static_cast<std::uint32_t>(hit.prim), details, h);
+  if (hit.valid()) surface(static_cast<std::uint32_t>(hit.prim), details, h);
   answer(msg, hit.valid(), h);
+}
+
+void ArrayNode::surface(std::uint32_t line, const SurfaceHit& s, Hit& hit) const {
+  // The rest of the hit from the polygon's line: its identity, its material, and the shading
+  // normal of its corner normals when it has them (L452-L456).
+  const auto& words = memory.contents();
+  const std::uint64_t at = line_at_[line];
+  hit.surface = s;
+  hit.surface.shading_normal = s.geometric_normal;
+  hit.prim_id = static_cast<std::int32_t>(words[at + kLineIdentity] & 0x7fffffffu);
+  hit.material = std::min<std::uint32_t>(words[at + kLineMaterial],
+                                         static_cast<std::uint32_t>(local_.materials.size() - 1));
+  if ((words[at] & kRecordHasNormals) && at + kLineNormals + kNormalWords <= words.size()) {
+    const std::span<const std::uint32_t> n(words.data() + at + kLineNormals, kNormalWords);
+    auto vec = [&](std::size_t k) {
+      return Vec3(get_real(n, 6 * k), get_real(n, 6 * k + 2), get_real(n, 6 * k + 4));
+    };
+    hit.surface.shading_normal = kernels::ullner_shading_normal(vec(0), vec(1), vec(2), vec(3), s.u,
+                                                                s.v, s.geometric_normal);
+  }
 }
 
 void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {

@@ -11,7 +11,16 @@
 // subvolume at a time (the closest hit within the subvolume, accel::subvolume_closest_hit), then
 // passed to the neighbour owning the next one; a hit is shaded (ShadeTask::answer): its
 // contribution goes to the pixel's processor in a result message and the rays it spawns start
-// here. The polygons it tests are the words its memory holds, loaded from the host's broadcast.
+// here.
+//
+// The load (L785-L797, L858): the host's records (broadcast_record.hpp) reach it on its
+// broadcast port from its parent in a spanning tree of the array (row 0 from the west, every
+// other processor from the north), each copied into a buffer of its memory; it passes each on
+// to its children (broadcast_copy.hpp), keeps a polygon whose bounding box touches one of its
+// subvolumes (the keep test, L787), and once the scene's attributes have come sorts what it kept
+// into a list for each of its subvolumes (L858) and raises its ready flag. The polygons it
+// tests, their materials and corner normals, the lights, the background and the view are read
+// from its memory: it knows nothing else of the scene.
 //
 // Termination (the thesis gives no mechanism, L827): credit recovery. The host hands each
 // processor a credit for each vision ray of its pixels; a message carries credit, a processor
@@ -23,6 +32,7 @@
 // whole array (which made half the message hops and a hot column at 32x32). The frame is complete
 // when the detector holds all the credit.
 #include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
 
 #include <array>
 #include <deque>
@@ -48,15 +58,11 @@
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/machine_trace.hpp"
+#include "platform/machines/ullner_array/broadcast_copy.hpp"
 #include "platform/machines/ullner_array/ray_message.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
 
 namespace rtsim::platform::ullner_array {
-
-/// Words of one polygon in a processor's memory: the peripheral's 25-word line (the 20
-/// parameters, 4 pole thresholds, flags) and the polygon's identity (its material and corner
-/// normals are looked up by it).
-inline constexpr unsigned kPolygonWords = kernels::kUllnerStoredWords + 1;
 
 /// The polygons (slots) listed in the subvolumes `mapping` gives processor `node`, ascending:
 /// what it keeps from the host's broadcast (L787).
@@ -64,19 +70,30 @@ std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
                                               const SubvolumeMapping& mapping,
                                               const modules::GridNode& node);
 
+/// Words of memory processor `node` needs for the load: the lines it keeps, the attributes, its
+/// subvolume lists, the view, and a buffer for the record being received (`geometry`: the
+/// host's polygons; `attribute_words`, `view_words`: those records' sizes).
+std::size_t load_words_needed(const accel::UniformGrid& grid, const SubvolumeMapping& mapping,
+                              const modules::GridNode& node,
+                              const functional::SceneGeometry& geometry,
+                              std::size_t attribute_words, std::size_t view_words);
+
 /// What every processor shares (read-only but for the frame buffer and the detector's count).
 struct ArrayContext {
   const modules::MeshTopology* topology = nullptr;
   SubvolumeMapping mapping;
+  /// The subdivision of the modelling space (its planes and divisions: what the DDA walks and
+  /// the keep test compares with; the lists in it are the functional twin's, never read here).
   const accel::UniformGrid* grid = nullptr;
-  const functional::SceneGeometry* geometry = nullptr;  ///< the host's copy (normals, materials)
-  const scenes::Scene* scene = nullptr;
   shading::ShadeParams shade;
   functional::FrameState* frame = nullptr;
-  const shading::PinholeCamera* camera = nullptr;
   std::uint64_t credit_per_ray = 0;  ///< credit the host gives for each vision ray
   std::uint64_t total_credit = 0;
-  sc_core::sc_time frame_start;  ///< the load is over
+  /// The host has broadcast the view: every processor's load is timed by then.
+  const sc_core::sc_event* loaded = nullptr;
+  ReadyLine* ready = nullptr;
+  /// On a ring, the medium the broadcast passes from processor to processor in ring order.
+  const modules::TokenRing* ring_medium = nullptr;
   /// A fault for tests: the result message with this sequence number (counted where results
   /// are added) is lost; 0 loses none.
   std::uint64_t drop_result = 0;
@@ -109,16 +126,16 @@ class ArrayNode : public modules::Processor {
   /// The input port from the neighbour in each direction (absent at an unconnected edge, and
   /// all four on a ring), and the ring's (in[kRingPort], on a ring only).
   std::array<std::unique_ptr<modules::MessageQueue<RayMessage>>, 5> in;
-  /// Its memory: its polygons, kPolygonWords words each (L835: 128 KB).
+  /// Its memory (L835: 128 KB): the polygon lines it kept, the scene's attributes, its
+  /// subvolume lists and the view, in the order they came.
   modules::Memory memory;
+  /// The host's broadcast, from its parent (or the host).
+  tlm_utils::simple_target_socket<ArrayNode> broadcast_in;
 
   /// The class name its parameters are declared and read under: all processors alike.
   static constexpr const char* kClass = "node";
   /// Parameters of every processor, under kClass.
   static void declare_params(const modules::ParamDecls& node);
-  /// The CPU's time to decide whether to keep one broadcast polygon (L787): the host's load
-  /// waits for the slowest of it and the broadcast.
-  static sc_core::sc_time keep_test_time(const params::ParamRegistry& registry);
   /// Words of a processor's memory, and the parameter's full name (for a message).
   static std::size_t memory_words(const params::ParamRegistry& registry);
   static std::string memory_words_name(const params::ParamRegistry& registry);
@@ -131,9 +148,16 @@ class ArrayNode : public modules::Processor {
   /// Wires this processor's output in direction `d` to `neighbour`'s input from the opposite
   /// side (elaboration).
   void connect(modules::Direction d, ArrayNode& neighbour);
+  /// Its children in the broadcast's spanning tree (the host feeds processor (0, 0)): on the
+  /// mesh, row 0 passes east and every processor south; on a ring, each to its successor.
+  std::vector<modules::GridNode> broadcast_children() const;
+  /// Binds its port to child k of broadcast_children() (elaboration).
+  void connect_broadcast(std::size_t k, ArrayNode& child);
 
   modules::GridNode position() const { return position_; }
-  std::size_t polygons() const { return lines_.size(); }
+  std::size_t polygons() const { return line_at_.size(); }
+  /// When it had handled the last record of the load (the view): its frame starts then.
+  const sc_core::sc_time& frame_ready() const { return frame_ready_; }
 
  private:
   /// Its intersection unit's statistics ("node0.pipeline"): busy while it fetches or issues.
@@ -143,14 +167,37 @@ class ArrayNode : public modules::Processor {
     modules::Counter words_fetched{*this, "words_fetched", "polygon words fetched from memory"};
   };
   struct Timing {
-    std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test;
+    std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
     sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
     sc_core::sc_time stage_time;    ///< the intersection pipeline's
     unsigned stages;
     sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
   };
+  /// A child in the broadcast's tree: the socket to its broadcast port and the link to it (none
+  /// on a ring: the segment to the successor), and when that is free. The load's use of a link
+  /// is counted here (load_link_busy_s), not in the link's own statistics, which are the
+  /// frame's.
+  struct BroadcastHop {
+    modules::GridNode child;
+    std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>> socket;
+    const modules::Link* link = nullptr;
+    sc_core::sc_time free = sc_core::SC_ZERO_TIME;
+  };
   void run();
-  void load();
+  /// broadcast_in: a record offered by the parent (broadcast_copy.hpp).
+  void receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  /// The CPU's work on the record at word `at` of its memory, there since `arrived`.
+  void handle_record(std::uint64_t at, std::size_t words, const sc_core::sc_time& arrived);
+  /// Copies `record` to a child, the CPU having started it at `ready`.
+  void pass_on(BroadcastHop& hop, std::span<const std::uint32_t> record,
+               const sc_core::sc_time& ready);
+  /// The keep test (L787): whether the polygon record's bounds touch one of its subvolumes;
+  /// those it touches get its line number (`line`) in their pending lists.
+  bool keep(std::span<const std::uint32_t> record, std::uint32_t line);
+  /// The sort (L858): its subvolume lists written to its memory from `t`; returns when done.
+  sc_core::sc_time sort(sc_core::sc_time t);
+  /// The candidates its memory lists for subvolume `c` (line numbers; empty if none).
+  std::span<const std::uint32_t> candidates(const accel::CellIndex& c) const;
   /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
   bool next_message(RayMessage& msg);
   void process(RayMessage msg);
@@ -160,6 +207,8 @@ class ArrayNode : public modules::Processor {
   void send(RayMessage msg, modules::Direction d);
   /// The port copies the message out of this memory: when it may start, and the memory's time.
   sc_core::sc_time copy_out();
+  /// The hit on line `line` with its surface details `s`, completed from its memory.
+  void surface(std::uint32_t line, const SurfaceHit& s, Hit& hit) const;
   void answer(const RayMessage& msg, bool found, const Hit& hit);
   void add_result(const RayMessage& msg);
   void return_credit(std::uint64_t credit);
@@ -178,13 +227,25 @@ class ArrayNode : public modules::Processor {
   modules::GridNode position_;
   Timing timing_;
   sc_core::sc_time cycle_;
+  /// What its memory says of the scene: lights, materials, background, view.
+  scenes::Scene local_;
+  std::optional<shading::PinholeCamera> camera_;
   tasks::ShadeTask shade_;
   accel::Dda dda_;
   std::array<std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>>, 4> out_;
   std::array<std::unique_ptr<modules::Link>, 4> links_;
   tlm_utils::simple_initiator_socket<ArrayNode> memory_port_;
-  std::unordered_map<std::uint32_t, std::uint32_t> lines_;  ///< polygon slot -> memory line
-  std::vector<std::uint32_t> slots_;                        ///< memory line -> polygon slot
+  std::vector<BroadcastHop> broadcast_out_;
+  /// The load's state: where the next record goes, when its buffer is free, the CPU's time.
+  std::uint64_t next_free_ = 0;
+  sc_core::sc_time buffer_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time load_cpu_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time frame_ready_ = sc_core::SC_ZERO_TIME;
+  std::vector<std::uint32_t> line_at_;  ///< line number -> word address of its header
+  /// Line numbers kept for each of its subvolumes (by the grid's linear index), until the sort.
+  std::unordered_map<std::size_t, std::vector<std::uint32_t>> pending_;
+  /// Word address of each subvolume's list: its count, then line numbers.
+  std::unordered_map<std::size_t, std::uint64_t> list_at_;
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};
   std::deque<RayMessage> own_;       ///< rays spawned here, not yet searched
@@ -204,7 +265,20 @@ class ArrayNode : public modules::Processor {
                                   "messages taken, by type"};
   modules::CounterArray sent_{*this, "sent_", message_type_names(), "messages sent, by type"};
   modules::Computed polygons_{*this, "polygons", "polygons its memory holds",
-                              [this] { return lines_.size(); }};
+                              [this] { return line_at_.size(); }};
+  modules::Counter records_{*this, "load_records", "broadcast records received"};
+  modules::Duration load_busy_{*this, "load_busy_s",
+                               "CPU time handling the broadcast: passing records on, keep tests, "
+                               "the sort"};
+  modules::Duration load_link_busy_{*this, "load_link_busy_s",
+                                    "time its links (or its ring segment) carried broadcast "
+                                    "records to its children"};
+  modules::Duration load_memory_busy_{*this, "load_memory_busy_s",
+                                      "time its memory took broadcast records in, copied them "
+                                      "out, or took the subvolume lists"};
+  modules::Computed ready_{*this, "frame_ready_s",
+                           "when it had handled the view (its load's end, its frame's start)",
+                           [this] { return frame_ready_.to_seconds(); }};
   modules::Counter subvolumes_{*this, "subvolumes_searched", "subvolumes searched"};
   modules::Counter tests_{*this, "intersections", "ray/polygon tests of its unit"};
   modules::Duration memory_busy_{*this, "memory_busy_s",

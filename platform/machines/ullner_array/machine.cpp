@@ -13,6 +13,7 @@
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
+#include "platform/machines/ullner_array/array_host.hpp"
 #include "platform/machines/ullner_array/array_node.hpp"
 
 namespace rtsim::platform {
@@ -79,11 +80,6 @@ const modules::ChoiceParam kDepthAxis(
      .description = "The axis simulated inside the processors; auto: the one most along the view "
                     "(the eye in front, Fig. 2-29)",
      .source = "seed 000 L779 (Fig. 2-26), L862"});
-const modules::TimeParam kLoadWordTime(
-    {.name = "load.word_time",
-     .default_value = "1 us",
-     .description = "Time for the host to broadcast one word of a polygon description (L787)",
-     .source = "assumption: the thesis gives no host interface; a word a microsecond"});
 const modules::TimeParam kReadoutPixelTime(
     {.name = "readout.pixel_time",
      .default_value = "666.667 ns",
@@ -181,7 +177,6 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
   for (const auto* p : {&kRows, &kCols, &kSubvolumes}) array.add(*p);
   array.add(kMapping);
   array.add(kDepthAxis);
-  array.add(kLoadWordTime);
   array.add(kReadoutPixelTime);
   array.add(kInterconnect);
   modules::TokenRing::declare_params(
@@ -196,6 +191,7 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
        .source = "assumption: a node passes the token or a packet's bits on in one memory cycle; "
                  "a packet holds one 17-word message with a one-word header"});
   array.add(kDropResult);
+  ullner_array::ArrayHost::declare_params(modules::ParamDecls(r, ullner_array::ArrayHost::kName));
   ullner_array::ArrayNode::declare_params(modules::ParamDecls(r, ullner_array::ArrayNode::kClass));
 }
 
@@ -214,6 +210,7 @@ FunctionalTwin UllnerArray::make_twin(scenes::Scene& scene, const params::ParamR
 
 RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                            const params::ParamRegistry& r, const RunOptions& opts) const {
+  using ullner_array::ArrayHost;
   using ullner_array::ArrayNode;
   MachineRun run(name(), scene, twin, r, opts);
   functional::FrameState& frame = run.frame();
@@ -224,14 +221,10 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.mapping = layout(r, scene.camera);
   const modules::MeshTopology topology(ctx.mapping.rows, ctx.mapping.cols, ctx.mapping.wrap_rows(),
                                        ctx.mapping.wrap_cols());
-  const shading::PinholeCamera camera(scene.camera, run.width(), run.height());
   ctx.topology = &topology;
   ctx.grid = grid.get();
-  ctx.geometry = twin.geometry.get();
-  ctx.scene = &scene;
   ctx.shade = twin.settings.shade;
   ctx.frame = &frame;
-  ctx.camera = &camera;
   // The vision rays of the rows simulated in detail (all of them unless --sample).
   const std::uint64_t rays = frame.detailed_pixels() * static_cast<std::uint64_t>(frame.spp());
   ctx.credit_per_ray = kCreditPerRay;
@@ -240,30 +233,24 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   ctx.total_credit = ctx.credit_per_ray * rays;
   ctx.drop_result = static_cast<std::uint64_t>(modules::ModuleParams(r, kArray).get(kDropResult));
 
-  // The load (L787-L789): the host broadcasts each polygon's words; every processor decides
-  // whether to keep it meanwhile. Before the frame.
-  const sc_core::sc_time per_polygon =
-      std::max(modules::times(modules::ModuleParams(r, kArray).get(kLoadWordTime),
-                              ullner_array::kPolygonWords),
-               ullner_array::ArrayNode::keep_test_time(r));
-  ctx.frame_start = modules::times(per_polygon, twin.geometry->shapes.size());
-
-  // Each processor must hold the polygons of its subvolumes (L835: 128 KB).
-  const std::size_t capacity = ullner_array::ArrayNode::memory_words(r);
+  // Each processor must hold what it keeps of the broadcast (L835: 128 KB).
+  const std::size_t capacity = ArrayNode::memory_words(r);
   const modules::ModuleParams array(r, kArray);
+  const std::size_t attribute_words = ArrayHost::attribute_words(scene);
+  const std::size_t view_words = ArrayHost::view_words(scene.camera);
   for (int i = 0; i < topology.nodes(); ++i) {
-    const std::size_t need =
-        ullner_array::subvolume_polygons(*grid, ctx.mapping, topology.node(i)).size() *
-        ullner_array::kPolygonWords;
+    const std::size_t need = ullner_array::load_words_needed(
+        *grid, ctx.mapping, topology.node(i), *twin.geometry, attribute_words, view_words);
     if (need > capacity)
       throw InputError(scene.name, 0,
-                       "processor node" + std::to_string(i) + " of the array would hold " +
-                           std::to_string(need / ullner_array::kPolygonWords) + " polygons (" +
-                           std::to_string(need) + " words) but its memory has " +
-                           std::to_string(capacity) + " words (" +
-                           ullner_array::ArrayNode::memory_words_name(r) +
-                           "); use more processors or subvolumes (" + array.path_of(kRows.name()) +
-                           ", " + array.path_of(kCols.name()) + ", " +
+                       "processor node" + std::to_string(i) + " of the array would need " +
+                           std::to_string(need) +
+                           " words for its polygons, subvolume lists and the scene's attributes "
+                           "but its memory has " +
+                           std::to_string(capacity) + " words (" + ArrayNode::memory_words_name(r) +
+                           "); use more processors or "
+                           "subvolumes (" +
+                           array.path_of(kRows.name()) + ", " + array.path_of(kCols.name()) + ", " +
                            array.path_of(kSubvolumes.name()) + ") or a larger memory");
   }
   // The interconnect: the mesh links of each processor, or one ring (its parameters are read
@@ -280,7 +267,14 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     ring_channel =
         std::make_unique<modules::RingChannel<ullner_array::RayMessage>>("ring_channel", *ring);
     ctx.ring = ring_channel.get();
+    ctx.ring_medium = ring.get();
   }
+  // The host, on the array's edge at processor (0, 0), and the ready line it waits on.
+  std::vector<MemoryFault> faults = opts.faults;
+  ullner_array::ReadyLine ready;
+  ArrayHost host(ArrayHost::kName, r, *twin.geometry, scene, ready, faults);
+  ctx.loaded = &host.loaded();
+  ctx.ready = &ready;
   // --latency-probe: the stages of a ray by class (every node alike), in the order it meets
   // them: made at a node, searched by its unit, carried on a link (or the ring) into the next
   // node's input queue.
@@ -310,19 +304,27 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
         nodes[static_cast<std::size_t>(i)]->connect(
             d, *nodes[static_cast<std::size_t>(topology.index(*m))]);
   }
+  // The broadcast's spanning tree, from the host at processor (0, 0).
+  host.out.bind(nodes.front()->broadcast_in);
+  for (auto& n : nodes) {
+    const std::vector<modules::GridNode> children = n->broadcast_children();
+    for (std::size_t k = 0; k < children.size(); ++k)
+      n->connect_broadcast(k, *nodes[static_cast<std::size_t>(topology.index(children[k]))]);
+  }
   std::vector<modules::Memory*> memories;
   for (auto& n : nodes) memories.push_back(&n->memory);
-  inject_faults(name(), opts.faults, memories);
+  inject_faults(name(), faults, memories);
   run.simulate();
 
   if (!tally.done)
     throw std::runtime_error("ullner-array: the termination detector never held all the credit");
-  const sc_core::sc_time compute = *tally.done - ctx.frame_start;
+  const sc_core::sc_time frame_start = host.view_sent();
+  const sc_core::sc_time compute = *tally.done - frame_start;
   const sc_core::sc_time readout = modules::times(
       modules::ModuleParams(r, kArray).get(kReadoutPixelTime),
       static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height()));
   const sc_core::sc_time frame_time = modules::plus(compute, readout);
-  run.stats_over(ctx.frame_start, frame_time);
+  run.stats_over(frame_start, frame_time);
 
   nlohmann::ordered_json busy = nlohmann::ordered_json::array();
   std::uint64_t kept = 0;
@@ -358,7 +360,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"depth_axis", std::string(1, "xyz"[m.depth_axis])},
                   {"polygons", twin.geometry->shapes.size()},
                   {"polygons_kept", kept},
-                  {"load_time_s", ctx.frame_start.to_seconds()},
+                  {"load_time_s", frame_start.to_seconds()},
                   {"compute_time_s", compute.to_seconds()},
                   {"readout_time_s", readout.to_seconds()},
                   {"words_fetched", words},
@@ -370,6 +372,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"results_added", tally.results_added},
                   {"results_dropped", tally.results_dropped},
                   {"node_busy_fraction", std::move(busy)}};
+  if (const auto in_flight = host.faults_json(); !in_flight.empty())
+    res["array"]["faults_in_flight"] = in_flight;
   return run.finish(tally.latency, memories);
 }
 
