@@ -338,6 +338,38 @@ TEST(UllnerArray, ABroadcastPolygonCorruptedInFlightChangesTheImage) {
   EXPECT_FALSE(fs::exists(out / "image.png"));
 }
 
+// A word of every ray message a link carries, corrupted on the wire: a contribution's colour or
+// a ray's origin changes the image; a corrupted credit ends the run with a message and exit 2;
+// a link that does not exist or a word past the message is refused.
+TEST(UllnerArray, ARayMessageCorruptedOnALinkChangesTheImage) {
+  const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
+  const auto clean = run_array("msg-clean", args);
+  ASSERT_FALSE(clean.empty());
+  for (const char* fault : {"node27.link_e:9:0x00400000", "node27.link_s:4:0x00100000"}) {
+    const auto bad = run_array("msg-bad", args + " --fault " + fault);
+    ASSERT_FALSE(bad.empty()) << fault;
+    EXPECT_GT(bad["array"]["faults_in_flight"][0]["applied"].get<int>(), 0) << fault;
+    EXPECT_NE(read_file(clean.at("image_png").get<std::string>()),
+              read_file(bad.at("image_png").get<std::string>()))
+        << fault;
+  }
+  // A corrupted type makes results rays again, shaded again and again: the watchdog ends them.
+  const auto looping = run_array("msg-loop", args + " --fault node27.link_e:0:0x1");
+  ASSERT_FALSE(looping.empty());
+  EXPECT_GT(looping["array"]["messages_destroyed_looping"].get<int>(), 0);
+  for (const auto& [fault, says] :
+       {std::pair{"node27.link_e:16:0x1", "cannot tell when the frame"},
+        std::pair{"node7.link_e:0:1", "links"}, std::pair{"node999.link_e:0:1", "links"},
+        std::pair{"node27.link_e:17:1", "17 words"}}) {
+    const fs::path out = scratch_dir("msg-refused");
+    const auto r = run_rtsim("run --machine ullner-array " + args + " --fault " + fault +
+                             " -q --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << fault << "\n" << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out / "image.png")) << fault;
+  }
+}
+
 TEST(UllnerArray, BadSizesAreBadInput) {
   const fs::path dir = scratch_dir("array-bad");
   auto r = run_rtsim(

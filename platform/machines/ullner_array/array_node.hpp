@@ -59,6 +59,7 @@
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner_array/broadcast_copy.hpp"
+#include "platform/machines/ullner_array/message_fault.hpp"
 #include "platform/machines/ullner_array/ray_message.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
 
@@ -94,6 +95,13 @@ struct ArrayContext {
   ReadyLine* ready = nullptr;
   /// On a ring, the medium the broadcast passes from processor to processor in ring order.
   const modules::TokenRing* ring_medium = nullptr;
+  /// --fault nodeK.link_D:WORD:XOR: the messages its links corrupt (message_fault.hpp).
+  std::vector<MessageFault>* message_faults = nullptr;
+  /// The model's watchdog: a message that has crossed more links, with the messages of its ray
+  /// tree before it, than any tree can need (a corrupted type or resume position can send one
+  /// back and forth, or have a ray shaded again and again, for ever) is destroyed, its credit
+  /// kept where it ends.
+  std::uint32_t hop_limit = 0;
   /// A fault for tests: the result message with this sequence number (counted where results
   /// are added) is lost; 0 loses none.
   std::uint64_t drop_result = 0;
@@ -118,7 +126,9 @@ struct ArrayTally {
   std::optional<sc_core::sc_time> done;  ///< when the detector held all the credit
   std::uint64_t results_added = 0;
   std::uint64_t results_dropped = 0;
-  modules::LatencyRecorder latency;  ///< a ray's creation to its contribution being added
+  std::uint64_t credit_exhausted = 0;  ///< messages whose credit could not be shared out
+  std::uint64_t looping = 0;           ///< messages the watchdog destroyed (hop_limit)
+  modules::LatencyRecorder latency;    ///< a ray's creation to its contribution being added
 };
 
 class ArrayNode : public modules::Processor {
@@ -234,6 +244,7 @@ class ArrayNode : public modules::Processor {
   accel::Dda dda_;
   std::array<std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>>, 4> out_;
   std::array<std::unique_ptr<modules::Link>, 4> links_;
+  std::array<std::vector<MessageFault*>, 4> link_faults_;  ///< what each link corrupts
   tlm_utils::simple_initiator_socket<ArrayNode> memory_port_;
   std::vector<BroadcastHop> broadcast_out_;
   /// The load's state: where the next record goes, when its buffer is free, the CPU's time.

@@ -2,6 +2,7 @@
 // processors on four bidirectional links; each owns a column of subvolumes along the depth axis
 // (or a skewed assignment, with wrap links) and a block of the frame buffer; rays travel as
 // messages between them, and the image is the sum of the contributions the result messages carry.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <systemc>
@@ -275,6 +276,16 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   ArrayHost host(ArrayHost::kName, r, *twin.geometry, scene, ready, faults);
   ctx.loaded = &host.loaded();
   ctx.ready = &ready;
+  std::vector<ullner_array::MessageFault> message_faults;
+  if (!ring) message_faults = ullner_array::message_faults(topology, faults);
+  ctx.message_faults = &message_faults;
+  // A walk crosses at most 3n subvolumes after a route across the array, a result the array
+  // once more, and a ray tree is max_depth + 2 generations (shadow rays the last). Four times
+  // that is never reached without a fault.
+  ctx.hop_limit =
+      static_cast<std::uint32_t>(4 * (topology.rows() + topology.cols() + 3 * ctx.mapping.n) *
+                                     (std::max(ctx.shade.max_depth, 0) + 2) +
+                                 16);
   // --latency-probe: the stages of a ray by class (every node alike), in the order it meets
   // them: made at a node, searched by its unit, carried on a link (or the ring) into the next
   // node's input queue.
@@ -316,8 +327,25 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   inject_faults(name(), faults, memories);
   run.simulate();
 
-  if (!tally.done)
+  // A corrupted credit word loses or adds credit: the end of the frame cannot be trusted, whether
+  // or not the detector's sum happened to come right.
+  for (const auto& f : message_faults)
+    if (f.credit && f.applied > 0)
+      throw InputError("--fault " + f.name() + ":" + std::to_string(f.word), 0,
+                       "corrupted the credit of " + std::to_string(f.applied) +
+                           " messages: the termination detector cannot tell when the frame "
+                           "ended (no output written)");
+  // Without a fault in flight neither can happen (2^40 credits a ray; the hop limit's margin):
+  // it would be a defect of the model.
+  const bool corrupted = std::any_of(message_faults.begin(), message_faults.end(),
+                                     [](const auto& f) { return f.applied > 0; });
+  if (tally.credit_exhausted > 0 && !corrupted)
+    throw std::logic_error("ullner-array: a message's credit could not be shared any further");
+  if (tally.looping > 0 && !corrupted)
+    throw std::logic_error("ullner-array: a message crossed more links than any ray tree needs");
+  if (!tally.done) {
     throw std::runtime_error("ullner-array: the termination detector never held all the credit");
+  }
   const sc_core::sc_time frame_start = host.view_sent();
   const sc_core::sc_time compute = *tally.done - frame_start;
   const sc_core::sc_time readout = modules::times(
@@ -371,9 +399,14 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                     {"credit_bits", sent[4] * ullner_array::RayMessage::kWireBits}}},
                   {"results_added", tally.results_added},
                   {"results_dropped", tally.results_dropped},
+                  {"messages_destroyed_looping", tally.looping},
+                  {"credit_exhausted", tally.credit_exhausted},
                   {"node_busy_fraction", std::move(busy)}};
-  if (const auto in_flight = host.faults_json(); !in_flight.empty())
-    res["array"]["faults_in_flight"] = in_flight;
+  nlohmann::ordered_json in_flight = host.faults_json();
+  for (const auto& f : message_faults)
+    in_flight.push_back(
+        {{"at", f.name()}, {"word", f.word}, {"xor_mask", f.xor_mask}, {"applied", f.applied}});
+  if (!in_flight.empty()) res["array"]["faults_in_flight"] = std::move(in_flight);
   return run.finish(tally.latency, memories);
 }
 

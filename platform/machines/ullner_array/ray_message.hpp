@@ -42,6 +42,8 @@ struct RayMessage {
   /// the journey is accounted. Not on the wire.
   modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
   sc_core::sc_time cursor;
+  /// Links it has crossed (the model's watchdog, ArrayContext::hop_limit). Not on the wire.
+  std::uint32_t hops = 0;
 
   /// k, r, c, r0 (3), r_d (3), c (3) = 12 words (Fig. 2-27), + resume, far limit, generation,
   /// credit (2) = 17 words.
