@@ -36,6 +36,7 @@ import latency_breakdown  # noqa: E402
 import latency_histogram  # noqa: E402
 import pareto_plot  # noqa: E402,F401
 import pxpl5_rows_squares  # noqa: E402
+import array_scaling  # noqa: E402
 import pxpl5_workload  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
@@ -602,6 +603,35 @@ class Pxpl5RowsSquaresTest(ScratchTest):
         r = run_script("pxpl5_rows_squares.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("rows and squares", r.stderr)
+
+
+class ArrayScalingTest(ScratchTest):
+    def write(self, points):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for scene, side, sub, frame in points:
+                f.write(json.dumps({"status": "ok", "scene": scene, "array.rows": side,
+                                    "array.cols": side, "array.subvolumes": sub,
+                                    "simulated_time_s": frame,
+                                    "module_classes": {"node*": {"utilization": {
+                                        "mean": 0.5, "max": 0.75}}}}) + "\n")
+
+    def test_lines_table_and_png(self):
+        self.write([("s", 4, 0, 1.0), ("s", 2, 0, 8.0), ("s", 2, 4, 4.0), ("s", 4, 4, 1.0)])
+        data = array_scaling.lines(sweep_plot.read_results(self.dir))
+        self.assertEqual(data[("s", "grows")], [(4, 8.0, 0.5, 0.75), (16, 1.0, 0.5, 0.75)])
+        self.assertEqual(data[("s", "4")][1][1], 1.0)
+        out = os.path.join(self.dir, "f.png")
+        r = run_script("array_scaling.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| s | grows | 8000 ms, 1x, 50/75% | 1000 ms, 8x, 50/75% |", r.stdout)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            f.write(json.dumps({"status": "ok", "scene": "s", "simulated_time_s": 1.0}) + "\n")
+        r = run_script("array_scaling.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("array.rows", r.stderr)
 
 
 class ParetoPlotTest(ScratchTest):
