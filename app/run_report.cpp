@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/bottleneck.hpp"
 #include "app/number_text.hpp"
 #include "app/trace_options.hpp"
 #include "common/seed_citation.hpp"
@@ -261,6 +262,8 @@ void headline_section(HtmlReport& page, const json& stats) {
     head.emplace_back("intersection tests", format_number(v));
   if (const double v = num(stats, "overhead_ratio"); std::isfinite(v))
     head.emplace_back("overhead (wall / functional wall)", format_number(v));
+  if (const std::string b = bottleneck_text(find_bottleneck(stats)); !b.empty())
+    head.emplace_back("bottleneck", b);
   if (const json* lat = find(stats, "ray_latency_s"); lat && lat->is_object())
     head.emplace_back("ray latency", "mean " + format_seconds(num(*lat, "mean")) + ", p50 " +
                                          format_seconds(num(*lat, "p50")) + ", p99 " +

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "app/bottleneck.hpp"
+#include "app/json_number.hpp"
 #include "app/number_text.hpp"
 
 namespace rtsim::app {
@@ -10,40 +12,7 @@ namespace {
 
 using json = nlohmann::json;
 
-double number(const json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
-}
-
-struct Busy {
-  std::string name;
-  double utilization;
-};
-
-/// Modules that were busy, busiest first (ties by name).
-std::vector<Busy> busy_modules(const json& modules) {
-  std::vector<Busy> busy;
-  for (const auto& [name, m] : modules.items())
-    if (m.contains("utilization") && number(m, "busy_s") > 0)
-      busy.push_back({name, m["utilization"].get<double>()});
-  std::stable_sort(busy.begin(), busy.end(),
-                   [](const Busy& a, const Busy& b) { return a.utilization > b.utilization; });
-  return busy;
-}
-
-/// The module (not `bottleneck`) that spent the largest share of the frame blocked on output or
-/// waiting for data it asked for: who waits for the bottleneck. Empty if none waited.
-std::pair<std::string, double> longest_waiter(const json& modules, const std::string& bottleneck,
-                                              double frame_s) {
-  std::pair<std::string, double> best{"", 0.0};
-  if (frame_s <= 0) return best;
-  for (const auto& [name, m] : modules.items()) {
-    if (name == bottleneck) continue;
-    const double waited = (number(m, "blocked_s") + number(m, "waiting_for_data_s")) / frame_s;
-    if (waited > best.second) best = {name, waited};
-  }
-  return best;
-}
+double number(const json& j, const char* key) { return json_number(j, key); }
 
 void print_busy(std::ostream& out, const json& stats) {
   if (!stats.contains("modules")) return;
@@ -55,20 +24,7 @@ void print_busy(std::ostream& out, const json& stats) {
   if (busy.size() > kBusiestShown)
     out << "  (" << busy.size() - kBusiestShown << " more in stats.json)";
   out << "\n";
-  const Busy& top = busy.front();
-  if (top.utilization < kSaturated) {
-    out << "  bottleneck  none saturated: the busiest, " << top.name << ", is "
-        << format_percent(top.utilization) << " busy\n";
-    return;
-  }
-  out << "  bottleneck  " << top.name << ", " << format_percent(top.utilization) << " busy";
-  const auto [waiter, share] =
-      longest_waiter(stats["modules"], top.name, number(stats, "simulated_time_s"));
-  if (!waiter.empty() && share >= 0.01)
-    out << ": " << waiter << " waits " << format_percent(share) << " of the frame";
-  if (busy.size() > 1)
-    out << " (next busiest " << busy[1].name << " " << format_percent(busy[1].utilization) << ")";
-  out << "\n";
+  out << "  bottleneck  " << bottleneck_text(find_bottleneck(stats)) << "\n";
 }
 
 void print_sample(std::ostream& out, const json& stats) {

@@ -14,8 +14,6 @@ namespace rtsim::app {
 std::string format_run_summary(const nlohmann::json& stats,
                                const std::vector<std::pair<std::string, std::string>>& outputs);
 
-/// Modules busier than this are saturated: the bottleneck line names the busiest.
-inline constexpr double kSaturated = 0.95;
 /// How many modules the busy line shows, busiest first.
 inline constexpr std::size_t kBusiestShown = 8;
 

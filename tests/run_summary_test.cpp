@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bottleneck.hpp"
 #include "app/number_text.hpp"
 
 using rtsim::app::format_percent;
@@ -95,7 +96,34 @@ TEST(RunSummary, NoSaturatedModuleIsSaidSo) {
   stats["modules"]["peripheral.pipeline"]["utilization"] = 0.838;
   const std::string text = format_run_summary(stats, {});
   EXPECT_NE(text.find("bottleneck  none saturated: the busiest, peripheral.pipeline, is 83.8% "
-                      "busy"),
+                      "busy; latency, dependencies and bursts of work set the frame"),
             std::string::npos)
       << text;
+}
+
+// With nothing saturated, the line says where the work spent its time, by class of module:
+// queued (mean occupancy x frame), busy, or waiting for what a module names.
+TEST(RunSummary, WithNothingSaturatedItSaysWhereTheTimeWent) {
+  const auto stats = nlohmann::json::parse(R"({
+    "machine": "m", "scene": "s", "width": 8, "height": 8, "simulated_time_s": 2.0,
+    "modules": {
+      "node0": {"busy_s": 0.6, "utilization": 0.3, "memory_waited_s": 0.2},
+      "node1": {"busy_s": 0.8, "utilization": 0.4},
+      "node0.in_e": {"queue": {"mean_occupancy": 0.5}},
+      "node1.in_w": {"queue": {"mean_occupancy": 1.0}},
+      "node0.link_e": {"busy_s": 0.2, "utilization": 0.1, "waited_s": 0.2}
+    }})");
+  const rtsim::app::Bottleneck b = rtsim::app::find_bottleneck(stats);
+  EXPECT_FALSE(b.saturated);
+  ASSERT_EQ(b.time.size(), 5u);
+  EXPECT_EQ(b.time[0].where, "node*.in_* queued");  // (0.5 + 1.0) x 2 s
+  EXPECT_DOUBLE_EQ(b.time[0].seconds, 3.0);
+  EXPECT_EQ(b.time[1].where, "node* busy");
+  EXPECT_DOUBLE_EQ(b.time[1].seconds, 1.4);
+  EXPECT_DOUBLE_EQ(b.time[0].share, 3.0 / 5.0);
+  const std::string text = format_run_summary(stats, {});
+  EXPECT_NE(text.find("the work's time: node*.in_* queued 60.0%, node* busy 28.0%"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("node* waiting for memory"), std::string::npos) << text;
 }

@@ -715,6 +715,7 @@ void ArrayNode::search(RayMessage& msg) {
   if (tests > 0) {
     probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
     const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+    memory_waited_ += start - clock_.now();
     const sc_core::sc_time fetch = times(timing_.memory_cycle, 2 * words);
     const sc_core::sc_time issue = times(timing_.stage_time, tests);
     const sc_core::sc_time done =
@@ -854,6 +855,7 @@ void ArrayNode::forward(RayMessage msg, const GridNode& to) {
 sc_core::sc_time ArrayNode::copy_out() {
   // The port copies the message out of this memory (L854), 16 bits a memory cycle.
   const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+  memory_waited_ += start - clock_.now();
   const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
   memory_free_ = plus(start, copy);
   memory_busy_ += copy;

@@ -294,6 +294,9 @@ class ArrayNode : public modules::Processor {
   modules::Counter tests_{*this, "intersections", "ray/polygon tests of its unit"};
   modules::Duration memory_busy_{*this, "memory_busy_s",
                                  "time its memory was fetching polygons or copying messages out"};
+  modules::Duration memory_waited_{*this, "memory_waited_s",
+                                   "time its intersection unit or a port copy waited for the "
+                                   "memory, busy with the other"};
   modules::Peak backlog_peak_{*this, "backlog_peak", "rays spawned here waiting to be searched"};
 };
 
