@@ -47,6 +47,39 @@ double imbalance(const RunResults& r, const std::string& key) {
   return *std::max_element(b.begin(), b.end()) / mean;
 }
 
+/// The processors' mean share of the frame: CPU busy, intersection unit busy, memory busy (its
+/// unit's fetches and the ports' copies), and the share the parameter fetches alone take (what
+/// L891's estimate counts), from run `key`'s stats.json.
+struct NodeAccounts {
+  double cpu, unit, memory, fetch;
+};
+NodeAccounts node_accounts(const RunResults& r, const std::string& key) {
+  const nlohmann::json& s = stats_of(r, key);
+  const double frame = stats_number(r, key, "simulated_time_s");
+  const double cycle = param_seconds(r, key, "node.memory_cycle");
+  const auto& classes = s.at("module_classes");
+  const double cpu = classes.at("node*").at("utilization").at("mean").get<double>();
+  const double unit = classes.at("node*.pipeline").at("utilization").at("mean").get<double>();
+  double memory = 0, words = 0, nodes = 0;
+  for (const auto& [name, m] : s.at("modules").items()) {
+    if (name.rfind("node", 0) != 0 || !m.contains("memory_busy_s")) continue;
+    memory += m["memory_busy_s"].get<double>();
+    ++nodes;
+  }
+  for (const auto& [name, m] : s.at("modules").items())
+    if (name.ends_with(".pipeline") && m.contains("words_fetched"))
+      words += m["words_fetched"].get<double>();
+  if (!(nodes > 0 && frame > 0)) throw MeasureError("run " + key + ": no processor accounts");
+  // Two 16-bit transfers a 32-bit word (L835, L891).
+  return {cpu, unit, memory / nodes / frame, 2 * cycle * words / nodes / frame};
+}
+
+std::string accounts_text(const NodeAccounts& a) {
+  return "processors' mean share of the frame: CPU " + format_number(100 * a.cpu) + "%, unit " +
+         format_number(100 * a.unit) + "%, memory " + format_number(100 * a.memory) +
+         "%, of it parameter fetches " + format_number(100 * a.fetch) + "%";
+}
+
 }  // namespace
 
 namespace {
@@ -62,8 +95,18 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       "array-side-torus", kArrayMachine, side, {"array.depth_axis=x", "array.mapping=torus"}));
   const std::string peripheral = plan.add_run(
       machine_run("array-peripheral", kUllnerMachine, side, {"peripheral.grid.divisions=8"}));
+  // The peripheral with a host that keeps up (the thesis's bandwidth comparison is of the two
+  // machines' fetches, not of the host), and the array at L891's 40 and 100 processors.
+  const std::string fast_peripheral = plan.add_run(
+      machine_run("array-peripheral-fast-host", kUllnerMachine, side,
+                  {"peripheral.grid.divisions=8", "host.clock=\"100 GHz\"",
+                   "host.ray_link.bit_rate=\"1 Gbit/s\""}));
+  const std::string array40 = plan.add_run(
+      machine_run("array-40", kArrayMachine, side, {"array.rows=5", "array.cols=8"}));
+  const std::string array100 = plan.add_run(
+      machine_run("array-100", kArrayMachine, side, {"array.rows=10", "array.cols=10"}));
 
-  // V17: the bandwidth arithmetic of L891 on the runs' own parameters.
+  // V17a-b: the bandwidth arithmetic of L891 on the runs' own parameters (derived).
   auto processors_to_match = [front, peripheral](const RunResults& r) {
     const double node = kNodeFetchBits / param_seconds(r, front, "node.memory_cycle");
     const double per =
@@ -89,6 +132,7 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
             return Measured{processors_to_match(r),
                             "(640 bits / intersect interval) / (16 bits / memory cycle)"};
           },
+      .parameter_check = true,
   });
   plan.figures.push_back(Figure{
       .id = "V17b",
@@ -104,10 +148,46 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       .runs = {front, peripheral},
       .measure =
           [processors_to_match](const RunResults& r) {
-            return Measured{100.0 / processors_to_match(r),
-                            "simulated frame times on one scene: docs/validation.md"};
+            return Measured{100.0 / processors_to_match(r), "100 / V17a"};
           },
+      .parameter_check = true,
   });
+  // V17c-d: the same comparison simulated. L893 warns that the estimate "ignores the fact that
+  // there are other demands placed on the component processors beyond mere parameter fetching";
+  // the note says which, from the processors' own accounts.
+  const std::string why_open =
+      "L891 assumes \"every processor in the array is kept busy\" fetching parameters; "
+      "simulated, the processors' memories fetch for a small share of the frame and their CPUs' "
+      "other work (messages, software routing, shading: L893's \"other demands\") takes more; "
+      "the rest of the frame they wait (latency, imbalance). The note measures each";
+  for (const auto& [id, run, n, seed] :
+       {std::tuple{"V17c", array40, 40, 1.0}, std::tuple{"V17d", array100, 100, kHundredSpeedUp}}) {
+    plan.figures.push_back(Figure{
+        .id = id,
+        .title = std::string("Array of ") + std::to_string(n) +
+                 " processors against the peripheral, simulated",
+        .seed_ref = "seed 000 L891-L893",
+        .seed_text = n == 40 ? "forty processors \"equal\" the peripheral's fetch performance"
+                             : "\"an array with a hundred processors would be 250% as fast\"",
+        .seed_value = seed,
+        .unit = "x",
+        .tolerance = Tolerance::relative(
+            0.25, "the estimate is a bandwidth bound; within a quarter the fetches set the pace"),
+        .workload = "builtin:ullner-cubes at " + size + ": ullner-peripheral (grid 8, host at " +
+                    "100 GHz and 1 Gbit/s: it keeps up) against ullner-array (" +
+                    (n == 40 ? "5 x 8" : "10 x 10") + ", straight)",
+        .runs = {run, fast_peripheral},
+        .measure =
+            [run, fast_peripheral](const RunResults& r) {
+              const double p = stats_number(r, fast_peripheral, "simulated_time_s");
+              const double a = stats_number(r, run, "simulated_time_s");
+              return Measured{p / a, "frame " + format_number(p) + " s on the peripheral, " +
+                                         format_number(a) + " s on the array; " +
+                                         accounts_text(node_accounts(r, run))};
+            },
+        .open = why_open,
+    });
+  }
 
   const std::string workload = "builtin:ullner-cubes at " + size + ", 8 x 8 processors";
   plan.figures.push_back(Figure{
@@ -153,6 +233,15 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
                                        format_number(s)};
           },
   });
+  // V19's assumption: the intersection unit issues a test every node.pipeline.stage_time (333
+  // ns). L839 says its throughput is limited by the fetches (t's 4 words: 8 transfers, 2.67 us at
+  // the least), so a stage is no slower than that; L723's shift-and-add operation takes about
+  // 5 us, so each stage interleaves two units or more. Both bounds are run: the note shows how
+  // far the figure moves.
+  const std::string fetch_bound = plan.add_run(machine_run(
+      "array-stage-2.667us", kArrayMachine, side, {"node.pipeline.stage_time=\"2.667 us\""}));
+  const std::string one_unit = plan.add_run(
+      machine_run("array-stage-5us", kArrayMachine, side, {"node.pipeline.stage_time=\"5 us\""}));
   plan.figures.push_back(Figure{
       .id = "V19",
       .title = "Array against the peripheral, \"if built today\"",
@@ -165,16 +254,22 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       .tolerance = Tolerance::range(
           2.0, 10.0,
           "\"a few times\"; the peripheral at its best grid (8 per axis here) with "
-          "its default host, the array with its default processors"),
+          "its default host, the array with its default processors (node.pipeline.stage_time "
+          "333 ns: an assumption, its sensitivity in the note)"),
       .workload = "builtin:ullner-cubes at " + size +
                   ": ullner-peripheral (grid 8) against ullner-array (8 x 8, straight)",
-      .runs = {front, peripheral},
+      .runs = {front, peripheral, fetch_bound, one_unit},
       .measure =
-          [front, peripheral](const RunResults& r) {
+          [front, peripheral, fetch_bound, one_unit](const RunResults& r) {
             const double p = stats_number(r, peripheral, "simulated_time_s");
             const double a = stats_number(r, front, "simulated_time_s");
-            return Measured{p / a, "frame " + format_number(p) + " s on the peripheral, " +
-                                       format_number(a) + " s on the array"};
+            return Measured{
+                p / a, "frame " + format_number(p) + " s on the peripheral, " + format_number(a) +
+                           " s on the array (stage 333 ns); with a 2.667 us stage (the fetch "
+                           "bound of L839) " +
+                           format_number(p / stats_number(r, fetch_bound, "simulated_time_s")) +
+                           "x, with a 5 us stage (one shift-and-add unit, L723) " +
+                           format_number(p / stats_number(r, one_unit, "simulated_time_s")) + "x"};
           },
   });
 }
