@@ -2,6 +2,7 @@
 // Where a module records what it works on as Perfetto slices (a ray in a processor, a packet on
 // a bus): the run's traces (platform/machines/machine_trace.hpp) implement it. Kit blocks take
 // one so they need not know the platform layer. Used by modules::Processor.
+#include <cstdint>
 #include <initializer_list>
 #include <string_view>
 #include <systemc>
@@ -18,6 +19,12 @@ class SliceSink {
   virtual void slice(std::string_view module, std::string_view name, const sc_core::sc_time& start,
                      const sc_core::sc_time& duration,
                      std::initializer_list<PerfettoTrace::Arg> args = {}) = 0;
+  /// A flow event linking slices (PerfettoTrace::flow) on the track of `module`; none unless
+  /// the traces take flows.
+  virtual void flow(std::string_view /*module*/, std::string_view /*name*/, std::uint64_t /*id*/,
+                    PerfettoTrace::FlowPhase /*phase*/, const sc_core::sc_time& /*t*/) {}
+  /// Whether slices go anywhere: a module may skip preparing what it would record.
+  virtual bool records() const { return true; }
 };
 
 }  // namespace rtsim::modules

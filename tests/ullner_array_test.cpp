@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -208,6 +209,54 @@ TEST(UllnerArray, OnARingTheProbeFollowsEachContributionOverTheRing) {
 // 32x32 its messages are under 5% of the message hops, and no column is hot because of them.
 // Returning credit straight to processor (0,0) made 50% of the hops here and column 0 busy while
 // the rest idled. node.credit_quiet_time = 0 (send at once, still combined) must cost more hops.
+// --trace perfetto: every message a link carries is a slice on the link's track with its ray
+// tree, message, source and destination, and a flow links its links and the processors that take
+// it, in time order, from a start ("s") on its first link. The image does not change.
+TEST(UllnerArray, ThePerfettoTraceFollowsEachMessageAcrossTheArray) {
+  const std::string args =
+      "--scene builtin:ullner-cubes --width 16 --height 16 -p array.rows=4 -p array.cols=4";
+  const fs::path dir = scratch_dir("array-flows");
+  const auto r = run_rtsim("run --machine ullner-array " + args + " --trace perfetto -q --out " +
+                           dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto plain = run_array("flows-plain", args);
+  ASSERT_FALSE(plain.empty());
+  EXPECT_EQ(read_file(dir / "image.png"), read_file(plain.at("image_png").get<std::string>()));
+  const auto trace = read_json(dir / "trace.json");
+  std::map<std::pair<int, int>, std::string> track;
+  for (const auto& e : trace["traceEvents"])
+    if (e["ph"] == "M" && e["name"] == "thread_name")
+      track[{e["pid"].get<int>(), e["tid"].get<int>()}] = e["args"]["name"];
+  auto track_of = [&](const nlohmann::json& e) {
+    return track[{e["pid"].get<int>(), e["tid"].get<int>()}];
+  };
+  std::uint64_t link_slices = 0;
+  std::map<std::uint64_t, std::vector<std::pair<double, std::string>>> flows;
+  for (const auto& e : trace["traceEvents"]) {
+    if (e["ph"] == "X" && track_of(e).find(".link_") != std::string::npos) {
+      ++link_slices;
+      for (const char* arg : {"ray", "message", "from", "to"}) EXPECT_TRUE(e["args"].contains(arg));
+      EXPECT_NE(e["args"]["from"], e["args"]["to"]);
+      EXPECT_EQ(track_of(e), "node" + std::to_string(e["args"]["from"].get<int>()) +
+                                 track_of(e).substr(track_of(e).find(".link_")));
+    }
+    if (e["ph"] == "s" || e["ph"] == "t")
+      flows[e["id"].get<std::uint64_t>()].push_back({e["ts"].get<double>(), e["ph"]});
+  }
+  std::uint64_t hops = 0;
+  for (const auto& [type, n] : plain["array"]["messages_sent_by_type"].items())
+    hops += n.get<std::uint64_t>();
+  EXPECT_EQ(link_slices, hops);  // one slice a hop
+  ASSERT_FALSE(flows.empty());
+  std::size_t longest = 0;
+  for (auto& [id, events] : flows) {
+    std::stable_sort(events.begin(), events.end());
+    EXPECT_EQ(events.front().second, "s") << "flow " << id;
+    longest = std::max(longest, events.size());
+  }
+  EXPECT_GE(longest, 4u);  // link, processor, link, processor at least somewhere
+}
+
 TEST(UllnerArray, TerminationIsASmallShareOfTheHopsAndHeatsNoColumn) {
   const std::string args =
       "--scene builtin:ullner-cubes --width 64 --height 64 -p array.rows=32 -p array.cols=32";

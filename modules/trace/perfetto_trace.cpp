@@ -331,6 +331,14 @@ void PerfettoTrace::slice(int track, std::string_view name, const sc_core::sc_ti
   write_slice(track, name, us_of(start), us_of(duration), args);
 }
 
+void PerfettoTrace::flow(int track, std::string_view name, std::uint64_t id, FlowPhase phase,
+                         const sc_core::sc_time& t) {
+  const Track& tr = track_at(track);
+  if (!admit()) return;
+  write_common(tr, name, static_cast<char>(phase), us_of(t));
+  out_ << ",\"cat\":\"flow\",\"id\":" << id << '}';
+}
+
 void PerfettoTrace::instant(int track, std::string_view name, double t_s) {
   write_instant(track, name, perfetto_us_from_seconds(t_s));
 }

@@ -71,6 +71,12 @@ class PerfettoTrace {
   void slice(int track, std::string_view name, const sc_core::sc_time& start,
              const sc_core::sc_time& duration, std::initializer_list<Arg> args = {});
 
+  /// A flow event ("ph":"s" starts flow `id`, "t" steps it) at `t` on `track`, category "flow":
+  /// the viewers bind it to the slice of the track that encloses `t` (emit it at a slice's start)
+  /// and draw an arrow from each event of a flow to the next. Ids are the caller's (a message's).
+  enum class FlowPhase : char { kStart = 's', kStep = 't' };
+  void flow(int track, std::string_view name, std::uint64_t id, FlowPhase phase,
+            const sc_core::sc_time& t);
   /// An instant event ("ph":"i", thread scope) at t_s.
   void instant(int track, std::string_view name, double t_s);
   void instant(int track, std::string_view name, const sc_core::sc_time& t);

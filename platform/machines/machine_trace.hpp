@@ -54,6 +54,13 @@ class MachineTrace final : public modules::SliceSink {
       perfetto_->slice(perfetto_->track(module), name, start, duration, args);
   }
 
+  void flow(std::string_view module, std::string_view name, std::uint64_t id,
+            modules::PerfettoTrace::FlowPhase phase, const sc_core::sc_time& t) override {
+    if (perfetto_ && keeps(module, t, sc_core::SC_ZERO_TIME))
+      perfetto_->flow(perfetto_->track(module), name, id, phase, t);
+  }
+  bool records() const override { return perfetto_ != nullptr; }
+
   /// After the simulation: writes the busy and depth signals of every statistics group alive
   /// that the filter keeps, closes the files and returns stats.json's `trace` object (null when
   /// no trace was asked for); `window` is the frame the statistics cover. Call once.

@@ -475,6 +475,9 @@ bool ArrayNode::next_message(RayMessage& msg) {
     sc_core::sc_time taken;
     msg = in[best]->fifo.get(now, taken);
     received_.add(type_index(msg.type));
+    // --trace perfetto: the message's flow steps through the processor that takes it.
+    if (msg.links > 0 && trace_.records())
+      trace_.flow(name(), "message", msg.id, modules::PerfettoTrace::FlowPhase::kStep, now);
     // On a ring the journey ran from the copy out to the delivery into this port.
     probe_to(msg, ctx_.stages.ring, modules::LatencyPart::kTransfer, best_t);
     probe_to(msg, ctx_.stages.in, modules::LatencyPart::kQueueing, taken);
@@ -504,6 +507,8 @@ bool ArrayNode::next_message(RayMessage& msg) {
   msg.first_sample = sample == 0;
   msg.credit = ctx_.credit_per_ray;
   msg.created = now;
+  msg.id = ++tally_.messages_made;
+  msg.tree = ++tally_.rays_made;
   if (ctx_.probe) {
     msg.journey = ctx_.probe->begin(now);
     msg.cursor = now;
@@ -537,6 +542,7 @@ void ArrayNode::run() {
       RayMessage back;
       back.type = MessageType::kCredit;
       back.credit = c;
+      back.id = ++tally_.messages_made;
       if (position_ == GridNode{0, 0}) {
         process(std::move(back));
       } else {
@@ -810,6 +816,8 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
     out[k].journey = k == 0 || !ctx_.probe ? msg.journey : ctx_.probe->fork(msg.journey);
     out[k].cursor = msg.cursor;
     out[k].hops = msg.hops;  // the watchdog counts along the ray tree
+    out[k].id = ++tally_.messages_made;
+    out[k].tree = msg.tree;
   }
   for (auto& m : out) {
     m.credit = share + extra;
@@ -873,6 +881,20 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   probe_to(msg, ctx_.stages.link, modules::LatencyPart::kTransfer, arrived);
   sent_.add(type_index(msg.type));
   sent_by_link_[k]->add(type_index(msg.type));
+  if (trace_.records()) {
+    // --trace perfetto: the message on the link, and its flow from link to processor to link.
+    const int to = ctx_.topology->index(*ctx_.topology->neighbour(position_, d));
+    trace_.slice(link.name(), message_type_names()[type_index(msg.type)], start, arrived - start,
+                 {{"ray", msg.tree},
+                  {"message", msg.id},
+                  {"from", ctx_.topology->index(position_)},
+                  {"to", to}});
+    trace_.flow(link.name(), "message", msg.id,
+                msg.links == 0 ? modules::PerfettoTrace::FlowPhase::kStart
+                               : modules::PerfettoTrace::FlowPhase::kStep,
+                start);
+  }
+  ++msg.links;
   for (MessageFault* f : link_faults_[k]) f->apply(msg, ctx_.frame->width(), ctx_.frame->height());
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);
 }

@@ -128,6 +128,8 @@ struct ArrayTally {
   std::uint64_t results_dropped = 0;
   std::uint64_t credit_exhausted = 0;  ///< messages whose credit could not be shared out
   std::uint64_t looping = 0;           ///< messages the watchdog destroyed (hop_limit)
+  std::uint64_t messages_made = 0;     ///< the last message's id (RayMessage::id)
+  std::uint64_t rays_made = 0;         ///< the last vision ray's number (RayMessage::ray)
   modules::LatencyRecorder latency;    ///< a ray's creation to its contribution being added
 };
 

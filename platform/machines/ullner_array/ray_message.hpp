@@ -42,8 +42,14 @@ struct RayMessage {
   /// the journey is accounted. Not on the wire.
   modules::LatencyProbe::Journey journey = modules::LatencyProbe::kNoJourney;
   sc_core::sc_time cursor;
-  /// Links it has crossed (the model's watchdog, ArrayContext::hop_limit). Not on the wire.
+  /// Links it and the messages of its ray tree before it have crossed (the model's watchdog,
+  /// ArrayContext::hop_limit). Not on the wire.
   std::uint32_t hops = 0;
+  /// The traces' names: this message (1, 2, ... in the order they are made), its ray tree (its
+  /// vision ray's number; 0 for credit), and the links it has crossed itself. Not on the wire.
+  std::uint64_t id = 0;
+  std::uint64_t tree = 0;
+  std::uint32_t links = 0;
 
   /// k, r, c, r0 (3), r_d (3), c (3) = 12 words (Fig. 2-27), + resume, far limit, generation,
   /// credit (2) = 17 words.
