@@ -26,48 +26,43 @@ constexpr std::uint64_t kTWords = 4, kUWords = 8, kVWords = 8;
 
 }  // namespace
 
-std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
-                                              const SubvolumeMapping& mapping,
-                                              const GridNode& node) {
-  const accel::GridDivisions n = grid.divisions();
-  std::vector<std::uint32_t> keep;
-  for (int z = 0; z < n.z; ++z)
-    for (int y = 0; y < n.y; ++y)
-      for (int x = 0; x < n.x; ++x) {
-        const accel::CellIndex c{x, y, z};
-        if (!(mapping.node_of(c) == node)) continue;
-        for (const std::uint32_t s : grid.cell(c)) keep.push_back(s);
-      }
-  std::sort(keep.begin(), keep.end());
-  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
-  return keep;
-}
-
-std::size_t load_words_needed(const accel::UniformGrid& grid, const SubvolumeMapping& mapping,
-                              const GridNode& node, const functional::SceneGeometry& geometry,
-                              std::size_t attribute_words, std::size_t view_words) {
+std::vector<std::size_t> load_words_needed(const accel::UniformGrid& grid,
+                                           const SubvolumeMapping& mapping,
+                                           const modules::MeshTopology& topology,
+                                           const functional::SceneGeometry& geometry,
+                                           std::size_t attribute_words, std::size_t view_words) {
   // The memory fills in the order the records come: lines, attributes, lists, view; each
   // record is received into the next free words first.
   auto normals = [&](std::uint32_t slot) {
     return std::get<kernels::UllnerQuadKernel>(geometry.shapes[slot].shape).has_corner_normals;
   };
-  std::size_t used = 0, peak = 0;
-  for (const std::uint32_t slot : subvolume_polygons(grid, mapping, node))
-    used += polygon_line_words(normals(slot));
-  // A polygon it discards still passes through the buffer above the lines kept so far.
-  for (std::size_t slot = 0; slot < geometry.shapes.size(); ++slot)
-    peak = std::max(peak, polygon_record_words(normals(static_cast<std::uint32_t>(slot))));
-  peak += used;
-  used += attribute_words;
+  const auto nodes = static_cast<std::size_t>(topology.nodes());
+  std::vector<std::vector<std::uint32_t>> kept(nodes);
+  std::vector<std::size_t> lists(nodes, 0);
   const accel::GridDivisions n = grid.divisions();
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y)
       for (int x = 0; x < n.x; ++x) {
         const accel::CellIndex c{x, y, z};
-        if (mapping.node_of(c) == node && !grid.cell(c).empty()) used += 1 + grid.cell(c).size();
+        const auto slots = grid.cell(c);
+        if (slots.empty()) continue;
+        const auto k = static_cast<std::size_t>(topology.index(mapping.node_of(c)));
+        lists[k] += 1 + slots.size();
+        kept[k].insert(kept[k].end(), slots.begin(), slots.end());
       }
-  used += view_words;
-  return std::max(peak, used);
+  // A polygon it discards still passes through the buffer above the lines kept so far.
+  std::size_t largest = 0;
+  for (std::size_t slot = 0; slot < geometry.shapes.size(); ++slot)
+    largest = std::max(largest, polygon_record_words(normals(static_cast<std::uint32_t>(slot))));
+  std::vector<std::size_t> need(nodes);
+  for (std::size_t k = 0; k < nodes; ++k) {
+    std::sort(kept[k].begin(), kept[k].end());
+    kept[k].erase(std::unique(kept[k].begin(), kept[k].end()), kept[k].end());
+    std::size_t lines = 0;
+    for (const std::uint32_t slot : kept[k]) lines += polygon_line_words(normals(slot));
+    need[k] = std::max(lines + largest, lines + attribute_words + lists[k] + view_words);
+  }
+  return need;
 }
 
 namespace {

@@ -65,19 +65,15 @@
 
 namespace rtsim::platform::ullner_array {
 
-/// The polygons (slots) listed in the subvolumes `mapping` gives processor `node`, ascending:
-/// what it keeps from the host's broadcast (L787).
-std::vector<std::uint32_t> subvolume_polygons(const accel::UniformGrid& grid,
-                                              const SubvolumeMapping& mapping,
-                                              const modules::GridNode& node);
-
-/// Words of memory processor `node` needs for the load: the lines it keeps, the attributes, its
-/// subvolume lists, the view, and a buffer for the record being received (`geometry`: the
-/// host's polygons; `attribute_words`, `view_words`: those records' sizes).
-std::size_t load_words_needed(const accel::UniformGrid& grid, const SubvolumeMapping& mapping,
-                              const modules::GridNode& node,
-                              const functional::SceneGeometry& geometry,
-                              std::size_t attribute_words, std::size_t view_words);
+/// Words of memory each processor (by topology index) needs for the load: the lines it keeps
+/// (the polygons listed in its subvolumes), the attributes, its subvolume lists, the view, and a
+/// buffer for the record being received (`geometry`: the host's polygons; `attribute_words`,
+/// `view_words`: those records' sizes). One pass over the subvolumes for the whole array.
+std::vector<std::size_t> load_words_needed(const accel::UniformGrid& grid,
+                                           const SubvolumeMapping& mapping,
+                                           const modules::MeshTopology& topology,
+                                           const functional::SceneGeometry& geometry,
+                                           std::size_t attribute_words, std::size_t view_words);
 
 /// What every processor shares (read-only but for the frame buffer and the detector's count).
 struct ArrayContext {

@@ -239,9 +239,10 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   const modules::ModuleParams array(r, kArray);
   const std::size_t attribute_words = ArrayHost::attribute_words(scene);
   const std::size_t view_words = ArrayHost::view_words(scene.camera);
+  const std::vector<std::size_t> needs = ullner_array::load_words_needed(
+      *grid, ctx.mapping, topology, *twin.geometry, attribute_words, view_words);
   for (int i = 0; i < topology.nodes(); ++i) {
-    const std::size_t need = ullner_array::load_words_needed(
-        *grid, ctx.mapping, topology.node(i), *twin.geometry, attribute_words, view_words);
+    const std::size_t need = needs[static_cast<std::size_t>(i)];
     if (need > capacity)
       throw InputError(scene.name, 0,
                        "processor node" + std::to_string(i) + " of the array would need " +
