@@ -174,6 +174,22 @@ bool write_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
   return !gp.is_response_error();
 }
 
+/// Reads `n` words at word address `word` of the memory behind `port` into `words`, in one TLM
+/// read transaction, adding the access time to `delay`. False if the memory refused it.
+template <class Socket>
+bool read_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
+                std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
+  gp.set_command(tlm::TLM_READ_COMMAND);
+  gp.set_address(word * 4);
+  gp.set_data_ptr(reinterpret_cast<unsigned char*>(words));
+  gp.set_data_length(static_cast<unsigned>(n * 4));
+  gp.set_streaming_width(static_cast<unsigned>(n * 4));
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  port->b_transport(gp, delay);
+  return !gp.is_response_error();
+}
+
 template <class Socket>
 bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, std::size_t n,
                  sc_core::sc_time& delay) {

@@ -54,6 +54,19 @@ class PixelAccumulator {
     p[1] += sums[1];
     p[2] += sums[2];
   }
+  /// A contribution landed in a frame buffer elsewhere (a machine whose processors hold the
+  /// frame buffer): the observer is told, nothing is added here.
+  void notify(std::uint32_t pixel) const {
+    if (observer_) observer_(pixel);
+  }
+  /// Sums read out of such a frame buffer, added without telling the observer (they are not
+  /// contributions landing now).
+  void read_out(std::uint32_t pixel, const std::array<std::int64_t, 3>& sums) {
+    std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
+    p[0] += sums[0];
+    p[1] += sums[1];
+    p[2] += sums[2];
+  }
   void clear(std::uint32_t pixel) {
     std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
     p[0] = p[1] = p[2] = 0;

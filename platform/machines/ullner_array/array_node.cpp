@@ -202,12 +202,15 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
     : modules::Processor(name, trace),
       memory("memory", memory_words(registry), 1, sc_core::SC_ZERO_TIME, sc_core::SC_ZERO_TIME),
       broadcast_in("broadcast_in"),
+      frame_buffer("frame_buffer", block_words(context, position), 1, sc_core::SC_ZERO_TIME,
+                   sc_core::SC_ZERO_TIME),
       ctx_(context),
       tally_(tally),
       position_(position),
       shade_(local_, context.shade),
       dda_(*context.grid),
       memory_port_("memory_port"),
+      frame_buffer_port_("frame_buffer_port"),
       pipeline_(std::string(this->name()) + ".pipeline") {
   const modules::ModuleParams p(registry, kClass);
   timing_ = Timing{.message = p.get(kMessageCycles),
@@ -225,6 +228,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                    .credit_quiet = p.get(kCreditQuietTime)};
   cycle_ = cpu_cycle(p);
   memory_port_.bind(memory.socket);
+  frame_buffer_port_.bind(frame_buffer.socket);
   broadcast_in.register_b_transport(this, &ArrayNode::receive_record);
   const modules::MeshTopology& topo = *ctx_.topology;
   if (ctx_.ring)
@@ -277,7 +281,29 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
     first_col_ = std::min(first_col_, x);
     end_col_ = x + 1;
   }
+  block_ = block_of(context, position_);
   SC_THREAD(run);
+}
+
+ArrayNode::Block ArrayNode::block_of(const ArrayContext& ctx, const GridNode& at) {
+  // The image rows and columns whose processor it is (pixel_owner's rule): a block, possibly
+  // empty on an array with more processors than pixels along a side.
+  const int w = ctx.frame->width(), h = ctx.frame->height();
+  const int rows = ctx.topology->rows(), cols = ctx.topology->cols();
+  Block b;
+  b.first_row = (at.row * h + rows - 1) / rows;
+  b.end_row = ((at.row + 1) * h + rows - 1) / rows;
+  b.first_col = (at.col * w + cols - 1) / cols;
+  b.end_col = ((at.col + 1) * w + cols - 1) / cols;
+  return b;
+}
+
+std::size_t ArrayNode::block_words(const ArrayContext& ctx, const GridNode& at) {
+  const Block b = block_of(ctx, at);
+  // One word at least: a Memory of no words is not a memory.
+  return std::max<std::size_t>(1, static_cast<std::size_t>(b.end_row - b.first_row) *
+                                      static_cast<std::size_t>(b.end_col - b.first_col) *
+                                      kPixelWords);
 }
 
 void ArrayNode::connect(Direction d, ArrayNode& neighbour) {
@@ -613,7 +639,10 @@ void ArrayNode::process(RayMessage msg) {
         return;
       }
       tally_.credit_returned += msg.credit;
-      if (tally_.credit_returned == ctx_.total_credit) tally_.done = clock_.now();
+      if (tally_.credit_returned == ctx_.total_credit) {
+        tally_.done = clock_.now();
+        tally_.frame_done.notify(clock_.now() - sc_core::sc_time_stamp());
+      }
       return;
   }
 }
@@ -624,7 +653,7 @@ void ArrayNode::add_result(const RayMessage& msg) {
   if (tally_.results_added == ctx_.drop_result) {
     ++tally_.results_dropped;  // lost: its contribution never reaches the frame buffer
   } else {
-    ctx_.frame->fb().add(msg.ray.pixel, msg.contribution);
+    accumulate(msg.ray.pixel, msg.contribution);
   }
   tally_.latency.add(clock_.now() - msg.created);
   if (ctx_.probe && msg.journey != modules::LatencyProbe::kNoJourney) {
@@ -633,6 +662,40 @@ void ArrayNode::add_result(const RayMessage& msg) {
     ctx_.probe->end(msg.journey, clock_.now());
   }
   return_credit(msg.credit);
+}
+
+void ArrayNode::accumulate(std::uint32_t pixel, const Color& c) {
+  // Added into its block of the frame buffer (L809): the pixel's sums read, added to, written
+  // back through the port. The memory's time is a 24-bit colour's, read and written on the
+  // 16-bit path (4 transfers; the model keeps wider sums so that the order results arrive in
+  // cannot change a bit of the image).
+  const int w = ctx_.frame->width();
+  const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(w));
+  const int y = static_cast<int>(pixel / static_cast<std::uint32_t>(w));
+  if (!block_.holds(x, y))
+    SC_REPORT_ERROR("rtsim/ullner-array",
+                    "a result reached a processor "
+                    "whose block does not hold its pixel");
+  std::array<std::uint32_t, kPixelWords> words{};
+  tlm::tlm_generic_payload gp;
+  sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
+  const std::uint64_t at = block_.offset(x, y);
+  modules::read_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
+  const std::array<double, 3> add{c.r, c.g, c.b};
+  for (int k = 0; k < 3; ++k) {
+    auto sum = static_cast<std::int64_t>(words[2 * k] |
+                                         (static_cast<std::uint64_t>(words[2 * k + 1]) << 32));
+    sum += shading::PixelAccumulator::to_fixed(add[k]);
+    words[2 * k] = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sum));
+    words[2 * k + 1] = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sum) >> 32);
+  }
+  modules::write_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
+  const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+  const sc_core::sc_time access = times(timing_.memory_cycle, 4);
+  memory_waited_ += start - clock_.now();
+  memory_free_ = plus(start, access);
+  memory_busy_ += access;
+  ctx_.frame->fb().notify(pixel);  // sampled simulation times its windows by these
 }
 
 void ArrayNode::return_credit(std::uint64_t credit) { credit_held_ += credit; }

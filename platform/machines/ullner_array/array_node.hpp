@@ -119,7 +119,8 @@ inline constexpr int kRingPort = 4;
 /// What the whole array counts (the detector's view and the dropped result).
 struct ArrayTally {
   std::uint64_t credit_returned = 0;
-  std::optional<sc_core::sc_time> done;  ///< when the detector held all the credit
+  std::optional<sc_core::sc_time> done;        ///< when the detector held all the credit
+  sc_core::sc_event frame_done{"frame_done"};  ///< notified then (the readout starts)
   std::uint64_t results_added = 0;
   std::uint64_t results_dropped = 0;
   std::uint64_t credit_exhausted = 0;  ///< messages whose credit could not be shared out
@@ -139,6 +140,26 @@ class ArrayNode : public modules::Processor {
   modules::Memory memory;
   /// The host's broadcast, from its parent (or the host).
   tlm_utils::simple_target_socket<ArrayNode> broadcast_in;
+  /// Its block of the frame buffer (L781): kPixelWords words a pixel, its rows in order. A region
+  /// of its memory in the thesis; apart here so that a large image does not count against the
+  /// polygons' 128 KB (its accesses are charged to the memory's time all the same).
+  modules::Memory frame_buffer;
+  /// Words of a pixel: the three channels' fixed-point sums (PixelAccumulator), two words each.
+  static constexpr unsigned kPixelWords = 6;
+  /// The pixels of its block: image rows [first_row, end_row) x columns [first_col, end_col).
+  struct Block {
+    int first_row = 0, end_row = 0, first_col = 0, end_col = 0;
+    bool holds(int x, int y) const {
+      return y >= first_row && y < end_row && x >= first_col && x < end_col;
+    }
+    std::size_t offset(int x, int y) const {
+      return (static_cast<std::size_t>(y - first_row) *
+                  static_cast<std::size_t>(end_col - first_col) +
+              static_cast<std::size_t>(x - first_col)) *
+             kPixelWords;
+    }
+  };
+  const Block& block() const { return block_; }
 
   /// The class name its parameters are declared and read under: all processors alike.
   static constexpr const char* kClass = "node";
@@ -219,6 +240,10 @@ class ArrayNode : public modules::Processor {
   void surface(std::uint32_t line, const SurfaceHit& s, Hit& hit) const;
   void answer(const RayMessage& msg, bool found, const Hit& hit);
   void add_result(const RayMessage& msg);
+  /// Adds `c` into its block of the frame buffer at `pixel`.
+  void accumulate(std::uint32_t pixel, const Color& c);
+  static Block block_of(const ArrayContext& ctx, const modules::GridNode& at);
+  static std::size_t block_words(const ArrayContext& ctx, const modules::GridNode& at);
   void return_credit(std::uint64_t credit);
   /// --latency-probe: the time of `msg`'s journey since its cursor, up to `t`, was `part` at
   /// `stage` (a message followed by no journey costs a comparison).
@@ -260,6 +285,8 @@ class ArrayNode : public modules::Processor {
   std::deque<RayMessage> own_;       ///< rays spawned here, not yet searched
   std::vector<std::uint32_t> rows_;  ///< image rows of its frame-buffer block
   int first_col_ = 0, end_col_ = 0;
+  Block block_;
+  tlm_utils::simple_initiator_socket<ArrayNode> frame_buffer_port_;
   std::size_t next_row_ = 0;
   std::unique_ptr<tasks::VisionRayTask> vision_;
   std::uint64_t credit_held_ = 0;

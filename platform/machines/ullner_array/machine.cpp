@@ -16,6 +16,7 @@
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/ullner_array/array_host.hpp"
 #include "platform/machines/ullner_array/array_node.hpp"
+#include "platform/machines/ullner_array/frame_buffer_readout.hpp"
 
 namespace rtsim::platform {
 
@@ -81,12 +82,6 @@ const modules::ChoiceParam kDepthAxis(
      .description = "The axis simulated inside the processors; auto: the one most along the view "
                     "(the eye in front, Fig. 2-29)",
      .source = "seed 000 L779 (Fig. 2-26), L862"});
-const modules::TimeParam kReadoutPixelTime(
-    {.name = "readout.pixel_time",
-     .default_value = "666.667 ns",
-     .description = "Time to shift one pixel out of the distributed frame buffer in scan-line "
-                    "order (L781)",
-     .source = "assumption: 24 bits of colour, two 16-bit transfers at the memory cycle"});
 const modules::ChoiceParam kInterconnect(
     {.name = "interconnect",
      .default_value = "mesh",
@@ -178,7 +173,6 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
   for (const auto* p : {&kRows, &kCols, &kSubvolumes}) array.add(*p);
   array.add(kMapping);
   array.add(kDepthAxis);
-  array.add(kReadoutPixelTime);
   array.add(kInterconnect);
   modules::TokenRing::declare_params(
       modules::ParamDecls(r, kRing, false),
@@ -193,6 +187,8 @@ void UllnerArray::declare_params(params::ParamRegistry& r) const {
                  "a packet holds one 17-word message with a one-word header"});
   array.add(kDropResult);
   ullner_array::ArrayHost::declare_params(modules::ParamDecls(r, ullner_array::ArrayHost::kName));
+  ullner_array::FrameBufferReadout::declare_params(
+      modules::ParamDecls(r, ullner_array::FrameBufferReadout::kName));
   ullner_array::ArrayNode::declare_params(modules::ParamDecls(r, ullner_array::ArrayNode::kClass));
 }
 
@@ -323,8 +319,13 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     for (std::size_t k = 0; k < children.size(); ++k)
       n->connect_broadcast(k, *nodes[static_cast<std::size_t>(topology.index(children[k]))]);
   }
+  std::vector<const ArrayNode*> by_index;
+  for (auto& n : nodes) by_index.push_back(n.get());
+  ullner_array::FrameBufferReadout readout(ullner_array::FrameBufferReadout::kName, r,
+                                           std::move(by_index), topology, frame, tally.frame_done);
   std::vector<modules::Memory*> memories;
   for (auto& n : nodes) memories.push_back(&n->memory);
+  for (auto& n : nodes) memories.push_back(&n->frame_buffer);
   inject_faults(name(), faults, memories);
   run.simulate();
 
@@ -347,12 +348,12 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   if (!tally.done) {
     throw std::runtime_error("ullner-array: the termination detector never held all the credit");
   }
+  if (!readout.done())
+    throw std::runtime_error("ullner-array: the frame buffer was never read out");
   const sc_core::sc_time frame_start = host.view_sent();
   const sc_core::sc_time compute = *tally.done - frame_start;
-  const sc_core::sc_time readout = modules::times(
-      modules::ModuleParams(r, kArray).get(kReadoutPixelTime),
-      static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height()));
-  const sc_core::sc_time frame_time = modules::plus(compute, readout);
+  const sc_core::sc_time readout_time = *readout.done() - *tally.done;
+  const sc_core::sc_time frame_time = *readout.done() - frame_start;
   run.stats_over(frame_start, frame_time);
 
   nlohmann::ordered_json busy = nlohmann::ordered_json::array();
@@ -391,7 +392,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                   {"polygons_kept", kept},
                   {"load_time_s", frame_start.to_seconds()},
                   {"compute_time_s", compute.to_seconds()},
-                  {"readout_time_s", readout.to_seconds()},
+                  {"readout_time_s", readout_time.to_seconds()},
                   {"words_fetched", words},
                   {"messages_sent_by_type", std::move(by_type)},
                   {"termination",
