@@ -47,6 +47,30 @@ double imbalance(const RunResults& r, const std::string& key) {
   return *std::max_element(b.begin(), b.end()) / mean;
 }
 
+/// Where the eye's rays enter the array (Figs. 2-29, 2-30): the share of the processors at which
+/// new rays became vision rays (nodeK.vision_rays_entered > 0), and the busiest one's count over
+/// the mean.
+struct Entry {
+  double share, spread;
+};
+Entry entries(const RunResults& r, const std::string& key) {
+  const nlohmann::json& s = stats_of(r, key);
+  std::vector<double> n;
+  for (const auto& [name, m] : s.at("modules").items())
+    if (m.is_object() && m.contains("vision_rays_entered"))
+      n.push_back(m["vision_rays_entered"].get<double>());
+  const double total = std::accumulate(n.begin(), n.end(), 0.0);
+  if (n.empty() || !(total > 0)) throw MeasureError("run " + key + ": no vision ray entered");
+  const auto entered = std::count_if(n.begin(), n.end(), [](double x) { return x > 0; });
+  return {static_cast<double>(entered) / static_cast<double>(n.size()),
+          *std::max_element(n.begin(), n.end()) * static_cast<double>(n.size()) / total};
+}
+
+std::string entry_text(const Entry& e, const std::string& what) {
+  return what + ": rays enter at " + format_number(100 * e.share) +
+         "% of the processors, the busiest entry " + format_number(e.spread) + "x the mean";
+}
+
 /// The processors' mean share of the frame: CPU busy, intersection unit busy, memory busy (its
 /// unit's fetches and the ports' copies), and the share the parameter fetches alone take (what
 /// L891's estimate counts), from run `key`'s stats.json.
@@ -97,12 +121,12 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       machine_run("array-peripheral", kUllnerMachine, side, {"peripheral.grid.divisions=8"}));
   // The peripheral with a host that keeps up (the thesis's bandwidth comparison is of the two
   // machines' fetches, not of the host), and the array at L891's 40 and 100 processors.
-  const std::string fast_peripheral = plan.add_run(
-      machine_run("array-peripheral-fast-host", kUllnerMachine, side,
-                  {"peripheral.grid.divisions=8", "host.clock=\"100 GHz\"",
-                   "host.ray_link.bit_rate=\"1 Gbit/s\""}));
-  const std::string array40 = plan.add_run(
-      machine_run("array-40", kArrayMachine, side, {"array.rows=5", "array.cols=8"}));
+  const std::string fast_peripheral =
+      plan.add_run(machine_run("array-peripheral-fast-host", kUllnerMachine, side,
+                               {"peripheral.grid.divisions=8", "host.clock=\"100 GHz\"",
+                                "host.ray_link.bit_rate=\"1 Gbit/s\""}));
+  const std::string array40 =
+      plan.add_run(machine_run("array-40", kArrayMachine, side, {"array.rows=5", "array.cols=8"}));
   const std::string array100 = plan.add_run(
       machine_run("array-100", kArrayMachine, side, {"array.rows=10", "array.cols=10"}));
 
@@ -242,6 +266,91 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       "array-stage-2.667us", kArrayMachine, side, {"node.pipeline.stage_time=\"2.667 us\""}));
   const std::string one_unit = plan.add_run(
       machine_run("array-stage-5us", kArrayMachine, side, {"node.pipeline.stage_time=\"5 us\""}));
+  // V18c-g: where the vision rays enter the array, on a scene whose eye is exactly in front of
+  // the modelling cube (builtin:ullner-sheets-lit-1000: the eye on the axis through the middle
+  // of the y = 0 face, looking along +y), as Figs. 2-29 to 2-32 draw it. Depth along y is the eye
+  // in front; along x the rays cross the columns (the eye to the side), along z the rows (the
+  // eye above).
+  const std::string sheets = "builtin:ullner-sheets-lit-1000";
+  auto sheets_run = [&](const char* key, std::vector<std::string> params) {
+    return plan.add_run(
+        machine_run_request(key, kArrayMachine, sheets, side, side, params, 40.0 * side * side));
+  };
+  const std::string in_front = sheets_run("array-sheets-front", {"array.depth_axis=y"});
+  const std::string to_side = sheets_run("array-sheets-side", {"array.depth_axis=x"});
+  const std::string side_skew =
+      sheets_run("array-sheets-side-skew", {"array.depth_axis=x", "array.mapping=skew"});
+  const std::string above_skew =
+      sheets_run("array-sheets-above-skew", {"array.depth_axis=z", "array.mapping=skew"});
+  const std::string above_torus =
+      sheets_run("array-sheets-above-torus", {"array.depth_axis=z", "array.mapping=torus"});
+  const std::string sheets_workload = sheets + " at " + size + ", 8 x 8 processors";
+  const double edge = 1.0 / 8;  // one column (or row) of the 8 x 8 array
+  struct EntryFigure {
+    const char* id;
+    const char* title;
+    const char* ref;
+    const char* text;
+    std::string run;
+    const char* setup;
+    double at_least;  ///< the share the rays must spread over (0: onto one edge at most)
+  };
+  for (const EntryFigure& f : std::vector<EntryFigure>{
+           {"V18c", "Eye in front: the vision rays enter at every processor", "seed 000 L862",
+            "\"if the scene is viewed from the front, vision rays will be distributed uniformly "
+            "to processors throughout the array\" (Fig. 2-29)",
+            in_front, "depth along y (the eye in front), straight", 0.9},
+           {"V18d", "Eye to the side, straight: only the edge's processors receive them",
+            "seed 000 L862",
+            "\"those processors along the corresponding edge of the array will be forced to "
+            "handle all of the vision rays, while the other processors remain idle\" (Fig. 2-30)",
+            to_side, "depth along x (the eye to the side), straight", 0.0},
+           {"V18e", "Eye to the side, skewed: the array is uniformly flooded again",
+            "seed 000 L866-L876",
+            "\"If the viewing position is off to the right of the modeling space, processors in "
+            "the array will be uniformly flooded with vision rays\" (Fig. 2-31)",
+            side_skew, "depth along x, skew", 0.9},
+           {"V18f", "Eye above, skewed: all the rays pass through the top layer",
+            "seed 000 L876-L879",
+            "\"but if the eye is above the modeling space, all of the vision rays will have to "
+            "pass "
+            "through the top layer of processors\"",
+            above_skew, "depth along z (the eye above), skew", 0.0},
+           {"V18g", "Eye above, torus: the rays spread again", "seed 000 L879-L881",
+            "shifting the layers down as well (Fig. 2-32) handles \"an arbitrary viewing "
+            "position\"",
+            above_torus, "depth along z, torus", 0.25}}) {
+    plan.figures.push_back(Figure{
+        .id = f.id,
+        .title = f.title,
+        .seed_ref = f.ref,
+        .seed_text = f.text,
+        .seed_value = f.at_least > 0 ? 1.0 : edge,
+        .seed_display = f.at_least > 0 ? "rays enter across the array" : "one edge: 1/8",
+        .unit = "",
+        .tolerance =
+            f.at_least >= 0.9
+                ? Tolerance::range(0.9, 1.0,
+                                   "qualitative: \"uniformly\", nearly every processor is an "
+                                   "entry point")
+            : f.at_least > 0
+                ? Tolerance::range(f.at_least, 1.0,
+                                   "qualitative: more than two edges' processors are entry points "
+                                   "(one edge is 1/8; the alternating torus gives half, "
+                                   "docs/validation.md)")
+                : Tolerance::range(0.0, edge,
+                                   "qualitative: no more than one edge's processors (1/8) are "
+                                   "entry points"),
+        .workload = sheets_workload + "; " + f.setup,
+        .runs = {f.run},
+        .measure =
+            [run = f.run](const RunResults& r) {
+              const Entry e = entries(r, run);
+              return Measured{e.share, entry_text(e, "share of processors where rays enter")};
+            },
+    });
+  }
+
   plan.figures.push_back(Figure{
       .id = "V19",
       .title = "Array against the peripheral, \"if built today\"",

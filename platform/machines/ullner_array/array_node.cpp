@@ -617,6 +617,7 @@ void ArrayNode::process(RayMessage msg) {
         return;
       }
       msg.type = MessageType::kVision;
+      ++entered_;
       search(msg);
       return;
     }

@@ -316,6 +316,10 @@ class ArrayNode : public modules::Processor {
                            "when it had handled the view (its load's end, its frame's start)",
                            [this] { return frame_ready_.to_seconds(); }};
   modules::Counter subvolumes_{*this, "subvolumes_searched", "subvolumes searched"};
+  modules::Counter entered_{*this, "vision_rays_entered",
+                            "new rays that reached the subvolume they first strike here and "
+                            "became vision rays (where the eye's rays enter the array, Figs. "
+                            "2-29, 2-30)"};
   modules::Counter tests_{*this, "intersections", "ray/polygon tests of its unit"};
   modules::Duration memory_busy_{*this, "memory_busy_s",
                                  "time its memory was fetching polygons or copying messages out"};
