@@ -502,6 +502,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
     // On a ring the journey ran from the copy out to the delivery into this port.
     probe_to(msg, ctx_.stages.ring, modules::LatencyPart::kTransfer, best_t);
     probe_to(msg, ctx_.stages.in, modules::LatencyPart::kQueueing, taken);
+    receive_copy(best_t);
     return true;
   }
   if (!own_.empty()) {
@@ -917,6 +918,23 @@ void ArrayNode::forward(RayMessage msg, const GridNode& to) {
     return;
   }
   send(std::move(msg), ctx_.topology->next_hop(position_, to));
+}
+
+void ArrayNode::receive_copy(const sc_core::sc_time& arrived) {
+  // The port copied the message into this memory as it came over the link, 16 bits a memory
+  // cycle (L854: a copy costs memory time at both ends). Where this processor's own fetches and
+  // copies held the memory during that time, the copy waited for them: the message is all there
+  // that much later, and the CPU reads it then. (Booked when the message is taken, in this
+  // processor's order of time; its own bookings come first.)
+  const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
+  const sc_core::sc_time from = arrived > copy ? arrived - copy : sc_core::SC_ZERO_TIME;
+  const sc_core::sc_time overlap =
+      memory_free_ > from ? std::min(copy, memory_free_ - from) : sc_core::SC_ZERO_TIME;
+  const sc_core::sc_time landed = plus(arrived, overlap);
+  memory_waited_ += overlap;
+  memory_busy_ += copy;
+  memory_free_ = std::max(memory_free_, landed);
+  if (landed > clock_.now()) idle_until(landed, Wait::kData);
 }
 
 sc_core::sc_time ArrayNode::copy_out() {

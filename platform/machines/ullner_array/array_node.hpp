@@ -236,6 +236,9 @@ class ArrayNode : public modules::Processor {
   void send(RayMessage msg, modules::Direction d);
   /// The port copies the message out of this memory: when it may start, and the memory's time.
   sc_core::sc_time copy_out();
+  /// The port copied a message that `arrived` into this memory: its memory time, and the CPU's
+  /// wait if the memory was busy.
+  void receive_copy(const sc_core::sc_time& arrived);
   /// The hit on line `line` with its surface details `s`, completed from its memory.
   void surface(std::uint32_t line, const SurfaceHit& s, Hit& hit) const;
   void answer(const RayMessage& msg, bool found, const Hit& hit);
