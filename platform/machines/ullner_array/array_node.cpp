@@ -545,6 +545,15 @@ void ArrayNode::run() {
   sc_core::wait(*ctx_.loaded);
   camera_.emplace(local_.camera, ctx_.frame->width(), ctx_.frame->height());
   clock_.catch_up(frame_ready_);
+  // Its ports' arrivals, the events it idles on: one list for the whole frame (a list made for
+  // each wait allocates).
+  sc_core::sc_event_or_list any;
+  bool ports = false;
+  for (auto& q : in) {
+    if (!q) continue;
+    any |= q->fifo.put_event();
+    ports = true;
+  }
   for (;;) {
     RayMessage msg;
     if (next_message(msg)) {
@@ -575,14 +584,9 @@ void ArrayNode::run() {
     }
     // Wait for a message: one already stamped ahead of its local time, else any port's next.
     std::optional<sc_core::sc_time> next;
-    sc_core::sc_event_or_list any;
-    bool ports = false;
-    for (auto& q : in) {
-      if (!q) continue;
-      any |= q->fifo.put_event();
-      ports = true;
-      if (const auto t = q->fifo.next_item_time(); t && (!next || *t < *next)) next = t;
-    }
+    for (auto& q : in)
+      if (q)
+        if (const auto t = q->fifo.next_item_time(); t && (!next || *t < *next)) next = t;
     if (!ports) return;  // a 1x1 array with no work left
     if (credit_held_ > 0 && (!next || *next > send_at)) {
       idle(send_at, any, Wait::kWork);  // work, or the quiet time is over
