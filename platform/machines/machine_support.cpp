@@ -81,7 +81,8 @@ void require_polygons(const std::string& machine, const scenes::Scene& scene) {
 }
 
 void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
-                   const std::vector<modules::Memory*>& memories) {
+                   const std::vector<modules::Memory*>& memories,
+                   const std::vector<std::string>& in_flight) {
   for (const auto& f : faults) {
     const std::string arg = "--fault " + f.memory + ":" + std::to_string(f.word);
     modules::Memory* target = nullptr;
@@ -90,14 +91,20 @@ void inject_faults(const std::string& machine, const std::vector<MemoryFault>& f
       names.emplace_back(m->name());
       if (f.memory == m->name()) target = m;
     }
+    for (const auto& p : in_flight) names.emplace_back(p);
     if (!target) {
       std::string msg = machine + " has no memory '" + f.memory + "' whose words its answers use";
       const std::string suggestion = did_you_mean(f.memory, names);
       msg += suggestion;
       if (names.empty())
         msg += " (it has none: its answers are not computed from the words of a modelled memory)";
-      else if (suggestion.empty())
-        msg += " (it has: " + std::string(names.front()) + (names.size() > 1 ? ", ..." : "") + ")";
+      else if (suggestion.empty() && !memories.empty())
+        msg += " (it has: " + std::string(memories.front()->name()) +
+               (memories.size() > 1 ? ", ..." : "") + ")";
+      if (!in_flight.empty()) {
+        msg += "; in flight it corrupts words at";
+        for (std::size_t k = 0; k < in_flight.size(); ++k) msg += (k ? ", " : " ") + in_flight[k];
+      }
       throw InputError(arg, 0, msg);
     }
     if (f.word >= target->size_words())

@@ -29,8 +29,11 @@ void declare_quantum_param(params::ParamRegistry& registry);
 /// Elaboration: injects `faults` into the named ones of `memories` (the memories whose words
 /// the machine's answers are computed from). A fault naming another memory, or a word past the
 /// memory's end, is an InputError ("--fault ..."): nothing has run yet.
+/// `in_flight`: the names of the machine's points that corrupt words in flight (not memories),
+/// offered with the memories when a name is unknown.
 void inject_faults(const std::string& machine, const std::vector<MemoryFault>& faults,
-                   const std::vector<modules::Memory*>& memories);
+                   const std::vector<modules::Memory*>& memories,
+                   const std::vector<std::string>& in_flight = {});
 /// The faults of `faults` whose name `in_flight` accepts (a point where messages are corrupted on
 /// their way, not a memory at rest), taken out of `faults` in order; the rest stay for
 /// inject_faults.

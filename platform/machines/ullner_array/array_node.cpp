@@ -338,8 +338,13 @@ void ArrayNode::receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& d
     gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return;
   }
-  if (next_free_ + n > memory.size_words())
-    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold the broadcast");
+  // No room for it (only a fault can bring this about: a record read as the wrong kind keeps
+  // more than the load's check counted): the port cannot take it, and it goes no further.
+  if (next_free_ + n > memory.size_words()) {
+    ++records_dropped_;
+    gp.set_response_status(tlm::TLM_OK_RESPONSE);
+    return;
+  }
   // The copy starts when the sender offers it and this processor's buffer and memory are free;
   // the port writes the record into the buffer (a fault in this memory applies there).
   const sc_core::sc_time now = sc_core::sc_time_stamp();
@@ -446,8 +451,12 @@ sc_core::sc_time ArrayNode::sort(sc_core::sc_time t) {
   }
   pending_.clear();
   if (words.empty()) return t;
-  if (next_free_ + words.size() > memory.size_words())
-    SC_REPORT_ERROR("rtsim/ullner-array", "a processor's memory cannot hold its subvolume lists");
+  if (next_free_ + words.size() > memory.size_words()) {
+    // As for a record: no room (only under a fault); the subvolumes keep no lists.
+    ++records_dropped_;
+    list_at_.clear();
+    return t;
+  }
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
   modules::write_words(memory_port_, next_free_, words.data(), words.size(), unused);
   next_free_ += words.size();

@@ -306,6 +306,9 @@ class ArrayNode : public modules::Processor {
   modules::Computed polygons_{*this, "polygons", "polygons its memory holds",
                               [this] { return line_at_.size(); }};
   modules::Counter records_{*this, "load_records", "broadcast records received"};
+  modules::Counter records_dropped_{*this, "load_records_dropped",
+                                    "broadcast records (or its lists) its memory had no room for "
+                                    "(only under a fault)"};
   modules::Duration load_busy_{*this, "load_busy_s",
                                "CPU time handling the broadcast: passing records on, keep tests, "
                                "the sort"};

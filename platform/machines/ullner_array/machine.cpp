@@ -326,7 +326,9 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   std::vector<modules::Memory*> memories;
   for (auto& n : nodes) memories.push_back(&n->memory);
   for (auto& n : nodes) memories.push_back(&n->frame_buffer);
-  inject_faults(name(), faults, memories);
+  std::vector<std::string> fault_points{ullner_array::ArrayHost::kFaultPoint};
+  if (!ring) fault_points.emplace_back("nodeK.link_D");  // message_fault.hpp
+  inject_faults(name(), faults, memories, fault_points);
   run.simulate();
 
   // A corrupted credit word loses or adds credit: the end of the frame cannot be trusted, whether
