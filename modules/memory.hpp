@@ -156,30 +156,15 @@ class Memory : public sc_core::sc_module, public StatGroup {
   std::vector<Fault> faults_;
 };
 
-/// Writes `n` words from `words` at word address `word` of the memory behind `port` (its load
-/// path) in one TLM write transaction, adding the access time to `delay` (loosely timed: the
-/// caller synchronises when it likes). False if the memory refused it (out of range).
-/// This one uses `gp`, which the caller keeps: a loop of many writes makes no payload each.
+/// One TLM transaction of `n` words at word address `word` of the memory behind `port`
+/// (`command` read or write, `words` the data), adding the access time to `delay` (loosely
+/// timed: the caller synchronises when it likes). False if the memory refused it (out of range).
+/// It uses `gp`, which the caller keeps: a loop of many accesses makes no payload each.
 template <class Socket>
-bool write_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
-                 const std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
-  gp.set_command(tlm::TLM_WRITE_COMMAND);
-  gp.set_address(word * 4);
-  gp.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<std::uint32_t*>(words)));
-  gp.set_data_length(static_cast<unsigned>(n * 4));
-  gp.set_streaming_width(static_cast<unsigned>(n * 4));
-  gp.set_byte_enable_ptr(nullptr);
-  gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-  port->b_transport(gp, delay);
-  return !gp.is_response_error();
-}
-
-/// Reads `n` words at word address `word` of the memory behind `port` into `words`, in one TLM
-/// read transaction, adding the access time to `delay`. False if the memory refused it.
-template <class Socket>
-bool read_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
-                std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
-  gp.set_command(tlm::TLM_READ_COMMAND);
+bool transfer_words(Socket& port, tlm::tlm_generic_payload& gp, tlm::tlm_command command,
+                    std::uint64_t word, std::uint32_t* words, std::size_t n,
+                    sc_core::sc_time& delay) {
+  gp.set_command(command);
   gp.set_address(word * 4);
   gp.set_data_ptr(reinterpret_cast<unsigned char*>(words));
   gp.set_data_length(static_cast<unsigned>(n * 4));
@@ -188,6 +173,23 @@ bool read_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   port->b_transport(gp, delay);
   return !gp.is_response_error();
+}
+
+/// Writes `n` words from `words` at word address `word` of the memory behind `port` (its load
+/// path) in one TLM write transaction (transfer_words).
+template <class Socket>
+bool write_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
+                 const std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
+  return transfer_words(port, gp, tlm::TLM_WRITE_COMMAND, word, const_cast<std::uint32_t*>(words),
+                        n, delay);
+}
+
+/// Reads `n` words at word address `word` of the memory behind `port` into `words`, in one TLM
+/// read transaction (transfer_words).
+template <class Socket>
+bool read_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
+                std::uint32_t* words, std::size_t n, sc_core::sc_time& delay) {
+  return transfer_words(port, gp, tlm::TLM_READ_COMMAND, word, words, n, delay);
 }
 
 template <class Socket>

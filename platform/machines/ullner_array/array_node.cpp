@@ -272,15 +272,6 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
           links_[static_cast<int>(Direction::kSouth)].get());
   }
   // Its frame-buffer block: the image rows and columns whose processor it is (L781).
-  const int w = ctx_.frame->width(), h = ctx_.frame->height();
-  for (int y = 0; y < h; ++y)
-    if (y * topo.rows() / h == position_.row) rows_.push_back(static_cast<std::uint32_t>(y));
-  first_col_ = w;
-  for (int x = 0; x < w; ++x) {
-    if (x * topo.cols() / w != position_.col) continue;
-    first_col_ = std::min(first_col_, x);
-    end_col_ = x + 1;
-  }
   block_ = block_of(context, position_);
   SC_THREAD(run);
 }
@@ -324,11 +315,16 @@ void ArrayNode::spend(std::uint64_t cycles, std::string_view what) {
   compute_for(times(cycle_, cycles), what);
 }
 
+GridNode pixel_processor(int x, int y, int width, int height,
+                         const modules::MeshTopology& topology) {
+  return {y * topology.rows() / height, x * topology.cols() / width};
+}
+
 GridNode ArrayNode::pixel_owner(std::uint32_t pixel) const {
-  const int w = ctx_.frame->width(), h = ctx_.frame->height();
-  const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(w));
-  const int y = static_cast<int>(pixel / static_cast<std::uint32_t>(w));
-  return {y * ctx_.topology->rows() / h, x * ctx_.topology->cols() / w};
+  const int w = ctx_.frame->width();
+  return pixel_processor(static_cast<int>(pixel % static_cast<std::uint32_t>(w)),
+                         static_cast<int>(pixel / static_cast<std::uint32_t>(w)), w,
+                         ctx_.frame->height(), *ctx_.topology);
 }
 
 void ArrayNode::receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
@@ -522,13 +518,14 @@ bool ArrayNode::next_message(RayMessage& msg) {
   }
   // A new ray for its next pixel (L801), when it has nothing else to do.
   while (!vision_ || vision_->done()) {
-    if (next_row_ >= rows_.size() || first_col_ >= end_col_) return false;
-    const std::uint32_t y = rows_[next_row_++];
+    if (block_.first_row + next_row_ >= block_.end_row || block_.first_col >= block_.end_col)
+      return false;
+    const auto y = static_cast<std::uint32_t>(block_.first_row + next_row_++);
     const int w = ctx_.frame->width();
     vision_ = std::make_unique<tasks::VisionRayTask>(
         *camera_, w, ctx_.frame->height(), ctx_.frame->spp(),
-        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(first_col_),
-        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(end_col_),
+        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(block_.first_col),
+        y * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(block_.end_col),
         ctx_.frame->detailed_rows());
   }
   int sample = 0;
@@ -705,11 +702,7 @@ void ArrayNode::accumulate(std::uint32_t pixel, const Color& c) {
     words[2 * k + 1] = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sum) >> 32);
   }
   modules::write_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
-  const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
-  const sc_core::sc_time access = times(timing_.memory_cycle, 4);
-  memory_waited_ += start - clock_.now();
-  memory_free_ = plus(start, access);
-  memory_busy_ += access;
+  book_memory(times(timing_.memory_cycle, 4));
   ctx_.frame->fb().notify(pixel);  // sampled simulation times its windows by these
 }
 
@@ -793,14 +786,11 @@ void ArrayNode::search(RayMessage& msg) {
   spend(timing_.subvolume * cells, "subvolumes");
   if (tests > 0) {
     probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
-    const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
-    memory_waited_ += start - clock_.now();
     const sc_core::sc_time fetch = times(timing_.memory_cycle, 2 * words);
+    const sc_core::sc_time start = book_memory(fetch);
     const sc_core::sc_time issue = times(timing_.stage_time, tests);
     const sc_core::sc_time done =
         plus(plus(start, std::max(fetch, issue)), times(timing_.stage_time, timing_.stages));
-    memory_free_ = plus(start, fetch);
-    memory_busy_ += fetch;
     pipeline_.busy.record(start, std::max(fetch, issue));
     probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kQueueing, start);
     probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kService, done);
@@ -950,14 +940,17 @@ void ArrayNode::receive_copy(const sc_core::sc_time& arrived) {
   if (landed > clock_.now()) idle_until(landed, Wait::kData);
 }
 
-sc_core::sc_time ArrayNode::copy_out() {
-  // The port copies the message out of this memory (L854), 16 bits a memory cycle.
+sc_core::sc_time ArrayNode::book_memory(const sc_core::sc_time& d) {
   const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
   memory_waited_ += start - clock_.now();
-  const sc_core::sc_time copy = times(timing_.memory_cycle, 2 * RayMessage::kWords);
-  memory_free_ = plus(start, copy);
-  memory_busy_ += copy;
+  memory_free_ = plus(start, d);
+  memory_busy_ += d;
   return start;
+}
+
+sc_core::sc_time ArrayNode::copy_out() {
+  // The port copies the message out of this memory (L854), 16 bits a memory cycle.
+  return book_memory(times(timing_.memory_cycle, 2 * RayMessage::kWords));
 }
 
 void ArrayNode::send(RayMessage msg, Direction d) {

@@ -75,6 +75,11 @@ std::vector<std::size_t> load_words_needed(const accel::UniformGrid& grid,
                                            const functional::SceneGeometry& geometry,
                                            std::size_t attribute_words, std::size_t view_words);
 
+/// The processor whose frame-buffer block holds pixel (x, y) of a width x height image (L781:
+/// the block's place in the image is the processor's in the array).
+modules::GridNode pixel_processor(int x, int y, int width, int height,
+                                  const modules::MeshTopology& topology);
+
 /// What every processor shares (read-only but for the frame buffer and the detector's count).
 struct ArrayContext {
   const modules::MeshTopology* topology = nullptr;
@@ -234,6 +239,9 @@ class ArrayNode : public modules::Processor {
   /// Sends `msg` one hop toward `to` on the mesh, or on the ring straight to `to`.
   void forward(RayMessage msg, const modules::GridNode& to);
   void send(RayMessage msg, modules::Direction d);
+  /// Books its memory for `d` from when it is free (its unit's fetches, a port's copy out, a
+  /// frame-buffer update: first come, first served in its own order of time); returns the start.
+  sc_core::sc_time book_memory(const sc_core::sc_time& d);
   /// The port copies the message out of this memory: when it may start, and the memory's time.
   sc_core::sc_time copy_out();
   /// The port copied a message that `arrived` into this memory: its memory time, and the CPU's
@@ -285,12 +293,10 @@ class ArrayNode : public modules::Processor {
   std::unordered_map<std::size_t, std::uint64_t> list_at_;
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};
-  std::deque<RayMessage> own_;       ///< rays spawned here, not yet searched
-  std::vector<std::uint32_t> rows_;  ///< image rows of its frame-buffer block
-  int first_col_ = 0, end_col_ = 0;
-  Block block_;
+  std::deque<RayMessage> own_;  ///< rays spawned here, not yet searched
+  Block block_;                 ///< its pixels: the vision rays it makes, the results it adds
   tlm_utils::simple_initiator_socket<ArrayNode> frame_buffer_port_;
-  std::size_t next_row_ = 0;
+  int next_row_ = 0;  ///< of its block, the next to make vision rays for
   std::unique_ptr<tasks::VisionRayTask> vision_;
   std::uint64_t credit_held_ = 0;
   std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is

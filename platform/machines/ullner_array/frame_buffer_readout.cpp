@@ -41,8 +41,8 @@ void FrameBufferReadout::run() {
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       // The pixel's processor (the block its position in the array holds, L781).
-      const modules::GridNode at{y * topology_.rows() / h, x * topology_.cols() / w};
-      const ArrayNode& node = *nodes_[static_cast<std::size_t>(topology_.index(at))];
+      const ArrayNode& node = *nodes_[static_cast<std::size_t>(
+          topology_.index(pixel_processor(x, y, w, h, topology_)))];
       const auto& words = node.frame_buffer.contents();
       const std::size_t o = node.block().offset(x, y);
       std::array<std::int64_t, 3> sums{};
