@@ -9,10 +9,16 @@
 // while its read port reads lines, words_written, lines_read and the load port's write_busy_s.
 // Used by ullner-peripheral (the parameter memories) and gaudet-pert (the Broadcast Processors'
 // memories); the array's node memories next.
+#include <sys/mman.h>
 #include <tlm_utils/simple_target_socket.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <new>
+#include <span>
 #include <string>
 #include <systemc>
 #include <tlm>
@@ -36,6 +42,21 @@ inline std::uint64_t& modelled_memory_bytes() {
   return bytes;
 }
 
+/// How a Memory's host words are given back. Host memory: a large block is mapped pages the
+/// system zeroes when first touched, so a thousand node memories cost only the words they are
+/// given (a vector, or calloc from the heap, would write every one); a small one comes from
+/// calloc.
+struct HostWordsFree {
+  static constexpr std::size_t kMapFromBytes = 64 * 1024;
+  std::size_t mapped_bytes = 0;  ///< 0: from calloc
+  void operator()(std::uint32_t* p) const {
+    if (mapped_bytes)
+      munmap(p, mapped_bytes);
+    else
+      std::free(p);
+  }
+};
+
 class Memory : public sc_core::sc_module, public StatGroup {
  public:
   tlm_utils::simple_target_socket<Memory> socket;
@@ -46,18 +67,19 @@ class Memory : public sc_core::sc_module, public StatGroup {
         StatGroup(sc_core::sc_module::name()),
         socket("socket"),
         data_(reserve_host_memory(words)),
+        words_(words),
         line_words_(line_words ? line_words : 1),
         write_word_time_(write_word_time),
         read_line_time_(read_line_time) {
     socket.register_b_transport(this, &Memory::b_transport);
   }
 
-  ~Memory() override { modelled_memory_bytes() -= data_.size() * sizeof(std::uint32_t); }
+  ~Memory() override { modelled_memory_bytes() -= words_ * sizeof(std::uint32_t); }
   Memory(const Memory&) = delete;
   Memory& operator=(const Memory&) = delete;
 
-  const std::vector<std::uint32_t>& contents() const { return data_; }
-  std::size_t size_words() const { return data_.size(); }
+  std::span<const std::uint32_t> contents() const { return {data_.get(), words_}; }
+  std::size_t size_words() const { return words_; }
 
   /// A fault in the load path (`rtsim run --fault`): whenever word `word` is written, it is
   /// stored XORed with `xor_mask`, as if the transfer had been corrupted in flight. The model's
@@ -104,7 +126,7 @@ class Memory : public sc_core::sc_module, public StatGroup {
       return;
     }
     const std::uint64_t first = addr / 4, words = len / 4;
-    if (first + words > data_.size()) {
+    if (first + words > words_) {
       gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
       return;
     }
@@ -127,9 +149,11 @@ class Memory : public sc_core::sc_module, public StatGroup {
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
 
+  using Words = std::unique_ptr<std::uint32_t[], HostWordsFree>;
+
   /// `words` zero words, counted against kMaxModelledMemoryBytes; an InputError naming this
   /// memory if they would pass it.
-  std::vector<std::uint32_t> reserve_host_memory(std::size_t words) {
+  Words reserve_host_memory(std::size_t words) {
     const std::uint64_t bytes = static_cast<std::uint64_t>(words) * sizeof(std::uint32_t);
     std::uint64_t& total = modelled_memory_bytes();
     if (words > kMaxModelledMemoryBytes || total + bytes > kMaxModelledMemoryBytes)
@@ -141,11 +165,21 @@ class Memory : public sc_core::sc_module, public StatGroup {
                            " MiB rtsim gives a run's modelled memories "
                            "(kMaxModelledMemoryBytes); lower the parameter that sizes it "
                            "(`rtsim list params --machine M '*memory*'`)");
+    Words data;
+    if (bytes >= HostWordsFree::kMapFromBytes) {
+      void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (p == MAP_FAILED) throw std::bad_alloc();
+      data = Words(static_cast<std::uint32_t*>(p), HostWordsFree{static_cast<std::size_t>(bytes)});
+    } else {
+      data = Words(static_cast<std::uint32_t*>(std::calloc(std::max<std::size_t>(words, 1), 4)));
+      if (!data) throw std::bad_alloc();
+    }
     total += bytes;
-    return std::vector<std::uint32_t>(words, 0);
+    return data;
   }
 
-  std::vector<std::uint32_t> data_;
+  Words data_;
+  std::size_t words_;
   unsigned line_words_;
   sc_core::sc_time write_word_time_;
   sc_core::sc_time read_line_time_;

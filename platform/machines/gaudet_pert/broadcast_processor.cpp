@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <span>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
@@ -81,11 +82,16 @@ void BroadcastProcessor::attach(BusInterface& bic) {
 void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
                                std::uint32_t entry_words) {
   // Read the ID list the control processor loaded: {ID, address, size} per entry (L877).
-  const auto& mem = memory.contents();
+  const std::span<const std::uint32_t> mem = memory.contents();
+  auto word = [&](std::size_t k) {
+    if (k >= mem.size())
+      throw std::out_of_range(std::string(name()) + ": an ID list past its memory");
+    return mem[k];
+  };
   slots_.clear();
   for (std::size_t i = 0; i < ids; ++i) {
     const std::size_t at = i * entry_words;
-    slots_.push_back(Slot{mem.at(at), mem.at(at + 2), mem.at(at + 1)});
+    slots_.push_back(Slot{word(at), word(at + 2), word(at + 1)});
   }
   // Keys for the listed IDs. The control processor numbers packets from 0, so a table by ID
   // holds them; an ID far beyond the list's length (only a corrupted word) goes in a map.
