@@ -5,6 +5,9 @@
 // thread synchronises at every advance and every interaction happens in global time order.
 // Unlike tlm_utils::tlm_quantumkeeper this clock is absolute, so timestamps carried by messages
 // (see TimedFifo) compare directly with it.
+// An event-driven process (an SC_METHOD, which cannot wait) runs ahead within an activation
+// instead: never_wait() makes advance() only move local time, and the method asks to be
+// triggered again at its local time (Processor::make_event_driven).
 // Used by every processor (modules::Processor) and ullner-peripheral's peripheral.
 #include <algorithm>
 #include <systemc>
@@ -22,8 +25,13 @@ class LocalClock {
   /// Spend `d` of local time; synchronise if the thread is a quantum ahead.
   void advance(const sc_core::sc_time& d) {
     local_ = plus(local_, d);
-    if (local_ - sc_core::sc_time_stamp() >= tlm::tlm_global_quantum::instance().get()) sync();
+    if (waits_ && local_ - sc_core::sc_time_stamp() >= tlm::tlm_global_quantum::instance().get())
+      sync();
   }
+
+  /// For an SC_METHOD: advance() never waits (elaboration, before the simulation starts).
+  void never_wait() { waits_ = false; }
+  bool waits() const { return waits_; }
 
   /// Move local time forward to `t` if it is later (a message that arrives at t).
   void catch_up(const sc_core::sc_time& t) {
@@ -41,6 +49,7 @@ class LocalClock {
 
  private:
   sc_core::sc_time local_ = sc_core::SC_ZERO_TIME;
+  bool waits_ = true;
 };
 
 }  // namespace rtsim::modules

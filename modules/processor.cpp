@@ -59,4 +59,42 @@ void Processor::blocked_until(const sc_core::sc_time& t) {
   clock_.catch_up(t);
 }
 
+void Processor::resume() {
+  clock_.resync();
+  if (!idle_since_) return;
+  account(idle_since_->second) += clock_.now() - idle_since_->first;
+  idle_since_.reset();
+}
+
+void Processor::resume_at_local_time() {
+  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  next_trigger(clock_.now() > g ? clock_.now() - g : sc_core::SC_ZERO_TIME);
+}
+
+template <class Events>
+void Processor::idle_trigger_on(std::optional<sc_core::sc_time> until, const Events& events,
+                                Wait why) {
+  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  // Ahead of simulated time: catch up first and look again (as idle() does).
+  if (clock_.now() > g) {
+    resume_at_local_time();
+    return;
+  }
+  idle_since_.emplace(clock_.now(), why);
+  if (until && *until > g)
+    next_trigger(*until - g, events);
+  else
+    next_trigger(events);
+}
+
+void Processor::idle_trigger(std::optional<sc_core::sc_time> until,
+                             const sc_core::sc_event_or_list& events, Wait why) {
+  idle_trigger_on(until, events, why);
+}
+
+void Processor::idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
+                             Wait why) {
+  idle_trigger_on(until, event, why);
+}
+
 }  // namespace rtsim::modules

@@ -82,6 +82,25 @@ class Processor : public sc_core::sc_module, public StatGroup {
   }
   /// Blocked on output until `t` (a put into a full queue was accepted at t).
   void blocked_until(const sc_core::sc_time& t);
+
+  // An event-driven processor: an SC_METHOD, a state machine that never waits (no stack of its
+  // own, so a thousand of them switch as cheaply as function calls). Within an activation its
+  // compute_for and idle_until only move its local time on; the activation ends asking to be
+  // triggered again at its local time (resume_at_local_time) or by what it idles for
+  // (idle_trigger), and the next begins with resume().
+  /// Elaboration: it is an SC_METHOD.
+  void make_event_driven() { clock_.never_wait(); }
+  /// First thing in an activation: local time catches up with simulated time, and an idle
+  /// begun by idle_trigger is accounted.
+  void resume();
+  /// Ends an activation that computed ahead of simulated time: triggered again at its local time.
+  void resume_at_local_time();
+  /// Ends an activation in an idle: triggered again at `until` (if known and later than now) or
+  /// by one of `events`, whichever comes first; the time is accounted as `why` at resume().
+  void idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
+                    Wait why);
+  void idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
+                    Wait why);
   /// A host's wait when it can neither take an answer nor send (call it in its loop): until
   /// the next answer in `answers`, or, if it `wants_to_send`, until `out` has room, whichever
   /// comes first. Waiting for room is being blocked on output, waiting for an answer waiting
@@ -135,6 +154,8 @@ class Processor : public sc_core::sc_module, public StatGroup {
  private:
   template <class Events>
   void idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
+  template <class Events>
+  void idle_trigger_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
   Duration& account(Wait why) { return why == Wait::kData ? waiting_for_data_ : waiting_for_work_; }
   ProcessorTiming timing_;
   Busy busy_{*this, "time computing (its utilisation)"};
@@ -142,6 +163,8 @@ class Processor : public sc_core::sc_module, public StatGroup {
   Duration waiting_for_work_{*this, "waiting_for_work_s", "time idle for work to arrive"};
   Duration blocked_{*this, "blocked_s", "time blocked on output: the next queue was full"};
   std::string track_;  ///< its trace track: its hierarchical name
+  /// An event-driven processor's idle: since when, and why (idle_trigger, resume).
+  std::optional<std::pair<sc_core::sc_time, Wait>> idle_since_;
 };
 
 }  // namespace rtsim::modules

@@ -22,6 +22,17 @@
 
 namespace rtsim::modules {
 
+/// Told of every put into a TimedFifo with the item's stamp: a consumer that keeps its own
+/// account of what waits for it (an event-driven processor that wakes at the first item's stamp
+/// instead of at every put).
+class PutListener {
+ public:
+  virtual void item_put(const sc_core::sc_time& stamp) = 0;
+
+ protected:
+  ~PutListener() = default;
+};
+
 template <class T>
 class TimedFifo : public StatGroup {
  public:
@@ -48,6 +59,8 @@ class TimedFifo : public StatGroup {
     return items_.size() < capacity_ && slot_free_[messages_.value() % capacity_] <= t;
   }
   bool full() const { return items_.size() >= capacity_; }
+  /// `listener` is told of every put from now on (one at most; null: none).
+  void listen(PutListener* listener) { listener_ = listener; }
   /// When the oldest waiting item was (or will be) put; nothing if the FIFO is empty.
   std::optional<sc_core::sc_time> next_item_time() const {
     if (items_.empty()) return std::nullopt;
@@ -83,6 +96,7 @@ class TimedFifo : public StatGroup {
     }
     depth_.put(stamp);
     put_.notify(sc_core::SC_ZERO_TIME);
+    if (listener_) listener_->item_put(stamp);
     return stamp;
   }
 
@@ -96,7 +110,8 @@ class TimedFifo : public StatGroup {
     if (capacity_ != kUnbounded) slot_free_[get_count_ % capacity_] = stamp;
     ++get_count_;
     depth_.got(stamp);
-    got_.notify(sc_core::SC_ZERO_TIME);
+    // Only a producer blocked on a full FIFO waits for a take (an unbounded one is never full).
+    if (capacity_ != kUnbounded) got_.notify(sc_core::SC_ZERO_TIME);
     return std::move(e.item);
   }
 
@@ -118,6 +133,7 @@ class TimedFifo : public StatGroup {
   std::uint64_t get_count_ = 0;
   sc_core::sc_event put_;
   sc_core::sc_event got_;
+  PutListener* listener_ = nullptr;
   Level depth_;
   Counter messages_{*this, "messages", "messages put"};
   Counter waits_{*this, "waits", "puts that waited for a free slot"};
