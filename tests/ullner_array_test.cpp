@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "modules/mesh_topology.hpp"
+#include "platform/machines/ullner_array/intersection_pipeline.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
 #include "tests/child_processes.hpp"
 #include "tests/hostile_table.hpp"
@@ -61,18 +63,25 @@ TEST(MeshTopology, DimensionOrderRoutesReachEveryNodeInTheFewestHops) {
   EXPECT_EQ(mesh.hops({0, 0}, {0, 2}), 2);
 }
 
+/// A mapping of `kind` of n^3 subvolumes onto rows x cols processors; `axes`: depth, column and
+/// row axes.
+SubvolumeMapping mapping_of(Mapping kind, int rows, int cols, int n, std::array<int, 3> axes) {
+  SubvolumeMapping m;
+  m.rows = rows;
+  m.cols = cols;
+  m.n = n;
+  m.mapping = kind;
+  m.depth_axis = axes[0];
+  m.col_axis = axes[1];
+  m.row_axis = axes[2];
+  return m;
+}
+
 TEST(SubvolumeMapping, NeighbouringSubvolumesLandOnConnectedProcessors) {
   for (const Mapping kind : {Mapping::kStraight, Mapping::kSkew, Mapping::kTorus}) {
     for (const auto& [rows, cols, n] :
          {std::tuple{8, 8, 8}, std::tuple{8, 8, 16}, std::tuple{4, 6, 12}, std::tuple{3, 3, 9}}) {
-      SubvolumeMapping m;
-      m.rows = rows;
-      m.cols = cols;
-      m.n = n;
-      m.mapping = kind;
-      m.depth_axis = 1;
-      m.col_axis = 0;
-      m.row_axis = 2;
+      const SubvolumeMapping m = mapping_of(kind, rows, cols, n, {1, 0, 2});
       const MeshTopology t(rows, cols, m.wrap_rows(), m.wrap_cols());
       std::vector<int> owned(static_cast<std::size_t>(t.nodes()), 0);
       for (int x = 0; x < n; ++x)
@@ -96,6 +105,138 @@ TEST(SubvolumeMapping, NeighbouringSubvolumesLandOnConnectedProcessors) {
       // Every processor owns its share: n^3 / (rows cols) subvolumes.
       for (const int k : owned) EXPECT_EQ(k, n * n * n / (rows * cols));
     }
+  }
+}
+
+// A processor's keep test looks only at its own block of each depth layer (owned_along_cols x
+// owned_along_rows): that block must be exactly the cells node_of gives it, for every mapping,
+// both flips, arrays larger and smaller than the subdivision, and subdivisions that do not
+// divide evenly.
+TEST(SubvolumeMapping, EachProcessorsBlockOfALayerIsExactlyTheCellsItOwns) {
+  for (const Mapping kind : {Mapping::kStraight, Mapping::kSkew, Mapping::kTorus})
+    for (const auto& [rows, cols, n] :
+         {std::tuple{8, 8, 8}, std::tuple{8, 8, 16}, std::tuple{4, 6, 13}, std::tuple{5, 3, 2},
+          std::tuple{1, 1, 3}})
+      for (const bool flip : {false, true}) {
+        SubvolumeMapping m = mapping_of(kind, rows, cols, n, {0, 2, 1});
+        m.flip_cols = flip;
+        m.flip_rows = !flip;
+        for (int row = 0; row < rows; ++row)
+          for (int col = 0; col < cols; ++col)
+            for (int d = 0; d < n; ++d) {
+              const auto a = m.owned_along_cols(col, d);
+              const auto b = m.owned_along_rows(row, d);
+              for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                  const GridNode owner = m.node_of({d, j, i});
+                  const bool in_block = i >= a.lo && i < a.hi && j >= b.lo && j < b.hi;
+                  EXPECT_EQ(in_block, (owner == GridNode{row, col}))
+                      << "mapping " << static_cast<int>(kind) << " " << rows << "x" << cols << " n "
+                      << n << " flip " << flip << ": processor (" << row << "," << col << ") layer "
+                      << d << " cell (" << j << "," << i << ")";
+                }
+            }
+      }
+}
+
+// The intersection unit's timing (intersection_pipeline.hpp, Fig. 2-28): 1 us a transfer and
+// 0.1 us a stage here, so a polygon's fetches (two transfers a word) set the pace.
+namespace pipeline_test {
+using rtsim::platform::ullner_array::FetchPriority;
+using rtsim::platform::ullner_array::PipelineTest;
+using rtsim::platform::ullner_array::PipelineTiming;
+using rtsim::platform::ullner_array::run_pipeline;
+const sc_core::sc_time kCycle(1, sc_core::SC_US), kStage(100, sc_core::SC_NS);
+
+/// A polygon of one list; `tests` so far give the bound the search itself had for it.
+PipelineTest polygon(double t, bool first, bool u = true, bool v = true) {
+  return {.t = t,
+          .t_in_range = t < 10.0,
+          .u_valid = u,
+          .v_valid = v,
+          .bound = 10.0,
+          .immediate_bound = 10.0,
+          .list = 0,
+          .first_of_list = first,
+          .any_hit = false};
+}
+/// The search's own bounds: each test's is the closest hit before it in its list.
+std::vector<PipelineTest> searched(std::vector<PipelineTest> tests) {
+  double best = 10.0;
+  for (auto& T : tests) {
+    T.immediate_bound = best;
+    if (T.t_in_range && T.t < best && T.u_valid && T.v_valid) best = T.t;
+  }
+  return tests;
+}
+}  // namespace pipeline_test
+
+TEST(IntersectionPipeline, PolygonsRejectedAtTCostTheirAddressAndTWordsBackToBack) {
+  using namespace pipeline_test;
+  // Four planes behind the ray: stage 3 has no output for any; the memory fetches each one's
+  // list entry and t's 4 words (the list's count with the first), nothing of u or v.
+  std::vector<PipelineTest> tests;
+  for (int k = 0; k < 4; ++k) tests.push_back(polygon(20.0, k == 0));
+  const sc_core::sc_time start(5, sc_core::SC_US);
+  const auto run = run_pipeline(tests, start, {.memory_cycle = kCycle, .stage_time = kStage});
+  EXPECT_EQ(run.words, 2u + 4u + 3u * (1u + 4u));
+  EXPECT_EQ(run.memory_busy, kCycle * static_cast<double>(2 * run.words));
+  // Later fetches first: each polygon's t words follow its entry at once; the last leaves stage
+  // 3 one stage after its t words.
+  EXPECT_EQ(run.memory_end, start + run.memory_busy);
+  EXPECT_EQ(run.done, run.memory_end + kStage);
+  EXPECT_EQ(run.wasted_words, 0u);
+  const auto none = run_pipeline({}, start, {.memory_cycle = kCycle, .stage_time = kStage});
+  EXPECT_EQ(none.done, start);
+  EXPECT_EQ(none.words, 0u);
+}
+
+TEST(IntersectionPipeline, AHitStillInThePipeLetsFartherPolygonsFetchUAndVForNothing) {
+  using namespace pipeline_test;
+  // The closest polygon first, then three farther ones: had its t come back at once they would
+  // stop at stage 3; it comes back from stage 9, after they have passed stage 3.
+  const std::vector<PipelineTest> closest_first =
+      searched({polygon(1.0, true), polygon(2.0, false), polygon(3.0, false), polygon(4.0, false)});
+  // Farther first: each is the closest so far, so nothing is fetched for nothing.
+  const std::vector<PipelineTest> farthest_first =
+      searched({polygon(4.0, true), polygon(3.0, false), polygon(2.0, false), polygon(1.0, false)});
+  const PipelineTiming timing{.memory_cycle = kCycle, .stage_time = kStage};
+  const auto a = run_pipeline(closest_first, sc_core::SC_ZERO_TIME, timing);
+  const auto b = run_pipeline(farthest_first, sc_core::SC_ZERO_TIME, timing);
+  std::printf("closest first: %llu words, %llu wasted, done %s; farthest first: %llu words\n",
+              static_cast<unsigned long long>(a.words),
+              static_cast<unsigned long long>(a.wasted_words), a.done.to_string().c_str(),
+              static_cast<unsigned long long>(b.words));
+  EXPECT_GE(a.wasted_words, 16u);  // the second polygon's u and v at least
+  EXPECT_EQ(b.wasted_words, 0u);
+  EXPECT_EQ(b.words, 1u + 4u * (1u + 4u + 8u + 8u));  // the count, then each one's all
+  // Every entry and t, the closest one's u and v, and what was fetched for nothing.
+  EXPECT_EQ(a.words, 1u + 4u * (1u + 4u) + 16u + a.wasted_words);
+}
+
+TEST(IntersectionPipeline, LaterStagesFirstBringsTheClosestHitBackSooner) {
+  using namespace pipeline_test;
+  // The closest polygon first, then eleven farther ones. Serving the latest stage's fetch first
+  // (L850) takes the closest through stages 5-9 before the others' t words, so its bound reaches
+  // stage 3 sooner and fewer farther polygons fetch u and v for nothing; serving stage 1's next
+  // address first fills the pipe with polygons that wait (L850's log jam).
+  std::vector<PipelineTest> tests{polygon(1.0, true)};
+  for (int k = 1; k < 12; ++k) tests.push_back(polygon(1.0 + 0.5 * k, false));
+  tests = searched(tests);
+  for (const auto& stage : {kStage, sc_core::sc_time(3, sc_core::SC_US)}) {
+    const auto later = run_pipeline(
+        tests, sc_core::SC_ZERO_TIME,
+        {.memory_cycle = kCycle, .stage_time = stage, .priority = FetchPriority::kLaterStages});
+    const auto earlier = run_pipeline(
+        tests, sc_core::SC_ZERO_TIME,
+        {.memory_cycle = kCycle, .stage_time = stage, .priority = FetchPriority::kEarlierStages});
+    std::printf("stage %s: later stages first %s, %llu words wasted; earlier first %s, %llu\n",
+                stage.to_string().c_str(), later.done.to_string().c_str(),
+                static_cast<unsigned long long>(later.wasted_words),
+                earlier.done.to_string().c_str(),
+                static_cast<unsigned long long>(earlier.wasted_words));
+    EXPECT_LT(later.wasted_words, earlier.wasted_words);
+    EXPECT_LT(later.done, earlier.done);
   }
 }
 
@@ -255,6 +396,41 @@ TEST(UllnerArray, ThePerfettoTraceFollowsEachMessageAcrossTheArray) {
     longest = std::max(longest, events.size());
   }
   EXPECT_GE(longest, 4u);  // link, processor, link, processor at least somewhere
+}
+
+// node.process = method runs each processor as an SC_METHOD that handles what is due at its time
+// and computes ahead of the simulation within an activation; node.process = thread is the
+// reference, a thread that waits wherever it spends time. The method is allowed only because it
+// is exact: on three scenes at 8 x 8 (cubes with its reflections, a faceted tetrahedron whose
+// rays cross many subvolumes, a thousand lit sheets seen from the side), on the ring, and with
+// sampled rows (windows timed by when contributions land), every statistic and the image are the
+// thread's.
+TEST(UllnerArray, ProcessorsAsMethodsGiveTheThreadsStatisticsExactly) {
+  const auto comparable = [](nlohmann::ordered_json s) {
+    for (const char* key :
+         {"wall_time_s", "rays_per_second", "params", "image_bytes", "image_png", "command"})
+      s.erase(key);
+    return nlohmann::json(s);
+  };
+  const std::string tetra = rtsim::test::shared_path("scenes/tetra-s3.nff");
+  for (const std::string& run :
+       {std::string("--scene builtin:ullner-cubes"), "--scene " + tetra,
+        std::string("--scene builtin:ullner-sheets-lit-1000"),
+        std::string("--scene builtin:ullner-cubes -p array.interconnect=ring"),
+        std::string("--scene builtin:ullner-cubes --sample 4 --sample-window 2")}) {
+    const std::string args = run + " --width 32 --height 32 -p array.rows=8 -p array.cols=8";
+    const auto method = run_array("method", args);
+    const auto thread = run_array("thread", args + " -p node.process=thread");
+    ASSERT_FALSE(method.empty() || thread.empty()) << args;
+    EXPECT_EQ(read_file(method.at("image_png").get<std::string>()),
+              read_file(thread.at("image_png").get<std::string>()))
+        << args;
+    const nlohmann::json differences = nlohmann::json::diff(comparable(thread), comparable(method));
+    std::printf("%s: frame %.6g s (thread) %.6g s (method), %zu statistics differ\n", args.c_str(),
+                thread.at("simulated_time_s").get<double>(),
+                method.at("simulated_time_s").get<double>(), differences.size());
+    EXPECT_TRUE(differences.empty()) << args << "\n" << differences.dump().substr(0, 3000);
+  }
 }
 
 TEST(UllnerArray, TerminationIsASmallShareOfTheHopsAndHeatsNoColumn) {

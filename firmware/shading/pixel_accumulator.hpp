@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "firmware/math.hpp"
@@ -28,13 +29,13 @@ class PixelAccumulator {
   int height() const { return height_; }
 
   /// Told of every contribution's pixel as it is added (sampled simulation times the frame's
-  /// windows by them); empty: nothing is told.
-  void set_observer(std::function<void(std::uint32_t)> observer) {
-    observer_ = std::move(observer);
-  }
+  /// windows by them), and when it landed if the caller says (notify: a processor whose own
+  /// time is ahead of the simulation's), else nothing (now); empty: nothing is told.
+  using Observer = std::function<void(std::uint32_t pixel, std::optional<std::uint64_t> at)>;
+  void set_observer(Observer observer) { observer_ = std::move(observer); }
 
   void add(std::uint32_t pixel, const Color& c) {
-    if (observer_) observer_(pixel);
+    if (observer_) observer_(pixel, std::nullopt);
     std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
     p[0] += to_fixed(c.r);
     p[1] += to_fixed(c.g);
@@ -48,16 +49,17 @@ class PixelAccumulator {
     return {p[0], p[1], p[2]};
   }
   void add_raw(std::uint32_t pixel, const std::array<std::int64_t, 3>& sums) {
-    if (observer_) observer_(pixel);
+    if (observer_) observer_(pixel, std::nullopt);
     std::int64_t* p = &sums_[static_cast<std::size_t>(pixel) * 3];
     p[0] += sums[0];
     p[1] += sums[1];
     p[2] += sums[2];
   }
   /// A contribution landed in a frame buffer elsewhere (a machine whose processors hold the
-  /// frame buffer): the observer is told, nothing is added here.
-  void notify(std::uint32_t pixel) const {
-    if (observer_) observer_(pixel);
+  /// frame buffer) at `at` (the machine's time units): the observer is told, nothing is added
+  /// here.
+  void notify(std::uint32_t pixel, std::uint64_t at) const {
+    if (observer_) observer_(pixel, at);
   }
   /// Sums read out of such a frame buffer, added without telling the observer (they are not
   /// contributions landing now).
@@ -90,7 +92,7 @@ class PixelAccumulator {
   int width_;
   int height_;
   std::vector<std::int64_t> sums_;
-  std::function<void(std::uint32_t)> observer_;
+  Observer observer_;
 };
 
 }  // namespace rtsim::shading

@@ -257,11 +257,11 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
                                        format_number(s)};
           },
   });
-  // V19's assumption: the intersection unit issues a test every node.pipeline.stage_time (333
-  // ns). L839 says its throughput is limited by the fetches (t's 4 words: 8 transfers, 2.67 us at
-  // the least), so a stage is no slower than that; L723's shift-and-add operation takes about
-  // 5 us, so each stage interleaves two units or more. Both bounds are run: the note shows how
-  // far the figure moves.
+  // V19's assumption: each compute stage of the intersection unit takes node.pipeline.stage_time
+  // (333 ns). L839 says its throughput is limited by the fetches (t's 4 words: 8 transfers, 2.67
+  // us at the least), so a stage is no slower than that; L723's shift-and-add operation takes
+  // about 5 us, so each stage interleaves two units or more. Both bounds are run: the note shows
+  // how far the figure moves.
   const std::string fetch_bound = plan.add_run(machine_run(
       "array-stage-2.667us", kArrayMachine, side, {"node.pipeline.stage_time=\"2.667 us\""}));
   const std::string one_unit = plan.add_run(

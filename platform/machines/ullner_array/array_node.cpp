@@ -19,11 +19,6 @@ namespace {
 
 std::size_t type_index(MessageType t) { return static_cast<std::size_t>(t); }
 
-/// Words of the 20 parameters a test needs at each step of Fig. 2-28 (L841): t (n_p, d_p), then
-/// u (its four coefficients: two vectors and two scalars), then v; a step that rejects stops the
-/// fetches after it.
-constexpr std::uint64_t kTWords = 4, kUWords = 8, kVWords = 8;
-
 }  // namespace
 
 std::vector<std::size_t> load_words_needed(const accel::UniformGrid& grid,
@@ -136,13 +131,14 @@ const modules::TimeParam kStageTime(
                     "most)",
      .source = "assumption: custom shift-and-add units (L837) pipelined to keep pace with the "
                "memory, as L891 assumes"});
-const modules::CountParam kStages({.name = "pipeline.stages",
-                                   .default_value = "9",
-                                   .min = "1",
-                                   .max = "64",
-                                   .unit = "stages",
-                                   .description = "Stages of the intersection pipeline (Fig. 2-28)",
-                                   .source = "seed 000 L843-L850"});
+const modules::ChoiceParam kFetchPriority(
+    {.name = "pipeline.fetch_priority",
+     .default_value = "later_stages",
+     .allowed = {"later_stages", "earlier_stages"},
+     .description = "Which waiting fetch of the intersection pipeline the memory serves first: "
+                    "the latest stage's, as the thesis has it to prevent log jams, or the "
+                    "earliest's (an ablation)",
+     .source = "seed 000 L850"});
 const modules::TimeParam kCreditQuietTime(
     {.name = "credit_quiet_time",
      .default_value = "300 us",
@@ -154,6 +150,16 @@ const modules::TimeParam kCreditQuietTime(
      .source = "assumption: the thesis gives no termination mechanism (L827); 300 us keeps "
                "credit under 5% of message hops at 32x32 on builtin:ullner-cubes (2.8-4.6% "
                "from 8x8 to 32x32), where returning it at once made half the hops"});
+const modules::ChoiceParam kProcess(
+    {.name = "process",
+     .default_value = "method",
+     .allowed = {"method", "thread"},
+     .description =
+         "How the simulator runs each processor: an event-driven SC_METHOD that handles what is "
+         "due at its time and computes ahead (method), or a SystemC thread that waits wherever "
+         "it spends time (thread: the reference, 1.4 times slower at 32 x 32). The "
+         "statistics and the image are the same (tests/ullner_array_test.cpp)",
+     .source = "simulator setting, not of the machine"});
 /// Its links to the neighbours (the class's: node.link.*).
 constexpr const char* kLinkClass = "link";
 
@@ -168,8 +174,9 @@ void ArrayNode::declare_params(const modules::ParamDecls& node) {
   node.add(kMemoryCycle);
   node.add(kMemoryWords);
   node.add(kStageTime);
-  node.add(kStages);
+  node.add(kFetchPriority);
   node.add(kCreditQuietTime);
+  node.add(kProcess);
   modules::Link::declare_params(
       node.sub(kLinkClass),
       {.latency = "0 s",
@@ -223,23 +230,29 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                    .keep_test = p.get(kKeepTestCycles),
                    .sort = p.get(kSortCycles),
                    .memory_cycle = p.get(kMemoryCycle),
-                   .stage_time = p.get(kStageTime),
-                   .stages = static_cast<unsigned>(p.get(kStages)),
+                   .pipeline = {.memory_cycle = p.get(kMemoryCycle),
+                                .stage_time = p.get(kStageTime),
+                                .priority = p.get(kFetchPriority) == "earlier_stages"
+                                                ? FetchPriority::kEarlierStages
+                                                : FetchPriority::kLaterStages},
                    .credit_quiet = p.get(kCreditQuietTime)};
   cycle_ = cpu_cycle(p);
   memory_port_.bind(memory.socket);
   frame_buffer_port_.bind(frame_buffer.socket);
   broadcast_in.register_b_transport(this, &ArrayNode::receive_record);
   const modules::MeshTopology& topo = *ctx_.topology;
-  if (ctx_.ring)
+  if (ctx_.ring) {
     in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
         "in_ring", modules::TimedFifo<RayMessage>::kUnbounded);
+    in[kRingPort]->fifo.listen(this);
+  }
   for (const Direction d : modules::kDirections) {
     if (ctx_.ring || !topo.neighbour(position_, d)) continue;
     const std::string dir(modules::direction_name(d));
     // A port's buffer holds the node's stockpile of untraced messages (L825): not bounded here.
     in[static_cast<int>(d)] = std::make_unique<modules::MessageQueue<RayMessage>>(
         ("in_" + dir).c_str(), modules::TimedFifo<RayMessage>::kUnbounded);
+    in[static_cast<int>(d)]->fifo.listen(this);
     out_[static_cast<int>(d)] =
         std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
     links_[static_cast<int>(d)] =
@@ -273,7 +286,14 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
   }
   // Its frame-buffer block: the image rows and columns whose processor it is (L781).
   block_ = block_of(context, position_);
-  SC_THREAD(run);
+  if (p.get(kProcess) == "thread") {
+    SC_THREAD(run);
+  } else {
+    make_event_driven();
+    SC_METHOD(activate);
+    sensitive << *ctx_.loaded;  // its first activation; each sets its next itself
+    dont_initialize();
+  }
 }
 
 ArrayNode::Block ArrayNode::block_of(const ArrayContext& ctx, const GridNode& at) {
@@ -417,15 +437,25 @@ void ArrayNode::pass_on(BroadcastHop& hop, std::span<const std::uint32_t> record
 bool ArrayNode::keep(std::span<const std::uint32_t> record, std::uint32_t line) {
   accel::CellIndex first, last;
   if (!ctx_.grid->cells_touched(polygon_bounds(record), first, last)) return false;
+  // The subvolumes the bounds touch that are its own: in each depth layer, the block of them
+  // within its own block of that layer (SubvolumeMapping's inverse).
+  const SubvolumeMapping& m = ctx_.mapping;
   bool kept = false;
-  for (int z = first.z; z <= last.z; ++z)
-    for (int y = first.y; y <= last.y; ++y)
-      for (int x = first.x; x <= last.x; ++x) {
-        const accel::CellIndex c{x, y, z};
-        if (!(ctx_.mapping.node_of(c) == position_)) continue;
-        pending_[ctx_.grid->linear_index(c)].push_back(line);
+  for (int d = first[m.depth_axis]; d <= last[m.depth_axis]; ++d) {
+    const SubvolumeMapping::Range a = m.owned_along_cols(position_.col, d);
+    const SubvolumeMapping::Range b = m.owned_along_rows(position_.row, d);
+    const int a0 = std::max(a.lo, first[m.col_axis]), a1 = std::min(a.hi - 1, last[m.col_axis]);
+    const int b0 = std::max(b.lo, first[m.row_axis]), b1 = std::min(b.hi - 1, last[m.row_axis]);
+    for (int j = b0; j <= b1; ++j)
+      for (int i = a0; i <= a1; ++i) {
+        int at[3];
+        at[m.depth_axis] = d;
+        at[m.col_axis] = i;
+        at[m.row_axis] = j;
+        pending_[ctx_.grid->linear_index({at[0], at[1], at[2]})].push_back(line);
         kept = true;
       }
+  }
   return kept;
 }
 
@@ -437,15 +467,28 @@ sc_core::sc_time ArrayNode::sort(sc_core::sc_time t) {
   for (const auto& [c, lines] : pending_) cells.push_back(c);
   std::sort(cells.begin(), cells.end());
   std::vector<std::uint32_t> words;
+  std::vector<std::pair<std::size_t, std::uint64_t>> lists;
   std::uint64_t entries = 0;
   for (const std::size_t c : cells) {
     const auto& lines = pending_[c];
-    list_at_[c] = next_free_ + words.size();
+    lists.emplace_back(c, next_free_ + words.size());
     words.push_back(static_cast<std::uint32_t>(lines.size()));
     words.insert(words.end(), lines.begin(), lines.end());
     entries += lines.size();
   }
   pending_.clear();
+  // A second sort (only when a fault made another record read as the attributes) replaces the
+  // lists of the subvolumes it has lists for and keeps the others'.
+  std::vector<std::pair<std::size_t, std::uint64_t>> merged;
+  merged.reserve(list_at_.size() + lists.size());
+  auto old = list_at_.begin();
+  for (const auto& entry : lists) {
+    for (; old != list_at_.end() && old->first < entry.first; ++old) merged.push_back(*old);
+    if (old != list_at_.end() && old->first == entry.first) ++old;
+    merged.push_back(entry);
+  }
+  merged.insert(merged.end(), old, list_at_.end());
+  list_at_ = std::move(merged);
   if (words.empty()) return t;
   if (next_free_ + words.size() > memory.size_words()) {
     // As for a record: no room (only under a fault); the subvolumes keep no lists.
@@ -465,8 +508,11 @@ sc_core::sc_time ArrayNode::sort(sc_core::sc_time t) {
 }
 
 std::span<const std::uint32_t> ArrayNode::candidates(const accel::CellIndex& c) const {
-  const auto it = list_at_.find(ctx_.grid->linear_index(c));
-  if (it == list_at_.end()) return {};
+  const std::size_t i = ctx_.grid->linear_index(c);
+  const auto it =
+      std::lower_bound(list_at_.begin(), list_at_.end(), i,
+                       [](const auto& entry, std::size_t k) { return entry.first < k; });
+  if (it == list_at_.end() || it->first != i) return {};
   const auto& words = memory.contents();
   const std::uint64_t at = it->second;
   const std::uint64_t count = std::min<std::uint64_t>(words[at], words.size() - at - 1);
@@ -484,12 +530,19 @@ const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
   return decoded_;
 }
 
+void ArrayNode::item_put(const sc_core::sc_time& stamp) {
+  ++waiting_;
+  if (!idle_) return;  // it looks at its ports when it has done what it is doing
+  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  wake_.notify(stamp > now ? stamp - now : sc_core::SC_ZERO_TIME);  // the sooner one stands
+}
+
 bool ArrayNode::next_message(RayMessage& msg) {
   const sc_core::sc_time now = clock_.now();
   // The port whose message arrived first, if one has by now.
   int best = -1;
   sc_core::sc_time best_t;
-  for (int d = 0; d < static_cast<int>(in.size()); ++d) {
+  for (int d = 0; waiting_ > 0 && d < static_cast<int>(in.size()); ++d) {
     if (!in[d] || !in[d]->fifo.has_item_by(now)) continue;
     const sc_core::sc_time t = *in[d]->fifo.next_item_time();
     if (best < 0 || t < best_t) {
@@ -500,6 +553,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
   if (best >= 0) {
     sc_core::sc_time taken;
     msg = in[best]->fifo.get(now, taken);
+    --waiting_;
     received_.add(type_index(msg.type));
     // --trace perfetto: the message's flow steps through the processor that takes it.
     if (msg.links > 0 && trace_.records())
@@ -545,65 +599,88 @@ bool ArrayNode::next_message(RayMessage& msg) {
   return true;
 }
 
-void ArrayNode::run() {
-  // The load ran in annotated time when the host broadcast; the frame starts once this
-  // processor has handled the view.
-  sc_core::wait(*ctx_.loaded);
+void ArrayNode::start_frame() {
   camera_.emplace(local_.camera, ctx_.frame->width(), ctx_.frame->height());
-  clock_.catch_up(frame_ready_);
-  // Its ports' arrivals, the events it idles on: one list for the whole frame (a list made for
-  // each wait allocates).
-  sc_core::sc_event_or_list any;
-  bool ports = false;
   for (auto& q : in) {
     if (!q) continue;
-    any |= q->fifo.put_event();
-    ports = true;
+    any_ |= q->fifo.put_event();
+    ports_ = true;
   }
+  started_ = true;
+  // The load ran in annotated time when the host broadcast; the frame starts once this
+  // processor has handled the view.
+  clock_.catch_up(frame_ready_);
+}
+
+ArrayNode::Step ArrayNode::step() {
+  RayMessage msg;
+  if (next_message(msg)) {
+    process(std::move(msg));
+    backlog_peak_.note(own_.size());
+    quiet_since_.reset();
+    return {};
+  }
+  if (!quiet_since_) quiet_since_ = clock_.now();
+  const sc_core::sc_time send_at = plus(*quiet_since_, timing_.credit_quiet);
+  // Out of work for the quiet time: what credit it holds goes one hop toward the detector,
+  // where the next processor adds it to its own (a combining tree: a credit message crosses
+  // one link, not the whole way, and messages meeting in a processor become one).
+  if (credit_held_ > 0 && (position_ == GridNode{0, 0} || clock_.now() >= send_at)) {
+    const std::uint64_t c = credit_held_;
+    credit_held_ = 0;
+    RayMessage back;
+    back.type = MessageType::kCredit;
+    back.credit = c;
+    back.id = ++tally_.messages_made;
+    if (position_ == GridNode{0, 0}) {
+      process(std::move(back));
+    } else {
+      spend(timing_.message, "message");
+      forward(std::move(back), GridNode{0, 0});
+    }
+    return {};
+  }
+  if (!ports_)
+    return {.kind = Step::Kind::kFinished, .until = std::nullopt};  // a 1x1 array with no work left
+  // Wait for a message: the first stamped ahead of its local time, or one put meanwhile on
+  // another port that comes sooner; or for the quiet time to be over.
+  std::optional<sc_core::sc_time> until;
+  for (auto& q : in)
+    if (q && waiting_ > 0)
+      if (const auto t = q->fifo.next_item_time(); t && (!until || *t < *until)) until = t;
+  if (credit_held_ > 0 && (!until || send_at < *until)) until = send_at;
+  return {.kind = Step::Kind::kIdle, .until = until};
+}
+
+void ArrayNode::run() {
+  sc_core::wait(*ctx_.loaded);
+  start_frame();
   for (;;) {
-    RayMessage msg;
-    if (next_message(msg)) {
-      process(std::move(msg));
-      backlog_peak_.note(own_.size());
-      quiet_since_.reset();
-      continue;
-    }
-    if (!quiet_since_) quiet_since_ = clock_.now();
-    const sc_core::sc_time send_at = plus(*quiet_since_, timing_.credit_quiet);
-    // Out of work for the quiet time: what credit it holds goes one hop toward the detector,
-    // where the next processor adds it to its own (a combining tree: a credit message crosses
-    // one link, not the whole way, and messages meeting in a processor become one).
-    if (credit_held_ > 0 && (position_ == GridNode{0, 0} || clock_.now() >= send_at)) {
-      const std::uint64_t c = credit_held_;
-      credit_held_ = 0;
-      RayMessage back;
-      back.type = MessageType::kCredit;
-      back.credit = c;
-      back.id = ++tally_.messages_made;
-      if (position_ == GridNode{0, 0}) {
-        process(std::move(back));
-      } else {
-        spend(timing_.message, "message");
-        forward(std::move(back), GridNode{0, 0});
-      }
-      continue;
-    }
-    // Wait for a message: one already stamped ahead of its local time, else any port's next.
-    std::optional<sc_core::sc_time> next;
-    for (auto& q : in)
-      if (q)
-        if (const auto t = q->fifo.next_item_time(); t && (!next || *t < *next)) next = t;
-    if (!ports) return;  // a 1x1 array with no work left
-    if (credit_held_ > 0 && (!next || *next > send_at)) {
-      idle(send_at, any, Wait::kWork);  // work, or the quiet time is over
-      continue;
-    }
-    if (next && *next > clock_.now()) {
-      idle_until(*next, Wait::kWork);
-      continue;
-    }
-    idle(std::nullopt, any, Wait::kWork);
+    const Step s = step();
+    if (s.kind == Step::Kind::kFinished) return;
+    if (s.kind == Step::Kind::kIdle) idle(s.until, any_, Wait::kWork);
   }
+}
+
+void ArrayNode::activate() {
+  resume();
+  idle_ = false;
+  if (!started_) start_frame();
+  // Handle what is due at this time; once it has computed ahead, look again then (a message
+  // stamped by then may yet come: every message is put before its stamp).
+  while (clock_.now() == sc_core::sc_time_stamp()) {
+    const Step s = step();
+    if (s.kind == Step::Kind::kFinished) return;  // never triggered again
+    if (s.kind == Step::Kind::kIdle) {
+      // Woken when the first message is due or the quiet time ends, or sooner by a put
+      // (item_put), not by every put into its ports.
+      idle_ = true;
+      if (s.until) wake_.notify(*s.until - sc_core::sc_time_stamp());
+      idle_trigger(std::nullopt, wake_, Wait::kWork);
+      return;
+    }
+  }
+  resume_at_local_time();
 }
 
 void ArrayNode::process(RayMessage msg) {
@@ -703,7 +780,9 @@ void ArrayNode::accumulate(std::uint32_t pixel, const Color& c) {
   }
   modules::write_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
   book_memory(times(timing_.memory_cycle, 4));
-  ctx_.frame->fb().notify(pixel);  // sampled simulation times its windows by these
+  // Sampled simulation times its windows by these (at this processor's time, which may be
+  // ahead of the simulation's).
+  ctx_.frame->fb().notify(pixel, clock_.now().value());
 }
 
 void ArrayNode::return_credit(std::uint64_t credit) { credit_held_ += credit; }
@@ -727,19 +806,34 @@ void ArrayNode::search(RayMessage& msg) {
   std::optional<GridNode> next_owner;
   accel::GridHit hit;
   SurfaceHit details;
-  std::uint64_t cells = 0, tests = 0, words = 0;
+  std::uint64_t cells = 0, tests = 0;
   TraceCounters& counters = ctx_.frame->counters();
   // The intersection unit's test of one polygon (a line number from the subvolume's list) on
-  // the words this memory holds, fetching only what each step of Fig. 2-28 needs (L841), after
-  // the list's entry.
+  // the words this memory holds. The answer is the search's, with the bound as it stands; what
+  // the unit did is noted for its timing (intersection_pipeline.hpp): t against the subvolume's
+  // own bound (`list_bound`), u and v, which do not depend on the bound.
+  stream_.clear();
+  double list_bound = r.t_max;
+  bool first_of_list = false;
+  std::uint32_t list = 0;
   auto test = [&](std::uint32_t line, double lo, double hi) {
     if (line >= params.size()) return kInfinity;  // an entry no line has (a fault)
     ++tests;
     ++counters.intersection_tests;
     const auto& P = params[line];
-    const auto res = kernels::intersect(P, ray, lo, hi);
-    words += 1 + kTWords + (res.t_valid ? kUWords : 0) + (res.t_valid && res.u_valid ? kVWords : 0);
-    if (!res.hit()) return kInfinity;
+    const auto res = kernels::intersect(P, ray, lo, list_bound);
+    stream_.push_back({.t = res.t,
+                       .t_in_range = res.t_valid,
+                       .u_valid = res.u_valid,
+                       .v_valid = res.v_valid,
+                       .bound = list_bound,
+                       .immediate_bound = hi,
+                       .list = list,
+                       .first_of_list = first_of_list,
+                       .any_hit = shadow});
+    first_of_list = false;
+    // In range of the bound as it stands (hi <= list_bound): intersect(P, ray, lo, hi)'s answer.
+    if (!res.hit() || !(res.t < hi)) return kInfinity;
     details.t = res.t;
     details.u = res.u;
     details.v = res.v;
@@ -760,8 +854,10 @@ void ArrayNode::search(RayMessage& msg) {
         }
         ++cells;
         const std::span<const std::uint32_t> lines = candidates(c);
-        if (!lines.empty()) ++words;  // the list's count
+        first_of_list = true;  // stage 1 fetches the list's count with its first entry
+        if (cells > 1) ++list;
         if (shadow) {
+          list_bound = r.t_max;
           for (const std::uint32_t line : lines) {
             const double t = test(line, t_min, r.t_max);
             if (t > t_min && t < r.t_max) {
@@ -771,6 +867,8 @@ void ArrayNode::search(RayMessage& msg) {
           }
           return false;
         }
+        // subvolume_closest_hit's first bound: the end of the ray's part in this subvolume.
+        list_bound = std::min(r.t_max, std::nextafter(t_exit, kInfinity));
         hit = accel::subvolume_closest_hit(lines, t_min, r.t_max, t_exit, test, st);
         return hit.valid();
       });
@@ -778,23 +876,24 @@ void ArrayNode::search(RayMessage& msg) {
   counters.dda_steps += walk.steps;
   subvolumes_ += cells;
   tests_ += tests;
-  pipeline_.words_fetched += words;
 
   // The time: the CPU steps through its subvolumes and starts the unit on each; the unit's
-  // fetches share the memory (two transfers a word) and issue at most one test a stage; the
-  // CPU waits for its interrupt.
+  // fetches share the memory with the ports (from when the memory is free), and the CPU waits
+  // for its interrupt when the last polygon leaves the pipe.
   spend(timing_.subvolume * cells, "subvolumes");
-  if (tests > 0) {
+  if (!stream_.empty()) {
     probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
-    const sc_core::sc_time fetch = times(timing_.memory_cycle, 2 * words);
-    const sc_core::sc_time start = book_memory(fetch);
-    const sc_core::sc_time issue = times(timing_.stage_time, tests);
-    const sc_core::sc_time done =
-        plus(plus(start, std::max(fetch, issue)), times(timing_.stage_time, timing_.stages));
-    pipeline_.busy.record(start, std::max(fetch, issue));
+    const sc_core::sc_time start = std::max(clock_.now(), memory_free_);
+    memory_waited_ += start - clock_.now();
+    const PipelineRun run = run_pipeline(stream_, start, timing_.pipeline);
+    memory_free_ = run.memory_end;
+    memory_busy_ += run.memory_busy;
+    pipeline_.words_fetched += run.words;
+    pipeline_.words_wasted += run.wasted_words;
+    pipeline_.busy.record(start, run.done - start);
     probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kQueueing, start);
-    probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kService, done);
-    idle_until(done, Wait::kData);
+    probe_to(msg, ctx_.stages.pipeline, modules::LatencyPart::kService, run.done);
+    idle_until(run.done, Wait::kData);
   }
 
   if (next_owner) {

@@ -31,6 +31,15 @@
 // credit flows to the detector along a combining tree, not as one message per return across the
 // whole array (which made half the message hops and a hot column at 32x32). The frame is complete
 // when the detector holds all the credit.
+//
+// How it is simulated (node.process): by default an event-driven SC_METHOD (no stack of its own:
+// a thousand switch as cheaply as function calls). An activation at simulated time t takes what
+// is due by t and handles it all, its local time running ahead; it is triggered again at its
+// local time, or, idle, when its first message is due or its quiet time ends (a put of a message
+// due sooner brings that forward, item_put). This is exact, not an approximation: every message
+// is put before its stamp (a link takes time), so what is due by t is there at t. The thread
+// (node.process = thread) waits wherever it spends time, the plain reading of the same steps;
+// tests/ullner_array_test.cpp shows every statistic identical on both.
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
@@ -59,6 +68,7 @@
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/machine_trace.hpp"
 #include "platform/machines/ullner_array/broadcast_copy.hpp"
+#include "platform/machines/ullner_array/intersection_pipeline.hpp"
 #include "platform/machines/ullner_array/message_fault.hpp"
 #include "platform/machines/ullner_array/ray_message.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
@@ -135,7 +145,7 @@ struct ArrayTally {
   modules::LatencyRecorder latency;    ///< a ray's creation to its contribution being added
 };
 
-class ArrayNode : public modules::Processor {
+class ArrayNode : public modules::Processor, private modules::PutListener {
  public:
   /// The input port from the neighbour in each direction (absent at an unconnected edge, and
   /// all four on a ring), and the ring's (in[kRingPort], on a ring only).
@@ -199,12 +209,15 @@ class ArrayNode : public modules::Processor {
     using modules::StatGroup::StatGroup;
     modules::Busy busy{*this, "time fetching polygons or issuing tests (its utilisation)"};
     modules::Counter words_fetched{*this, "words_fetched", "polygon words fetched from memory"};
+    modules::Counter words_wasted{*this, "words_wasted",
+                                  "u and v words fetched for polygons that passed stage 3 on a "
+                                  "bound a closer hit still in the pipe was about to tighten "
+                                  "(L847)"};
   };
   struct Timing {
     std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
     sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
-    sc_core::sc_time stage_time;    ///< the intersection pipeline's
-    unsigned stages;
+    PipelineTiming pipeline;        ///< its intersection unit's (Fig. 2-28)
     sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
   };
   /// A child in the broadcast's tree: the socket to its broadcast port and the link to it (none
@@ -217,7 +230,26 @@ class ArrayNode : public modules::Processor {
     const modules::Link* link = nullptr;
     sc_core::sc_time free = sc_core::SC_ZERO_TIME;
   };
+  /// What a processor does after one step of its loop (step()).
+  struct Step {
+    enum class Kind {
+      kAgain,     ///< it handled something: on at its local time
+      kIdle,      ///< nothing to do until `until` (if any) or a message arrives
+      kFinished,  ///< it has no ports and no work: nothing will ever come
+    } kind = Kind::kAgain;
+    std::optional<sc_core::sc_time> until;
+  };
+  /// node.process = thread: a SystemC thread that waits wherever it spends time (the reference).
   void run();
+  /// node.process = method: the same steps as an SC_METHOD, each activation handling what is
+  /// due at its time and computing ahead, triggered again at its local time or by what it
+  /// idles for.
+  void activate();
+  /// The frame starts (the host has broadcast the view): its camera, its ports' events.
+  void start_frame();
+  /// One step of its loop at its local time, which is simulated time: takes and handles the
+  /// next message, or sends its credit on, or says what it waits for. Never waits itself.
+  Step step();
   /// broadcast_in: a record offered by the parent (broadcast_copy.hpp).
   void receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   /// The CPU's work on the record at word `at` of its memory, there since `arrived`.
@@ -232,6 +264,9 @@ class ArrayNode : public modules::Processor {
   sc_core::sc_time sort(sc_core::sc_time t);
   /// The candidates its memory lists for subvolume `c` (line numbers; empty if none).
   std::span<const std::uint32_t> candidates(const accel::CellIndex& c) const;
+  /// A message was put into one of its ports, to be there at `stamp`: counted, and an idle
+  /// event-driven processor wakes then if that is sooner than it would have.
+  void item_put(const sc_core::sc_time& stamp) override;
   /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
   bool next_message(RayMessage& msg);
   void process(RayMessage msg);
@@ -289,8 +324,9 @@ class ArrayNode : public modules::Processor {
   std::vector<std::uint32_t> line_at_;  ///< line number -> word address of its header
   /// Line numbers kept for each of its subvolumes (by the grid's linear index), until the sort.
   std::unordered_map<std::size_t, std::vector<std::uint32_t>> pending_;
-  /// Word address of each subvolume's list: its count, then line numbers.
-  std::unordered_map<std::size_t, std::uint64_t> list_at_;
+  /// Word address of each subvolume's list (its count, then line numbers), by the grid's
+  /// linear index, ascending (a processor has a few dozen: a binary search is the fastest way).
+  std::vector<std::pair<std::size_t, std::uint64_t>> list_at_;
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};
   std::deque<RayMessage> own_;  ///< rays spawned here, not yet searched
@@ -300,8 +336,20 @@ class ArrayNode : public modules::Processor {
   std::unique_ptr<tasks::VisionRayTask> vision_;
   std::uint64_t credit_held_ = 0;
   std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is
+  /// Its ports' arrivals, the events it idles on: one list for the whole frame (a list made for
+  /// each wait allocates); `ports_`: whether it has any.
+  sc_core::sc_event_or_list any_;
+  bool ports_ = false;
+  bool started_ = false;
+  /// Messages in its ports (those put and not yet taken): none, and it need not look at them.
+  std::size_t waiting_ = 0;
+  /// node.process = method: it idles on this alone, notified for when it must look again (the
+  /// first message due, the end of its quiet time); a put notifies it only if sooner.
+  sc_core::sc_event wake_{"wake"};
+  bool idle_ = false;
   sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
   std::vector<shading::TracedRay> spawned_;
+  std::vector<PipelineTest> stream_;  ///< a search's tests, for its unit's timing
 
   PipelineStats pipeline_;
   /// Messages through the output link in each direction, by type: in the link's group.

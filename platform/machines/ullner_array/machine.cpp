@@ -47,8 +47,7 @@ const modules::CountParam kRows(
      .min = "1",
      .max = "64",
      .unit = "processors",
-     .description = "Rows of processors in the array (at most 64: a "
-                    "thread a processor)",
+     .description = "Rows of processors in the array (at most 64)",
      .source = "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)"});
 const modules::CountParam kCols({.name = "cols",
                                  .default_value = "8",

@@ -47,6 +47,33 @@ struct SubvolumeMapping {
     }
     return {row, col};
   }
+
+  /// Indices [lo, hi) along one axis (empty if lo >= hi).
+  struct Range {
+    int lo = 0, hi = 0;
+  };
+  /// The indices along col_axis whose cells of depth layer d processor column `col` owns, and
+  /// along row_axis those processor row `row` owns: node_of(c) == {row, col} exactly for the
+  /// cells of layer d in owned_along_cols x owned_along_rows (node_of inverted, so that a
+  /// processor finds its cells in a block without testing each).
+  Range owned_along_cols(int col, int d) const {
+    int shift = 0;
+    if (mapping == Mapping::kSkew) shift = d % cols;
+    if (mapping == Mapping::kTorus) shift = ((d + 1) / 2) % cols;
+    return owned(((col - shift) % cols + cols) % cols, cols, flip_cols);
+  }
+  Range owned_along_rows(int row, int d) const {
+    const int shift = mapping == Mapping::kTorus ? (d / 2) % rows : 0;
+    return owned(((row - shift) % rows + rows) % rows, rows, flip_rows);
+  }
+
+ private:
+  /// The indices a with a * procs / n == u (before the flip): [ceil(u n / procs), ceil((u + 1)
+  /// n / procs)); flipped, n - 1 - a.
+  Range owned(int u, int procs, bool flip) const {
+    const int lo = (u * n + procs - 1) / procs, hi = ((u + 1) * n + procs - 1) / procs;
+    return flip ? Range{n - hi, n - lo} : Range{lo, hi};
+  }
 };
 
 }  // namespace rtsim::platform::ullner_array
