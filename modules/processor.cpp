@@ -71,9 +71,8 @@ void Processor::resume_at_local_time() {
   next_trigger(clock_.now() > g ? clock_.now() - g : sc_core::SC_ZERO_TIME);
 }
 
-template <class Events>
-void Processor::idle_trigger_on(std::optional<sc_core::sc_time> until, const Events& events,
-                                Wait why) {
+void Processor::idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
+                             Wait why) {
   const sc_core::sc_time g = sc_core::sc_time_stamp();
   // Ahead of simulated time: catch up first and look again (as idle() does).
   if (clock_.now() > g) {
@@ -82,19 +81,9 @@ void Processor::idle_trigger_on(std::optional<sc_core::sc_time> until, const Eve
   }
   idle_since_.emplace(clock_.now(), why);
   if (until && *until > g)
-    next_trigger(*until - g, events);
+    next_trigger(*until - g, event);
   else
-    next_trigger(events);
-}
-
-void Processor::idle_trigger(std::optional<sc_core::sc_time> until,
-                             const sc_core::sc_event_or_list& events, Wait why) {
-  idle_trigger_on(until, events, why);
-}
-
-void Processor::idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
-                             Wait why) {
-  idle_trigger_on(until, event, why);
+    next_trigger(event);
 }
 
 }  // namespace rtsim::modules

@@ -96,9 +96,7 @@ class Processor : public sc_core::sc_module, public StatGroup {
   /// Ends an activation that computed ahead of simulated time: triggered again at its local time.
   void resume_at_local_time();
   /// Ends an activation in an idle: triggered again at `until` (if known and later than now) or
-  /// by one of `events`, whichever comes first; the time is accounted as `why` at resume().
-  void idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event_or_list& events,
-                    Wait why);
+  /// by `event`, whichever comes first; the time is accounted as `why` at resume().
   void idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
                     Wait why);
   /// A host's wait when it can neither take an answer nor send (call it in its loop): until
@@ -154,8 +152,6 @@ class Processor : public sc_core::sc_module, public StatGroup {
  private:
   template <class Events>
   void idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
-  template <class Events>
-  void idle_trigger_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
   Duration& account(Wait why) { return why == Wait::kData ? waiting_for_data_ : waiting_for_work_; }
   ProcessorTiming timing_;
   Busy busy_{*this, "time computing (its utilisation)"};

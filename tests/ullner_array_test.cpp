@@ -433,6 +433,30 @@ TEST(UllnerArray, ProcessorsAsMethodsGiveTheThreadsStatisticsExactly) {
   }
 }
 
+// The MC68000's bus cycles hold the shared memory for node.cpu_memory_share of its computing
+// time (L839): every processor's cpu_memory_busy_s is that share of its busy time, part of its
+// memory's busy time, and the frame is longer for it; the image is the same.
+TEST(UllnerArray, TheCpusBusCyclesHoldTheSharedMemory) {
+  const std::string args = "--scene builtin:ullner-cubes --width 24 --height 24";
+  const auto shared = run_array("cpu-share", args);
+  const auto alone = run_array("cpu-share-0", args + " -p node.cpu_memory_share=0");
+  ASSERT_FALSE(shared.empty() || alone.empty());
+  const auto& node = shared["modules"]["node9"];
+  const double busy = node["busy_s"].get<double>();
+  const double cpu = node["cpu_memory_busy_s"].get<double>();
+  std::printf(
+      "node9: CPU busy %.6g s, its bus cycles on the memory %.6g s (%.4f); frame %.6g s "
+      "against %.6g s without them\n",
+      busy, cpu, cpu / busy, shared["simulated_time_s"].get<double>(),
+      alone["simulated_time_s"].get<double>());
+  EXPECT_NEAR(cpu / busy, 0.6, 1e-6);
+  EXPECT_GT(node["memory_busy_s"].get<double>(), cpu);
+  EXPECT_EQ(alone["modules"]["node9"]["cpu_memory_busy_s"].get<double>(), 0.0);
+  EXPECT_GT(shared["simulated_time_s"].get<double>(), alone["simulated_time_s"].get<double>());
+  EXPECT_EQ(read_file(shared.at("image_png").get<std::string>()),
+            read_file(alone.at("image_png").get<std::string>()));
+}
+
 TEST(UllnerArray, TerminationIsASmallShareOfTheHopsAndHeatsNoColumn) {
   const std::string args =
       "--scene builtin:ullner-cubes --width 64 --height 64 -p array.rows=32 -p array.cols=32";

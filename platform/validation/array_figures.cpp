@@ -266,6 +266,9 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
       "array-stage-2.667us", kArrayMachine, side, {"node.pipeline.stage_time=\"2.667 us\""}));
   const std::string one_unit = plan.add_run(
       machine_run("array-stage-5us", kArrayMachine, side, {"node.pipeline.stage_time=\"5 us\""}));
+  // And the MC68000's own bus traffic (node.cpu_memory_share 0.6, an assumption): without it.
+  const std::string no_cpu_traffic = plan.add_run(
+      machine_run("array-cpu-share-0", kArrayMachine, side, {"node.cpu_memory_share=0"}));
   // V18c-g: where the vision rays enter the array, on a scene whose eye is exactly in front of
   // the modelling cube (builtin:ullner-sheets-lit-1000: the eye on the axis through the middle
   // of the y = 0 face, looking along +y), as Figs. 2-29 to 2-32 draw it. Depth along y is the eye
@@ -364,12 +367,13 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
           2.0, 10.0,
           "\"a few times\"; the peripheral at its best grid (8 per axis here) with "
           "its default host, the array with its default processors (node.pipeline.stage_time "
-          "333 ns: an assumption, its sensitivity in the note)"),
+          "333 ns and node.cpu_memory_share 0.6: assumptions, their sensitivity in the "
+          "note)"),
       .workload = "builtin:ullner-cubes at " + size +
                   ": ullner-peripheral (grid 8) against ullner-array (8 x 8, straight)",
-      .runs = {front, peripheral, fetch_bound, one_unit},
+      .runs = {front, peripheral, fetch_bound, one_unit, no_cpu_traffic},
       .measure =
-          [front, peripheral, fetch_bound, one_unit](const RunResults& r) {
+          [front, peripheral, fetch_bound, one_unit, no_cpu_traffic](const RunResults& r) {
             const double p = stats_number(r, peripheral, "simulated_time_s");
             const double a = stats_number(r, front, "simulated_time_s");
             return Measured{
@@ -378,8 +382,15 @@ void add_array_figures(Plan& plan, const PlanOptions& options) {
                            "bound of L839) " +
                            format_number(p / stats_number(r, fetch_bound, "simulated_time_s")) +
                            "x, with a 5 us stage (one shift-and-add unit, L723) " +
-                           format_number(p / stats_number(r, one_unit, "simulated_time_s")) + "x"};
+                           format_number(p / stats_number(r, one_unit, "simulated_time_s")) +
+                           "x; without the CPU's bus traffic " +
+                           format_number(p / stats_number(r, no_cpu_traffic, "simulated_time_s")) +
+                           "x"};
           },
+      .open = "with the MC68000's own bus cycles holding the shared memory (L839; "
+              "node.cpu_memory_share 0.6, an assumption) the array is about twice the "
+              "peripheral, at the edge of \"a few times\": on the quick frame just under it, on "
+              "the full one just over (docs/validation.md)",
   });
 }
 

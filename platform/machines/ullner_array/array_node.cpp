@@ -116,6 +116,20 @@ const modules::TimeParam kMemoryCycle(
                     "the intersection unit (a 32-bit word is two)",
      .source = "seed 000 L835, L891 (16-bit path); assumption: the peripheral's 1/3 us cycle, as "
                "L891's 40-processor estimate supposes"});
+const modules::RealParam kCpuMemoryShare(
+    {.name = "cpu_memory_share",
+     .default_value = "0.6",
+     .min = "0",
+     .max = "1",
+     .unit = "",
+     .description =
+         "Share of the CPU's computing time its bus cycles hold the shared memory (it is "
+         "shared with the microprocessor, L839), interleaved with what the memory owes the "
+         "ports' copies and the intersection unit: the CPU is done when its own time has passed "
+         "and the memory has served it",
+     .source = "assumption: an MC68000 runs a 4-clock bus cycle (500 ns at 8 MHz) for nearly "
+               "every instruction slot (prefetch), each holding the 1/3 us memory for one cycle: "
+               "about 0.9 x 333/500 = 0.6"});
 const modules::CountParam kMemoryWords(
     {.name = "memory_words",
      .default_value = "32768",
@@ -147,9 +161,22 @@ const modules::TimeParam kCreditQuietTime(
                     "been idle this long, then sends it all one hop toward the detector in one "
                     "message. Longer: fewer credit messages, a later end of frame (each hop to "
                     "the detector can wait this long once the last ray is done)",
-     .source = "assumption: the thesis gives no termination mechanism (L827); 300 us keeps "
-               "credit under 5% of message hops at 32x32 on builtin:ullner-cubes (2.8-4.6% "
-               "from 8x8 to 32x32), where returning it at once made half the hops"});
+     .source = "assumption: the thesis gives no termination mechanism (L827); 300 us, with "
+               "credit carried on messages, keeps credit under 5% of message hops on "
+               "builtin:ullner-cubes at 64x64 (1.9-2.5% from 8x8 to 32x32; alone 3.1-5.2%), "
+               "where returning it at once made half the hops"});
+const modules::ChoiceParam kCreditTravel(
+    {.name = "credit_travel",
+     .default_value = "carried",
+     .allowed = {"carried", "alone"},
+     .description =
+         "Termination: how held credit goes toward the detector. carried: it also rides on any "
+         "message this processor sends over the link toward the detector (every message has a "
+         "credit word, so this costs nothing), and goes alone only when the quiet time ends "
+         "with credit still held; alone: only in credit messages",
+     .source = "assumption: the thesis gives no termination mechanism (L827); carried: "
+               "credit on messages that travel anyway costs no bits and, at 32x32, halves "
+               "the credit messages"});
 const modules::ChoiceParam kProcess(
     {.name = "process",
      .default_value = "method",
@@ -172,10 +199,12 @@ void ArrayNode::declare_params(const modules::ParamDecls& node) {
         &kResultCycles, &kNewRayCycles, &kKeepTestCycles, &kSortCycles})
     node.add(*p);
   node.add(kMemoryCycle);
+  node.add(kCpuMemoryShare);
   node.add(kMemoryWords);
   node.add(kStageTime);
   node.add(kFetchPriority);
   node.add(kCreditQuietTime);
+  node.add(kCreditTravel);
   node.add(kProcess);
   modules::Link::declare_params(
       node.sub(kLinkClass),
@@ -230,12 +259,14 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
                    .keep_test = p.get(kKeepTestCycles),
                    .sort = p.get(kSortCycles),
                    .memory_cycle = p.get(kMemoryCycle),
+                   .cpu_memory_share = p.get(kCpuMemoryShare),
                    .pipeline = {.memory_cycle = p.get(kMemoryCycle),
                                 .stage_time = p.get(kStageTime),
                                 .priority = p.get(kFetchPriority) == "earlier_stages"
                                                 ? FetchPriority::kEarlierStages
                                                 : FetchPriority::kLaterStages},
-                   .credit_quiet = p.get(kCreditQuietTime)};
+                   .credit_quiet = p.get(kCreditQuietTime),
+                   .credit_carried = p.get(kCreditTravel) == "carried"};
   cycle_ = cpu_cycle(p);
   memory_port_.bind(memory.socket);
   frame_buffer_port_.bind(frame_buffer.socket);
@@ -332,7 +363,21 @@ void ArrayNode::connect_broadcast(std::size_t k, ArrayNode& child) {
 }
 
 void ArrayNode::spend(std::uint64_t cycles, std::string_view what) {
-  compute_for(times(cycle_, cycles), what);
+  const sc_core::sc_time t = times(cycle_, cycles);
+  if (t == sc_core::SC_ZERO_TIME) return;
+  // Its bus cycles hold the memory for a share of the time (L839), interleaved with what the
+  // memory already owes the ports' copies and the unit's fetches: it computes meanwhile, and is
+  // done when its own time has passed and the memory has served it too (it waits for the rest).
+  const auto hold = modules::from_ps(static_cast<std::int64_t>(
+      std::llround(static_cast<double>(t.value()) * timing_.cpu_memory_share)));
+  memory_free_ = plus(std::max(clock_.now(), memory_free_), hold);
+  memory_busy_ += hold;
+  cpu_memory_busy_ += hold;
+  compute_for(t, what);
+  if (memory_free_ > clock_.now()) {
+    memory_waited_ += memory_free_ - clock_.now();
+    idle_until(memory_free_, Wait::kData);
+  }
 }
 
 GridNode pixel_processor(int x, int y, int width, int height,
@@ -1077,6 +1122,14 @@ void ArrayNode::send(RayMessage msg, Direction d) {
                 start);
   }
   ++msg.links;
+  if (timing_.credit_carried && credit_held_ > 0 && !(position_ == GridNode{0, 0}) &&
+      d == ctx_.topology->next_hop(position_, GridNode{0, 0})) {
+    // The held credit rides on a message going the detector's way anyway (its credit word); the
+    // next processor keeps it, or passes it on with the message.
+    msg.credit += credit_held_;
+    credit_held_ = 0;
+    ++tally_.credit_carried;
+  }
   for (MessageFault* f : link_faults_[k]) f->apply(msg, ctx_.frame->width(), ctx_.frame->height());
   modules::send_message(*out_[k], msg, arrived, RayMessage::kWireBits);
 }

@@ -139,6 +139,7 @@ struct ArrayTally {
   std::uint64_t results_added = 0;
   std::uint64_t results_dropped = 0;
   std::uint64_t credit_exhausted = 0;  ///< messages whose credit could not be shared out
+  std::uint64_t credit_carried = 0;    ///< times held credit rode on another message
   std::uint64_t looping = 0;           ///< messages the watchdog destroyed (hop_limit)
   std::uint64_t messages_made = 0;     ///< the last message's id (RayMessage::id)
   std::uint64_t rays_made = 0;         ///< the last vision ray's number (RayMessage::ray)
@@ -217,8 +218,10 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   struct Timing {
     std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
     sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
+    double cpu_memory_share;        ///< of its computing time, its bus cycles' hold on the memory
     PipelineTiming pipeline;        ///< its intersection unit's (Fig. 2-28)
     sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
+    bool credit_carried;            ///< held credit also rides on messages toward the detector
   };
   /// A child in the broadcast's tree: the socket to its broadcast port and the link to it (none
   /// on a ring: the segment to the successor), and when that is free. The load's use of a link
@@ -382,10 +385,13 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
                             "2-29, 2-30)"};
   modules::Counter tests_{*this, "intersections", "ray/polygon tests of its unit"};
   modules::Duration memory_busy_{*this, "memory_busy_s",
-                                 "time its memory was fetching polygons or copying messages out"};
+                                 "time its memory was fetching polygons, copying messages or "
+                                 "serving its CPU"};
+  modules::Duration cpu_memory_busy_{
+      *this, "cpu_memory_busy_s", "time its CPU's bus cycles held the memory (in memory_busy_s)"};
   modules::Duration memory_waited_{*this, "memory_waited_s",
-                                   "time its intersection unit or a port copy waited for the "
-                                   "memory, busy with the other"};
+                                   "time its CPU, its intersection unit or a port copy waited "
+                                   "for the memory, busy with another of them"};
   modules::Peak backlog_peak_{*this, "backlog_peak", "rays spawned here waiting to be searched"};
 };
 
