@@ -14,6 +14,13 @@ using json = nlohmann::json;
 
 double number(const json& j, const char* key) { return json_number(j, key); }
 
+/// "frame time ", or for a sequence of frames "N frames in ".
+std::string frame_heading(const json& stats) {
+  const int frames =
+      stats.contains("frame_sequence") ? stats["frame_sequence"].value("frames", 1) : 1;
+  return frames > 1 ? std::to_string(frames) + " frames in " : "frame time ";
+}
+
 void print_busy(std::ostream& out, const json& stats) {
   if (!stats.contains("modules")) return;
   const auto busy = busy_modules(stats["modules"]);
@@ -75,6 +82,34 @@ void print_latency(std::ostream& out, const json& stats) {
     out << "              (" << p["scope"].get<std::string>() << ")\n";
 }
 
+/// A machine that renders a sequence of frames (stats.json `frame_sequence`): its frame rate,
+/// the latency from a frame's start to its display, and each frame's figures (the first few).
+void print_frames(std::ostream& out, const json& stats) {
+  if (!stats.contains("frame_sequence")) return;
+  const auto& fs = stats["frame_sequence"];
+  const int frames = fs.value("frames", 0);
+  if (frames < 2) return;
+  out << "  frames      " << frames << " at "
+      << format_significant(number(fs, "frames_per_second"), 3) << " frames/s (after the first "
+      << format_significant(number(fs, "steady_frames_per_second"), 3) << ", the last "
+      << format_significant(number(fs, "last_frame_per_second"), 3) << "); latency mean "
+      << format_seconds(number(fs, "latency_mean_s")) << ", max "
+      << format_seconds(number(fs, "latency_max_s")) << "\n";
+  constexpr std::size_t kShown = 8;
+  const auto& per = fs["per_frame"];
+  for (std::size_t i = 0; i < per.size() && i < kShown; ++i) {
+    const auto& f = per[i];
+    std::string label = "frame " + std::to_string(f.value("frame", 0));
+    label.resize(std::max<std::size_t>(label.size() + 1, 12), ' ');
+    out << "  " << label << "start " << format_seconds(number(f, "start_s")) << ", displayed "
+        << format_seconds(number(f, "display_s")) << ", latency "
+        << format_seconds(number(f, "latency_s")) << ", interval "
+        << format_seconds(number(f, "interval_s")) << "\n";
+  }
+  if (per.size() > kShown)
+    out << "              (" << per.size() - kShown << " more in stats.json frame_sequence)\n";
+}
+
 }  // namespace
 
 std::string format_run_summary(const json& stats,
@@ -82,10 +117,11 @@ std::string format_run_summary(const json& stats,
   std::ostringstream out;
   out << "rtsim run: " << stats.value("machine", std::string()) << " on "
       << stats.value("scene", std::string()) << " at " << stats.value("width", 0) << "x"
-      << stats.value("height", 0) << ": frame time "
+      << stats.value("height", 0) << ": " << frame_heading(stats)
       << format_seconds(number(stats, "simulated_time_s")) << " simulated, "
       << format_seconds(number(stats, "wall_time_s")) << " wall\n";
   print_busy(out, stats);
+  print_frames(out, stats);
   print_latency(out, stats);
   print_sample(out, stats);
   if (stats.contains("overhead_ratio"))

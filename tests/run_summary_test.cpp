@@ -127,3 +127,37 @@ TEST(RunSummary, WithNothingSaturatedItSaysWhereTheTimeWent) {
       << text;
   EXPECT_NE(text.find("node* waiting for memory"), std::string::npos) << text;
 }
+
+// A sequence of frames (pxpl5-raytrace with frames > 1): the heading counts them, and a line
+// gives the frame rate and latency, then each frame's start, display, latency and interval.
+TEST(RunSummary, ASequenceOfFramesGivesItsRateAndEachFrame) {
+  auto stats = stats_of_a_run();
+  nlohmann::json per = nlohmann::json::array();
+  for (int f = 0; f < 10; ++f)
+    per.push_back({{"frame", f},
+                   {"start_s", 0.1 * f},
+                   {"display_s", 0.1 * f + 0.15},
+                   {"latency_s", 0.15},
+                   {"interval_s", f == 0 ? 0.15 : 0.1}});
+  stats["frame_sequence"] = {{"frames", 10},
+                             {"frames_per_second", 9.5238},
+                             {"steady_frames_per_second", 10.0},
+                             {"last_frame_per_second", 10.0},
+                             {"latency_mean_s", 0.15},
+                             {"latency_max_s", 0.15},
+                             {"per_frame", per}};
+  const std::string text = format_run_summary(stats, {});
+  std::cout << text;
+  EXPECT_NE(text.find("10 frames in 1.388 s simulated"), std::string::npos) << text;
+  EXPECT_EQ(text.find("frame time"), std::string::npos);
+  EXPECT_NE(text.find("frames      10 at 9.52 frames/s (after the first 10.0, the last 10.0); "
+                      "latency mean 150.0 ms, max 150.0 ms"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("frame 3     start 300.0 ms, displayed 450.0 ms, latency 150.0 ms, "
+                      "interval 100.0 ms"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("frame 8 "), std::string::npos);  // the first eight, then a count
+  EXPECT_NE(text.find("(2 more in stats.json frame_sequence)"), std::string::npos);
+}

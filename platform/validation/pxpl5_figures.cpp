@@ -1,5 +1,6 @@
 #include "platform/validation/pxpl5_figures.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,27 @@ double last_frame_s(const RunResults& r, const std::string& key) {
   const double rate = stats_number(r, key, "pxpl5.last_frame_per_second");
   if (!(rate > 0)) throw MeasureError("run " + key + " has no frame rate");
   return 1.0 / rate;
+}
+
+/// Six frames of Fig. 9's system on the teapot filling the screen, the camera turning a degree a
+/// frame, with `in_flight` frames in the pipeline (L270).
+RunRequest pipeline_run(std::string key, int in_flight, const std::vector<std::string>& extra) {
+  std::vector<std::string> params = {"sampling.finest=4",
+                                     "sampling.start=16",
+                                     "frames=6",
+                                     "camera.spin=1",
+                                     "camera.distance=0.5",
+                                     "pipeline.frames_in_flight=" + std::to_string(in_flight)};
+  params.insert(params.end(), extra.begin(), extra.end());
+  return machine_run_request(std::move(key), kPxpl5Machine, "builtin:spd-teapot", 640, 512, params,
+                             6e5);
+}
+
+/// The run's steady frame rate: the frames after the first over the time between their displays.
+double steady_fps(const RunResults& r, const std::string& key) {
+  const double rate = stats_number(r, key, "frame_sequence.steady_frames_per_second");
+  if (!(rate > 0)) throw MeasureError("run " + key + " has no steady frame rate");
+  return rate;
 }
 
 double frame_s(const RunResults& r, const std::string& key) {
@@ -125,6 +147,65 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
       .workload = vol2 + "; the eye 2.5 times as far (about 1/16 of the screen covered)",
       .runs = {far_squares, far_rows},
       .measure = ratio(far_squares, far_rows, far_rows, "rows against squares"),
+  });
+
+  // The pipelined renderer (L270): frames in flight against serialised frames.
+  const std::string serial = plan.add_run(pipeline_run("pxpl5-serialised", 1, {}));
+  const std::string piped = plan.add_run(pipeline_run("pxpl5-pipelined", 2, {}));
+  plan.figures.push_back(Figure{
+      .id = "X6a",
+      .title = "Pipelined frames against serialised ones, no stage saturated: frame rate ratio",
+      .seed_ref = "seed 004 L270, L420",
+      .seed_text = "VOL2 \"is a pipelined renderer\"; its performance came from the \"pipelined "
+                   "system layout\": the back end works on one frame while the casters cast the "
+                   "next",
+      .seed_value = 1.0,
+      .seed_display = "pipelined / serialised > 1",
+      .unit = "",
+      .tolerance = Tolerance::above(1.0, "qualitative: the seed gives no rates"),
+      .workload = vol2 + "; six frames, the teapot filling the screen; 1 and 2 frames in flight",
+      .runs = {serial, piped},
+      .measure =
+          [serial, piped](const RunResults& r) {
+            const double s = steady_fps(r, serial), p = steady_fps(r, piped);
+            return Measured{p / s, format_number(p) + " against " + format_number(s) +
+                                       " frames/s after the first frame"};
+          },
+  });
+  // A saturated stage: the compositors at 20 us a sample (the casters' frame is about 80 ms).
+  const std::string slow_back = plan.add_run(
+      pipeline_run("pxpl5-pipelined-compositors", 2, {"compositor.sample_time=20 us"}));
+  plan.figures.push_back(Figure{
+      .id = "X6b",
+      .title = "Pipelined, the compositors saturated: frame interval over the busiest "
+               "compositor's time a frame",
+      .seed_ref = "seed 004 L270, L420",
+      .seed_text = "a pipeline's rate is its slowest stage's: with the compositors the slowest, "
+                   "a frame every busiest compositor's time a frame",
+      .seed_value = 1.0,
+      .unit = "",
+      .tolerance = Tolerance::relative(0.05,
+                                       "a stage that is never idle sets the interval; "
+                                       "serialised frames give 1.34"),
+      .workload = vol2 + "; six frames, 2 in flight, compositor.sample_time 20 us",
+      .runs = {slow_back},
+      .measure =
+          [slow_back](const RunResults& r) {
+            const double interval = 1.0 / steady_fps(r, slow_back);
+            const int compositors =
+                static_cast<int>(stats_number(r, slow_back, "pxpl5.compositors"));
+            const double frames = stats_number(r, slow_back, "pxpl5.frames");
+            double busiest = 0;
+            for (int k = 0; k < compositors; ++k)
+              busiest = std::max(
+                  busiest,
+                  stats_number(r, slow_back, "modules.compositor" + std::to_string(k) + ".busy_s"));
+            const double per_frame = busiest / frames;
+            return Measured{interval / per_frame,
+                            "interval " + format_number(interval * 1e3) +
+                                " ms after the first frame; the busiest compositor " +
+                                format_number(per_frame * 1e3) + " ms a frame"};
+          },
   });
 
   // By-pass code (L333-L350).

@@ -58,6 +58,7 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
   pxpl5::CameraPath::declare_params(r);
   pxpl5::Bypass::declare_params(r);
   pxpl5::declare_gp_params(r);
+  pxpl5::Host::declare_params(r);
   pxpl5::MasterGp::declare_params(r);
   pxpl5::Compositor::declare_params(r);
   pxpl5::Renderer::declare_params(r);
@@ -180,14 +181,34 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   };
   const std::uint64_t rays = casters_total("rays"), cast_last = casters_total("cast_last_frame"),
                       covered_last = casters_total("covered_last_frame");
+  // Each frame: when the host started it (its view read), when the frame buffer displayed it,
+  // the latency between, and its interval since the display before (the first: since its start).
+  const auto& shown = fb.displayed();
+  nlohmann::ordered_json per_frame = nlohmann::ordered_json::array();
   nlohmann::ordered_json frame_times = nlohmann::ordered_json::array();
-  double sum = 0;
-  for (std::size_t f = 0; f < host.done().size(); ++f) {
-    const double t = (host.done()[f] - host.started()[f]).to_seconds();
-    frame_times.push_back(t);
-    sum += t;
+  double latency_sum = 0, latency_max = 0;
+  for (std::size_t f = 0; f < shown.size(); ++f) {
+    const double latency = (shown[f] - host.started()[f]).to_seconds();
+    const double interval = (shown[f] - (f == 0 ? host.started()[0] : shown[f - 1])).to_seconds();
+    per_frame.push_back({{"frame", f},
+                         {"start_s", host.started()[f].to_seconds()},
+                         {"display_s", shown[f].to_seconds()},
+                         {"latency_s", latency},
+                         {"interval_s", interval}});
+    frame_times.push_back(interval);
+    latency_sum += latency;
+    latency_max = std::max(latency_max, latency);
   }
-  const double last = (host.done().back() - host.started().back()).to_seconds();
+  const double span = (shown.back() - host.started().front()).to_seconds();
+  const double last = frame_times.back().get<double>();
+  const double fps = span > 0 ? static_cast<double>(shown.size()) / span : 0.0;
+  const double last_fps = last > 0 ? 1.0 / last : 0.0;
+  // The steady rate: frames after the first over the time between the first display and the last
+  // (the pipeline full); a single frame's is its own.
+  const double steady_span = (shown.back() - shown.front()).to_seconds();
+  const double steady_fps = shown.size() > 1 && steady_span > 0
+                                ? static_cast<double>(shown.size() - 1) / steady_span
+                                : last_fps;
   nlohmann::ordered_json& res = run.machine_stats();
   res["pxpl5"] = {
       {"casters", lay.casters},
@@ -211,13 +232,24 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
       {"rays_per_pixel",
        static_cast<double>(rays) / setup.frames / (static_cast<double>(lay.width) * lay.height)},
       {"frames", setup.frames},
+      {"frames_in_flight", host.frames_in_flight()},
       {"frame_times_s", std::move(frame_times)},
-      {"frames_per_second", sum > 0 ? static_cast<double>(setup.frames) / sum : 0.0},
+      {"frames_per_second", fps},
       // The last frame's rate: the steady state once a previous frame's costs order the squares
       // (L360).
-      {"last_frame_per_second", last > 0 ? 1.0 / last : 0.0},
+      {"last_frame_per_second", last_fps},
+      {"steady_frames_per_second", steady_fps},
       {"caster_workload", std::move(workload)},
       {"samples_messages", fault.messages()}};
+  // What an interactive user sees, for the console and any machine with a frame sequence.
+  res["frame_sequence"] = {{"frames", setup.frames},
+                           {"frames_per_second", fps},
+                           {"last_frame_per_second", last_fps},
+                           {"steady_frames_per_second", steady_fps},
+                           {"steady_frames_per_second", steady_fps},
+                           {"latency_mean_s", latency_sum / static_cast<double>(shown.size())},
+                           {"latency_max_s", latency_max},
+                           {"per_frame", std::move(per_frame)}};
   return run.finish(modules::LatencyRecorder{}, {});
 }
 

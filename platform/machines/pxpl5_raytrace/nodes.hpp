@@ -16,6 +16,7 @@
 //                is complete.
 // Each node takes the run (MachineRun) and the run's Setup, and declares and reads its own costs
 // (the seed gives none: each parameter's source says why its default).
+#include <deque>
 #include <map>
 #include <memory>
 #include <vector>
@@ -33,16 +34,22 @@ namespace rtsim::platform::pxpl5 {
 class Host : public RingNode {
  public:
   SC_HAS_PROCESS(Host);
+  /// pipeline.frames_in_flight.
+  static void declare_params(params::ParamRegistry& r);
   Host(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
        const Setup& setup);
-  /// When each frame started and was complete in the frame buffer.
+  /// When each frame started (its view read, L288) and when the host heard it was displayed.
   const std::vector<sc_core::sc_time>& started() const { return started_; }
   const std::vector<sc_core::sc_time>& done() const { return done_; }
+  /// Frames the host lets into the pipeline before the first of them is displayed.
+  int frames_in_flight() const { return in_flight_; }
 
  private:
   void run();
+  void start(int f);
   MachineRun& run_;
   const Setup& setup_;
+  int in_flight_;
   std::vector<sc_core::sc_time> started_, done_;
 };
 
@@ -59,13 +66,18 @@ class MasterGp : public RingNode {
  private:
   void run();
   void assign(int caster);
+  /// Frame f's regions become the ones handed out (in cost order after the first, L360).
+  void begin_frame(int f);
   const Setup& setup_;
   sc_core::sc_time assign_time_;
-  bool cost_order_;              ///< hands out the costliest regions of the previous frame first
+  bool after_casting_;  ///< master.next_frame: a frame's regions wait for the last one's cast
+  bool cost_order_;     ///< hands out the costliest regions of the previous frame first
   std::vector<Region> regions_;  ///< the frame's, in the order they are given out
   std::size_t next_ = 0;
+  std::size_t cast_ = 0;      ///< the frame's regions reported cast
   std::vector<double> cost_;  ///< by region id: its time in the previous frame
   std::vector<int> waiting_;  ///< casters whose request waits for the next frame
+  std::deque<int> starts_;    ///< frames started while the one handed out had regions left
   int frame_ = -1;
   modules::Counter assignments_{*this, "assignments", "regions handed out"};
 };
@@ -138,12 +150,15 @@ class FrameBuffer : public RingNode {
   static void declare_params(params::ParamRegistry& r);
   FrameBuffer(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
               const Setup& setup);
+  /// When each frame was displayed: every pixel of it and of the frames before it written.
+  const std::vector<sc_core::sc_time>& displayed() const { return displayed_; }
 
  private:
   void run();
   MachineRun& run_;
   const Setup& setup_;
   sc_core::sc_time pixel_time_;
+  std::vector<sc_core::sc_time> displayed_;
 };
 
 }  // namespace rtsim::platform::pxpl5
