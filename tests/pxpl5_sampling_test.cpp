@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "tests/test_support.hpp"
 
@@ -28,6 +29,17 @@ const std::string kAdaptive = " -p sampling.finest=4 -p sampling.start=16";
 std::string balls(int w, int h) {
   return "--scene " + shared_path("scenes/balls-s2.nff") + " --width " + std::to_string(w) +
          " --height " + std::to_string(h);
+}
+
+/// A run with `args` is refused (exit 2) with a message containing `says`, and writes no image.
+void expect_bad_input(const std::string& args, const std::string& says) {
+  const fs::path dir = scratch_dir("pxpl5-bad-input");
+  const auto r =
+      run_rtsim("run --machine pxpl5-raytrace --scene builtin:default --width 64 --height 64 " +
+                args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find(says), std::string::npos) << args << "\n" << r.output;
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
 }
 
 double rays_per_pixel(const nlohmann::ordered_json& s) {
@@ -111,24 +123,74 @@ TEST(Pxpl5Sampling, AdaptiveSquaresShortenVol2sFrame) {
   EXPECT_LT(a, 0.8 * u);
 }
 
-// Partial updating (L373-L379): at 25% each position is cast once every 4 frames, so with the
-// camera still the fifth frame's image is the full update's, and the frames after the first cast
-// a quarter of the rays in less time.
+// Partial updating (L373-L379): at 25% each position is cast once every 4 frames. The user
+// moves during two frames and rests: the fourth frame at the resting view shows the complete
+// image and the third does not; every frame after the first casts a quarter of the positions, in
+// less time. With every position cast, a resting view already complete casts nothing.
 TEST(Pxpl5Sampling, PartialUpdatingCastsAQuarterAFrameAndFillsInAfterFour) {
-  const std::string base = balls(128, 128) + " -p sampling.finest=2";
+  const std::string base =
+      balls(128, 128) + " -p sampling.finest=2 -p camera.path=\"move 2, rest 4\" -p camera.spin=5";
   const auto full = run_pxpl5("update-full", base);
-  const auto quarter = run_pxpl5("update-25", base + " -p update.fraction=25 -p frames=5");
-  ASSERT_FALSE(full.empty() || quarter.empty());
+  const auto quarter = run_pxpl5("update-25", base + " -p update.fraction=25");
+  const auto third =
+      run_pxpl5("update-25-third", base + " -p update.fraction=25 -p display.frame=4");
+  ASSERT_FALSE(full.empty() || quarter.empty() || third.empty());
+  // Frame 2 is the first at the resting view, frame 5 the fourth.
   EXPECT_EQ(read_file(full.at("image_png").get<std::string>()),
             read_file(quarter.at("image_png").get<std::string>()));
-  // Frame 0 casts every position, frames 1-4 a quarter each: 2 frames' worth of rays in 5.
-  EXPECT_NEAR(rays_per_pixel(quarter), 2.0 / 5.0 * rays_per_pixel(full),
-              0.01 * rays_per_pixel(full));
+  EXPECT_NE(read_file(full.at("image_png").get<std::string>()),
+            read_file(third.at("image_png").get<std::string>()));
+  // Full: frames 0-2 cast every position, the three resting ones after nothing; a quarter: frame
+  // 0 every position, frames 1-5 a quarter each (2.25 frames' worth against 3).
+  EXPECT_NEAR(rays_per_pixel(quarter) / rays_per_pixel(full), 2.25 / 3.0, 0.02);
   const auto& t = quarter["pxpl5"]["frame_times_s"];
-  std::printf("25%% updating: first frame %.4g ms, then %.4g %.4g %.4g %.4g ms\n",
+  std::printf("25%% updating: first frame %.4g ms, then %.4g %.4g %.4g %.4g %.4g ms\n",
               t[0].get<double>() * 1e3, t[1].get<double>() * 1e3, t[2].get<double>() * 1e3,
-              t[3].get<double>() * 1e3, t[4].get<double>() * 1e3);
-  for (int f = 1; f < 5; ++f) EXPECT_LT(t[f].get<double>(), 0.5 * t[0].get<double>());
+              t[3].get<double>() * 1e3, t[4].get<double>() * 1e3, t[5].get<double>() * 1e3);
+  for (int f = 1; f < 6; ++f) EXPECT_LT(t[f].get<double>(), 0.5 * t[0].get<double>());
+  const auto& per = full["frame_sequence"]["per_frame"];
+  for (int f = 3; f < 6; ++f) EXPECT_EQ(per[f]["cast_level"], -1) << f;
+}
+
+// Successive refinement (L288): three levels, the user moving two frames and resting five, 50%
+// updating. Moving frames cast and display the coarsest level (a ray every 4 pixels); resting
+// ones fill it in, then refine level by level, each displayed once complete. Every frame's
+// image is the twin's for the same state, and the finest display costs the most.
+TEST(Pxpl5Interaction, EachDisplayedFrameIsTheTwinsAndRefinesWhileTheViewRests) {
+  const std::string base = balls(96, 64) +
+                           " -p camera.path=\"move 2, rest 5\" -p camera.spin=5 "
+                           "-p refine.levels=3 -p update.fraction=50 -p caster_count=4";
+  nlohmann::ordered_json last;
+  for (int f = 0; f < 7; ++f) {
+    const auto s =
+        run_pxpl5("refine", base + " -p display.frame=" + std::to_string(f) + " --overhead");
+    ASSERT_FALSE(s.empty()) << f;
+    EXPECT_TRUE(s.at("functional_image_identical").get<bool>()) << "frame " << f;
+    last = s;
+  }
+  // What each frame casts and is displayed at (refinement_schedule.hpp).
+  const std::vector<int> cast = {0, 0, 0, 0, 1, 1, 2}, shown = {0, 0, 0, 0, 0, 1, 1};
+  const auto& per = last["frame_sequence"]["per_frame"];
+  ASSERT_EQ(per.size(), 7u);
+  for (std::size_t f = 0; f < 7; ++f) {
+    EXPECT_EQ(per[f]["cast_level"].get<int>(), cast[f]) << f;
+    EXPECT_EQ(per[f]["display_level"].get<int>(), shown[f]) << f;
+  }
+  EXPECT_EQ(last["pxpl5"]["sampling"]["refine_levels"], 3);
+}
+
+TEST(Pxpl5Interaction, APathOrDisplayedFrameThatCannotBeIsBadInput) {
+  for (const auto& [args, says] :
+       {std::pair<std::string, std::string>{"-p camera.path=\"mvoe 3\"", "did you mean 'move'"},
+        {"-p camera.path=\"move 0\"", "frame count from 1"},
+        {"-p camera.path=\"move 2,, rest 1\"", "empty segment"},
+        {"-p camera.path=\"rest 2 3\"", "frame count from 1"},
+        {"-p camera.path=\"move 2, rest 2\" -p frames=5", "leave frames unset"},
+        {"-p frames=4 -p display.frame=4", "0 to 3"},
+        {"-p refine.levels=2 -p sampling.finest=4 -p sampling.start=16",
+         "successive refinement"}}) {
+    expect_bad_input(args, says);
+  }
 }
 
 TEST(Pxpl5Sampling, ImpossibleRulesAreBadInput) {
@@ -137,14 +199,7 @@ TEST(Pxpl5Sampling, ImpossibleRulesAreBadInput) {
         {"-p sampling.finest=4 -p sampling.start=2", "at least sampling.finest"},
         {"-p sampling.finest=4 -p sampling.start=16 -p update.fraction=25", "partial updating"},
         {"-p sampling.finest=4 -p sampling.start=128", "must divide the square"}}) {
-    const fs::path dir = scratch_dir("pxpl5-bad-rule");
-    const auto r = run_rtsim(
-        "run --machine pxpl5-raytrace --scene builtin:default --width 64 "
-        "--height 64 " +
-        args + " -q --out " + dir.string());
-    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(says), std::string::npos) << args << "\n" << r.output;
-    EXPECT_FALSE(fs::exists(dir / "image.png"));
+    expect_bad_input(args, says);
   }
 }
 

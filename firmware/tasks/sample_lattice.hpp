@@ -44,12 +44,15 @@ inline void keep_copy(LatticeSample& kept, int& written, const LatticeSample& in
 
 class SampleLattice {
  public:
-  SampleLattice(int width, int height, int finest)
+  /// `align`: the lattice's extent, in positions less one, is a multiple of it, so that a
+  /// coarser grid of every `align`-th position (successive refinement, refinement_schedule.hpp)
+  /// also reaches past the image's last row and column.
+  SampleLattice(int width, int height, int finest, int align = 1)
       : width_(width),
         height_(height),
         finest_(finest),
-        nx_((width + finest - 2) / finest + 1),
-        ny_((height + finest - 2) / finest + 1) {}
+        nx_(((width + finest * align - 2) / (finest * align)) * align + 1),
+        ny_(((height + finest * align - 2) / (finest * align)) * align + 1) {}
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -78,6 +81,16 @@ class SampleLattice {
   /// The lattice columns [first, last] a display pixel column range [x0, x1) reads.
   int first_for(int x0) const { return x0 / finest_; }
   int last_for(int x1) const { return (x1 - 1 + finest_ - 1) / finest_; }
+
+  /// resample() on the grid of every `step`-th position (a coarser refinement level): the
+  /// positions around the pixel on that grid.
+  template <class At>
+  std::array<std::int64_t, 3> resample(int x, int y, int step, At&& at) const {
+    if (step == 1) return resample(x, y, at);
+    const SampleLattice coarse(width_, height_, finest_ * step);
+    return coarse.resample(x, y,
+                           [&](int i, int j) -> decltype(auto) { return at(i * step, j * step); });
+  }
 
   /// Display pixel (x, y): bilinear between the four positions around it, in double, rounded
   /// to the fixed point; a pixel on a position takes that position's value as it is. `at(i, j)`

@@ -1,7 +1,10 @@
 #include "platform/validation/pxpl5_figures.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -54,6 +57,27 @@ double steady_fps(const RunResults& r, const std::string& key) {
   const double rate = stats_number(r, key, "frame_sequence.steady_frames_per_second");
   if (!(rate > 0)) throw MeasureError("run " + key + " has no steady frame rate");
   return rate;
+}
+
+/// The four-frame fill-in (L375): SPD's teapot at 160 x 128, the user moving three frames (the
+/// eye turning 5 degrees after each) and resting, with partial updating at `percent`; the image
+/// written is that of frame `shown` (display.frame).
+RunRequest fill_in_run(std::string key, int percent, int rest, int shown) {
+  return machine_run_request(
+      std::move(key), kPxpl5Machine, "builtin:spd-teapot", 160, 128,
+      {"camera.path=move 3, rest " + std::to_string(rest), "camera.spin=5",
+       "update.fraction=" + std::to_string(percent), "display.frame=" + std::to_string(shown)},
+      2e4);
+}
+
+/// The bytes of a run's image.png.
+std::string image_bytes(const RunResults& r, const std::string& key) {
+  const auto it = r.find(key);
+  if (it == r.end() || !it->second.failure.empty())
+    throw MeasureError("run " + key + " did not finish");
+  std::ifstream in(it->second.out_dir / "image.png", std::ios::binary);
+  if (!in) throw MeasureError("run " + key + " wrote no image.png");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 double frame_s(const RunResults& r, const std::string& key) {
@@ -207,6 +231,55 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                                 format_number(per_frame * 1e3) + " ms a frame"};
           },
   });
+
+  // Partial updating fills the image in (L375): the first frame at the resting view whose
+  // displayed image is the fully updated one.
+  for (const auto& [id, percent, seed] : {std::tuple{"X7a", 25, 4}, std::tuple{"X7b", 50, 2}}) {
+    const int rest = seed + 1;
+    // Frames 0-2 move; frame 3 is the first at the resting view, frame 2 + k the k-th.
+    const std::string full = plan.add_run(
+        fill_in_run("pxpl5-fill-full-" + std::to_string(percent), 100, rest, 2 + rest));
+    std::vector<std::string> shown;
+    for (int k = 1; k <= rest; ++k)
+      shown.push_back(plan.add_run(
+          fill_in_run("pxpl5-fill-" + std::to_string(percent) + "-" + std::to_string(k), percent,
+                      rest, 2 + k)));
+    std::vector<std::string> runs = shown;
+    runs.push_back(full);
+    plan.figures.push_back(Figure{
+        .id = id,
+        .title = "Partial updating at " + std::to_string(percent) +
+                 "%: the frame at the resting view whose image is complete",
+        .seed_ref = "seed 004 L375-L377",
+        .seed_text = "\"if the partial updating fraction is 25%, each sample is updated once every "
+                     "4 frames. When user interaction pauses, an image at the lowest successive "
+                     "refinement level will have filled in after four frames\"" +
+                     std::string(percent == 50 ? " (at 50%: every 2 frames)" : ""),
+        .seed_value = static_cast<double>(seed),
+        .unit = "frames",
+        .tolerance = Tolerance::absolute(0.0, "a count of frames, which the schedule makes exact"),
+        .workload = "builtin:spd-teapot at 160 x 128, camera.path \"move 3, rest " +
+                    std::to_string(rest) + "\" (5 degrees a move), update.fraction " +
+                    std::to_string(percent) +
+                    ", each frame at the resting view displayed "
+                    "against the same view fully updated (100%)",
+        .runs = runs,
+        .measure =
+            [shown, full](const RunResults& r) {
+              const std::string want = image_bytes(r, full);
+              std::string differs;
+              for (std::size_t k = 0; k < shown.size(); ++k) {
+                if (image_bytes(r, shown[k]) == want)
+                  return Measured{static_cast<double>(k + 1),
+                                  "frames at the resting view before it differ from the "
+                                  "complete image: " +
+                                      (differs.empty() ? std::string("none") : differs)};
+                differs += (differs.empty() ? "" : ", ") + std::to_string(k + 1);
+              }
+              throw MeasureError("no frame at the resting view shows the complete image");
+            },
+    });
+  }
 
   // By-pass code (L333-L350).
   const std::string scene = "builtin:default";

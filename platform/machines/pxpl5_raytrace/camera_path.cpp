@@ -1,6 +1,12 @@
 // The camera path's parameters, each named once.
 #include "platform/machines/pxpl5_raytrace/camera_path.hpp"
 
+#include <algorithm>
+#include <sstream>
+#include <string>
+
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
 #include "modules/module_params.hpp"
 
 namespace rtsim::platform::pxpl5 {
@@ -16,14 +22,25 @@ const modules::CountParam kFrames(
      .description = "Frames rendered; the camera turns between them (camera.spin) and the image "
                     "is the last frame's",
      .source = "assumption: a camera path for frame rates (the issue's multi-frame runs)"});
+const modules::ChoiceParam kPath(
+    {.name = "camera.path",
+     .default_value = "",
+     .description =
+         "The user's session, as segments of frames: \"move N\" (the user moves during each of "
+         "N frames: the next frame's view is turned camera.spin degrees) and \"rest N\" (the "
+         "view stays), comma-separated, e.g. \"move 4, rest 6\". Sets the frame count. Empty: "
+         "`frames` frames, all moving unless camera.spin is 0",
+     .source = "seed 004 L288 (a coarse image while the view changes, refinement during "
+               "pauses); assumption: a turn about the vertical axis stands for the user's "
+               "motion"});
 const modules::RealParam kSpin({.name = "camera.spin",
                                 .default_value = "0",
                                 .min = "-360",
                                 .max = "360",
                                 .unit = "degrees",
                                 .description = "Turn of the eye about the vertical axis (the "
-                                               "view's up through the point looked at) from one "
-                                               "frame to the next",
+                                               "view's up through the point looked at) after "
+                                               "each frame during which the user moves",
                                 .source = "assumption: a simple camera path"});
 const modules::RealParam kDistance(
     {.name = "camera.distance",
@@ -40,15 +57,64 @@ const modules::RealParam kDistance(
 void CameraPath::declare_params(params::ParamRegistry& r) {
   const modules::ParamDecls top(r, "", false);
   top.add(kFrames);
+  top.add(kPath);
   top.add(kSpin);
   top.add(kDistance);
 }
 
+namespace {
+
+[[noreturn]] void bad_path(const modules::ModuleParams& p, const std::string& what) {
+  throw InputError(kPath.name() + " (set at " + p.where_set(kPath.name()) + ")", 0,
+                   "pxpl5-raytrace: " + what);
+}
+
+/// "move 4, rest 6" as each frame's moving flag.
+std::vector<bool> parse_path(const modules::ModuleParams& p, const std::string& text) {
+  std::vector<bool> moving;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    std::istringstream segment(text.substr(at, comma - at));
+    std::string kind, extra;
+    long n = 0;
+    segment >> kind;
+    if (kind.empty())
+      bad_path(p, "an empty segment in \"" + text + "\" (expected \"move N\" or \"rest N\")");
+    if (kind != "move" && kind != "rest") {
+      bad_path(p, "unknown segment \"" + kind + "\" (expected \"move N\" or \"rest N\")" +
+                      did_you_mean(kind, {"move", "rest"}));
+    }
+    if (!(segment >> n) || (segment >> extra) || n < 1 || n > 100000)
+      bad_path(p, "\"" + kind + "\" takes a frame count from 1 to 100000 (\"" + kind + " 4\")");
+    moving.insert(moving.end(), static_cast<std::size_t>(n), kind == "move");
+    if (moving.size() > 100000) bad_path(p, "more than 100000 frames");
+    at = comma + 1;
+  }
+  return moving;
+}
+
+}  // namespace
+
 CameraPath CameraPath::read(const params::ParamRegistry& r) {
   const modules::ModuleParams p(r, "");
-  return {.frames = static_cast<int>(p.get(kFrames)),
-          .spin_deg = p.get(kSpin),
-          .distance = p.get(kDistance)};
+  CameraPath path{.frames = static_cast<int>(p.get(kFrames)),
+                  .spin_deg = p.get(kSpin),
+                  .distance = p.get(kDistance),
+                  .moving = {}};
+  const std::string text = p.get(kPath);
+  if (text.find_first_not_of(" \t") == std::string::npos) {
+    path.moving.assign(static_cast<std::size_t>(path.frames), path.spin_deg != 0.0);
+    return path;
+  }
+  path.moving = parse_path(p, text);
+  const int n = static_cast<int>(path.moving.size());
+  if (p.where_set(kFrames.name()) != "default" && path.frames != n)
+    bad_path(p, "the path has " + std::to_string(n) +
+                    " frames but frames = " + std::to_string(path.frames) + " (set at " +
+                    p.where_set(kFrames.name()) + "): leave frames unset with a path");
+  path.frames = n;
+  return path;
 }
 
 }  // namespace rtsim::platform::pxpl5

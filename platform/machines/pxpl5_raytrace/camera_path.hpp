@@ -3,6 +3,7 @@
 // axis (its up vector through the point it looks at) by `camera.spin` degrees a frame, ending at
 // the scene's own camera, so that the last frame -- the image written -- is the scene's view.
 #include <cmath>
+#include <vector>
 
 #include "firmware/math.hpp"
 #include "firmware/scene.hpp"
@@ -10,13 +11,27 @@
 
 namespace rtsim::platform::pxpl5 {
 
-/// A run's frames and the camera's path through them (frames, camera.spin, camera.distance).
+/// A run's frames and the camera's path through them (frames, camera.path, camera.spin,
+/// camera.distance). The user moves during some frames and rests during others (VOL2's
+/// interaction, L288): after a frame during which the user moved, the eye has turned
+/// `camera.spin` degrees.
 struct CameraPath {
   int frames = 1;
-  double spin_deg = 0.0;  ///< the turn from one frame to the next
-  double distance = 1.0;  ///< the eye's distance from the point looked at, times the scene's
+  double spin_deg = 0.0;     ///< the turn after a frame during which the user moves
+  double distance = 1.0;     ///< the eye's distance from the point looked at, times the scene's
+  std::vector<bool> moving;  ///< by frame: the user moves during it (the next frame's view turns)
+
+  /// Turns of the eye between frame f and the last.
+  int turns_after(int f) const {
+    int n = 0;
+    for (int g = f; g + 1 < frames; ++g) n += moving[static_cast<std::size_t>(g)] ? 1 : 0;
+    return n;
+  }
 
   static void declare_params(params::ParamRegistry& r);
+  /// camera.path ("move 4, rest 6": segments of frames during which the user moves or rests)
+  /// or, without one, `frames` frames all moving when camera.spin is not 0. A path that cannot
+  /// be read, or `frames` set to another count, is bad input (exit 2).
   static CameraPath read(const params::ParamRegistry& r);
 };
 
@@ -26,11 +41,11 @@ inline void move_eye(scenes::Camera& c, double distance) {
   if (distance != 1.0) c.from = c.at + (c.from - c.at) * distance;
 }
 
-/// The camera of frame f of `frames`: the last frame's `last` turned about the vertical axis by
-/// (f - (frames - 1)) x `spin_deg`.
-inline scenes::Camera frame_camera(const scenes::Camera& last, int f, int frames, double spin_deg) {
+/// The camera of frame f: the last frame's `last` turned back about the vertical axis by the
+/// turns between f and the last frame.
+inline scenes::Camera frame_camera(const scenes::Camera& last, const CameraPath& path, int f) {
   scenes::Camera c = last;
-  const double a = (f - (frames - 1)) * spin_deg * kPi / 180.0;
+  const double a = -path.turns_after(f) * path.spin_deg * kPi / 180.0;
   if (a == 0.0) return c;
   const Vec3 k = glm::normalize(last.up);
   const Vec3 v = last.from - last.at;

@@ -21,7 +21,7 @@ std::vector<std::vector<Sample>> cast_functionally(const Setup& setup, MachineRu
       by_compositor[static_cast<std::size_t>(lay.compositor_of_lattice_row(lattice.j_of(s.index)))]
           .push_back(s);
     };
-    cast_region(lay, task, camera, spp, g, 0, &frame, out, cast_rays);
+    cast_region(lay, setup.schedule, task, camera, spp, g, 0, &frame, out, cast_rays);
   }
   return by_compositor;
 }

@@ -14,24 +14,27 @@ long Layout::pixels_of_renderer(int k) const {
   return static_cast<long>(std::max(0, w)) * std::max(0, h);
 }
 
-tasks::LatticeRange Layout::lattice_of_renderer(int k) const {
-  const tasks::SampleLattice lat = lattice();
+tasks::LatticeRange Layout::lattice_of_renderer(int k, int step) const {
+  const tasks::SampleLattice grid(width, height, rule.finest * step);
   const int tx = k % tiles_x(), ty = k / tiles_x();
   const int x0 = tx * tile, y0 = ty * tile;
   const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
-  return {lat.first_for(x0), lat.first_for(y0), lat.last_for(x1) + 1, lat.last_for(y1) + 1, 0};
+  return {grid.first_for(x0) * step, grid.first_for(y0) * step, grid.last_for(x1) * step + 1,
+          grid.last_for(y1) * step + 1, 0};
 }
 
-std::vector<std::vector<int>> Layout::tiles_reading(bool rows) const {
+std::vector<std::vector<int>> Layout::tiles_reading(bool rows, int step) const {
   const tasks::SampleLattice lat = lattice();
+  const tasks::SampleLattice grid(width, height, rule.finest * step);
   const int n = rows ? lat.ny() : lat.nx();
   const int tiles = rows ? tiles_y() : tiles_x();
   const int extent = rows ? height : width;
   std::vector<std::vector<int>> out(static_cast<std::size_t>(n));
   for (int t = 0; t < tiles; ++t) {
-    const int first = lat.first_for(t * tile),
-              last = lat.last_for(std::min(t * tile + tile, extent));
-    for (int i = first; i <= last && i < n; ++i) out[static_cast<std::size_t>(i)].push_back(t);
+    const int first = grid.first_for(t * tile),
+              last = grid.last_for(std::min(t * tile + tile, extent));
+    for (int i = first; i <= last && i * step < n; ++i)
+      out[static_cast<std::size_t>(i * step)].push_back(t);
   }
   return out;
 }
@@ -76,16 +79,18 @@ std::vector<Region> Layout::regions() const {
   return out;
 }
 
-long Layout::positions_sent(const Region& g, int k, int frame) const {
+long Layout::positions_sent(const Region& g, int k, const tasks::RefinementSchedule& schedule,
+                            int frame) const {
   long n = 0;
   const tasks::LatticeRange& r = g.lattice;
+  const bool casts = schedule.plan(frame).cast_level >= 0;
   for (int j = r.j0; j < r.j1; ++j) {
     if (compositor_of_lattice_row(j) != k) continue;
     if (rule.adaptive()) {
-      n += r.i1 - r.i0;
+      n += casts ? r.i1 - r.i0 : 0;
       continue;
     }
-    for (int i = r.i0; i < r.i1; ++i) n += tasks::updated_in_frame(i, j, frame, update_period);
+    for (int i = r.i0; i < r.i1; ++i) n += schedule.casts(i, j, frame);
   }
   return n;
 }

@@ -8,6 +8,7 @@
 // display (L282: 20 of them tile 640 x 512) and reads the lattice positions around its pixels.
 #include <vector>
 
+#include "firmware/tasks/refinement_schedule.hpp"
 #include "firmware/tasks/region_sampling.hpp"
 #include "firmware/tasks/sample_lattice.hpp"
 #include "params/registry.hpp"
@@ -28,8 +29,12 @@ struct Layout {
   int square = 64;
   tasks::SamplingRule rule;
   int update_period = 1;  ///< partial updating: 1 (100%), 2 (50%) or 4 (25%)
+  int refine_levels = 1;  ///< successive refinement's levels (refinement_schedule.hpp)
 
-  tasks::SampleLattice lattice() const { return {width, height, rule.finest}; }
+  /// The lattice, its extent a multiple of the coarsest level's spacing.
+  tasks::SampleLattice lattice() const {
+    return {width, height, rule.finest, 1 << (refine_levels - 1)};
+  }
 
   int tiles_x() const { return (width + tile - 1) / tile; }
   int tiles_y() const { return (height + tile - 1) / tile; }
@@ -52,19 +57,23 @@ struct Layout {
   int renderer_of(int x, int y) const { return (y / tile) * tiles_x() + x / tile; }
   /// Pixels renderer k owns.
   long pixels_of_renderer(int k) const;
-  /// The lattice positions renderer k reads: [i0, i1) x [j0, j1).
-  tasks::LatticeRange lattice_of_renderer(int k) const;
-  /// The renderers that read lattice column i (or row j: `rows`), as tile columns (rows).
-  std::vector<std::vector<int>> tiles_reading(bool rows) const;
+  /// The lattice positions renderer k reads on the grid of every `step`-th position: within
+  /// [i0, i1) x [j0, j1).
+  tasks::LatticeRange lattice_of_renderer(int k, int step = 1) const;
+  /// The renderers that read lattice column i (or row j: `rows`) on the grid of every `step`-th
+  /// position, as tile columns (rows).
+  std::vector<std::vector<int>> tiles_reading(bool rows, int step = 1) const;
 
   /// The frame's regions in screen order: sample rows (one lattice row each, L352) or squares
   /// of `square` pixels (L360), left to right, top to bottom, with their lattice positions.
   std::vector<Region> regions() const;
-  /// Positions region `g` sends compositor k in frame `frame` (partial updating and all).
-  long positions_sent(const Region& g, int k, int frame) const;
+  /// Positions region `g` sends compositor k in frame `frame` of `schedule` (partial updating,
+  /// refinement and all).
+  long positions_sent(const Region& g, int k, const tasks::RefinementSchedule& schedule,
+                      int frame) const;
 
   /// Declares what a layout is read from: caster_count, compositor_count, compositor.band_rows,
-  /// assign.scheme, assign.square, sampling.* and update.fraction.
+  /// assign.scheme, assign.square, sampling.*, update.fraction and refine.levels.
   static void declare_params(params::ParamRegistry& r);
   /// The layout a run's parameters give (its size is the run's: set after), with the sampling
   /// rule checked: a rule that cannot be followed is bad input (exit 2).

@@ -105,6 +105,23 @@ const modules::ChoiceParam kUpdateFraction(
                     "compositors keep the rest from earlier frames. The first frame casts all",
      .source = "seed 004 L373-L379"});
 
+const modules::CountParam kRefineLevels(
+    {.name = "refine.levels",
+     .default_value = "1",
+     .min = "1",
+     .max = "6",
+     .unit = "levels",
+     .description =
+         "Successive refinement: resolution levels of the image, the coarsest a ray every "
+         "2^(levels-1) lattice steps, each finer one halving it down to sampling.finest. While "
+         "the view changes, frames cast and display the coarsest; while it rests, each frame "
+         "casts the next level's new positions (a share of them with partial updating) and is "
+         "displayed at the finest level complete. 1: every frame at sampling.finest. Uniform "
+         "sampling only",
+     .source = "seed 004 L288, L312 (the array of composited samples sent to the splat "
+               "processors \"is thus of variable size\"); assumption: a level halves the "
+               "spacing (Fig. 9's 8 x 8 and 4 x 4)"});
+
 [[noreturn]] void bad_param(const modules::ModuleParams& p, const params::ParamSpec& spec,
                             const std::string& what) {
   throw InputError(spec.name + " (set at " + p.where_set(spec.name) + ")", 0,
@@ -144,6 +161,11 @@ void check_rule(const modules::ModuleParams& p, Layout& lay) {
                       start + " = " + finest + " for partial updating)");
     }
   }
+  if (lay.refine_levels > 1 && lay.rule.adaptive())
+    bad_param(p, kRefineLevels.spec(),
+              "successive refinement casts a level's grid over frames, and adaptive subdivision "
+              "refines each cell within one frame: use one of them (" +
+                  start + " = " + finest + " for successive refinement)");
   if (lay.rule.start < lay.rule.finest)
     bad_param(p, kStart.spec(),
               "rays start at most as close as they end: " + start + " (" +
@@ -168,6 +190,7 @@ void Layout::declare_params(params::ParamRegistry& r) {
   top.add(kSubdivision);
   top.add(kObjectEdges);
   top.add(kUpdateFraction);
+  top.add(kRefineLevels);
 }
 
 Layout Layout::read(const params::ParamRegistry& r) {
@@ -186,6 +209,7 @@ Layout Layout::read(const params::ParamRegistry& r) {
   lay.rule.subdivision = p.get(kSubdivision) == "conventional" ? tasks::Subdivision::kConventional
                                                                : tasks::Subdivision::kPartial;
   lay.update_period = 100 / static_cast<int>(std::stol(p.get(kUpdateFraction)));
+  lay.refine_levels = static_cast<int>(p.get(kRefineLevels));
   check_rule(p, lay);
   return lay;
 }

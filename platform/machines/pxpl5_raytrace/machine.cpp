@@ -43,9 +43,20 @@ namespace {
 /// The ring's module (and its parameters' class).
 constexpr const char* kRing = "ring";
 
-/// Whether the image is the plain functional render's: every pixel cast every frame.
-bool every_pixel(const pxpl5::Layout& lay) {
-  return lay.rule.finest == 1 && !lay.rule.adaptive() && lay.update_period == 1;
+/// Whether the image is the plain functional render's: every pixel cast, at the scene's view, in
+/// the displayed frame, which is the last.
+bool every_pixel(const pxpl5::Layout& lay, const tasks::RefinementSchedule& schedule,
+                 int display_frame) {
+  const tasks::FramePlan& shown = schedule.plan(display_frame);
+  return lay.rule.finest == 1 && !lay.rule.adaptive() && lay.update_period == 1 &&
+         lay.refine_levels == 1 && display_frame == schedule.frames() - 1 &&
+         shown.cast_level == 0 && shown.phase < 0;
+}
+
+/// The run's refinement schedule: its camera path's moving frames, its layout's levels and
+/// partial updating.
+tasks::RefinementSchedule schedule_of(const pxpl5::Layout& lay, const pxpl5::CameraPath& path) {
+  return {path.moving, lay.refine_levels, lay.update_period};
 }
 
 }  // namespace
@@ -84,11 +95,13 @@ FunctionalTwin Pxpl5Raytrace::make_twin(scenes::Scene& scene,
   // The image is the last frame's: the scene's camera, moved to camera.distance, is that
   // frame's; the earlier ones are turned back from it (run()).
   pxpl5::move_eye(scene.camera, path.distance);
+  const tasks::RefinementSchedule schedule = schedule_of(layout, path);
+  const int shown = pxpl5::FrameBuffer::display_frame(r, path.frames);
   FunctionalTwin twin = make_functional_twin(scene, functional::read_render_settings(r));
-  if (!every_pixel(layout)) {
-    twin.render = [layout, path](const scenes::Scene& s, const Tracer& tracer,
-                                 const functional::RenderOptions& opts) {
-      return pxpl5::sampled_render(s, tracer, opts, layout, path.frames, path.spin_deg);
+  if (!every_pixel(layout, schedule, shown)) {
+    twin.render = [layout, path, schedule, shown](const scenes::Scene& s, const Tracer& tracer,
+                                                  const functional::RenderOptions& opts) {
+      return pxpl5::sampled_render(s, tracer, opts, layout, path, schedule, shown);
     };
   }
   pxpl5::check_scene_fits(scene.name, twin.geometry->shapes.size(), r);
@@ -112,9 +125,10 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   setup.layout.height = run.height();
   const CameraPath path = CameraPath::read(r);
   setup.frames = path.frames;
+  setup.schedule = schedule_of(setup.layout, path);
+  setup.display_frame = FrameBuffer::display_frame(r, path.frames);
   for (int f = 0; f < setup.frames; ++f)
-    setup.cameras.emplace_back(frame_camera(scene.camera, f, setup.frames, path.spin_deg),
-                               run.width(), run.height());
+    setup.cameras.emplace_back(frame_camera(scene.camera, path, f), run.width(), run.height());
   setup.sizes = WireSizes::read(r);
   setup.gp_timing = read_gp_timing(r);
   setup.bypass = Bypass::read(r);
@@ -190,7 +204,11 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (std::size_t f = 0; f < shown.size(); ++f) {
     const double latency = (shown[f] - host.started()[f]).to_seconds();
     const double interval = (shown[f] - (f == 0 ? host.started()[0] : shown[f - 1])).to_seconds();
+    const tasks::FramePlan& plan = setup.schedule.plan(static_cast<int>(f));
     per_frame.push_back({{"frame", f},
+                         {"new_view", plan.new_view},
+                         {"cast_level", plan.cast_level},
+                         {"display_level", plan.display_level},
                          {"start_s", host.started()[f].to_seconds()},
                          {"display_s", shown[f].to_seconds()},
                          {"latency_s", latency},
@@ -224,7 +242,8 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
        {{"finest", lay.rule.finest},
         {"start", lay.rule.start},
         {"adaptive", lay.rule.adaptive()},
-        {"update_fraction", 1.0 / lay.update_period}}},
+        {"update_fraction", 1.0 / lay.update_period},
+        {"refine_levels", lay.refine_levels}}},
       {"rays_per_frame", static_cast<double>(rays) / setup.frames},
       // Fig. 9's abscissa: the share of the screen the scene covers (last frame's
       // rays on the screen that hit; adaptive squares cast more where it is).

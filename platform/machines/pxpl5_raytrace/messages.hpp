@@ -35,11 +35,12 @@ enum class Kind : std::uint8_t {
   kBand,        ///< compositor -> renderer: the band's samples in the renderer's tile
   kPixels,      ///< renderer -> frame buffer: display pixels
   kFrameDone,   ///< frame buffer -> host: every pixel of frame f is in
+  kFrameBegin,  ///< master GP -> compositor: frame f's regions are being handed out
 };
 
 /// Traffic classes of the ring's statistics, in Kind order.
-inline const std::vector<std::string> kTrafficClasses = {"start", "request", "assign",    "samples",
-                                                         "band",  "pixels",  "frame_done"};
+inline const std::vector<std::string> kTrafficClasses = {
+    "start", "request", "assign", "samples", "band", "pixels", "frame_done", "frame_begin"};
 
 struct Message {
   Kind kind = Kind::kStartFrame;

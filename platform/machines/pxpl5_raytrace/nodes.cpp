@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <set>
 
+#include "common/input_error.hpp"
 #include "firmware/tasks/lattice_ray_task.hpp"
 #include "firmware/tasks/region_sampling.hpp"
 #include "modules/module_params.hpp"
@@ -54,6 +56,16 @@ const modules::TimeParam kTileTime(
      .description = "SIMD renderer time to resample its 128 x 128 tile (all pixels at once, "
                     "whatever their content)",
      .source = "assumption: the seed gives none (Fig. 6, L350, without numbers)"});
+const modules::IntParam kDisplayFrame(
+    {.name = "frame",
+     .default_value = "-1",
+     .min = "-1",
+     .max = "99999",
+     .unit = "frame",
+     .description = "The frame whose displayed image is written (image.png, image.exr), counted "
+                    "from 0; -1: the last. An earlier frame shows what the user saw then (a "
+                    "coarse or partly updated image)",
+     .source = "simulator setting, not of the machine"});
 const modules::TimeParam kPixelTime({.name = "pixel_time",
                                      .default_value = "10 ns",
                                      .max = "1 s",
@@ -83,6 +95,7 @@ constexpr const char* kAssign = "assign";
 constexpr const char* kCompositor = "compositor";
 constexpr const char* kRenderer = "renderer";
 constexpr const char* kFrameBuffer = "frame_buffer";
+constexpr const char* kDisplay = "display";
 
 }  // namespace
 
@@ -159,10 +172,20 @@ void MasterGp::assign(int caster) {
 void MasterGp::begin_frame(int f) {
   frame_ = f;
   regions_ = setup_.layout.regions();
+  if (cost_.size() < regions_.size()) cost_.resize(regions_.size(), 0.0);
   // A sampled frame: the detailed regions only (the others were cast functionally).
   if (setup_.sample)
     std::erase_if(regions_, [&](const Region& g) { return !setup_.sample->detailed_unit(g.id); });
-  cost_.resize(regions_.size(), 0.0);
+  // A resting view that is fully refined casts nothing: no region is handed out.
+  if (setup_.schedule.plan(f).cast_level < 0) regions_.clear();
+  // The compositors learn the frame has begun (L296: the master synchronises the system): one
+  // whose bands get no sample this frame still sends them on.
+  for (int k = 0; k < setup_.layout.compositors; ++k) {
+    Message begin;
+    begin.kind = Kind::kFrameBegin;
+    begin.frame = f;
+    send(setup_.layout.compositor(k), std::move(begin));
+  }
   // 0th-order cost prediction (L360): the costliest first, by what each cost when last cast
   // (with frames in flight, a region of the previous frame still being cast counts its cost
   // before that).
@@ -240,7 +263,8 @@ void RayCaster::run() {
     if (m.kind != Kind::kAssign) continue;
     const sc_core::sc_time began = clock_.now();
     const Region& g = m.region;
-    const bool last_frame = m.frame == setup_.frames - 1;
+    // The displayed frame's primary hits (display.frame: the image's AOVs and coverage).
+    const bool last_frame = m.frame == setup_.display_frame;
     const shading::PinholeCamera& camera = setup_.cameras[static_cast<std::size_t>(m.frame)];
     const Cost before = counters.cost;
     const auto cast = [&](int i, int j) {
@@ -257,9 +281,7 @@ void RayCaster::run() {
         frame.record_primary(static_cast<std::uint32_t>(pixel), found, hit);
       });
     };
-    const auto update = [&](int i, int j) {
-      return tasks::updated_in_frame(i, j, m.frame, lay.update_period);
-    };
+    const auto update = [&](int i, int j) { return setup_.schedule.casts(i, j, m.frame); };
     const auto out = [&](const Sample& s) {
       by_compositor[static_cast<std::size_t>(lay.compositor_of_lattice_row(lattice.j_of(s.index)))]
           .push_back(s);
@@ -309,12 +331,16 @@ Compositor::Compositor(sc_core::sc_module_name name, MachineRun& run,
   set_timing(setup.gp_timing);
   const Layout& lay = setup.layout;
   const std::vector<Region> regions = lay.regions();
-  for (int phase = 0; phase <= lay.update_period; ++phase) {
-    // Phase 0 is the first frame; phase p > 0 any frame f > 0 with f mod period = p - 1.
-    const int frame = phase == 0 ? 0 : lay.update_period + phase - 1;
-    long n = 0;
-    for (const Region& g : regions) n += lay.positions_sent(g, number, frame);
-    expected_.push_back(n);
+  // By frame: the samples the casters send it (the schedule's casts in its rows), counted once
+  // for each level and phase a frame can cast.
+  std::map<std::pair<int, int>, long> by_plan;
+  for (int f = 0; f < setup.frames; ++f) {
+    const tasks::FramePlan& plan = setup.schedule.plan(f);
+    const auto [it, added] = by_plan.try_emplace({plan.cast_level, plan.phase}, 0);
+    if (added)
+      for (const Region& g : regions)
+        it->second += lay.positions_sent(g, number, setup.schedule, f);
+    expected_.push_back(it->second);
   }
   SC_THREAD(run);
 }
@@ -336,10 +362,7 @@ void Compositor::probe_samples(const Message& m) {
   }
 }
 
-long Compositor::expected(int frame) const {
-  const int phase = frame == 0 ? 0 : 1 + frame % setup_.layout.update_period;
-  return expected_[static_cast<std::size_t>(phase)];
-}
+long Compositor::expected(int frame) const { return expected_[static_cast<std::size_t>(frame)]; }
 
 void Compositor::run() {
   const Layout& lay = setup_.layout;
@@ -354,8 +377,17 @@ void Compositor::run() {
     }
   const auto nx = static_cast<std::size_t>(lattice.nx());
   std::vector<Sample> kept(rows.size() * nx);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t i = 0; i < nx; ++i)
+      kept[r * nx + i].index = lattice.index(static_cast<int>(i), rows[r]);
   std::vector<int> written(kept.size(), -1);  // the frame each position was last written in
-  const auto tile_cols = lay.tiles_reading(false), tile_rows = lay.tiles_reading(true);
+  // By refinement level: the renderers reading each lattice column and row of its grid.
+  const tasks::RefinementSchedule& schedule = setup_.schedule;
+  std::vector<std::vector<std::vector<int>>> tile_cols, tile_rows;
+  for (int l = 0; l < schedule.levels(); ++l) {
+    tile_cols.push_back(lay.tiles_reading(false, schedule.step(l)));
+    tile_rows.push_back(lay.tiles_reading(true, schedule.step(l)));
+  }
   std::vector<std::vector<Sample>> by_renderer(static_cast<std::size_t>(lay.renderers()));
   const auto keep = [&](const Sample& s, int frame) {
     const int j = lattice.j_of(s.index), i = lattice.i_of(s.index);
@@ -367,6 +399,7 @@ void Compositor::run() {
   // later frame's samples (frames in flight) wait in `held` until this frame's bands are sent.
   std::map<int, long> have;
   std::map<int, std::vector<Sample>> held;
+  std::set<int> begun;  // frames the master has begun handing out
   int current = 0;
   // A sampled frame: the regions not simulated in detail are here from the start.
   if (!setup_.functional_samples.empty())
@@ -376,33 +409,47 @@ void Compositor::run() {
     }
   for (;;) {
     Message m = receive(Wait::kWork);
-    if (m.kind != Kind::kSamples) continue;
-    if (!setup_.bypass.back_end)
-      compute_for(modules::times(sample_time_, m.samples.size()), "composite",
-                  {{"samples", m.samples.size()}});
-    probe_samples(m);
-    samples_ += m.samples.size();
-    have[m.frame] += static_cast<long>(m.samples.size());
-    if (m.frame == current) {
-      for (const Sample& s : m.samples) keep(s, m.frame);
+    if (m.kind == Kind::kFrameBegin) {
+      begun.insert(m.frame);
+    } else if (m.kind == Kind::kSamples) {
+      if (!setup_.bypass.back_end)
+        compute_for(modules::times(sample_time_, m.samples.size()), "composite",
+                    {{"samples", m.samples.size()}});
+      probe_samples(m);
+      samples_ += m.samples.size();
+      have[m.frame] += static_cast<long>(m.samples.size());
+      if (m.frame == current) {
+        for (const Sample& s : m.samples) keep(s, m.frame);
+      } else {
+        auto& later = held[m.frame];
+        later.insert(later.end(), m.samples.begin(), m.samples.end());
+      }
     } else {
-      auto& later = held[m.frame];
-      later.insert(later.end(), m.samples.begin(), m.samples.end());
+      continue;
     }
-    while (current < setup_.frames && have[current] >= expected(current)) {
-      // Its bands have the frame: each renderer gets the positions its tile reads.
-      for (std::size_t r = 0; r < rows.size(); ++r)
-        for (std::size_t i = 0; i < nx; ++i) {
+    while (current < setup_.frames && begun.contains(current) &&
+           have[current] >= expected(current)) {
+      // Its bands have the frame: each renderer gets the positions its tile reads on the grid
+      // of the level the frame is displayed at (a variable-size array, L312).
+      const int level = schedule.plan(current).display_level;
+      const auto step = static_cast<std::size_t>(schedule.step(level));
+      const auto& cols = tile_cols[static_cast<std::size_t>(level)];
+      const auto& lines = tile_rows[static_cast<std::size_t>(level)];
+      for (std::size_t r = 0; r < rows.size(); ++r) {
+        if (static_cast<std::size_t>(rows[r]) % step != 0) continue;
+        for (std::size_t i = 0; i < nx; i += step) {
           const Sample& s = kept[r * nx + i];
-          for (int ty : tile_rows[static_cast<std::size_t>(rows[r])])
-            for (int tx : tile_cols[i])
+          for (int ty : lines[static_cast<std::size_t>(rows[r])])
+            for (int tx : cols[i])
               by_renderer[static_cast<std::size_t>(ty * lay.tiles_x() + tx)].push_back(s);
         }
+      }
       for (int k = 0; k < lay.renderers(); ++k) {
         auto& part = by_renderer[static_cast<std::size_t>(k)];
         if (!part.empty()) send(lay.renderer(k), take_samples(Kind::kBand, current, part));
       }
       have.erase(current);
+      begun.erase(current);
       ++current;
       if (const auto h = held.find(current); h != held.end()) {
         for (const Sample& s : h->second) keep(s, current);
@@ -430,9 +477,22 @@ Renderer::Renderer(sc_core::sc_module_name name, MachineRun& run,
 void Renderer::run() {
   const Layout& lay = setup_.layout;
   const tasks::SampleLattice lattice = lay.lattice();
-  const tasks::LatticeRange r = lay.lattice_of_renderer(number_);
-  const int cols = r.i1 - r.i0;
-  const long mine = static_cast<long>(cols) * (r.j1 - r.j0);
+  const tasks::RefinementSchedule& schedule = setup_.schedule;
+  // By refinement level: the lattice range its tile reads on the level's grid, and how many
+  // grid positions that is.
+  struct Reads {
+    tasks::LatticeRange range;
+    int step = 1;
+    long positions = 0;
+  };
+  std::vector<Reads> reads;
+  for (int l = 0; l < schedule.levels(); ++l) {
+    const int step = schedule.step(l);
+    const tasks::LatticeRange r = lay.lattice_of_renderer(number_, step);
+    reads.push_back(
+        {r, step,
+         static_cast<long>((r.i1 - 1 - r.i0) / step + 1) * ((r.j1 - 1 - r.j0) / step + 1)});
+  }
   const int tx = number_ % lay.tiles_x(), ty = number_ / lay.tiles_x();
   const int x0 = tx * lay.tile, y0 = ty * lay.tile;
   const int x1 = std::min(x0 + lay.tile, lay.width), y1 = std::min(y0 + lay.tile, lay.height);
@@ -441,25 +501,32 @@ void Renderer::run() {
   std::map<int, long> have;
   int current = 0;
   std::vector<Sample> pixels;
+  const auto reads_of = [&](int frame) -> const Reads& {
+    return reads[static_cast<std::size_t>(schedule.plan(frame).display_level)];
+  };
+  const auto slot = [](const Reads& rd, int i, int j) {
+    const auto cols = static_cast<std::size_t>(rd.range.i1 - rd.range.i0);
+    return static_cast<std::size_t>(j - rd.range.j0) * cols +
+           static_cast<std::size_t>(i - rd.range.i0);
+  };
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kBand) continue;
+    const Reads& rd = reads_of(m.frame);
     auto& tile = tiles[m.frame];
-    tile.resize(static_cast<std::size_t>(mine));
-    for (const Sample& s : m.samples) {
-      const int i = lattice.i_of(s.index), j = lattice.j_of(s.index);
-      tile[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
-           static_cast<std::size_t>(i - r.i0)] = s.sum;
-    }
+    tile.resize(static_cast<std::size_t>(rd.range.i1 - rd.range.i0) *
+                static_cast<std::size_t>(rd.range.j1 - rd.range.j0));
+    for (const Sample& s : m.samples)
+      tile[slot(rd, lattice.i_of(s.index), lattice.j_of(s.index))] = s.sum;
     have[m.frame] += static_cast<long>(m.samples.size());
-    while (have[current] >= mine) {
+    while (current < setup_.frames && have[current] >= reads_of(current).positions) {
+      const Reads& now = reads_of(current);
       const auto& t = tiles[current];
       const auto at = [&](int i, int j) -> const std::array<std::int64_t, 3>& {
-        return t[static_cast<std::size_t>(j - r.j0) * static_cast<std::size_t>(cols) +
-                 static_cast<std::size_t>(i - r.i0)];
+        return t[slot(now, i, j)];
       };
       // SIMD: the whole tile at once, whatever its content (L282): each display pixel from the
-      // lattice positions around it.
+      // positions around it on the grid of the level the frame is displayed at.
       if (!setup_.bypass.back_end)
         compute_for(tile_time_, "resample", {{"pixels", (x1 - x0) * (y1 - y0)}});
       for (int y = y0; y < y1; ++y)
@@ -467,7 +534,7 @@ void Renderer::run() {
           Sample p;
           p.index = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(lay.width) +
                     static_cast<std::uint32_t>(x);
-          p.sum = lattice.resample(x, y, at);
+          p.sum = lattice.resample(x, y, now.step, at);
           pixels.push_back(p);
         }
       send(lay.frame_buffer(), take_samples(Kind::kPixels, current, pixels));
@@ -482,6 +549,20 @@ void Renderer::run() {
 
 void FrameBuffer::declare_params(params::ParamRegistry& r) {
   modules::ParamDecls(r, kFrameBuffer, false).add(kPixelTime);
+  modules::ParamDecls(r, kDisplay, false).add(kDisplayFrame);
+}
+
+int FrameBuffer::display_frame(const params::ParamRegistry& r, int frames) {
+  const modules::ModuleParams p(r, kDisplay);
+  const std::int64_t f = p.get(kDisplayFrame);
+  if (f >= frames)
+    throw InputError(std::string(kDisplay) + "." + kDisplayFrame.name() + " (set at " +
+                         p.where_set(kDisplayFrame.name()) + ")",
+                     0,
+                     "pxpl5-raytrace: frame " + std::to_string(f) +
+                         " is not rendered: the run has " + std::to_string(frames) +
+                         " frames (0 to " + std::to_string(frames - 1) + "; -1 for the last)");
+  return f < 0 ? frames - 1 : static_cast<int>(f);
 }
 
 FrameBuffer::FrameBuffer(sc_core::sc_module_name name, MachineRun& run,
@@ -504,8 +585,9 @@ void FrameBuffer::run() {
     if (!setup_.bypass.back_end)
       compute_for(modules::times(pixel_time_, m.samples.size()), "write",
                   {{"pixels", m.samples.size()}});
-    // The image is the last frame's: the pixels as they arrived.
-    if (m.frame == setup_.frames - 1)
+    // The image is the displayed frame's (display.frame, the last by default): its pixels as
+    // they arrived.
+    if (m.frame == setup_.display_frame)
       for (const Sample& s : m.samples) frame.fb().add_raw(s.index, s.sum);
     have[m.frame] += static_cast<long>(m.samples.size());
     for (auto f = static_cast<int>(displayed_.size()); f < setup_.frames && have[f] >= all;

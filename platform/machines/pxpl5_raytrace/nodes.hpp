@@ -146,8 +146,10 @@ class Renderer : public RingNode {
 class FrameBuffer : public RingNode {
  public:
   SC_HAS_PROCESS(FrameBuffer);
-  /// frame_buffer.pixel_time.
+  /// frame_buffer.pixel_time and display.frame.
   static void declare_params(params::ParamRegistry& r);
+  /// display.frame for a run of `frames` frames (-1: the last); one past the run is bad input.
+  static int display_frame(const params::ParamRegistry& r, int frames);
   FrameBuffer(sc_core::sc_module_name name, MachineRun& run, modules::RingChannel<Message>& ring,
               const Setup& setup);
   /// When each frame was displayed: every pixel of it and of the frames before it written.

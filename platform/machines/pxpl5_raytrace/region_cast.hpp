@@ -12,14 +12,16 @@
 
 namespace rtsim::platform::pxpl5 {
 
-/// Casts region `g` in frame `frame` (partial updating decides which positions) and hands each
+/// Casts region `g` in frame `frame` of `schedule` (refinement and partial updating decide
+/// which positions) and hands each
 /// sample to `out`. The primary hits go into `primaries` (the image's frame: the last frame's;
 /// null for an earlier frame). With `rays` false the samples are blank: the same positions, no
 /// ray cast (what a --sample-error pilot, which wants only timing, needs).
 template <class Out>
-void cast_region(const Layout& layout, tasks::LatticeRayTask& task,
-                 const shading::PinholeCamera& camera, int spp, const Region& g, int frame,
-                 functional::FrameState* primaries, Out&& out, bool rays = true) {
+void cast_region(const Layout& layout, const tasks::RefinementSchedule& schedule,
+                 tasks::LatticeRayTask& task, const shading::PinholeCamera& camera, int spp,
+                 const Region& g, int frame, functional::FrameState* primaries, Out&& out,
+                 bool rays = true) {
   const tasks::SampleLattice lattice = layout.lattice();
   const auto cast = [&](int i, int j) {
     if (!rays) {
@@ -32,9 +34,8 @@ void cast_region(const Layout& layout, tasks::LatticeRayTask& task,
       if (pixel >= 0) primaries->record_primary(static_cast<std::uint32_t>(pixel), found, hit);
     });
   };
-  const auto update = [&](int i, int j) {
-    return tasks::updated_in_frame(i, j, frame, layout.update_period);
-  };
+  if (schedule.plan(frame).cast_level < 0) return;  // a resting view fully refined
+  const auto update = [&](int i, int j) { return schedule.casts(i, j, frame); };
   tasks::sample_region(lattice, layout.rule, g.lattice, spp, cast, update, out);
 }
 

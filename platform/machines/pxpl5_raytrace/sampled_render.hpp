@@ -5,16 +5,20 @@
 // frame to frame under partial updating as the compositors keep them, and display pixels
 // resampled by the same arithmetic (SampleLattice::resample) -- with no ring and no timing, so
 // that the machine's image, built from what crossed the ring, can be checked against it.
+#include "firmware/tasks/refinement_schedule.hpp"
 #include "platform/functional/functional_renderer.hpp"
+#include "platform/machines/pxpl5_raytrace/camera_path.hpp"
 #include "platform/machines/pxpl5_raytrace/layout.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
-/// The image of the last of `frames` frames along the camera path (`spin_deg` a frame, ending at
-/// the scene's camera). `layout` gives the regions and the sampling rule; its size is the
-/// render's.
+/// The image displayed at frame `display_frame` of the camera path `path` (its last frame the
+/// scene's camera), following the refinement schedule `schedule`. `layout` gives the regions and
+/// the sampling rule; its size is the render's.
 functional::RenderResult sampled_render(const scenes::Scene& scene, const Tracer& tracer,
                                         const functional::RenderOptions& opts, Layout layout,
-                                        int frames, double spin_deg);
+                                        const CameraPath& path,
+                                        const tasks::RefinementSchedule& schedule,
+                                        int display_frame);
 
 }  // namespace rtsim::platform::pxpl5

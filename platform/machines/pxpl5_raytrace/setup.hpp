@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "firmware/shading/camera.hpp"
+#include "firmware/tasks/refinement_schedule.hpp"
 #include "modules/processor_timing.hpp"
 #include "params/registry.hpp"
 #include "platform/machines/frame_sample.hpp"
@@ -28,6 +29,10 @@ struct Bypass {
 struct Setup {
   Layout layout;  ///< where everyone is, the regions, the sampling rule
   int frames = 1;
+  /// By frame: what it casts and the level it is displayed at (refinement, partial updating).
+  tasks::RefinementSchedule schedule;
+  /// The frame whose image is written (display.frame; the last by default).
+  int display_frame = 0;
   std::vector<shading::PinholeCamera> cameras;  ///< one per frame
   WireSizes sizes;
   modules::ProcessorTiming gp_timing;  ///< an i860 GP's (gp.*)
