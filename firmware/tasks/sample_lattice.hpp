@@ -123,14 +123,4 @@ class SampleLattice {
   int width_, height_, finest_, nx_, ny_;
 };
 
-/// Partial updating (L373-L379): with a fraction 1/period of the samples updated a frame,
-/// position (i, j) is cast in frame f when its phase, a modulus of its coordinates, is f mod
-/// period: a checkerboard at 50%, each position of every 2 x 2 block in turn at 25%. The first
-/// frame casts every position (the compositors' persistent array starts empty).
-inline bool updated_in_frame(int i, int j, int frame, int period) {
-  if (period <= 1 || frame == 0) return true;
-  const int phase = period == 2 ? (i + j) % 2 : (i % 2) + 2 * (j % 2);
-  return phase == frame % period;
-}
-
 }  // namespace rtsim::tasks
