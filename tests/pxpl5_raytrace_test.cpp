@@ -4,6 +4,8 @@
 // message and the casters share the work.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -115,6 +117,42 @@ TEST(Pxpl5Pipeline, FramesInFlightOverlapTheStagesAndChangeNoImage) {
               read_file(serial.at("image_png").get<std::string>()));
     EXPECT_EQ((*s)["rays"], serial["rays"]);
   }
+}
+
+// --latency-probe follows every sample from its caster to the display of its frame, through the
+// compositor, the renderer of its pixel and the frame buffer: each sample's journey ends when its
+// frame is displayed, so the mean end-to-end lies between the shortest and the longest frame
+// latency, and a slower renderer shows in the renderers' share.
+TEST(Pxpl5Raytrace, TheLatencyProbeFollowsEachSampleToTheDisplay) {
+  const std::string base =
+      "--scene builtin:default --width 160 --height 128 -p frames=3 -p camera.spin=3 "
+      "--latency-probe";
+  const auto fast = run_pxpl5("probe-fast", base);
+  const auto slow = run_pxpl5("probe-slow", base + " -p renderer.tile_time=\"50 ms\"");
+  ASSERT_FALSE(fast.empty() || slow.empty());
+  const auto& p = fast["latency_probe"];
+  EXPECT_EQ(p["unit"], "sample");
+  // Every sample of every frame: 160 x 128 positions, three frames.
+  EXPECT_EQ(p["rays"].get<double>(), 3.0 * 160 * 128);
+  EXPECT_LT(std::abs(p["unattributed_s"].get<double>()), 1e-9);
+  for (const char* stage :
+       {"caster*", "ring", "compositor*.inbox", "compositor*", "renderer*", "frame_buffer"})
+    EXPECT_TRUE(p["stages"].contains(stage)) << stage;
+  double shortest = 1e9, longest = 0;
+  for (const auto& f : fast["frame_sequence"]["per_frame"]) {
+    shortest = std::min(shortest, f["latency_s"].get<double>());
+    longest = std::max(longest, f["latency_s"].get<double>());
+  }
+  const double mean = p["end_to_end_s"]["mean"].get<double>();
+  EXPECT_LE(mean, longest);
+  EXPECT_GT(mean, 0.2 * shortest);  // a sample starts with its region, after its frame does
+  const auto renderers = [](const nlohmann::ordered_json& s) {
+    return s["latency_probe"]["stages"]["renderer*"]["service_s"].get<double>();
+  };
+  std::printf("per sample: end to end %.4g ms; renderer service %.4g ms, at 50 ms a tile %.4g ms\n",
+              mean * 1e3, renderers(fast) * 1e3, renderers(slow) * 1e3);
+  EXPECT_NEAR(renderers(slow), 0.050, 1e-9);  // every sample's tile took 50 ms
+  EXPECT_NEAR(renderers(fast), 0.001, 1e-9);
 }
 
 double frame_s(const nlohmann::ordered_json& s) {

@@ -19,6 +19,7 @@
 #include "platform/machines/pxpl5_raytrace/functional_regions.hpp"
 #include "platform/machines/pxpl5_raytrace/graphics_processor.hpp"
 #include "platform/machines/pxpl5_raytrace/nodes.hpp"
+#include "platform/machines/pxpl5_raytrace/sample_journeys.hpp"
 #include "platform/machines/pxpl5_raytrace/sampled_render.hpp"
 
 namespace rtsim::platform {
@@ -132,17 +133,21 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   setup.sizes = WireSizes::read(r);
   setup.gp_timing = read_gp_timing(r);
   setup.bypass = Bypass::read(r);
-  // --latency-probe follows samples: a caster traces a region in one go, and the renderers
-  // and the frame buffer work on whole tiles and frames, not on samples.
+  // --latency-probe follows samples (a caster traces a region in one go) to the display
+  // (sample_journeys.hpp).
   modules::LatencyProbe& probe = run.probe();
   probe.describe("sample",
-                 "from its caster beginning its region to its compositor having composited it; "
-                 "the renderers and the frame buffer work on whole tiles and frames, so a "
-                 "sample's journey ends at its compositor");
+                 "from its caster beginning its region to the frame buffer displaying its "
+                 "frame; at the renderer and the frame buffer, which work on whole tiles, a "
+                 "sample takes its own display pixel's tile's times");
   setup.stages = {.caster = probe.stage("caster*"),
                   .ring = probe.stage("ring"),
                   .inbox = probe.stage("compositor*.inbox"),
-                  .compositor = probe.stage("compositor*")};
+                  .compositor = probe.stage("compositor*"),
+                  .renderer = probe.stage("renderer*"),
+                  .frame_buffer = probe.stage("frame_buffer")};
+  SampleJourneys journeys;
+  if (probe.enabled()) setup.journeys = &journeys;
   if (opts.sample_every > 1) {
     // Sampled: every K-th region (in the master's order, which is screen order in a first
     // frame) in detail, the others cast functionally and handed to the compositors.

@@ -352,14 +352,33 @@ void Compositor::probe_samples(const Message& m) {
   const auto& st = setup_.stages;
   // Every sample of the message went the same way: the region's cast (its samples are done
   // together), the ring (waiting for the token and carried), the inbox, the compositing.
-  for (std::size_t k = 0; k < m.samples.size(); ++k) {
+  const Layout& lay = setup_.layout;
+  const tasks::SampleLattice lattice = lay.lattice();
+  auto& held = held_journeys_[m.frame];
+  for (const Sample& sample : m.samples) {
     const auto j = probe->begin(m.began);
     probe->add(j, st.caster, LatencyPart::kService, m.sent - m.began);
     probe->add(j, st.ring, LatencyPart::kTransfer, last_delivered_ - m.sent);
     probe->add(j, st.inbox, LatencyPart::kQueueing, last_taken_ - last_delivered_);
     probe->add(j, st.compositor, LatencyPart::kService, clock_.now() - last_taken_);
-    probe->end(j, clock_.now());
+    // The renderer of its own display pixel (the one under it, or the image's last).
+    const int x = std::min(lattice.i_of(sample.index) * lay.rule.finest, lay.width - 1);
+    const int y = std::min(lattice.j_of(sample.index) * lay.rule.finest, lay.height - 1);
+    held.push_back({j, lay.renderer_of(x, y), clock_.now()});
   }
+}
+
+void Compositor::probe_bands_sent(int frame) {
+  const auto h = held_journeys_.find(frame);
+  if (h == held_journeys_.end()) return;
+  modules::LatencyProbe& probe = run_.probe();
+  for (const Held& s : h->second) {
+    // Held until the bands had the frame (the frame's other samples, and the frame before).
+    probe.add(s.journey, setup_.stages.compositor, modules::LatencyPart::kQueueing,
+              clock_.now() - s.composited);
+    setup_.journeys->to_renderer[{frame, s.renderer}].push_back({s.journey, number_, clock_.now()});
+  }
+  held_journeys_.erase(h);
 }
 
 long Compositor::expected(int frame) const { return expected_[static_cast<std::size_t>(frame)]; }
@@ -448,6 +467,7 @@ void Compositor::run() {
         auto& part = by_renderer[static_cast<std::size_t>(k)];
         if (!part.empty()) send(lay.renderer(k), take_samples(Kind::kBand, current, part));
       }
+      if (setup_.journeys) probe_bands_sent(current);
       have.erase(current);
       begun.erase(current);
       ++current;
@@ -468,10 +488,33 @@ void Renderer::declare_params(params::ParamRegistry& r) {
 Renderer::Renderer(sc_core::sc_module_name name, MachineRun& run,
                    modules::RingChannel<Message>& ring, const Setup& setup, int number)
     : RingNode(name, run.trace(), ring, setup.layout.renderer(number), setup.sizes),
+      run_(run),
       setup_(setup),
       number_(number),
       tile_time_(modules::ModuleParams(run.registry(), kRenderer).get(kTileTime)) {
   SC_THREAD(run);
+}
+
+void Renderer::probe_tile(int frame, const sc_core::sc_time& began,
+                          const std::map<int, sc_core::sc_time>& delivered) {
+  using modules::LatencyPart;
+  modules::LatencyProbe& probe = run_.probe();
+  const auto& st = setup_.stages;
+  SampleJourneys& book = *setup_.journeys;
+  const auto in = book.to_renderer.find({frame, number_});
+  auto& out = book.to_frame_buffer[{frame, number_}];
+  out.sent = clock_.now();  // its pixels go to the frame buffer now
+  if (in == book.to_renderer.end()) return;
+  for (const SampleJourneys::InBand& b : in->second) {
+    const auto d = delivered.find(b.compositor);
+    const sc_core::sc_time arrived = d == delivered.end() ? b.sent : d->second;
+    probe.add(b.journey, st.ring, LatencyPart::kTransfer, arrived - b.sent);
+    // Waiting for the frame's other bands (and the tile before), then resampling the tile.
+    probe.add(b.journey, st.renderer, LatencyPart::kQueueing, began - arrived);
+    probe.add(b.journey, st.renderer, LatencyPart::kService, clock_.now() - began);
+    out.journeys.push_back(b.journey);
+  }
+  book.to_renderer.erase(in);
 }
 
 void Renderer::run() {
@@ -509,9 +552,12 @@ void Renderer::run() {
     return static_cast<std::size_t>(j - rd.range.j0) * cols +
            static_cast<std::size_t>(i - rd.range.i0);
   };
+  // --latency-probe: by frame, when each compositor's band was delivered.
+  std::map<int, std::map<int, sc_core::sc_time>> band_delivered;
   for (;;) {
     const Message m = receive(Wait::kWork);
     if (m.kind != Kind::kBand) continue;
+    if (setup_.journeys) band_delivered[m.frame][m.from - lay.compositor(0)] = last_delivered_;
     const Reads& rd = reads_of(m.frame);
     auto& tile = tiles[m.frame];
     tile.resize(static_cast<std::size_t>(rd.range.i1 - rd.range.i0) *
@@ -527,8 +573,11 @@ void Renderer::run() {
       };
       // SIMD: the whole tile at once, whatever its content (L282): each display pixel from the
       // positions around it on the grid of the level the frame is displayed at.
+      const sc_core::sc_time began = clock_.now();
       if (!setup_.bypass.back_end)
         compute_for(tile_time_, "resample", {{"pixels", (x1 - x0) * (y1 - y0)}});
+      if (setup_.journeys) probe_tile(current, began, band_delivered[current]);
+      band_delivered.erase(current);
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
           Sample p;
@@ -574,6 +623,36 @@ FrameBuffer::FrameBuffer(sc_core::sc_module_name name, MachineRun& run,
   SC_THREAD(run);
 }
 
+void FrameBuffer::probe_pixels(const Message& m) {
+  using modules::LatencyPart;
+  modules::LatencyProbe& probe = run_.probe();
+  const auto& st = setup_.stages;
+  SampleJourneys& book = *setup_.journeys;
+  const auto in = book.to_frame_buffer.find({m.frame, m.from - setup_.layout.renderer(0)});
+  if (in == book.to_frame_buffer.end()) return;
+  auto& written = book.written[m.frame];
+  for (const auto j : in->second.journeys) {
+    probe.add(j, st.ring, LatencyPart::kTransfer, last_delivered_ - in->second.sent);
+    probe.add(j, st.frame_buffer, LatencyPart::kQueueing, last_taken_ - last_delivered_);
+    probe.add(j, st.frame_buffer, LatencyPart::kService, clock_.now() - last_taken_);
+    written.emplace_back(j, clock_.now());
+  }
+  book.to_frame_buffer.erase(in);
+}
+
+void FrameBuffer::probe_display(int frame) {
+  modules::LatencyProbe& probe = run_.probe();
+  SampleJourneys& book = *setup_.journeys;
+  const auto w = book.written.find(frame);
+  if (w == book.written.end()) return;
+  // Written, then waiting for the frame's other tiles (and the frame before) to be displayed.
+  for (const auto& [j, at] : w->second) {
+    probe.add(j, setup_.stages.frame_buffer, modules::LatencyPart::kQueueing, clock_.now() - at);
+    probe.end(j, clock_.now());
+  }
+  book.written.erase(w);
+}
+
 void FrameBuffer::run() {
   functional::FrameState& frame = run_.frame();
   const long all = static_cast<long>(frame.width()) * frame.height();
@@ -585,6 +664,7 @@ void FrameBuffer::run() {
     if (!setup_.bypass.back_end)
       compute_for(modules::times(pixel_time_, m.samples.size()), "write",
                   {{"pixels", m.samples.size()}});
+    if (setup_.journeys) probe_pixels(m);
     // The image is the displayed frame's (display.frame, the last by default): its pixels as
     // they arrived.
     if (m.frame == setup_.display_frame)
@@ -594,6 +674,7 @@ void FrameBuffer::run() {
          f = static_cast<int>(displayed_.size())) {
       displayed_.push_back(clock_.now());
       have.erase(f);
+      if (setup_.journeys) probe_display(f);
       Message done;
       done.kind = Kind::kFrameDone;
       done.frame = f;

@@ -117,8 +117,18 @@ class Compositor : public RingNode {
   void run();
   /// Samples the casters send this compositor in frame `frame`.
   long expected(int frame) const;
-  /// --latency-probe: the journeys of the samples of `m`, composited now.
+  /// --latency-probe: the journeys of the samples of `m`, composited now; they wait with the
+  /// compositor until its bands have the frame.
   void probe_samples(const Message& m);
+  /// --latency-probe: the frame's bands were sent now: its samples' journeys go on to the
+  /// renderers of their display pixels.
+  void probe_bands_sent(int frame);
+  struct Held {
+    SampleJourneys::Journey journey;
+    int renderer;
+    sc_core::sc_time composited;
+  };
+  std::map<int, std::vector<Held>> held_journeys_;  ///< by frame
   MachineRun& run_;
   const Setup& setup_;
   int number_;
@@ -137,7 +147,12 @@ class Renderer : public RingNode {
            const Setup& setup, int number);
 
  private:
+  /// --latency-probe: the tile of `frame` was resampled from `began` to now; the journeys of the
+  /// samples whose display pixels it holds go on with its pixels.
+  void probe_tile(int frame, const sc_core::sc_time& began,
+                  const std::map<int, sc_core::sc_time>& delivered);
   void run();
+  MachineRun& run_;
   const Setup& setup_;
   int number_;
   sc_core::sc_time tile_time_;
@@ -156,6 +171,10 @@ class FrameBuffer : public RingNode {
   const std::vector<sc_core::sc_time>& displayed() const { return displayed_; }
 
  private:
+  /// --latency-probe: the journeys of the tile whose pixels `m` carries, written now.
+  void probe_pixels(const Message& m);
+  /// --latency-probe: frame `frame` is displayed now: its samples' journeys end.
+  void probe_display(int frame);
   void run();
   MachineRun& run_;
   const Setup& setup_;

@@ -13,6 +13,7 @@
 #include "platform/machines/frame_sample.hpp"
 #include "platform/machines/pxpl5_raytrace/layout.hpp"
 #include "platform/machines/pxpl5_raytrace/ring_node.hpp"
+#include "platform/machines/pxpl5_raytrace/sample_journeys.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
@@ -43,11 +44,13 @@ struct Setup {
   /// With --sample, by compositor: the samples of the regions not simulated in detail, cast
   /// functionally (functional_regions.hpp), which it holds when the frame starts.
   std::vector<std::vector<Sample>> functional_samples;
-  /// --latency-probe: a sample's journey from its caster beginning its region to its compositor
-  /// having composited it, by class of stage.
+  /// --latency-probe: a sample's journey from its caster beginning its region to the display of
+  /// its frame, by class of stage.
   struct ProbeStages {
-    int caster = -1, ring = -1, inbox = -1, compositor = -1;
+    int caster = -1, ring = -1, inbox = -1, compositor = -1, renderer = -1, frame_buffer = -1;
   } stages;
+  /// --latency-probe: the samples' journeys between the nodes (null without the probe).
+  SampleJourneys* journeys = nullptr;
 };
 
 }  // namespace rtsim::platform::pxpl5
