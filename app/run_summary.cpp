@@ -95,7 +95,7 @@ void print_frames(std::ostream& out, const json& stats) {
       << format_significant(number(fs, "last_frame_per_second"), 3) << "); latency mean "
       << format_seconds(number(fs, "latency_mean_s")) << ", max "
       << format_seconds(number(fs, "latency_max_s")) << "\n";
-  constexpr std::size_t kShown = 8;
+  constexpr std::size_t kShown = 12;
   const auto& per = fs["per_frame"];
   for (std::size_t i = 0; i < per.size() && i < kShown; ++i) {
     const auto& f = per[i];
@@ -104,7 +104,12 @@ void print_frames(std::ostream& out, const json& stats) {
     out << "  " << label << "start " << format_seconds(number(f, "start_s")) << ", displayed "
         << format_seconds(number(f, "display_s")) << ", latency "
         << format_seconds(number(f, "latency_s")) << ", interval "
-        << format_seconds(number(f, "interval_s")) << "\n";
+        << format_seconds(number(f, "interval_s"));
+    // A machine that refines (pxpl5-raytrace): the level it cast and the one it showed.
+    if (f.contains("display_level"))
+      out << ", cast level " << f.value("cast_level", 0) << ", shown at "
+          << f.value("display_level", 0);
+    out << "\n";
   }
   if (per.size() > kShown)
     out << "              (" << per.size() - kShown << " more in stats.json frame_sequence)\n";

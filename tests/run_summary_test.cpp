@@ -133,13 +133,13 @@ TEST(RunSummary, WithNothingSaturatedItSaysWhereTheTimeWent) {
 TEST(RunSummary, ASequenceOfFramesGivesItsRateAndEachFrame) {
   auto stats = stats_of_a_run();
   nlohmann::json per = nlohmann::json::array();
-  for (int f = 0; f < 10; ++f)
+  for (int f = 0; f < 14; ++f)
     per.push_back({{"frame", f},
                    {"start_s", 0.1 * f},
                    {"display_s", 0.1 * f + 0.15},
                    {"latency_s", 0.15},
                    {"interval_s", f == 0 ? 0.15 : 0.1}});
-  stats["frame_sequence"] = {{"frames", 10},
+  stats["frame_sequence"] = {{"frames", 14},
                              {"frames_per_second", 9.5238},
                              {"steady_frames_per_second", 10.0},
                              {"last_frame_per_second", 10.0},
@@ -148,9 +148,9 @@ TEST(RunSummary, ASequenceOfFramesGivesItsRateAndEachFrame) {
                              {"per_frame", per}};
   const std::string text = format_run_summary(stats, {});
   std::cout << text;
-  EXPECT_NE(text.find("10 frames in 1.388 s simulated"), std::string::npos) << text;
+  EXPECT_NE(text.find("14 frames in 1.388 s simulated"), std::string::npos) << text;
   EXPECT_EQ(text.find("frame time"), std::string::npos);
-  EXPECT_NE(text.find("frames      10 at 9.52 frames/s (after the first 10.0, the last 10.0); "
+  EXPECT_NE(text.find("frames      14 at 9.52 frames/s (after the first 10.0, the last 10.0); "
                       "latency mean 150.0 ms, max 150.0 ms"),
             std::string::npos)
       << text;
@@ -158,6 +158,6 @@ TEST(RunSummary, ASequenceOfFramesGivesItsRateAndEachFrame) {
                       "interval 100.0 ms"),
             std::string::npos)
       << text;
-  EXPECT_EQ(text.find("frame 8 "), std::string::npos);  // the first eight, then a count
+  EXPECT_EQ(text.find("frame 12 "), std::string::npos);  // the first twelve, then a count
   EXPECT_NE(text.find("(2 more in stats.json frame_sequence)"), std::string::npos);
 }
