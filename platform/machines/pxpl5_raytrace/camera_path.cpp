@@ -101,19 +101,26 @@ CameraPath CameraPath::read(const params::ParamRegistry& r) {
   CameraPath path{.frames = static_cast<int>(p.get(kFrames)),
                   .spin_deg = p.get(kSpin),
                   .distance = p.get(kDistance),
-                  .moving = {}};
+                  .moving = {},
+                  .turns_left = {}};
   const std::string text = p.get(kPath);
   if (text.find_first_not_of(" \t") == std::string::npos) {
     path.moving.assign(static_cast<std::size_t>(path.frames), path.spin_deg != 0.0);
-    return path;
+  } else {
+    path.moving = parse_path(p, text);
+    const int n = static_cast<int>(path.moving.size());
+    if (p.where_set(kFrames.name()) != "default" && path.frames != n)
+      bad_path(p, "the path has " + std::to_string(n) +
+                      " frames but frames = " + std::to_string(path.frames) + " (set at " +
+                      p.where_set(kFrames.name()) + "): leave frames unset with a path");
+    path.frames = n;
   }
-  path.moving = parse_path(p, text);
-  const int n = static_cast<int>(path.moving.size());
-  if (p.where_set(kFrames.name()) != "default" && path.frames != n)
-    bad_path(p, "the path has " + std::to_string(n) +
-                    " frames but frames = " + std::to_string(path.frames) + " (set at " +
-                    p.where_set(kFrames.name()) + "): leave frames unset with a path");
-  path.frames = n;
+  // Counted once from the last frame back (a frame's camera is turned back from the last's).
+  path.turns_left.assign(static_cast<std::size_t>(path.frames), 0);
+  for (int f = path.frames - 2; f >= 0; --f)
+    path.turns_left[static_cast<std::size_t>(f)] =
+        path.turns_left[static_cast<std::size_t>(f) + 1] +
+        (path.moving[static_cast<std::size_t>(f)] ? 1 : 0);
   return path;
 }
 

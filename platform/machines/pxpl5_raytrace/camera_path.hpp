@@ -20,13 +20,10 @@ struct CameraPath {
   double spin_deg = 0.0;     ///< the turn after a frame during which the user moves
   double distance = 1.0;     ///< the eye's distance from the point looked at, times the scene's
   std::vector<bool> moving;  ///< by frame: the user moves during it (the next frame's view turns)
+  std::vector<int> turns_left;  ///< by frame: the eye's turns between it and the last (read())
 
   /// Turns of the eye between frame f and the last.
-  int turns_after(int f) const {
-    int n = 0;
-    for (int g = f; g + 1 < frames; ++g) n += moving[static_cast<std::size_t>(g)] ? 1 : 0;
-    return n;
-  }
+  int turns_after(int f) const { return turns_left[static_cast<std::size_t>(f)]; }
 
   static void declare_params(params::ParamRegistry& r);
   /// camera.path ("move 4, rest 6": segments of frames during which the user moves or rests)
