@@ -316,23 +316,45 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& va) {
   validate->add_flag("--list", va.list, "List the figures, their tolerances and why; run nothing");
   validate->add_option("--rtsim", va.rtsim, "The rtsim binary to run (default: this one)")
       ->check(CLI::ExistingFile);
+  validate->add_flag(
+      "--sensitivity", va.sensitivity,
+      "Also move each assumption a figure names (a parameter whose source is no seed line) by\n"
+      "--factors, or to the values the figure states, run again, and report which figures\n"
+      "move and whose verdict changes: a table, validation-sensitivity.json and\n"
+      "validation-sensitivity.png (docs/validation.md)");
+  validate
+      ->add_option("--factors", va.factors,
+                   "With --sensitivity: the factors a numeric assumption is moved by")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  validate->add_flag("--mpi", va.mpi,
+                     "Spread the runs over MPI ranks as `rtsim sweep --mpi` does (mpirun -np K "
+                     "rtsim validate --mpi ...); --jobs runs at once on each rank");
   return validate;
 }
 
 /// `rtsim list`: its options into `list`.
 CLI::App* add_list_command(CLI::App& app, ListArgs& list) {
-  auto* l = app.add_subcommand("list", "List built-in scenes, machines, or parameters");
-  l->add_option("what", list.what, "scenes | machines | params")
+  auto* l = app.add_subcommand(
+      "list",
+      "List built-in scenes, machines, parameters, or the assumptions (parameters whose source\n"
+      "is no seed line) with the validation figures that rest on each");
+  l->add_option("what", list.what, "scenes | machines | params | assumptions")
       ->required()
-      ->check(one_of({"scenes", "machines", "params"}));
+      ->check(one_of({"scenes", "machines", "params", "assumptions"}));
   l->add_option("pattern", list.pattern,
                 "With params: only the names matching this shell pattern, '*' also matching "
                 "dots (quote it): 'pert.*', '*word_time', 'peripheral.grid.*'");
-  l->add_option("--machine", list.machine, "With params: the machine whose parameters to list");
+  l->add_option(
+      "--machine", list.machine,
+      "With params or assumptions: the machine whose parameters to list (assumptions: every "
+      "machine without it)");
   l->add_flag("--changed", list.changed,
               "With params: only those whose value is not the default (set by --config or -p)");
   l->add_option("--format", list.format,
-                "text; with params also markdown (docs/parameters.md); json with params (one "
+                "text; with params or assumptions also markdown (docs/parameters.md, "
+                "docs/assumptions.md); json with params (one "
                 "object a parameter: name, kind, value, default, unit, min, max, allowed, "
                 "source) or machines (name, description, sample_scene)")
       ->check(CLI::IsMember({"text", "markdown", "json"}))

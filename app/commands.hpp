@@ -80,6 +80,9 @@ struct ValidateArgs {
   bool keep = false;              ///< keep the run folders (and the temporary --out)
   bool list = false;              ///< list the figures, run nothing
   std::string rtsim;              ///< binary to run; empty: this one
+  bool sensitivity = false;       ///< also move each figure's assumptions (--sensitivity)
+  std::vector<double> factors = {0.5, 2.0};  ///< how numeric assumptions are moved
+  bool mpi = false;                          ///< spread the runs over MPI ranks
 };
 
 struct SweepArgs {

@@ -1,4 +1,4 @@
-// `rtsim list scenes|machines|params`.
+// `rtsim list scenes|machines|params|assumptions`.
 #include <fnmatch.h>
 
 #include <algorithm>
@@ -14,6 +14,8 @@
 #include "common/suggest.hpp"
 #include "platform/machine.hpp"
 #include "platform/machine_registry.hpp"
+#include "platform/validation/figure_registry.hpp"
+#include "platform/validation/sensitivity.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace rtsim::app {
@@ -131,20 +133,85 @@ void list_params(const ListArgs& args) {
   }
 }
 
+/// The figures of `rtsim validate` that name `param` as an assumption of a run on `machine`.
+std::vector<std::string> figures_naming(const validation::Plan& plan, const std::string& machine,
+                                        const std::string& param) {
+  std::vector<std::string> ids;
+  for (const auto& f : plan.figures) {
+    bool on_machine = false;
+    for (const auto& key : f.runs)
+      if (const auto* r = plan.find_run(key); r && validation::machine_of(*r) == machine)
+        on_machine = true;
+    if (!on_machine) continue;
+    for (const auto& a : f.assumptions)
+      if (a.param == param) ids.push_back(f.id);
+  }
+  return ids;
+}
+
+/// `rtsim list assumptions`: every parameter whose source is an assumption, by machine, with
+/// its reason and the validation figures whose runs rest on it (DESIGN.md "Validation").
+void list_assumptions(const ListArgs& args) {
+  const validation::Plan plan = validation::make_validation_plan({.quick = true});
+  std::vector<const platform::Machine*> chosen;
+  if (args.machine.empty())
+    chosen = platform::machines();
+  else
+    chosen.push_back(&platform::find_machine(args.machine));
+  const bool md = args.format == "markdown";
+  for (const platform::Machine* m : chosen) {
+    params::ParamRegistry registry;
+    platform::declare_params_of(m, registry);
+    std::vector<params::ParamEntry> mine;
+    for (auto& e : registry.list())
+      if (validation::is_assumption_source(e.source)) mine.push_back(std::move(e));
+    if (md) {
+      std::cout << "\n## `" << m->name() << "` (" << mine.size() << " assumptions)\n\n"
+                << "| parameter | value | reason | figures that name it |\n|---|---|---|---|\n";
+    } else {
+      std::cout << m->name() << ": " << mine.size() << " assumptions\n";
+    }
+    for (const auto& e : mine) {
+      std::string figures;
+      for (const auto& id : figures_naming(plan, m->name(), e.name))
+        figures += (figures.empty() ? "" : ", ") + id;
+      if (md) {
+        std::string reason = cite_seeds(e.source);
+        for (auto& c : reason)
+          if (c == '|') c = '/';
+        std::cout << "| `" << e.name << "` | `" << e.value_text << "` | " << reason << " | "
+                  << figures << " |\n";
+      } else {
+        std::cout << "  " << e.name << " = " << e.value_text << "\n    " << cite_seeds(e.source)
+                  << "\n";
+        if (!figures.empty()) std::cout << "    figures that name it: " << figures << "\n";
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int run_list(const ListArgs& args) {
-  if (args.format == "markdown" && args.what != "params")
-    throw InputError("list " + args.what, 0, "--format markdown is for `rtsim list params`");
+  if (args.format == "markdown" && args.what != "params" && args.what != "assumptions")
+    throw InputError("list " + args.what, 0,
+                     "--format markdown is for `rtsim list params` and `rtsim list assumptions`");
+  if (args.format == "json" && args.what == "assumptions")
+    throw InputError("list assumptions", 0,
+                     "--format json is for `rtsim list params` (its "
+                     "sources say which are assumptions)");
   if (args.format == "json" && args.what == "scenes")
     throw InputError("list scenes", 0,
                      "--format json is for `rtsim list params` and `rtsim list machines`");
-  if (args.what != "params" && (!args.pattern.empty() || args.changed || !args.machine.empty()))
+  if (args.what != "params" && (!args.pattern.empty() || args.changed))
+    throw InputError("list " + args.what, 0, "a pattern and --changed go with `rtsim list params`");
+  if (args.what != "params" && args.what != "assumptions" && !args.machine.empty())
     throw InputError("list " + args.what, 0,
-                     "a pattern, --machine and --changed go with `rtsim list params`");
+                     "--machine goes with `rtsim list params` and `rtsim list assumptions`");
   if (args.what == "scenes") list_scenes();
   if (args.what == "machines") list_machines(args.format);
   if (args.what == "params") list_params(args);
+  if (args.what == "assumptions") list_assumptions(args);
   return kExitOk;
 }
 

@@ -1,5 +1,6 @@
 // `rtsim validate`: reproduce the seeds' figures by running this binary's `run` and `render`
 // subcommands as separate processes (SystemC allows one simulation per process), and compare.
+#include <signal.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -8,16 +9,21 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <stdexcept>
 
+#include "app/analysis_scripts.hpp"
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/image_files.hpp"
 #include "app/interrupt_cleanup.hpp"
 #include "app/progress_bar.hpp"
+#include "app/sweep_mpi.hpp"
 #include "common/seed_citation.hpp"
 #include "platform/runs/run_queue.hpp"
+#include "platform/sweep/point_outcome.hpp"
 #include "platform/validation/figure_registry.hpp"
+#include "platform/validation/sensitivity.hpp"
 #include "platform/validation/validation.hpp"
 
 namespace rtsim::app {
@@ -59,9 +65,15 @@ void print_list(const val::Plan& plan) {
   constexpr std::size_t kRunsShown = 2;
   for (const auto& f : plan.figures) {
     std::cout << f.id << "  " << f.title << "  (" << cite_seeds(f.seed_ref) << ")\n"
+              << "    class:     " << val::class_name(f.figure_class) << "\n"
               << "    seed:      " << seed_of(f) << " -- " << f.seed_text << "\n"
               << "    tolerance: " << f.tolerance.describe() << " -- " << f.tolerance.why << "\n"
               << "    workload:  " << f.workload << "\n";
+    if (!f.assumptions.empty()) {
+      std::cout << "    assumes:  ";
+      for (const auto& a : f.assumptions) std::cout << " " << a.param;
+      std::cout << "\n";
+    }
     for (std::size_t i = 0; i < f.runs.size() && i < kRunsShown; ++i) {
       if (const auto* r = plan.find_run(f.runs[i]))
         std::cout << "    run:       " << r->command_line() << "\n";
@@ -78,6 +90,90 @@ fs::path this_executable() {
   return p;
 }
 
+/// A run done on an MPI rank, as the run queue would have recorded it here.
+val::RunOutcome outcome_from_rank(const runs::RunRequest& request, const fs::path& work_dir,
+                                  const sweep::PointOutcome& p) {
+  val::RunOutcome o;
+  o.request = request;
+  o.out_dir = work_dir / request.key;
+  o.log = work_dir / (request.key + ".log");
+  o.exit_code = p.exit_code;
+  o.wall_s = p.wall_s;
+  o.status = p.ok ? "exit status 0" : p.error;
+  o.failure = p.ok ? "" : p.error;
+  if (p.ok) {
+    try {
+      o.stats = nlohmann::json::parse(p.stats_text);
+    } catch (const std::exception& e) {
+      o.failure = std::string("its stats.json does not read as JSON: ") + e.what();
+    }
+  }
+  return o;
+}
+
+/// Every request run: forks of this process (or another rtsim binary) on this machine, or
+/// spread over the ranks of an MPI session as `rtsim sweep --mpi` spreads its points.
+val::RunResults execute_runs(const std::vector<runs::RunRequest>& requests,
+                             const ValidateArgs& args, const fs::path& executable,
+                             const fs::path& work_dir, mpi::Session* session) {
+  ProgressBar bar("validate");
+  runs::RunQueueOptions q;
+  q.executable = executable;
+  q.work_dir = work_dir;
+  q.jobs = args.jobs;
+  if (session != nullptr) {
+    val::RunResults results;
+    std::mutex m;
+    int done = 0;
+    session->dispatch(requests, q, [&](std::size_t i, const sweep::PointOutcome& p) {
+      std::lock_guard lock(m);
+      results[requests[i].key] = outcome_from_rank(requests[i], work_dir, p);
+      bar.update(++done, static_cast<int>(requests.size()));
+    });
+    return results;
+  }
+  // Runs are forks of this process, unless another rtsim binary was asked for.
+  if (args.rtsim.empty()) {
+    q.in_process = run_cli_in_forked_child;
+    preload_image_module();  // once here, not in every run
+  }
+  q.on_finished = [&bar](const val::RunOutcome&, int done, int total) { bar.update(done, total); };
+  return runs::run_all(requests, q);
+}
+
+/// The picture of the sensitivity (analysis/sensitivity_map.py); the reason if there is none.
+std::string draw_sensitivity(const fs::path& json, const fs::path& png, const fs::path& out_dir) {
+  ReportTools tools;
+  tools.scratch_dir = out_dir / ".sensitivity-plot";
+  const auto r = run_analysis_script(tools, "sensitivity_map.py", {json.string(), png.string()});
+  std::error_code ec;
+  fs::remove_all(tools.scratch_dir, ec);
+  return r.ok ? std::string() : r.message;
+}
+
+int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session);
+
+int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
+  mpi::Session session;
+  if (session.rank() != 0) {
+    // Rank 0 builds and checks the plan; the others wait for its word, then run what it hands
+    // out, in the folders it names.
+    if (const int status = session.share_status(0); status != 0) return status;
+    runs::RunQueueOptions q;
+    q.executable = args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
+    q.jobs = args.jobs;
+    set_interrupt_handler([](int) { runs::stop_runs(SIGTERM); });
+    session.work(q);
+    return kExitOk;
+  }
+  if (plan == nullptr) {
+    session.share_status(kExitBadInput);
+    return kExitBadInput;
+  }
+  session.share_status(0);
+  return validate(args, *plan, &session);
+}
+
 }  // namespace
 
 int run_validate(const ValidateArgs& args) {
@@ -88,13 +184,20 @@ int run_validate(const ValidateArgs& args) {
     plan = val::select_figures(val::make_validation_plan(options), args.only);
   } catch (const std::invalid_argument& e) {
     std::cerr << "rtsim validate: --only: " << e.what() << "\n";
+    if (args.mpi && !args.list) return run_validate_mpi(args, nullptr);
     return kExitBadInput;
   }
   if (args.list) {
     print_list(plan);
     return kExitOk;
   }
+  if (args.mpi) return run_validate_mpi(args, &plan);
+  return validate(args, plan, nullptr);
+}
 
+namespace {
+
+int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session) {
   const fs::path executable = args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
   const bool temporary_out = args.out_dir.empty();
   const fs::path out_dir = temporary_out
@@ -106,29 +209,28 @@ int run_validate(const ValidateArgs& args) {
   // --out with them); the runs themselves end with this process (their parent-death signal).
   const std::uint64_t interrupt_id = remove_on_interrupt(temporary_out ? out_dir : work_dir);
 
+  // With --sensitivity, the assumptions' moves run in the same batch as the figures' runs.
+  val::SensitivityPlan sensitivity;
+  if (args.sensitivity)
+    sensitivity =
+        val::make_sensitivity_plan(plan, val::SensitivityOptions{.factors = args.factors});
+  std::vector<runs::RunRequest> requests = plan.runs;
+  requests.insert(requests.end(), sensitivity.runs.begin(), sensitivity.runs.end());
+
   std::cout << "rtsim validate: " << plan.figures.size() << " figures, " << plan.runs.size()
-            << " runs, " << args.jobs << " at a time, " << (args.quick ? "quick" : "full")
-            << " mode\n"
-            << std::flush;
+            << " runs";
+  if (args.sensitivity) {
+    std::size_t moves = 0;
+    for (const auto& p : sensitivity.perturbations) moves += p.skipped.empty() ? 1 : 0;
+    std::cout << " and " << sensitivity.runs.size() << " more for " << moves
+              << " moves of the figures' assumptions";
+  }
+  std::cout << ", " << args.jobs << " at a time";
+  if (session != nullptr) std::cout << " on each of " << session->size() << " MPI ranks";
+  std::cout << ", " << (args.quick ? "quick" : "full") << " mode\n" << std::flush;
 
   const auto start = std::chrono::steady_clock::now();
-  val::RunResults results;
-  {
-    ProgressBar bar("validate");
-    runs::RunQueueOptions q;
-    q.executable = executable;
-    q.work_dir = work_dir;
-    q.jobs = args.jobs;
-    // Runs are forks of this process, unless another rtsim binary was asked for.
-    if (args.rtsim.empty()) {
-      q.in_process = run_cli_in_forked_child;
-      preload_image_module();  // once here, not in every run
-    }
-    q.on_finished = [&bar](const val::RunOutcome&, int done, int total) {
-      bar.update(done, total);
-    };
-    results = runs::run_all(plan.runs, q);
-  }
+  const val::RunResults results = execute_runs(requests, args, executable, work_dir, session);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -151,6 +253,23 @@ int run_validate(const ValidateArgs& args) {
   doc["figures"] = rows.size();
   doc["passed"] = passed;
   doc["failed"] = static_cast<int>(rows.size()) - passed;
+  // Per class: how many rows, and how many pass (DESIGN.md "Validation").
+  nlohmann::ordered_json classes;
+  for (auto c :
+       {val::FigureClass::kMeasured, val::FigureClass::kDerived, val::FigureClass::kQualitative}) {
+    int n = 0, ok = 0;
+    for (const auto& r : rows) {
+      if (r.figure_class != c) continue;
+      ++n;
+      if (r.pass()) ++ok;
+    }
+    classes[val::class_name(c)] = {{"rows", n}, {"passed", ok}};
+  }
+  doc["classes"] = classes;
+  auto class_errors = nlohmann::ordered_json::array();
+  for (const auto& r : rows)
+    if (!r.class_error.empty()) class_errors.push_back(r.id);
+  doc["class_errors"] = class_errors;
   auto open_failing = nlohmann::ordered_json::array();
   for (const auto& r : rows)
     if (!r.pass() && r.as_expected()) open_failing.push_back(r.id);
@@ -158,7 +277,7 @@ int run_validate(const ValidateArgs& args) {
   doc["pass"] = all_pass;
   doc["rows"] = val::rows_to_json(rows);
   auto runs = nlohmann::ordered_json::array();
-  for (const auto& r : plan.runs) {
+  for (const auto& r : requests) {
     const auto& o = results.at(r.key);
     if (!o.failure.empty()) ++failed_runs;
     nlohmann::ordered_json j;
@@ -178,6 +297,26 @@ int run_validate(const ValidateArgs& args) {
     write_file(out_dir / a.file_name, a.contents(results));
     written.push_back(a.file_name);
   }
+  std::string sensitivity_text, no_picture;
+  if (args.sensitivity) {
+    const auto entries = val::evaluate_sensitivity(plan, rows, sensitivity, results);
+    nlohmann::ordered_json sdoc;
+    sdoc["tool"] = "rtsim";
+    sdoc["version"] = RTSIM_VERSION;
+    sdoc["command"] = "validate --sensitivity";
+    sdoc["mode"] = args.quick ? "quick" : "full";
+    sdoc["factors"] = args.factors;
+    sdoc["wall_time_s"] = wall;
+    sdoc["runs"] = sensitivity.runs.size();
+    const auto parts = val::sensitivity_to_json(rows, sensitivity, entries);
+    for (const auto& [k, v] : parts.items()) sdoc[k] = v;
+    const fs::path json = out_dir / "validation-sensitivity.json";
+    write_file(json, sdoc.dump(2) + "\n");
+    written.push_back("validation-sensitivity.json");
+    sensitivity_text = val::format_sensitivity(rows, entries);
+    no_picture = draw_sensitivity(json, out_dir / "validation-sensitivity.png", out_dir);
+    if (no_picture.empty()) written.push_back("validation-sensitivity.png");
+  }
 
   std::cout << "\n" << val::format_table(rows);
   if (all_pass) {
@@ -188,6 +327,8 @@ int run_validate(const ValidateArgs& args) {
       if (!r.as_expected()) std::cout << " " << r.id;
     std::cout << "\n";
   }
+  if (!sensitivity_text.empty()) std::cout << "\n" << sensitivity_text;
+  if (!no_picture.empty()) std::cout << "no validation-sensitivity.png: " << no_picture << "\n";
   std::cout << "wall time " << val::format_number(wall) << " s\n";
 
   // Run folders go unless asked for; a failed run's folder stays so its log can be read.
@@ -208,5 +349,7 @@ int run_validate(const ValidateArgs& args) {
   }
   return all_pass ? kExitOk : kExitFailure;
 }
+
+}  // namespace
 
 }  // namespace rtsim::app

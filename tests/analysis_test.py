@@ -38,6 +38,7 @@ import pareto_plot  # noqa: E402,F401
 import pxpl5_rows_squares  # noqa: E402
 import array_scaling  # noqa: E402
 import pxpl5_workload  # noqa: E402
+import sensitivity_map  # noqa: E402
 import sweep_plot  # noqa: E402
 import utilisation_timeline  # noqa: E402
 import wang_accuracy  # noqa: E402
@@ -376,6 +377,39 @@ class ArrayHeatmapTest(ScratchTest):
         r = run_script("array_heatmap.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("node_busy_fraction", r.stderr)
+
+
+class SensitivityMapTest(ScratchTest):
+    def doc(self):
+        e = lambda f, p, label, change, flips: {"figure": f, "param": p, "label": label,
+                                                "relative_change": change, "flips": flips}
+        return {"mode": "quick", "entries": [
+            e("V19", "node.clock", "x0.5", -0.26, False), e("V19", "node.clock", "x2", 0.2, True),
+            e("X4b", "master.assign_time", "x0.5", -0.11, True),
+            e("X4b", "gp.clock", "x2", None, False)]}
+
+    def test_cells_and_png(self):
+        figures, params, cells = sensitivity_map.cells(self.doc())
+        self.assertEqual(figures, ["V19", "X4b"])
+        self.assertEqual(params, ["node.clock", "master.assign_time", "gp.clock"])
+        # The largest move, and framed if any move turns the verdict.
+        self.assertEqual(cells[("V19", "node.clock")], (-0.26, True))
+        self.assertTrue(np.isnan(cells[("X4b", "gp.clock")][0]))
+        path = os.path.join(self.dir, "validation-sensitivity.json")
+        with open(path, "w") as f:
+            json.dump(self.doc(), f)
+        out = os.path.join(self.dir, "s.png")
+        r = run_script("sensitivity_map.py", path, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        path = os.path.join(self.dir, "x.json")
+        with open(path, "w") as f:
+            json.dump({"rows": []}, f)
+        r = run_script("sensitivity_map.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("entries", r.stderr)
 
 
 class ChainProfileTest(ScratchTest):

@@ -1,6 +1,7 @@
 // `rtsim sweep --mpi` under `mpirun -np 2 --oversubscribe` on loopback: the table equals the
 // local run's table except the wall-clock columns (failed points included), and a bad sweep file
-// stops every rank with status 2 before anything is written. Skipped in a build without MPI.
+// stops every rank with status 2 before anything is written; `rtsim validate --mpi` likewise
+// gives the local validation. Skipped in a build without MPI.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -98,6 +99,36 @@ TEST(SweepMpi, BadSweepStopsEveryRankWithStatus2) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+#endif
+}
+
+// `rtsim validate --sensitivity --mpi`: the figures' runs and the moved ones spread over the
+// ranks give the rows and the sensitivity of a local run (wall times apart).
+TEST(ValidateMpi, TwoRanksGiveTheLocalValidationAndSensitivity) {
+#ifndef RTSIM_MPIEXEC
+  GTEST_SKIP() << "built without MPI";
+#else
+  const fs::path dir = scratch_dir("validate-mpi");
+  const std::string args = "validate --quick --sensitivity --only X4b,W1h --jobs 1 --out ";
+  const auto local = rtsim::test::run_rtsim(args + (dir / "local").string());
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const auto mpi = run_mpi(args + (dir / "mpi").string() + " --mpi");
+  ASSERT_EQ(mpi.exit_code, 0) << mpi.output;
+  EXPECT_NE(mpi.output.find("on each of 2 MPI ranks"), std::string::npos) << mpi.output;
+  for (const char* file : {"validation.json", "validation-sensitivity.json"}) {
+    auto a = Json::parse(read_file(dir / "local" / file));
+    auto b = Json::parse(read_file(dir / "mpi" / file));
+    EXPECT_EQ(a["rows"], b["rows"]) << file;
+    EXPECT_EQ(a["entries"], b["entries"]) << file;
+    EXPECT_EQ(a["verdict_depends"], b["verdict_depends"]) << file;
+  }
+  const auto s = Json::parse(read_file(dir / "mpi" / "validation-sensitivity.json"));
+  ASSERT_EQ(s["verdict_depends"].size(), 1u);
+  EXPECT_EQ(s["verdict_depends"][0]["figure"], "X4b");
+  // A bad --only stops every rank with status 2.
+  const auto bad = run_mpi("validate --quick --only NOPE --mpi --out " + (dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
   fs::remove_all(dir);
 #endif
 }

@@ -109,7 +109,7 @@ const modules::IntParam kSceneSeed(
      .default_value = "0",
      .min = "0",
      .description = "Seed of the built-in scene generators; 0 keeps each generator's own",
-     .source = "assumption: generators are reproducible by default"});
+     .source = "study setting: generators are reproducible by default"});
 const modules::RealParam kAmbient(
     {.name = "shade.ambient",
      .default_value = "0.1",

@@ -52,7 +52,7 @@ const modules::TimeParam kQuantum(
      .description = "Global TLM quantum: how far a thread may run ahead of simulated time. 0 is "
                     "the reference setting (every interaction in time order); larger values run "
                     "faster at a measured frame-time error (docs/quantum.md)",
-     .source = "assumption: TLM-2.0 loosely-timed coding style"});
+     .source = "simulator setting: TLM-2.0 loosely-timed coding style"});
 }  // namespace
 
 void declare_quantum_param(params::ParamRegistry& r) {

@@ -103,6 +103,54 @@ double frame_s(const RunResults& r, const std::string& key) {
 }  // namespace
 
 namespace {
+/// What the cost order's gain (L360) rests on: the master's and the casters' costs, and when
+/// the next frame's regions are handed out.
+std::vector<AssumptionRef> order_assumptions() {
+  return {{.param = "master.assign_time"},
+          {.param = "gp.clock"},
+          {.param = "compositor.sample_time"},
+          {.param = "master.next_frame"}};
+}
+
+/// Rows against squares (Fig. 9): the casters' and the master's costs, and the threshold.
+std::vector<AssumptionRef> sampling_assumptions() {
+  return {{.param = "gp.clock"},
+          {.param = "master.assign_time"},
+          {.param = "sampling.threshold"},
+          {.param = "wire.sample_bytes"}};
+}
+
+/// The pipelined renderer (L270): the back end's costs and how many frames are let in.
+std::vector<AssumptionRef> pipeline_assumptions() {
+  return {{.param = "compositor.sample_time"},
+          {.param = "renderer.tile_time"},
+          {.param = "pipeline.frames_in_flight",
+           .values = {"3", "4"},
+           .why = "more frames in flight (1 serialises them, which X6a compares against)"},
+          {.param = "master.next_frame"}};
+}
+
+/// All nodes by-passed (Fig. 4): the ring carries the samples.
+std::vector<AssumptionRef> ring_assumptions() {
+  return {{.param = "ring.hop_latency"},
+          {.param = "wire.sample_bytes"},
+          {.param = "compositor.sample_time"},
+          {.param = "frame_buffer.pixel_time"}};
+}
+
+/// The master alone (Fig. 5): its cost a region, and the casters' clock.
+std::vector<AssumptionRef> master_assumptions() {
+  return {{.param = "master.assign_time"}, {.param = "gp.clock"}};
+}
+
+/// The back end (Fig. 6): compositors, renderers and the frame buffer.
+std::vector<AssumptionRef> back_end_assumptions() {
+  return {{.param = "compositor.sample_time"},
+          {.param = "renderer.tile_time"},
+          {.param = "wire.sample_bytes"},
+          {.param = "frame_buffer.pixel_time"}};
+}
+
 void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
   // The runs take about a second each at full size, so quick mode runs them as they are.
   const std::string vol2 =
@@ -167,6 +215,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                                         "% to " + format_number(100 * sorted.back()) + "% (" +
                                         each + ")"};
           },
+      .figure_class = FigureClass::kMeasured,
+      .assumptions = order_assumptions(),
   });
 
   // Fig. 9 (L369-L371): rows a ray every 4 x 4 against adaptive squares, full screen and about
@@ -202,6 +252,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
       .workload = vol2 + "; the teapot filling the screen (camera.distance 0.5)",
       .runs = {full_rows, cost},
       .measure = ratio(full_rows, cost, full_rows, "squares against rows"),
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = sampling_assumptions(),
   });
   plan.figures.push_back(Figure{
       .id = "X2b",
@@ -216,6 +268,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
       .workload = vol2 + "; the eye 2.5 times as far (about 1/16 of the screen covered)",
       .runs = {far_squares, far_rows},
       .measure = ratio(far_squares, far_rows, far_rows, "rows against squares"),
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = sampling_assumptions(),
   });
 
   // Fig. 9's consistency (L371): over the distances from full screen (0.5) to about 1/16 of it
@@ -264,6 +318,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                                                 format_number(rows) + ", squares " +
                                                 format_number(squares)};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = sampling_assumptions(),
   });
 
   // The pipelined renderer (L270): frames in flight against serialised frames.
@@ -288,6 +344,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
             return Measured{p / s, format_number(p) + " against " + format_number(s) +
                                        " frames/s after the first frame"};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = pipeline_assumptions(),
   });
   // A saturated stage: the compositors at 20 us a sample (the casters' frame is about 80 ms).
   const std::string slow_back = plan.add_run(
@@ -323,6 +381,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                                 " ms after the first frame; the busiest compositor " +
                                 format_number(per_frame * 1e3) + " ms a frame"};
           },
+      .figure_class = FigureClass::kMeasured,
+      .assumptions = pipeline_assumptions(),
   });
 
   // Partial updating fills the image in (L375): the first frame at the resting view whose
@@ -371,6 +431,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
               }
               throw MeasureError("no frame at the resting view shows the complete image");
             },
+        // The frame that completes is 1 / the update fraction: the schedule's arithmetic.
+        .figure_class = FigureClass::kDerived,
     });
   }
 
@@ -397,6 +459,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                             format_number(frame_s(r, all48) * 1e3) + " ms against " +
                                 format_number(frame_s(r, all4) * 1e3) + " ms"};
           },
+      .figure_class = FigureClass::kMeasured,
+      .assumptions = ring_assumptions(),
   });
   const std::string all4_coarse = plan.add_run(bypass_run(
       "pxpl5-bypass-all-4-coarse", scene, {"bypass=all", "caster_count=4", "sampling.finest=4"}));
@@ -420,6 +484,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                                 format_number(frame_s(r, all4_coarse) * 1e3) +
                                 " ms at a ray every 4 x 4"};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = ring_assumptions(),
   });
   const std::string master1 =
       plan.add_run(bypass_run("pxpl5-bypass-master-1", scene,
@@ -445,6 +511,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                             format_number(frame_s(r, master1) * 1e3) + " ms with 1, " +
                                 format_number(frame_s(r, master48) * 1e3) + " ms with 48"};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = master_assumptions(),
   });
   plan.figures.push_back(Figure{
       .id = "X4b",
@@ -462,6 +530,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
             return Measured{stats_number(r, master48, "modules.master.utilization"),
                             "stats.json modules.master.utilization"};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = master_assumptions(),
   });
   const std::string back =
       plan.add_run(bypass_run("pxpl5-bypass-back", scene, {"bypass=casters-and-master"}));
@@ -484,6 +554,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
           [back, back40](const RunResults& r) {
             return Measured{frame_s(r, back40) / frame_s(r, back), "frame time ratio"};
           },
+      .figure_class = FigureClass::kMeasured,
+      .assumptions = back_end_assumptions(),
   });
   const std::string back_large = plan.add_run(machine_run_request(
       "pxpl5-bypass-back-640", kPxpl5Machine, scene, 640, 512, {"bypass=casters-and-master"}, 2e5));
@@ -504,6 +576,8 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
             return Measured{frame_s(r, back_large) / frame_s(r, back),
                             "frame time ratio (four times the pixels)"};
           },
+      .figure_class = FigureClass::kQualitative,
+      .assumptions = back_end_assumptions(),
   });
   plan.figures.push_back(Figure{
       .id = "X5c",
@@ -521,7 +595,7 @@ void add_pxpl5_figures(Plan& plan, const PlanOptions&) {
                             "frame time ratio; by-passed casters send samples of no radiance, "
                             "so the back end sees no content"};
           },
-      .parameter_check = true,
+      .figure_class = FigureClass::kDerived,
   });
 }
 

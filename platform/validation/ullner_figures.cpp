@@ -272,6 +272,15 @@ PeripheralFigures::PeripheralFigures(Plan& plan, const PlanOptions& options)
       curve_shape(fig2_18_model_curve(all_divisions(1, 30), thesis_model, kUllnerPolygons));
 }
 
+/// What the peripheral's time per ray rests on besides the thesis's t_d, t_i and t_l: the host
+/// that hands it rays, and the stages and queues the thesis leaves open.
+std::vector<AssumptionRef> peripheral_assumptions() {
+  return {{.param = "host.clock"},
+          {.param = "host.ray_link.bit_rate"},
+          {.param = "peripheral.fetch_stages"},
+          {.param = "peripheral.ray_queue_depth"}};
+}
+
 void add_v1_issue_interval(Plan& plan, const PlanOptions& options) {
   const PeripheralFigures s(plan, options);
   const auto& brute1 = s.brute1;
@@ -296,6 +305,8 @@ void add_v1_issue_interval(Plan& plan, const PlanOptions& options) {
                             "a ratio of times: independent of the image size"};
           },
   });
+  // Pipeline busy time over tests: the issue-interval parameter plus the fill L588 gives.
+  plan.classify({"V1"}, FigureClass::kDerived);
 }
 
 void add_v2_pipeline_depth_and_latency(Plan& plan, const PlanOptions& options) {
@@ -355,6 +366,8 @@ void add_v2_pipeline_depth_and_latency(Plan& plan, const PlanOptions& options) {
       Tolerance::relative(0.001,
                           "33 stages x 1/3 us = 11.0 us exactly; only the picosecond "
                           "rounding of the interval (333.333 ns) remains")));
+  // Stages from the adders' parameters, and stages times the stage time: note 000 §2.2's sum.
+  plan.classify({"V2"}, FigureClass::kDerived);
 }
 
 void add_v4_time_per_ray(Plan& plan, const PlanOptions& options) {
@@ -380,6 +393,8 @@ void add_v4_time_per_ray(Plan& plan, const PlanOptions& options) {
                             "a mean per ray: independent of the image size"};
           },
   });
+  // 1000 polygons times the issue interval plus the fill: L590's product, on a run.
+  plan.classify({"V4"}, FigureClass::kDerived);
 }
 
 void add_v5_frame_time(Plan& plan, const PlanOptions& options) {
@@ -412,6 +427,7 @@ void add_v5_frame_time(Plan& plan, const PlanOptions& options) {
                                 " x 262144 rays (frame time is linear in the ray count)"};
           },
   });
+  plan.classify({"V5"}, FigureClass::kDerived);
 }
 
 void add_v8a_model_best_subdivision(Plan& plan, const PlanOptions& options) {
@@ -435,6 +451,7 @@ void add_v8a_model_best_subdivision(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.argmin, shape_note(model_shape, "us")};
           },
   });
+  plan.classify({"V8a"}, FigureClass::kDerived);
 }
 
 void add_v8b_model_minimum(Plan& plan, const PlanOptions& options) {
@@ -458,6 +475,7 @@ void add_v8b_model_minimum(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.minimum, ""};
           },
   });
+  plan.classify({"V8b"}, FigureClass::kDerived);
 }
 
 void add_v8c_simulated_best_subdivision(Plan& plan, const PlanOptions& options) {
@@ -484,6 +502,7 @@ void add_v8c_simulated_best_subdivision(Plan& plan, const PlanOptions& options) 
             return Measured{shape.argmin, sweep_note};
           },
   });
+  plan.classify({"V8c"}, FigureClass::kMeasured, peripheral_assumptions());
 }
 
 void add_v8d_simulated_minimum(Plan& plan, const PlanOptions& options) {
@@ -526,6 +545,7 @@ void add_v8d_simulated_minimum(Plan& plan, const PlanOptions& options) {
                     " (model 0.5)"};
           },
   });
+  plan.classify({"V8d"}, FigureClass::kMeasured, peripheral_assumptions());
 }
 
 void add_v8e_speed_up(Plan& plan, const PlanOptions& options) {
@@ -559,6 +579,7 @@ void add_v8e_speed_up(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+  plan.classify({"V8e"}, FigureClass::kMeasured, peripheral_assumptions());
 }
 
 void add_v8f_time_per_ray_formula(Plan& plan, const PlanOptions& options) {
@@ -602,6 +623,9 @@ void add_v8f_time_per_ray_formula(Plan& plan, const PlanOptions& options) {
                                                format_number(where->formula_us()) + " us by L648"};
           },
   });
+  // L648 evaluated on the run's counts and its parameters t_d, t_i, t_l: the thesis's model
+  // checked against the machine, which moves with those parameters by nature.
+  plan.classify({"V8f"}, FigureClass::kDerived);
 }
 
 void add_v9a_model_steeper_left(Plan& plan, const PlanOptions& options) {
@@ -625,6 +649,7 @@ void add_v9a_model_steeper_left(Plan& plan, const PlanOptions& options) {
             return Measured{model_shape.steepness, shape_note(model_shape, "us")};
           },
   });
+  plan.classify({"V9a"}, FigureClass::kDerived);
 }
 
 void add_v9b_simulated_steeper_left(Plan& plan, const PlanOptions& options) {
@@ -652,6 +677,7 @@ void add_v9b_simulated_steeper_left(Plan& plan, const PlanOptions& options) {
             return Measured{shape.steepness, shape_note(shape, "us")};
           },
   });
+  plan.classify({"V9b"}, FigureClass::kQualitative, peripheral_assumptions());
 }
 
 void add_v9c_stepping_dominates(Plan& plan, const PlanOptions& options) {
@@ -690,6 +716,7 @@ void add_v9c_stepping_dominates(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+  plan.classify({"V9c"}, FigureClass::kQualitative, peripheral_assumptions());
 }
 
 void add_v10_cubes_interior_minimum(Plan& plan, const PlanOptions& options) {
@@ -742,6 +769,7 @@ void add_v10_cubes_interior_minimum(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+  plan.classify({"V10"}, FigureClass::kQualitative, peripheral_assumptions());
 }
 
 void add_v11_tests_fall(Plan& plan, const PlanOptions& options) {
@@ -786,6 +814,8 @@ void add_v11_tests_fall(Plan& plan, const PlanOptions& options) {
                                 (where.empty() ? "" : "; no fall at" + where)};
           },
   });
+  // Tests per ray: counts of the grid's traversal, no timing assumption enters.
+  plan.classify({"V11"}, FigureClass::kQualitative);
 }
 
 void add_g1_golden_image(Plan& plan, const PlanOptions& options) {
@@ -840,6 +870,7 @@ void add_g1_golden_image(Plan& plan, const PlanOptions& options) {
             },
     });
   }
+  plan.classify({"G1"}, FigureClass::kQualitative);
 }
 
 void add_fig2_18_csv(Plan& plan, const PlanOptions& options) {

@@ -12,6 +12,18 @@
 
 namespace rtsim::validation {
 
+const char* class_name(FigureClass c) {
+  switch (c) {
+    case FigureClass::kMeasured:
+      return "measured";
+    case FigureClass::kDerived:
+      return "derived";
+    case FigureClass::kQualitative:
+      return "qualitative";
+  }
+  return "?";
+}
+
 // ---- Tolerance ----------------------------------------------------------------------------
 
 Tolerance Tolerance::relative(double fraction, std::string why) {
@@ -107,6 +119,20 @@ const std::string& Plan::add_run(RunRequest run) {
   return runs.back().key;
 }
 
+void Plan::classify(const std::vector<std::string>& ids, FigureClass figure_class,
+                    const std::vector<AssumptionRef>& assumptions) {
+  for (const auto& id : ids) {
+    bool found = false;
+    for (auto& f : figures) {
+      if (f.id != id && !is_group_member(f.id, id)) continue;
+      f.figure_class = figure_class;
+      f.assumptions = assumptions;
+      found = true;
+    }
+    if (!found) throw std::logic_error("validation plan: classify: no figure " + id);
+  }
+}
+
 const RunRequest* Plan::find_run(const std::string& key) const {
   for (const auto& r : runs)
     if (r.key == key) return &r;
@@ -171,7 +197,8 @@ std::vector<Row> evaluate(const Plan& plan, const RunResults& results) {
             .seed_value = f.seed_value,
             .tolerance = f.tolerance,
             .open = f.open,
-            .parameter_check = f.parameter_check};
+            .figure_class = f.figure_class};
+    for (const auto& a : f.assumptions) row.assumptions.push_back(a.param);
     for (const auto& key : f.runs) {
       if (const RunRequest* r = plan.find_run(key)) row.commands.push_back(r->command_line());
     }
@@ -188,6 +215,7 @@ std::vector<Row> evaluate(const Plan& plan, const RunResults& results) {
       row.seed_display = "(from run)";
     rows.push_back(std::move(row));
   }
+  check_classes(plan, results, rows);
   return rows;
 }
 
@@ -270,6 +298,12 @@ std::string format_number(double v) {
 
 namespace {
 
+std::string join(const std::vector<std::string>& parts, const std::string& separator) {
+  std::string s;
+  for (const auto& p : parts) s += (s.empty() ? "" : separator) + p;
+  return s;
+}
+
 std::string with_unit(double v, const std::string& unit) {
   return unit.empty() ? format_number(v) : format_number(v) + " " + unit;
 }
@@ -309,7 +343,10 @@ std::string rows_table(const std::vector<const Row*>& rows) {
                      r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
                      r.simulated ? with_unit(*r.simulated, r.unit) : "-", rel ? percent(*rel) : "-",
                      r.tolerance.describe(),
-                     r.pass() ? "pass" : (r.open.empty() ? "FAIL" : "FAIL (open)")});
+                     !r.class_error.empty() ? "FAIL (class)"
+                     : r.pass()             ? "pass"
+                     : r.open.empty()       ? "FAIL"
+                                            : "FAIL (open)"});
   }
   std::vector<std::size_t> width(head.size());
   for (std::size_t c = 0; c < head.size(); ++c) {
@@ -335,33 +372,44 @@ std::string rows_table(const std::vector<const Row*>& rows) {
 }  // namespace
 
 std::string format_table(const std::vector<Row>& rows) {
-  // The figures, then apart the rows that only check the model's parameters against the seed.
-  std::vector<const Row*> figures, checks;
-  for (const auto& r : rows) (r.parameter_check ? checks : figures).push_back(&r);
+  // Measured figures, then qualitative ones, then apart the derived rows: they restate the
+  // model's parameters against the seed's arithmetic, so they are not reproductions.
+  std::vector<const Row*> by_class[3];
+  for (const auto& r : rows) by_class[static_cast<int>(r.figure_class)].push_back(&r);
+  const auto& measured = by_class[static_cast<int>(FigureClass::kMeasured)];
+  const auto& derived = by_class[static_cast<int>(FigureClass::kDerived)];
+  const auto& qualitative = by_class[static_cast<int>(FigureClass::kQualitative)];
   std::ostringstream out;
-  out << rows_table(figures);
-  if (!checks.empty()) {
-    out << "\nParameter checks (the model's parameters against the seed's numbers: they restate "
-           "the configuration, so they are not reproductions and are not counted as figures)\n"
-        << rows_table(checks);
-  }
+  bool first = true;
+  const auto section = [&](const std::vector<const Row*>& part, const char* heading) {
+    if (part.empty()) return;
+    out << (first ? "" : "\n") << heading << "\n" << rows_table(part);
+    first = false;
+  };
+  section(measured, "Measured (the figure emerges from a simulated run)");
+  section(qualitative, "Qualitative (a shape or an order the seed states without a number)");
+  section(derived,
+          "Derived (the seed's arithmetic on stated numbers, checked against the model's "
+          "parameters: they move with the parameters, so they are not reproductions)");
 
   bool any_note = false;
   for (const auto& r : rows) {
-    if (r.note.empty() && r.error.empty()) continue;
+    if (r.note.empty() && r.error.empty() && r.class_error.empty()) continue;
     if (!any_note) out << "\n";
     any_note = true;
     if (!r.error.empty()) out << r.id << ": error: " << r.error << "\n";
+    if (!r.class_error.empty()) out << r.id << ": class error: " << r.class_error << "\n";
     if (!r.note.empty()) out << r.id << ": " << r.note << "\n";
   }
-  const auto passed = static_cast<std::size_t>(
-      std::count_if(figures.begin(), figures.end(), [](const Row* r) { return r->pass(); }));
-  out << "\n" << passed << " of " << figures.size() << " figures pass";
-  if (!checks.empty()) {
-    const auto agree = static_cast<std::size_t>(
-        std::count_if(checks.begin(), checks.end(), [](const Row* r) { return r->pass(); }));
-    out << "; " << agree << " of " << checks.size() << " parameter checks agree";
-  }
+  const auto passing = [](const std::vector<const Row*>& part) {
+    return static_cast<std::size_t>(
+        std::count_if(part.begin(), part.end(), [](const Row* r) { return r->pass(); }));
+  };
+  out << "\n"
+      << measured.size() << " measured, " << derived.size() << " derived, " << qualitative.size()
+      << " qualitative; " << passing(measured) << " of " << measured.size() << " measured pass, "
+      << passing(qualitative) << " of " << qualitative.size() << " qualitative hold, "
+      << passing(derived) << " of " << derived.size() << " derived agree";
   std::size_t open_failing = 0;
   for (const auto& r : rows) {
     if (!r.pass() && !r.open.empty()) {
@@ -409,7 +457,10 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
     t["why"] = r.tolerance.why;
     j["tolerance"] = t;
     j["pass"] = r.pass();
-    j["parameter_check"] = r.parameter_check;
+    j["class"] = class_name(r.figure_class);
+    j["assumptions"] = r.assumptions;
+    j["formula_params"] = r.formula_params;
+    j["class_error"] = r.class_error;
     if (r.open.empty())
       j["open"] = nullptr;
     else
@@ -426,7 +477,7 @@ nlohmann::ordered_json rows_to_json(const std::vector<Row>& rows) {
 std::string rows_to_csv(const std::vector<Row>& rows) {
   std::ostringstream out;
   out << "id,title,seed_ref,unit,seed_value,seed_display,simulated_value,relative_error,"
-         "tolerance,pass,note,error,parameter_check\n";
+         "tolerance,pass,note,error,class,assumptions\n";
   for (const auto& r : rows) {
     const auto rel = r.relative_error();
     out << csv_field(r.id) << ',' << csv_field(r.title) << ',' << csv_field(r.seed_ref) << ','
@@ -434,7 +485,7 @@ std::string rows_to_csv(const std::vector<Row>& rows) {
         << csv_field(r.seed_display) << ',' << (r.simulated ? exact_number(*r.simulated) : "")
         << ',' << (rel ? exact_number(*rel) : "") << ',' << csv_field(r.tolerance.describe()) << ','
         << (r.pass() ? "pass" : "fail") << ',' << csv_field(r.note) << ',' << csv_field(r.error)
-        << ',' << (r.parameter_check ? "yes" : "no") << "\n";
+        << ',' << class_name(r.figure_class) << ',' << csv_field(join(r.assumptions, " ")) << "\n";
   }
   return out.str();
 }

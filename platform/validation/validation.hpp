@@ -18,6 +18,32 @@
 
 namespace rtsim::validation {
 
+/// What kind of reproduction a figure is (DESIGN.md "Validation"). A figure equal to a parameter
+/// or a product of parameters is never measured; evaluate() checks what it can of that.
+enum class FigureClass {
+  /// Read from a simulated run in which it emerges from the modules' interaction: a frame time,
+  /// a throughput counted from completed jobs, a latency from the probe, a utilisation.
+  kMeasured,
+  /// Arithmetic the seed itself does on stated numbers (a cycle = cycles x clock, the thesis's
+  /// simple analysis), checked against the model's parameters: it moves with them by nature.
+  kDerived,
+  /// A shape or an order the seed states without a number ("steeper on the left", "most idle").
+  kQualitative,
+};
+
+/// "measured", "derived", "qualitative".
+const char* class_name(FigureClass c);
+
+/// An assumption (a parameter whose source is not a seed line) a figure's runs depend on, and
+/// how `rtsim validate --sensitivity` moves it: by the factors asked for (default x0.5 and x2),
+/// or to the values stated here (a range the seed's own numbers bound, the other choices of a
+/// string parameter).
+struct AssumptionRef {
+  std::string param{};                ///< "node.clock"
+  std::vector<std::string> values{};  ///< empty: the factors; else these values, as for -p
+  std::string why{};                  ///< why these values (docs/validation.md)
+};
+
 /// How a simulated value is judged against the seed's value.
 struct Tolerance {
   enum class Kind {
@@ -89,10 +115,12 @@ struct Figure {
   /// A known open figure: why the model does not reproduce it yet (docs/validation.md). It is
   /// still judged; a failure shows as "FAIL (open)" and validation.json carries the reason.
   std::string open{};
-  /// The row restates the model's parameters (a substage's cycles times the clock): it checks
-  /// that the configuration is the seed's, it does not reproduce a figure, so it cannot fail
-  /// unless a parameter is changed. Printed apart and not counted among the figures.
-  bool parameter_check = false;
+  /// Measured, derived or qualitative. A derived row restates the model's parameters (a
+  /// substage's cycles times the clock): it checks that the configuration is the seed's, it
+  /// cannot fail unless a parameter is changed, so it is printed apart.
+  FigureClass figure_class = FigureClass::kMeasured;
+  /// The assumptions the figure's runs depend on: `validate --sensitivity` moves each.
+  std::vector<AssumptionRef> assumptions{};
 };
 
 /// A figure's verdict: a row of the table.
@@ -105,12 +133,22 @@ struct Row {
   std::string error{};                  ///< why there is no value (then the row fails)
   std::vector<std::string> commands{};  ///< command lines of its runs
   std::string open{};                   ///< Figure::open
-  bool parameter_check = false;         ///< Figure::parameter_check
+  FigureClass figure_class = FigureClass::kMeasured;
+  std::vector<std::string> assumptions{};  ///< Figure::assumptions, the parameters' names
+  /// The class does not hold (check_classes): a measured or qualitative row whose value does
+  /// not come from its runs, or a measured row whose verdict follows a parameter its formula
+  /// reads directly. Fails the validation, like an error.
+  std::string class_error{};
+  /// Parameters of its runs that the row's formula reads directly (from stats.json's params):
+  /// moving one moves the value without a run.
+  std::vector<std::string> formula_params{};
 
   bool pass() const;
   /// Passes, or is a known open figure that fails with a value (an error still counts): what
-  /// `rtsim validate`'s exit status judges.
-  bool as_expected() const { return pass() || (!open.empty() && error.empty()); }
+  /// `rtsim validate`'s exit status judges. A class error is never expected.
+  bool as_expected() const {
+    return class_error.empty() && (pass() || (!open.empty() && error.empty()));
+  }
   /// (simulated - seed) / |seed|; empty without a value, for a qualitative figure, or when
   /// the seed value is 0.
   std::optional<double> relative_error() const;
@@ -135,6 +173,11 @@ struct Plan {
 
   /// Adds a run unless one with the same key exists (figures share runs); returns the key.
   const std::string& add_run(RunRequest run);
+  /// Sets the class and the assumptions of the figures named `ids` (exact ids, or groups: "P9"
+  /// names P9a, P9b, ...), for figures built in loops or by helpers. std::logic_error if an id
+  /// names none.
+  void classify(const std::vector<std::string>& ids, FigureClass figure_class,
+                const std::vector<AssumptionRef>& assumptions = {});
   const RunRequest* find_run(const std::string& key) const;
 };
 
@@ -142,8 +185,20 @@ struct Plan {
 /// and the runs they need. Throws std::invalid_argument naming an id that matches nothing.
 Plan select_figures(const Plan& plan, const std::vector<std::string>& ids);
 
-/// The rows of every figure of the plan, from the runs' results.
+/// The rows of every figure of the plan, from the runs' results, with their classes checked
+/// (check_classes).
 std::vector<Row> evaluate(const Plan& plan, const RunResults& results);
+
+/// Checks what can be checked of each row's class, into Row::class_error and
+/// Row::formula_params:
+///  - a measured or qualitative row must need its runs: its value is evaluated again on the
+///    runs' stats.json with every number outside `params` scrambled, and must move (else it is a
+///    parameter or a constant: derived);
+///  - a row of runs cannot be derived from no run, and a row without runs must be derived;
+///  - a measured row's verdict must not follow a parameter its formula reads directly: each
+///    number in its runs' `params` is moved x0.5 and x2 with nothing run again, and the verdict
+///    must stay (the parameters it moves the value at all are its formula_params).
+void check_classes(const Plan& plan, const RunResults& results, std::vector<Row>& rows);
 
 /// Readers for the measure functions. Each throws MeasureError with a clear message.
 const nlohmann::json& stats_of(const RunResults& results, const std::string& key);

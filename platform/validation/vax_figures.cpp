@@ -203,6 +203,9 @@ void add_vax_figures(Plan& plan, const PlanOptions& options) {
                                        " rays, O = 1093, with the recovered T_i and T_s"};
           },
   });
+  // The VAX's frame time is R_t (T_s + T_i O) by construction (T_s and T_i are its parameters,
+  // from L317-L318): every row is the thesis's own arithmetic, checked on a run.
+  plan.classify({"VAX1", "VAX2", "VAX3", "VAX4", "VAX5"}, FigureClass::kDerived);
 }
 
 const RegisterFigures kRegistered(kVaxMachine, add_vax_figures);

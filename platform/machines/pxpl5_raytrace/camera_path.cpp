@@ -21,7 +21,7 @@ const modules::CountParam kFrames(
      .unit = "frames",
      .description = "Frames rendered; the camera turns between them (camera.spin) and the image "
                     "is the last frame's",
-     .source = "assumption: a camera path for frame rates (the issue's multi-frame runs)"});
+     .source = "study setting: a camera path for frame rates (the issue's multi-frame runs)"});
 const modules::ChoiceParam kPath(
     {.name = "camera.path",
      .default_value = "",
@@ -41,7 +41,7 @@ const modules::RealParam kSpin({.name = "camera.spin",
                                 .description = "Turn of the eye about the vertical axis (the "
                                                "view's up through the point looked at) after "
                                                "each frame during which the user moves",
-                                .source = "assumption: a simple camera path"});
+                                .source = "study setting: a simple camera path"});
 const modules::RealParam kDistance(
     {.name = "camera.distance",
      .default_value = "1",

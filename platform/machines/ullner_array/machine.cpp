@@ -97,7 +97,7 @@ const modules::CountParam kDropResult(
      .unit = "messages",
      .description = "A fault for tests: the result message with this number (counted where "
                     "results are added) is lost; 0 loses none",
-     .source = "assumption: fault injection, not a machine property"});
+     .source = "test setting: fault injection, not a machine property"});
 /// The array's parameters are the machine's own, under this path; its ring's under kRing.
 constexpr const char* kArray = "array";
 constexpr const char* kRing = "ring";

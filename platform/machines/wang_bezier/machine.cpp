@@ -37,7 +37,7 @@ const modules::FlagParam kAccuracyCheck(
                     "sizes, per job and per primary ray, in stats.json wang.accuracy. Costs wall "
                     "time (on the teapot a run takes about 1.5 times as long); changes neither "
                     "the image nor the timing",
-     .source = "assumption: the paper compared with Bezier clipping and printed no number (seed "
+     .source = "study setting: the paper compared with Bezier clipping and printed no number (seed "
                "002 L264-L266); the trade-off of stage count against accuracy"});
 /// The module tree: the host and the pipeline (their names and their parameters' paths).
 constexpr const char* kHost = "host";
