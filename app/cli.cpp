@@ -184,6 +184,14 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
       ->check(CLI::Range(1, 4096));
   run->add_option("--quantum", runa.quantum,
                   "Global TLM quantum, e.g. \"10 us\" (parameter `quantum`; 0 is the reference)");
+  run->add_option("--image", runa.image,
+                  "Image files written: all (image.png, image.exr and the --aov files), png "
+                  "(image.png only), or none: a timing-only run, for sweeps whose image does not "
+                  "depend on what they vary; with --sample or --sample-error the rows not "
+                  "simulated in detail are then not rendered at all (stats.json image.files; "
+                  "the counts of rays and tests cover what was rendered)")
+      ->capture_default_str()
+      ->check(one_of({"all", "png", "none"}));
   run->add_flag("--overhead", runa.overhead,
                 "Also render the same frame with no timing in this process and report "
                 "functional_wall_time_s and overhead_ratio");

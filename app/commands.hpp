@@ -38,6 +38,9 @@ struct RunArgs {
   std::string quantum;                     ///< "" keeps the parameter `quantum`
   int spp = 0;                             ///< --spp N: render.spp (0: the configuration's)
   bool overhead = false;
+  /// --image: the image files written: all (image.png, image.exr, AOVs), png, or none (a
+  /// timing-only run: a sampled run then renders no row it does not simulate).
+  std::string image = "all";
   int sample = 0;                   ///< --sample K: one row window in K in detail (0: off)
   int sample_window = 0;            ///< --sample-window R: rows a window (0: the machine's choice)
   int sample_warmup = -1;           ///< --sample-warmup W: warm-up windows (-1: the default)

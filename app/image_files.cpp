@@ -58,8 +58,12 @@ void write_exr(const std::filesystem::path& path, int width, int height, int cha
   write_image(path, width, height, channels, true, data.data(), channel_name, true);
 }
 
-void stage_images(OutputSet& out, const functional::RenderResult& r) {
+void stage_png(OutputSet& out, const functional::RenderResult& r) {
   write_png(out.stage("image.png"), r.width, r.height, r.rgb);
+}
+
+void stage_images(OutputSet& out, const functional::RenderResult& r) {
+  stage_png(out, r);
   write_exr(out.stage("image.exr"), r.width, r.height, 3, r.rgb);
   if (!r.id.empty()) write_exr(out.stage("id.exr"), r.width, r.height, 1, r.id, "id");
   if (!r.depth.empty()) write_exr(out.stage("depth.exr"), r.width, r.height, 1, r.depth, "Z");

@@ -25,5 +25,7 @@ void write_exr(const std::filesystem::path& path, int width, int height, int cha
 
 /// Stages image.png, image.exr and the AOVs the result carries (id.exr, depth.exr) in `out`.
 void stage_images(OutputSet& out, const functional::RenderResult& r);
+/// Stages image.png only (rtsim run --image png).
+void stage_png(OutputSet& out, const functional::RenderResult& r);
 
 }  // namespace rtsim::app

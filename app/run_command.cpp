@@ -43,6 +43,7 @@ std::string command_line(const RunArgs& a) {
   for (const auto& m : a.trace_modules) s += " --trace-modules " + runs::shell_quote(m);
   if (a.trace_max_events != 0) s += " --trace-max-events " + std::to_string(a.trace_max_events);
   for (const auto& v : a.aovs) s += " --aov " + v;
+  if (a.image != "all") s += " --image " + a.image;
   if (a.overhead) s += " --overhead";
   if (a.latency_probe) s += " --latency-probe";
   if (a.sample > 0) s += " --sample " + std::to_string(a.sample);
@@ -115,6 +116,14 @@ int run_run(const RunArgs& args) {
   opts.height = args.height;
   opts.aov_id = wants_aov(args.aovs, "id");
   opts.aov_depth = wants_aov(args.aovs, "depth");
+  opts.image = args.image != "none";
+  if (!opts.image && !args.aovs.empty())
+    throw InputError("--image none", 0, "writes no image, so it takes no --aov");
+  if (args.image != "all" && !args.aovs.empty())
+    throw InputError("--image " + args.image, 0,
+                     "writes image.png only; the --aov files are EXR: use --image all");
+  if (!opts.image && args.report)
+    throw InputError("--image none", 0, "--report shows the image: use --image png or all");
   opts.latency_probe = args.latency_probe;
   const bool sampled = args.sample > 0 || !args.sample_error.empty();
   if (args.sample_window > 0 && !sampled)
@@ -185,13 +194,16 @@ int run_run(const RunArgs& args) {
       stats[key] = value;
   }
   if (plan) stats["sample"]["plan"] = plan->json;
+  // Which image files the run wrote; with none, a sampled run rendered only its detailed rows.
+  stats["image"]["files"] = args.image;
 
   // A trace that lost events says so wherever the numbers are read: here, stats.json `trace`,
   // the report.
   for (const std::string& warning : trace_warnings(nlohmann::json(stats)))
     std::cerr << "rtsim: warning: " << warning << "\n";
 
-  stage_images(out, result.image);
+  if (args.image == "all") stage_images(out, result.image);
+  if (args.image == "png") stage_png(out, result.image);
   {
     std::ofstream f(out.stage("stats.json"));
     f << stats.dump(2) << "\n";
@@ -213,9 +225,12 @@ int run_run(const RunArgs& args) {
 
   bar.finish();
   if (!args.quiet) {
-    std::vector<std::pair<std::string, std::string>> outputs = {
-        {"image", (out.dir() / "image.png").string() + "  " + (out.dir() / "image.exr").string()},
-        {"stats", (out.dir() / "stats.json").string()}};
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (args.image == "all")
+      outputs.emplace_back(
+          "image", (out.dir() / "image.png").string() + "  " + (out.dir() / "image.exr").string());
+    if (args.image == "png") outputs.emplace_back("image", (out.dir() / "image.png").string());
+    outputs.emplace_back("stats", (out.dir() / "stats.json").string());
     if (!opts.vcd_path.empty()) outputs.emplace_back("trace", (out.dir() / "trace.vcd").string());
     if (!opts.perfetto_path.empty())
       outputs.emplace_back("trace", (out.dir() / "trace.json").string());

@@ -52,6 +52,9 @@ struct RunOptions {
   int height = 0;
   bool aov_id = false;
   bool aov_depth = false;
+  /// The image is wanted (rtsim run --image all|png). False (--image none): what only the picture
+  /// needs is skipped, the functional rows of a sampled run.
+  bool image = true;
   std::filesystem::path vcd_path;       ///< empty: no VCD trace
   std::filesystem::path perfetto_path;  ///< empty: no Perfetto trace
   /// At most this many events in each trace file (Perfetto events, VCD value changes); 0: every

@@ -1,6 +1,7 @@
 // Sampled simulation (`rtsim run --sample K`, platform/machines/frame_sample.hpp): on a small
 // frame of every machine that takes it, the image equals the full run's byte for byte and the
-// estimate's 99.7% confidence interval contains the full run's frame time; bad uses exit 2.
+// estimate's 99.7% confidence interval contains the full run's frame time, and a timing-only run
+// (--image none) gives the same estimate without the image; bad uses exit 2.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,6 +45,19 @@ TEST_P(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
     EXPECT_DOUBLE_EQ(sampled["simulated_time_s"].get<double>(), est);
     EXPECT_LE(lo, t);
     EXPECT_GE(hi, t);
+    // Timing-only (--image none): the same simulation and estimate, no image, and the rows not
+    // simulated in detail are not rendered (fewer rays counted).
+    const auto timing =
+        rtsim::test::run_machine(machine, "sample-4-timing", args + " --sample 4 --image none");
+    ASSERT_FALSE(timing.empty());
+    EXPECT_EQ(timing["sample"]["estimate_s"], s["estimate_s"]);
+    EXPECT_EQ(timing["sample"]["ci99_7_s"], s["ci99_7_s"]);
+    EXPECT_EQ(timing["image"]["files"], "none");
+    EXPECT_EQ(sampled["image"]["files"], "all");
+    EXPECT_FALSE(fs::exists(timing.at("image_png").get<std::string>()));
+    EXPECT_FALSE(fs::exists(
+        fs::path(timing.at("image_png").get<std::string>()).replace_filename("image.exr")));
+    EXPECT_LT(timing["rays"]["total"].get<double>(), sampled["rays"]["total"].get<double>());
   }
 }
 
@@ -106,6 +120,14 @@ TEST(SampledSimulation, BadUsesExitTwo) {
          "a warm-up does not apply"},
         {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error 0%",
          "(0, 50%]"},
+        // A timing-only run writes no image: nothing that only shows one.
+        {"--machine vax-750 --scene builtin:default --width 8 --height 8 --image none --aov id",
+         "takes no --aov"},
+        {"--machine vax-750 --scene builtin:default --width 8 --height 8 --image png --aov depth",
+         "use --image all"},
+        {"--machine vax-750 --scene builtin:default --width 8 --height 8 --image none --report",
+         "--report shows the image"},
+        {"--machine vax-750 --scene builtin:default --width 8 --height 8 --image jpg", "--image"},
         {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error one",
          "a percentage"},
         {"--machine vax-750 --scene builtin:default --width 5 --height 5 --sample-error 1%",

@@ -4,6 +4,7 @@
 // exit status 2 and no output), and the results table built from outcomes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -99,6 +100,39 @@ TEST(SweepFile, ExplicitValuesKeepTheirTypes) {
   EXPECT_TRUE(m.values[2].json.is_string());
   EXPECT_TRUE(m.values[3].json.is_boolean());
   EXPECT_EQ(m.values[0].line, 5u);
+}
+
+// The run flags a sweep may set or vary: passed to each point's `rtsim run` as the flags are,
+// "off" values adding nothing, traces capped unless the file caps them; a varied flag is a column.
+TEST(SweepFile, RunFlagsAreFixedOrAxesAndBecomeTheRunsFlags) {
+  const SweepFile f = parse(head() +
+                            "image = \"none\"\nlatency-probe = true\ntrace = \"vcd\"\n"
+                            "[[axes]]\nparam = \"sample\"\nvalues = [0, 4]\n");
+  const auto points = expand_points(f);
+  ASSERT_EQ(points.size(), 2u);
+  const auto has = [](const Point& p, const Strings& seq) {
+    return std::search(p.args.begin(), p.args.end(), seq.begin(), seq.end()) != p.args.end();
+  };
+  for (const auto& p : points) {
+    EXPECT_TRUE(has(p, {"--image", "none"})) << p.command_line();
+    EXPECT_TRUE(has(p, {"--latency-probe"})) << p.command_line();
+    EXPECT_TRUE(has(p, {"--trace", "vcd"})) << p.command_line();
+    EXPECT_TRUE(has(p, {"--trace-max-events", std::to_string(kSweepTraceMaxEvents)}))
+        << p.command_line();
+    EXPECT_FALSE(has(p, {"-p", "image=none"})) << "a run flag is no parameter";
+  }
+  EXPECT_FALSE(has(points[0], {"--sample"})) << "sample = 0: the whole frame in detail";
+  EXPECT_TRUE(has(points[1], {"--sample", "4"}));
+  EXPECT_EQ(f.swept_columns(), Strings{"sample"});
+  EXPECT_TRUE(f.swept_params().empty());
+  const SweepFile capped = parse(head() +
+                                 "trace = \"perfetto\"\ntrace-max-events = 5000\n"
+                                 "sample-error = \"1%\"\n");
+  const auto p = expand_points(capped).at(0);
+  EXPECT_TRUE(has(p, {"--trace", "perfetto"})) << p.command_line();
+  EXPECT_TRUE(has(p, {"--trace-max-events", "5000"})) << p.command_line();
+  EXPECT_TRUE(has(p, {"--sample-error", "1%"})) << p.command_line();
+  EXPECT_EQ(std::count(p.args.begin(), p.args.end(), "--trace-max-events"), 1);
 }
 
 TEST(SweepFile, LinearRanges) {
@@ -230,6 +264,24 @@ TEST(SweepCheck, EveryBadInputNamesTheLineAndWhatWasExpected) {
   const std::string axis = "[[axes]]\n";
   const std::vector<Case> cases = {
       {"toml syntax", "machine = \"" + m2() + "\"\nscene = [1, ", "2: "},
+      {"run flag of the wrong kind", head() + "image = \"jpg\"\n",
+       "3: 'image' is \"all\", \"png\" or \"none\""},
+      {"sample of one", head() + "sample = 1\n", "3: 'sample' = 1 would simulate every window"},
+      {"sample out of range", head() + axis + "param = \"sample\"\nvalues = [4, -2]\n",
+       "5: 'sample' must be 0 (the whole frame in detail) or K"},
+      {"latency-probe not a bool", head() + "latency-probe = 1\n",
+       "3: 'latency-probe' is true or false"},
+      {"unknown trace", head() + "trace = \"vcd,json\"\n", "3: 'trace' is \"vcd\""},
+      {"uncapped trace", head() + "trace = \"vcd\"\ntrace-max-events = 0\n",
+       "4: 'trace-max-events' must be an integer from 1"},
+      {"cap without a trace", head() + "trace-max-events = 10\n",
+       "0: 'trace-max-events' caps traces"},
+      {"sample-error not a percentage", head() + "sample-error = 0.01\n",
+       "3: 'sample-error' is a percentage"},
+      {"sample and sample-error", head() + "sample = 4\nsample-error = \"1%\"\n",
+       "0: give 'sample' (K) or 'sample-error'"},
+      {"a run flag in [params]", head() + "[params]\nsample = 4\n",
+       "4: 'sample' is an option of `rtsim run`, not a parameter"},
       {"unknown top-level key", head() + "widht = 3\n",
        "3: unknown key 'widht' in the sweep file; did you mean 'width'?"},
       {"unknown key, no near name", head() + "zzz = 3\n",

@@ -98,7 +98,7 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
     out["sample"] = std::move(sample_json_);
     // The rows not simulated in detail, functionally: the image is whole.
     frame_.fb().set_observer({});
-    if (!opts_.sample_pilot && !sample_->functional_rows().empty())
+    if (!opts_.sample_pilot && opts_.image && !sample_->functional_rows().empty())
       functional::render_rows(scene_, *twin_.tracer, twin_.settings.shade, frame_,
                               sample_->functional_rows());
   }

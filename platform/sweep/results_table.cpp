@@ -161,7 +161,7 @@ bool is_wall_clock_column(std::string_view column) {
 ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>& points,
                                 const std::vector<PointOutcome>& outcomes) {
   ResultsTable t;
-  const std::vector<std::string> swept = file.swept_params();
+  const std::vector<std::string> swept = file.swept_columns();
   std::vector<std::string> leading = {"point", "machine", "scene", "width", "height"};
   leading.insert(leading.end(), swept.begin(), swept.end());
   for (const char* c : {"status", "exit_code", "error", "point_wall_time_s", "dir"})

@@ -96,6 +96,7 @@ class Reader {
                                           const std::string& where) const;
   AxisMember member(const toml::table& table, const std::string& where) const;
   void check_run_option_values(const AxisMember& m) const;
+  void check_run_flag_value(const std::string& name, const Value& v) const;
   void check_run_option_value(const std::string& name, const Value& v) const;
   Axis axis(const toml::table& table, std::size_t index) const;
   void use_name(const std::string& name, std::size_t line);
@@ -360,6 +361,62 @@ void Reader::check_run_option_value(const std::string& name, const Value& v) con
         v.json.get<std::int64_t>() > kMaxImageSide)
       fail(v.line, in_quotes(name) + " must be an integer from 1 to " +
                        std::to_string(kMaxImageSide) + " (pixels); got " + v.json.dump());
+  } else if (is_run_flag(name)) {
+    check_run_flag_value(name, v);
+  }
+}
+
+void Reader::check_run_flag_value(const std::string& name, const Value& v) const {
+  const auto integer_in = [&](std::int64_t lo, std::int64_t hi, const std::string& what) {
+    if (!v.json.is_number_integer() || v.json.get<std::int64_t>() < lo ||
+        v.json.get<std::int64_t>() > hi)
+      fail(v.line, in_quotes(name) + " must be " + what + "; got " + v.json.dump());
+  };
+  if (name == "sample") {
+    integer_in(0, 1000000, "0 (the whole frame in detail) or K from 2 to 1000000");
+    if (v.json.get<std::int64_t>() == 1)
+      fail(v.line, "'sample' = 1 would simulate every window: write 0 for the whole frame");
+  } else if (name == "sample-window") {
+    integer_in(1, 1000000, "an integer from 1 to 1000000 (rows, or regions, a window)");
+  } else if (name == "sample-warmup") {
+    integer_in(0, 1000000, "an integer from 0 to 1000000 (windows)");
+  } else if (name == "trace-max-events") {
+    integer_in(1, 1000000000,
+               "an integer from 1 to 1000000000 (a sweep's traces are capped: each point writes "
+               "its own)");
+  } else if (name == "latency-probe") {
+    if (!v.json.is_boolean())
+      fail(v.line, "'latency-probe' is true or false; got " + v.json.dump());
+  } else if (name == "image") {
+    if (v.text != "all" && v.text != "png" && v.text != "none")
+      fail(v.line,
+           "'image' is \"all\", \"png\" or \"none\" (a timing-only point); got " + v.json.dump());
+  } else if (name == "trace") {
+    bool ok = v.json.is_string() && !v.text.empty();
+    std::size_t start = 0;
+    while (ok && start <= v.text.size()) {
+      const std::size_t comma = v.text.find(',', start);
+      const std::string part =
+          v.text.substr(start, comma == std::string::npos ? comma : comma - start);
+      ok = part == "vcd" || part == "perfetto" || (part == "none" && v.text == "none");
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    if (!ok)
+      fail(v.line,
+           "'trace' is \"vcd\", \"perfetto\", \"vcd,perfetto\" or \"none\"; got " + v.json.dump());
+  } else if (name == "sample-error") {
+    // "1%" or "0.5%": the run reads it (rtsim run --sample-error); "none" is the whole frame.
+    const std::string& t = v.text;
+    char* end = nullptr;
+    const double x = v.json.is_string() ? std::strtod(t.c_str(), &end) : 0.0;
+    const bool percent =
+        v.json.is_string() && end != t.c_str() && std::string(end) == "%" && x > 0 && x < 100;
+    if (!percent && t != "none")
+      fail(v.line,
+           "'sample-error' is a percentage such as \"1%\" (the run's target error), "
+           "or \"none\"; got " +
+               v.json.dump());
   }
 }
 
@@ -545,7 +602,8 @@ SweepFile Reader::read(std::string_view text) {
   const toml::table root = params::parse_toml(text, origin_);
   check_keys(root,
              {"name", "description", "machine", "machines", "scene", "scenes", "width", "height",
-              "configs", "params", "axes"},
+              "sample", "sample-error", "sample-window", "sample-warmup", "image", "latency-probe",
+              "trace", "trace-max-events", "configs", "params", "axes"},
              "the sweep file");
 
   SweepFile out;
@@ -562,7 +620,9 @@ SweepFile Reader::read(std::string_view text) {
   std::vector<Axis> leading;
   read_machine_or_scene(root, kMachine, "machines", out, leading);
   read_machine_or_scene(root, kScene, "scenes", out, leading);
-  for (std::string_view key : {kWidth, kHeight}) {
+  std::vector<std::string_view> single = {kWidth, kHeight};
+  single.insert(single.end(), std::begin(kRunFlags), std::end(kRunFlags));
+  for (std::string_view key : single) {
     if (const toml::node* n = root.get(key)) {
       if (n->is_array())
         fail(line_of(*n), in_quotes(key) +
@@ -608,6 +668,10 @@ SweepFile Reader::read(std::string_view text) {
     fail(0,
          "the sweep names no scene: add scene = \"builtin:NAME\" or a scene file (or a list; "
          "`rtsim list scenes`)");
+  if (used_.contains("trace-max-events") && !used_.contains("trace"))
+    fail(0, "'trace-max-events' caps traces: add trace = \"vcd\" (or \"perfetto\")");
+  if (used_.contains("sample") && used_.contains("sample-error"))
+    fail(0, "give 'sample' (K) or 'sample-error' (K chosen for an error), not both");
 
   std::size_t points = 1;
   for (const auto& a : out.axes) {
@@ -621,8 +685,23 @@ SweepFile Reader::read(std::string_view text) {
 
 }  // namespace
 
+bool is_run_flag(std::string_view name) {
+  for (std::string_view f : kRunFlags)
+    if (name == f) return true;
+  return false;
+}
+
 bool is_run_option(std::string_view name) {
-  return name == kMachine || name == kScene || name == kWidth || name == kHeight;
+  return name == kMachine || name == kScene || name == kWidth || name == kHeight ||
+         is_run_flag(name);
+}
+
+std::vector<std::string> SweepFile::swept_columns() const {
+  std::vector<std::string> names;
+  for (const auto& a : axes)
+    for (const auto& m : a.members)
+      if (!is_run_option(m.name) || is_run_flag(m.name)) names.push_back(m.name);
+  return names;
 }
 
 std::size_t SweepFile::point_count() const {

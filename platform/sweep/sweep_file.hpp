@@ -34,7 +34,18 @@ inline constexpr std::string_view kMachine = "machine";
 inline constexpr std::string_view kScene = "scene";
 inline constexpr std::string_view kWidth = "width";
 inline constexpr std::string_view kHeight = "height";
+/// The other options of `rtsim run` a sweep may set or vary, named as the flags are: the sampled
+/// simulation's, the image files written, the latency probe and traces (docs/sweeps.md). A
+/// timing sweep sets `image = "none"` and `sample = K`.
+inline constexpr std::string_view kRunFlags[] = {
+    "sample", "sample-error",  "sample-window", "sample-warmup",
+    "image",  "latency-probe", "trace",         "trace-max-events"};
+/// A sweep's traces are capped: at most this many events a trace file, unless
+/// `trace-max-events` says otherwise (each point writes its own).
+inline constexpr std::int64_t kSweepTraceMaxEvents = 1000000;
 bool is_run_option(std::string_view name);
+/// One of kRunFlags.
+bool is_run_flag(std::string_view name);
 
 /// One value from the file: the text given to `rtsim run` (`-p NAME=TEXT`, `--width TEXT`), the
 /// typed value for results.jsonl, and the line it came from (for errors).
@@ -80,6 +91,9 @@ struct SweepFile {
   std::size_t point_count() const;
   /// The parameters varied by the axes, in axis order (run options excluded).
   std::vector<std::string> swept_params() const;
+  /// What the axes vary besides machine, scene, width and height: the parameters and the run
+  /// flags (kRunFlags), in axis order. The results table's columns after width and height.
+  std::vector<std::string> swept_columns() const;
 };
 
 /// Reads a sweep file; relative paths in it are resolved against its folder.

@@ -96,6 +96,27 @@ std::vector<Point> expand_points(const SweepFile& file) {
         p.args.push_back("--" + std::string(option));
         p.args.push_back(s->value.text);
       }
+    // The run flags: as `rtsim run` takes them; "off" values add nothing.
+    bool traced = false, capped = false;
+    for (const auto& s : p.settings) {
+      if (!is_run_flag(s.name)) continue;
+      const std::string& v = s.value.text;
+      if (s.name == "latency-probe") {
+        if (s.value.json == true) p.args.push_back("--latency-probe");
+        continue;
+      }
+      if ((s.name == "sample" && v == "0") || (s.name == "sample-error" && v == "none") ||
+          (s.name == "trace" && v == "none"))
+        continue;
+      traced = traced || s.name == "trace";
+      capped = capped || s.name == "trace-max-events";
+      p.args.push_back("--" + s.name);
+      p.args.push_back(v);
+    }
+    if (traced && !capped) {
+      p.args.push_back("--trace-max-events");
+      p.args.push_back(std::to_string(kSweepTraceMaxEvents));
+    }
     p.args.push_back("-q");
     for (const auto& [config, line] : file.configs) {
       p.args.push_back("--config");

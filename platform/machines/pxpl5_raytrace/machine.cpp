@@ -159,7 +159,8 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
     setup.sample = run.sample_units(static_cast<int>(setup.layout.regions().size()), "regions",
                                     setup.layout.casters);
     setup.functional_samples = cast_functionally(
-        setup, run, [&](int id) { return !setup.sample->detailed_unit(id); }, !opts.sample_pilot);
+        setup, run, [&](int id) { return !setup.sample->detailed_unit(id); },
+        !opts.sample_pilot && opts.image);
   }
 
   const Layout& lay = setup.layout;
