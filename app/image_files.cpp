@@ -43,6 +43,12 @@ void write_image(const std::filesystem::path& path, int width, int height, int c
 
 void preload_image_module() { (void)load_writer(); }
 
+bool writes_image(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == "--image" && args[i + 1] == "none") return false;
+  return true;
+}
+
 void write_png(const std::filesystem::path& path, int width, int height,
                const std::vector<float>& rgb) {
   std::vector<std::uint8_t> bytes(rgb.size());

@@ -14,6 +14,10 @@ namespace rtsim::app {
 /// so that no run loads it again). Throws std::runtime_error if it cannot be loaded.
 void preload_image_module();
 
+/// Whether an `rtsim run` command line writes an image (it has no `--image none`): whether a
+/// parent that forks it should preload the image module for it.
+bool writes_image(const std::vector<std::string>& args);
+
 /// Linear RGB floats to an 8-bit PNG: each channel clamped to [0,1] and rounded (no transfer
 /// curve: the machines' frame buffers held linear intensities).
 void write_png(const std::filesystem::path& path, int width, int height,

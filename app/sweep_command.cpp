@@ -19,6 +19,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/fork_server.hpp"
 #include "app/image_files.hpp"
 #include "app/interrupt_cleanup.hpp"
 #include "app/output_set.hpp"
@@ -192,7 +193,7 @@ void record_point(const fs::path& dir, const sweep::Point& p, sweep::PointOutcom
 /// Runs the pending points `jobs` at a time (forks of this process, another rtsim binary, or
 /// the ranks of an MPI session), recording each as it finishes, with a progress bar.
 void run_points(const SweepArgs& args, const Plan& plan, const Pending& pending,
-                const fs::path& points_dir, int jobs, mpi::Session* session,
+                const fs::path& points_dir, int jobs, mpi::Session* session, ForkServers* servers,
                 std::vector<sweep::PointOutcome>& outcomes) {
   ProgressBar bar(args.quiet ? std::string() : "sweep",
                   /*lines_when_not_a_terminal=*/!args.quiet);
@@ -213,6 +214,8 @@ void run_points(const SweepArgs& args, const Plan& plan, const Pending& pending,
   q.jobs = jobs;
   q.log_in_run_dir = true;
   if (session) {
+    // This rank's points are forks of its fork servers, started before MPI.
+    if (servers) q.run_and_wait = fork_server_runner(*servers);
     session->dispatch(pending.requests, q, record);
     return;
   }
@@ -226,7 +229,10 @@ void run_points(const SweepArgs& args, const Plan& plan, const Pending& pending,
   // was asked for.
   if (args.rtsim.empty()) {
     q.in_process = run_cli_in_forked_child;
-    preload_image_module();  // once here, not in every point
+    // Once here, not in every point, if a point writes an image.
+    if (std::any_of(pending.requests.begin(), pending.requests.end(),
+                    [](const runs::RunRequest& r) { return writes_image(r.args); }))
+      preload_image_module();
   }
   (void)runs::run_all(pending.requests, q);
 }
@@ -295,7 +301,7 @@ void print_summary(const SweepArgs& args, const Plan& plan, const fs::path& out,
 }
 
 /// Runs the sweep (rank 0 under MPI): resume, run, table, summary.
-int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
+int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session, ForkServers* servers) {
   const fs::path out = out_dir_of(args);
   const fs::path points_dir = out / "points";
   SweepEnd end;
@@ -327,7 +333,7 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
     runs::stop_runs(SIGTERM);
   });
   const auto start = std::chrono::steady_clock::now();
-  run_points(args, plan, pending, points_dir, jobs, session, outcomes);
+  run_points(args, plan, pending, points_dir, jobs, session, servers, outcomes);
   end.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int interrupted = interrupted_by.load();
   if (interrupted != 0) {
@@ -362,14 +368,20 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session) {
 }
 
 int run_sweep_mpi(const SweepArgs& args) {
+  // Each of this rank's slots gets a fork server before MPI starts (app/fork_server.hpp): a
+  // point is then a fork, not a program start, unless another rtsim binary was asked for.
+  const int jobs = args.jobs > 0 ? args.jobs : 1;
+  std::unique_ptr<ForkServers> servers;
+  if (args.rtsim.empty()) servers = std::make_unique<ForkServers>(jobs, run_cli_in_forked_child);
   mpi::Session session;
   if (session.rank() != 0) {
     // Rank 0 reads and checks the sweep; the others wait for its word, then run points.
     if (const int status = session.share_status(0); status != 0) return status;
     runs::RunQueueOptions q;
     q.executable = executable_of(args);
-    q.jobs = args.jobs > 0 ? args.jobs : 1;
+    q.jobs = jobs;
     q.log_in_run_dir = true;
+    if (servers) q.run_and_wait = fork_server_runner(*servers);
     // mpirun passes an interrupt on to every rank: a worker stops its points and reports them,
     // so rank 0 can write the table of what is done (a worker dying by the signal would make
     // mpirun end rank 0 first).
@@ -386,7 +398,7 @@ int run_sweep_mpi(const SweepArgs& args) {
     return kExitBadInput;
   }
   session.share_status(0);
-  return execute(args, plan, &session);
+  return execute(args, plan, &session, servers.get());
 }
 
 }  // namespace
@@ -395,7 +407,7 @@ int run_sweep(const SweepArgs& args) {
   if (args.mpi && !args.list) return run_sweep_mpi(args);
   const Plan plan = make_plan(args);
   if (args.list) return list_points(plan, out_dir_of(args));
-  return execute(args, plan, nullptr);
+  return execute(args, plan, nullptr, nullptr);
 }
 
 }  // namespace rtsim::app

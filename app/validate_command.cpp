@@ -15,6 +15,7 @@
 #include "app/analysis_scripts.hpp"
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/fork_server.hpp"
 #include "app/image_files.hpp"
 #include "app/interrupt_cleanup.hpp"
 #include "app/progress_bar.hpp"
@@ -115,13 +116,15 @@ val::RunOutcome outcome_from_rank(const runs::RunRequest& request, const fs::pat
 /// spread over the ranks of an MPI session as `rtsim sweep --mpi` spreads its points.
 val::RunResults execute_runs(const std::vector<runs::RunRequest>& requests,
                              const ValidateArgs& args, const fs::path& executable,
-                             const fs::path& work_dir, mpi::Session* session) {
+                             const fs::path& work_dir, mpi::Session* session,
+                             ForkServers* servers) {
   ProgressBar bar("validate");
   runs::RunQueueOptions q;
   q.executable = executable;
   q.work_dir = work_dir;
   q.jobs = args.jobs;
   if (session != nullptr) {
+    if (servers) q.run_and_wait = fork_server_runner(*servers);
     val::RunResults results;
     std::mutex m;
     int done = 0;
@@ -151,9 +154,15 @@ std::string draw_sensitivity(const fs::path& json, const fs::path& png, const fs
   return r.ok ? std::string() : r.message;
 }
 
-int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session);
+int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session,
+             ForkServers* servers);
 
 int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
+  // The runs are forks of fork servers started before MPI (app/fork_server.hpp), unless
+  // another rtsim binary was asked for.
+  std::unique_ptr<ForkServers> servers;
+  if (args.rtsim.empty() && plan != nullptr)
+    servers = std::make_unique<ForkServers>(args.jobs, run_cli_in_forked_child);
   mpi::Session session;
   if (session.rank() != 0) {
     // Rank 0 builds and checks the plan; the others wait for its word, then run what it hands
@@ -162,6 +171,7 @@ int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
     runs::RunQueueOptions q;
     q.executable = args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
     q.jobs = args.jobs;
+    if (servers) q.run_and_wait = fork_server_runner(*servers);
     set_interrupt_handler([](int) { runs::stop_runs(SIGTERM); });
     session.work(q);
     return kExitOk;
@@ -171,7 +181,7 @@ int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
     return kExitBadInput;
   }
   session.share_status(0);
-  return validate(args, *plan, &session);
+  return validate(args, *plan, &session, servers.get());
 }
 
 }  // namespace
@@ -192,12 +202,13 @@ int run_validate(const ValidateArgs& args) {
     return kExitOk;
   }
   if (args.mpi) return run_validate_mpi(args, &plan);
-  return validate(args, plan, nullptr);
+  return validate(args, plan, nullptr, nullptr);
 }
 
 namespace {
 
-int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session) {
+int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* session,
+             ForkServers* servers) {
   const fs::path executable = args.rtsim.empty() ? this_executable() : fs::absolute(args.rtsim);
   const bool temporary_out = args.out_dir.empty();
   const fs::path out_dir = temporary_out
@@ -230,7 +241,8 @@ int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* sess
   std::cout << ", " << (args.quick ? "quick" : "full") << " mode\n" << std::flush;
 
   const auto start = std::chrono::steady_clock::now();
-  const val::RunResults results = execute_runs(requests, args, executable, work_dir, session);
+  const val::RunResults results =
+      execute_runs(requests, args, executable, work_dir, session, servers);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

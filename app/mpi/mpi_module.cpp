@@ -9,6 +9,11 @@
 namespace {
 
 int init(int* rank, int* size) {
+  // Our messages are a few hundred bytes of JSON a run: OpenMPI's ob1 messaging with its own
+  // transports starts in 0.13 s where the default's probing of UCX takes 0.35 s, a fifth of a
+  // small sweep on one box (docs/sweeps.md). A user's own choice (mpirun --mca pml, or the
+  // environment) wins.
+  setenv("OMPI_MCA_pml", "ob1", /*overwrite=*/0);
   int provided = 0;
   if (int rc = MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided); rc != MPI_SUCCESS)
     return rc;

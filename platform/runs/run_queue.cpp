@@ -271,6 +271,24 @@ RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options
   Prepared p = prepare(request, options);
   if (!p.ready) return p.out;
   const auto began = std::chrono::steady_clock::now();
+  if (options.run_and_wait) {
+    pid_t child = -1;
+    std::string error;
+    const int status = options.run_and_wait(
+        p.args, p.out.log,
+        [&child](pid_t pid) {
+          child = pid;
+          track_child(pid);
+        },
+        error);
+    if (child > 0) untrack_child(child);
+    if (status < 0) {
+      p.out.status = child > 0 ? "lost" : "did not start";
+      p.out.failure = error;
+      return p.out;
+    }
+    return finish(std::move(p.out), status, seconds_since(began));
+  }
   const pid_t pid = start(p, options);
   if (pid < 0) return p.out;
   track_child(pid);

@@ -7,6 +7,8 @@
 // WORK/KEY/ as --out and writes its stdout and stderr to WORK/KEY.log (or WORK/KEY/run.log with
 // log_in_run_dir); its stats.json is read back when it exits with status 0. `rtsim validate` and
 // `rtsim sweep` (locally, and one run at a time on each MPI rank) run through it.
+#include <sys/types.h>
+
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -28,6 +30,13 @@ struct RunQueueOptions {
   /// its exit status; the child's stdout and stderr go to the run's log. Empty: exec
   /// `executable`. run_all forks from its calling thread only, one child per slot.
   std::function<int(const std::vector<std::string>&)> in_process{};
+  /// Runs a request's command line (argv[0] is `executable`) somewhere else with its stdout and
+  /// stderr to `log`, calls `started` with the child's pid (so stop_runs can signal it) and
+  /// returns its wait status, or -1 with `error`: an MPI rank's fork servers
+  /// (app/fork_server.hpp). Used by run_request only; takes precedence over in_process there.
+  std::function<int(const std::vector<std::string>& args, const std::filesystem::path& log,
+                    const std::function<void(pid_t)>& started, std::string& error)>
+      run_and_wait{};
 };
 
 /// Execute every request; never throws for a failed run (the outcome says what failed).
