@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <thread>
 
@@ -335,7 +337,15 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& va) {
                    "With --sensitivity: the factors a numeric assumption is moved by")
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v <= 0)
+              return "'" + text + "' is not a positive number (e.g. --factors 0.5,2)";
+            return {};
+          },
+          "FACTOR > 0"));
   validate->add_flag("--mpi", va.mpi,
                      "Spread the runs over MPI ranks as `rtsim sweep --mpi` does (mpirun -np K "
                      "rtsim validate --mpi ...); --jobs runs at once on each rank");

@@ -326,7 +326,9 @@ int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* sess
     write_file(json, sdoc.dump(2) + "\n");
     written.push_back("validation-sensitivity.json");
     sensitivity_text = val::format_sensitivity(rows, entries);
-    no_picture = draw_sensitivity(json, out_dir / "validation-sensitivity.png", out_dir);
+    no_picture = entries.empty()
+                     ? "no figure of this selection names an assumption that moves"
+                     : draw_sensitivity(json, out_dir / "validation-sensitivity.png", out_dir);
     if (no_picture.empty()) written.push_back("validation-sensitivity.png");
   }
 

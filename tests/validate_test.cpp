@@ -744,6 +744,10 @@ TEST(ValidateCommand, BadUsageExitsWithTwo) {
   EXPECT_EQ(run_rtsim("validate --only NOPE --quick").exit_code, 2);
   EXPECT_EQ(run_rtsim("validate --jobs 0").exit_code, 2);
   EXPECT_EQ(run_rtsim("validate --frobnicate").exit_code, 2);
+  const auto factors = run_rtsim("validate --quick --sensitivity --factors 0.5,-2 --only X4b");
+  EXPECT_EQ(factors.exit_code, 2);
+  EXPECT_NE(factors.output.find("'-2' is not a positive number"), std::string::npos)
+      << factors.output;
   const auto list = run_rtsim("validate --list --only V2");
   EXPECT_EQ(list.exit_code, 0);
   EXPECT_NE(list.output.find("V2a"), std::string::npos);
