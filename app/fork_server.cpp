@@ -15,6 +15,7 @@
 
 #include "app/image_files.hpp"
 #include "common/end_with_parent.hpp"
+#include "platform/runs/run_queue.hpp"
 
 namespace rtsim::app {
 
@@ -50,7 +51,6 @@ bool receive_message(int socket, std::string& text) {
   sigset_t blocked, none;
   sigemptyset(&none);
   pthread_sigmask(SIG_SETMASK, &none, &blocked);
-  const pid_t self = ::getpid();
   bool image_module = false;
   std::string request;
   while (receive_message(socket, request)) {
@@ -78,28 +78,10 @@ bool receive_message(int socket, std::string& text) {
       preload_image_module();
       image_module = true;
     }
-    std::cout.flush();
-    std::cerr.flush();
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      end_with_parent(self);
+    const pid_t pid = runs::fork_logged(log, args, run, [&] {
       pthread_sigmask(SIG_SETMASK, &blocked, nullptr);
       ::close(socket);
-      ::dup2(log, STDOUT_FILENO);
-      ::dup2(log, STDERR_FILENO);
-      const int null = ::open("/dev/null", O_RDONLY);
-      if (null >= 0) ::dup2(null, STDIN_FILENO);
-      int code = 70;  // EX_SOFTWARE
-      try {
-        code = run(args);
-      } catch (...) {
-      }
-      std::cout.flush();
-      std::cerr.flush();
-      std::fflush(nullptr);
-      std::_Exit(code);
-    }
+    });
     ::close(log);
     if (pid < 0) {
       send_message(socket, std::string("E fork: ") + std::strerror(errno));

@@ -175,6 +175,38 @@ pid_t start_program(std::vector<std::string> args, const fs::path& log, std::str
   return pid;
 }
 
+}  // namespace
+
+pid_t fork_logged(int log, const std::vector<std::string>& args,
+                  const std::function<int(const std::vector<std::string>&)>& run,
+                  const std::function<void()>& in_child) {
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  // The child: its own output, no input, the run's signals at their default; it ends when the
+  // run does, and with its parent.
+  end_with_parent(parent);
+  if (in_child) in_child();
+  ::dup2(log, STDOUT_FILENO);
+  ::dup2(log, STDERR_FILENO);
+  const int null = ::open("/dev/null", O_RDONLY);
+  if (null >= 0) ::dup2(null, STDIN_FILENO);
+  int code = 70;  // EX_SOFTWARE
+  try {
+    code = run(args);
+  } catch (...) {
+  }
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  std::_Exit(code);
+}
+
+namespace {
+
 /// Starts the run: a new program, or a fork of this process calling options.in_process.
 /// Returns the child's pid, or -1 with the outcome saying why it did not start.
 pid_t start(Prepared& p, const RunQueueOptions& options) {
@@ -185,29 +217,7 @@ pid_t start(Prepared& p, const RunQueueOptions& options) {
       p.out.failure = "cannot write " + p.out.log.string() + ": " + std::strerror(errno);
       return -1;
     }
-    std::cout.flush();
-    std::cerr.flush();
-    std::fflush(nullptr);
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      // The child: its own output, no input, the run's signals at their default; it ends
-      // when the run does, and with its parent.
-      end_with_parent(parent);
-      ::dup2(log, STDOUT_FILENO);
-      ::dup2(log, STDERR_FILENO);
-      const int null = ::open("/dev/null", O_RDONLY);
-      if (null >= 0) ::dup2(null, STDIN_FILENO);
-      int code = 70;  // EX_SOFTWARE
-      try {
-        code = options.in_process(p.args);
-      } catch (...) {
-      }
-      std::cout.flush();
-      std::cerr.flush();
-      std::fflush(nullptr);
-      std::_Exit(code);
-    }
+    const pid_t pid = fork_logged(log, p.args, options.in_process);
     ::close(log);
     if (pid < 0) {
       p.out.status = "did not start";

@@ -46,6 +46,14 @@ RunResults run_all(const std::vector<RunRequest>& requests, const RunQueueOption
 /// emptied first. Never throws for a failed run.
 RunOutcome run_request(const RunRequest& request, const RunQueueOptions& options);
 
+/// Forks a child that calls `run(args)` with stdout and stderr to the open file `log`, no input,
+/// and the parent-death signal (it ends with this process), and exits with its status; `in_child`
+/// runs first in the child. Returns the child's pid, or -1 (errno). Forks from the calling
+/// thread: the run queue's in-process runs and an MPI rank's fork servers (app/fork_server.hpp).
+pid_t fork_logged(int log, const std::vector<std::string>& args,
+                  const std::function<int(const std::vector<std::string>&)>& run,
+                  const std::function<void()>& in_child = {});
+
 /// Stops every run queue of this process: no run starts from now on, and every running child
 /// is sent `sig` (SIGTERM lets an rtsim child remove its partial outputs). run_all then returns
 /// once the running ones have ended; a run never started has an outcome with status "not run".
