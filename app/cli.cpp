@@ -222,6 +222,15 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
                   "0: none). stats.json sample.warmup_windows. Not for pxpl5-raytrace, whose "
                   "casters share its regions")
       ->check(CLI::Range(0, 1000000));
+  run->add_option("--sample-work-stride", runa.sample_work_stride,
+                  "The work-weighted estimate of a --sample run (docs/sampling.md): the rows not "
+                  "simulated in detail have every S-th pixel traced functionally to count their "
+                  "intersection tests and rays, and the frame time is regressed on the work of "
+                  "the windows simulated (default 2; larger S is faster and less exact, stats.json "
+                  "sample.work; 0: no work counted, the systematic estimate from the windows' "
+                  "completions alone, also where the work does not vary or there are too few "
+                  "windows)")
+      ->check(CLI::Range(0, 4096));
   run->add_flag("--latency-probe", runa.latency_probe,
                 "Record each ray's end-to-end latency (from entering the machine until the host "
                 "has its answer; on pxpl5-raytrace each sample's, from its caster to its "

@@ -50,6 +50,8 @@ std::string command_line(const RunArgs& a) {
   if (!a.sample_error.empty()) s += " --sample-error " + runs::shell_quote(a.sample_error);
   if (a.sample_window > 0) s += " --sample-window " + std::to_string(a.sample_window);
   if (a.sample_warmup >= 0) s += " --sample-warmup " + std::to_string(a.sample_warmup);
+  if (a.sample_work_stride >= 0)
+    s += " --sample-work-stride " + std::to_string(a.sample_work_stride);
   for (const auto& f : a.faults) s += " --fault " + runs::shell_quote(f);
   return s + " --report --out " + runs::shell_quote(a.out_dir);
 }
@@ -132,6 +134,9 @@ int run_run(const RunArgs& args) {
   if (args.sample_warmup >= 0 && !sampled)
     throw InputError("--sample-warmup", 0,
                      "is the warm-up of --sample K or --sample-error E: give one of them too");
+  if (args.sample_work_stride >= 0 && !sampled)
+    throw InputError("--sample-work-stride", 0,
+                     "is the work count of --sample K or --sample-error E: give one of them too");
   if (args.sample > 0 && !args.sample_error.empty())
     throw InputError("--sample-error " + args.sample_error, 0,
                      "chooses K itself: give --sample K or --sample-error E, not both");
@@ -151,6 +156,7 @@ int run_run(const RunArgs& args) {
                   width, opts.sample_window_rows,
                   platform::FrameSample::windows_in(height, opts.sample_window_rows),
                   machine.sample_warmup_rays(registry));
+    if (args.sample_work_stride >= 0) opts.sample_work_stride = args.sample_work_stride;
   }
   opts.trace_filter = trace_filter;
   opts.trace_max_events = args.trace_max_events;

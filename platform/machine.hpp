@@ -71,6 +71,10 @@ struct RunOptions {
   int sample_window_rows = 1;
   /// Windows after window 0 simulated in detail as a warm-up (FrameSample).
   int sample_warmup = 0;
+  /// The work-weighted estimate's subsample of columns (functional::window_work): every
+  /// `sample_work_stride`-th pixel of each row not simulated in detail is traced functionally to
+  /// count its work; 0: no work counted, the systematic estimate.
+  int sample_work_stride = 2;
   /// A pilot of --sample-error: only the estimate is wanted, the rest is not rendered.
   bool sample_pilot = false;
 };

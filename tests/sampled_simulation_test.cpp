@@ -97,6 +97,82 @@ TEST(SampledSimulation, TheTargetErrorChoosesK) {
   EXPECT_EQ(FrameSample::every_for(pilot, 0.01), 10);
 }
 
+TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
+  // 40 windows of one row, every 4th in detail after window 0, on a machine that does one
+  // window after another in 10 + 2 x (its tests) ticks. Its rays do not vary (the regression
+  // falls back to the tests alone); the windows not simulated have half their tests in their
+  // subsample, as the detailed ones do, so the calibration is exact and so is the estimate.
+  using rtsim::platform::FrameSample;
+  using rtsim::functional::WindowWork;
+  const int windows = 40, width = 4;
+  FrameSample sample(width, windows, 4, 1, 0);
+  std::vector<WindowWork> work(windows);
+  std::uint64_t now = 0, full = 0;
+  for (int w = 0; w < windows; ++w) {
+    const double tests = std::round(100 + 60 * std::sin(w * 0.4)) + (w > 20 && w < 28 ? 400 : 0);
+    const bool detailed = sample.detailed_rows()[static_cast<std::size_t>(w)] != 0;
+    work[static_cast<std::size_t>(w)] = {detailed, detailed ? tests : 0, detailed ? 4.0 : 0,
+                                         tests / 2, 2};
+    const auto ticks = static_cast<std::uint64_t>(10 + 2 * tests);
+    full += ticks;
+    if (!detailed) continue;
+    now += ticks;
+    sample.contribution(static_cast<std::uint32_t>(w * width), now);
+  }
+  const sc_core::sc_time tick = sc_core::sc_time::from_value(1);
+  double systematic = 0, estimate = 0;
+  (void)sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), systematic);
+  sample.set_window_work(work);
+  const auto out = sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
+  const double exact = static_cast<double>(full) * tick.to_seconds();
+  std::printf("full %.6g s: work-weighted %.6g s, systematic %.6g s (%+.1f%%)\n", exact, estimate,
+              systematic, 100 * (systematic / exact - 1));
+  EXPECT_EQ(out["estimator"], "work");
+  EXPECT_EQ(out["work"]["variables"], "tests");
+  EXPECT_NEAR(estimate, exact, 1e-9 * exact);
+  EXPECT_LT(out["half_width_relative"].get<double>(), 1e-6);
+  // The burst of windows 21-27 is sampled at 24 only: the windows' mean misses it.
+  EXPECT_GT(std::fabs(systematic / exact - 1), 0.02);
+  // Work the windows do not differ in: nothing to regress on, the systematic estimate.
+  for (auto& w : work) w.tests = w.whole ? 50 : 0, w.sub_tests = 25;
+  sample.set_window_work(work);
+  double fallback = 0;
+  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), fallback)
+                ["estimator"],
+            "systematic");
+  EXPECT_DOUBLE_EQ(fallback, systematic);
+}
+
+TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
+  // vax-750 on ullner-cubes (cubes in the middle of the frame, empty rows above and below) at
+  // 96 x 96, K = 16: measured -0.30% +- 1.22% by the work, +7.8% +- 52% by the windows' mean.
+  const std::string args = "--scene builtin:ullner-cubes --width 96 --height 96";
+  const auto full = rtsim::test::run_machine("vax-750", "work-full", args + " --image none");
+  const auto work = rtsim::test::run_machine("vax-750", "work-16", args + " --sample 16 --image none");
+  const auto plain = rtsim::test::run_machine("vax-750", "work-16-systematic",
+                                              args + " --sample 16 --image none --sample-work-stride 0");
+  ASSERT_FALSE(full.empty() || work.empty() || plain.empty());
+  const double t = full["simulated_time_s"].get<double>();
+  const auto& s = work["sample"];
+  ASSERT_EQ(s["estimator"], "work") << s.dump();
+  EXPECT_EQ(plain["sample"]["estimator"], "systematic");
+  EXPECT_FALSE(plain["sample"].contains("work"));
+  // The systematic estimate is reported beside the work-weighted one, and is the plain run's.
+  EXPECT_EQ(s["systematic"]["estimate_s"], plain["sample"]["estimate_s"]);
+  const double est = s["estimate_s"].get<double>(), sys = plain["sample"]["estimate_s"].get<double>();
+  std::printf("full %.6g s: work-weighted %+.2f%% +- %.2f%%, systematic %+.2f%% +- %.2f%%\n", t,
+              100 * (est / t - 1), 100 * s["half_width_relative"].get<double>(),
+              100 * (sys / t - 1), 100 * plain["sample"]["half_width_relative"].get<double>());
+  EXPECT_LT(std::fabs(est / t - 1), 0.01);
+  EXPECT_LE(s["ci99_7_s"][0].get<double>(), t);
+  EXPECT_GE(s["ci99_7_s"][1].get<double>(), t);
+  EXPECT_LT(std::fabs(est / t - 1), std::fabs(sys / t - 1));
+  EXPECT_LT(s["half_width_relative"].get<double>(),
+            plain["sample"]["half_width_relative"].get<double>());
+  EXPECT_EQ(s["work"]["windows"].size(), static_cast<std::size_t>(s["detailed_windows"].get<int>() -
+                                                                   1 - s["warmup_windows"].get<int>()));
+}
+
 TEST(SampledSimulation, BadUsesExitTwo) {
   for (const auto& [args, says] :
        {std::pair<std::string, std::string>{
@@ -118,6 +194,12 @@ TEST(SampledSimulation, BadUsesExitTwo) {
         {"--machine pxpl5-raytrace --scene builtin:default --width 48 --height 48 "
          "-p assign.scheme=rows --sample 4 --sample-warmup 2",
          "a warm-up does not apply"},
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 "
+         "--sample-work-stride 2",
+         "give one of them too"},
+        {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample 4 "
+         "--sample-work-stride -1",
+         "--sample-work-stride"},
         {"--machine vax-750 --scene builtin:default --width 32 --height 32 --sample-error 0%",
          "(0, 50%]"},
         // A timing-only run writes no image: nothing that only shows one.

@@ -107,6 +107,7 @@ TEST(SweepFile, ExplicitValuesKeepTheirTypes) {
 TEST(SweepFile, RunFlagsAreFixedOrAxesAndBecomeTheRunsFlags) {
   const SweepFile f = parse(head() +
                             "image = \"none\"\nlatency-probe = true\ntrace = \"vcd\"\n"
+                            "sample-work-stride = 4\nsample-warmup = 1\n"
                             "[[axes]]\nparam = \"sample\"\nvalues = [0, 4]\n");
   const auto points = expand_points(f);
   ASSERT_EQ(points.size(), 2u);
@@ -122,7 +123,12 @@ TEST(SweepFile, RunFlagsAreFixedOrAxesAndBecomeTheRunsFlags) {
     EXPECT_FALSE(has(p, {"-p", "image=none"})) << "a run flag is no parameter";
   }
   EXPECT_FALSE(has(points[0], {"--sample"})) << "sample = 0: the whole frame in detail";
+  // A sampled run's settings only where it is sampled: `rtsim run` refuses them alone.
+  EXPECT_FALSE(has(points[0], {"--sample-work-stride"})) << points[0].command_line();
+  EXPECT_FALSE(has(points[0], {"--sample-warmup"})) << points[0].command_line();
   EXPECT_TRUE(has(points[1], {"--sample", "4"}));
+  EXPECT_TRUE(has(points[1], {"--sample-work-stride", "4"})) << points[1].command_line();
+  EXPECT_TRUE(has(points[1], {"--sample-warmup", "1"})) << points[1].command_line();
   EXPECT_EQ(f.swept_columns(), Strings{"sample"});
   EXPECT_TRUE(f.swept_params().empty());
   const SweepFile capped = parse(head() +

@@ -1,8 +1,10 @@
 #include "platform/machines/frame_sample.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "common/input_error.hpp"
@@ -80,20 +82,21 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows, int 
 nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
                                              const sc_core::sc_time& end,
                                              double& estimate_s) const {
-  // The warm-up's completion (the latest of windows 0..W), then the sampled windows'.
-  std::vector<std::uint64_t> c;
+  // The warm-up's completion (the latest of windows 0..W, window -1 below), then the sampled
+  // windows', each with its window.
+  std::vector<std::pair<std::uint64_t, int>> c;
   int silent = 0;
   std::uint64_t warm = 0;
   for (int w = 0; w <= warmup_; ++w) warm = std::max(warm, done_[static_cast<std::size_t>(w)]);
   if (warm == 0)
     ++silent;
   else
-    c.push_back(warm);
+    c.emplace_back(warm, -1);
   for (int w = (warmup_ / every_ + 1) * every_; w < windows_; w += every_) {
     if (done_[static_cast<std::size_t>(w)] == 0)
       ++silent;
     else
-      c.push_back(done_[static_cast<std::size_t>(w)]);
+      c.emplace_back(done_[static_cast<std::size_t>(w)], w);
   }
   std::sort(c.begin(), c.end());
   const double B = begin.to_seconds(), E = end.to_seconds();
@@ -121,23 +124,37 @@ nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
     out["note"] = "fewer than 3 windows received a contribution: no estimate";
     return out;
   }
+  // d_i: the time from one sampled completion to the next, the work of the window completing.
   std::vector<double> d;
-  for (std::size_t i = 1; i < c.size(); ++i)
-    d.push_back(static_cast<double>(c[i] - c[i - 1]) * tick);
+  std::vector<int> d_window;
+  for (std::size_t i = 1; i < c.size(); ++i) {
+    d.push_back(static_cast<double>(c[i].first - c[i - 1].first) * tick);
+    d_window.push_back(c[i].second);
+  }
   const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
   const double var = successive_difference_variance(d);
   const double N = static_cast<double>(windows_ - 1 - warmup_);  // windows after the warm-up
-  const double head = static_cast<double>(c.front()) * tick - B;
-  const double tail = E - static_cast<double>(c.back()) * tick;
-  estimate_s = head + N * mean + tail;
+  const double head = static_cast<double>(c.front().first) * tick - B;
+  const double tail = E - static_cast<double>(c.back().first) * tick;
+  const double systematic = head + N * mean + tail;
   const double half = half_width(windows_ - warmup_, static_cast<int>(c.size()), std::sqrt(var));
+  const std::optional<WorkEstimate> work = work_estimate(d, d_window);
+  estimate_s = work ? head + work->total + tail : systematic;
+  const double chosen_half = work ? work->half : half;
+  out["estimator"] = work ? "work" : "systematic";
   out["estimate_s"] = estimate_s;
-  out["ci99_7_s"] = {estimate_s - half, estimate_s + half};
-  out["half_width_relative"] = estimate_s > 0 ? half / estimate_s : 0.0;
+  out["ci99_7_s"] = {estimate_s - chosen_half, estimate_s + chosen_half};
+  out["half_width_relative"] = estimate_s > 0 ? chosen_half / estimate_s : 0.0;
   out["start_s"] = head;
   out["window_s_mean"] = mean;
   out["window_s_sd"] = std::sqrt(var);
   out["drain_s"] = tail;
+  if (work) {
+    out["work"] = work->json;
+    out["systematic"] = {{"estimate_s", systematic},
+                         {"ci99_7_s", {systematic - half, systematic + half}},
+                         {"half_width_relative", systematic > 0 ? half / systematic : 0.0}};
+  }
   if (silent > 0) out["silent_windows"] = silent;
   return out;
 }
@@ -176,6 +193,150 @@ nlohmann::ordered_json FrameSample::estimate_shared(double B, double E, double& 
   out["window_s_sd"] = std::sqrt(var) / P;
   out["window_s_mean"] = mean / P;
   out["drain_s"] = tail;
+  return out;
+}
+
+namespace {
+/// Least squares of y on the columns of x (with a column of ones first): the coefficients,
+/// or none where the columns are (nearly) dependent. The columns are scaled to unit size first.
+std::optional<std::vector<double>> least_squares(const std::vector<std::vector<double>>& x,
+                                                 const std::vector<double>& y) {
+  const std::size_t p = x.size() + 1, m = y.size();
+  std::vector<double> scale(p, 1.0);
+  auto col = [&](std::size_t j, std::size_t i) { return j == 0 ? 1.0 : x[j - 1][i] / scale[j]; };
+  for (std::size_t j = 1; j < p; ++j) {
+    double big = 0;
+    for (double v : x[j - 1]) big = std::max(big, std::fabs(v));
+    if (big == 0) return std::nullopt;
+    scale[j] = big;
+  }
+  // Normal equations A b = r, solved by elimination with partial pivoting.
+  std::vector<std::vector<double>> a(p, std::vector<double>(p + 1, 0.0));
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < p; ++j) {
+      for (std::size_t k = 0; k < p; ++k) a[j][k] += col(j, i) * col(k, i);
+      a[j][p] += col(j, i) * y[i];
+    }
+  for (std::size_t j = 0; j < p; ++j) {
+    std::size_t piv = j;
+    for (std::size_t r = j + 1; r < p; ++r)
+      if (std::fabs(a[r][j]) > std::fabs(a[piv][j])) piv = r;
+    if (std::fabs(a[piv][j]) < 1e-9 * static_cast<double>(m)) return std::nullopt;
+    std::swap(a[j], a[piv]);
+    for (std::size_t r = 0; r < p; ++r) {
+      if (r == j) continue;
+      const double f = a[r][j] / a[j][j];
+      for (std::size_t k = j; k <= p; ++k) a[r][k] -= f * a[j][k];
+    }
+  }
+  std::vector<double> b(p);
+  for (std::size_t j = 0; j < p; ++j) b[j] = a[j][p] / a[j][j] / scale[j];
+  return b;
+}
+}  // namespace
+
+std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
+    const std::vector<double>& d, const std::vector<int>& d_window) const {
+  if (workers_ != 0 || work_.size() != static_cast<std::size_t>(windows_)) return std::nullopt;
+  auto at = [&](int w) -> const functional::WindowWork& {
+    return work_[static_cast<std::size_t>(w)];
+  };
+  // The work variables: a window's exact intersection tests and rays, and its columns'.
+  using Work = std::array<double, 2>;
+  auto exact = [](const functional::WindowWork& w) { return Work{w.tests, w.rays}; };
+  auto sub = [](const functional::WindowWork& w) { return Work{w.sub_tests, w.sub_rays}; };
+  // Each difference against the exact work of the window it belongs to (-1: the warm-up's
+  // windows together).
+  std::vector<Work> x;
+  for (int w : d_window) {
+    Work sum{};
+    for (int v = std::max(0, w); v <= (w < 0 ? warmup_ : w); ++v) {
+      if (!at(v).whole) return std::nullopt;
+      for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += exact(at(v))[k];
+    }
+    x.push_back(sum);
+  }
+  const double m = static_cast<double>(d.size());
+  // Both variables, else the one that varies (a brute-force search tests every primitive for
+  // every ray: its tests are its rays times a constant).
+  std::vector<std::size_t> used;
+  std::optional<std::vector<double>> coef;
+  for (const auto& cols : {std::vector<std::size_t>{0, 1}, {0}, {1}}) {
+    if (m < static_cast<double>(cols.size()) + 3) continue;  // 2 degrees of freedom left
+    std::vector<std::vector<double>> columns;
+    for (std::size_t k : cols) {
+      columns.emplace_back();
+      for (const Work& xi : x) columns.back().push_back(xi[k]);
+    }
+    coef = least_squares(columns, d);
+    if (coef) {
+      used = cols;
+      break;
+    }
+  }
+  if (!coef) return std::nullopt;
+  Work slope{};  // per test, per ray
+  for (std::size_t j = 0; j < used.size(); ++j) slope[used[j]] = (*coef)[j + 1];
+  const double fixed = (*coef)[0];
+  auto fit = [&](const Work& w) { return fixed + slope[0] * w[0] + slope[1] * w[1]; };
+  double sse = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) sse += (d[i] - fit(x[i])) * (d[i] - fit(x[i]));
+  const double s2_e = sse / (m - static_cast<double>(used.size()) - 1);
+  // The subsample's calibration, by whole windows: their work against their columns' (scale),
+  // and how far a window's time, so predicted, strays from its exact work's (s_q).
+  Work whole{}, whole_sub{};
+  double whole_n = 0;
+  for (const auto& w : work_)
+    if (w.whole) {
+      for (std::size_t k = 0; k < whole.size(); ++k) {
+        whole[k] += exact(w)[k];
+        whole_sub[k] += sub(w)[k];
+      }
+      whole_n += 1;
+    }
+  Work scale{};
+  for (std::size_t k = 0; k < scale.size(); ++k)
+    scale[k] = whole_sub[k] > 0 ? whole[k] / whole_sub[k] : 0.0;
+  auto predicted = [&](const functional::WindowWork& w) {
+    return w.whole ? exact(w) : Work{scale[0] * w.sub_tests, scale[1] * w.sub_rays};
+  };
+  double ssq = 0;
+  for (const auto& w : work_)
+    if (w.whole) {
+      const double q = fit(exact(w)) - fit(Work{scale[0] * w.sub_tests, scale[1] * w.sub_rays});
+      ssq += q * q;
+    }
+  const double s2_q = whole_n > 1 ? ssq / (whole_n - 1) : 0.0;
+  // The population: the windows after the warm-up.
+  double unsampled = 0;
+  Work frame{};
+  for (int w = warmup_ + 1; w < windows_; ++w) {
+    const Work p = predicted(at(w));
+    for (std::size_t k = 0; k < frame.size(); ++k) frame[k] += p[k];
+    if (!at(w).whole) unsampled += 1;
+  }
+  const double R = static_cast<double>(windows_ - 1 - warmup_);
+  WorkEstimate out;
+  out.total = R * fixed + slope[0] * frame[0] + slope[1] * frame[1];
+  // The regression's error (its residuals, with the finite-population correction) and the
+  // subsample's: each unsampled window's own stray, and the calibration's on all of them.
+  const double v_reg = R * R * std::max(0.0, 1.0 - m / R) * s2_e / m;
+  const double v_sub = s2_q * (unsampled + unsampled * unsampled / std::max(1.0, whole_n));
+  out.half = 3.0 * std::sqrt(v_reg + v_sub);
+  out.json["variables"] = used.size() == 2 ? "tests, rays" : used[0] == 0 ? "tests" : "rays";
+  out.json["window_s_fixed"] = fixed;
+  out.json["s_per_test"] = slope[0];
+  out.json["s_per_ray"] = slope[1];
+  out.json["residual_s_sd"] = std::sqrt(s2_e);
+  out.json["frame_tests"] = frame[0];
+  out.json["frame_rays"] = frame[1];
+  out.json["subsample_windows"] = unsampled;
+  out.json["half_width_regression_s"] = 3.0 * std::sqrt(v_reg);
+  out.json["half_width_subsample_s"] = 3.0 * std::sqrt(v_sub);
+  // The regression's points, for a plot of time against work.
+  for (std::size_t i = 0; i < d.size(); ++i)
+    out.json["windows"].push_back({{"window", d_window[i]}, {"time_s", d[i]},
+                                   {"tests", x[i][0]}, {"rays", x[i][1]}});
   return out;
 }
 

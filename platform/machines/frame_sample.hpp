@@ -36,11 +36,22 @@
 // with s_d^2 from successive differences of the d_i (frame_sample.cpp says why) and the
 // finite-population correction. With W = 0 this is the estimate without a warm-up. Only the
 // frame time is estimated; the other statistics are the sampled run's.
+//
+// Given every window's work (set_window_work: the twin's count of each window's intersection
+// tests and rays, exact for the windows in detail and from a subsample of columns for the
+// others), the estimate is work-weighted instead: d = a + b tests + c rays fitted by least
+// squares to the sampled differences and their windows' work, T = (c_0 - B) + R a + b X_tests
+// + c X_rays + (E - c_m) over the R windows after the warm-up, its interval from the residuals
+// and the subsample's spread (docs/sampling.md "The work-weighted estimate"). The systematic
+// estimate is the fallback where the work does not vary or there are too few differences.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <systemc>
 #include <vector>
+
+#include "platform/functional/window_work.hpp"
 
 namespace rtsim::platform {
 
@@ -76,6 +87,13 @@ class FrameSample {
   void contribution(std::uint32_t pixel, std::uint64_t ticks) {
     done_by(static_cast<int>(pixel / width_) / window_size_, ticks);
   }
+
+  /// The work of every window (functional::window_work), for the work-weighted estimate;
+  /// without it (or with of_units) the estimate is the systematic one.
+  void set_window_work(std::vector<functional::WindowWork> work) { work_ = std::move(work); }
+  /// Windows of rows: the window each completion belongs to is known (FrameSample(width, ...)).
+  bool rows_sampled() const { return workers_ == 0; }
+  int window_rows() const { return window_size_; }
 
   /// The estimate from the sampled run's frame [begin, end]: stats.json `sample`, and the
   /// estimated frame time in `estimate_s`.
@@ -115,6 +133,14 @@ class FrameSample {
     if (done < ticks) done = ticks;
   }
   FrameSample(int every, int window_size, int windows, const std::string& unit_name, int warmup);
+  /// The work-weighted estimate of the windows after the warm-up: their total time and the
+  /// half-width of its 99.7% interval, from the differences `d` and their windows.
+  struct WorkEstimate {
+    double total = 0, half = 0;
+    nlohmann::ordered_json json;
+  };
+  std::optional<WorkEstimate> work_estimate(const std::vector<double>& d,
+                                            const std::vector<int>& d_window) const;
   std::uint32_t width_ = 1;
   /// The estimate of of_units: windows shared by `workers_` processors (1 or more).
   nlohmann::ordered_json estimate_shared(double B, double E, double& estimate_s) const;
@@ -128,6 +154,7 @@ class FrameSample {
   std::uint64_t first_start_ = UINT64_MAX;
   std::vector<char> detailed_, functional_;
   std::vector<std::uint64_t> done_;  ///< by window: its last contribution (0: none)
+  std::vector<functional::WindowWork> work_;  ///< by window: set_window_work, or empty
 };
 
 }  // namespace rtsim::platform

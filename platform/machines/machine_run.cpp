@@ -1,6 +1,7 @@
 #include "platform/machines/machine_run.hpp"
 
 #include "common/input_error.hpp"
+#include "platform/functional/window_work.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stat_classes.hpp"
 #include "modules/stat_directory.hpp"
@@ -70,6 +71,12 @@ void MachineRun::simulate() {
 void MachineRun::stats_over(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time) {
   frame_time_ = frame_time;
   result_.simulated_time_s = frame_time.to_seconds();
+  // The work of every window, for the work-weighted estimate (a pilot's K is chosen by its
+  // windows' spread alone).
+  if (sample_ && sample_->rows_sampled() && opts_.sample_work_stride > 0 && !opts_.sample_pilot)
+    sample_->set_window_work(functional::window_work(
+        scene_, *twin_.tracer, twin_.settings.shade, width_, height_, twin_.settings.spp,
+        sample_->window_rows(), opts_.sample_work_stride, sample_->detailed_rows()));
   if (sample_)
     sample_json_ = sample_->estimate(begin, begin + frame_time, result_.simulated_time_s);
   window_ = modules::StatWindow{begin, begin + frame_time};

@@ -380,6 +380,8 @@ void Reader::check_run_flag_value(const std::string& name, const Value& v) const
     integer_in(1, 1000000, "an integer from 1 to 1000000 (rows, or regions, a window)");
   } else if (name == "sample-warmup") {
     integer_in(0, 1000000, "an integer from 0 to 1000000 (windows)");
+  } else if (name == "sample-work-stride") {
+    integer_in(0, 4096, "an integer from 0 (the systematic estimate) to 4096 (pixels)");
   } else if (name == "trace-max-events") {
     integer_in(1, 1000000000,
                "an integer from 1 to 1000000000 (a sweep's traces are capped: each point writes "
@@ -602,7 +604,7 @@ SweepFile Reader::read(std::string_view text) {
   const toml::table root = params::parse_toml(text, origin_);
   check_keys(root,
              {"name", "description", "machine", "machines", "scene", "scenes", "width", "height",
-              "sample", "sample-error", "sample-window", "sample-warmup", "image", "latency-probe",
+              "sample", "sample-error", "sample-window", "sample-warmup", "sample-work-stride", "image", "latency-probe",
               "trace", "trace-max-events", "configs", "params", "axes"},
              "the sweep file");
 

@@ -97,10 +97,18 @@ std::vector<Point> expand_points(const SweepFile& file) {
         p.args.push_back(s->value.text);
       }
     // The run flags: as `rtsim run` takes them; "off" values add nothing.
-    bool traced = false, capped = false;
+    bool traced = false, capped = false, sampled = false;
+    for (const auto& s : p.settings)
+      sampled = sampled || (s.name == "sample" && s.value.text != "0") ||
+                (s.name == "sample-error" && s.value.text != "none");
     for (const auto& s : p.settings) {
       if (!is_run_flag(s.name)) continue;
       const std::string& v = s.value.text;
+      // The window, warm-up and work count of a sampled run: nothing at a point in full detail
+      // (an axis `sample = [0, 8]` holds the reference).
+      if (!sampled && (s.name == "sample-window" || s.name == "sample-warmup" ||
+                       s.name == "sample-work-stride"))
+        continue;
       if (s.name == "latency-probe") {
         if (s.value.json == true) p.args.push_back("--latency-probe");
         continue;
