@@ -44,7 +44,7 @@ struct RunArgs {
   int sample = 0;                   ///< --sample K: one row window in K in detail (0: off)
   int sample_window = 0;            ///< --sample-window R: rows a window (0: the machine's choice)
   int sample_warmup = -1;           ///< --sample-warmup W: warm-up windows (-1: the default)
-  int sample_work_stride = -1;  ///< --sample-work-stride S (-1: the default)
+  int sample_work_stride = -1;      ///< --sample-work-stride S (-1: the default)
   std::string sample_error;         ///< --sample-error E: K chosen by a pilot for this error
   bool report = false;              ///< also write report.html
   bool latency_probe = false;       ///< stats.json latency_probe: per-ray time by stage and part

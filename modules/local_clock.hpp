@@ -13,6 +13,7 @@
 #include <systemc>
 #include <tlm>
 
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -41,7 +42,7 @@ class LocalClock {
   /// Wait in global time until local time (no-op if already there).
   void sync() {
     const sc_core::sc_time g = sc_core::sc_time_stamp();
-    if (local_ > g) sc_core::wait(local_ - g);
+    if (local_ > g) modules::sim_wait(local_ - g);
   }
 
   /// After a wait() on an event: local time is at least the global time.

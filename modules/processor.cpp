@@ -1,5 +1,7 @@
 #include "modules/processor.hpp"
 
+#include "modules/activations.hpp"
+
 namespace rtsim::modules {
 
 Processor::Processor(const sc_core::sc_module_name& name, SliceSink& trace)
@@ -30,9 +32,9 @@ void Processor::idle_on(std::optional<sc_core::sc_time> until, const Events& eve
   const sc_core::sc_time g = sc_core::sc_time_stamp();
   // A time already reached is something the caller cannot act on yet: wait for a change.
   if (until && *until > g)
-    sc_core::wait(*until - g, events);
+    modules::sim_wait(*until - g, events);
   else
-    sc_core::wait(events);
+    modules::sim_wait(events);
   clock_.resync();
   account(why) += clock_.now() - before;
 }
@@ -60,6 +62,7 @@ void Processor::blocked_until(const sc_core::sc_time& t) {
 }
 
 void Processor::resume() {
+  count_activation();
   clock_.resync();
   if (!idle_since_) return;
   account(idle_since_->second) += clock_.now() - idle_since_->first;

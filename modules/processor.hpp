@@ -20,6 +20,7 @@
 #include <systemc>
 
 #include "firmware/cost.hpp"
+#include "modules/activations.hpp"
 #include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
 #include "modules/processor_timing.hpp"
@@ -139,7 +140,7 @@ class Processor : public sc_core::sc_module, public StatGroup {
       // meanwhile would be a notification missed.
       const sc_core::sc_time since = clock_.now();
       clock_.sync();
-      if (out.full()) sc_core::wait(out.get_event());
+      if (out.full()) modules::sim_wait(out.get_event());
       clock_.resync();
       blocked_ += clock_.now() - since;
     }

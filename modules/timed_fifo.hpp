@@ -18,6 +18,7 @@
 #include <systemc>
 #include <vector>
 
+#include "modules/activations.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::modules {
@@ -85,7 +86,7 @@ class TimedFifo : public StatGroup {
   /// Put `item` at local time `t`; blocks while the FIFO is full. Returns the time the item
   /// actually entered (>= t: later if it had to wait for a slot).
   sc_core::sc_time put(T item, sc_core::sc_time t) {
-    while (items_.size() >= capacity_) sc_core::wait(got_);
+    while (items_.size() >= capacity_) modules::sim_wait(got_);
     const sc_core::sc_time stamp =
         capacity_ == kUnbounded ? t : std::max(t, slot_free_[messages_.value() % capacity_]);
     items_.push_back(Entry{std::move(item), stamp});
@@ -103,7 +104,7 @@ class TimedFifo : public StatGroup {
   /// Take the oldest item at local time `t`; blocks while the FIFO is empty. `stamp` receives
   /// the time it was taken (>= t and >= the time it was put).
   T get(sc_core::sc_time t, sc_core::sc_time& stamp) {
-    while (items_.empty()) sc_core::wait(put_);
+    while (items_.empty()) modules::sim_wait(put_);
     Entry e = std::move(items_.front());
     items_.pop_front();
     stamp = std::max(t, e.stamp);
@@ -146,7 +147,7 @@ template <class T, class Clock>
 void wait_for_item(const TimedFifo<T>& fifo, Clock& clock) {
   if (!fifo.empty()) return;
   clock.sync();
-  while (fifo.empty()) sc_core::wait(fifo.put_event());
+  while (fifo.empty()) modules::sim_wait(fifo.put_event());
   clock.resync();
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -167,7 +168,7 @@ void TokenRing::serve() {
   for (;;) {
     // Exhaustive service takes packets queued while it sends: let their senders run first.
     if (service_ == RingService::kExhaustive && sc_core::sc_time_stamp() < time_)
-      sc_core::wait(time_ - sc_core::sc_time_stamp());
+      modules::sim_wait(time_ - sc_core::sc_time_stamp());
     if (q.empty()) break;
     const sc_core::sc_time limit = service_ == RingService::kGated ? gate : time_;
     if (q.front().ready > limit) break;
@@ -199,14 +200,14 @@ void TokenRing::run() {
   first_pass_at_0_ = last_pass_at_0_ = time_;
   bool served = false;  // the token's visit to at_ at time_ has been served
   for (;;) {
-    if (sc_core::sc_time_stamp() < time_) sc_core::wait(time_ - sc_core::sc_time_stamp());
+    if (sc_core::sc_time_stamp() < time_) modules::sim_wait(time_ - sc_core::sc_time_stamp());
     if (!served) {
       served = true;
       if (eligible(at_, time_)) serve();
     }
     if (queued_ == 0) {
       // Nothing anywhere: wait for a message, then work out where the token is by then.
-      sc_core::wait(put_event_);
+      modules::sim_wait(put_event_);
       const sc_core::sc_time now = sc_core::sc_time_stamp();
       const std::uint64_t h = now > time_ ? (now - time_).value() / hop_.value() : 0;
       advance(h);
@@ -231,7 +232,7 @@ void TokenRing::run() {
     }
     const sc_core::sc_time target = plus(time_, times(hop_, best));
     const sc_core::sc_time now = sc_core::sc_time_stamp();
-    if (target > now) sc_core::wait(target - now, put_event_);
+    if (target > now) modules::sim_wait(target - now, put_event_);
     const sc_core::sc_time woke = sc_core::sc_time_stamp();
     if (woke < target) {
       // A new message came before the token got there: where is the token now?

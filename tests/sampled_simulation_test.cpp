@@ -102,8 +102,8 @@ TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   // window after another in 10 + 2 x (its tests) ticks. Its rays do not vary (the regression
   // falls back to the tests alone); the windows not simulated have half their tests in their
   // subsample, as the detailed ones do, so the calibration is exact and so is the estimate.
-  using rtsim::platform::FrameSample;
   using rtsim::functional::WindowWork;
+  using rtsim::platform::FrameSample;
   const int windows = 40, width = 4;
   FrameSample sample(width, windows, 4, 1, 0);
   std::vector<WindowWork> work(windows);
@@ -123,7 +123,8 @@ TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   double systematic = 0, estimate = 0;
   (void)sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), systematic);
   sample.set_window_work(work);
-  const auto out = sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
+  const auto out =
+      sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
   const double exact = static_cast<double>(full) * tick.to_seconds();
   std::printf("full %.6g s: work-weighted %.6g s, systematic %.6g s (%+.1f%%)\n", exact, estimate,
               systematic, 100 * (systematic / exact - 1));
@@ -137,8 +138,8 @@ TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   for (auto& w : work) w.tests = w.whole ? 50 : 0, w.sub_tests = 25;
   sample.set_window_work(work);
   double fallback = 0;
-  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), fallback)
-                ["estimator"],
+  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now),
+                            fallback)["estimator"],
             "systematic");
   EXPECT_DOUBLE_EQ(fallback, systematic);
 }
@@ -148,9 +149,10 @@ TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
   // 96 x 96, K = 16: measured -0.30% +- 1.22% by the work, +7.8% +- 52% by the windows' mean.
   const std::string args = "--scene builtin:ullner-cubes --width 96 --height 96";
   const auto full = rtsim::test::run_machine("vax-750", "work-full", args + " --image none");
-  const auto work = rtsim::test::run_machine("vax-750", "work-16", args + " --sample 16 --image none");
-  const auto plain = rtsim::test::run_machine("vax-750", "work-16-systematic",
-                                              args + " --sample 16 --image none --sample-work-stride 0");
+  const auto work =
+      rtsim::test::run_machine("vax-750", "work-16", args + " --sample 16 --image none");
+  const auto plain = rtsim::test::run_machine(
+      "vax-750", "work-16-systematic", args + " --sample 16 --image none --sample-work-stride 0");
   ASSERT_FALSE(full.empty() || work.empty() || plain.empty());
   const double t = full["simulated_time_s"].get<double>();
   const auto& s = work["sample"];
@@ -159,7 +161,8 @@ TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
   EXPECT_FALSE(plain["sample"].contains("work"));
   // The systematic estimate is reported beside the work-weighted one, and is the plain run's.
   EXPECT_EQ(s["systematic"]["estimate_s"], plain["sample"]["estimate_s"]);
-  const double est = s["estimate_s"].get<double>(), sys = plain["sample"]["estimate_s"].get<double>();
+  const double est = s["estimate_s"].get<double>(),
+               sys = plain["sample"]["estimate_s"].get<double>();
   std::printf("full %.6g s: work-weighted %+.2f%% +- %.2f%%, systematic %+.2f%% +- %.2f%%\n", t,
               100 * (est / t - 1), 100 * s["half_width_relative"].get<double>(),
               100 * (sys / t - 1), 100 * plain["sample"]["half_width_relative"].get<double>());
@@ -169,8 +172,9 @@ TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
   EXPECT_LT(std::fabs(est / t - 1), std::fabs(sys / t - 1));
   EXPECT_LT(s["half_width_relative"].get<double>(),
             plain["sample"]["half_width_relative"].get<double>());
-  EXPECT_EQ(s["work"]["windows"].size(), static_cast<std::size_t>(s["detailed_windows"].get<int>() -
-                                                                   1 - s["warmup_windows"].get<int>()));
+  EXPECT_EQ(s["work"]["windows"].size(),
+            static_cast<std::size_t>(s["detailed_windows"].get<int>() - 1 -
+                                     s["warmup_windows"].get<int>()));
 }
 
 TEST(SampledSimulation, BadUsesExitTwo) {

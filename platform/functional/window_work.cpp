@@ -38,7 +38,8 @@ std::vector<WindowWork> window_work(const scenes::Scene& scene, const Tracer& tr
   std::vector<TraceCounters> by_row(static_cast<std::size_t>(height)),
       sub_by_row(static_cast<std::size_t>(height));
   auto whole = [&](int y) {
-    return static_cast<std::size_t>(y) < whole_rows.size() && whole_rows[static_cast<std::size_t>(y)];
+    return static_cast<std::size_t>(y) < whole_rows.size() &&
+           whole_rows[static_cast<std::size_t>(y)];
   };
   // The contributions land in a scratch buffer, never the run's.
   shading::PixelAccumulator scratch(width, height);

@@ -21,9 +21,9 @@ namespace rtsim::functional {
 /// The work of one window, as the twin's counters count it: intersection tests (primitive and
 /// bounding box) and rays (of every kind).
 struct WindowWork {
-  bool whole = false;   ///< every pixel traced: `tests` and `rays` are the window's own
-  double tests = 0;     ///< whole: the window's; else 0
-  double rays = 0;      ///< whole: the window's; else 0
+  bool whole = false;    ///< every pixel traced: `tests` and `rays` are the window's own
+  double tests = 0;      ///< whole: the window's; else 0
+  double rays = 0;       ///< whole: the window's; else 0
   double sub_tests = 0;  ///< those of its subsample of columns
   double sub_rays = 0;
 };

@@ -335,8 +335,8 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
   out.json["half_width_subsample_s"] = 3.0 * std::sqrt(v_sub);
   // The regression's points, for a plot of time against work.
   for (std::size_t i = 0; i < d.size(); ++i)
-    out.json["windows"].push_back({{"window", d_window[i]}, {"time_s", d[i]},
-                                   {"tests", x[i][0]}, {"rays", x[i][1]}});
+    out.json["windows"].push_back(
+        {{"window", d_window[i]}, {"time_s", d[i]}, {"tests", x[i][0]}, {"rays", x[i][1]}});
   return out;
 }
 

@@ -153,7 +153,7 @@ class FrameSample {
   std::vector<std::uint64_t> busy_;  ///< by window: its units' time (unit_done)
   std::uint64_t first_start_ = UINT64_MAX;
   std::vector<char> detailed_, functional_;
-  std::vector<std::uint64_t> done_;  ///< by window: its last contribution (0: none)
+  std::vector<std::uint64_t> done_;           ///< by window: its last contribution (0: none)
   std::vector<functional::WindowWork> work_;  ///< by window: set_window_work, or empty
 };
 

@@ -1,10 +1,11 @@
 #include "platform/machines/machine_run.hpp"
 
 #include "common/input_error.hpp"
-#include "platform/functional/window_work.hpp"
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stat_classes.hpp"
 #include "modules/stat_directory.hpp"
+#include "platform/functional/window_work.hpp"
 #include "platform/machines/machine_support.hpp"
 
 namespace rtsim::platform {
@@ -91,6 +92,8 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
   out["modules"] = modules::StatDirectory::instance().to_json(*window_);
   out["module_classes"] = modules::class_aggregates(out["modules"]);
   out["ray_latency_s"] = ray_latency.to_json();
+  // What the simulation cost in events: an idle module should cost none (modules/activations.hpp).
+  out["simulation"] = modules::activations_json();
   for (auto& [key, value] : result_.stats.items()) out[key] = std::move(value);
   if (probe_.enabled()) {
     // A machine that follows none of its rays would print "0 rays" as if it had measured them.

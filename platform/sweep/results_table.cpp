@@ -105,6 +105,11 @@ std::vector<std::pair<std::string, Json>> table_leaves(const Json& stats,
       }
     } else if (key == "module_classes" && value.is_object()) {
       class_columns(value, aggregated, out);
+    } else if (key == "simulation" && value.is_object()) {
+      // The totals; the activations by process are the point's stats.json's (a large array
+      // would be a column a node).
+      for (const auto& [name, v] : value.items())
+        if (!v.is_structured()) out.emplace_back("simulation." + name, v);
     } else if (value.is_object()) {
       flatten(value, key, out);
     } else if (!value.is_array()) {

@@ -603,9 +603,26 @@ void Reader::read_params(const toml::table& params, SweepFile& out) {
 SweepFile Reader::read(std::string_view text) {
   const toml::table root = params::parse_toml(text, origin_);
   check_keys(root,
-             {"name", "description", "machine", "machines", "scene", "scenes", "width", "height",
-              "sample", "sample-error", "sample-window", "sample-warmup", "sample-work-stride", "image", "latency-probe",
-              "trace", "trace-max-events", "configs", "params", "axes"},
+             {"name",
+              "description",
+              "machine",
+              "machines",
+              "scene",
+              "scenes",
+              "width",
+              "height",
+              "sample",
+              "sample-error",
+              "sample-window",
+              "sample-warmup",
+              "sample-work-stride",
+              "image",
+              "latency-probe",
+              "trace",
+              "trace-max-events",
+              "configs",
+              "params",
+              "axes"},
              "the sweep file");
 
   SweepFile out;

@@ -38,7 +38,7 @@ inline constexpr std::string_view kHeight = "height";
 /// simulation's, the image files written, the latency probe and traces (docs/sweeps.md). A
 /// timing sweep sets `image = "none"` and `sample = K`.
 inline constexpr std::string_view kRunFlags[] = {
-    "sample", "sample-error",  "sample-window", "sample-warmup", "sample-work-stride",
+    "sample", "sample-error",  "sample-window", "sample-warmup",   "sample-work-stride",
     "image",  "latency-probe", "trace",         "trace-max-events"};
 /// A sweep's traces are capped: at most this many events a trace file, unless
 /// `trace-max-events` says otherwise (each point writes its own).

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/wiring.hpp"
 
@@ -315,11 +316,11 @@ void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
 }
 
 void BroadcastProcessor::run() {
-  sc_core::wait(start_);
+  modules::sim_wait(start_);
   if (slots_.empty()) return;
   for (;;) {
     if (total_demand_ <= 0) {
-      sc_core::wait(wake_);
+      modules::sim_wait(wake_);
       skip_to(sc_core::sc_time_stamp());
       continue;
     }
@@ -332,13 +333,13 @@ void BroadcastProcessor::run() {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
       // a new request), instead of strobing a cycle of slots no comparator can match yet.
       const auto first = first_request_time();
-      sc_core::wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
+      modules::sim_wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
       skip_to(sc_core::sc_time_stamp());
       continue;
     }
     const Cursor c = after(cursor_, n);
     if (c.t > now) {
-      sc_core::wait(c.t - now, wake_);
+      modules::sim_wait(c.t - now, wake_);
       // Woken early by a new request or a freed buffer: nothing was wanted before now.
       if (sc_core::sc_time_stamp() < c.t) {
         skip_to(sc_core::sc_time_stamp());
@@ -370,7 +371,8 @@ void BroadcastProcessor::run() {
     }
     pass(cursor_, sent, true);
     // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
-    if (cursor_.t > sc_core::sc_time_stamp()) sc_core::wait(cursor_.t - sc_core::sc_time_stamp());
+    if (cursor_.t > sc_core::sc_time_stamp())
+      modules::sim_wait(cursor_.t - sc_core::sc_time_stamp());
     // A wanted ID missed: every BIC that wants one may be full until its processor frees a
     // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
     // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a
@@ -383,9 +385,9 @@ void BroadcastProcessor::run() {
         if (!change || *change > now) {
           plan_missed_strobes();
           if (change)
-            sc_core::wait(*change - now, wake_);
+            modules::sim_wait(*change - now, wake_);
           else
-            sc_core::wait(wake_);
+            modules::sim_wait(wake_);
           count_missed_strobes(sc_core::sc_time_stamp());
           skip_to(sc_core::sc_time_stamp());
         }

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/machines/gaudet_pert/shade_processor.hpp"
 
@@ -76,14 +77,14 @@ void ControlProcessor::run() {
   const std::uint64_t g = globals_words_ * shade_.size();
   words_loaded_ += g;
   delay = modules::plus(delay, modules::times(load_word_time_, g));
-  sc_core::wait(delay);
+  modules::sim_wait(delay);
   load_time_ = sc_core::sc_time_stamp();
   for (std::size_t b = 0; b < buses_.size(); ++b)
     buses_[b]->start(load_time_, sets_[b]->order.size(), sets_[b]->image.id_list_entry_words());
   start_.notify(sc_core::SC_ZERO_TIME);
   // End of frame: every ShadeProcessor has finished its scanlines.
   for (;;) {
-    sc_core::wait(done_);
+    modules::sim_wait(done_);
     bool all = true;
     sc_core::sc_time last = load_time_;
     for (const ShadeProcessor* s : shade_) {

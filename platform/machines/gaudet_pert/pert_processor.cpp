@@ -1,5 +1,7 @@
 #include "platform/machines/gaudet_pert/pert_processor.hpp"
 
+#include "modules/activations.hpp"
+
 namespace rtsim::platform::gaudet {
 
 namespace {
@@ -38,7 +40,7 @@ PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& ru
 }
 
 void PertProcessor::begin_frame() {
-  if (frame_start_) sc_core::wait(*frame_start_);
+  if (frame_start_) modules::sim_wait(*frame_start_);
   clock_.resync();
 }
 

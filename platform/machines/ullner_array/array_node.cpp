@@ -5,6 +5,7 @@
 
 #include "firmware/accel/grid_traversal.hpp"
 #include "firmware/kernels/ullner_quad_words.hpp"
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/machines/ullner_array/broadcast_record.hpp"
 
@@ -698,7 +699,7 @@ ArrayNode::Step ArrayNode::step() {
 }
 
 void ArrayNode::run() {
-  sc_core::wait(*ctx_.loaded);
+  modules::sim_wait(*ctx_.loaded);
   start_frame();
   for (;;) {
     const Step s = step();

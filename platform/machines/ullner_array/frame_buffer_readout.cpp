@@ -1,5 +1,6 @@
 #include "platform/machines/ullner_array/frame_buffer_readout.hpp"
 
+#include "modules/activations.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/machines/ullner_array/array_node.hpp"
 
@@ -35,7 +36,7 @@ FrameBufferReadout::FrameBufferReadout(sc_core::sc_module_name name,
 }
 
 void FrameBufferReadout::run() {
-  sc_core::wait(frame_done_);
+  modules::sim_wait(frame_done_);
   const int w = frame_.width(), h = frame_.height();
   const sc_core::sc_time start = sc_core::sc_time_stamp();
   for (int y = 0; y < h; ++y) {
@@ -52,7 +53,7 @@ void FrameBufferReadout::run() {
       frame_.fb().read_out(static_cast<std::uint32_t>(y * w + x), sums);
     }
     // A row's pixels shifted out one after the other.
-    sc_core::wait(modules::times(pixel_time_, static_cast<std::uint64_t>(w)));
+    modules::sim_wait(modules::times(pixel_time_, static_cast<std::uint64_t>(w)));
   }
   pixels_ += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
   busy_.record(start, sc_core::sc_time_stamp() - start);

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "common/input_error.hpp"
+#include "modules/activations.hpp"
 #include "modules/extension_guard.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/functional/scene_tracer.hpp"
@@ -545,7 +546,7 @@ void EngineChain::run() {
     }
     // Descriptions wait for the host to take answers (a slot at the far end), or the first
     // processor for the next description.
-    sc_core::wait(input.fifo.put_event() | far_end_.results->get_event());
+    modules::sim_wait(input.fifo.put_event() | far_end_.results->get_event());
   }
 }
 
