@@ -30,7 +30,8 @@ struct WindowWork {
 
 /// The work of each window of `window_rows` rows in a `width` x `height` frame of `spp` samples
 /// a pixel: the rows flagged in `whole_rows` (one flag a row) traced whole, every `stride`-th
-/// pixel of the others, on every core.
+/// pixel of the others, on every core. Where the whole windows all did the same work, the
+/// others are not traced (their subsample counts stay 0): there is nothing to regress on.
 std::vector<WindowWork> window_work(const scenes::Scene& scene, const Tracer& tracer,
                                     const shading::ShadeParams& shade, int width, int height,
                                     int spp, int window_rows, int stride,
