@@ -41,7 +41,7 @@ def main(argv):
             color = f"C{i}"
             for r in (x for x in mine if x["scene"] == scene):
                 setting = r["setting"]
-                sampled = "sample" in setting
+                sampled = "sample" in setting or "systematic" in setting
                 hollow = sampled and r.get("ci_holds") is False
                 marker = ("s" if not sampled else "D" if "systematic" in setting
                           else "^" if setting.startswith("timing") else "o")
