@@ -144,6 +144,44 @@ TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   EXPECT_DOUBLE_EQ(fallback, systematic);
 }
 
+TEST(SampledSimulation, TooFewWindowsForALineWeighByTheRatio) {
+  // 40 windows, every 16th in detail: two differences, too few for a line with an intercept.
+  // A machine whose windows take 3 ticks a test: the ratio of their time to their tests is exact.
+  using rtsim::functional::WindowWork;
+  using rtsim::platform::FrameSample;
+  const int windows = 40, width = 4;
+  FrameSample sample(width, windows, 16, 1, 0);
+  std::vector<WindowWork> work(windows);
+  std::uint64_t now = 0, full = 0;
+  for (int w = 0; w < windows; ++w) {
+    const double tests = 20 + 7 * (w % 5) + (w > 10 && w < 30 ? 50 : 0);
+    const bool detailed = sample.detailed_rows()[static_cast<std::size_t>(w)] != 0;
+    work[static_cast<std::size_t>(w)] = {detailed, detailed ? tests : 0, detailed ? 4.0 : 0,
+                                         tests / 2, 2};
+    const auto ticks = static_cast<std::uint64_t>(3 * tests);
+    full += ticks;
+    if (!detailed) continue;
+    now += ticks;
+    sample.contribution(static_cast<std::uint32_t>(w * width), now);
+  }
+  sample.set_window_work(work);
+  const sc_core::sc_time tick = sc_core::sc_time::from_value(1);
+  double estimate = 0;
+  const auto out =
+      sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
+  EXPECT_EQ(out["estimator"], "work");
+  EXPECT_NE(out["work"]["variables"].get<std::string>().find("ratio"), std::string::npos);
+  EXPECT_NEAR(estimate, static_cast<double>(full) * tick.to_seconds(),
+              1e-9 * static_cast<double>(full) * tick.to_seconds());
+  // A count that left the other windows out (the windows in detail did not differ): none.
+  for (auto& w : work)
+    if (!w.whole) w.sub_tests = w.sub_rays = 0;
+  sample.set_window_work(work);
+  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now),
+                            estimate)["estimator"],
+            "systematic");
+}
+
 TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
   // vax-750 on ullner-cubes (cubes in the middle of the frame, empty rows above and below) at
   // 96 x 96, K = 16: measured -0.30% +- 1.22% by the work, +7.8% +- 52% by the windows' mean.

@@ -241,6 +241,10 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
   auto at = [&](int w) -> const functional::WindowWork& {
     return work_[static_cast<std::size_t>(w)];
   };
+  // Every window not in detail has its subsample (each traced pixel is a ray at least), or
+  // the count left them out (the windows in detail did not differ): nothing to weigh by.
+  for (const auto& w : work_)
+    if (!w.whole && w.sub_rays <= 0) return std::nullopt;
   // The work variables: a window's exact intersection tests and rays, and its columns'.
   using Work = std::array<double, 2>;
   auto exact = [](const functional::WindowWork& w) { return Work{w.tests, w.rays}; };
@@ -274,6 +278,19 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
       break;
     }
   }
+  // Too few differences for a line (a sparse sample of a small frame): the ratio of their time
+  // to their windows' tests, a line through the origin (one coefficient, one degree of freedom
+  // left from two differences).
+  bool ratio = false;
+  if (!coef && m < 4 && m >= 2) {
+    double sum_d = 0, sum_x = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) sum_d += d[i], sum_x += x[i][0];
+    if (sum_x > 0) {
+      coef = std::vector<double>{0.0, sum_d / sum_x};
+      used = {0};
+      ratio = true;
+    }
+  }
   if (!coef) return std::nullopt;
   Work slope{};  // per test, per ray
   for (std::size_t j = 0; j < used.size(); ++j) slope[used[j]] = (*coef)[j + 1];
@@ -281,7 +298,7 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
   auto fit = [&](const Work& w) { return fixed + slope[0] * w[0] + slope[1] * w[1]; };
   double sse = 0;
   for (std::size_t i = 0; i < d.size(); ++i) sse += (d[i] - fit(x[i])) * (d[i] - fit(x[i]));
-  const double s2_e = sse / (m - static_cast<double>(used.size()) - 1);
+  const double s2_e = sse / (m - static_cast<double>(used.size()) - (ratio ? 0 : 1));
   // The subsample's calibration, by whole windows: their work against their columns' (scale),
   // and how far a window's time, so predicted, strays from its exact work's (s_q).
   Work whole{}, whole_sub{};
@@ -323,7 +340,10 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
   const double v_reg = R * R * std::max(0.0, 1.0 - m / R) * s2_e / m;
   const double v_sub = s2_q * (unsampled + unsampled * unsampled / std::max(1.0, whole_n));
   out.half = 3.0 * std::sqrt(v_reg + v_sub);
-  out.json["variables"] = used.size() == 2 ? "tests, rays" : used[0] == 0 ? "tests" : "rays";
+  out.json["variables"] = ratio              ? "tests (ratio: too few windows for a line)"
+                          : used.size() == 2 ? "tests, rays"
+                          : used[0] == 0     ? "tests"
+                                             : "rays";
   out.json["window_s_fixed"] = fixed;
   out.json["s_per_test"] = slope[0];
   out.json["s_per_ray"] = slope[1];
