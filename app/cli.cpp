@@ -205,7 +205,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& runa) {
   run->add_option("--sample-error", runa.sample_error,
                   "Sampled simulation with K chosen for a target error, e.g. \"1%\": a pilot run "
                   "(about ten windows in detail, in a forked process) measures how the windows "
-                  "vary; K is the largest whose 99.7% interval is expected within E of the frame "
+                  "vary (with the work count, how far they stray from their work); K is the "
+                  "largest whose 99.7% interval is expected within E of the frame "
                   "time (1, the whole frame in detail, if K = 2 would not be). stats.json "
                   "sample.plan; the pilot's time is in wall_time_s");
   run->add_option("--sample-window", runa.sample_window,

@@ -215,6 +215,36 @@ TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {
                                      s["warmup_windows"].get<int>()));
 }
 
+TEST(SampledSimulation, AWorkWeightedPilotChoosesKByItsResiduals) {
+  // 200 windows; the windows' spread alone (the systematic estimate) would need K = 1 for 1%,
+  // but their residuals about the work are small: K is the largest whose regression part and
+  // subsample part together stay within the target.
+  using rtsim::platform::FrameSample;
+  nlohmann::ordered_json pilot = {
+      {"windows", 200},
+      {"estimate_s", 1.0},
+      {"window_s_sd", 0.05},
+      {"estimator", "work"},
+      {"work", {{"residual_s_sd", 5e-5}, {"half_width_subsample_s", 4e-3}}}};
+  const double target = 0.01;
+  const int k = FrameSample::every_for(pilot, target);
+  auto half = [](int k) {
+    const double R = 199, m = (200 + k - 1) / k - 1;  // sampled windows after window 0
+    return std::hypot(3 * R * 5e-5 * std::sqrt(1 / m - 1 / R), 4e-3);
+  };
+  std::printf("work-weighted pilot: K = %d (half-width %.3f%%)\n", k, 100 * half(k));
+  ASSERT_GE(k, 2);
+  EXPECT_LE(half(k), target);
+  if (k < 200 / FrameSample::kPilotWindows) {
+    EXPECT_GT(half(k + 1), target);
+  }
+  pilot.erase("work");
+  EXPECT_EQ(FrameSample::every_for(pilot, target), 1);  // the spread alone: the whole frame
+  // A subsample that alone misses the target: the whole frame, whatever K.
+  pilot["work"] = {{"residual_s_sd", 0.0}, {"half_width_subsample_s", 0.02}};
+  EXPECT_EQ(FrameSample::every_for(pilot, target), 1);
+}
+
 TEST(SampledSimulation, BadUsesExitTwo) {
   for (const auto& [args, says] :
        {std::pair<std::string, std::string>{

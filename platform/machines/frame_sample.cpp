@@ -376,8 +376,22 @@ int FrameSample::every_for(const nlohmann::ordered_json& pilot, double target) {
   if (!pilot.contains("window_s_sd") || frame <= 0) return 1;
   // The largest K first; never fewer windows than the pilot had, so the run's own interval
   // rests on as many differences as the choice did. The run has the pilot's warm-up.
+  // A work-weighted pilot: the run's interval at K from the pilot's residuals (the regression's
+  // part, which shrinks as more windows are sampled) and its subsample's part (which does not
+  // grow as K falls: fewer windows are left to the subsample).
+  const auto work = pilot.find("work");
+  const bool weighted = pilot.value("estimator", "") == "work" && work != pilot.end() &&
+                        work->contains("residual_s_sd") && work->contains("half_width_subsample_s");
   for (int k = std::max(2, windows / kPilotWindows); k >= 2; --k) {
     const int sampled = sampled_windows(windows, k, warmup);  // after the warm-up
+    if (weighted && sampled >= 5) {
+      const double R = windows - 1.0 - warmup, m = sampled;
+      const double s_e = work->at("residual_s_sd").get<double>();
+      const double regression = 3.0 * R * s_e * std::sqrt(std::max(0.0, 1.0 / m - 1.0 / R));
+      const double subsample = work->at("half_width_subsample_s").get<double>();
+      if (std::hypot(regression, subsample) <= target * frame) return k;
+      continue;
+    }
     if (sampled >= 2 && half_width(windows - warmup, 1 + sampled, sd) <= target * frame) return k;
   }
   return 1;

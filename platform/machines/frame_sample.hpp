@@ -104,7 +104,8 @@ class FrameSample {
   /// 99.7% half-width, by the pilot's window spread, is at most `target` of the frame time; 1
   /// (the whole frame in detail) if even K = 2 is not expected to reach it. The pilot's
   /// successive windows lie K0 apart, so its spread is, if anything, larger than a denser
-  /// sample's: the choice errs towards smaller K.
+  /// sample's: the choice errs towards smaller K. A work-weighted pilot (its `work`) predicts
+  /// the work-weighted interval instead: its residuals' part at K, and its subsample's part.
   static int every_for(const nlohmann::ordered_json& pilot, double target);
   /// The pilot's K for a frame of `windows` windows: about kPilotWindows of them in detail (at
   /// least 3). every_for chooses no larger K.

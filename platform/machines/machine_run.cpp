@@ -72,9 +72,9 @@ void MachineRun::simulate() {
 void MachineRun::stats_over(const sc_core::sc_time& begin, const sc_core::sc_time& frame_time) {
   frame_time_ = frame_time;
   result_.simulated_time_s = frame_time.to_seconds();
-  // The work of every window, for the work-weighted estimate (a pilot's K is chosen by its
-  // windows' spread alone).
-  if (sample_ && sample_->rows_sampled() && opts_.sample_work_stride > 0 && !opts_.sample_pilot)
+  // The work of every window, for the work-weighted estimate (a --sample-error pilot's too: its
+  // residuals choose K).
+  if (sample_ && sample_->rows_sampled() && opts_.sample_work_stride > 0)
     sample_->set_window_work(functional::window_work(
         scene_, *twin_.tracer, twin_.settings.shade, width_, height_, twin_.settings.spp,
         sample_->window_rows(), opts_.sample_work_stride, sample_->detailed_rows()));
