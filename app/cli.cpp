@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
-#include <thread>
 
 #include "app/commands.hpp"
 #include "app/interrupt_cleanup.hpp"
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 #include "modules/sim_time.hpp"
+#include "platform/functional/every_core.hpp"
 #include "platform/machine_registry.hpp"
 
 namespace rtsim::app {
@@ -445,7 +445,7 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
 
   RenderArgs render;
-  render.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  render.threads = functional::every_core();
   RunArgs runa;
   SweepArgs sw;
   ValidateArgs va;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "platform/machines/frame_sample.hpp"
@@ -97,35 +98,54 @@ TEST(SampledSimulation, TheTargetErrorChoosesK) {
   EXPECT_EQ(FrameSample::every_for(pilot, 0.01), 10);
 }
 
+// A synthetic sampled run of `windows` windows of one row (4 pixels), every `every`-th in
+// detail, on a machine that does one window after another in ticks(tests) ticks: the sampled
+// run's contributions, each window's work as the work count would report it (4 rays a window,
+// half its tests and 2 rays in its subsample), and the frame's own length (ticks).
+struct SequentialFrame {
+  rtsim::platform::FrameSample sample;
+  std::vector<rtsim::functional::WindowWork> work;
+  std::uint64_t sampled_ticks = 0, full_ticks = 0;
+
+  SequentialFrame(int windows, int every, const std::function<double(int)>& tests_of,
+                  const std::function<std::uint64_t(double)>& ticks)
+      : sample(4, windows, every, 1, 0), work(static_cast<std::size_t>(windows)) {
+    for (int w = 0; w < windows; ++w) {
+      const double tests = tests_of(w);
+      const bool detailed = sample.detailed_rows()[static_cast<std::size_t>(w)] != 0;
+      work[static_cast<std::size_t>(w)] = {detailed, detailed ? tests : 0, detailed ? 4.0 : 0,
+                                           tests / 2, 2};
+      full_ticks += ticks(tests);
+      if (!detailed) continue;
+      sampled_ticks += ticks(tests);
+      sample.contribution(static_cast<std::uint32_t>(w * 4), sampled_ticks);
+    }
+  }
+  /// The estimate from the sampled run's frame; its stats.json `sample`.
+  nlohmann::ordered_json estimate(double& estimate_s) const {
+    return sample.estimate(sc_core::SC_ZERO_TIME,
+                           sc_core::sc_time::from_value(1) * static_cast<double>(sampled_ticks),
+                           estimate_s);
+  }
+  double full_s() const {
+    return static_cast<double>(full_ticks) * sc_core::sc_time::from_value(1).to_seconds();
+  }
+};
+
 TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   // 40 windows of one row, every 4th in detail after window 0, on a machine that does one
   // window after another in 10 + 2 x (its tests) ticks. Its rays do not vary (the regression
   // falls back to the tests alone); the windows not simulated have half their tests in their
   // subsample, as the detailed ones do, so the calibration is exact and so is the estimate.
-  using rtsim::functional::WindowWork;
-  using rtsim::platform::FrameSample;
-  const int windows = 40, width = 4;
-  FrameSample sample(width, windows, 4, 1, 0);
-  std::vector<WindowWork> work(windows);
-  std::uint64_t now = 0, full = 0;
-  for (int w = 0; w < windows; ++w) {
-    const double tests = std::round(100 + 60 * std::sin(w * 0.4)) + (w > 20 && w < 28 ? 400 : 0);
-    const bool detailed = sample.detailed_rows()[static_cast<std::size_t>(w)] != 0;
-    work[static_cast<std::size_t>(w)] = {detailed, detailed ? tests : 0, detailed ? 4.0 : 0,
-                                         tests / 2, 2};
-    const auto ticks = static_cast<std::uint64_t>(10 + 2 * tests);
-    full += ticks;
-    if (!detailed) continue;
-    now += ticks;
-    sample.contribution(static_cast<std::uint32_t>(w * width), now);
-  }
-  const sc_core::sc_time tick = sc_core::sc_time::from_value(1);
+  SequentialFrame f(
+      40, 4,
+      [](int w) { return std::round(100 + 60 * std::sin(w * 0.4)) + (w > 20 && w < 28 ? 400 : 0); },
+      [](double tests) { return static_cast<std::uint64_t>(10 + 2 * tests); });
   double systematic = 0, estimate = 0;
-  (void)sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), systematic);
-  sample.set_window_work(work);
-  const auto out =
-      sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
-  const double exact = static_cast<double>(full) * tick.to_seconds();
+  (void)f.estimate(systematic);
+  f.sample.set_window_work(f.work);
+  const auto out = f.estimate(estimate);
+  const double exact = f.full_s();
   std::printf("full %.6g s: work-weighted %.6g s, systematic %.6g s (%+.1f%%)\n", exact, estimate,
               systematic, 100 * (systematic / exact - 1));
   EXPECT_EQ(out["estimator"], "work");
@@ -135,51 +155,30 @@ TEST(SampledSimulation, TheWorkWeightedEstimateIsExactWhereTimeFollowsTheWork) {
   // The burst of windows 21-27 is sampled at 24 only: the windows' mean misses it.
   EXPECT_GT(std::fabs(systematic / exact - 1), 0.02);
   // Work the windows do not differ in: nothing to regress on, the systematic estimate.
-  for (auto& w : work) w.tests = w.whole ? 50 : 0, w.sub_tests = 25;
-  sample.set_window_work(work);
+  for (auto& w : f.work) w.tests = w.whole ? 50 : 0, w.sub_tests = 25;
+  f.sample.set_window_work(f.work);
   double fallback = 0;
-  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now),
-                            fallback)["estimator"],
-            "systematic");
+  EXPECT_EQ(f.estimate(fallback)["estimator"], "systematic");
   EXPECT_DOUBLE_EQ(fallback, systematic);
 }
 
 TEST(SampledSimulation, TooFewWindowsForALineWeighByTheRatio) {
   // 40 windows, every 16th in detail: two differences, too few for a line with an intercept.
   // A machine whose windows take 3 ticks a test: the ratio of their time to their tests is exact.
-  using rtsim::functional::WindowWork;
-  using rtsim::platform::FrameSample;
-  const int windows = 40, width = 4;
-  FrameSample sample(width, windows, 16, 1, 0);
-  std::vector<WindowWork> work(windows);
-  std::uint64_t now = 0, full = 0;
-  for (int w = 0; w < windows; ++w) {
-    const double tests = 20 + 7 * (w % 5) + (w > 10 && w < 30 ? 50 : 0);
-    const bool detailed = sample.detailed_rows()[static_cast<std::size_t>(w)] != 0;
-    work[static_cast<std::size_t>(w)] = {detailed, detailed ? tests : 0, detailed ? 4.0 : 0,
-                                         tests / 2, 2};
-    const auto ticks = static_cast<std::uint64_t>(3 * tests);
-    full += ticks;
-    if (!detailed) continue;
-    now += ticks;
-    sample.contribution(static_cast<std::uint32_t>(w * width), now);
-  }
-  sample.set_window_work(work);
-  const sc_core::sc_time tick = sc_core::sc_time::from_value(1);
+  SequentialFrame f(
+      40, 16, [](int w) { return 20.0 + 7 * (w % 5) + (w > 10 && w < 30 ? 50 : 0); },
+      [](double tests) { return static_cast<std::uint64_t>(3 * tests); });
+  f.sample.set_window_work(f.work);
   double estimate = 0;
-  const auto out =
-      sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now), estimate);
+  const auto out = f.estimate(estimate);
   EXPECT_EQ(out["estimator"], "work");
   EXPECT_NE(out["work"]["variables"].get<std::string>().find("ratio"), std::string::npos);
-  EXPECT_NEAR(estimate, static_cast<double>(full) * tick.to_seconds(),
-              1e-9 * static_cast<double>(full) * tick.to_seconds());
+  EXPECT_NEAR(estimate, f.full_s(), 1e-9 * f.full_s());
   // A count that left the other windows out (the windows in detail did not differ): none.
-  for (auto& w : work)
+  for (auto& w : f.work)
     if (!w.whole) w.sub_tests = w.sub_rays = 0;
-  sample.set_window_work(work);
-  EXPECT_EQ(sample.estimate(sc_core::SC_ZERO_TIME, tick * static_cast<double>(now),
-                            estimate)["estimator"],
-            "systematic");
+  f.sample.set_window_work(f.work);
+  EXPECT_EQ(f.estimate(estimate)["estimator"], "systematic");
 }
 
 TEST(SampledSimulation, TheWorkWeightedEstimateHoldsWhereAnObjectSitsMidFrame) {

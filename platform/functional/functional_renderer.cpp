@@ -5,8 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <system_error>
-#include <thread>
 
 #include "firmware/shading/camera.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
@@ -14,6 +12,7 @@
 #include "firmware/tasks/ray_tree.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "platform/functional/every_core.hpp"
 #include "platform/functional/frame_state.hpp"
 
 namespace rtsim::functional {
@@ -59,18 +58,9 @@ int trace_rows(const scenes::Scene& scene, const Tracer& tracer, const shading::
     }
   };
 
-  std::vector<std::thread> pool;
-  for (int t = 1; t < thread_count; ++t) {
-    try {
-      pool.emplace_back(worker, t);
-    } catch (const std::system_error&) {
-      break;  // out of threads or memory for their stacks: render with those that started
-    }
-  }
-  worker(0);
-  for (auto& th : pool) th.join();
+  const int ran = run_on_threads(thread_count, worker);
   for (const auto& c : per_thread) frame.counters() += c;
-  return 1 + static_cast<int>(pool.size());
+  return ran;
 }
 
 }  // namespace
@@ -94,8 +84,7 @@ void render_rows(const scenes::Scene& scene, const Tracer& tracer,
                  const shading::ShadeParams& shade, FrameState& frame,
                  const std::vector<char>& rows) {
   // The machine's simulation is over: every core may trace.
-  (void)trace_rows(scene, tracer, shade, frame, &rows,
-                   static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u)), {});
+  (void)trace_rows(scene, tracer, shade, frame, &rows, every_core(), {});
 }
 
 }  // namespace rtsim::functional

@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <numeric>
-#include <optional>
-#include <system_error>
-#include <thread>
-#include <utility>
 
 #include "firmware/shading/camera.hpp"
 #include "firmware/shading/pixel_accumulator.hpp"
 #include "firmware/tasks/ray_tree.hpp"
 #include "firmware/tasks/shade_task.hpp"
 #include "firmware/tasks/vision_ray_task.hpp"
+#include "platform/functional/every_core.hpp"
 
 namespace rtsim::functional {
 
@@ -49,7 +46,7 @@ std::vector<WindowWork> window_work(const scenes::Scene& scene, const Tracer& tr
   // machine's simulation is over.
   auto pass = [&](bool whole_pass) {
     std::atomic<int> next_row{0};
-    auto worker = [&] {
+    run_on_threads(every_core(), [&](int) {
       std::vector<shading::TracedRay> stack, spawned;
       tasks::ShadeTask task(scene, shade);
       for (int y = next_row.fetch_add(1); y < height; y = next_row.fetch_add(1)) {
@@ -68,59 +65,41 @@ std::vector<WindowWork> window_work(const scenes::Scene& scene, const Tracer& tr
           }
         }
       }
-    };
-    const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 256u);
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) {
-      try {
-        pool.emplace_back(worker);
-      } catch (const std::system_error&) {
-        break;  // no more threads: those that started share the rows
+    });
+  };
+  // The rows' counts summed into their windows.
+  auto by_window = [&] {
+    std::vector<WindowWork> out(static_cast<std::size_t>(windows));
+    for (int y = 0; y < height; ++y) {
+      const TraceCounters& sub = sub_by_row[static_cast<std::size_t>(y)];
+      const TraceCounters& rest = by_row[static_cast<std::size_t>(y)];
+      WindowWork& w = out[static_cast<std::size_t>(y / rows_per)];
+      const double sub_tests = static_cast<double>(sub.intersection_tests + sub.box_tests);
+      const double sub_rays = static_cast<double>(sub.total_rays());
+      w.sub_tests += sub_tests;
+      w.sub_rays += sub_rays;
+      if (whole(y)) {
+        // A window is whole when its rows are (the detailed windows' rows are all flagged).
+        w.whole = true;
+        w.tests += sub_tests + static_cast<double>(rest.intersection_tests + rest.box_tests);
+        w.rays += sub_rays + static_cast<double>(rest.total_rays());
       }
     }
-    worker();
-    for (auto& th : pool) th.join();
-  };
-  auto total = [](const TraceCounters& a, const TraceCounters& b) {
-    return std::pair<std::uint64_t, std::uint64_t>{
-        a.intersection_tests + a.box_tests + b.intersection_tests + b.box_tests,
-        a.total_rays() + b.total_rays()};
+    return out;
   };
   pass(true);
+  std::vector<WindowWork> out = by_window();
   // Windows in detail that all did the same work (a brute-force search on rays that spawn
   // nothing) leave the regression nothing to fit: the estimate is the systematic one, and the
   // other rows' subsample would be traced for nothing.
-  std::optional<std::pair<std::uint64_t, std::uint64_t>> alike;
-  bool differ = false;
-  for (int w = 0; w < windows && !differ; ++w) {
-    std::pair<std::uint64_t, std::uint64_t> sum{0, 0};
-    bool is_whole = true;
-    for (int y = w * rows_per; y < std::min(height, (w + 1) * rows_per); ++y) {
-      is_whole = is_whole && whole(y);
-      const auto t =
-          total(by_row[static_cast<std::size_t>(y)], sub_by_row[static_cast<std::size_t>(y)]);
-      sum.first += t.first;
-      sum.second += t.second;
-    }
-    if (!is_whole) continue;
-    if (!alike) alike = sum;
-    differ = *alike != sum;
-  }
-  if (differ) pass(false);
-  std::vector<WindowWork> out(static_cast<std::size_t>(windows));
-  for (int y = 0; y < height; ++y) {
-    const TraceCounters& sub = sub_by_row[static_cast<std::size_t>(y)];
-    const TraceCounters& rest = by_row[static_cast<std::size_t>(y)];
-    WindowWork& w = out[static_cast<std::size_t>(y / rows_per)];
-    const double sub_tests = static_cast<double>(sub.intersection_tests + sub.box_tests);
-    const double sub_rays = static_cast<double>(sub.total_rays());
-    w.sub_tests += sub_tests;
-    w.sub_rays += sub_rays;
-    if (whole(y)) {
-      // A window is whole when its rows are (the detailed windows' rows are all flagged).
-      w.whole = true;
-      w.tests += sub_tests + static_cast<double>(rest.intersection_tests + rest.box_tests);
-      w.rays += sub_rays + static_cast<double>(rest.total_rays());
+  const WindowWork* alike = nullptr;
+  for (const WindowWork& w : out) {
+    if (!w.whole) continue;
+    if (!alike) {
+      alike = &w;
+    } else if (w.tests != alike->tests || w.rays != alike->rays) {
+      pass(false);
+      return by_window();
     }
   }
   return out;

@@ -314,13 +314,17 @@ std::optional<FrameSample::WorkEstimate> FrameSample::work_estimate(
   Work scale{};
   for (std::size_t k = 0; k < scale.size(); ++k)
     scale[k] = whole_sub[k] > 0 ? whole[k] / whole_sub[k] : 0.0;
+  // A window's work from its columns, so calibrated.
+  auto from_sub = [&](const functional::WindowWork& w) {
+    return Work{scale[0] * w.sub_tests, scale[1] * w.sub_rays};
+  };
   auto predicted = [&](const functional::WindowWork& w) {
-    return w.whole ? exact(w) : Work{scale[0] * w.sub_tests, scale[1] * w.sub_rays};
+    return w.whole ? exact(w) : from_sub(w);
   };
   double ssq = 0;
   for (const auto& w : work_)
     if (w.whole) {
-      const double q = fit(exact(w)) - fit(Work{scale[0] * w.sub_tests, scale[1] * w.sub_rays});
+      const double q = fit(exact(w)) - fit(from_sub(w));
       ssq += q * q;
     }
   const double s2_q = whole_n > 1 ? ssq / (whole_n - 1) : 0.0;
