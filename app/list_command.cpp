@@ -104,16 +104,19 @@ void list_params(const ListArgs& args) {
       j["set_by"] = e.where_set;
       j["description"] = e.description;
       j["source"] = e.source;
+      j["affects_image"] = e.affects_image;
       all.push_back(std::move(j));
     }
     std::cout << all.dump(2) << "\n";
     return;
   }
   if (args.format == "markdown") {
-    std::cout << "| name | default | unit | description | source |\n|---|---|---|---|---|\n";
+    std::cout << "| name | default | unit | image | description | source |\n"
+                 "|---|---|---|---|---|---|\n";
     for (const auto& e : entries)
       std::cout << "| `" << e.name << "` | `" << e.default_text << "` | " << e.unit << " | "
-                << e.description << " | " << cite_seeds(e.source) << " |\n";
+                << (e.affects_image ? "yes" : "") << " | " << e.description << " | "
+                << cite_seeds(e.source) << " |\n";
     return;
   }
   std::size_t name_w = 4, value_w = 5;
@@ -129,7 +132,8 @@ void list_params(const ListArgs& args) {
               << std::setw(static_cast<int>(value_w + 2)) << e.value_text << e.where_set << "\n"
               << "    " << e.description << "\n"
               << "    default " << e.default_text << (e.unit.empty() ? "" : " (" + e.unit + ")")
-              << "; source: " << cite_seeds(e.source) << "\n";
+              << "; source: " << cite_seeds(e.source)
+              << (e.affects_image ? "; the image depends on it" : "") << "\n";
   }
 }
 

@@ -11,12 +11,15 @@ std::string join(const std::string& path, std::string_view name) {
 }  // namespace
 
 ParamDecls ParamDecls::sub(std::string_view child) const {
-  return {*registry_, join(path_, child)};
+  ParamDecls d{*registry_, join(path_, child)};
+  d.affects_image_ = affects_image_;
+  return d;
 }
 
 void ParamDecls::declare(params::ParamSpec spec) const {
   spec.name = join(path_, spec.name);
   spec.per_instance = per_instance_;
+  spec.affects_image = spec.affects_image || affects_image_;
   registry_->declare(std::move(spec));
 }
 

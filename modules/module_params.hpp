@@ -31,6 +31,13 @@ class ParamDecls {
   ParamDecls sub(std::string_view child) const;
   const std::string& path() const { return path_; }
   params::ParamRegistry& registry() const { return *registry_; }
+  /// The same declarations marked as parameters the image depends on (ParamSpec::affects_image):
+  /// those the machine's functional twin reads.
+  ParamDecls affecting_image() const {
+    ParamDecls d = *this;
+    d.affects_image_ = true;
+    return d;
+  }
 
   /// `spec.name` is relative to the module.
   void declare(params::ParamSpec spec) const;
@@ -49,6 +56,7 @@ class ParamDecls {
   params::ParamRegistry* registry_;
   std::string path_;
   bool per_instance_;
+  bool affects_image_ = false;
 };
 
 /// Reading: a module's instance path in the registry.

@@ -291,6 +291,11 @@ void ParamRegistry::declare(ParamSpec spec) {
 
 bool ParamRegistry::contains(std::string_view name) const { return params_.contains(name); }
 
+bool ParamRegistry::affects_image(std::string_view name) const {
+  const Param* p = resolve(name);
+  return p != nullptr && p->spec.affects_image;
+}
+
 void ParamRegistry::declare_family(InstanceFamily family) {
   if (!valid_name(family.cls) || family.cls.find('.') != std::string::npos)
     throw std::logic_error("declaring family '" + family.cls + "': the class is one segment");
@@ -533,6 +538,7 @@ std::vector<ParamEntry> ParamRegistry::list() const {
                    .where_set = p.where_set,
                    .instance_of = p.instance_of,
                    .per_instance = p.spec.per_instance,
+                   .affects_image = p.spec.affects_image,
                    .min_text = p.min ? format_value(kind, *p.min) : std::string(),
                    .max_text = p.max ? format_value(kind, *p.max) : std::string(),
                    .allowed = p.spec.allowed});

@@ -52,6 +52,11 @@ struct ParamSpec {
   /// set for one instance, whose name replaces the class ("pert3.shell.bic.id_registers" beside
   /// "pert.shell.bic.id_registers"); the instance's value wins.
   bool per_instance = false;
+  /// The image depends on it: the machine's functional twin (or the scene's generation) reads
+  /// it. Any other parameter leaves the image byte-identical (DESIGN.md "Deterministic";
+  /// tests/image_params_test.cpp), so a sweep renders the image once for the points that differ
+  /// only in others (docs/sweeps.md).
+  bool affects_image = false;
 };
 
 /// Modules of one class that share its parameters (DESIGN.md "Configuration"): a parameter
@@ -75,10 +80,11 @@ struct ParamEntry {
   std::string unit{};          ///< the declared unit; for unit kinds the SI base unit ("s")
   std::string description{};
   std::string source{};
-  std::string where_set{};    ///< "default", "FILE:LINE" or "-p"
-  std::string instance_of{};  ///< an instance's own value: the class parameter it overrides
-  bool per_instance = false;  ///< a module's (ParamSpec::per_instance)
-  std::string min_text{};     ///< the inclusive bounds, written as values are; "" for none
+  std::string where_set{};     ///< "default", "FILE:LINE" or "-p"
+  std::string instance_of{};   ///< an instance's own value: the class parameter it overrides
+  bool per_instance = false;   ///< a module's (ParamSpec::per_instance)
+  bool affects_image = false;  ///< ParamSpec::affects_image
+  std::string min_text{};      ///< the inclusive bounds, written as values are; "" for none
   std::string max_text{};
   std::vector<std::string> allowed{};  ///< strings: the values allowed (empty: any)
 };
@@ -105,6 +111,9 @@ class ParamRegistry {
   void declare(ParamSpec spec);
 
   bool contains(std::string_view name) const;
+  /// Whether the image depends on `name` (ParamSpec::affects_image; an instance's name answers
+  /// for its class). false for an undeclared name.
+  bool affects_image(std::string_view name) const;
 
   /// The class path of a module's instance path ("pert3.shell" -> "pert.shell", "shell_bus" ->
   /// "broadcast"); the path itself if its first segment is no family's member.

@@ -162,7 +162,8 @@ const modules::RealParam kViewElevation(
 }  // namespace
 
 void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) {
-  const modules::ParamDecls top(r, "", false);
+  // Every one is the functional renderer's: the image depends on each.
+  const modules::ParamDecls top = modules::ParamDecls(r, "", false).affecting_image();
   top.add(kSpp);
   if (use.accel) top.add(kAccel);
   if (use.polygon_kernel) top.add(kPolygonKernel);

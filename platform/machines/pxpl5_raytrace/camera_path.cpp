@@ -21,7 +21,8 @@ const modules::CountParam kFrames(
      .unit = "frames",
      .description = "Frames rendered; the camera turns between them (camera.spin) and the image "
                     "is the last frame's",
-     .source = "study setting: a camera path for frame rates (the issue's multi-frame runs)"});
+     .source = "study setting: a camera path for frame rates (the issue's multi-frame runs)",
+     .affects_image = true});
 const modules::ChoiceParam kPath(
     {.name = "camera.path",
      .default_value = "",
@@ -32,7 +33,8 @@ const modules::ChoiceParam kPath(
          "`frames` frames, all moving unless camera.spin is 0",
      .source = "seed 004 L288 (a coarse image while the view changes, refinement during "
                "pauses); assumption: a turn about the vertical axis stands for the user's "
-               "motion"});
+               "motion",
+     .affects_image = true});
 const modules::RealParam kSpin({.name = "camera.spin",
                                 .default_value = "0",
                                 .min = "-360",
@@ -41,7 +43,8 @@ const modules::RealParam kSpin({.name = "camera.spin",
                                 .description = "Turn of the eye about the vertical axis (the "
                                                "view's up through the point looked at) after "
                                                "each frame during which the user moves",
-                                .source = "study setting: a simple camera path"});
+                                .source = "study setting: a simple camera path",
+                                .affects_image = true});
 const modules::RealParam kDistance(
     {.name = "camera.distance",
      .default_value = "1",
@@ -50,7 +53,8 @@ const modules::RealParam kDistance(
      .unit = "x",
      .description = "The eye's distance from the point it looks at, times the scene's (larger: "
                     "the scene covers less of the screen)",
-     .source = "seed 004 L369: Fig. 9 varies screen coverage by viewing distance"});
+     .source = "seed 004 L369: Fig. 9 varies screen coverage by viewing distance",
+     .affects_image = true});
 
 }  // namespace
 

@@ -15,7 +15,8 @@ const modules::DataSizeParam kMemory(
      .default_value = "8 MiB",
      .min = "1 B",
      .description = "Local memory of each GP; a ray caster must hold the whole scene",
-     .source = "seed 004 L282"});
+     .source = "seed 004 L282",
+     .affects_image = true});
 const modules::CountParam kBytesPerPrimitive(
     {.name = "scene_bytes_per_primitive",
      .default_value = "256",
@@ -24,7 +25,8 @@ const modules::CountParam kBytesPerPrimitive(
      .unit = "bytes",
      .description = "Memory a ray caster's copy of the scene takes per primitive (its kernel's "
                     "parameters, material and its share of the acceleration structure)",
-     .source = "assumption: a triangle's or sphere's precomputed kernel and its grid references"});
+     .source = "assumption: a triangle's or sphere's precomputed kernel and its grid references",
+     .affects_image = true});
 
 }  // namespace
 

@@ -17,7 +17,8 @@ const modules::CountParam kCasters(
      .max = "1024",
      .unit = "GPs",
      .description = "Ray-caster GPs (i860s with the scene replicated)",
-     .source = "seed 004 L369: Fig. 9's system has 21 GPs, 4 of them compositors, one master"});
+     .source = "seed 004 L369: Fig. 9's system has 21 GPs, 4 of them compositors, one master",
+     .affects_image = true});
 const modules::CountParam kCompositors(
     {.name = "compositor_count",
      .default_value = "4",
@@ -25,7 +26,8 @@ const modules::CountParam kCompositors(
      .max = "256",
      .unit = "GPs",
      .description = "Compositor GPs, each owning every compositor_count-th band of rows",
-     .source = "seed 004 L369 (4 in Fig. 9; 8 typical, L310)"});
+     .source = "seed 004 L369 (4 in Fig. 9; 8 typical, L310)",
+     .affects_image = true});
 const modules::IntParam kBandRows(
     {.name = "compositor.band_rows",
      .default_value = "64",
@@ -33,14 +35,16 @@ const modules::IntParam kBandRows(
      .max = "16384",
      .unit = "rows",
      .description = "Rows of one band; band b belongs to compositor b mod compositor_count",
-     .source = "seed 004 L310 (640 x 64 bands)"});
+     .source = "seed 004 L310 (640 x 64 bands)",
+     .affects_image = true});
 const modules::ChoiceParam kScheme(
     {.name = "assign.scheme",
      .default_value = "squares",
      .allowed = {"rows", "squares"},
      .description = "Work the master GP hands out: sample rows, in order from the top (L352), or "
                     "square regions (L360)",
-     .source = "seed 004 L352, L360"});
+     .source = "seed 004 L352, L360",
+     .affects_image = true});
 const modules::CountParam kSquare(
     {.name = "assign.square",
      .default_value = "64",
@@ -51,7 +55,8 @@ const modules::CountParam kSquare(
          "Side of a square region in pixels (VOL2: 64, 1/80 of 640 x 512). With adaptive "
          "sampling a square also casts its right and bottom edges, shared with its neighbours: "
          "65 x 65 pixels, \"two edges of replicated rays\"",
-     .source = "seed 004 L360"});
+     .source = "seed 004 L360",
+     .affects_image = true});
 const modules::CountParam kFinest(
     {.name = "sampling.finest",
      .default_value = "1",
@@ -61,7 +66,8 @@ const modules::CountParam kFinest(
      .description = "Pixels between rays at the finest level, a power of two: 1 casts a ray per "
                     "pixel (the image of every other machine); VOL2 ends at one ray per 4 x 4; "
                     "the renderers resample to display pixels",
-     .source = "seed 004 L369 (4; rows every 8 x 8 or 4 x 4)"});
+     .source = "seed 004 L369 (4; rows every 8 x 8 or 4 x 4)",
+     .affects_image = true});
 const modules::CountParam kStart(
     {.name = "sampling.start",
      .default_value = "0",
@@ -71,7 +77,8 @@ const modules::CountParam kStart(
      .description = "Pixels between rays before adaptive refinement, squares only (rows cannot "
                     "adapt, L352): larger than sampling.finest turns adaptive sampling on; 0 is "
                     "sampling.finest (no refinement)",
-     .source = "seed 004 L369 (16: one ray per 16 x 16 refined to 4 x 4)"});
+     .source = "seed 004 L369 (16: one ray per 16 x 16 refined to 4 x 4)",
+     .affects_image = true});
 const modules::RealParam kThreshold(
     {.name = "sampling.threshold",
      .default_value = "0.05",
@@ -81,20 +88,23 @@ const modules::RealParam kThreshold(
      .description =
          "Colour difference between two corner samples (any channel) that refines a square",
      .source = "seed 004 L362 (a user-defined threshold; 0.05 is about 13 of 255 display "
-               "levels: an assumption)"});
+               "levels: an assumption)",
+     .affects_image = true});
 const modules::ChoiceParam kSubdivision(
     {.name = "sampling.subdivision",
      .default_value = "partial",
      .allowed = {"partial", "conventional"},
      .description = "Refinement of a square whose corners differ: new samples only between "
                     "differing pairs and the centre (partial), or all five (conventional)",
-     .source = "seed 004 L362, Fig. 8 (L358)"});
+     .source = "seed 004 L362, Fig. 8 (L358)",
+     .affects_image = true});
 const modules::FlagParam kObjectEdges(
     {.name = "sampling.object_edges",
      .default_value = "true",
      .description = "Corner samples that hit different primitives differ whatever their colour "
                     "(edges and intersection curves are refined)",
-     .source = "seed 004 L364 (isosurface encoding; here the primitive hit)"});
+     .source = "seed 004 L364 (isosurface encoding; here the primitive hit)",
+     .affects_image = true});
 const modules::ChoiceParam kUpdateFraction(
     {.name = "update.fraction",
      .default_value = "100",
@@ -103,7 +113,8 @@ const modules::ChoiceParam kUpdateFraction(
      .description = "Partial updating: the share of lattice positions cast each frame, on a "
                     "regular grid (a modulus of the position with the frame number); the "
                     "compositors keep the rest from earlier frames. The first frame casts all",
-     .source = "seed 004 L373-L379"});
+     .source = "seed 004 L373-L379",
+     .affects_image = true});
 
 const modules::CountParam kRefineLevels(
     {.name = "refine.levels",
@@ -120,7 +131,8 @@ const modules::CountParam kRefineLevels(
          "sampling only",
      .source = "seed 004 L288, L312 (the array of composited samples sent to the splat "
                "processors \"is thus of variable size\"); assumption: a level halves the "
-               "spacing (Fig. 9's 8 x 8 and 4 x 4)"});
+               "spacing (Fig. 9's 8 x 8 and 4 x 4)",
+     .affects_image = true});
 
 [[noreturn]] void bad_param(const modules::ModuleParams& p, const params::ParamSpec& spec,
                             const std::string& what) {

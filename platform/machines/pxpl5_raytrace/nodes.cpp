@@ -65,7 +65,8 @@ const modules::IntParam kDisplayFrame(
      .description = "The frame whose displayed image is written (image.png, image.exr), counted "
                     "from 0; -1: the last. An earlier frame shows what the user saw then (a "
                     "coarse or partly updated image)",
-     .source = "simulator setting, not of the machine"});
+     .source = "simulator setting, not of the machine",
+     .affects_image = true});
 const modules::TimeParam kPixelTime({.name = "pixel_time",
                                      .default_value = "10 ns",
                                      .max = "1 s",

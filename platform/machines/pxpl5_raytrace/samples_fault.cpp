@@ -15,7 +15,8 @@ const modules::IntParam kCorruptSamples(
      .unit = "messages",
      .description = "A fault for tests: the samples message with this number (counted over all "
                     "casters from 1) has its first sample changed on the ring; 0 changes none",
-     .source = "test setting: fault injection, not a machine property"});
+     .source = "test setting: fault injection, not a machine property",
+     .affects_image = true});
 
 }  // namespace
 

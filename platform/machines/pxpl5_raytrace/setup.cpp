@@ -16,7 +16,8 @@ const modules::ChoiceParam kBypass(
          "measure each part's greatest rate: all (the pipeline's, Fig. 4), all-but-master (the "
          "master GP's, Fig. 5), casters-and-master (the compositing, resampling and display back "
          "end's, Fig. 6). A by-passed caster sends samples of no radiance: the image is black",
-     .source = "seed 004 L333-L350"});
+     .source = "seed 004 L333-L350",
+     .affects_image = true});
 
 }  // namespace
 

@@ -48,14 +48,16 @@ const modules::CountParam kRows(
      .max = "64",
      .unit = "processors",
      .description = "Rows of processors in the array (at most 64)",
-     .source = "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)"});
+     .source = "seed 000 L773 (Fig. 2-25: sixty-four processors, 8 x 8)",
+     .affects_image = true});
 const modules::CountParam kCols({.name = "cols",
                                  .default_value = "8",
                                  .min = "1",
                                  .max = "64",
                                  .unit = "processors",
                                  .description = "Columns of processors in the array (at most 64)",
-                                 .source = "seed 000 L773 (Fig. 2-25)"});
+                                 .source = "seed 000 L773 (Fig. 2-25)",
+                                 .affects_image = true});
 const modules::CountParam kSubvolumes(
     {.name = "subvolumes",
      .default_value = "0",
@@ -64,7 +66,8 @@ const modules::CountParam kSubvolumes(
      .description = "Subvolumes per axis of the modelling space; 0: as many as the larger side of "
                     "the array (one column of subvolumes a processor, Fig. 2-26). More give each "
                     "processor several (L883-L889: 16 on an 8 x 8 array)",
-     .source = "seed 000 L767-L779, L883-L889"});
+     .source = "seed 000 L767-L779, L883-L889",
+     .affects_image = true});
 const modules::ChoiceParam kMapping(
     {.name = "mapping",
      .default_value = "straight",
@@ -97,7 +100,8 @@ const modules::CountParam kDropResult(
      .unit = "messages",
      .description = "A fault for tests: the result message with this number (counted where "
                     "results are added) is lost; 0 loses none",
-     .source = "test setting: fault injection, not a machine property"});
+     .source = "test setting: fault injection, not a machine property",
+     .affects_image = true});
 /// The array's parameters are the machine's own, under this path; its ring's under kRing.
 constexpr const char* kArray = "array";
 constexpr const char* kRing = "ring";

@@ -54,7 +54,7 @@ FunctionalTwin UllnerPeripheral::make_twin(scenes::Scene& scene,
   // into convex quads and triangles-as-quads; anything else cannot be loaded.
   require_polygons(name(), scene);
   const ullner::PeripheralSettings pc =
-      ullner::Peripheral::read_settings(modules::ModuleParams(r, kPeripheral));
+      ullner::Peripheral::read_search_settings(modules::ModuleParams(r, kPeripheral));
   auto settings = functional::read_render_settings(r);
   settings.polygon_kernel = functional::PolygonKernel::UllnerQuad;
   settings.accel =

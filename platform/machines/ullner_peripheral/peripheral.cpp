@@ -67,14 +67,16 @@ const modules::CountParam kGridDivisions(
      .description = "Subvolumes per axis of the grid auxiliary processor; 0 = none (brute "
                     "force); at most 512 (512^3 subvolumes is the grid's limit, kMaxGridCells = "
                     "2^27)",
-     .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)"});
+     .source = "seed 000 L592-L606 (optimum 11 for 1000 polygons, L654)",
+     .affects_image = true});
 const modules::ChoiceParam kGridDda(
     {.name = "grid.dda",
      .default_value = "corrected",
      .allowed = {"corrected", "as-printed"},
      .description = "Subvolume stepping: the corrected 3-D DDA, or Appendix B exactly as printed "
                     "(wrong; for fidelity experiments)",
-     .source = "seed 000 L2112-L2171; errata in note 000 §4.6"});
+     .source = "seed 000 L2112-L2171; errata in note 000 §4.6",
+     .affects_image = true});
 const modules::TimeParam kStepTime({.name = "grid.step_time",
                                     .default_value = "1 us",
                                     .description = "t_d: time to step to the next subvolume",
@@ -108,7 +110,8 @@ const modules::CountParam kMemoryPolygons(
      .max = "100000000",
      .unit = "polygons",
      .description = "Capacity of the 20 parameter memories",
-     .source = "assumption: a million polygons (seed 000 note §7.5 S7)"});
+     .source = "assumption: a million polygons (seed 000 note §7.5 S7)",
+     .affects_image = true});
 const modules::TimeParam kLoadWordTime(
     {.name = "memory.load_word_time",
      .default_value = "1 us",
@@ -160,13 +163,22 @@ PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
   c.shadow_early_exit = p.get(kShadowEarlyExit);
   c.grid_divisions = static_cast<int>(p.get(kGridDivisions));
   c.dda_as_printed = p.get(kGridDda) == "as-printed";
+  c.memory_polygons = p.get(kMemoryPolygons);
+  c.memory_polygons_name = p.path_of(kMemoryPolygons.name());
   c.step_time = p.get(kStepTime);
   c.indirection_stages = static_cast<unsigned>(p.get(kIndirectionStages));
   c.lighting = p.get(kLighting);
   c.rsqrt_stages = static_cast<unsigned>(p.get(kRsqrtStages));
+  c.load_word_time = p.get(kLoadWordTime);
+  return c;
+}
+
+PeripheralSettings Peripheral::read_search_settings(const modules::ModuleParams& p) {
+  PeripheralSettings c;
+  c.grid_divisions = static_cast<int>(p.get(kGridDivisions));
+  c.dda_as_printed = p.get(kGridDda) == "as-printed";
   c.memory_polygons = p.get(kMemoryPolygons);
   c.memory_polygons_name = p.path_of(kMemoryPolygons.name());
-  c.load_word_time = p.get(kLoadWordTime);
   return c;
 }
 

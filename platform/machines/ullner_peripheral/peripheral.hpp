@@ -49,6 +49,9 @@ class Peripheral : public sc_core::sc_module {
   static void declare_params(const modules::ParamDecls& peripheral);
   /// Their values, read once (the modelling space is the scene's: left empty).
   static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
+  /// Only what the functional twin needs (the parameters the image depends on): the grid and
+  /// the memories' capacity. The other fields keep their defaults.
+  static PeripheralSettings read_search_settings(const modules::ModuleParams& peripheral);
 
   SC_HAS_PROCESS(Peripheral);
   /// In `run`: the twin's geometry is the host's copy of the scene, and the twin's search over

@@ -28,7 +28,8 @@ const modules::CountParam kEngines(
      .description = "Polygon processors in the chain (N): one polygon each; spare ones hold dummy "
                     "polygons. Every ray passes all of them",
      .source = "seed 000 L743 (a thousand processors); L751: ten thousand plausible, a million "
-               "almost certainly infeasible"});
+               "almost certainly infeasible",
+     .affects_image = true});
 const modules::TimeParam kIssueInterval(
     {.name = "issue_interval",
      .default_value = "5 us",
@@ -75,7 +76,8 @@ const modules::IntParam kDeadEngine(
      .unit = "processor",
      .description = "A fault: this processor is dead and passes every description on unchanged "
                     "(its polygon is never found); -1 for none",
-     .source = "fault model (issue: faults in flight); a dead stage of a systolic chain"});
+     .source = "fault model (issue: faults in flight); a dead stage of a systolic chain",
+     .affects_image = true});
 /// pipeline.model = engines: the longest chain it builds, a module a processor (the load alone
 /// is N^2 register writes, about 0.15 us each: 60 s at this length).
 constexpr std::uint64_t kMaxEngineModules = 20000;

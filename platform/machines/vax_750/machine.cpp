@@ -60,7 +60,8 @@ const modules::ChoiceParam kSearch(
                     "001 L320-L326); shells: the sequential C renderer with Gaudet's box-shell "
                     "hierarchy, paying T_i per primitive tested and vax.box_test_time per shell "
                     "box tested (the baseline of the PERT speed-ups, L964)",
-     .source = "seed 001 L320-L326, L964"});
+     .source = "seed 001 L320-L326, L964",
+     .affects_image = true});
 const modules::TimeParam kBoxTestTime(
     {.name = "box_test_time",
      .default_value = "429 us",

@@ -140,7 +140,8 @@ const modules::IntParam kDeadStage(
      .unit = "loop stage",
      .description = "A fault: this loop stage is dead and passes every job on unchanged (no "
                     "split, no hull test, no cull; its timing stays); 0 for none",
-     .source = "fault model: a dead stage of the unrolled pipeline"});
+     .source = "fault model: a dead stage of the unrolled pipeline",
+     .affects_image = true});
 const modules::ChoiceParam kInterconnect(
     {.name = "interconnect",
      .default_value = "none",
