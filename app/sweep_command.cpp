@@ -28,6 +28,7 @@
 #include "app/sweep_report.hpp"
 #include "common/input_error.hpp"
 #include "platform/runs/run_queue.hpp"
+#include "platform/sweep/image_sharing.hpp"
 #include "platform/sweep/point_outcome.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_check.hpp"
@@ -72,6 +73,7 @@ Plan make_plan(const SweepArgs& args) {
   plan.file = sweep::read_sweep_file(args.file);
   plan.points = sweep::expand_points(plan.file);
   sweep::check_sweep(plan.file, plan.points);
+  sweep::share_images(plan.file, plan.points);
   if (args.baseline >= 0 && !args.report)
     throw InputError("--baseline", 0, "marks a point in report.html: give --report too");
   if (args.baseline >= static_cast<int>(plan.points.size()))
@@ -320,7 +322,14 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session, Fork
       std::cout << session->size() << " MPI ranks, " << jobs << " at a time on each";
     else
       std::cout << jobs << " at a time";
-    std::cout << "\n  out  " << out.string() << "\n" << std::flush;
+    std::cout << "\n  out  " << out.string() << "\n";
+    const auto sharing = std::count_if(plan.points.begin(), plan.points.end(),
+                                       [](const sweep::Point& p) { return p.image_from; });
+    if (sharing > 0)
+      std::cout << "  images  " << sharing << " of the points differ from an earlier one only in "
+                << "what the image does not depend on: they run timing-only and get its image "
+                   "(share-images = false renders every point's)\n";
+    std::cout << std::flush;
   }
 
   // Ctrl-C, SIGTERM, SIGHUP: the running points are stopped (each removes its partial
@@ -335,6 +344,15 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session, Fork
   const auto start = std::chrono::steady_clock::now();
   run_points(args, plan, pending, points_dir, jobs, session, servers, outcomes);
   end.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  {
+    std::vector<bool> ok(outcomes.size());
+    for (std::size_t i = 0; i < outcomes.size(); ++i) ok[i] = outcomes[i].ok;
+    if (const std::size_t unfilled = sweep::fill_shared_images(plan.points, points_dir, ok))
+      std::cerr << "rtsim sweep: warning: " << unfilled
+                << " point folder(s) have no image: the point that rendered the image they share "
+                   "failed, or its folder is not on this machine, or the disk is full (their "
+                   "results are unaffected; share-images = false renders every point's)\n";
+  }
   const int interrupted = interrupted_by.load();
   if (interrupted != 0) {
     // What was stopped or never started is not a failure of the point: it is still to run.

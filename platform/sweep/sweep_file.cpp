@@ -620,6 +620,7 @@ SweepFile Reader::read(std::string_view text) {
               "latency-probe",
               "trace",
               "trace-max-events",
+              "share-images",
               "configs",
               "params",
               "axes"},
@@ -635,6 +636,11 @@ SweepFile Reader::read(std::string_view text) {
   }
   if (const toml::node* n = root.get("description"); n && !n->is_string())
     fail(line_of(*n), "'description' must be a string; got " + describe(*n));
+  if (const toml::node* n = root.get("share-images")) {
+    const auto* b = n->as_boolean();
+    if (!b) fail(line_of(*n), "'share-images' must be true or false; got " + describe(*n));
+    out.share_images = b->get();
+  }
 
   std::vector<Axis> leading;
   read_machine_or_scene(root, kMachine, "machines", out, leading);

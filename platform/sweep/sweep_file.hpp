@@ -86,6 +86,9 @@ struct SweepFile {
   std::vector<Fixed> fixed{};
   /// `configs = [...]`: --config files of every point, resolved, with the line naming each.
   std::vector<std::pair<std::filesystem::path, std::size_t>> configs{};
+  /// `share-images` (default true): points that would render the same image render it once
+  /// (image_sharing.hpp); false: every point renders its own.
+  bool share_images = true;
 
   /// Product of the axes' sizes (1 with no axes).
   std::size_t point_count() const;

@@ -2,6 +2,7 @@
 // The points of a sweep: the cartesian product of its axes (the last axis varies fastest), each
 // turned into the arguments of one `rtsim run`.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,9 @@ struct Point {
   /// Arguments of `rtsim run` after the program name, without --out:
   /// run --machine M --scene S [--width W] [--height H] -q [--config F]... [-p NAME=VALUE]...
   std::vector<std::string> args{};
+  /// The point whose image files this one's folder gets (share_images, image_sharing.hpp): it
+  /// runs timing-only (`--image none`). Empty: it renders its own, or writes none.
+  std::optional<std::size_t> image_from{};
 
   /// The setting called `name`, or null.
   const Setting* find(std::string_view name) const;
