@@ -51,8 +51,10 @@ bool names_seconds(std::string_view name) {
   // A rate ("rays_per_s", "throughput_rpi_per_s") is per second, not seconds.
   const auto seconds = [](std::string_view n) { return !n.ends_with("_per_s"); };
   if (name.ends_with("_s")) return seconds(name);
+  // A summary of times ("ray_latency_s.p99") holds times, except its count of samples.
   const std::size_t dot = name.find("_s.");
-  return dot != std::string_view::npos && seconds(name.substr(0, dot + 2));
+  return dot != std::string_view::npos && seconds(name.substr(0, dot + 2)) &&
+         !name.ends_with(".count");
 }
 
 std::string format_change(double relative) {

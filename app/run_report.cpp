@@ -9,6 +9,7 @@
 
 #include "app/bottleneck.hpp"
 #include "app/number_text.hpp"
+#include "app/run_summary.hpp"
 #include "app/trace_options.hpp"
 #include "common/seed_citation.hpp"
 #include "modules/stat_classes.hpp"
@@ -249,7 +250,18 @@ void headline_section(HtmlReport& page, const json& stats) {
                                  format_number(num(stats, "height")) + ", " +
                                  format_number(num(stats, "spp")) + " sample(s) per pixel");
   if (const double t = num(stats, "simulated_time_s"); std::isfinite(t))
-    head.emplace_back("simulated frame time", format_seconds(t));
+    head.emplace_back("simulated frame time", format_seconds(t) + estimate_suffix(stats));
+  if (const std::string scope = sampled_scope(stats); !scope.empty())
+    head.emplace_back("sampled", scope);
+  if (const json* fs = find(stats, "frame_sequence");
+      fs && fs->is_object() && num(*fs, "frames") > 1)
+    head.emplace_back("frames", format_number(num(*fs, "frames")) + " at " +
+                                    format_significant(num(*fs, "frames_per_second"), 3) +
+                                    " frames/s (a frame every " +
+                                    format_seconds(1.0 / num(*fs, "frames_per_second")) +
+                                    "); latency from a frame's start to its display: mean " +
+                                    format_seconds(num(*fs, "latency_mean_s")) + ", max " +
+                                    format_seconds(num(*fs, "latency_max_s")));
   if (const double t = num(stats, "wall_time_s"); std::isfinite(t))
     head.emplace_back("wall time", format_seconds(t));
   if (const json* rays = find(stats, "rays"); rays && rays->is_object()) {

@@ -32,6 +32,8 @@ void print_busy(std::ostream& out, const json& stats) {
     out << "  (" << busy.size() - kBusiestShown << " more in stats.json)";
   out << "\n";
   out << "  bottleneck  " << bottleneck_text(find_bottleneck(stats)) << "\n";
+  if (const std::string scope = sampled_scope(stats); !scope.empty())
+    out << "              (" << scope << ")\n";
 }
 
 void print_sample(std::ostream& out, const json& stats) {
@@ -117,14 +119,31 @@ void print_frames(std::ostream& out, const json& stats) {
 
 }  // namespace
 
+std::string estimate_suffix(const json& stats) {
+  if (!stats.contains("sample") || !stats["sample"].contains("ci99_7_s")) return {};
+  const auto& ci = stats["sample"]["ci99_7_s"];
+  if (!ci.is_array() || ci.size() != 2 || !ci[0].is_number() || !ci[1].is_number()) return {};
+  return " +- " + format_seconds((ci[1].get<double>() - ci[0].get<double>()) / 2.0) +
+         " (estimated, 99.7%)";
+}
+
+std::string sampled_scope(const json& stats) {
+  if (!stats.contains("sample") || !stats["sample"].contains("ci99_7_s")) return {};
+  const auto& sm = stats["sample"];
+  return "busy, bottleneck and latency figures cover the " +
+         std::to_string(sm.value("detailed_windows", 0)) + " of " +
+         std::to_string(sm.value("windows", 0)) + " windows simulated in detail (" +
+         format_seconds(number(sm, "detailed_frame_s")) + " simulated)";
+}
+
 std::string format_run_summary(const json& stats,
                                const std::vector<std::pair<std::string, std::string>>& outputs) {
   std::ostringstream out;
   out << "rtsim run: " << stats.value("machine", std::string()) << " on "
       << stats.value("scene", std::string()) << " at " << stats.value("width", 0) << "x"
       << stats.value("height", 0) << ": " << frame_heading(stats)
-      << format_seconds(number(stats, "simulated_time_s")) << " simulated, "
-      << format_seconds(number(stats, "wall_time_s")) << " wall\n";
+      << format_seconds(number(stats, "simulated_time_s")) << estimate_suffix(stats)
+      << " simulated, " << format_seconds(number(stats, "wall_time_s")) << " wall\n";
   print_busy(out, stats);
   print_frames(out, stats);
   print_latency(out, stats);

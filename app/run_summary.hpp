@@ -14,6 +14,13 @@ namespace rtsim::app {
 std::string format_run_summary(const nlohmann::json& stats,
                                const std::vector<std::pair<std::string, std::string>>& outputs);
 
+/// A sampled run's frame time is an estimate: " +- 0.31 s (estimated, 99.7%)", the half-width of
+/// its interval; "" for a run in full detail. The console's and the report's headline.
+std::string estimate_suffix(const nlohmann::json& stats);
+/// What a sampled run's module figures cover ("busy, bottleneck and latency figures cover the 8
+/// of 32 windows simulated in detail (2.1 s simulated)"); "" for a run in full detail.
+std::string sampled_scope(const nlohmann::json& stats);
+
 /// How many modules the busy line shows, busiest first.
 inline constexpr std::size_t kBusiestShown = 8;
 

@@ -61,6 +61,7 @@ TEST(NumberText, ANameEndingInSecondsHoldsSecondsButARatePerSecondDoesNot) {
   EXPECT_TRUE(names_seconds("ray_latency_s.p99"));
   EXPECT_FALSE(names_seconds("throughput_rpi_per_s"));  // was shown as "254.4 h"
   EXPECT_FALSE(names_seconds("rays_per_s.mean"));
+  EXPECT_FALSE(names_seconds("ray_latency_s.count"));  // was shown as "37.77 h"
   EXPECT_FALSE(names_seconds("intersections"));
 }
 
@@ -89,6 +90,30 @@ TEST(RunSummary, ModulesByUtilisationBottleneckOverheadAndNoExponents) {
   EXPECT_NE(text.find("  image       out/run/image.png\n"), std::string::npos);
   EXPECT_EQ(text.find("e-"), std::string::npos) << "a number in e-notation";
   EXPECT_EQ(text.find("e+"), std::string::npos) << "a number in e-notation";
+}
+
+TEST(RunSummary, ASampledRunsHeadlineCarriesItsIntervalAndScope) {
+  auto stats = stats_of_a_run();
+  stats["sample"] = {{"every", 4},
+                     {"window_rows", 8},
+                     {"windows", 32},
+                     {"detailed_windows", 9},
+                     {"detailed_frame_s", 0.5},
+                     {"estimate_s", 1.388},
+                     {"ci99_7_s", {1.338, 1.438}},
+                     {"half_width_relative", 0.036}};
+  const std::string text = format_run_summary(stats, {});
+  EXPECT_NE(text.find("frame time 1.388 s +- 50.00 ms (estimated, 99.7%) simulated"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("(busy, bottleneck and latency figures cover the 9 of 32 windows simulated "
+                      "in detail (500.0 ms simulated))"),
+            std::string::npos)
+      << text;
+  // In full detail: neither.
+  const std::string full = format_run_summary(stats_of_a_run(), {});
+  EXPECT_EQ(full.find("estimated"), std::string::npos);
+  EXPECT_EQ(full.find("windows simulated in detail"), std::string::npos);
 }
 
 TEST(RunSummary, NoSaturatedModuleIsSaidSo) {

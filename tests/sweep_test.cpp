@@ -12,6 +12,7 @@
 #include "modules/stat_classes.hpp"
 #include "params/registry.hpp"
 #include "platform/machine_registry.hpp"
+#include "platform/sweep/image_sharing.hpp"
 #include "platform/sweep/results_table.hpp"
 #include "platform/sweep/sweep_check.hpp"
 #include "platform/sweep/sweep_file.hpp"
@@ -577,6 +578,18 @@ TEST(SweepExamples, ConfigsSweepsParse) {
   EXPECT_EQ(texts(gaudet.axes.front().members.at(0)),
             (Strings{"builtin:npp-412", "builtin:npp-816", "builtin:npp-820"}));
   EXPECT_NO_THROW(check_sweep(gaudet, expand_points(gaudet)));
+
+  // The image depends on the peripheral's grid (its twin's search) but on none of the timing
+  // sweep's axes: fig2-18 renders each point's image, the timing sweep one.
+  auto sharing = [](const SweepFile& f) {
+    auto p = expand_points(f);
+    rtsim::sweep::share_images(f, p);
+    return std::count_if(p.begin(), p.end(), [](const auto& x) { return x.image_from; });
+  };
+  EXPECT_EQ(sharing(fig), 0);
+  const SweepFile timing = read_sweep_file(dir + "gaudet-timing-100.toml");
+  ASSERT_EQ(timing.point_count(), 100u);
+  EXPECT_EQ(sharing(timing), 99);
 
   // Every example in the folder reads and checks as `rtsim sweep` would (names, values, scenes).
   std::size_t examples = 0;
