@@ -384,7 +384,8 @@ CLI::App* add_list_command(CLI::App& app, ListArgs& list) {
                 "text; with params or assumptions also markdown (docs/parameters.md, "
                 "docs/assumptions.md); json with params (one "
                 "object a parameter: name, kind, value, default, unit, min, max, allowed, "
-                "source) or machines (name, description, sample_scene)")
+                "source, affects_image), machines (name, description, sample_scene) or scenes "
+                "(name, scene, description)")
       ->check(CLI::IsMember({"text", "markdown", "json"}))
       ->capture_default_str();
   add_config_options(l, list.config);

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
@@ -21,7 +22,16 @@
 namespace rtsim::app {
 namespace {
 
-void list_scenes() {
+void list_scenes(const std::string& format) {
+  if (format == "json") {
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const auto& info : scenes::builtin_scenes())
+      all.push_back({{"name", info.name},
+                     {"scene", std::string(scenes::kBuiltinPrefix) + info.name},
+                     {"description", info.description}});
+    std::cout << all.dump(2) << "\n";
+    return;
+  }
   std::cout << "Built-in scenes (use as --scene builtin:NAME):\n";
   // The names' column as wide as the longest name and two spaces.
   std::size_t width = 0;
@@ -53,6 +63,35 @@ void list_machines(const std::string& format) {
             << "rtsim render: the functional renderer, firmware with no timing\n";
 }
 
+/// A pattern no name matches, its mistyped parts corrected: each dot-separated part with no
+/// wildcard that is no name's part becomes the closest part that is ("arry.*" -> "array.*"). ""
+/// if that changes nothing or still matches no name.
+std::string corrected_pattern(const std::string& pattern,
+                              const std::vector<std::string_view>& names) {
+  std::set<std::string, std::less<>> parts;
+  for (std::string_view n : names)
+    for (std::size_t at = 0; at <= n.size();) {
+      const std::size_t dot = std::min(n.find('.', at), n.size());
+      parts.emplace(n.substr(at, dot - at));
+      at = dot + 1;
+    }
+  const std::vector<std::string_view> part_list(parts.begin(), parts.end());
+  std::string out;
+  for (std::size_t at = 0; at <= pattern.size();) {
+    const std::size_t dot = std::min(pattern.find('.', at), pattern.size());
+    std::string part = pattern.substr(at, dot - at);
+    if (part.find_first_of("*?[") == std::string::npos && !parts.contains(part))
+      if (const auto close = closest_names(part, part_list, 1); !close.empty())
+        part = close.front();
+    out += (at == 0 ? "" : ".") + part;
+    at = dot + 1;
+  }
+  if (out == pattern) return {};
+  for (std::string_view n : names)
+    if (::fnmatch(out.c_str(), std::string(n).c_str(), 0) == 0) return out;
+  return {};
+}
+
 /// The entries `list params PATTERN --changed` shows. A pattern no name matches is bad input,
 /// with the closest names.
 std::vector<params::ParamEntry> select_params(std::vector<params::ParamEntry> all,
@@ -70,7 +109,10 @@ std::vector<params::ParamEntry> select_params(std::vector<params::ParamEntry> al
     std::string msg = "no parameter" +
                       (args.machine.empty() ? std::string() : " of " + args.machine) +
                       " matches '" + args.pattern + "'";
-    msg += did_you_mean(args.pattern, names);
+    if (const std::string fixed = corrected_pattern(args.pattern, names); !fixed.empty())
+      msg += "; did you mean '" + fixed + "'?";
+    else
+      msg += did_you_mean(args.pattern, names);
     msg += " ('*' matches any characters, dots included: 'pert.*', '*word_time')";
     throw InputError("list params", 0, msg);
   }
@@ -204,15 +246,12 @@ int run_list(const ListArgs& args) {
     throw InputError("list assumptions", 0,
                      "--format json is for `rtsim list params` (its "
                      "sources say which are assumptions)");
-  if (args.format == "json" && args.what == "scenes")
-    throw InputError("list scenes", 0,
-                     "--format json is for `rtsim list params` and `rtsim list machines`");
   if (args.what != "params" && (!args.pattern.empty() || args.changed))
     throw InputError("list " + args.what, 0, "a pattern and --changed go with `rtsim list params`");
   if (args.what != "params" && args.what != "assumptions" && !args.machine.empty())
     throw InputError("list " + args.what, 0,
                      "--machine goes with `rtsim list params` and `rtsim list assumptions`");
-  if (args.what == "scenes") list_scenes();
+  if (args.what == "scenes") list_scenes(args.format);
   if (args.what == "machines") list_machines(args.format);
   if (args.what == "params") list_params(args);
   if (args.what == "assumptions") list_assumptions(args);

@@ -3,6 +3,7 @@
 // independence of the image, bad input. A machine's own keys are its test's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "platform/machine_registry.hpp"
@@ -176,6 +177,32 @@ TEST(RunCli, ListParamsFiltersByPatternAndChangedAndSuggestsNames) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("did you mean 'peripheral.grid.divisions'?"), std::string::npos)
       << r.output;
+  // A pattern with a mistyped part: the part corrected, the wildcard kept.
+  r = run_rtsim("list params --machine ullner-array 'arry.*'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("did you mean 'array.*'?"), std::string::npos) << r.output;
+  r = run_rtsim("list params --machine gaudet-pert 'pert.shel.*'");
+  EXPECT_NE(r.output.find("did you mean 'pert.shell.*'?"), std::string::npos) << r.output;
+}
+
+TEST(RunCli, ListsAsJson) {
+  const auto scenes = run_rtsim("list scenes --format json");
+  ASSERT_EQ(scenes.exit_code, 0) << scenes.output;
+  const auto s = nlohmann::json::parse(scenes.output);
+  ASSERT_TRUE(s.is_array());
+  EXPECT_TRUE(std::any_of(s.begin(), s.end(), [](const nlohmann::json& e) {
+    return e["scene"] == "builtin:ullner-cubes" && !e["description"].get<std::string>().empty();
+  }));
+  const auto params = run_rtsim("list params --machine gaudet-pert --format json");
+  ASSERT_EQ(params.exit_code, 0) << params.output;
+  const auto p = nlohmann::json::parse(params.output);
+  std::size_t image = 0;
+  for (const auto& e : p) image += e["affects_image"].get<bool>() ? 1 : 0;
+  EXPECT_GT(image, 0u);
+  EXPECT_LT(image, p.size());
+  const auto machines = run_rtsim("list machines --format json");
+  ASSERT_EQ(machines.exit_code, 0) << machines.output;
+  EXPECT_TRUE(nlohmann::json::parse(machines.output).is_array());
 }
 
 TEST(RunCli, ConfigExamplesHoldEachMachinesPresetValues) {
