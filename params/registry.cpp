@@ -80,8 +80,14 @@ std::string format_value(ParamKind kind, const ParamValue& v) {
     case ParamKind::kInt:
       return std::to_string(std::get<std::int64_t>(v));
     case ParamKind::kDouble: {
-      char buf[32];
-      const auto r = std::to_chars(buf, buf + sizeof buf, std::get<double>(v));  // shortest exact
+      // The shortest text that reads back exactly; without an exponent where a person would
+      // not write one (1000000, not 1e+06; 0.0001, not 1e-04).
+      const double d = std::get<double>(v);
+      const double a = std::abs(d);
+      char buf[64];
+      const auto fixed = a == 0.0 || (a >= 1e-6 && a < 1e15);
+      const auto r = fixed ? std::to_chars(buf, buf + sizeof buf, d, std::chars_format::fixed)
+                           : std::to_chars(buf, buf + sizeof buf, d);
       return std::string(buf, r.ptr);
     }
     case ParamKind::kBool:
