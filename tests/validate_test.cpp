@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "common/csv_field.hpp"
 #include "platform/runs/run_queue.hpp"
@@ -142,6 +143,7 @@ TEST(ValidateOutput, NumbersAreShortAndReadable) {
   EXPECT_EQ(format_number(0), "0");
   EXPECT_EQ(format_number(-2.5), "-2.5");
   EXPECT_EQ(format_number(1.5e-7), "1.5e-07");
+  EXPECT_EQ(format_number(1004123.5), "1004000");  // not 1.004e+06
   EXPECT_EQ(format_number(std::numeric_limits<double>::infinity()), "inf");
 }
 
@@ -151,6 +153,9 @@ TEST(ValidateOutput, TableShowsEveryRowVerdictAndNotes) {
   rows.back().note = "a mean per ray";
   rows.push_back(make_row(5.6, 7.0, Tolerance::relative(0.02, "")));
   rows.back().id = "X2";
+  rows.back().title =
+      "Pipelined, the compositors saturated: frame interval over the busiest compositor's time "
+      "a frame, with every caster and the master by-passed";
   rows.push_back(make_row(11, std::nullopt, Tolerance::absolute(3, "")));
   rows.back().id = "X3";
   rows.back().error = "run peripheral-grid-ns11 failed: exit status 3";
@@ -169,6 +174,18 @@ TEST(ValidateOutput, TableShowsEveryRowVerdictAndNotes) {
   EXPECT_NE(t.find("X3: error: run peripheral-grid-ns11 failed"), std::string::npos);
   EXPECT_NE(t.find("3 measured, 0 derived, 0 qualitative; 1 of 3 measured pass"),
             std::string::npos);
+  // A terminal's 120 columns: the figure and its source wrap under their column.
+  EXPECT_NE(t.find("\n" + std::string(t.find("figure (source)") -
+                                          t.rfind('\n', t.find("figure (source)")) - 1,
+                                      ' ')),
+            std::string::npos)
+      << "X2's title continues on a line of its own";
+  std::istringstream lines(t);
+  for (std::string l; std::getline(lines, l);) {
+    std::size_t columns = 0;
+    for (unsigned char c : l) columns += (c & 0xC0) != 0x80 ? 1 : 0;
+    EXPECT_LE(columns, 120u) << l;
+  }
 }
 
 // Measured, qualitative and derived rows are printed in their own tables and counted apart;

@@ -290,6 +290,10 @@ std::string format_number(double v) {
       if (s.back() == '.') s.pop_back();
     }
     return s;
+  } else if (a >= 1e6 && a < 1e15) {
+    // Four significant digits, written out: 1004000, not 1.004e+06.
+    const double unit = std::pow(10.0, std::floor(std::log10(a)) - 3);
+    std::snprintf(buf, sizeof buf, "%.0f", std::round(v / unit) * unit);
   } else {
     std::snprintf(buf, sizeof buf, "%.4g", v);
   }
@@ -311,8 +315,9 @@ std::string with_unit(double v, const std::string& unit) {
 std::string percent(double fraction) {
   char buf[64];
   const double pct = fraction * 100.0;
-  if (std::abs(pct) < 0.01 && pct != 0.0)
-    std::snprintf(buf, sizeof buf, "%+.1e%%", pct);
+  // Two decimals; an error below them shows as a bound, not in e-notation.
+  if (std::abs(pct) < 0.005 && pct != 0.0)
+    std::snprintf(buf, sizeof buf, "%s<0.01%%", pct > 0 ? "+" : "-");
   else
     std::snprintf(buf, sizeof buf, "%+.2f%%", pct);
   return buf;
@@ -331,39 +336,68 @@ std::string pad(const std::string& s, std::size_t width) {
   return w >= width ? s : s + std::string(width - w, ' ');
 }
 
-/// The table of `rows` (no notes, no summary).
+/// Words of `text` in lines of at most `width` display columns (a longer word on a line of its
+/// own).
+std::vector<std::string> wrap(const std::string& text, std::size_t width) {
+  std::vector<std::string> lines(1);
+  std::istringstream words(text);
+  for (std::string w; words >> w;) {
+    std::string& last = lines.back();
+    if (!last.empty() && display_width(last) + 1 + display_width(w) > width) lines.emplace_back();
+    lines.back() += (lines.back().empty() ? "" : " ") + w;
+  }
+  return lines;
+}
+
+/// `text` wrapped at 120 columns, its continuation lines indented.
+void paragraph(std::ostream& out, const std::string& text) {
+  const auto lines = wrap(text, 114);
+  for (std::size_t i = 0; i < lines.size(); ++i) out << (i ? "      " : "") << lines[i] << "\n";
+}
+
+/// The table of `rows` (no notes, no summary), at most kTableWidth columns wide where the
+/// numbers allow: the numbers first, then the figure and its source, wrapped.
 std::string rows_table(const std::vector<const Row*>& rows) {
-  const std::vector<std::string> head = {"id",        "figure", "source",    "seed",
-                                         "simulated", "error",  "tolerance", "result"};
+  constexpr std::size_t kTableWidth = 120;
+  const std::vector<std::string> head = {"id",        "seed",   "simulated",      "error",
+                                         "tolerance", "result", "figure (source)"};
   std::vector<std::vector<std::string>> cells;
   for (const Row* row : rows) {
     const Row& r = *row;
     const auto rel = r.relative_error();
-    cells.push_back({r.id, r.title, cite_seeds(r.seed_ref),
+    cells.push_back({r.id,
                      r.seed_display.empty() ? with_unit(r.seed_value, r.unit) : r.seed_display,
                      r.simulated ? with_unit(*r.simulated, r.unit) : "-", rel ? percent(*rel) : "-",
                      r.tolerance.describe(),
                      !r.class_error.empty() ? "FAIL (class)"
                      : r.pass()             ? "pass"
                      : r.open.empty()       ? "FAIL"
-                                            : "FAIL (open)"});
+                                            : "FAIL (open)",
+                     r.title + " (" + cite_seeds(r.seed_ref) + ")"});
   }
+  const std::size_t last = head.size() - 1;
   std::vector<std::size_t> width(head.size());
-  for (std::size_t c = 0; c < head.size(); ++c) {
+  std::size_t indent = 0;  // where the figure's column starts
+  for (std::size_t c = 0; c < last; ++c) {
     width[c] = display_width(head[c]);
     for (const auto& row : cells) width[c] = std::max(width[c], display_width(row[c]));
+    indent += width[c] + 2;
   }
+  const std::size_t figure_width =
+      std::max<std::size_t>(kTableWidth - std::min(indent, kTableWidth), 30);
   std::ostringstream out;
   auto line = [&](const std::vector<std::string>& cols) {
     std::string s;
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-      s += c + 1 < cols.size() ? pad(cols[c], width[c] + 2) : cols[c];
-    }
-    out << s << "\n";
+    for (std::size_t c = 0; c < last; ++c) s += pad(cols[c], width[c] + 2);
+    const auto figure = wrap(cols[last], figure_width);
+    out << s << figure.front() << "\n";
+    for (std::size_t i = 1; i < figure.size(); ++i)
+      out << std::string(indent, ' ') << figure[i] << "\n";
   };
   line(head);
   std::vector<std::string> rule;
-  for (std::size_t c = 0; c < head.size(); ++c) rule.push_back(std::string(width[c], '-'));
+  for (std::size_t c = 0; c < last; ++c) rule.push_back(std::string(width[c], '-'));
+  rule.push_back(std::string(std::min(figure_width, display_width(head[last]) + 20), '-'));
   line(rule);
   for (const auto& row : cells) line(row);
   return out.str();
@@ -383,7 +417,9 @@ std::string format_table(const std::vector<Row>& rows) {
   bool first = true;
   const auto section = [&](const std::vector<const Row*>& part, const char* heading) {
     if (part.empty()) return;
-    out << (first ? "" : "\n") << heading << "\n" << rows_table(part);
+    out << (first ? "" : "\n");
+    for (const auto& l : wrap(heading, 120)) out << l << "\n";
+    out << rows_table(part);
     first = false;
   };
   section(measured, "Measured (the figure emerges from a simulated run)");
@@ -397,29 +433,32 @@ std::string format_table(const std::vector<Row>& rows) {
     if (r.note.empty() && r.error.empty() && r.class_error.empty()) continue;
     if (!any_note) out << "\n";
     any_note = true;
-    if (!r.error.empty()) out << r.id << ": error: " << r.error << "\n";
-    if (!r.class_error.empty()) out << r.id << ": class error: " << r.class_error << "\n";
-    if (!r.note.empty()) out << r.id << ": " << r.note << "\n";
+    if (!r.error.empty()) paragraph(out, r.id + ": error: " + r.error);
+    if (!r.class_error.empty()) paragraph(out, r.id + ": class error: " + r.class_error);
+    if (!r.note.empty()) paragraph(out, r.id + ": " + r.note);
   }
   const auto passing = [](const std::vector<const Row*>& part) {
     return static_cast<std::size_t>(
         std::count_if(part.begin(), part.end(), [](const Row* r) { return r->pass(); }));
   };
-  out << "\n"
-      << measured.size() << " measured, " << derived.size() << " derived, " << qualitative.size()
-      << " qualitative; " << passing(measured) << " of " << measured.size() << " measured pass, "
-      << passing(qualitative) << " of " << qualitative.size() << " qualitative hold, "
-      << passing(derived) << " of " << derived.size() << " derived agree";
+  std::ostringstream summary;
+  summary << measured.size() << " measured, " << derived.size() << " derived, "
+          << qualitative.size() << " qualitative; " << passing(measured) << " of "
+          << measured.size() << " measured pass, " << passing(qualitative) << " of "
+          << qualitative.size() << " qualitative hold, " << passing(derived) << " of "
+          << derived.size() << " derived agree";
   std::size_t open_failing = 0;
   for (const auto& r : rows) {
     if (!r.pass() && !r.open.empty()) {
-      if (open_failing++ == 0) out << " (known open:";
-      out << " " << r.id;
+      if (open_failing++ == 0) summary << " (known open:";
+      summary << " " << r.id;
     }
   }
-  out << (open_failing > 0 ? "; docs/validation.md)\n" : "\n");
+  if (open_failing > 0) summary << "; docs/validation.md)";
+  out << "\n";
+  paragraph(out, summary.str());
   for (const auto& r : rows) {
-    if (!r.pass() && !r.open.empty()) out << r.id << " is open: " << r.open << "\n";
+    if (!r.pass() && !r.open.empty()) paragraph(out, r.id + " is open: " + r.open);
   }
   return out.str();
 }
