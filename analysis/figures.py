@@ -513,14 +513,14 @@ def draw_speedup(ax, val):
 
 
 def draw_summary(ax, val):
-    rows = [r for r in val.rows if r.get("id")]
-    if not rows:
+    every = [r for r in val.rows if r.get("id")]
+    if not every:
         return None
+    # Only the figures with a relative error have a bar: the others (exact counts, orders,
+    # ranges) would be empty ticks crowding the labels.
+    rows = [r for r in every if common.finite(r.get("relative_error"))]
     ids = [r["id"] for r in rows]
-    errs = []
-    for r in rows:
-        e = r.get("relative_error")
-        errs.append(100.0 * float(e) if common.finite(e) else 0.0)
+    errs = [100.0 * float(r["relative_error"]) for r in rows]
     colors = ["tab:green" if r.get("pass") else "tab:red" for r in rows]
     ax.bar(range(len(ids)), errs, color=colors)
     for i, r in enumerate(rows):
@@ -530,11 +530,14 @@ def draw_summary(ax, val):
             ax.plot([i - 0.4, i + 0.4], [t, t], "k-", lw=0.8)
             ax.plot([i - 0.4, i + 0.4], [-t, -t], "k-", lw=0.8)
     ax.set_xticks(range(len(ids)))
-    ax.set_xticklabels(ids, rotation=60, fontsize="x-small")
+    ax.set_xticklabels(ids, rotation=90, fontsize=7 if len(ids) <= 60 else 5)
+    ax.set_xlim(-0.6, len(ids) - 0.4)
+    ax.grid(False, axis="x")
     ax.set_ylabel("relative error (%)")
     ax.axhline(0, color="k", lw=0.5)
-    passed = sum(1 for r in rows if r.get("pass"))
-    ax.set_title(f"All figures: {passed} of {len(rows)} pass (bars: error; lines: tolerance)")
+    passed = sum(1 for r in every if r.get("pass"))
+    ax.set_title(f"All figures: {passed} of {len(every)} pass; the {len(rows)} with a relative "
+                 "error (bars: error; lines: tolerance)", fontsize="small")
     return {}
 
 

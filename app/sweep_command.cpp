@@ -268,7 +268,13 @@ std::string write_report(const SweepArgs& args, const Plan& plan, const fs::path
     if (args.baseline >= 0) in.baseline = static_cast<std::size_t>(args.baseline);
     ReportTools tools;
     tools.scratch_dir = set.staged_path(".report-plots");
+    // The plots take seconds (a Python each): the bar says the report is being made.
+    ProgressBar bar(args.quiet ? std::string() : "report plots");
+    in.progress = [&bar](std::size_t done, std::size_t total) {
+      bar.update(static_cast<long>(done), static_cast<long>(total));
+    };
     write_sweep_report(in, set.stage("report.html"), tools);
+    bar.finish();
     set.commit();
     return {};
   } catch (const std::exception& e) {

@@ -426,8 +426,11 @@ std::vector<SweepPlotSpec> choose_sweep_plots(const sweep::SweepFile& file,
   return plots;
 }
 
-void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
-                        const ReportTools& tools_in) {
+namespace {
+
+/// The page; `progress` is told of each plot made (a second pass, with the plots started).
+HtmlReport sweep_report_page(const SweepReportInputs& in, const ReportTools& tools_in,
+                             const std::function<void(std::size_t, std::size_t)>& progress) {
   const ReportTools tools = tools_in.resolved();
   const sweep::SweepFile& file = *in.file;
   const std::vector<sweep::Point>& points = *in.points;
@@ -521,6 +524,7 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
       const auto more = specs[k].script_args();
       args.insert(args.end(), more.begin(), more.end());
       const auto r = run_analysis_script(tools, "sweep_plot.py", args);
+      if (progress) progress(k + 1, specs.size());
       if (r.ok)
         page.image(png, specs[k].title, specs[k].caption + " (" + reproduce(specs[k]) + ")");
       else
@@ -583,9 +587,18 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
   // ---- Thumbnails ----
   {
     std::string grid;
-    std::size_t shown = 0, without = 0, brightened = 0;
+    std::size_t shown = 0, without = 0, brightened = 0, shared = 0;
     int images = 0;
+    // A point that shares another's image (platform/sweep/image_sharing.hpp) is not shown
+    // again: its image point stands for it.
+    std::map<std::size_t, std::size_t> sharers;  // image point -> points sharing its image
+    for (const auto& p : points)
+      if (p.image_from) ++sharers[*p.image_from];
     for (const auto& p : points) {
+      if (p.image_from) {
+        ++shared;
+        continue;
+      }
       const fs::path png = in.points_dir / p.key / "image.png";
       std::error_code ec;
       if (in.points_dir.empty() || !fs::exists(png, ec)) {
@@ -600,7 +613,9 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
         ++without;
         continue;
       }
-      const std::string swept = p.swept_text(", ");
+      std::string swept = p.swept_text(", ");
+      if (const auto it = sharers.find(p.index); it != sharers.end())
+        swept += "; the image of " + std::to_string(it->second + 1) + " points";
       const auto& outcome = (*in.outcomes)[p.index];
       const double gain = outcome.ok ? thumbnail_gain(outcome.stats_text) : 1.0;
       std::string filter, note;
@@ -620,26 +635,33 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
       ++images;
     }
     page.heading("Images");
-    const std::size_t with = points.size() - without;
+    const std::size_t with = points.size() - without - shared;
     if (shown == 0) {
       page.paragraph(
           "No point's image.png is here (failed points, or images written on other "
           "nodes without a shared file system).");
     } else {
-      page.paragraph((with > shown ? "The first " + std::to_string(shown) + " of the " +
-                                         std::to_string(with) + " points' images"
-                                   : "Every point's image (" + std::to_string(shown) + ")") +
-                     ", in point order (points/NNNN/image.png)." +
-                     (without > 0
-                          ? " " + std::to_string(without) +
-                                " point(s) have no image.png here (failed, or written on another "
-                                "node without a shared file system)."
-                          : std::string()) +
-                     (brightened > 0 ? " Dark images (a mean below 15% grey: no light reaches "
-                                       "the camera, or shade.max_depth = 0 leaves the ambient "
-                                       "term alone) are shown brighter, as their captions say; "
-                                       "image.png itself is as rendered."
-                                     : std::string()));
+      const std::string whose = shared > 0 ? " distinct images" : " points' images";
+      page.paragraph(
+          (with > shown
+               ? "The first " + std::to_string(shown) + " of the " + std::to_string(with) + whose
+           : shared > 0 ? "The " + std::to_string(shown) + whose
+                        : "Every point's image (" + std::to_string(shown) + ")") +
+          ", in point order (points/NNNN/image.png)." +
+          (shared > 0 ? " " + std::to_string(shared) +
+                            " point(s) differ from an earlier one only in parameters "
+                            "the image does not depend on: they share its image, "
+                            "shown once."
+                      : std::string()) +
+          (without > 0 ? " " + std::to_string(without) +
+                             " point(s) have no image.png here (failed, or written on another "
+                             "node without a shared file system)."
+                       : std::string()) +
+          (brightened > 0 ? " Dark images (a mean below 15% grey: no light reaches "
+                            "the camera, or shade.max_depth = 0 leaves the ambient "
+                            "term alone) are shown brighter, as their captions say; "
+                            "image.png itself is as rendered."
+                          : std::string()));
       page.raw("<div style=\"display:flex;flex-wrap:wrap;gap:10px\">\n" + grid + "</div>\n",
                images);
     }
@@ -707,7 +729,19 @@ void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
   page.paragraph(
       "Written by rtsim sweep --report. Every number here is also in results.csv and "
       "each point's stats.json (docs/sweeps.md, docs/stats.md).");
-  page.write(out_html);
+  return page;
+}
+
+}  // namespace
+
+void write_sweep_report(const SweepReportInputs& in, const fs::path& out_html,
+                        const ReportTools& tools) {
+  // Every plot is started at once (a Python each, sharing the cores), then the page is made
+  // again waiting for each: a sweep's plots take about a second each one after another.
+  ScriptBatch scripts;
+  (void)sweep_report_page(in, tools, {});
+  scripts.collect();
+  sweep_report_page(in, tools, in.progress).write(out_html);
 }
 
 }  // namespace rtsim::app

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +71,8 @@ struct SweepReportInputs {
   std::size_t run_now = 0;              ///< points run by this invocation (the rest resumed)
   int ranks = 0;                        ///< MPI ranks; 0: a local run
   std::optional<std::size_t> baseline;  ///< --baseline: the point every other is compared with
+  /// Told of each plot made (plots made, plots in all); empty: nothing said.
+  std::function<void(std::size_t, std::size_t)> progress;
 };
 
 /// Writes the page to `out_html` (the caller stages it). Throws std::runtime_error only if the

@@ -42,7 +42,7 @@ std::string sweep_text(const std::string& extra) {
 }
 
 fs::path run_sweep(const fs::path& dir, const std::string& name, const std::string& text,
-                   std::string* listing = nullptr) {
+                   std::string* listing = nullptr, const std::string& flags = "") {
   const fs::path file = dir / (name + ".toml");
   std::ofstream(file) << text;
   const fs::path out = dir / name;
@@ -51,7 +51,7 @@ fs::path run_sweep(const fs::path& dir, const std::string& name, const std::stri
     EXPECT_EQ(l.exit_code, 0) << l.output;
     *listing = l.output;
   }
-  const auto r = run_rtsim("sweep " + file.string() + " --jobs 2 --out " + out.string());
+  const auto r = run_rtsim("sweep " + file.string() + " --jobs 2 --out " + out.string() + flags);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return out / "points";
 }
@@ -67,7 +67,7 @@ TEST(SweepImageSharing, EachImageOnceAndIdenticalToEveryPointsOwn) {
   const fs::path dir = scratch_dir("sweep-image-sharing");
   fs::create_directories(dir);
   std::string listing;
-  const fs::path shared = run_sweep(dir, "shared", sweep_text(""), &listing);
+  const fs::path shared = run_sweep(dir, "shared", sweep_text(""), &listing, " --report");
   const fs::path own = run_sweep(dir, "own", sweep_text("share-images = false\n"));
 
   // Points 0-3 have depth 0, 4-7 depth 2: one image point each, the first; the other three
@@ -105,6 +105,13 @@ TEST(SweepImageSharing, EachImageOnceAndIdenticalToEveryPointsOwn) {
     }
   }
   EXPECT_EQ(timing_only, 6);
+  // The report shows each distinct image once, saying for how many points it stands.
+  const std::string html = read_file(shared.parent_path() / "report.html");
+  EXPECT_NE(html.find("alt=\"point 0000\""), std::string::npos);
+  EXPECT_NE(html.find("alt=\"point 0004\""), std::string::npos);
+  EXPECT_EQ(html.find("alt=\"point 0001\""), std::string::npos);
+  EXPECT_NE(html.find("The 2 distinct images"), std::string::npos);
+  EXPECT_NE(html.find("the image of 4 points"), std::string::npos);
   // The depths' images differ: the image point of each renders its own.
   EXPECT_FALSE(read_file(shared / point(0) / "image.png") ==
                read_file(shared / point(4) / "image.png"));
