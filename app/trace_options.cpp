@@ -78,6 +78,20 @@ std::vector<std::string> trace_warnings(const nlohmann::json& stats) {
                   " dropped at --trace-max-events " + cap +
                   "; the trace is incomplete (stats.json trace." + key + ")");
   }
+  // A file too large for the viewers: Perfetto's web UI holds the whole trace in the browser's
+  // memory and gives up on JSON traces of a few hundred MB; GTKWave loads a VCD whole.
+  for (const char* key : {"perfetto", "vcd"}) {
+    if (!t.contains(key)) continue;
+    const auto bytes = t[key].value("bytes", std::uint64_t{0});
+    if (bytes <= kTraceWarnBytes) continue;
+    out.push_back(t[key].value("file", std::string(key)) + " is " +
+                  std::to_string((bytes + 500000) / 1000000) + " MB, more than the " +
+                  std::to_string(kTraceWarnBytes / 1000000) + " MB " +
+                  (std::string(key) == "vcd" ? "GTKWave" : "Perfetto's UI") +
+                  " opens comfortably: keep less with --trace-window T0,T1 (a part of the "
+                  "frame), --trace-modules PATTERN (some modules) or --trace-max-events N, or "
+                  "render a smaller frame");
+  }
   if (t.contains("modules") && stats.contains("modules")) {
     for (const auto& pattern : t["modules"]) {
       modules::TraceFilter one;

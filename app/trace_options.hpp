@@ -3,6 +3,7 @@
 // asked the traces to keep, checked before anything runs (bad input: InputError, exit 2), and
 // afterwards what became of it (events a cap dropped, patterns that matched nothing), for the
 // console and the report.
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -17,9 +18,13 @@ namespace rtsim::app {
 modules::TraceFilter trace_filter_from(const std::string& window,
                                        const std::vector<std::string>& modules);
 
+/// A trace file larger than this is said to be too large to open comfortably (200 MB).
+inline constexpr std::uint64_t kTraceWarnBytes = 200'000'000;
+
 /// One sentence per thing the user should know about the traces of a run, from its stats.json
-/// (`trace`, `modules`): events dropped at the cap, patterns that kept no module. Empty when
-/// the traces are complete as asked.
+/// (`trace`, `modules`): events dropped at the cap, a file larger than kTraceWarnBytes (with
+/// the options that keep less), patterns that kept no module. Empty when the traces are
+/// complete as asked and open.
 std::vector<std::string> trace_warnings(const nlohmann::json& stats);
 
 /// The traces hold every event of the whole frame for every module (no window, no module

@@ -1,6 +1,8 @@
 // `rtsim run --trace-window`, `--trace-modules`, `--trace-max-events`: a narrowed trace holds
 // only what was asked for and the same values as the whole trace there; a cap that drops events
 // is printed, recorded in stats.json and shown in the report; bad values are bad input.
+#include "app/trace_options.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -139,6 +141,28 @@ TEST(TraceOptions, ACapThatDropsEventsIsPrintedRecordedAndReported) {
             stats["trace"]["perfetto"]["events_dropped"]);
   const std::string html = read_file(dir / "report.html");
   EXPECT_NE(html.find("dropped at --trace-max-events 100"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(TraceOptions, AFileTooLargeToOpenIsSaidWithWhatKeepsLess) {
+  // stats.json gives each trace file's size.
+  const fs::path dir = scratch_dir("trace-bytes");
+  const auto r = run_rtsim(kRun + "--trace perfetto,vcd -q --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json stats = json::parse(read_file(dir / "stats.json"));
+  EXPECT_EQ(stats["trace"]["perfetto"]["bytes"].get<std::uintmax_t>(),
+            fs::file_size(dir / "trace.json"));
+  EXPECT_EQ(stats["trace"]["vcd"]["bytes"].get<std::uintmax_t>(), fs::file_size(dir / "trace.vcd"));
+  EXPECT_TRUE(rtsim::app::trace_warnings(stats).empty());
+  // The README's 512 x 512 grid example wrote 544 MB of trace.json.
+  stats["trace"]["perfetto"]["bytes"] = 544'000'000;
+  const auto warnings = rtsim::app::trace_warnings(stats);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("trace.json is 544 MB, more than the 200 MB Perfetto's UI opens"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("--trace-window T0,T1"), std::string::npos);
+  EXPECT_NE(warnings[0].find("--trace-modules PATTERN"), std::string::npos);
   fs::remove_all(dir);
 }
 

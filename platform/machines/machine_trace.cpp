@@ -1,6 +1,7 @@
 #include "platform/machines/machine_trace.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <vector>
 
 #include "modules/stat_directory.hpp"
@@ -106,14 +107,21 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
   j["modules"] = filter_.modules;
   j["max_events"] = max_events_;
   j["signals"] = signals.size();
+  const auto bytes_of = [](const std::filesystem::path& p) -> std::uint64_t {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(p, ec);
+    return ec ? 0 : static_cast<std::uint64_t>(n);
+  };
   if (perfetto_)
     j["perfetto"] = {{"file", perfetto_->path().filename().string()},
                      {"events_written", perfetto_->events_written()},
-                     {"events_dropped", perfetto_->events_dropped()}};
+                     {"events_dropped", perfetto_->events_dropped()},
+                     {"bytes", bytes_of(perfetto_->path())}};
   if (vcd_)
     j["vcd"] = {{"file", vcd_->path().filename().string()},
                 {"changes_written", vcd_->changes_written()},
-                {"changes_dropped", vcd_->changes_dropped()}};
+                {"changes_dropped", vcd_->changes_dropped()},
+                {"bytes", bytes_of(vcd_->path())}};
   return j;
 }
 
