@@ -351,11 +351,16 @@ class ArrayHeatmapTest(ScratchTest):
                           "node_busy_fraction": [[0.5, 0.25], [0.125, 0.0]]},
                 "modules": {"node0.link_e": {"utilization": 0.2},
                             "node3.link_n": {"utilization": 0.1},
-                            "node0": {"utilization": 0.5}}}
+                            "node0": {"utilization": 0.5},
+                            "node1": {"utilization": 0.25},
+                            "node1.pipeline": {"utilization": 0.875},
+                            "node2.memory": {"utilization": 0.0625}}}
 
     def test_series_and_png(self):
-        busy, links, desc = array_heatmap.array_series(self.stats())
-        self.assertEqual(busy, [[0.5, 0.25], [0.125, 0.0]])
+        busy, limit, links, desc = array_heatmap.array_series(self.stats())
+        # Each processor's busiest resource: node1's pipeline, not its CPU; node2's CPU.
+        self.assertEqual(busy, [[0.5, 0.875], [0.125, 0.0]])
+        self.assertEqual(limit, [["C", "P"], ["C", "C"]])
         self.assertEqual(sorted(links), [(0, 0, "e", 0.2), (1, 1, "n", 0.1)])
         self.assertIn("straight", desc)
         path = os.path.join(self.dir, "stats.json")
