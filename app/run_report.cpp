@@ -34,17 +34,83 @@ std::string value_text(const json& v) {
   return s;
 }
 
-/// A figure of a machine's section as the page shows it: seconds (names_seconds) in
-/// engineering units, a utilisation as a percentage, other numbers to 4 digits.
-std::string figure_text(const std::string& name, const json& v) {
-  if (!v.is_number()) return value_text(v);
-  const double x = v.get<double>();
-  if (names_seconds(name)) return format_seconds(x);
-  if (name == "utilization" || name == "utilisation") return format_percent(x);
-  return format_number(x, 4);
+/// Whether `name` holds a fraction of a whole (shown as a percentage): a utilisation
+/// ("chain_utilization"), a busy fraction, a share.
+bool names_fraction(std::string_view name) {
+  return name.ends_with("utilization") || name.ends_with("utilisation") ||
+         name.find("fraction") != std::string_view::npos || name == "share" ||
+         name.ends_with("_share");
 }
 
-bool is_scalar(const json& v) { return !v.is_object() && !v.is_array(); }
+/// One number of a figure named `name`: seconds (names_seconds) in engineering units, a
+/// fraction as a percentage, a whole number as it is, others to 4 digits; never an exponent.
+std::string number_text(const std::string& name, double x) {
+  if (names_seconds(name)) return format_seconds(x);
+  if (names_fraction(name)) return format_percent(x);
+  if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
+  return format_significant(x, 4);
+}
+
+/// An array of numbers as a person reads it: the first values in their unit, and for a longer
+/// or a nested one (rows of a grid) its size and range; other arrays as JSON, cut short.
+std::string array_text(const std::string& name, const json& v) {
+  constexpr std::size_t kShown = 8;
+  std::vector<double> flat;
+  std::size_t rows = 0, cols = 0;
+  bool numeric = v.is_array() && !v.empty();
+  for (const auto& e : v) {
+    if (e.is_number()) {
+      flat.push_back(e.get<double>());
+    } else if (e.is_array()) {
+      ++rows;
+      cols = std::max(cols, e.size());
+      for (const auto& x : e) {
+        if (!x.is_number()) numeric = false;
+        if (x.is_number()) flat.push_back(x.get<double>());
+      }
+    } else {
+      numeric = false;
+    }
+  }
+  if (v.is_array() && v.empty()) return "none";
+  if (!numeric || flat.empty()) return value_text(v);
+  double lo = flat.front(), hi = flat.front(), sum = 0.0;
+  for (double x : flat) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+    sum += x;
+  }
+  const std::string range = "min " + number_text(name, lo) + ", mean " +
+                            number_text(name, sum / static_cast<double>(flat.size())) + ", max " +
+                            number_text(name, hi);
+  if (rows > 0)
+    return std::to_string(rows) + " x " + std::to_string(cols) + ": " + range +
+           " (stats.json has every value)";
+  std::string text;
+  for (std::size_t i = 0; i < flat.size() && i < kShown; ++i)
+    text += (i ? ", " : "") + number_text(name, flat[i]);
+  if (flat.size() > kShown)
+    text += ", ... (" + std::to_string(flat.size()) + " values: " + range + ")";
+  return text;
+}
+
+/// A figure of a machine's section as the page shows it (number_text, array_text); a summary
+/// of times (a latency recorder's count, mean, p50, p99, max) as its mean and p99; another
+/// object as its scalar figures.
+std::string figure_text(const std::string& name, const json& v) {
+  if (v.is_array()) return array_text(name, v);
+  if (v.is_object()) {
+    if (v.contains("count") && v.contains("mean") && v.contains("p99"))
+      return "mean " + figure_text(name, v["mean"]) + ", p99 " + figure_text(name, v["p99"]) +
+             " (" + value_text(v["count"]) + ")";
+    std::string text;
+    for (const auto& [k, x] : v.items())
+      if (!x.is_structured()) text += (text.empty() ? "" : ", ") + k + " " + figure_text(k, x);
+    return text.empty() ? "-" : text;
+  }
+  if (!v.is_number()) return value_text(v);
+  return number_text(name, v.get<double>());
+}
 
 /// The scalar figures of `o`, nested objects' by dotted path ("eal.n"), in document order.
 void each_figure(const json& o, const std::string& prefix,
@@ -116,10 +182,13 @@ void seed_links(HtmlReport& page, const std::vector<params::ParamEntry>& params)
 /// and each object of such objects (the buses) as a table of its own.
 void machine_section(HtmlReport& page, const std::string& key, const json& v) {
   std::vector<std::pair<std::string, std::string>> plain;
-  std::vector<std::string> members, groups;
+  std::vector<std::string> members, groups, records;
   for (const auto& [k, x] : v.items()) {
-    if (!x.is_object()) {
-      plain.emplace_back(k, is_scalar(x) ? figure_text(k, x) : value_text(x));
+    if (x.is_array() && !x.empty() &&
+        std::all_of(x.begin(), x.end(), [](const json& e) { return e.is_object(); })) {
+      records.push_back(k);  // a list of records (each frame's figures): a table below
+    } else if (!x.is_object()) {
+      plain.emplace_back(k, figure_text(k, x));
     } else if (!x.empty() &&
                std::all_of(x.begin(), x.end(), [](const json& m) { return m.is_object(); })) {
       groups.push_back(k);
@@ -134,6 +203,28 @@ void machine_section(HtmlReport& page, const std::string& key, const json& v) {
     std::vector<std::string> names;
     for (const auto& [k, x] : v[g].items()) names.push_back(k);
     side_by_side(page, v[g], names);
+  }
+  // A list of records: a row each (the first kRecordRows), a column per figure.
+  constexpr std::size_t kRecordRows = 24;
+  for (const auto& r : records) {
+    const json& list = v[r];
+    std::vector<std::string> head;
+    for (const auto& e : list)
+      for (const auto& [k, x] : e.items())
+        if (std::find(head.begin(), head.end(), k) == head.end()) head.push_back(k);
+    std::vector<std::vector<std::string>> rows;
+    for (std::size_t i = 0; i < list.size() && i < kRecordRows; ++i) {
+      std::vector<std::string> row;
+      for (const auto& k : head)
+        row.push_back(list[i].contains(k) ? figure_text(k, list[i][k]) : "");
+      rows.push_back(std::move(row));
+    }
+    page.paragraph(key + "." + r +
+                   (list.size() > kRecordRows
+                        ? " (the first " + std::to_string(kRecordRows) + " of " +
+                              std::to_string(list.size()) + "; stats.json has all):"
+                        : ":"));
+    page.table(head, rows);
   }
 }
 
@@ -519,7 +610,7 @@ void scene_section(HtmlReport& page, const json& stats) {
     const json* o = find(stats, key);
     if (!o || !o->is_object()) continue;
     for (const auto& [k, x] : o->items())
-      kv.emplace_back(std::string(key) + "." + k, value_text(x));
+      kv.emplace_back(std::string(key) + "." + k, figure_text(k, x));
   }
   if (!kv.empty()) {
     page.heading("Scene and firmware");

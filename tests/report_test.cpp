@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <regex>
 
 #include "app/run_report.hpp"
 #include "tests/report_test_support.hpp"
@@ -201,3 +202,37 @@ TEST(Report, OpensInHeadlessChromiumWithEveryPictureAndNoConsoleMessage) {
   EXPECT_EQ(view.console.find(":CONSOLE"), std::string::npos) << view.console;
   fs::remove_all(dir);
 }
+
+// Every machine's report reads as a person reads numbers: no array or object as JSON text, no
+// number in e-notation (images aside), on its own sample scene with the machine's sections.
+class ReportOfEveryMachine : public testing::TestWithParam<rtsim::test::MachineInfo> {};
+
+TEST_P(ReportOfEveryMachine, NoRawJsonAndNoExponents) {
+  const auto& m = GetParam();
+  const auto dir = scratch_dir("report-every-" + m.name);
+  // Without Python: the plots are not what is checked here.
+  const std::string cmd = "RTSIM_PYTHON=/nonexistent/python3 " + std::string(RTSIM_BINARY) +
+                          " run --machine " + m.name + " --scene " + m.sample_scene +
+                          " --width 16 --height 16 --report -q --out " + dir.string() +
+                          " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::string html = read_file(dir / "report.html");
+  // Images and plots are base64: cut them out.
+  for (std::size_t at; (at = html.find("base64,")) != std::string::npos;)
+    html.erase(at, html.find('"', at) - at);
+  EXPECT_EQ(html.find("<td>["), std::string::npos) << m.name;
+  EXPECT_EQ(html.find("<td>{"), std::string::npos) << m.name;
+  EXPECT_EQ(html.find("{&quot;"), std::string::npos) << m.name;
+  const std::regex exponent("[0-9]e[-+][0-9]");
+  std::smatch hit;
+  if (std::regex_search(html, hit, exponent)) {
+    const auto at = static_cast<std::size_t>(hit.position(0));
+    ADD_FAILURE() << m.name << ": a number in e-notation: ..."
+                  << html.substr(at < 120 ? 0 : at - 120, 200) << "...";
+  }
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Machines, ReportOfEveryMachine,
+                         testing::ValuesIn(rtsim::test::registered_machines()),
+                         rtsim::test::machine_param_name);
