@@ -123,7 +123,8 @@ void HtmlReport::image(const fs::path& png, const std::string& alt, const std::s
 std::string HtmlReport::html() const {
   // The small script only checks that every picture decoded: it marks the page with the count
   // (data-images-decoded, read by the headless-browser test) and logs a console error for a
-  // picture that did not.
+  // picture that did not; and with the page's width as laid out (data-page-width: the test
+  // opens it 1280 px wide and sees that nothing runs off).
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<title>" +
@@ -149,6 +150,8 @@ std::string HtmlReport::html() const {
          "    else console.error('report: picture did not decode: ' + imgs[i].alt);\n"
          "  }\n"
          "  document.body.setAttribute('data-images-decoded', String(ok));\n"
+         "  document.body.setAttribute('data-page-width',\n"
+         "                             String(document.documentElement.scrollWidth));\n"
          "});\n"
          "</script>\n</body>\n</html>\n";
 }

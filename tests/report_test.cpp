@@ -5,6 +5,7 @@
 // with --latency-probe gains the "Where a ray spends its time" table and plot.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <regex>
 
@@ -229,6 +230,17 @@ TEST_P(ReportOfEveryMachine, NoRawJsonAndNoExponents) {
     const auto at = static_cast<std::size_t>(hit.position(0));
     ADD_FAILURE() << m.name << ": a number in e-notation: ..."
                   << html.substr(at < 120 ? 0 : at - 120, 200) << "...";
+  }
+  // Opened 1280 px wide, nothing runs off the page (a wide table, a long unbroken word).
+  if (const std::string browser = chromium(); !browser.empty()) {
+    const auto view = open_headless(browser, dir / "report.html", dir);
+    ASSERT_EQ(view.exit_code, 0) << view.console;
+    std::smatch width;
+    ASSERT_TRUE(std::regex_search(view.dom, width, std::regex("data-page-width=\"([0-9]+)\"")))
+        << view.dom.substr(0, 500);
+    std::printf("%s: the report is %s px wide in a 1280 px window\n", m.name.c_str(),
+                width[1].str().c_str());
+    EXPECT_LE(std::stoi(width[1].str()), 1280) << m.name;
   }
   fs::remove_all(dir);
 }

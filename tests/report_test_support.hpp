@@ -61,7 +61,8 @@ inline BrowserView open_headless(const std::string& browser, const std::filesyst
                                  const std::filesystem::path& scratch) {
   const std::filesystem::path dom = scratch / "dom.html", log = scratch / "chromium.log";
   const std::string cmd = "timeout 120 " + browser +
-                          " --headless --disable-gpu --no-sandbox --enable-logging=stderr "
+                          " --headless --disable-gpu --no-sandbox --window-size=1280,1024 "
+                          "--enable-logging=stderr "
                           "--v=0 --virtual-time-budget=10000 --user-data-dir=" +
                           (scratch / "profile").string() + " --dump-dom file://" +
                           std::filesystem::absolute(page).string() + " >" + dom.string() + " 2>" +
