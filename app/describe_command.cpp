@@ -19,6 +19,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <systemc>
@@ -219,13 +220,39 @@ std::string tree_text(const platform::Machine& machine, const std::string& scene
   return text.str();
 }
 
-/// The block diagram in DOT: a cluster per module with children, a box per module without.
+/// The columns of a class of numbered top-level modules wired as a mesh (ullner-array's nodes:
+/// node k linked to k + 1 and to k + C), or 0. C is the most frequent link between instances
+/// other than a neighbour's number, and divides their count.
+std::size_t mesh_columns(const std::string& stem, std::size_t count,
+                         const std::set<std::tuple<std::string, std::string, std::string>>& edges) {
+  const auto index = [&](const std::string& name) -> std::optional<std::size_t> {
+    const auto [s, k] = instance_of(name.substr(0, name.find('.')));
+    if (s != stem || k == std::string::npos) return std::nullopt;
+    return k;
+  };
+  std::map<std::size_t, std::size_t> by_step;  // |j - i| -> links
+  for (const auto& [from, to, what] : edges) {
+    const auto i = index(from), j = index(to);
+    if (i && j && *i != *j) ++by_step[*i > *j ? *i - *j : *j - *i];
+  }
+  if (!by_step.contains(1)) return 0;
+  std::size_t columns = 0, most = 0;
+  for (const auto& [step, links] : by_step)
+    if (step > 1 && links > most && count % step == 0) {
+      columns = step;
+      most = links;
+    }
+  return columns;
+}
+
+/// The block diagram in DOT: a cluster per module with children, a box per module without. A
+/// mesh of modules is drawn as its grid, a box per module, its modules' insides named once.
 std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
   const auto& nodes = tree.nodes;
   std::ostringstream dot;
   dot << "digraph " << dot_id(machine.name()) << " {\n  rankdir=LR;\n  compound=true;\n"
       << "  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n"
-      << "  label=\"" << dot_escape(machine.name() + ": " + machine.description())
+      << "  label=\"" << dot_escape(machine.name() + ": " + cite_seeds(machine.description()))
       << "\";\n  labelloc=t;\n";
   // Large classes: the instances past the first few are not drawn (kMaxDrawnClassSize); one
   // box per class says how many more there are.
@@ -244,7 +271,32 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
                               key.second + " (" + leaf_of(members[kDrawnInstances].second) +
                               " ... " + leaf_of(members.back().second) + ")");
   }
+  // Meshes: the instances of a top-level class wired to their neighbours, laid out as a grid.
+  struct Mesh {
+    std::vector<std::string> members;  // by number
+    std::size_t columns = 0;
+  };
+  std::map<std::string, Mesh> meshes;         // stem -> mesh
+  std::map<std::string, std::string> folded;  // an instance of a mesh -> its stem
+  for (auto& [key, members] : classes) {
+    if (!key.first.empty() || members.size() < 4 || members.size() > kMaxDrawnClassSize) continue;
+    const std::size_t columns = mesh_columns(key.second, members.size(), tree.edges);
+    if (columns == 0) continue;
+    std::sort(members.begin(), members.end());
+    Mesh& m = meshes[key.second];
+    m.columns = columns;
+    for (const auto& [number, name] : members) {
+      m.members.push_back(name);
+      folded[name] = key.second;
+    }
+  }
+  // The instance of a mesh a module is, or is inside; "" for none.
+  const auto mesh_instance = [&](const std::string& name) -> std::string {
+    const std::string top = name.substr(0, name.find('.'));
+    return folded.contains(top) ? top : std::string();
+  };
   const auto drawn = [&](std::string name) {
+    if (const std::string inst = mesh_instance(name); !inst.empty() && inst != name) return false;
     for (; !name.empty(); name = parent_of(name))
       if (hidden.contains(name)) return false;
     return true;
@@ -268,7 +320,7 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
     for (const auto* p : n.params)
       label += "\\n" + dot_escape(p->name.substr(tree.class_paths.at(name).size() + 1) + " = " +
                                   p->value_text);
-    if (has_children.contains(name)) {
+    if (has_children.contains(name) && mesh_instance(name).empty()) {
       dot << pad << "subgraph " << dot_id("cluster_" + name) << " {\n"
           << pad << "  label=\"" << label << "\";\n"
           << pad << "  style=rounded;\n"
@@ -285,11 +337,56 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
   for (const auto& [name, n] : nodes)
     if (parent_of(name).empty() && drawn(name)) emit(name, 0);
   emit_more("", "  ");
-  for (const auto& [from, to, what] : tree.edges) {
-    if (!nodes.contains(from) || !nodes.contains(to) || !drawn(from) || !drawn(to)) continue;
+  for (const auto& [stem, m] : meshes) {
+    // With rankdir=LR a rank is a column of the picture: column c holds c, c + C, c + 2C, ...
+    for (std::size_t c = 0; c < m.columns; ++c) {
+      dot << "  { rank=same;";
+      for (std::size_t k = c; k < m.members.size(); k += m.columns)
+        dot << " " << dot_id(m.members[k]);
+      dot << " }\n";
+    }
+    std::set<std::string> inside;
+    for (const auto& [name, n] : nodes)
+      if (const std::string inst = mesh_instance(name);
+          !inst.empty() && inst != name && folded.at(inst) == stem)
+        inside.insert(name.substr(inst.size() + 1));
+    std::string parts;
+    for (const auto& p : inside) parts += (parts.empty() ? "" : ", ") + p;
+    dot << "  " << dot_id(stem + "_inside") << " [label=\""
+        << dot_escape(std::to_string(m.members.size() / m.columns) + " x " +
+                      std::to_string(m.columns) + " " + stem + "s, each holding: " + parts +
+                      " (rtsim describe lists them)")
+        << "\", shape=note, style=\"\"];\n";
+  }
+  std::set<std::pair<std::string, std::string>> drawn_edges;
+  for (const auto& [from_name, to_name, what] : tree.edges) {
+    // An edge to or from inside a mesh instance is drawn to or from the instance, once.
+    std::string from = from_name, to = to_name;
+    if (const std::string i = mesh_instance(from); !i.empty()) from = i;
+    if (const std::string i = mesh_instance(to); !i.empty()) to = i;
+    if (from == to || !nodes.contains(from) || !nodes.contains(to) || !drawn(from) || !drawn(to))
+      continue;
+    const bool in_mesh =
+        folded.contains(from) && folded.contains(to) && folded.at(from) == folded.at(to);
+    if (in_mesh) {
+      // Within a mesh: east and south links only (their reverse and the wrap-around links
+      // would cross the grid), a south link inside its column.
+      const Mesh& m = meshes.at(folded.at(from));
+      const auto i = instance_of(from).second, j = instance_of(to).second;
+      const bool east = j == i + 1 && i / m.columns == j / m.columns;
+      const bool south = j == i + m.columns;
+      if (!east && !south) continue;
+    }
+    if (!drawn_edges.emplace(from, to).second) continue;
+    if (in_mesh) {  // a link both ways: one line, no label
+      dot << "  " << dot_id(from) << " -> " << dot_id(to) << " [dir=none, color=gray40];\n";
+      continue;
+    }
     dot << "  " << dot_id(from) << " -> " << dot_id(to) << " [label=\"" << what << "\"";
-    if (has_children.contains(from)) dot << ", ltail=" << dot_id("cluster_" + from);
-    if (has_children.contains(to)) dot << ", lhead=" << dot_id("cluster_" + to);
+    if (has_children.contains(from) && mesh_instance(from).empty())
+      dot << ", ltail=" << dot_id("cluster_" + from);
+    if (has_children.contains(to) && mesh_instance(to).empty())
+      dot << ", lhead=" << dot_id("cluster_" + to);
     dot << ", fontsize=8];\n";
   }
   dot << "}\n";

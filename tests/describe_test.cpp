@@ -60,7 +60,16 @@ TEST_P(Describe, TreeHoldsEveryModuleParameterAndStatisticsGroup) {
     return n;
   };
   const std::string listed = d.output.substr(d.output.find("Connections:"));
-  EXPECT_EQ(count(dot, " -> "), count(listed, " -> "));
+  if (dot.find("each holding:") == std::string::npos) {
+    EXPECT_EQ(count(dot, " -> "), count(listed, " -> "));
+  } else {
+    // A mesh (ullner-array's nodes) is drawn as its grid: a column of the picture a rank, its
+    // links east and south once each, its modules' insides named in a note; the text lists
+    // every connection.
+    EXPECT_GT(count(dot, "{ rank=same;"), 1u);
+    EXPECT_GT(count(dot, "[dir=none"), 0u);
+    EXPECT_LT(count(dot, " -> "), count(listed, " -> "));
+  }
   // A machine of one module (the VAX) has no connections; any other is connected.
   if (groups > 1) {
     EXPECT_GT(count(dot, " -> "), 0u);
