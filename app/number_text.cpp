@@ -57,6 +57,20 @@ bool names_seconds(std::string_view name) {
          !name.ends_with(".count");
 }
 
+bool names_fraction(std::string_view name) {
+  name = name.substr(name.rfind('.') == std::string_view::npos ? 0 : name.rfind('.') + 1);
+  return name.ends_with("utilization") || name.ends_with("utilisation") ||
+         name.find("fraction") != std::string_view::npos || name == "share" ||
+         name.ends_with("_share");
+}
+
+std::string format_figure(std::string_view name, double x) {
+  if (names_seconds(name)) return format_seconds(x);
+  if (names_fraction(name)) return format_percent(x);
+  if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
+  return format_significant(x, 4);
+}
+
 std::string format_change(double relative) {
   if (!std::isfinite(relative)) return format_number(relative);
   if (relative == 0.0) return "0%";

@@ -16,6 +16,13 @@ std::string format_seconds(double s);
 /// Whether a stats.json name holds seconds: one ending in _s ("simulated_time_s"), or a statistic
 /// of one ("ray_latency_s.p99"); not a rate ("rays_per_s").
 bool names_seconds(std::string_view name);
+/// Whether a stats.json name holds a fraction of a whole, shown as a percentage: a utilisation
+/// ("chain_utilization"), a busy fraction, a share.
+bool names_fraction(std::string_view name);
+/// A stats.json figure called `name` (its last segment, or a dotted path) as a person reads it:
+/// seconds in their engineering unit, a fraction as a percentage, a whole number as it is, any
+/// other to 4 significant digits; never an exponent.
+std::string format_figure(std::string_view name, double value);
 /// A relative change as a signed percentage, 3 significant digits: 3.76 -> "+376%", -0.807 ->
 /// "-80.7%", 0 -> "0%".
 std::string format_change(double relative);

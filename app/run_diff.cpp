@@ -56,17 +56,14 @@ std::vector<std::pair<std::string, Json>> params_of(const Json& stats) {
   return out;
 }
 
-/// A value as the diff shows it: times (names ending in _s) in engineering units, numbers to 4
-/// significant digits, "-" for absent.
+/// A value as the diff shows it (format_figure: times in engineering units, fractions as
+/// percentages, numbers to 4 significant digits), "-" for absent.
 std::string shown(const std::string& name, const Json& v) {
   if (v.is_null()) return "-";
   if (v.is_string()) return v.get<std::string>();
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (!v.is_number()) return v.dump();
-  const double x = v.get<double>();
-  if (names_seconds(name)) return format_seconds(x);
-  if (v.is_number_integer() || x == std::round(x)) return format_number(x);
-  return format_significant(x);
+  return format_figure(name, v.get<double>());
 }
 
 std::string relative_text(const RunDiff::Change& c) {

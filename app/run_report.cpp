@@ -34,22 +34,8 @@ std::string value_text(const json& v) {
   return s;
 }
 
-/// Whether `name` holds a fraction of a whole (shown as a percentage): a utilisation
-/// ("chain_utilization"), a busy fraction, a share.
-bool names_fraction(std::string_view name) {
-  return name.ends_with("utilization") || name.ends_with("utilisation") ||
-         name.find("fraction") != std::string_view::npos || name == "share" ||
-         name.ends_with("_share");
-}
-
-/// One number of a figure named `name`: seconds (names_seconds) in engineering units, a
-/// fraction as a percentage, a whole number as it is, others to 4 digits; never an exponent.
-std::string number_text(const std::string& name, double x) {
-  if (names_seconds(name)) return format_seconds(x);
-  if (names_fraction(name)) return format_percent(x);
-  if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
-  return format_significant(x, 4);
-}
+/// One number of a figure named `name` (format_figure).
+std::string number_text(const std::string& name, double x) { return format_figure(name, x); }
 
 /// An array of numbers as a person reads it: the first values in their unit, and for a longer
 /// or a nested one (rows of a grid) its size and range; other arrays as JSON, cut short.

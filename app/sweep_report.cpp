@@ -66,9 +66,7 @@ std::string cell_text(const Json& v, const std::string& column) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number())
-    return names_seconds(column) ? format_seconds(v.get<double>())
-                                 : format_number(v.get<double>(), 4);
+  if (v.is_number()) return format_figure(column, v.get<double>());
   return v.dump();
 }
 

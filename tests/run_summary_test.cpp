@@ -56,12 +56,19 @@ nlohmann::json stats_of_a_run() {
 }  // namespace
 
 TEST(NumberText, ANameEndingInSecondsHoldsSecondsButARatePerSecondDoesNot) {
+  using rtsim::app::format_figure;
   using rtsim::app::names_seconds;
   EXPECT_TRUE(names_seconds("simulated_time_s"));
   EXPECT_TRUE(names_seconds("ray_latency_s.p99"));
   EXPECT_FALSE(names_seconds("throughput_rpi_per_s"));  // was shown as "254.4 h"
   EXPECT_FALSE(names_seconds("rays_per_s.mean"));
   EXPECT_FALSE(names_seconds("ray_latency_s.count"));  // was shown as "37.77 h"
+  EXPECT_EQ(format_figure("ray_latency_s.count", 2084), "2084");
+  EXPECT_EQ(format_figure("throughput_rpi_per_s", 915751.3), "915751");  // not "254.4 h"
+  EXPECT_EQ(format_figure("chain_utilization", 0.07613), "7.6%");
+  EXPECT_EQ(format_figure("modules.host.utilization", 1.0), "100.0%");
+  EXPECT_EQ(format_figure("along_chain_s", 1.8360044137546107e-06), "1.836 µs");
+  EXPECT_EQ(format_figure("mean_ray_travel", 0.00001234), "0.00001234");  // no exponent
   EXPECT_FALSE(names_seconds("intersections"));
 }
 
