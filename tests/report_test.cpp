@@ -7,8 +7,11 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <regex>
 
+#include "app/number_text.hpp"
 #include "app/run_report.hpp"
 #include "tests/report_test_support.hpp"
 #include "tests/test_support.hpp"
@@ -231,6 +234,29 @@ TEST_P(ReportOfEveryMachine, NoRawJsonAndNoExponents) {
     ADD_FAILURE() << m.name << ": a number in e-notation: ..."
                   << html.substr(at < 120 ? 0 : at - 120, 200) << "...";
   }
+  // Every number of stats.json as the console, diff and reports show it (format_figure): no
+  // exponent, a rate never as a time, a count never with a unit.
+  std::size_t figures = 0;
+  std::function<void(const nlohmann::json&, const std::string&)> walk =
+      [&](const nlohmann::json& j, const std::string& path) {
+        if (j.is_object()) {
+          for (const auto& [k, v] : j.items())
+            if (path != "params") walk(v, path.empty() ? k : path + "." + k);
+        } else if (j.is_array()) {
+          for (const auto& v : j) walk(v, path);
+        } else if (j.is_number()) {
+          ++figures;
+          const std::string text = rtsim::app::format_figure(path, j.get<double>());
+          EXPECT_FALSE(std::regex_search(text, std::regex("[0-9]e[-+]?[0-9]")))
+              << path << " = " << text;
+          if (path.ends_with("_per_s") || path.ends_with(".count")) {
+            EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?")))
+                << path << " = " << text;
+          }
+        }
+      };
+  walk(nlohmann::json::parse(read_file(dir / "stats.json")), "");
+  EXPECT_GT(figures, 50u) << m.name;
   // Opened 1280 px wide, nothing runs off the page (a wide table, a long unbroken word).
   if (const std::string browser = chromium(); !browser.empty()) {
     const auto view = open_headless(browser, dir / "report.html", dir);
