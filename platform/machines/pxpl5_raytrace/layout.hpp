@@ -78,6 +78,10 @@ struct Layout {
   /// The layout a run's parameters give (its size is the run's: set after), with the sampling
   /// rule checked: a rule that cannot be followed is bad input (exit 2).
   static Layout read(const params::ParamRegistry& r);
+  /// Only what the picture depends on (the functional twin reads it): the work handed out, the
+  /// sampling rule, partial updating and refinement, checked as read() checks them; the GP
+  /// counts and bands keep their defaults.
+  static Layout read_sampling(const params::ParamRegistry& r);
 };
 
 }  // namespace rtsim::platform::pxpl5

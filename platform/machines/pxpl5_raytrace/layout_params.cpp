@@ -17,8 +17,7 @@ const modules::CountParam kCasters(
      .max = "1024",
      .unit = "GPs",
      .description = "Ray-caster GPs (i860s with the scene replicated)",
-     .source = "seed 004 L369: Fig. 9's system has 21 GPs, 4 of them compositors, one master",
-     .affects_image = true});
+     .source = "seed 004 L369: Fig. 9's system has 21 GPs, 4 of them compositors, one master"});
 const modules::CountParam kCompositors(
     {.name = "compositor_count",
      .default_value = "4",
@@ -26,8 +25,7 @@ const modules::CountParam kCompositors(
      .max = "256",
      .unit = "GPs",
      .description = "Compositor GPs, each owning every compositor_count-th band of rows",
-     .source = "seed 004 L369 (4 in Fig. 9; 8 typical, L310)",
-     .affects_image = true});
+     .source = "seed 004 L369 (4 in Fig. 9; 8 typical, L310)"});
 const modules::IntParam kBandRows(
     {.name = "compositor.band_rows",
      .default_value = "64",
@@ -35,8 +33,7 @@ const modules::IntParam kBandRows(
      .max = "16384",
      .unit = "rows",
      .description = "Rows of one band; band b belongs to compositor b mod compositor_count",
-     .source = "seed 004 L310 (640 x 64 bands)",
-     .affects_image = true});
+     .source = "seed 004 L310 (640 x 64 bands)"});
 const modules::ChoiceParam kScheme(
     {.name = "assign.scheme",
      .default_value = "squares",
@@ -207,10 +204,16 @@ void Layout::declare_params(params::ParamRegistry& r) {
 
 Layout Layout::read(const params::ParamRegistry& r) {
   const modules::ModuleParams p(r, "");
-  Layout lay;
+  Layout lay = read_sampling(r);
   lay.casters = static_cast<int>(p.get(kCasters));
   lay.compositors = static_cast<int>(p.get(kCompositors));
   lay.band_rows = static_cast<int>(p.get(kBandRows));
+  return lay;
+}
+
+Layout Layout::read_sampling(const params::ParamRegistry& r) {
+  const modules::ModuleParams p(r, "");
+  Layout lay;
   lay.scheme = p.get(kScheme) == scheme_name(Scheme::kRows) ? Scheme::kRows : Scheme::kSquares;
   lay.square = static_cast<int>(p.get(kSquare));
   lay.rule.finest = static_cast<int>(p.get(kFinest));

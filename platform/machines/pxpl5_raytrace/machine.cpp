@@ -91,7 +91,9 @@ void Pxpl5Raytrace::declare_params(params::ParamRegistry& r) const {
 
 FunctionalTwin Pxpl5Raytrace::make_twin(scenes::Scene& scene,
                                         const params::ParamRegistry& r) const {
-  const pxpl5::Layout layout = pxpl5::Layout::read(r);  // bad sampling settings are bad input
+  // What the picture depends on only (bad sampling settings are bad input); the GP counts are
+  // read by run().
+  const pxpl5::Layout layout = pxpl5::Layout::read_sampling(r);
   const pxpl5::CameraPath path = pxpl5::CameraPath::read(r);
   // The image is the last frame's: the scene's camera, moved to camera.distance, is that
   // frame's; the earlier ones are turned back from it (run()).
