@@ -58,7 +58,7 @@ bool names_seconds(std::string_view name) {
 }
 
 bool names_fraction(std::string_view name) {
-  name = name.substr(name.rfind('.') == std::string_view::npos ? 0 : name.rfind('.') + 1);
+  name = name.substr(name.rfind('.') + 1);  // the last segment (npos + 1 is 0: all of it)
   return name.ends_with("utilization") || name.ends_with("utilisation") ||
          name.find("fraction") != std::string_view::npos || name == "share" ||
          name.ends_with("_share");

@@ -34,16 +34,14 @@ std::string value_text(const json& v) {
   return s;
 }
 
-/// One number of a figure named `name` (format_figure).
-std::string number_text(const std::string& name, double x) { return format_figure(name, x); }
-
 /// An array of numbers as a person reads it: the first values in their unit, and for a longer
 /// or a nested one (rows of a grid) its size and range; other arrays as JSON, cut short.
 std::string array_text(const std::string& name, const json& v) {
   constexpr std::size_t kShown = 8;
+  if (v.empty()) return "none";
   std::vector<double> flat;
   std::size_t rows = 0, cols = 0;
-  bool numeric = v.is_array() && !v.empty();
+  bool numeric = true;
   for (const auto& e : v) {
     if (e.is_number()) {
       flat.push_back(e.get<double>());
@@ -58,7 +56,6 @@ std::string array_text(const std::string& name, const json& v) {
       numeric = false;
     }
   }
-  if (v.is_array() && v.empty()) return "none";
   if (!numeric || flat.empty()) return value_text(v);
   double lo = flat.front(), hi = flat.front(), sum = 0.0;
   for (double x : flat) {
@@ -66,21 +63,21 @@ std::string array_text(const std::string& name, const json& v) {
     hi = std::max(hi, x);
     sum += x;
   }
-  const std::string range = "min " + number_text(name, lo) + ", mean " +
-                            number_text(name, sum / static_cast<double>(flat.size())) + ", max " +
-                            number_text(name, hi);
+  const std::string range = "min " + format_figure(name, lo) + ", mean " +
+                            format_figure(name, sum / static_cast<double>(flat.size())) + ", max " +
+                            format_figure(name, hi);
   if (rows > 0)
     return std::to_string(rows) + " x " + std::to_string(cols) + ": " + range +
            " (stats.json has every value)";
   std::string text;
   for (std::size_t i = 0; i < flat.size() && i < kShown; ++i)
-    text += (i ? ", " : "") + number_text(name, flat[i]);
+    text += (i ? ", " : "") + format_figure(name, flat[i]);
   if (flat.size() > kShown)
     text += ", ... (" + std::to_string(flat.size()) + " values: " + range + ")";
   return text;
 }
 
-/// A figure of a machine's section as the page shows it (number_text, array_text); a summary
+/// A figure of a machine's section as the page shows it (format_figure, array_text); a summary
 /// of times (a latency recorder's count, mean, p50, p99, max) as its mean and p99; another
 /// object as its scalar figures.
 std::string figure_text(const std::string& name, const json& v) {
@@ -95,7 +92,7 @@ std::string figure_text(const std::string& name, const json& v) {
     return text.empty() ? "-" : text;
   }
   if (!v.is_number()) return value_text(v);
-  return number_text(name, v.get<double>());
+  return format_figure(name, v.get<double>());
 }
 
 /// The scalar figures of `o`, nested objects' by dotted path ("eal.n"), in document order.

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -38,18 +37,7 @@ inline Frame simulate(const std::string& machine_name, const std::string& scene_
                       const std::vector<rtsim::platform::MemoryFault>& faults,
                       const fs::path& out) {
   Frame frame;
-  frame.ok = rtsim::test::run_in_child([&] {
-               auto m = rtsim::test::prepare_machine(machine_name, scene_name, overrides);
-               rtsim::platform::RunOptions opts;
-               opts.width = kSize;
-               opts.height = kSize;
-               opts.faults = faults;
-               const auto res = m->machine->run(m->scene, m->twin, m->registry, opts);
-               std::ofstream f(out, std::ios::binary);
-               f.write(reinterpret_cast<const char*>(res.image.rgb.data()),
-                       static_cast<std::streamsize>(res.image.rgb.size() * sizeof(float)));
-               return f ? 0 : 4;
-             }) == 0;
+  frame.ok = image_in_child(machine_name, scene_name, kSize, overrides, faults, out) == 0;
   if (frame.ok) {
     const std::string bytes = rtsim::test::read_file(out);
     frame.rgb.resize(bytes.size() / sizeof(float));

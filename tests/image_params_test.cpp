@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -43,17 +42,7 @@ std::vector<std::string> machine_names() {
 /// child's exit code (2: the setting was refused as bad input).
 int image_of(const std::string& machine, const std::vector<std::string>& overrides,
              const fs::path& out) {
-  return rtsim::test::run_in_child([&] {
-    auto m = rtsim::test::prepare_machine(machine, kScene, overrides);
-    rtsim::platform::RunOptions opts;
-    opts.width = kSize;
-    opts.height = kSize;
-    const auto result = m->machine->run(m->scene, m->twin, m->registry, opts);
-    std::ofstream f(out, std::ios::binary);
-    f.write(reinterpret_cast<const char*>(result.image.rgb.data()),
-            static_cast<std::streamsize>(result.image.rgb.size() * sizeof(float)));
-    return f ? 0 : 4;
-  });
+  return rtsim::test::image_in_child(machine, kScene, kSize, overrides, {}, out);
 }
 
 /// "2 us" -> "4 us": a value with a unit, its number doubled (0 becomes 1).

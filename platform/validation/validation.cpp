@@ -349,16 +349,19 @@ std::vector<std::string> wrap(const std::string& text, std::size_t width) {
   return lines;
 }
 
-/// `text` wrapped at 120 columns, its continuation lines indented.
+/// A terminal's width: what the console output of `rtsim validate` fits in.
+constexpr std::size_t kTableWidth = 120;
+
+/// `text` wrapped at kTableWidth columns, its continuation lines indented.
 void paragraph(std::ostream& out, const std::string& text) {
-  const auto lines = wrap(text, 114);
-  for (std::size_t i = 0; i < lines.size(); ++i) out << (i ? "      " : "") << lines[i] << "\n";
+  const std::string indent(6, ' ');
+  const auto lines = wrap(text, kTableWidth - indent.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) out << (i ? indent : "") << lines[i] << "\n";
 }
 
 /// The table of `rows` (no notes, no summary), at most kTableWidth columns wide where the
 /// numbers allow: the numbers first, then the figure and its source, wrapped.
 std::string rows_table(const std::vector<const Row*>& rows) {
-  constexpr std::size_t kTableWidth = 120;
   const std::vector<std::string> head = {"id",        "seed",   "simulated",      "error",
                                          "tolerance", "result", "figure (source)"};
   std::vector<std::vector<std::string>> cells;
@@ -418,7 +421,7 @@ std::string format_table(const std::vector<Row>& rows) {
   const auto section = [&](const std::vector<const Row*>& part, const char* heading) {
     if (part.empty()) return;
     out << (first ? "" : "\n");
-    for (const auto& l : wrap(heading, 120)) out << l << "\n";
+    for (const auto& l : wrap(heading, kTableWidth)) out << l << "\n";
     out << rows_table(part);
     first = false;
   };

@@ -148,7 +148,7 @@ void Peripheral::declare_params(const modules::ParamDecls& peripheral) {
 }
 
 PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
-  PeripheralSettings c;
+  PeripheralSettings c = read_search_settings(p);
   c.intersect_interval = p.get(kIntersectInterval);
   c.adder_stages = static_cast<unsigned>(p.get(kAdderStages));
   if (c.adder_stages != 1 && c.adder_stages != 3)
@@ -161,10 +161,6 @@ PeripheralSettings Peripheral::read_settings(const modules::ModuleParams& p) {
   c.select_stages = static_cast<unsigned>(p.get(kSelectStages));
   c.ray_queue_depth = p.get(kRayQueueDepth);
   c.shadow_early_exit = p.get(kShadowEarlyExit);
-  c.grid_divisions = static_cast<int>(p.get(kGridDivisions));
-  c.dda_as_printed = p.get(kGridDda) == "as-printed";
-  c.memory_polygons = p.get(kMemoryPolygons);
-  c.memory_polygons_name = p.path_of(kMemoryPolygons.name());
   c.step_time = p.get(kStepTime);
   c.indirection_stages = static_cast<unsigned>(p.get(kIndirectionStages));
   c.lighting = p.get(kLighting);

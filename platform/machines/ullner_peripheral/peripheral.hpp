@@ -47,7 +47,8 @@ class Peripheral : public sc_core::sc_module {
   /// Its parameters, under `peripheral` (the pipeline, the grid auxiliary processor, the
   /// lighting devices, the parameter memories).
   static void declare_params(const modules::ParamDecls& peripheral);
-  /// Their values, read once (the modelling space is the scene's: left empty).
+  /// Their values, read once (the modelling space is the scene's: left empty); the search's
+  /// are read_search_settings'.
   static PeripheralSettings read_settings(const modules::ModuleParams& peripheral);
   /// Only what the functional twin needs (the parameters the image depends on): the grid and
   /// the memories' capacity. The other fields keep their defaults.
