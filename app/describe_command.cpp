@@ -65,6 +65,7 @@ class TreeReader : public sc_core::sc_module {
  public:
   std::map<std::string, Node> nodes;
   std::set<std::tuple<std::string, std::string, std::string>> edges;  ///< from, to, what
+  std::map<std::string, std::vector<std::string>> rings;  ///< ring -> its modules in token order
 
   explicit TreeReader(const sc_core::sc_module_name& name) : sc_core::sc_module(name) {}
 
@@ -97,6 +98,11 @@ class TreeReader : public sc_core::sc_module {
       if (const auto it = exported.find(i); it != exported.end())
         edges.emplace(from, it->second, "TLM");
     for (const auto& c : modules::wiring()) edges.emplace(c.from, c.to, c.what);
+    for (const auto& s : modules::ring_stops()) {
+      auto& order = rings[s.ring];
+      if (order.size() <= s.position) order.resize(s.position + 1);
+      order[s.position] = s.module;
+    }
   }
 };
 
@@ -138,6 +144,7 @@ std::string dot_escape(std::string s) {
 struct ModuleTree {
   std::map<std::string, Node> nodes;                                  ///< by hierarchical name
   std::set<std::tuple<std::string, std::string, std::string>> edges;  ///< from, to, what
+  std::map<std::string, std::vector<std::string>> rings;  ///< ring -> its modules in token order
   std::vector<params::ParamEntry> entries;
   std::vector<const params::ParamEntry*> machine_params;  ///< those of no one module
   std::map<std::string, std::string> class_paths;         ///< module -> class path
@@ -157,6 +164,7 @@ ModuleTree read_tree(const platform::Machine& machine, const params::ParamRegist
   ModuleTree tree;
   tree.nodes = reader.nodes;
   tree.edges = reader.edges;
+  tree.rings = reader.rings;
   auto& nodes = tree.nodes;
   if (result.stats.contains("modules"))
     for (const auto& [name, group] : result.stats["modules"].items()) {
@@ -217,6 +225,11 @@ std::string tree_text(const platform::Machine& machine, const std::string& scene
   text << "\n\nConnections:\n";
   for (const auto& [from, to, what] : tree.edges)
     text << "  " << from << " -> " << to << "  (" << what << ")\n";
+  for (const auto& [ring, order] : tree.rings) {
+    text << "\nRing " << ring << ", in the token's order:";
+    for (const auto& m : order) text << " " << m << " ->";
+    text << " " << (order.empty() ? std::string() : order.front()) << "\n";
+  }
   return text.str();
 }
 
@@ -245,6 +258,22 @@ std::size_t mesh_columns(const std::string& stem, std::size_t count,
   return columns;
 }
 
+/// A diagram's title as DOT label text, broken into lines of at most about 100 characters so
+/// that it does not set the picture's width.
+std::string title_lines(const std::string& title) {
+  constexpr std::size_t kLine = 100;
+  std::string out, line;
+  std::istringstream words(title);
+  for (std::string w; words >> w;) {
+    if (!line.empty() && line.size() + 1 + w.size() > kLine) {
+      out += dot_escape(line) + "\\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  return out + dot_escape(line);
+}
+
 /// The block diagram in DOT: a cluster per module with children, a box per module without. A
 /// mesh of modules is drawn as its grid, a box per module, its modules' insides named once.
 std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
@@ -252,7 +281,7 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
   std::ostringstream dot;
   dot << "digraph " << dot_id(machine.name()) << " {\n  rankdir=LR;\n  compound=true;\n"
       << "  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n"
-      << "  label=\"" << dot_escape(machine.name() + ": " + cite_seeds(machine.description()))
+      << "  label=\"" << title_lines(machine.name() + ": " + cite_seeds(machine.description()))
       << "\";\n  labelloc=t;\n";
   // Large classes: the instances past the first few are not drawn (kMaxDrawnClassSize); one
   // box per class says how many more there are.
@@ -290,10 +319,16 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
       folded[name] = key.second;
     }
   }
-  // The instance of a mesh a module is, or is inside; "" for none.
+  // Rings: the modules on a ring drawn as boxes round it in the token's order, their insides
+  // named once (a ring's members of one kind hold the same).
+  std::map<std::string, std::string> ring_of;  // a module on a ring -> the ring
+  for (const auto& [ring, order] : tree.rings)
+    for (const auto& m : order)
+      if (!m.empty() && m.find('.') == std::string::npos && nodes.contains(m)) ring_of[m] = ring;
+  // The instance of a mesh or a ring a module is, or is inside; "" for none.
   const auto mesh_instance = [&](const std::string& name) -> std::string {
     const std::string top = name.substr(0, name.find('.'));
-    return folded.contains(top) ? top : std::string();
+    return folded.contains(top) || ring_of.contains(top) ? top : std::string();
   };
   const auto drawn = [&](std::string name) {
     if (const std::string inst = mesh_instance(name); !inst.empty() && inst != name) return false;
@@ -358,8 +393,43 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
                       " (rtsim describe lists them)")
         << "\", shape=note, style=\"\"];\n";
   }
+  for (const auto& [ring, order] : tree.rings) {
+    std::vector<std::string> stops;
+    for (const auto& m : order)
+      if (ring_of.contains(m) && drawn(m)) stops.push_back(m);
+    const std::size_t n = stops.size();
+    if (n < 2) continue;
+    // A racetrack: the first half left to right along the top, the second back along the
+    // bottom (with rankdir=LR a rank is a column: stop k shares its column with stop n-1-k).
+    for (std::size_t k = 0; k < n / 2; ++k)
+      dot << "  { rank=same; " << dot_id(stops[k]) << " " << dot_id(stops[n - 1 - k]) << " }\n";
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool top = k + 1 < (n + 1) / 2;
+      dot << "  " << dot_id(stops[k]) << " -> " << dot_id(stops[(k + 1) % n])
+          << " [color=royalblue, penwidth=1.5" << (top ? "" : ", constraint=false")
+          << (k == 0 ? ", label=\"" + dot_escape(leaf_of(ring)) + " (token ring)\", fontsize=8"
+                     : std::string())
+          << "];\n";
+    }
+    std::set<std::string> inside;
+    for (const auto& [name, nd] : nodes)
+      if (const std::string inst = mesh_instance(name);
+          !inst.empty() && inst != name && ring_of.contains(inst) && ring_of.at(inst) == ring)
+        inside.insert(name.substr(inst.size() + 1));
+    std::string parts;
+    for (const auto& p : inside) parts += (parts.empty() ? "" : ", ") + p;
+    dot << "  " << dot_id(ring + "_stops") << " [label=\""
+        << dot_escape(std::to_string(n) + " nodes on " + leaf_of(ring) + ", in the token's order" +
+                      (parts.empty() ? std::string() : "; each holding: " + parts) +
+                      " (rtsim describe lists them)")
+        << "\", shape=note, style=\"\"];\n";
+  }
   std::set<std::pair<std::string, std::string>> drawn_edges;
   for (const auto& [from_name, to_name, what] : tree.edges) {
+    // A ring's channel delivers to every node over the ring: drawn as the ring, above.
+    if (nodes.contains(from_name) && nodes.at(from_name).type == "RingChannel" &&
+        ring_of.contains(to_name.substr(0, to_name.find('.'))))
+      continue;
     // An edge to or from inside a mesh instance is drawn to or from the instance, once.
     std::string from = from_name, to = to_name;
     if (const std::string i = mesh_instance(from); !i.empty()) from = i;

@@ -17,6 +17,7 @@
 
 #include "modules/message_channel.hpp"
 #include "modules/token_ring.hpp"
+#include "modules/wiring.hpp"
 
 namespace rtsim::modules {
 
@@ -26,6 +27,7 @@ class RingChannel : public sc_core::sc_module {
   /// One output per node of `ring`; bind each with attach() before the simulation.
   RingChannel(sc_core::sc_module_name name, TokenRing& ring)
       : sc_core::sc_module(name), ring_(ring) {
+    connect(this->name(), ring.name(), "sends over");
     for (std::size_t k = 0; k < ring.nodes(); ++k)
       out_.push_back(std::make_unique<tlm_utils::simple_initiator_socket<RingChannel<M>>>(
           ("to_node" + std::to_string(k)).c_str()));
@@ -39,8 +41,12 @@ class RingChannel : public sc_core::sc_module {
     });
   }
 
-  /// Node `node` receives into `inbox`.
-  void attach(std::size_t node, MessageQueue<M>& inbox) { out_.at(node)->bind(inbox.socket); }
+  /// Node `node` receives into `inbox` (the module that owns it is the ring's node `node`).
+  void attach(std::size_t node, MessageQueue<M>& inbox) {
+    out_.at(node)->bind(inbox.socket);
+    const std::string queue = inbox.name();
+    ring_stop(ring_.name(), node, queue.substr(0, queue.rfind('.')));
+  }
 
   /// Sends `msg` (`bytes` on the ring) from node `from` to node `to`, ready at `ready`.
   void send(std::size_t from, std::size_t to, M msg, std::uint64_t bytes,

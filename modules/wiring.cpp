@@ -7,4 +7,9 @@ std::vector<Connection>& wiring() {
   return all;
 }
 
+std::vector<RingStop>& ring_stops() {
+  static std::vector<RingStop> all;
+  return all;
+}
+
 }  // namespace rtsim::modules

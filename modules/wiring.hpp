@@ -1,8 +1,9 @@
 #pragma once
 // Connections that are not TLM sockets, recorded at elaboration for `rtsim describe` (which finds
 // socket bindings itself): a BIC listening on a broadcast bus, a node on a ring. A machine's
-// blocks call connect() where they wire such a connection. Used by gaudet-pert's buses, and for
-// the token ring and the ray array to come.
+// blocks call connect() where they wire such a connection, and ring_stop() where they put a
+// module on a ring. Used by gaudet-pert's buses and the token ring's channel (pxpl5-raytrace,
+// ullner-array on a ring).
 #include <string>
 #include <vector>
 
@@ -18,6 +19,21 @@ std::vector<Connection>& wiring();
 
 inline void connect(std::string from, std::string to, std::string what) {
   wiring().push_back({std::move(from), std::move(to), std::move(what)});
+}
+
+/// A module on a ring, at its position in the ring's order (the token passes 0, 1, ... n-1, 0):
+/// `rtsim describe` draws a ring as the ring it is.
+struct RingStop {
+  std::string ring;  ///< the ring's hierarchical name
+  std::size_t position = 0;
+  std::string module;  ///< the module at that node
+};
+
+/// Every ring stop recorded in this process.
+std::vector<RingStop>& ring_stops();
+
+inline void ring_stop(std::string ring, std::size_t position, std::string module) {
+  ring_stops().push_back({std::move(ring), position, std::move(module)});
 }
 
 }  // namespace rtsim::modules
