@@ -54,7 +54,7 @@ bool names_seconds(std::string_view name) {
   // A summary of times ("ray_latency_s.p99") holds times, except its count of samples.
   const std::size_t dot = name.find("_s.");
   return dot != std::string_view::npos && seconds(name.substr(0, dot + 2)) &&
-         !name.ends_with(".count");
+         !name.ends_with(".count") && !name.ends_with(".counts");
 }
 
 bool names_fraction(std::string_view name) {
@@ -69,6 +69,47 @@ std::string format_figure(std::string_view name, double x) {
   if (names_fraction(name)) return format_percent(x);
   if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
   return format_significant(x, 4);
+}
+
+namespace {
+/// A whole number as it is, another to 4 significant digits.
+std::string plain(double x) {
+  if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
+  return format_significant(x, 4);
+}
+}  // namespace
+
+std::string format_in_unit(modules::StatUnit unit, double x) {
+  using modules::StatUnit;
+  if (!std::isfinite(x)) return format_number(x);
+  switch (unit) {
+    case StatUnit::seconds:
+      return format_seconds(x);
+    case StatUnit::rate:
+      return plain(x) + "/s";
+    case StatUnit::fraction:
+      return format_percent(x);
+    case StatUnit::bytes: {
+      const double a = std::abs(x);
+      if (a >= 1e9) return format_significant(x / 1e9) + " GB";
+      if (a >= 1e6) return format_significant(x / 1e6) + " MB";
+      if (a >= 1e3) return format_significant(x / 1e3) + " kB";
+      return plain(x) + " bytes";
+    }
+    case StatUnit::bits:
+      return plain(x) + " bits";
+    case StatUnit::words:
+      return plain(x) + " words";
+    case StatUnit::count:
+    case StatUnit::ratio:
+      break;
+  }
+  return plain(x);
+}
+
+std::string format_figure(const modules::UnitSchema& units, std::string_view path, double x) {
+  if (const auto unit = units.unit_of(path)) return format_in_unit(*unit, x);
+  return format_figure(path, x);
 }
 
 std::string format_change(double relative) {

@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include "modules/stat_unit.hpp"
+
 namespace rtsim::app {
 
 /// Integers whole; others to `digits` significant digits (%g: an exponent only far from 1).
@@ -23,6 +25,13 @@ bool names_fraction(std::string_view name);
 /// seconds in their engineering unit, a fraction as a percentage, a whole number as it is, any
 /// other to 4 significant digits; never an exponent.
 std::string format_figure(std::string_view name, double value);
+/// `value` in `unit` as a person reads it: seconds in their engineering unit, a rate as
+/// "915751/s", a count as the number, a fraction as a percentage, bytes in kB, MB or GB, bits
+/// and words with their unit ("1024 bits"); never an exponent.
+std::string format_in_unit(modules::StatUnit unit, double value);
+/// The figure at stats path `path` in the unit `units` declares for it (stats.json `units`);
+/// by its name (format_figure) where nothing declares one (a file written before units were).
+std::string format_figure(const modules::UnitSchema& units, std::string_view path, double value);
 /// A relative change as a signed percentage, 3 significant digits: 3.76 -> "+376%", -0.807 ->
 /// "-80.7%", 0 -> "0%".
 std::string format_change(double relative);

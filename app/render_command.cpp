@@ -56,10 +56,10 @@ int run_render(const RenderArgs& args) {
   stage_images(out, result);
   {
     std::ofstream stats(out.stage("stats.json"));
-    stats << frame_stats_json("render", machine ? machine->name() : "functional", scene, geometry,
-                              registry, settings, result, result.threads, -1.0)
-                 .dump(2)
-          << "\n";
+    auto j = frame_stats_json("render", machine ? machine->name() : "functional", scene, geometry,
+                              registry, settings, result, result.threads, -1.0);
+    j["units"] = frame_units().to_json();
+    stats << j.dump(2) << "\n";
     if (!stats) throw std::runtime_error("cannot write stats.json");
   }
   out.commit();

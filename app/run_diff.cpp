@@ -56,14 +56,15 @@ std::vector<std::pair<std::string, Json>> params_of(const Json& stats) {
   return out;
 }
 
-/// A value as the diff shows it (format_figure: times in engineering units, fractions as
-/// percentages, numbers to 4 significant digits), "-" for absent.
-std::string shown(const std::string& name, const Json& v) {
+/// A value as the diff shows it (format_figure in the unit the files declare: times in
+/// engineering units, rates per second, fractions as percentages, numbers to 4 significant
+/// digits), "-" for absent.
+std::string shown(const modules::UnitSchema& units, const std::string& name, const Json& v) {
   if (v.is_null()) return "-";
   if (v.is_string()) return v.get<std::string>();
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (!v.is_number()) return v.dump();
-  return format_figure(name, v.get<double>());
+  return format_figure(units, name, v.get<double>());
 }
 
 std::string relative_text(const RunDiff::Change& c) {
@@ -73,8 +74,9 @@ std::string relative_text(const RunDiff::Change& c) {
   return format_change(*c.relative);
 }
 
-void print_changes(std::ostream& out, const std::vector<RunDiff::Change>& changes,
-                   std::size_t max_count, bool with_relative) {
+void print_changes(std::ostream& out, const modules::UnitSchema& units,
+                   const std::vector<RunDiff::Change>& changes, std::size_t max_count,
+                   bool with_relative) {
   std::size_t width = 0;
   const std::size_t n = max_count > 0 ? std::min(max_count, changes.size()) : changes.size();
   for (std::size_t i = 0; i < n; ++i) width = std::max(width, changes[i].name.size());
@@ -82,7 +84,7 @@ void print_changes(std::ostream& out, const std::vector<RunDiff::Change>& change
     const auto& c = changes[i];
     std::string name = c.name;
     name.resize(width + 2, ' ');
-    out << "  " << name << shown(c.name, c.a) << " -> " << shown(c.name, c.b);
+    out << "  " << name << shown(units, c.name, c.a) << " -> " << shown(units, c.name, c.b);
     if (with_relative) {
       const std::string rel = relative_text(c);
       if (!rel.empty()) out << "   " << rel;
@@ -96,6 +98,8 @@ void print_changes(std::ostream& out, const std::vector<RunDiff::Change>& change
 
 RunDiff diff_runs(const Json& a, const Json& b, double tolerance) {
   RunDiff d;
+  d.units = modules::UnitSchema::from_stats(b);
+  d.units.add(modules::UnitSchema::from_stats(a));
   std::vector<std::pair<std::string, Json>> run_a, run_b;
   for (const char* k : {"machine", "scene", "width", "height", "spp"}) {
     if (a.contains(k)) run_a.emplace_back(k, a[k]);
@@ -129,29 +133,29 @@ std::string format_run_diff(const RunDiff& d, const std::string& label_a,
   out << "rtsim diff: A = " << label_a << "\n            B = " << label_b << "\n";
   if (!d.run.empty()) {
     out << "runs differ in:\n";
-    print_changes(out, d.run, 0, false);
+    print_changes(out, d.units, d.run, 0, false);
   }
   if (d.params.empty()) {
     out << "parameters: the same\n";
   } else {
     out << "parameters that differ (" << d.params.size() << "):\n";
-    print_changes(out, d.params, 0, false);
+    print_changes(out, d.units, d.params, 0, false);
   }
   // The headline first: the simulated frame time.
   for (const auto& c : d.stats)
     if (c.name == "simulated_time_s")
-      out << "frame time: " << shown(c.name, c.a) << " -> " << shown(c.name, c.b) << "   "
-          << relative_text(c) << "\n";
+      out << "frame time: " << shown(d.units, c.name, c.a) << " -> " << shown(d.units, c.name, c.b)
+          << "   " << relative_text(c) << "\n";
   if (d.stats.empty()) {
     out << "statistics: the same (" << d.stats_compared << " compared)\n";
   } else {
     out << "statistics that changed (" << d.stats.size() << " of " << d.stats_compared
         << "), largest relative change first:\n";
-    print_changes(out, d.stats, max_stats, true);
+    print_changes(out, d.units, d.stats, max_stats, true);
   }
   if (!d.wall_clock.empty()) {
     out << "wall clock (differs between any two runs):\n";
-    print_changes(out, d.wall_clock, 0, true);
+    print_changes(out, d.units, d.wall_clock, 0, true);
   }
   return out.str();
 }

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "modules/stat_unit.hpp"
+
 namespace rtsim::app {
 
 struct RunDiff {
@@ -21,6 +23,8 @@ struct RunDiff {
   std::vector<Change> stats;       ///< largest |relative| first; new, gone or non-numeric last
   std::vector<Change> wall_clock;  ///< wall_time_s, overhead_ratio, ...
   std::size_t stats_compared = 0;  ///< statistics present on either side
+  /// The units the two files declare (B's first): how the numbers are shown.
+  modules::UnitSchema units;
 };
 
 /// Compares two stats.json documents; numbers equal within `tolerance` relative are the same.

@@ -36,7 +36,7 @@ std::string value_text(const json& v) {
 
 /// An array of numbers as a person reads it: the first values in their unit, and for a longer
 /// or a nested one (rows of a grid) its size and range; other arrays as JSON, cut short.
-std::string array_text(const std::string& name, const json& v) {
+std::string array_text(const modules::UnitSchema& units, const std::string& name, const json& v) {
   constexpr std::size_t kShown = 8;
   if (v.empty()) return "none";
   std::vector<double> flat;
@@ -63,15 +63,15 @@ std::string array_text(const std::string& name, const json& v) {
     hi = std::max(hi, x);
     sum += x;
   }
-  const std::string range = "min " + format_figure(name, lo) + ", mean " +
-                            format_figure(name, sum / static_cast<double>(flat.size())) + ", max " +
-                            format_figure(name, hi);
+  const std::string range = "min " + format_figure(units, name, lo) + ", mean " +
+                            format_figure(units, name, sum / static_cast<double>(flat.size())) +
+                            ", max " + format_figure(units, name, hi);
   if (rows > 0)
     return std::to_string(rows) + " x " + std::to_string(cols) + ": " + range +
            " (stats.json has every value)";
   std::string text;
   for (std::size_t i = 0; i < flat.size() && i < kShown; ++i)
-    text += (i ? ", " : "") + format_figure(name, flat[i]);
+    text += (i ? ", " : "") + format_figure(units, name, flat[i]);
   if (flat.size() > kShown)
     text += ", ... (" + std::to_string(flat.size()) + " values: " + range + ")";
   return text;
@@ -80,19 +80,21 @@ std::string array_text(const std::string& name, const json& v) {
 /// A figure of a machine's section as the page shows it (format_figure, array_text); a summary
 /// of times (a latency recorder's count, mean, p50, p99, max) as its mean and p99; another
 /// object as its scalar figures.
-std::string figure_text(const std::string& name, const json& v) {
-  if (v.is_array()) return array_text(name, v);
+/// `path` is the figure's stats path ("pxpl5.frame_times_s"), whose unit `units` declares.
+std::string figure_text(const modules::UnitSchema& units, const std::string& path, const json& v) {
+  if (v.is_array()) return array_text(units, path, v);
   if (v.is_object()) {
     if (v.contains("count") && v.contains("mean") && v.contains("p99"))
-      return "mean " + figure_text(name, v["mean"]) + ", p99 " + figure_text(name, v["p99"]) +
-             " (" + value_text(v["count"]) + ")";
+      return "mean " + figure_text(units, path + ".mean", v["mean"]) + ", p99 " +
+             figure_text(units, path + ".p99", v["p99"]) + " (" + value_text(v["count"]) + ")";
     std::string text;
     for (const auto& [k, x] : v.items())
-      if (!x.is_structured()) text += (text.empty() ? "" : ", ") + k + " " + figure_text(k, x);
+      if (!x.is_structured())
+        text += (text.empty() ? "" : ", ") + k + " " + figure_text(units, path + "." + k, x);
     return text.empty() ? "-" : text;
   }
   if (!v.is_number()) return value_text(v);
-  return format_figure(name, v.get<double>());
+  return format_figure(units, path, v.get<double>());
 }
 
 /// The scalar figures of `o`, nested objects' by dotted path ("eal.n"), in document order.
@@ -107,16 +109,18 @@ void each_figure(const json& o, const std::string& prefix,
   }
 }
 
-/// The objects `names` of `parent` in one table, a row per figure and a column per object, so
-/// that figures of the same kind (three processors' latency per ray) read side by side.
-void side_by_side(HtmlReport& page, const json& parent, const std::vector<std::string>& names) {
+/// The objects `names` of `parent` (at stats path `prefix`) in one table, a row per figure and a
+/// column per object, so that figures of the same kind (three processors' latency per ray) read
+/// side by side.
+void side_by_side(HtmlReport& page, const modules::UnitSchema& units, const std::string& prefix,
+                  const json& parent, const std::vector<std::string>& names) {
   std::vector<std::string> figures;
   std::map<std::string, std::map<std::string, std::string>> cells;  // figure -> object -> text
   for (const auto& name : names)
     each_figure(parent[name], "", [&](const std::string& path, const json& x) {
       auto& row = cells[path];
       if (row.empty()) figures.push_back(path);
-      row[name] = figure_text(path.substr(path.rfind('.') + 1), x);
+      row[name] = figure_text(units, prefix + "." + name + "." + path, x);
     });
   // Figures every object has first (the processors' common time split), then the others.
   std::stable_partition(figures.begin(), figures.end(),
@@ -163,7 +167,8 @@ void seed_links(HtmlReport& page, const std::vector<params::ParamEntry>& params)
 /// A machine's own stats.json object (gaudet-pert's `gaudet`): its plain figures as a list;
 /// its objects of figures (the shade, shell and prim processors) side by side in one table;
 /// and each object of such objects (the buses) as a table of its own.
-void machine_section(HtmlReport& page, const std::string& key, const json& v) {
+void machine_section(HtmlReport& page, const modules::UnitSchema& units, const std::string& key,
+                     const json& v) {
   std::vector<std::pair<std::string, std::string>> plain;
   std::vector<std::string> members, groups, records;
   for (const auto& [k, x] : v.items()) {
@@ -171,7 +176,7 @@ void machine_section(HtmlReport& page, const std::string& key, const json& v) {
         std::all_of(x.begin(), x.end(), [](const json& e) { return e.is_object(); })) {
       records.push_back(k);  // a list of records (each frame's figures): a table below
     } else if (!x.is_object()) {
-      plain.emplace_back(k, figure_text(k, x));
+      plain.emplace_back(k, figure_text(units, key + "." + k, x));
     } else if (!x.empty() &&
                std::all_of(x.begin(), x.end(), [](const json& m) { return m.is_object(); })) {
       groups.push_back(k);
@@ -180,12 +185,12 @@ void machine_section(HtmlReport& page, const std::string& key, const json& v) {
     }
   }
   if (!plain.empty()) page.key_values(plain);
-  if (!members.empty()) side_by_side(page, v, members);
+  if (!members.empty()) side_by_side(page, units, key, v, members);
   for (const auto& g : groups) {
     page.paragraph(key + "." + g + ":");
     std::vector<std::string> names;
     for (const auto& [k, x] : v[g].items()) names.push_back(k);
-    side_by_side(page, v[g], names);
+    side_by_side(page, units, key + "." + g, v[g], names);
   }
   // A list of records: a row each (the first kRecordRows), a column per figure.
   constexpr std::size_t kRecordRows = 24;
@@ -199,7 +204,8 @@ void machine_section(HtmlReport& page, const std::string& key, const json& v) {
     for (std::size_t i = 0; i < list.size() && i < kRecordRows; ++i) {
       std::vector<std::string> row;
       for (const auto& k : head)
-        row.push_back(list[i].contains(k) ? figure_text(k, list[i][k]) : "");
+        row.push_back(list[i].contains(k) ? figure_text(units, key + "." + r + "." + k, list[i][k])
+                                          : "");
       rows.push_back(std::move(row));
     }
     page.paragraph(key + "." + r +
@@ -276,7 +282,8 @@ const std::set<std::string> kShownKeys = {"tool",
                                           "patch_subdivisions",
                                           "functional_wall_time_s",
                                           "overhead_ratio",
-                                          "functional_image_identical"};
+                                          "functional_image_identical",
+                                          "units"};
 
 /// What the traces hold (stats.json `trace`), and any event they lost, where it cannot be missed.
 void write_trace_section(HtmlReport& page, const json& stats) {
@@ -288,8 +295,12 @@ void write_trace_section(HtmlReport& page, const json& stats) {
   std::vector<std::pair<std::string, std::string>> rows;
   rows.reserve(8);
   const json& w = (*t)["window_s"];
-  rows.emplace_back("simulated time traced", format_seconds(w[0].get<double>()) + " to " +
-                                                 format_seconds(w[1].get<double>()));
+  std::string traced =
+      format_seconds(w[0].get<double>()) + " to " + format_seconds(w[1].get<double>());
+  if (const json* r = find(*t, "requested_window_s"))
+    traced +=
+        " (whole; " + format_seconds((*r)[1].get<double>()) + " asked for: a cap dropped the rest)";
+  rows.emplace_back("simulated time traced", traced);
   std::string mods;
   for (const auto& m : (*t)["modules"]) mods += (mods.empty() ? "" : ", ") + m.get<std::string>();
   rows.emplace_back(std::string("modules"), mods.empty() ? std::string("all") : mods);
@@ -522,7 +533,7 @@ void latency_probe_section(HtmlReport& page, const json& stats, const RunReportI
 
 /// Modules. A class of many instances (an array's nodes) is one row of its aggregates: a row
 /// per node would be thousands.
-void modules_section(HtmlReport& page, const json& stats) {
+void modules_section(HtmlReport& page, const modules::UnitSchema& units, const json& stats) {
   if (const json* mods = find(stats, "modules"); mods && mods->is_object() && !mods->empty()) {
     page.heading("Modules");
     std::set<std::string> grouped;
@@ -537,7 +548,8 @@ void modules_section(HtmlReport& page, const json& stats) {
       for (const auto& [k, v] : m.items()) {
         if (k == "busy_s" || k == "utilization" || k == "queue" || k == "utilization_windows")
           continue;
-        other += (other.empty() ? "" : ", ") + k + " " + figure_text(k, v);
+        other += (other.empty() ? "" : ", ") + k + " " +
+                 figure_text(units, "modules." + name + "." + k, v);
       }
       std::string queue;
       if (const json* q = find(m, "queue"))
@@ -568,9 +580,9 @@ void modules_section(HtmlReport& page, const json& stats) {
           continue;
         // A peak is the largest instance's; a count or a time, the sum over them.
         const bool peak = k.size() > 5 && k.compare(k.size() - 5, 5, "_peak") == 0;
-        other +=
-            (other.empty() ? "" : ", ") + k + " " +
-            (peak ? figure_text(k, a["max"]) + " at most" : figure_text(k, a["sum"]) + " in all");
+        other += (other.empty() ? "" : ", ") + k + " " +
+                 (peak ? figure_text(units, "modules." + name + "." + k, a["max"]) + " at most"
+                       : figure_text(units, "modules." + name + "." + k, a["sum"]) + " in all");
       }
       rows.push_back({name + " (" + value_text(c["instances"]) + " instances)",
                       find(c, "busy_s") ? "mean " + format_seconds(agg("busy_s", "mean")) : "",
@@ -587,13 +599,14 @@ void modules_section(HtmlReport& page, const json& stats) {
 }
 
 /// The scene's, the search structure's and the firmware's figures.
-void scene_section(HtmlReport& page, const json& stats) {
+void scene_section(HtmlReport& page, const modules::UnitSchema& units, const json& stats) {
   std::vector<std::pair<std::string, std::string>> kv;
   for (const char* key : {"accel", "scene_stats", "geometry", "firmware_cost", "image"}) {
     const json* o = find(stats, key);
     if (!o || !o->is_object()) continue;
     for (const auto& [k, x] : o->items())
-      kv.emplace_back(std::string(key) + "." + k, figure_text(k, x));
+      kv.emplace_back(std::string(key) + "." + k,
+                      figure_text(units, std::string(key) + "." + k, x));
   }
   if (!kv.empty()) {
     page.heading("Scene and firmware");
@@ -633,6 +646,8 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   } catch (const json::exception& e) {
     throw std::runtime_error("report: " + in.stats_json.string() + " is not JSON: " + e.what());
   }
+  // The unit of each number, as the run declared it (by the key's name for an older file).
+  const modules::UnitSchema units = modules::UnitSchema::from_stats(stats);
   HtmlReport page("rtsim " + str(stats, "command") + ": " + str(stats, "machine") + " on " +
                   str(stats, "scene"));
   if (!in.command_line.empty()) page.paragraph(in.command_line);
@@ -652,10 +667,10 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   for (const auto& [key, v] : stats.items()) {
     if (kShownKeys.count(key) || !v.is_object()) continue;
     page.heading(key);
-    machine_section(page, key, v);
+    machine_section(page, units, key, v);
   }
-  modules_section(page, stats);
-  scene_section(page, stats);
+  modules_section(page, units, stats);
+  scene_section(page, units, stats);
   parameters_section(page, stats, in);
   page.paragraph("Written by " + str(stats, "tool") + " " + str(stats, "version") +
                  ". Every figure here is also in stats.json (schema: docs/stats.md).");

@@ -36,6 +36,14 @@ double parse_sample_error(const std::string& text) {
   return v;
 }
 
+modules::UnitSchema SamplePlan::units() {
+  using modules::StatUnit;
+  return {
+      {"target_error", StatUnit::fraction},     {"pilot_every", StatUnit::count},
+      {"pilot_estimate_s", StatUnit::seconds},  {"pilot_half_width_relative", StatUnit::fraction},
+      {"pilot_wall_time_s", StatUnit::seconds}, {"every", StatUnit::count}};
+}
+
 SamplePlan plan_sample(const platform::Machine& machine, scenes::Scene& scene,
                        platform::FunctionalTwin& twin, const params::ParamRegistry& registry,
                        const platform::RunOptions& opts, int units, double target) {

@@ -15,6 +15,8 @@ namespace rtsim::app {
 double parse_sample_error(const std::string& text);
 
 struct SamplePlan {
+  /// The units of `json`'s numbers (modules/stat_unit.hpp; stats.json `sample.plan`).
+  static modules::UnitSchema units();
   int every = 1;                ///< the K chosen (1: the whole frame in detail)
   nlohmann::ordered_json json;  ///< stats.json sample.plan: the target, the pilot and its cost
   double pilot_wall_s = 0.0;

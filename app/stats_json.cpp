@@ -42,6 +42,32 @@ const char* accel_name(functional::AccelKind k) {
 
 }  // namespace
 
+modules::UnitSchema frame_units() {
+  using modules::StatUnit;
+  return {{"schema_version", StatUnit::count},
+          {"width", StatUnit::count},
+          {"height", StatUnit::count},
+          {"spp", StatUnit::count},
+          {"simulated_time_s", StatUnit::seconds},
+          {"wall_time_s", StatUnit::seconds},
+          {"functional_wall_time_s", StatUnit::seconds},
+          {"overhead_ratio", StatUnit::ratio},
+          {"threads", StatUnit::count},
+          {"rays.*", StatUnit::count},
+          {"rays_per_second", StatUnit::rate},
+          {"intersection_tests", StatUnit::count},
+          {"hits", StatUnit::count},
+          {"accel.*", StatUnit::count},
+          {"patch_subdivisions", StatUnit::count},
+          {"firmware_cost.mem_words", StatUnit::words},
+          {"firmware_cost.*", StatUnit::count},
+          {"scene_stats.*", StatUnit::count},
+          {"geometry.*", StatUnit::count},
+          {"image.nonfinite_values", StatUnit::count},
+          // A linear pixel value, 1 the white of the scene's lights.
+          {"image.mean_rgb", StatUnit::ratio}};
+}
+
 ordered_json frame_stats_json(const std::string& command, const std::string& machine,
                               const scenes::Scene& scene, const functional::SceneGeometry& geometry,
                               const params::ParamRegistry& registry,

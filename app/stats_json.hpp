@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/scene.hpp"
+#include "modules/stat_unit.hpp"
 #include "params/registry.hpp"
 #include "platform/functional/functional_renderer.hpp"
 #include "platform/functional/render_params.hpp"
@@ -22,5 +23,9 @@ nlohmann::ordered_json frame_stats_json(const std::string& command, const std::s
                                         const functional::RenderSettings& settings,
                                         const functional::RenderResult& result, int threads,
                                         double simulated_time_s);
+
+/// The units of frame_stats_json's numbers and of `--overhead`'s (modules/stat_unit.hpp); a
+/// run adds its machine's and modules' (RunResult::units) and writes them as `units`.
+modules::UnitSchema frame_units();
 
 }  // namespace rtsim::app

@@ -1,5 +1,6 @@
 #include "app/trace_options.hpp"
 
+#include "app/number_text.hpp"
 #include "common/input_error.hpp"
 #include "params/units.hpp"
 
@@ -73,10 +74,14 @@ std::vector<std::string> trace_warnings(const nlohmann::json& stats) {
     if (!t.contains(key)) continue;
     const auto dropped = t[key].value(count, std::size_t{0});
     if (dropped == 0) continue;
+    std::string whole;
+    if (t.contains("window_s") && t["window_s"].is_array() && t["window_s"].size() == 2)
+      whole = ": it holds every event from " + format_seconds(t["window_s"][0].get<double>()) +
+              " to " + format_seconds(t["window_s"][1].get<double>()) + " only";
     out.push_back(t[key].value("file", std::string(key)) + ": " + std::to_string(dropped) +
                   (std::string(key) == "vcd" ? " value changes" : " events") +
-                  " dropped at --trace-max-events " + cap +
-                  "; the trace is incomplete (stats.json trace." + key + ")");
+                  " dropped at --trace-max-events " + cap + "; the trace is incomplete" + whole +
+                  " (stats.json trace.window_s, trace." + key + ")");
   }
   // A file too large for the viewers: Perfetto's web UI holds the whole trace in the browser's
   // memory and gives up on JSON traces of a few hundred MB; GTKWave loads a VCD whole.

@@ -70,6 +70,15 @@ void LatencyProbe::end(Journey j, const sc_core::sc_time& now) {
   free_.push_back(j);
 }
 
+UnitSchema LatencyProbe::units() {
+  UnitSchema u{{"rays", StatUnit::count},
+               {"unattributed_s", StatUnit::seconds},
+               {"stages.*.share", StatUnit::fraction},
+               {"stages.*_s", StatUnit::seconds}};
+  u.add(LatencyRecorder::units(), "end_to_end_s.");
+  return u;
+}
+
 nlohmann::ordered_json LatencyProbe::to_json() const {
   nlohmann::ordered_json j;
   j["rays"] = rays_;

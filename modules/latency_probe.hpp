@@ -69,6 +69,8 @@ class LatencyProbe {
   /// share}}} — per-stage figures are means per ray (a ray that never met a stage counts 0 there);
   /// p99_s is the 99th percentile of the stage's total; share = total_s / end-to-end mean.
   nlohmann::ordered_json to_json() const;
+  /// The units of to_json's keys (modules/stat_unit.hpp).
+  static UnitSchema units();
 
  private:
   struct Slot {

@@ -23,6 +23,13 @@ double LatencyRecorder::percentile(double p) const {
   return nearest_rank(s, p);
 }
 
+UnitSchema LatencyRecorder::units() {
+  return {{"count", StatUnit::count},           {"mean", StatUnit::seconds},
+          {"p50", StatUnit::seconds},           {"p99", StatUnit::seconds},
+          {"max", StatUnit::seconds},           {"histogram.edges_s", StatUnit::seconds},
+          {"histogram.counts", StatUnit::count}};
+}
+
 nlohmann::ordered_json LatencyRecorder::to_json() const {
   nlohmann::ordered_json j;
   j["count"] = samples_.size();

@@ -6,6 +6,8 @@
 #include <systemc>
 #include <vector>
 
+#include "modules/stat_unit.hpp"
+
 namespace rtsim::modules {
 
 class LatencyRecorder {
@@ -17,6 +19,8 @@ class LatencyRecorder {
   double percentile(double p) const;
   /// {count, mean, p50, p99, max, histogram: {edges_s, counts}} (log-spaced buckets).
   nlohmann::ordered_json to_json() const;
+  /// The units of to_json's keys (modules/stat_unit.hpp): seconds, but the counts.
+  static UnitSchema units();
 
  private:
   std::vector<double> samples_;

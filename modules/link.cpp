@@ -63,6 +63,7 @@ sc_core::sc_time Link::serialisation(std::uint64_t bits) const {
 sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& start,
                                 const sc_core::sc_time& written) {
   const sc_core::sc_time begin = std::max(start, free_);
+  last_begin_ = begin;
   waited_ += begin - start;
   const sc_core::sc_time done = std::max(plus(begin, serialisation(bits)), written);
   if (done > begin) busy_.record(begin, done - begin);
@@ -70,6 +71,17 @@ sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& star
   ++messages_;
   bits_ += bits;
   return plus(done, latency_);
+}
+
+sc_core::sc_time Link::transfer(std::uint64_t bits, const sc_core::sc_time& start,
+                                const sc_core::sc_time& written, const Carried& c) {
+  const sc_core::sc_time arrives = transfer(bits, start, written);
+  if (trace_ && trace_->records()) {
+    trace_->slice(name(), c.what, last_begin_, arrives - last_begin_,
+                  {{c.key, static_cast<double>(c.id)}, {"bits", static_cast<double>(bits)}});
+    trace_->hop(name(), c.key, c.flow != 0 ? c.flow : c.id, last_begin_);
+  }
+  return arrives;
 }
 
 }  // namespace rtsim::modules

@@ -17,6 +17,7 @@
 #include <systemc>
 
 #include "modules/module_params.hpp"
+#include "modules/slice_sink.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::modules {
@@ -56,6 +57,21 @@ class Link : public StatGroup {
     return transfer(bits, start, start);
   }
 
+  /// What a message carries, for the traces: a slice `what` on the link's track with `key` = id
+  /// (the ray or job) and its bits, and a step of that item's flow (SliceSink::hop).
+  struct Carried {
+    std::string_view what;  ///< "ray", "result", "description", ...
+    std::string_view key;   ///< "ray" or "job": the flow it steps
+    std::uint64_t id = 0;
+    /// The flow's id when the item's id is not unique in the machine (0: the id).
+    std::uint64_t flow = 0;
+  };
+  /// Traces the messages handed over with what they carry into `sink` (the run's traces).
+  void trace_to(SliceSink& sink) { trace_ = &sink; }
+  /// transfer(), traced as carrying `c`.
+  sc_core::sc_time transfer(std::uint64_t bits, const sc_core::sc_time& start,
+                            const sc_core::sc_time& written, const Carried& c);
+
   std::uint64_t messages() const { return messages_.value(); }
   std::uint64_t bits() const { return bits_.value(); }
   /// Time it carried bits (its utilisation) and when.
@@ -69,9 +85,11 @@ class Link : public StatGroup {
   std::uint64_t lanes_;
   sc_core::sc_time bit_time_;
   sc_core::sc_time free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time last_begin_ = sc_core::SC_ZERO_TIME;  ///< when the last message took the link
+  SliceSink* trace_ = nullptr;
   Busy busy_{*this, "time carrying bits (its utilisation)"};
   Counter messages_{*this, "messages", "messages carried"};
-  Counter bits_{*this, "bits", "bits carried"};
+  Counter bits_{*this, "bits", "bits carried", StatUnit::bits};
   Duration waited_{*this, "waited_s", "time messages waited for the link to be free"};
 };
 

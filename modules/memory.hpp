@@ -184,7 +184,8 @@ class Memory : public sc_core::sc_module, public StatGroup {
   sc_core::sc_time write_word_time_;
   sc_core::sc_time read_line_time_;
   Busy read_busy_{*this, "time its read port read lines (its utilisation)"};
-  Counter words_written_{*this, "words_written", "words written through its load port"};
+  Counter words_written_{*this, "words_written", "words written through its load port",
+                         StatUnit::words};
   Counter lines_read_{*this, "lines_read", "lines read"};
   Duration write_busy_{*this, "write_busy_s", "time its load port wrote words"};
   std::vector<Fault> faults_;

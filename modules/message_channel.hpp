@@ -55,7 +55,8 @@ class MessageQueue : public sc_core::sc_module {
       : sc_core::sc_module(name),
         socket("socket"),
         fifo(stats_name.empty() ? std::string(this->name()) : std::move(stats_name), depth),
-        bits_(fifo, "bits", "bits its messages carried (their sizes on the hardware)") {
+        bits_(fifo, "bits", "bits its messages carried (their sizes on the hardware)",
+              StatUnit::bits) {
     socket.register_b_transport(this, &MessageQueue::b_transport);
   }
 

@@ -68,7 +68,8 @@ class PipelinedUnit : public StatGroup {
   sc_core::sc_time next_free_ = sc_core::SC_ZERO_TIME;
   Busy busy_{*this, "issue slots used: one interval an item (its utilisation)"};
   Counter issued_;
-  Computed stage_count_{*this, "stages", "its depth in stages", [this] { return stages_; }};
+  Computed stage_count_{*this, "stages", StatUnit::count, "its depth in stages",
+                        [this] { return stages_; }};
 };
 
 }  // namespace rtsim::modules

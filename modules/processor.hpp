@@ -67,6 +67,11 @@ class Processor : public sc_core::sc_module, public StatGroup {
   /// Spends `t` computing (a time the machine worked out itself).
   void compute_for(const sc_core::sc_time& t, std::string_view what,
                    std::initializer_list<PerfettoTrace::Arg> args = {});
+  /// The work it starts now is a step of item `id`'s journey (`flow`: "ray"): the traces link
+  /// it to the item's slices on the links and the other processors (SliceSink::hop).
+  void hop(std::string_view flow, std::uint64_t id) {
+    if (trace_.records()) trace_.hop(track_, flow, id, clock_.now());
+  }
   /// Idle until `until` (if known) or until one of `events` fires, whichever comes first.
   /// A thread ahead of simulated time only catches up and returns (an event may have fired
   /// meanwhile): call it in a loop that looks at the state again.

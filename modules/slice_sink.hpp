@@ -23,6 +23,11 @@ class SliceSink {
   /// the traces take flows.
   virtual void flow(std::string_view /*module*/, std::string_view /*name*/, std::uint64_t /*id*/,
                     PerfettoTrace::FlowPhase /*phase*/, const sc_core::sc_time& /*t*/) {}
+  /// A step of item `id`'s journey through the machine (a ray's, a job's: `flow` names which) on
+  /// the track of `module` at `t`: the traces link the item's slices, from module to link to
+  /// module, by a flow (its first step starts it). Nothing unless the traces take flows.
+  virtual void hop(std::string_view /*module*/, std::string_view /*flow*/, std::uint64_t /*id*/,
+                   const sc_core::sc_time& /*t*/) {}
   /// Whether slices go anywhere: a module may skip preparing what it would record.
   virtual bool records() const { return true; }
 };

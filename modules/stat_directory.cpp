@@ -42,12 +42,18 @@ nlohmann::ordered_json report_json(const StatReport& r, const StatWindow& window
   return j;
 }
 
-nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window) const {
+nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window, UnitSchema* units) const {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   // The names are unique and sorted: appended without ordered_json's linear search for an
   // existing key (a 16 x 16 array has thousands of modules).
   auto& modules = out.get_ref<nlohmann::ordered_json::object_t&>();
-  for (auto& [name, r] : reports(window)) modules.emplace_back(name, report_json(r, window));
+  for (auto& [name, r] : reports(window)) {
+    modules.emplace_back(name, report_json(r, window));
+    if (!units) continue;
+    // Under the class's name: an array's 1024 nodes declare their keys once.
+    for (const auto& [key, unit] : r.units)
+      units->add(instance_class("modules." + name + "." + key), unit);
+  }
   return out;
 }
 

@@ -40,8 +40,9 @@ class StatDirectory {
   const std::multimap<std::string, const StatGroup*>& groups() const { return groups_; }
   /// The report of every name over `window`.
   std::map<std::string, StatReport> reports(const StatWindow& window) const;
-  /// stats.json `modules` over `window`.
-  nlohmann::ordered_json to_json(const StatWindow& window) const;
+  /// stats.json `modules` over `window`; with `units`, declares there the unit of each key of
+  /// each module class ("modules.node*.link_e.bits": bits), as its statistics give it.
+  nlohmann::ordered_json to_json(const StatWindow& window, UnitSchema* units = nullptr) const;
   /// The traces' level signals of every group whose name `keep` accepts, by name then kind
   /// (a signal's changes are worked out only for a name kept).
   std::vector<NamedSignal> signals(const std::function<bool(const std::string&)>& keep) const;

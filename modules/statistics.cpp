@@ -20,29 +20,36 @@ StatGroup::StatGroup(const StatGroup& parent, std::string_view child)
 
 StatGroup::~StatGroup() { StatDirectory::instance().remove(*this); }
 
-Statistic::Statistic(StatGroup& group, std::string name, std::string description)
-    : name_(std::move(name)), description_(std::move(description)) {
+Statistic::Statistic(StatGroup& group, std::string name, std::string description, StatUnit unit)
+    : name_(std::move(name)), description_(std::move(description)), unit_(unit) {
   group.statistics_.push_back(this);
 }
 
 void Counter::report(StatReport& out, const StatWindow& /*window*/) const {
   out.values[name()] = value_;
+  declare_unit(out, name());
 }
 
 void CounterArray::report(StatReport& out, const StatWindow& /*window*/) const {
-  for (std::size_t k = 0; k < kinds_.size(); ++k) out.values[name() + kinds_[k]] = values_[k];
+  for (std::size_t k = 0; k < kinds_.size(); ++k) {
+    out.values[name() + kinds_[k]] = values_[k];
+    declare_unit(out, name() + kinds_[k]);
+  }
 }
 
 void Peak::report(StatReport& out, const StatWindow& /*window*/) const {
   out.values[name()] = value_;
+  declare_unit(out, name());
 }
 
 void Scalar::report(StatReport& out, const StatWindow& /*window*/) const {
   out.values[name()] = value_;
+  declare_unit(out, name());
 }
 
 void Duration::report(StatReport& out, const StatWindow& /*window*/) const {
   out.values[name()] = value_.to_seconds();
+  declare_unit(out, name());
 }
 
 void Busy::report(StatReport& out, const StatWindow& window) const {
@@ -51,9 +58,15 @@ void Busy::report(StatReport& out, const StatWindow& window) const {
     throw std::logic_error("two Busy statistics report under one name (" + name() + ")");
   out.busy_reported = true;
   out.busy = total_;
+  out.units.emplace_back("busy_s", StatUnit::seconds);
+  out.units.emplace_back("utilization", StatUnit::fraction);
   UtilizationWindows w = timeline_.windows(window.begin, window.end, kUtilizationWindows);
-  if (!w.values.empty())
+  if (!w.values.empty()) {
     out.windows = {{"begin_s", w.begin_s}, {"window_s", w.window_s}, {"values", w.values}};
+    out.units.emplace_back("utilization_windows.begin_s", StatUnit::seconds);
+    out.units.emplace_back("utilization_windows.window_s", StatUnit::seconds);
+    out.units.emplace_back("utilization_windows.values", StatUnit::fraction);
+  }
 }
 
 void Busy::signals(std::vector<TraceSignal>& out) const {
@@ -68,6 +81,9 @@ void Level::report(StatReport& out, const StatWindow& window) const {
                                                     : nlohmann::ordered_json(capacity_)},
                {"mean_occupancy", s.mean},
                {"max_occupancy", s.max}};
+  out.units.emplace_back("queue.capacity", StatUnit::count);
+  out.units.emplace_back("queue.mean_occupancy", StatUnit::ratio);
+  out.units.emplace_back("queue.max_occupancy", StatUnit::count);
 }
 
 void Level::signals(std::vector<TraceSignal>& out) const {
@@ -76,10 +92,20 @@ void Level::signals(std::vector<TraceSignal>& out) const {
 
 void Distribution::report(StatReport& out, const StatWindow& /*window*/) const {
   out.values[name()] = recorder_.to_json();
+  static const UnitSchema kUnits = LatencyRecorder::units();
+  for (const auto& [key, unit] : kUnits.entries()) out.units.emplace_back(name() + "." + key, unit);
 }
 
 void Computed::report(StatReport& out, const StatWindow& /*window*/) const {
-  out.values[name()] = value_();
+  nlohmann::ordered_json v = value_();
+  // Each number of an object in this unit, under its key; an array's numbers under its name.
+  if (v.is_object()) {
+    for (const auto& [k, x] : v.items())
+      if (!x.is_structured()) declare_unit(out, name() + "." + k);
+  } else {
+    declare_unit(out, name());
+  }
+  out.values[name()] = std::move(v);
 }
 
 void LevelSignal::signals(std::vector<TraceSignal>& out) const {

@@ -35,6 +35,7 @@
 #include "modules/latency_recorder.hpp"
 #include "modules/level_steps.hpp"
 #include "modules/occupancy.hpp"
+#include "modules/stat_unit.hpp"
 
 namespace rtsim::modules {
 
@@ -58,6 +59,8 @@ struct StatReport {
   std::map<std::string, nlohmann::ordered_json> values;
   nlohmann::ordered_json queue;    ///< null unless a Level reported
   nlohmann::ordered_json windows;  ///< null unless a Busy recorded windows
+  /// The unit of each key written, relative to the group ("bits", "queue.mean_occupancy").
+  std::vector<std::pair<std::string, StatUnit>> units;
 };
 
 class Statistic;
@@ -83,24 +86,34 @@ class StatGroup {
   std::vector<const Statistic*> statistics_;
 };
 
-/// One figure of a group, named relative to it ("jobs_issued"; a time ends in "_s").
+/// One figure of a group, named relative to it ("jobs_issued"; a time ends in "_s"), in its unit
+/// (modules/stat_unit.hpp: a count unless it says otherwise).
 class Statistic {
  public:
-  Statistic(StatGroup& group, std::string name, std::string description);
+  Statistic(StatGroup& group, std::string name, std::string description,
+            StatUnit unit = StatUnit::count);
   virtual ~Statistic() = default;
   Statistic(const Statistic&) = delete;
   Statistic& operator=(const Statistic&) = delete;
 
   const std::string& name() const { return name_; }
   const std::string& description() const { return description_; }
+  StatUnit unit() const { return unit_; }
   /// Adds itself to its group's report over `window`.
   virtual void report(StatReport& out, const StatWindow& window) const = 0;
   /// Its trace signals (Busy, Level, LevelSignal); none by default.
   virtual void signals(std::vector<TraceSignal>& /*out*/) const {}
 
+ protected:
+  /// Records in `out` that key `key` (relative to the group) is in this statistic's unit.
+  void declare_unit(StatReport& out, std::string key) const {
+    out.units.emplace_back(std::move(key), unit_);
+  }
+
  private:
   std::string name_;
   std::string description_;
+  StatUnit unit_;
 };
 
 /// A count of events.
@@ -127,8 +140,8 @@ class Counter final : public Statistic {
 class CounterArray final : public Statistic {
  public:
   CounterArray(StatGroup& group, std::string prefix, std::vector<std::string> kinds,
-               std::string description)
-      : Statistic(group, std::move(prefix), std::move(description)),
+               std::string description, StatUnit unit = StatUnit::count)
+      : Statistic(group, std::move(prefix), std::move(description), unit),
         kinds_(std::move(kinds)),
         values_(kinds_.size(), 0) {}
   void add(std::size_t kind, std::uint64_t n = 1) { values_[kind] += n; }
@@ -155,10 +168,11 @@ class Peak final : public Statistic {
   std::uint64_t value_ = 0;
 };
 
-/// A figure that is not a count (a ratio, a size in words).
+/// A figure that is not a count (a ratio, a size in words), in the unit it is declared with.
 class Scalar final : public Statistic {
  public:
-  using Statistic::Statistic;
+  Scalar(StatGroup& group, std::string name, std::string description, StatUnit unit)
+      : Statistic(group, std::move(name), std::move(description), unit) {}
   Scalar& operator=(double v) {
     value_ = v;
     return *this;
@@ -177,7 +191,8 @@ class Scalar final : public Statistic {
 /// Time spent (waiting, blocked); written in seconds.
 class Duration final : public Statistic {
  public:
-  using Statistic::Statistic;
+  Duration(StatGroup& group, std::string name, std::string description)
+      : Statistic(group, std::move(name), std::move(description), StatUnit::seconds) {}
   Duration& operator+=(const sc_core::sc_time& t) {
     value_ += t;
     return *this;
@@ -194,7 +209,7 @@ class Duration final : public Statistic {
 class Busy final : public Statistic {
  public:
   Busy(StatGroup& group, std::string description = "time busy (its utilisation)")
-      : Statistic(group, "busy_s", std::move(description)) {}
+      : Statistic(group, "busy_s", std::move(description), StatUnit::seconds) {}
   /// Busy over [start, start + duration).
   void record(const sc_core::sc_time& start, const sc_core::sc_time& duration) {
     timeline_.add(start, duration);
@@ -230,10 +245,12 @@ class Level final : public Statistic {
   Occupancy occupancy_;
 };
 
-/// Per-item times (a job's latency): {count, mean, p50, p99, max, histogram}.
+/// Per-item times (a job's latency): {count, mean, p50, p99, max, histogram}; seconds but the
+/// counts.
 class Distribution final : public Statistic {
  public:
-  using Statistic::Statistic;
+  Distribution(StatGroup& group, std::string name, std::string description)
+      : Statistic(group, std::move(name), std::move(description), StatUnit::seconds) {}
   void add(const sc_core::sc_time& t) { recorder_.add(t); }
   const LatencyRecorder& recorder() const { return recorder_; }
   void report(StatReport& out, const StatWindow& window) const override;
@@ -243,12 +260,13 @@ class Distribution final : public Statistic {
 };
 
 /// A figure worked out when the statistics are written (from the module's parameters or
-/// other figures): `value` is called then.
+/// other figures), in `unit` (each number of it, when it is an array or an object): `value` is
+/// called then.
 class Computed final : public Statistic {
  public:
-  Computed(StatGroup& group, std::string name, std::string description,
+  Computed(StatGroup& group, std::string name, StatUnit unit, std::string description,
            std::function<nlohmann::ordered_json()> value)
-      : Statistic(group, std::move(name), std::move(description)), value_(std::move(value)) {}
+      : Statistic(group, std::move(name), std::move(description), unit), value_(std::move(value)) {}
   void report(StatReport& out, const StatWindow& window) const override;
 
  private:

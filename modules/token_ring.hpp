@@ -162,20 +162,23 @@ class TokenRing : public sc_core::sc_module, public StatGroup {
   Busy busy_{*this, "time transmitting (its utilisation)"};
   Counter messages_{*this, "messages", "messages sent"};
   Counter packets_sent_{*this, "packets", "packets transmitted"};
-  Computed nodes_{*this, "nodes", "nodes on the ring", [this] { return queues_.size(); }};
-  Computed rotation_{*this, "token_rotation_s", "mean time between the token's passes at node 0",
+  Computed nodes_{*this, "nodes", StatUnit::count, "nodes on the ring",
+                  [this] { return queues_.size(); }};
+  Computed rotation_{*this, "token_rotation_s", StatUnit::seconds,
+                     "mean time between the token's passes at node 0",
                      [this] { return mean_rotation_s(); }};
-  Computed mean_wait_{*this, "mean_wait_s",
+  Computed mean_wait_{*this, "mean_wait_s", StatUnit::seconds,
                       "mean wait of a packet from being queued to its transmission",
                       [this] { return mean_wait_s(); }};
-  Computed node_waits_{*this, "wait_s_by_node", "mean wait of each node's packets, in ring order",
-                       [this] {
+  Computed node_waits_{*this, "wait_s_by_node", StatUnit::seconds,
+                       "mean wait of each node's packets, in ring order", [this] {
                          nlohmann::ordered_json waits = nlohmann::ordered_json::array();
                          for (std::size_t k = 0; k < node_.size(); ++k)
                            waits.push_back(mean_wait_s(k));
                          return waits;
                        }};
-  CounterArray class_bytes_{*this, "bytes.", classes_, "bytes of a traffic class, headers in"};
+  CounterArray class_bytes_{*this, "bytes.", classes_, "bytes of a traffic class, headers in",
+                            StatUnit::bytes};
   LevelSignal holder_{*this, "holder", "node index + 1 while a node transmits, 0 while none"};
 };
 

@@ -11,6 +11,7 @@
 
 #include "firmware/scene.hpp"
 #include "firmware/tracer.hpp"
+#include "modules/stat_unit.hpp"
 #include "modules/trace/trace_filter.hpp"
 #include "params/registry.hpp"
 #include "platform/functional/functional_renderer.hpp"
@@ -83,6 +84,9 @@ struct RunResult {
   functional::RenderResult image;  ///< rgb, AOVs and counters (wall_time_s: the simulation)
   double simulated_time_s = 0.0;   ///< the frame time on the modelled machine
   nlohmann::ordered_json stats;    ///< machine-specific keys merged into stats.json
+  /// The unit of every number of `stats` (modules/stat_unit.hpp): the machine declares its own
+  /// section's, MachineRun adds the modules' and the run's.
+  modules::UnitSchema units;
 };
 
 /// What a machine's registration says of it (RegisterMachine, platform/machine_registry.hpp):

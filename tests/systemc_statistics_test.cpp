@@ -31,9 +31,10 @@ struct Unit : StatGroup {
   Counter jobs{*this, "jobs", "jobs"};
   Peak peak{*this, "in_flight_peak", "in flight"};
   Duration waited{*this, "waited_s", "waited"};
-  Scalar ratio{*this, "ratio", "a ratio"};
+  Scalar ratio{*this, "ratio", "a ratio", rtsim::modules::StatUnit::ratio};
   CounterArray by_kind{*this, "sent_", {"a", "b"}, "by kind"};
-  Computed stages{*this, "stages", "depth", [] { return 11; }};
+  Computed stages{*this, "stages", rtsim::modules::StatUnit::count, "depth", [] { return 11; }};
+  Counter bits{*this, "bits", "bits carried", rtsim::modules::StatUnit::bits};
   Distribution latency{*this, "latency_s", "per job"};
 };
 }  // namespace
@@ -68,9 +69,39 @@ TEST(Statistics, EachKindWritesItsValueUnderItsName) {
   std::vector<std::string> keys;
   for (const auto& [k, v] : m.items()) keys.push_back(k);
   const std::vector<std::string> expected = {
-      "busy_s", "utilization", "in_flight_peak", "jobs",     "latency_s",          "ratio",
-      "sent_a", "sent_b",      "stages",         "waited_s", "utilization_windows"};
+      "busy_s", "utilization", "bits",   "in_flight_peak", "jobs",     "latency_s",
+      "ratio",  "sent_a",      "sent_b", "stages",         "waited_s", "utilization_windows"};
   EXPECT_EQ(keys, expected);
+}
+
+TEST(Statistics, EachKindDeclaresTheUnitOfWhatItWrites) {
+  using rtsim::modules::StatUnit;
+  Unit u("node12.link_e");
+  u.busy.record(ps(100), ps(400));
+  u.latency.add(ps(10));
+  rtsim::modules::UnitSchema units;
+  StatDirectory::instance().to_json(kFrame, &units);
+  // Under the module's class: every node's link_e declares its keys once.
+  const std::vector<std::pair<std::string, StatUnit>> expected = {
+      {"busy_s", StatUnit::seconds},
+      {"utilization", StatUnit::fraction},
+      {"utilization_windows.values", StatUnit::fraction},
+      {"utilization_windows.window_s", StatUnit::seconds},
+      {"jobs", StatUnit::count},
+      {"bits", StatUnit::bits},
+      {"in_flight_peak", StatUnit::count},
+      {"waited_s", StatUnit::seconds},
+      {"ratio", StatUnit::ratio},
+      {"sent_b", StatUnit::count},
+      {"stages", StatUnit::count},
+      {"latency_s.p99", StatUnit::seconds},
+      {"latency_s.count", StatUnit::count},
+      {"latency_s.histogram.counts", StatUnit::count}};
+  for (const auto& [key, unit] : expected) {
+    EXPECT_EQ(units.unit_of("modules.node3.link_e." + key), unit) << key;
+    EXPECT_EQ(units.unit_of("module_classes.node*.link_e." + key + ".max"), unit) << key;
+  }
+  EXPECT_FALSE(units.unit_of("modules.node3.link_e.unknown").has_value());
 }
 
 TEST(Statistics, AGroupLeavesTheDirectoryWithItsObject) {

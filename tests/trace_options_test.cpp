@@ -8,6 +8,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -142,6 +143,40 @@ TEST(TraceOptions, ACapThatDropsEventsIsPrintedRecordedAndReported) {
   const std::string html = read_file(dir / "report.html");
   EXPECT_NE(html.find("dropped at --trace-max-events 100"), std::string::npos);
   fs::remove_all(dir);
+}
+
+TEST(TraceOptions, ACappedTraceSaysWhatItHoldsWhole) {
+  // The same run, whole and capped: window_s of the capped one ends at the earliest event it
+  // dropped, and it holds every slice, instant and flow event of the whole one before that.
+  const fs::path whole_dir = scratch_dir("trace-whole"), capped_dir = scratch_dir("trace-capped");
+  ASSERT_EQ(run_rtsim(kRun + "--trace perfetto -q --out " + whole_dir.string()).exit_code, 0);
+  const auto r =
+      run_rtsim(kRun + "--trace perfetto --trace-max-events 400 -q --out " + capped_dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json whole = json::parse(read_file(whole_dir / "stats.json"))["trace"];
+  const json capped = json::parse(read_file(capped_dir / "stats.json"))["trace"];
+  const double t0 = capped["window_s"][0].get<double>(), t1 = capped["window_s"][1].get<double>();
+  std::printf("whole: %.9g to %.9g s; capped at 400 events: whole from %.9g to %.9g s\n",
+              whole["window_s"][0].get<double>(), whole["window_s"][1].get<double>(), t0, t1);
+  EXPECT_LT(t1, whole["window_s"][1].get<double>());
+  EXPECT_GT(t1, t0);
+  EXPECT_EQ(capped["requested_window_s"], whole["window_s"]);
+  EXPECT_FALSE(whole.contains("requested_window_s"));
+  EXPECT_GT(capped["perfetto"]["counters_dropped"].get<int>(), 0);
+  EXPECT_TRUE(r.output.find("it holds every event from") != std::string::npos) << r.output;
+  const auto events_before = [&](const fs::path& file) {
+    std::multiset<std::string> out;
+    const json trace = json::parse(read_file(file));
+    for (const auto& e : trace["traceEvents"])
+      if (e["ph"] != "M" && e["ph"] != "C" && e["ts"].get<double>() < t1 * 1e6)
+        out.insert(e.dump());
+    return out;
+  };
+  const auto expected = events_before(whole_dir / "trace.json");
+  EXPECT_GT(expected.size(), 50u);
+  EXPECT_EQ(events_before(capped_dir / "trace.json"), expected);
+  fs::remove_all(whole_dir);
+  fs::remove_all(capped_dir);
 }
 
 TEST(TraceOptions, AFileTooLargeToOpenIsSaidWithWhatKeepsLess) {

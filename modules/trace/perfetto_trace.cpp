@@ -240,9 +240,18 @@ int PerfettoTrace::track(std::string_view hierarchical_name) {
   return id;
 }
 
-bool PerfettoTrace::admit() {
+bool PerfettoTrace::admit(std::string_view ts, bool counter) {
   if (!open_ || (max_events_ != 0 && written_ >= max_events_)) {
     ++dropped_;
+    if (counter) {
+      ++counters_dropped_;
+      return false;
+    }
+    // Events arrive about in time order, not exactly (temporally decoupled initiators): what the
+    // file holds whole is what lies before the earliest event dropped.
+    double us = 0.0;
+    std::from_chars(ts.data(), ts.data() + ts.size(), us);
+    if (us < first_dropped_us_) first_dropped_us_ = us;
     return false;
   }
   ++written_;
@@ -290,7 +299,7 @@ void PerfettoTrace::write_slice(int track, std::string_view name, std::string_vi
                                 std::string_view dur, std::initializer_list<Arg> args) {
   const Track& t = track_at(track);
   for (const Arg& a : args) json_number(a.value, "argument value");  // validate before counting
-  if (!admit()) return;
+  if (!admit(ts)) return;
   write_common(t, name, 'X', ts);
   out_ << ",\"dur\":" << dur;
   write_args(args);
@@ -299,7 +308,7 @@ void PerfettoTrace::write_slice(int track, std::string_view name, std::string_vi
 
 void PerfettoTrace::write_instant(int track, std::string_view name, std::string_view ts) {
   const Track& t = track_at(track);
-  if (!admit()) return;
+  if (!admit(ts)) return;
   write_common(t, name, 'i', ts);
   out_ << ",\"s\":\"t\"}";
 }
@@ -308,7 +317,7 @@ void PerfettoTrace::write_counter(int track, std::string_view name, std::string_
                                   double value) {
   const Track& t = track_at(track);
   const std::string v = json_number(value, "counter value");
-  if (!admit()) return;
+  if (!admit(ts, /*counter=*/true)) return;
   scratch_.assign(t.counter_prefix);
   scratch_.append(name);
   write_common(t, scratch_, 'C', ts);
@@ -334,8 +343,9 @@ void PerfettoTrace::slice(int track, std::string_view name, const sc_core::sc_ti
 void PerfettoTrace::flow(int track, std::string_view name, std::uint64_t id, FlowPhase phase,
                          const sc_core::sc_time& t) {
   const Track& tr = track_at(track);
-  if (!admit()) return;
-  write_common(tr, name, static_cast<char>(phase), us_of(t));
+  const std::string ts = us_of(t);
+  if (!admit(ts)) return;
+  write_common(tr, name, static_cast<char>(phase), ts);
   out_ << ",\"cat\":\"flow\",\"id\":" << id << '}';
 }
 

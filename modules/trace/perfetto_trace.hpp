@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
@@ -100,6 +101,12 @@ class PerfettoTrace {
   std::size_t max_events() const { return max_events_; }
   std::size_t events_written() const { return written_; }  ///< excluding metadata
   std::size_t events_dropped() const { return dropped_; }
+  /// The earliest time (simulated seconds) of a slice, instant or flow event the cap dropped: the
+  /// trace holds every one before it. Infinity when none was dropped. (Counters are written after
+  /// the simulation, so a cap reached during it drops them all: counted apart.)
+  double first_dropped_s() const { return first_dropped_us_ * 1e-6; }
+  /// The counter events the cap dropped.
+  std::size_t counters_dropped() const { return counters_dropped_; }
   /// Number of tracks created so far.
   std::size_t track_count() const { return tracks_.size(); }
 
@@ -112,7 +119,9 @@ class PerfettoTrace {
   };
 
   const Track& track_at(int track) const;
-  bool admit();  ///< counts the event; false when it must be dropped
+  /// Counts the event at `ts` (µs, as written), a counter's or another; false when it must be
+  /// dropped.
+  bool admit(std::string_view ts, bool counter = false);
   void begin_event();
   void write_common(const Track& t, std::string_view name, char phase, std::string_view ts);
   void write_args(std::initializer_list<Arg> args);
@@ -129,6 +138,8 @@ class PerfettoTrace {
   std::size_t max_events_;
   std::size_t written_ = 0;
   std::size_t dropped_ = 0;
+  double first_dropped_us_ = std::numeric_limits<double>::infinity();
+  std::size_t counters_dropped_ = 0;
   bool first_event_ = true;
   bool open_ = false;
   std::vector<Track> tracks_;

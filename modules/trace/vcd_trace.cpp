@@ -172,7 +172,7 @@ void VcdTrace::write(std::ostream& out, std::uint64_t from, std::uint64_t to,
     heap.pop();
     if (t > to) continue;
     if (max_changes != 0 && written_ >= max_changes) {
-      ++dropped_;
+      if (dropped_++ == 0) first_dropped_ = t;  // in time order: the first is the earliest
     } else {
       if (t != stamp) out << '#' << t << '\n';
       stamp = t;

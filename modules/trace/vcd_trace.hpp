@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ class VcdTrace {
   const std::filesystem::path& path() const { return path_; }
   std::size_t changes_written() const { return written_; }  ///< excluding the initial values
   std::size_t changes_dropped() const { return dropped_; }
+  /// The time of the first change the cap dropped (the dump holds every change before it), in
+  /// SystemC ticks; the maximum when none was.
+  std::uint64_t first_dropped() const { return first_dropped_; }
   std::size_t signal_count() const { return signals_.size(); }
 
  private:
@@ -72,6 +76,7 @@ class VcdTrace {
   bool done_ = false;
   std::size_t written_ = 0;
   std::size_t dropped_ = 0;
+  std::uint64_t first_dropped_ = std::numeric_limits<std::uint64_t>::max();
 };
 
 /// The short identifier VCD gives signal number `index` (printable ASCII, base 94), for tests.

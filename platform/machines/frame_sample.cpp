@@ -79,6 +79,34 @@ FrameSample::FrameSample(int width, int height, int every, int window_rows, int 
     }
 }
 
+modules::UnitSchema FrameSample::units() {
+  using modules::StatUnit;
+  return {{"every", StatUnit::count},
+          {"window_rows", StatUnit::count},
+          {"window_units", StatUnit::count},
+          {"windows", StatUnit::count},
+          {"detailed_windows", StatUnit::count},
+          {"warmup_windows", StatUnit::count},
+          {"workers", StatUnit::count},
+          {"silent_windows", StatUnit::count},
+          {"half_width_relative", StatUnit::fraction},
+          {"systematic.half_width_relative", StatUnit::fraction},
+          {"work.frame_tests", StatUnit::count},
+          {"work.frame_rays", StatUnit::count},
+          {"work.subsample_windows", StatUnit::count},
+          {"work.windows.window", StatUnit::count},
+          {"work.windows.tests", StatUnit::count},
+          {"work.windows.rays", StatUnit::count},
+          // The times: the estimate, its interval, its parts, the regression's seconds a test
+          // and a ray, and its residual.
+          {"*_s", StatUnit::seconds},
+          {"*_s_mean", StatUnit::seconds},
+          {"*_s_sd", StatUnit::seconds},
+          {"work.s_per_test", StatUnit::seconds},
+          {"work.s_per_ray", StatUnit::seconds},
+          {"work.window_s_fixed", StatUnit::seconds}};
+}
+
 nlohmann::ordered_json FrameSample::estimate(const sc_core::sc_time& begin,
                                              const sc_core::sc_time& end,
                                              double& estimate_s) const {

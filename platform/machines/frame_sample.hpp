@@ -51,6 +51,7 @@
 #include <systemc>
 #include <vector>
 
+#include "modules/stat_unit.hpp"
 #include "platform/functional/window_work.hpp"
 
 namespace rtsim::platform {
@@ -97,6 +98,8 @@ class FrameSample {
 
   /// The estimate from the sampled run's frame [begin, end]: stats.json `sample`, and the
   /// estimated frame time in `estimate_s`.
+  /// The units of estimate()'s keys (modules/stat_unit.hpp; stats.json `sample`).
+  static modules::UnitSchema units();
   nlohmann::ordered_json estimate(const sc_core::sc_time& begin, const sc_core::sc_time& end,
                                   double& estimate_s) const;
 

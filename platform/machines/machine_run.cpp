@@ -88,8 +88,22 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
   if (!window_) throw std::logic_error(machine_ + ": finish() before stats_over()");
   // The machine's keys first were added by the machine; the common ones lead.
   nlohmann::ordered_json out;
+  // The unit of each number (modules/stat_unit.hpp), declared beside what writes it.
+  using modules::StatUnit;
+  modules::UnitSchema units{{"module_classes.*.instances", StatUnit::count},
+                            {"module_classes.*.instances_reporting", StatUnit::count},
+                            {"simulation.delta_cycles", StatUnit::count},
+                            {"simulation.process_activations", StatUnit::count},
+                            {"simulation.activations.*", StatUnit::count}};
+  units.add(modules::LatencyRecorder::units(), "ray_latency_s.");
+  // The options' keys are declared whether or not they are there: the options change no other
+  // key of stats.json, `units` included.
+  units.add(modules::LatencyProbe::units(), "latency_probe.");
+  units.add(faults_units(), "faults.");
+  units.add(MachineTrace::units(), "trace.");
+  units.add(FrameSample::units(), "sample.");
   // Every statistics group alive is one of this run's modules (one simulation a process).
-  out["modules"] = modules::StatDirectory::instance().to_json(*window_);
+  out["modules"] = modules::StatDirectory::instance().to_json(*window_, &units);
   out["module_classes"] = modules::class_aggregates(out["modules"]);
   out["ray_latency_s"] = ray_latency.to_json();
   // What the simulation cost in events: an idle module should cost none (modules/activations.hpp).
@@ -113,6 +127,8 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
                               sample_->functional_rows());
   }
   result_.stats = std::move(out);
+  units.add(result_.units);
+  result_.units = std::move(units);
   result_.image = frame_.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
   return std::move(result_);

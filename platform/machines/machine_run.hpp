@@ -71,6 +71,9 @@ class MachineRun {
 
   /// What the machine adds to stats.json besides its modules (its headline keys).
   nlohmann::ordered_json& machine_stats() { return result_.stats; }
+  /// The units of those keys, declared beside the code that writes them (modules/stat_unit.hpp:
+  /// "array.messages_sent_by_type.*" counts); tests/stats_units_test.cpp finds any key without.
+  modules::UnitSchema& machine_units() { return result_.units; }
 
   /// The rest of stats.json — `modules`, `ray_latency_s`, `latency_probe`, `faults`, `trace` —
   /// and the image, with the wall time of the whole run.

@@ -116,6 +116,12 @@ void inject_faults(const std::string& machine, const std::vector<MemoryFault>& f
   }
 }
 
+modules::UnitSchema faults_units() {
+  using modules::StatUnit;
+  // The mask is a word's bits to flip, shown as the number it is.
+  return {{"word", StatUnit::count}, {"xor_mask", StatUnit::count}, {"applied", StatUnit::count}};
+}
+
 nlohmann::ordered_json faults_json(const std::vector<modules::Memory*>& memories) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const auto* m : memories)

@@ -49,5 +49,7 @@ std::vector<MemoryFault> take_faults(std::vector<MemoryFault>& faults, Accepts i
 }
 /// stats.json `faults`: [{memory, word, xor_mask, applied}] (empty: none injected).
 nlohmann::ordered_json faults_json(const std::vector<modules::Memory*>& memories);
+/// The units of faults_json's numbers (modules/stat_unit.hpp; stats.json `faults`).
+modules::UnitSchema faults_units();
 
 }  // namespace rtsim::platform

@@ -52,6 +52,34 @@ bool MachineTrace::keeps(std::string_view module, const sc_core::sc_time& start,
   return it->second;
 }
 
+void MachineTrace::hop(std::string_view module, std::string_view flow, std::uint64_t id,
+                       const sc_core::sc_time& t) {
+  if (!perfetto_ || !keeps(module, t, sc_core::SC_ZERO_TIME)) return;
+  auto it = flows_started_.find(flow);
+  if (it == flows_started_.end()) it = flows_started_.emplace(std::string(flow), 0).first;
+  const bool first = it->second.insert(id).second;
+  perfetto_->flow(
+      perfetto_->track(module), flow, id,
+      first ? modules::PerfettoTrace::FlowPhase::kStart : modules::PerfettoTrace::FlowPhase::kStep,
+      t);
+}
+
+modules::UnitSchema MachineTrace::units() {
+  using modules::StatUnit;
+  return {{"window_s", StatUnit::seconds},
+          {"stats_interval_s", StatUnit::seconds},
+          {"requested_window_s", StatUnit::seconds},
+          {"max_events", StatUnit::count},
+          {"signals", StatUnit::count},
+          {"perfetto.events_written", StatUnit::count},
+          {"perfetto.events_dropped", StatUnit::count},
+          {"perfetto.counters_dropped", StatUnit::count},
+          {"perfetto.bytes", StatUnit::bytes},
+          {"vcd.changes_written", StatUnit::count},
+          {"vcd.changes_dropped", StatUnit::count},
+          {"vcd.bytes", StatUnit::bytes}};
+}
+
 nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
   if (!on()) return nullptr;
   // The signals, from the sources of stats.json's numbers, by stats.json's names.
@@ -83,7 +111,11 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
       if (to > from) perfetto_->counter(track, s.what, time_of(to), static_cast<double>(level));
     }
     const auto pair = [](double a, double b) { return nlohmann::json::array({a, b}).dump(); };
-    perfetto_->other_data("rtsim_window_s", pair(seconds_of(from), seconds_of(to)));
+    // The window it holds whole (up to the earliest event its cap dropped).
+    perfetto_->other_data(
+        "rtsim_window_s",
+        pair(seconds_of(from),
+             std::max(seconds_of(from), std::min(seconds_of(to), perfetto_->first_dropped_s()))));
     perfetto_->other_data("rtsim_stats_interval_s",
                           pair(window.begin.to_seconds(), window.end.to_seconds()));
     perfetto_->other_data("rtsim_modules", nlohmann::json(filter_.modules).dump());
@@ -101,8 +133,15 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
   }
   if (perfetto_) perfetto_->close();
 
+  // What the traces hold whole: the window, up to the earliest event a cap dropped.
+  double kept_to = seconds_of(to);
+  if (perfetto_) kept_to = std::min(kept_to, perfetto_->first_dropped_s());
+  if (vcd_ && vcd_->changes_dropped() > 0)
+    kept_to = std::min(kept_to, seconds_of(std::max(from, vcd_->first_dropped())));
+  kept_to = std::max(kept_to, seconds_of(from));
   nlohmann::ordered_json j;
-  j["window_s"] = {seconds_of(from), seconds_of(to)};
+  j["window_s"] = {seconds_of(from), kept_to};
+  if (kept_to < seconds_of(to)) j["requested_window_s"] = {seconds_of(from), seconds_of(to)};
   j["stats_interval_s"] = {window.begin.to_seconds(), window.end.to_seconds()};
   j["modules"] = filter_.modules;
   j["max_events"] = max_events_;
@@ -116,6 +155,7 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
     j["perfetto"] = {{"file", perfetto_->path().filename().string()},
                      {"events_written", perfetto_->events_written()},
                      {"events_dropped", perfetto_->events_dropped()},
+                     {"counters_dropped", perfetto_->counters_dropped()},
                      {"bytes", bytes_of(perfetto_->path())}};
   if (vcd_)
     j["vcd"] = {{"file", vcd_->path().filename().string()},

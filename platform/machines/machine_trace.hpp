@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 #include <systemc>
+#include <unordered_set>
 
 #include "modules/busy_timeline.hpp"
 #include "modules/slice_sink.hpp"
@@ -59,12 +60,17 @@ class MachineTrace final : public modules::SliceSink {
     if (perfetto_ && keeps(module, t, sc_core::SC_ZERO_TIME))
       perfetto_->flow(perfetto_->track(module), name, id, phase, t);
   }
+  /// A step of a ray's (or job's) flow: the first step of `id` under `flow` starts it.
+  void hop(std::string_view module, std::string_view flow, std::uint64_t id,
+           const sc_core::sc_time& t) override;
   bool records() const override { return perfetto_ != nullptr; }
 
   /// After the simulation: writes the busy and depth signals of every statistics group alive
   /// that the filter keeps, closes the files and returns stats.json's `trace` object (null when
   /// no trace was asked for); `window` is the frame the statistics cover. Call once.
   nlohmann::ordered_json finish(const modules::StatWindow& window);
+  /// The units of finish()'s keys (modules/stat_unit.hpp; stats.json `trace`).
+  static modules::UnitSchema units();
 
  private:
   bool keeps(std::string_view module, const sc_core::sc_time& start,
@@ -76,6 +82,8 @@ class MachineTrace final : public modules::SliceSink {
   std::unique_ptr<modules::PerfettoTrace> perfetto_;
   std::unique_ptr<modules::VcdTrace> vcd_;
   std::map<std::string, bool, std::less<>> module_kept_;  ///< the filter's answer, per name
+  /// The items whose flow has started, by flow name ("ray", "job").
+  std::map<std::string, std::unordered_set<std::uint64_t>, std::less<>> flows_started_;
 };
 
 }  // namespace rtsim::platform

@@ -16,10 +16,10 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // stats.json keys that are not stats columns: constant for a sweep, already leading columns, or
-// the whole parameter set (in each point's own stats.json).
-constexpr std::array<std::string_view, 9> kNotStats = {"tool",    "version", "schema_version",
-                                                       "command", "machine", "scene",
-                                                       "width",   "height",  "params"};
+// the whole parameter set and the units of the numbers (in each point's own stats.json).
+constexpr std::array<std::string_view, 10> kNotStats = {
+    "tool",  "version", "schema_version", "command", "machine",
+    "scene", "width",   "height",         "params",  "units"};
 
 // The stats a reader looks for first, in this order; the rest follow sorted by name.
 constexpr std::array<std::string_view, 13> kHeadline = {

@@ -169,7 +169,7 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   modules::Counter ids_{*this, "ids", "IDs broadcast"};
   modules::Counter cycles_{*this, "cycles", "completed passes through the ID list"};
   modules::Counter packets_{*this, "packets", "packets broadcast"};
-  modules::Counter packet_words_{*this, "packet_words", "their words"};
+  modules::Counter packet_words_{*this, "packet_words", "their words", modules::StatUnit::words};
   modules::Counter hit_packets_{*this, "hit_packets", "packets some BIC captured"};
   modules::Counter captures_{*this, "captures", "packets captured, summed over BICs"};
   modules::Duration hit_packet_time_{*this, "hit_packet_time_s",

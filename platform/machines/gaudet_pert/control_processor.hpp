@@ -51,7 +51,8 @@ class ControlProcessor : public sc_core::sc_module, public modules::StatGroup {
   sc_core::sc_time load_time_ = sc_core::SC_ZERO_TIME;
   sc_core::sc_time frame_time_ = sc_core::SC_ZERO_TIME;
   modules::Counter words_loaded_{*this, "words_loaded",
-                                 "words downloaded into the buses' and the PERTs' memories"};
+                                 "words downloaded into the buses' and the PERTs' memories",
+                                 modules::StatUnit::words};
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -275,6 +275,19 @@ nlohmann::ordered_json gaudet_stats(const accel::ShellTree& tree, const gaudet::
   return out;
 }
 
+/// The units of gaudet_stats' numbers (modules/stat_unit.hpp).
+modules::UnitSchema gaudet_units() {
+  using modules::StatUnit;
+  return {{"gaudet.words_loaded", StatUnit::words},
+          {"gaudet.buses.*.data_set_words", StatUnit::words},
+          {"gaudet.buses.*.utilization", StatUnit::fraction},
+          {"gaudet.prim.eal.P2", StatUnit::fraction},
+          // Times: the load, each processor kind's split (in all and per ray), the EAL model's.
+          {"gaudet.*_s", StatUnit::seconds},
+          // Counts, peaks and means per ray (packets, box tests, leaf shells), the EAL's n, p, r.
+          {"gaudet.*", StatUnit::count}};
+}
+
 }  // namespace
 
 void GaudetPert::declare_params(params::ParamRegistry& r) const {
@@ -432,6 +445,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   const sc_core::sc_time frame_time = p.control->frame_time();
   run.stats_over(p.control->load_time(), frame_time);
   run.machine_stats() = gaudet_stats(tree, sets, p, frame_time);
+  run.machine_units() = gaudet_units();
   progress.report();
   return run.finish(progress.latency(), memories);
 }

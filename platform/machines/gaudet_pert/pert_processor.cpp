@@ -37,6 +37,10 @@ PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& ru
       params_(run.registry(), this->name()),
       probe_(&disabled_probe()) {
   set_timing(modules::read_processor_timing(params_));
+  const std::string own = this->name();  // "pertK.shade"
+  const std::size_t digit = own.find_first_of("0123456789");
+  if (digit != std::string::npos) pert_ = std::strtoull(own.c_str() + digit, nullptr, 10);
+  flow_base_ = pert_ << 32;
 }
 
 void PertProcessor::begin_frame() {

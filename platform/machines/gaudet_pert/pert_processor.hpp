@@ -71,7 +71,10 @@ class PertProcessor : public modules::Processor {
   void set_probe(RayProbe& p) { probe_ = &p; }
   /// Elaboration: the link its messages cross to the next processor's queue (none: they arrive
   /// as soon as they are written).
-  void set_output_link(modules::Link& link) { out_link_ = &link; }
+  void set_output_link(modules::Link& link) {
+    out_link_ = &link;
+    link.trace_to(trace_);
+  }
 
  protected:
   /// Reads its parameters under its hierarchical name ("pert0.shade").
@@ -105,22 +108,26 @@ class PertProcessor : public modules::Processor {
   }
   /// compute() for ray `t` at `stage` (--latency-probe): the gap since the ray's cursor is
   /// queueing at `stage` (unless the caller attributed it otherwise first), the compute service.
+  /// Traced as a step of the ray's flow (its id within the machine: its PERT's number in the
+  /// high bits, its own below).
   void compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
+    hop("ray", flow_base_ | t.id);
     if (t.journey == modules::LatencyProbe::kNoJourney) {
-      compute(c, what);
+      compute(c, what, {{"ray", t.id}, {"pert", pert_}});
       return;
     }
     probe_->to(t, stage, RayProbe::Part::kQueueing, clock_.now());
-    compute(c, what);
+    compute(c, what, {{"ray", t.id}, {"pert", pert_}});
     probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
   }
   using Processor::compute_for;
 
   /// A message of `words` 32-bit words that the processor wrote into its output FIFO since
   /// `since` (until now) crosses the ring link: when it arrives at the next queue.
-  sc_core::sc_time over_link(unsigned words, const sc_core::sc_time& since) {
+  sc_core::sc_time over_link(unsigned words, const sc_core::sc_time& since, const RayTicket& ray) {
     if (!out_link_) return clock_.now();
-    return out_link_->transfer(std::uint64_t{32} * words, since, clock_.now());
+    return out_link_->transfer(std::uint64_t{32} * words, since, clock_.now(),
+                               {"ray", "ray", ray.id, flow_base_ | ray.id});
   }
   /// How long after leaving the sender a message arrives (0 without a link).
   sc_core::sc_time link_latency() const {
@@ -134,14 +141,18 @@ class PertProcessor : public modules::Processor {
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
   modules::Link* out_link_ = nullptr;
+  /// Its PERT's number ("pert3.shade": 3), and that number in the high bits of its rays' flows
+  /// (a ray's id is its PERT's own count).
+  std::uint64_t pert_ = 0;
+  std::uint64_t flow_base_ = 0;
   modules::Duration starved_{*this, "starved_s",
                              "waiting for broadcast data with room for a ray that has not come"};
   // Gaudet's split of its time (L1045): latency is waiting for data, pipeline wait the rest of
   // its waiting but starved.
-  modules::Computed latency_{*this, "latency_s",
+  modules::Computed latency_{*this, "latency_s", modules::StatUnit::seconds,
                              "waiting for broadcast data with nothing else to do",
                              [this] { return split().latency.to_seconds(); }};
-  modules::Computed pipeline_wait_{*this, "pipeline_wait_s",
+  modules::Computed pipeline_wait_{*this, "pipeline_wait_s", modules::StatUnit::seconds,
                                    "waiting for work or for room in the next stage's queue",
                                    [this] { return split().pipeline_wait.to_seconds(); }};
 };

@@ -158,7 +158,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
   ++rays_;
   // Blocked until the queue took it, less its flight on the link.
-  blocked_until(modules::send_message(out, res, over_link(PrimToShade::kWords, since),
+  blocked_until(modules::send_message(out, res, over_link(PrimToShade::kWords, since, t),
                                       std::uint64_t{32} * PrimToShade::kWords) -
                 link_latency());
 }

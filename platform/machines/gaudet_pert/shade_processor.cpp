@@ -112,7 +112,7 @@ void ShadeProcessor::send(RayTicket& t, const sc_core::sc_time& since) {
   t.sent = clock_.now();  // ray_latency_s and the probe's journey start here
   probe_->begin(t, t.sent);
   ShadeToShell msg{t};
-  modules::send_message(out, msg, over_link(ShadeToShell::kWords, since),
+  modules::send_message(out, msg, over_link(ShadeToShell::kWords, since, t),
                         std::uint64_t{32} * ShadeToShell::kWords);
 }
 

@@ -188,7 +188,7 @@ void ShellProcessor::run() {
         probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
       const sc_core::sc_time since = clock_.now();
       compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
-      modules::send_message(out, msg, over_link(msg.words(), since),
+      modules::send_message(out, msg, over_link(msg.words(), since, msg.ticket),
                             std::uint64_t{32} * msg.words());
       ++rays_;
       continue;

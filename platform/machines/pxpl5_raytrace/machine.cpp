@@ -277,6 +277,18 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
                            {"latency_mean_s", latency_sum / static_cast<double>(shown.size())},
                            {"latency_max_s", latency_max},
                            {"per_frame", std::move(per_frame)}};
+  using modules::StatUnit;
+  run.machine_units() = {{"*_per_second", StatUnit::rate},
+                         {"pxpl5.frame_times_s", StatUnit::seconds},
+                         {"pxpl5.screen_coverage", StatUnit::fraction},
+                         {"pxpl5.sampling.update_fraction", StatUnit::fraction},
+                         // Each caster's busy time over the busiest one's.
+                         {"pxpl5.caster_workload", StatUnit::fraction},
+                         {"pxpl5.rays_per_pixel", StatUnit::ratio},
+                         {"frame_sequence.*_s", StatUnit::seconds},
+                         // Processors, regions, lattice points, rays, frames, levels, messages.
+                         {"pxpl5.*", StatUnit::count},
+                         {"frame_sequence.*", StatUnit::count}};
   return run.finish(modules::LatencyRecorder{}, {});
 }
 

@@ -78,11 +78,11 @@ class ArrayHost : public sc_core::sc_module, public modules::StatGroup {
   sc_core::sc_time view_sent_ = sc_core::SC_ZERO_TIME;
 
   modules::Counter records_{*this, "records", "records broadcast (polygons, attributes, view)"};
-  modules::Counter words_{*this, "words", "words broadcast"};
+  modules::Counter words_{*this, "words", "words broadcast", modules::StatUnit::words};
   modules::Duration port_busy_{*this, "port_busy_s",
                                "time its port to processor (0, 0) carried records (the load's, "
                                "apart from the frame)"};
-  modules::Computed load_time_{*this, "load_time_s",
+  modules::Computed load_time_{*this, "load_time_s", modules::StatUnit::seconds,
                                "when it began the view: the array had stored and sorted the "
                                "scene (the load, apart from the frame)",
                                [this] { return view_sent_.to_seconds(); }};

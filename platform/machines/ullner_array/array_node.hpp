@@ -209,11 +209,13 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   struct PipelineStats : modules::StatGroup {
     using modules::StatGroup::StatGroup;
     modules::Busy busy{*this, "time fetching polygons or issuing tests (its utilisation)"};
-    modules::Counter words_fetched{*this, "words_fetched", "polygon words fetched from memory"};
+    modules::Counter words_fetched{*this, "words_fetched", "polygon words fetched from memory",
+                                   modules::StatUnit::words};
     modules::Counter words_wasted{*this, "words_wasted",
                                   "u and v words fetched for polygons that passed stage 3 on a "
                                   "bound a closer hit still in the pipe was about to tighten "
-                                  "(L847)"};
+                                  "(L847)",
+                                  modules::StatUnit::words};
   };
   struct Timing {
     std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
@@ -360,8 +362,8 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   modules::CounterArray received_{*this, "received_", message_type_names(),
                                   "messages taken, by type"};
   modules::CounterArray sent_{*this, "sent_", message_type_names(), "messages sent, by type"};
-  modules::Computed polygons_{*this, "polygons", "polygons its memory holds",
-                              [this] { return line_at_.size(); }};
+  modules::Computed polygons_{*this, "polygons", modules::StatUnit::count,
+                              "polygons its memory holds", [this] { return line_at_.size(); }};
   modules::Counter records_{*this, "load_records", "broadcast records received"};
   modules::Counter records_dropped_{*this, "load_records_dropped",
                                     "broadcast records (or its lists) its memory had no room for "
@@ -375,7 +377,7 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   modules::Duration load_memory_busy_{*this, "load_memory_busy_s",
                                       "time its memory took broadcast records in, copied them "
                                       "out, or took the subvolume lists"};
-  modules::Computed ready_{*this, "frame_ready_s",
+  modules::Computed ready_{*this, "frame_ready_s", modules::StatUnit::seconds,
                            "when it had handled the view (its load's end, its frame's start)",
                            [this] { return frame_ready_.to_seconds(); }};
   modules::Counter subvolumes_{*this, "subvolumes_searched", "subvolumes searched"};

@@ -415,6 +415,17 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     in_flight.push_back(
         {{"at", f.name()}, {"word", f.word}, {"xor_mask", f.xor_mask}, {"applied", f.applied}});
   if (!in_flight.empty()) res["array"]["faults_in_flight"] = std::move(in_flight);
+  using modules::StatUnit;
+  run.machine_units() = {{"intersection_tests", StatUnit::count},
+                         {"array.load_time_s", StatUnit::seconds},
+                         {"array.compute_time_s", StatUnit::seconds},
+                         {"array.readout_time_s", StatUnit::seconds},
+                         {"array.words_fetched", StatUnit::words},
+                         {"array.termination.credit_bits", StatUnit::bits},
+                         {"array.node_busy_fraction", StatUnit::fraction},
+                         {"array.faults_in_flight.*", StatUnit::count},
+                         // rows, cols, subvolumes, polygons, messages, results, credits
+                         {"array.*", StatUnit::count}};
   return run.finish(tally.latency, memories);
 }
 

@@ -85,6 +85,7 @@ Host::Host(sc_core::sc_module_name name, MachineRun& run, const HostAttachment& 
     lighting_.emplace(attached.lighting.unit_name, attached.lighting.interval,
                       1 + 2 * attached.lighting.adder_stages, "inner_products");
   set_timing(modules::read_processor_timing(modules::ModuleParams(run.registry(), this->name())));
+  ray_link_.trace_to(run.trace());
   SC_THREAD(run);
 }
 
@@ -114,7 +115,7 @@ void Host::send(RayRequest req) {
   // host writes them; the ray is in the queue when the last one arrives (the host only sends
   // when the queue has room).
   req.journey = probe_.begin(req.sent);
-  req.arrived = ray_link_.transfer(ray_bits_, since, req.sent);
+  req.arrived = ray_link_.transfer(ray_bits_, since, req.sent, {"ray", "ray", req.id});
   probe_.add(req.journey, probe_ray_link_, modules::LatencyPart::kTransfer, req.arrived - req.sent);
   modules::send_message(ray_out, req, req.arrived, ray_bits_);
   ++outstanding_;
@@ -175,6 +176,7 @@ void Host::run() {
       const Cost c = shade.on_result(r, res.found, res.hit, frame_.fb(), spawned);
       frame_.counters().cost += c;
       const sc_core::sc_time t = result_time(c);
+      hop("ray", res.request.id);
       compute_for(t, "result", {{"ray", res.request.id}, {"spawned", spawned.size()}});
       for (const auto& s : spawned) {
         RayRequest req;

@@ -135,6 +135,13 @@ RunResult UllnerPeripheral::run(scenes::Scene& scene, FunctionalTwin& twin,
                               : 0.0},
       {"load_time_s", host.load_time().to_seconds()},
       {"grid_divisions", pc.grid_divisions}};
+  using modules::StatUnit;
+  run.machine_units() = {{"intersection_tests", StatUnit::count},
+                         {"peripheral.*_s", StatUnit::seconds},
+                         // A share of the modelling space's extent.
+                         {"peripheral.mean_ray_travel", StatUnit::ratio},
+                         // Polygons, stages, divisions and the means per ray.
+                         {"peripheral.*", StatUnit::count}};
   return run.finish(host.latency(), {&peripheral.parameters});
 }
 

@@ -210,6 +210,7 @@ Peripheral::Peripheral(sc_core::sc_module_name name, MachineRun& run, const task
   probe_memories_ = probe.stage(parameters.name());
   probe_pipeline_ = probe.stage(std::string(this->name()) + ".pipeline");
   probe_result_link_ = probe.stage(result_link_.name());
+  result_link_.trace_to(trace_);
   SC_THREAD(run);
 }
 
@@ -262,6 +263,7 @@ void Peripheral::run() {
       probe_.add(journey, probe_pipeline_, LatencyPart::kService, done - batch.first_issue);
       trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
                    batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", n}});
+      trace_.hop("peripheral.pipeline", "ray", req.id, batch.first_issue);
       clock_.catch_up(batch.next_free - times(stage, config_.fetch_stages));
     } else {
       // Auxiliary processor (L594-L596): it walks the n_d subvolumes along the ray at t_d each
@@ -290,15 +292,19 @@ void Peripheral::run() {
       aux_free_ = std::max(start + walk, batch.next_free - feed);
       aux_->busy.record(start, aux_free_ - start);
       // The aux's busy interval (its busy signal), and the walk nested in it.
-      if (aux_free_ > start)
+      if (aux_free_ > start) {
         trace_.slice("peripheral.aux", "ray", start, aux_free_ - start,
                      {{"ray", req.id}, {"subvolumes", cells}, {"polygons", tests}});
+        trace_.hop("peripheral.aux", "ray", req.id, start);
+      }
       if (walk > sc_core::SC_ZERO_TIME)
         trace_.slice("peripheral.aux", "walk", start, walk,
                      {{"ray", req.id}, {"subvolumes", cells}});
-      if (tests > 0)
+      if (tests > 0) {
         trace_.slice("peripheral.pipeline", "ray", batch.first_issue,
                      batch.next_free - batch.first_issue, {{"ray", req.id}, {"polygons", tests}});
+        trace_.hop("peripheral.pipeline", "ray", req.id, batch.first_issue);
+      }
       clock_.catch_up(aux_free_);
       aux_->dda_steps += steps;
       aux_->subvolumes_visited += cells;
@@ -307,7 +313,8 @@ void Peripheral::run() {
     res.service_start = start;
     res.answered = done;
     // The answer crosses the result link into the host's result queue.
-    res.arrived = result_link_.transfer(RayResult::kWireBits, done);
+    res.arrived =
+        result_link_.transfer(RayResult::kWireBits, done, done, {"result", "ray", req.id});
     probe_.add(journey, probe_result_link_, LatencyPart::kTransfer, res.arrived - done);
     modules::send_message(result_out, res, res.arrived, RayResult::kWireBits);
   }

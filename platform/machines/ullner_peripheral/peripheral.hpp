@@ -73,7 +73,8 @@ class Peripheral : public sc_core::sc_module {
     modules::Counter primary_hits{*this, "primary_hits", "primary rays that hit a polygon"};
     modules::Scalar primary_travel{
         *this, "primary_travel",
-        "the sum of primary rays' hit distances from the modelling space (scene units)"};
+        "the sum of primary rays' hit distances from the modelling space (scene units)",
+        modules::StatUnit::ratio};
   };
   const Served& served() const { return served_; }
 
@@ -104,8 +105,8 @@ class Peripheral : public sc_core::sc_module {
   sc_core::sc_time aux_free_ = sc_core::SC_ZERO_TIME;
   std::optional<AuxProcessor> aux_;  ///< with the grid
   Served served_;
-  modules::Computed polygons_stat_{parameters, "polygons", "polygons loaded (a line each)",
-                                   [this] { return polygons_; }};
+  modules::Computed polygons_stat_{parameters, "polygons", modules::StatUnit::count,
+                                   "polygons loaded (a line each)", [this] { return polygons_; }};
 };
 
 }  // namespace rtsim::platform::ullner

@@ -154,6 +154,8 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
       answers_(timing_.engines(), 0),
       engine_class_(under(*this, kEngine)) {
   load.register_b_transport(this, &EngineChain::load_transport);
+  inner_link_.trace_to(run.trace());
+  link_out_.trace_to(run.trace());
   const modules::ModuleParams self(run.registry(), this->name());
   dead_engine_ = self.get(kDeadEngine);
   if (dead_engine_ >= static_cast<std::int64_t>(engines()))
@@ -516,14 +518,17 @@ void EngineChain::leave(const sc_core::sc_time& start) {
   const sc_core::sc_time leaves = plus(start, timing_.engine().compute_latency);
   // The first inner link counts every description in order, from when the first processor
   // handed it over (the N - 1 links after it carry the same, links_ and bits_all_links_).
-  if (engines() > 1)
-    inner_link_.transfer(RayDescription::kWireBits, engine_modules_.empty()
-                                                        ? timing_.take_first_handed()
-                                                        : d.msg.first_handed);
+  if (engines() > 1) {
+    const sc_core::sc_time handed =
+        engine_modules_.empty() ? timing_.take_first_handed() : d.msg.first_handed;
+    inner_link_.transfer(RayDescription::kWireBits, handed, handed,
+                         {"description", "ray", d.request.id});
+  }
   ullner::RayResult res = read_answer(d.request, d.msg.description);
   res.service_start = d.accepted;
   res.answered = leaves;
-  res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves);
+  res.arrived = link_out_.transfer(RayDescription::kWireBits, leaves, leaves,
+                                   {"result", "ray", d.request.id});
   transit_total_ += leaves - d.accepted;
   using modules::LatencyPart;
   probe_.add(d.request.journey, probe_input_, LatencyPart::kQueueing,

@@ -205,21 +205,23 @@ class EngineChain : public sc_core::sc_module, private RegisterFile {
                                  "descriptions every processor passed"};
   modules::Counter loaded_{engine_class_, "load_descriptions",
                            "polygon descriptions shifted in before the frame"};
-  modules::Computed engine_count_{engine_class_, "engines", "processors in the chain",
-                                  [this] { return engines(); }};
-  modules::Computed overwrites_sum_{engine_class_, "overwrites",
+  modules::Computed engine_count_{engine_class_, "engines", modules::StatUnit::count,
+                                  "processors in the chain", [this] { return engines(); }};
+  modules::Computed overwrites_sum_{engine_class_, "overwrites", modules::StatUnit::count,
                                     "descriptions a processor overwrote, over all processors",
                                     [this] { return sum(overwrites_, engines()); }};
-  modules::Computed answers_sum_{engine_class_, "answers",
+  modules::Computed answers_sum_{engine_class_, "answers", modules::StatUnit::count,
                                  "answers a processor holding a polygon gave, over all of them",
                                  [this] { return sum(answers_, polygons_); }};
-  modules::Computed dummies_{engine_class_, "dummies", "processors holding no polygon",
+  modules::Computed dummies_{engine_class_, "dummies", modules::StatUnit::count,
+                             "processors holding no polygon",
                              [this] { return engines() - polygons_; }};
   // The first inner link's group also counts the N-1 links that carry what it carries, each one
   // hop later.
-  modules::Computed links_{inner_link_, "links", "inner links in the chain",
-                           [this] { return engines() - 1; }};
-  modules::Computed bits_all_links_{inner_link_, "bits_all_links", "bits over all inner links",
+  modules::Computed links_{inner_link_, "links", modules::StatUnit::count,
+                           "inner links in the chain", [this] { return engines() - 1; }};
+  modules::Computed bits_all_links_{inner_link_, "bits_all_links", modules::StatUnit::bits,
+                                    "bits over all inner links",
                                     [this] { return inner_link_.bits() * (engines() - 1); }};
   static std::uint64_t sum(const std::vector<std::uint64_t>& v, std::uint64_t first_n);
 

@@ -223,6 +223,16 @@ RunResult UllnerPipeline::run(scenes::Scene& scene, FunctionalTwin& twin,
                            {"xor_mask", f.xor_mask},
                            {"applied", f.applied}});
   }
+  using modules::StatUnit;
+  run.machine_units() = {{"intersection_tests", StatUnit::count},
+                         {"pipeline.description_bits", StatUnit::bits},
+                         {"pipeline.*utilization", StatUnit::fraction},
+                         {"pipeline.kept_full.fraction", StatUnit::fraction},
+                         {"pipeline.along_chain.busy_fraction", StatUnit::fraction},
+                         {"pipeline.*_s", StatUnit::seconds},
+                         {"pipeline.along_chain.*_s", StatUnit::seconds},
+                         // Processors, polygons, rays, descriptions, the fault's words.
+                         {"pipeline.*", StatUnit::count}};
   return run.finish(host.latency(), {&chain.registers});
 }
 

@@ -211,6 +211,10 @@ RunResult Vax750::run(scenes::Scene& scene, FunctionalTwin& twin, const params::
        brute ? static_cast<double>(frame.counters().total_rays()) * static_cast<double>(objects)
              : static_cast<double>(frame.counters().intersection_tests)},
       {"box_tests_charged", brute ? 0.0 : static_cast<double>(frame.counters().box_tests)}};
+  using modules::StatUnit;
+  run.machine_units() = {{"intersection_tests", StatUnit::count},
+                         {"vax.*_s", StatUnit::seconds},
+                         {"vax.*", StatUnit::count}};
   return run.finish(host.latency(), {});
 }
 

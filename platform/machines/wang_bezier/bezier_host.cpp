@@ -139,6 +139,7 @@ void BezierHost::start(const shading::TracedRay& r, bool first_sample) {
     pending_.push_back(job);
     ++st.outstanding;
   }
+  hop("ray", id);
   compute(cost, "cull", {{"ray", id}});
   st.culled = clock_.now();
   if (st.outstanding == 0) answer(id);
@@ -182,6 +183,7 @@ void BezierHost::answer(std::uint64_t id) {
   const Cost shading = shade_.on_result(r, found, hit, frame_.fb(), spawned_);
   counters.cost += shading;
   cost += shading;
+  hop("ray", id);
   compute(cost, "answer", {{"ray", id}, {"spawned", spawned_.size()}});
   latency_.add(clock_.now() - st.started);
   probe_ray(st);
@@ -235,6 +237,7 @@ void BezierHost::run() {
     if (!pending_.empty() && pipeline_input_.has_room_by(now)) {
       PatchJob job = pending_.front();
       pending_.pop_front();
+      hop("ray", job.ray);
       compute(kJobCost, "job", {{"ray", job.ray}});
       job.sent = clock_.now();
       job.arrived = job.sent;

@@ -141,6 +141,17 @@ RunResult WangBezier::run(scenes::Scene& scene, FunctionalTwin& twin,
                                                {"word", f.word},
                                                {"xor_mask", f.xor_mask},
                                                {"applied", f.applied}});
+  using modules::StatUnit;
+  run.machine_units() = {{"wang.*_per_s", StatUnit::rate},
+                         {"wang.pipeline_utilization", StatUnit::fraction},
+                         // The reference check's shares of the jobs compared and of the hits.
+                         {"wang.accuracy.disagreement*", StatUnit::fraction},
+                         {"wang.accuracy.wrong_of_hits", StatUnit::fraction},
+                         // Its errors, in scene units and pixels.
+                         {"wang.accuracy.*_error.*", StatUnit::ratio},
+                         {"wang.*_s", StatUnit::seconds},
+                         // Stages, jobs, DSPs, units, cycles, the fault's words.
+                         {"wang.*", StatUnit::count}};
   return run.finish(host.latency(), {&host.patch_memory});
 }
 

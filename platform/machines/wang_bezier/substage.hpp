@@ -111,9 +111,11 @@ class Substage : public modules::ChainHop, public modules::StatGroup {
   modules::Counter jobs_{*this, "jobs", "jobs it took"};
   modules::Duration blocked_{*this, "blocked_s",
                              "time finished jobs waited for room in the next buffer"};
-  modules::Computed dsps_{*this, "dsps", "DSPs of the substage (0: custom hardware)",
+  modules::Computed dsps_{*this, "dsps", modules::StatUnit::count,
+                          "DSPs of the substage (0: custom hardware)",
                           [this] { return pool_.dsps; }};
-  modules::Computed time_per_job_{*this, "time_per_job_s", "its work on one job",
+  modules::Computed time_per_job_{*this, "time_per_job_s", modules::StatUnit::seconds,
+                                  "its work on one job",
                                   [this] { return timing_.work.to_seconds(); }};
   /// The Culler's survivors (candidate survival, note 002 §4.7).
   std::unique_ptr<modules::Counter> kept_;
