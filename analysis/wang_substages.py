@@ -70,7 +70,7 @@ def draw(rows, cycle, jobs, frame, host_busy, loop_stages, title):
         what = f"{dsps} DSP{'s' if dsps != 1 else ''} x {cycles} cycles" if dsps else "ASIC"
         top.text(t, yi, f"  {what}", va="center", fontsize="x-small")
     top.axvline(cycle * scale, color="black", linestyle="--",
-                label=f"pipeline cycle {cycle * scale:.4g} {unit} ({1 / cycle:.3g} jobs/s)")
+                label=f"pipeline cycle {cycle * scale:.4g} {unit} ({1 / cycle:,.0f} jobs/s)")
     top.set_yticks(y)
     top.set_yticklabels(names, fontsize="small")
     top.set_xlabel(f"time per job ({unit})")

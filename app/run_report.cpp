@@ -361,7 +361,9 @@ void headline_section(HtmlReport& page, const json& stats) {
     head.emplace_back("overhead (wall / functional wall)", format_number(v));
   if (const std::string b = bottleneck_text(find_bottleneck(stats)); !b.empty())
     head.emplace_back("bottleneck", b);
-  if (const json* lat = find(stats, "ray_latency_s"); lat && lat->is_object())
+  // A machine that times no ray's latency (pxpl5-raytrace follows samples) has no such row.
+  if (const json* lat = find(stats, "ray_latency_s");
+      lat && lat->is_object() && num(*lat, "count", 0) > 0)
     head.emplace_back("ray latency", "mean " + format_seconds(num(*lat, "mean")) + ", p50 " +
                                          format_seconds(num(*lat, "p50")) + ", p99 " +
                                          format_seconds(num(*lat, "p99")) + ", max " +

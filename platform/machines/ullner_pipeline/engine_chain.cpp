@@ -8,6 +8,7 @@
 #include "modules/activations.hpp"
 #include "modules/extension_guard.hpp"
 #include "modules/sim_time.hpp"
+#include "modules/wiring.hpp"
 #include "platform/functional/scene_tracer.hpp"
 
 namespace rtsim::platform::ullner_pipeline {
@@ -174,6 +175,16 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
     build_engines();
   }
   registers_port_.bind(registers.socket);
+  if (engine_modules_.empty()) {
+    // The chain in one module: its parts in the order a ray description meets them, so that
+    // `rtsim describe` draws the chain (the engines and their inner links are a class each).
+    const std::string n = std::to_string(engines());
+    modules::connect(under(*this, kLinkIn), input.name(), "ray descriptions");
+    modules::connect(input.name(), under(*this, kEngine), "to processor 0");
+    modules::connect(under(*this, kEngine), inner_link_.name(), "processor k to k+1, x " + n);
+    modules::connect(inner_link_.name(), link_out_.name(),
+                     "from processor " + std::to_string(engines() - 1));
+  }
   // A ray meets them in this order (after the host's link in).
   probe_input_ = probe_.stage(input.name());
   probe_engines_ = probe_.stage(under(*this, kEngine));
