@@ -37,6 +37,9 @@ class RingChannel : public sc_core::sc_module {
       M msg = std::move(it->second.message);
       const std::uint64_t bits = it->second.bits;
       pending_.erase(it);
+      // The message's flow ends where it is delivered: on the track of the node's module.
+      if (ring_.trace() && ring_.trace()->records() && node < stops_.size())
+        ring_.trace()->hop(stops_[node], "ring message", id, at);
       send_message(*out_[node], msg, at, bits);
     });
   }
@@ -45,7 +48,9 @@ class RingChannel : public sc_core::sc_module {
   void attach(std::size_t node, MessageQueue<M>& inbox) {
     out_.at(node)->bind(inbox.socket);
     const std::string queue = inbox.name();
-    ring_stop(ring_.name(), node, queue.substr(0, queue.rfind('.')));
+    if (stops_.size() <= node) stops_.resize(node + 1);
+    stops_[node] = queue.substr(0, queue.rfind('.'));
+    ring_stop(ring_.name(), node, stops_[node]);
   }
 
   /// Sends `msg` (`bytes` on the ring) from node `from` to node `to`, ready at `ready`.
@@ -65,6 +70,7 @@ class RingChannel : public sc_core::sc_module {
   TokenRing& ring_;
   std::vector<std::unique_ptr<tlm_utils::simple_initiator_socket<RingChannel<M>>>> out_;
   std::unordered_map<std::uint64_t, Pending> pending_;
+  std::vector<std::string> stops_;  ///< the module at each node (attach)
 };
 
 }  // namespace rtsim::modules

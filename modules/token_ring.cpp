@@ -186,6 +186,12 @@ void TokenRing::serve() {
     node_[at_].packets += 1;
     node_[at_].wait_s += (start - p.ready).to_seconds();
     class_bytes_.add(p.traffic_class, p.wire_bytes);
+    if (trace_ && trace_->records()) {
+      trace_->slice(
+          name(), classes_[p.traffic_class], start, length,
+          {{"message", p.message}, {"from", at_}, {"to", p.destination}, {"bytes", p.wire_bytes}});
+      trace_->hop(name(), "ring message", p.message, start);
+    }
     if (p.last && delivery_)
       delivery_(p.message, p.destination, plus(time_, times(hop_, hops(at_, p.destination))));
   }

@@ -33,6 +33,7 @@
 
 #include "modules/level_steps.hpp"
 #include "modules/module_params.hpp"
+#include "modules/slice_sink.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::modules {
@@ -83,6 +84,12 @@ class TokenRing : public sc_core::sc_module, public StatGroup {
 
   /// Who hears of arrivals (set before the simulation starts).
   void on_delivery(Delivery delivery) { delivery_ = std::move(delivery); }
+  /// Traces each packet it transmits into `sink` (the run's traces): a slice on its track named
+  /// by the traffic class, with the message's id, its source and destination nodes and the
+  /// packet's bytes, and a step of the message's flow ("ring message").
+  void trace_to(SliceSink& sink) { trace_ = &sink; }
+  /// Where it traces (nullptr: nowhere).
+  SliceSink* trace() const { return trace_; }
 
   /// Queues a message of `bytes` (>= 1) from node `source` to node `destination`, ready at
   /// `ready` (its sender's local time, not before SystemC's). Returns its id (0, 1, ...).
@@ -147,6 +154,7 @@ class TokenRing : public sc_core::sc_module, public StatGroup {
   RingService service_ = RingService::kExhaustive;
   std::vector<std::string> classes_;
   Delivery delivery_;
+  SliceSink* trace_ = nullptr;
 
   std::vector<std::deque<Packet>> queues_;
   std::size_t queued_ = 0;  ///< packets in all queues

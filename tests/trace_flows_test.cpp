@@ -1,6 +1,8 @@
 // `--trace perfetto` follows each ray: its messages on the links are slices with their arguments
 // (the ray, its bits) and a flow links the ray's slices from processor to link to processor, so
-// that Perfetto draws its journey as arrows (modules::SliceSink::hop, modules::Link::Carried).
+// that Perfetto draws its journey as arrows (modules::SliceSink::hop, modules::Link::Carried);
+// a token ring's packets are slices with the message, its source, destination and bytes, and a
+// flow runs from its transmission to the module it is delivered to (pxpl5-raytrace).
 // ullner-array's messages carry theirs per message (tests/ullner_array_test.cpp).
 #include <gtest/gtest.h>
 
@@ -44,8 +46,10 @@ TEST_P(TraceFlows, ARaysSlicesAreLinkedAndItsMessagesCarryItsId) {
       tracks_of[e["name"].get<std::string>() + ":" + std::to_string(e["id"].get<std::uint64_t>())]
           .insert({e["pid"].get<int>(), e["tid"].get<int>()});
     }
-    // A message on a link: the ray it carries and its size.
-    if (ph == "X" && e.contains("args") && e["args"].contains("ray") && e["args"].contains("bits"))
+    // A message on a link or the ring: the ray (or message) it carries and its size.
+    if (ph == "X" && e.contains("args") &&
+        (e["args"].contains("ray") || e["args"].contains("message")) &&
+        (e["args"].contains("bits") || e["args"].contains("bytes")))
       ++carried;
   }
   std::size_t crossing = 0;
@@ -70,7 +74,8 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(FlowCase{"ullner-peripheral", "--scene builtin:ullner-cubes", true},
                     FlowCase{"ullner-pipeline", "--scene builtin:ullner-cubes", true},
                     FlowCase{"gaudet-pert", "--scene builtin:npp-412 -p pert_count=2", true},
-                    FlowCase{"wang-bezier", "--scene builtin:teapot", false}),
+                    FlowCase{"wang-bezier", "--scene builtin:teapot", false},
+                    FlowCase{"pxpl5-raytrace", "--scene builtin:spd-teapot", true}),
     [](const testing::TestParamInfo<FlowCase>& i) {
       std::string n = i.param.machine;
       for (char& ch : n)

@@ -168,6 +168,7 @@ RunResult Pxpl5Raytrace::run(scenes::Scene& scene, FunctionalTwin& twin,
   const Layout& lay = setup.layout;
   modules::TokenRing ring(kRing, modules::TokenRing::read_config(modules::ModuleParams(r, kRing)),
                           static_cast<std::size_t>(lay.nodes()), kTrafficClasses);
+  ring.trace_to(run.trace());
   modules::RingChannel<Message> channel("ring_channel", ring);
   SamplesFault fault(r);
   Host host("host", run, channel, setup);

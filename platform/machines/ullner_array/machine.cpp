@@ -265,6 +265,7 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
     ring = std::make_unique<modules::TokenRing>(kRing, ring_config,
                                                 static_cast<std::size_t>(topology.nodes()),
                                                 ullner_array::message_type_names());
+    ring->trace_to(run.trace());
     ring_channel =
         std::make_unique<modules::RingChannel<ullner_array::RayMessage>>("ring_channel", *ring);
     ctx.ring = ring_channel.get();
