@@ -29,6 +29,13 @@ ProgressBar::ProgressBar(std::string label, bool lines_when_not_a_terminal)
 
 ProgressBar::~ProgressBar() { finish(); }
 
+void ProgressBar::note(const std::string& line) {
+  // "\033[K": clear what the bar drew on the line.
+  std::fprintf(stderr, "%s%s\n", drawn_ && !lines_ ? "\r\033[K" : "", line.c_str());
+  std::fflush(stderr);
+  in_phase_ = false;
+}
+
 void ProgressBar::finish() {
   if (drawn_ && !lines_) std::fputs(in_phase_ ? " done\n" : "\n", stderr);
   std::fflush(stderr);

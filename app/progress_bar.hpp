@@ -17,6 +17,9 @@ class ProgressBar {
   /// What the command does after the counted work (a terminal's bar says it, in place of the
   /// ETA: "writing outputs"), so a full bar does not sit silent.
   void phase(const std::string& what);
+  /// Prints `line` on stderr on a line of its own (over the bar, which the next update redraws
+  /// below it), whether or not the bar is drawn.
+  void note(const std::string& line);
   /// Ends the bar's line, so what is printed next starts on a line of its own; draws nothing
   /// after. The destructor calls it.
   void finish();

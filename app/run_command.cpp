@@ -10,6 +10,7 @@
 #include "app/commands.hpp"
 #include "app/configuration.hpp"
 #include "app/image_files.hpp"
+#include "app/number_text.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/run_report.hpp"
@@ -172,6 +173,17 @@ int run_run(const RunArgs& args) {
   }
   ProgressBar bar(args.quiet ? std::string() : "run " + machine.name());
   if (!args.quiet) opts.progress = [&bar](long done, long total) { bar.update(done, total); };
+  // A trace too large to open is said while there is time to stop the run (Ctrl-C writes
+  // nothing); the end of the run says it again with the file's size.
+  opts.trace_too_large = [&bar](const std::string& file, std::uint64_t bytes, double at_s) {
+    bar.note("rtsim: warning: " + file + (at_s >= 0 ? " has passed " : " will be about ") +
+             std::to_string(bytes / 1000000) + " MB" +
+             (at_s >= 0 ? " at " + format_seconds(at_s) + " of simulated time" : std::string()) +
+             ", more than the " + std::to_string(kTraceWarnBytes / 1000000) + " MB " +
+             (file.ends_with(".vcd") ? "GTKWave" : "Perfetto's UI") +
+             " opens comfortably; Ctrl-C stops the run and writes nothing: keep "
+             "less with --trace-window T0,T1, --trace-modules PATTERN or --trace-max-events N");
+  };
   platform::RunResult result = machine.run(scene, twin, registry, opts);
   bar.phase(args.overhead ? "functional render (--overhead), writing outputs" : "writing outputs");
   // The pilot is part of what the run cost.

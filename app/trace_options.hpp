@@ -18,8 +18,7 @@ namespace rtsim::app {
 modules::TraceFilter trace_filter_from(const std::string& window,
                                        const std::vector<std::string>& modules);
 
-/// A trace file larger than this is said to be too large to open comfortably (200 MB).
-inline constexpr std::uint64_t kTraceWarnBytes = 200'000'000;
+using modules::kTraceWarnBytes;
 
 /// One sentence per thing the user should know about the traces of a run, from its stats.json
 /// (`trace`, `modules`): events dropped at the cap, a file larger than kTraceWarnBytes (with

@@ -63,6 +63,11 @@ struct RunOptions {
   std::size_t trace_max_events = 0;
   /// --trace-window, --trace-modules: what the traces keep (default: everything).
   modules::TraceFilter trace_filter{};
+  /// Told once, while the run goes on, when the Perfetto trace it streams has passed
+  /// modules::kTraceWarnBytes (its file name, its bytes so far, the simulated time it reached),
+  /// and before the VCD is written when its estimated size is over it (its file name, the bytes
+  /// estimated, -1): the user may stop the run and keep less. Empty: nobody is told.
+  std::function<void(const std::string&, std::uint64_t, double)> trace_too_large;
   bool latency_probe = false;
   std::vector<MemoryFault> faults;
   std::function<void(long, long)> progress;  ///< (rays finished, rays expected so far)

@@ -276,6 +276,23 @@ TEST(PerfettoTrace, NoLimitByDefaultAndOtherDataCarriesTheRunsKeys) {
   EXPECT_EQ(t["otherData"]["rtsim_window_s"], json::array({0, 1}));
 }
 
+TEST(PerfettoTrace, ItSaysOnceWhileWritingThatItHasPassedASize) {
+  // rtsim run warns while the run goes on that a trace will be too large to open (on_size);
+  // and a cap's first dropped event bounds the window the file holds whole.
+  const auto dir = fresh_dir("perfetto-size");
+  PerfettoTrace trace(dir / "trace.json", 9'000);
+  std::vector<std::uint64_t> told;
+  trace.on_size(100'000, [&](std::uint64_t bytes) { told.push_back(bytes); });
+  const int a = trace.track("a");
+  for (int i = 0; i < 10'000; ++i) trace.slice(a, "s", i * 1e-6, 1e-6);
+  ASSERT_EQ(told.size(), 1u);
+  EXPECT_GT(told[0], 100'000u);
+  EXPECT_LT(told[0], 100'000u + 4096u * 200u);  // checked every 4096 events
+  EXPECT_DOUBLE_EQ(trace.first_dropped_s(), 9'000e-6);
+  trace.close();
+  EXPECT_EQ(told.size(), 1u);
+}
+
 TEST(PerfettoTrace, NamesAreEscaped) {
   const auto dir = fresh_dir("perfetto-escape");
   const auto path = dir / "trace.json";

@@ -261,6 +261,15 @@ bool PerfettoTrace::admit(std::string_view ts, bool counter) {
 void PerfettoTrace::begin_event() {
   if (!first_event_) out_ << ",\n";
   first_event_ = false;
+  // Every 4096 events: has the file passed the size its owner wants to hear of?
+  if (size_told_ && (++events_since_size_check_ & 4095) == 0) {
+    const auto at = out_.tellp();
+    if (at > 0 && static_cast<std::uint64_t>(at) > size_limit_) {
+      auto told = std::move(size_told_);
+      size_told_ = nullptr;
+      told(static_cast<std::uint64_t>(at));
+    }
+  }
 }
 
 void PerfettoTrace::write_common(const Track& t, std::string_view name, char phase,

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -105,6 +106,11 @@ class PerfettoTrace {
   /// trace holds every one before it. Infinity when none was dropped. (Counters are written after
   /// the simulation, so a cap reached during it drops them all: counted apart.)
   double first_dropped_s() const { return first_dropped_us_ * 1e-6; }
+  /// Calls `told(bytes)` once, while events are written, when the file has passed `bytes`.
+  void on_size(std::uint64_t bytes, std::function<void(std::uint64_t)> told) {
+    size_limit_ = bytes;
+    size_told_ = std::move(told);
+  }
   /// The counter events the cap dropped.
   std::size_t counters_dropped() const { return counters_dropped_; }
   /// Number of tracks created so far.
@@ -140,6 +146,9 @@ class PerfettoTrace {
   std::size_t dropped_ = 0;
   double first_dropped_us_ = std::numeric_limits<double>::infinity();
   std::size_t counters_dropped_ = 0;
+  std::uint64_t size_limit_ = 0;  ///< on_size: 0 for none
+  std::function<void(std::uint64_t)> size_told_;
+  std::uint64_t events_since_size_check_ = 0;
   bool first_event_ = true;
   bool open_ = false;
   std::vector<Track> tracks_;

@@ -15,6 +15,11 @@
 
 namespace rtsim::modules {
 
+/// A trace file larger than this is said to be too large to open comfortably (200 MB): Perfetto's
+/// web UI holds the whole trace in the browser's memory and gives up on JSON traces of a few
+/// hundred MB; GTKWave loads a VCD whole.
+inline constexpr std::uint64_t kTraceWarnBytes = 200'000'000;
+
 struct TraceFilter {
   /// [from, to] in sc_time ticks; the default is all of time.
   std::uint64_t from = 0;

@@ -30,9 +30,19 @@ struct Signal {
 }  // namespace
 
 MachineTrace::MachineTrace(const RunOptions& opts)
-    : filter_(opts.trace_filter), max_events_(opts.trace_max_events) {
-  if (!opts.perfetto_path.empty())
+    : filter_(opts.trace_filter),
+      max_events_(opts.trace_max_events),
+      too_large_(opts.trace_too_large) {
+  if (!opts.perfetto_path.empty()) {
     perfetto_ = std::make_unique<modules::PerfettoTrace>(opts.perfetto_path, max_events_);
+    // Streamed while the run goes on: the user hears of a trace too large to open while there
+    // is still time to stop it.
+    if (too_large_)
+      perfetto_->on_size(modules::kTraceWarnBytes,
+                         [this, name = opts.perfetto_path.filename().string()](std::uint64_t b) {
+                           too_large_(name, b, sc_core::sc_time_stamp().to_seconds());
+                         });
+  }
   if (!opts.vcd_path.empty()) vcd_ = std::make_unique<modules::VcdTrace>(opts.vcd_path);
   if (on()) keep_intervals_.emplace();
 }
@@ -121,6 +131,15 @@ nlohmann::ordered_json MachineTrace::finish(const modules::StatWindow& window) {
     perfetto_->other_data("rtsim_modules", nlohmann::json(filter_.modules).dump());
   }
   if (vcd_) {
+    // Its size before it is written: a value change is a line of about 16 bytes (a time stamp,
+    // or a value and an identifier).
+    if (too_large_) {
+      std::uint64_t changes = 0;
+      for (const Signal& s : signals) changes += s.changes.size();
+      if (max_events_ != 0) changes = std::min<std::uint64_t>(changes, max_events_);
+      if (changes * kVcdBytesPerChange > modules::kTraceWarnBytes)
+        too_large_(vcd_->path().filename().string(), changes * kVcdBytesPerChange, -1.0);
+    }
     for (Signal& s : signals) {
       std::string name = s.module;  // appends: see vcd_trace.cpp on GCC 12's -Wrestrict
       name += '.';

@@ -14,6 +14,7 @@
 // simulated time, module name patterns) or caps them (RunOptions::trace_max_events, per file).
 // What a cap dropped is counted in the files, in the `trace` object finish() returns for
 // stats.json, and printed by `rtsim run`.
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -82,6 +83,9 @@ class MachineTrace final : public modules::SliceSink {
   std::unique_ptr<modules::PerfettoTrace> perfetto_;
   std::unique_ptr<modules::VcdTrace> vcd_;
   std::map<std::string, bool, std::less<>> module_kept_;  ///< the filter's answer, per name
+  std::function<void(const std::string&, std::uint64_t, double)> too_large_;  ///< RunOptions'
+  /// A VCD value change's bytes, about (its estimated size before it is written).
+  static constexpr std::uint64_t kVcdBytesPerChange = 16;
   /// The items whose flow has started, by flow name ("ray", "job").
   std::map<std::string, std::unordered_set<std::uint64_t>, std::less<>> flows_started_;
 };
