@@ -29,6 +29,7 @@
 #include "app/configuration.hpp"
 #include "app/output_set.hpp"
 #include "app/scene_input.hpp"
+#include "app/stats_json.hpp"
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
 #include "common/spawn_logged.hpp"
@@ -145,6 +146,7 @@ struct ModuleTree {
   std::map<std::string, Node> nodes;                                  ///< by hierarchical name
   std::set<std::tuple<std::string, std::string, std::string>> edges;  ///< from, to, what
   std::map<std::string, std::vector<std::string>> rings;  ///< ring -> its modules in token order
+  modules::UnitSchema units;                              ///< of a run's stats.json (`units`)
   std::vector<params::ParamEntry> entries;
   std::vector<const params::ParamEntry*> machine_params;  ///< those of no one module
   std::map<std::string, std::string> class_paths;         ///< module -> class path
@@ -165,6 +167,7 @@ ModuleTree read_tree(const platform::Machine& machine, const params::ParamRegist
   tree.nodes = reader.nodes;
   tree.edges = reader.edges;
   tree.rings = reader.rings;
+  tree.units = run_units(result.units);
   auto& nodes = tree.nodes;
   if (result.stats.contains("modules"))
     for (const auto& [name, group] : result.stats["modules"].items()) {
@@ -230,6 +233,14 @@ std::string tree_text(const platform::Machine& machine, const std::string& scene
     for (const auto& m : order) text << " " << m << " ->";
     text << " " << (order.empty() ? std::string() : order.front()) << "\n";
   }
+  // What every number of its stats.json is in (`*` stands for any characters; a module's
+  // digits are its class's; docs/stats.md).
+  text << "\nUnits of stats.json's numbers (stats.json `units`):\n";
+  std::size_t width = 0;
+  for (const auto& [pattern, unit] : tree.units.entries()) width = std::max(width, pattern.size());
+  for (const auto& [pattern, unit] : tree.units.entries())
+    text << "  " << pattern << std::string(width + 2 - pattern.size(), ' ')
+         << modules::unit_name(unit) << "\n";
   return text.str();
 }
 

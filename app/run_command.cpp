@@ -213,10 +213,7 @@ int run_run(const RunArgs& args) {
   }
   if (plan) stats["sample"]["plan"] = plan->json;
   // The unit of every number above, from where each is declared (modules/stat_unit.hpp).
-  modules::UnitSchema units = frame_units();
-  units.add(result.units);
-  units.add(SamplePlan::units(), "sample.plan.");
-  stats["units"] = units.to_json();
+  stats["units"] = run_units(result.units).to_json();
   // Which image files the run wrote; with none, a sampled run rendered only its detailed rows.
   stats["image"]["files"] = args.image;
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "app/sample_pilot.hpp"
+
 namespace rtsim::app {
 
 using nlohmann::ordered_json;
@@ -66,6 +68,13 @@ modules::UnitSchema frame_units() {
           {"image.nonfinite_values", StatUnit::count},
           // A linear pixel value, 1 the white of the scene's lights.
           {"image.mean_rgb", StatUnit::ratio}};
+}
+
+modules::UnitSchema run_units(const modules::UnitSchema& of_the_run) {
+  modules::UnitSchema units = frame_units();
+  units.add(of_the_run);
+  units.add(SamplePlan::units(), "sample.plan.");
+  return units;
 }
 
 ordered_json frame_stats_json(const std::string& command, const std::string& machine,

@@ -27,5 +27,8 @@ nlohmann::ordered_json frame_stats_json(const std::string& command, const std::s
 /// The units of frame_stats_json's numbers and of `--overhead`'s (modules/stat_unit.hpp); a
 /// run adds its machine's and modules' (RunResult::units) and writes them as `units`.
 modules::UnitSchema frame_units();
+/// The units a `rtsim run` stats.json carries: frame_units(), then the run's own (its machine's,
+/// modules' and options' keys: RunResult::units), then `--sample-error`'s plan.
+modules::UnitSchema run_units(const modules::UnitSchema& of_the_run);
 
 }  // namespace rtsim::app

@@ -50,6 +50,24 @@ TEST_P(Describe, TreeHoldsEveryModuleParameterAndStatisticsGroup) {
     ++params;
   }
   EXPECT_GT(params, 5u);
+  // The unit of every number of its stats.json, as the run's `units` declares it.
+  ASSERT_TRUE(d.output.find("Units of stats.json's numbers") != std::string::npos);
+  const std::string units_text = d.output.substr(d.output.find("Units of stats.json's numbers"));
+  std::size_t units = 0;
+  for (const auto& [pattern, unit] : stats.at("units").items()) {
+    std::string key = "\n  ";  // appends: GCC 12 warns falsely on literal + string (-Wrestrict)
+    key += pattern;
+    key += ' ';
+    const std::size_t at = units_text.find(key);
+    ASSERT_NE(at, std::string::npos) << pattern;
+    const std::size_t end = units_text.find('\n', at + 1);
+    const std::string line = units_text.substr(at + 1, end - at - 1);
+    std::string spaced = " ";
+    spaced += unit.get<std::string>();
+    EXPECT_TRUE(line.ends_with(spaced)) << line;
+    ++units;
+  }
+  EXPECT_GT(units, 20u);
   // The diagram: a digraph with every connection the text lists.
   const std::string dot = read_file(dir / (m.name + ".dot"));
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
