@@ -86,7 +86,7 @@ def draw(first, busy, over, ans, engines, polygons, title, windows=None):
             ax.axvspan(polygons, engines, color="0.9", label="dummy polygons", zorder=0)
         ax.grid(True, alpha=0.3)
     top.stairs(np.full(len(first), busy), x, color="tab:blue", linewidth=1.5,
-               label=f"busy {busy:.3g}")
+               label=f"busy {100 * busy:.1f}%")
     top.set_ylim(0, 1.05)
     top.set_ylabel("busy fraction")
     bottom.stairs(np.asarray(over), x, color="tab:orange", label="overwrote the description")
