@@ -341,6 +341,18 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
     const std::string top = name.substr(0, name.find('.'));
     return folded.contains(top) || ring_of.contains(top) ? top : std::string();
   };
+  // What the instances of one mesh or ring (those `in_group` accepts) hold, named once and sorted:
+  // "frame_buffer, in_e, link_e, ...".
+  const auto parts_inside = [&](const auto& in_group) {
+    std::set<std::string> inside;
+    for (const auto& [name, n] : nodes)
+      if (const std::string inst = mesh_instance(name);
+          !inst.empty() && inst != name && in_group(inst))
+        inside.insert(name.substr(inst.size() + 1));
+    std::string parts;
+    for (const auto& p : inside) parts += (parts.empty() ? "" : ", ") + p;
+    return parts;
+  };
   const auto drawn = [&](std::string name) {
     if (const std::string inst = mesh_instance(name); !inst.empty() && inst != name) return false;
     for (; !name.empty(); name = parent_of(name))
@@ -391,13 +403,10 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
         dot << " " << dot_id(m.members[k]);
       dot << " }\n";
     }
-    std::set<std::string> inside;
-    for (const auto& [name, n] : nodes)
-      if (const std::string inst = mesh_instance(name);
-          !inst.empty() && inst != name && folded.at(inst) == stem)
-        inside.insert(name.substr(inst.size() + 1));
-    std::string parts;
-    for (const auto& p : inside) parts += (parts.empty() ? "" : ", ") + p;
+    const std::string parts = parts_inside([&](const std::string& inst) {
+      const auto it = folded.find(inst);  // a ring's node is an instance too, of no mesh
+      return it != folded.end() && it->second == stem;
+    });
     dot << "  " << dot_id(stem + "_inside") << " [label=\""
         << dot_escape(std::to_string(m.members.size() / m.columns) + " x " +
                       std::to_string(m.columns) + " " + stem + "s, each holding: " + parts +
@@ -422,13 +431,10 @@ std::string tree_dot(const platform::Machine& machine, const ModuleTree& tree) {
                      : std::string())
           << "];\n";
     }
-    std::set<std::string> inside;
-    for (const auto& [name, nd] : nodes)
-      if (const std::string inst = mesh_instance(name);
-          !inst.empty() && inst != name && ring_of.contains(inst) && ring_of.at(inst) == ring)
-        inside.insert(name.substr(inst.size() + 1));
-    std::string parts;
-    for (const auto& p : inside) parts += (parts.empty() ? "" : ", ") + p;
+    const std::string parts = parts_inside([&](const std::string& inst) {
+      const auto it = ring_of.find(inst);
+      return it != ring_of.end() && it->second == ring;
+    });
     dot << "  " << dot_id(ring + "_stops") << " [label=\""
         << dot_escape(std::to_string(n) + " nodes on " + leaf_of(ring) + ", in the token's order" +
                       (parts.empty() ? std::string() : "; each holding: " + parts) +

@@ -64,13 +64,6 @@ bool names_fraction(std::string_view name) {
          name.ends_with("_share");
 }
 
-std::string format_figure(std::string_view name, double x) {
-  if (names_seconds(name)) return format_seconds(x);
-  if (names_fraction(name)) return format_percent(x);
-  if (x == std::round(x) && std::abs(x) < 1e15) return format_number(x);
-  return format_significant(x, 4);
-}
-
 namespace {
 /// A whole number as it is, another to 4 significant digits.
 std::string plain(double x) {
@@ -78,6 +71,12 @@ std::string plain(double x) {
   return format_significant(x, 4);
 }
 }  // namespace
+
+std::string format_figure(std::string_view name, double x) {
+  if (names_seconds(name)) return format_seconds(x);
+  if (names_fraction(name)) return format_percent(x);
+  return plain(x);
+}
 
 std::string format_in_unit(modules::StatUnit unit, double x) {
   using modules::StatUnit;

@@ -582,9 +582,10 @@ void modules_section(HtmlReport& page, const modules::UnitSchema& units, const j
           continue;
         // A peak is the largest instance's; a count or a time, the sum over them.
         const bool peak = k.size() > 5 && k.compare(k.size() - 5, 5, "_peak") == 0;
+        const std::string path = "modules." + name + "." + k;  // the class's key, its unit
         other += (other.empty() ? "" : ", ") + k + " " +
-                 (peak ? figure_text(units, "modules." + name + "." + k, a["max"]) + " at most"
-                       : figure_text(units, "modules." + name + "." + k, a["sum"]) + " in all");
+                 (peak ? figure_text(units, path, a["max"]) + " at most"
+                       : figure_text(units, path, a["sum"]) + " in all");
       }
       rows.push_back({name + " (" + value_text(c["instances"]) + " instances)",
                       find(c, "busy_s") ? "mean " + format_seconds(agg("busy_s", "mean")) : "",

@@ -62,7 +62,7 @@ double as_number(const Json& v) {
 }
 
 /// A results cell as people read it: a stats column in the unit its points' stats.json declare
-/// (format_figure), a swept value as written.
+/// (format_figure; ResultsTable::units), a swept value as written.
 std::string cell_text(const Json& v, const std::string& column, const modules::UnitSchema& units) {
   if (v.is_null()) return "";
   if (v.is_string()) return v.get<std::string>();
@@ -70,19 +70,6 @@ std::string cell_text(const Json& v, const std::string& column, const modules::U
   if (v.is_number_integer() && !units.unit_of(column)) return std::to_string(v.get<long long>());
   if (v.is_number()) return format_figure(units, column, v.get<double>());
   return v.dump();
-}
-
-/// The units the points' stats.json declare: the first point's of each machine.
-modules::UnitSchema points_units(const std::vector<sweep::PointOutcome>& outcomes) {
-  modules::UnitSchema units;
-  std::set<std::string> machines;
-  for (const auto& o : outcomes) {
-    if (!o.ok) continue;
-    const auto stats = nlohmann::ordered_json::parse(o.stats_text, nullptr, false);
-    if (stats.is_discarded() || !machines.insert(stats.value("machine", "")).second) continue;
-    units.add(modules::UnitSchema::from_stats(stats));
-  }
-  return units;
 }
 
 std::string value_list(const std::vector<sweep::Value>& values) {
@@ -449,7 +436,6 @@ HtmlReport sweep_report_page(const SweepReportInputs& in, const ReportTools& too
   const std::vector<sweep::Point>& points = *in.points;
   const std::vector<sweep::PointOutcome>& outcomes = *in.outcomes;
   const TableView view(*in.table);
-  const modules::UnitSchema units = points_units(outcomes);
   const std::string origin_name = fs::path(file.origin).filename().string();
 
   HtmlReport page("rtsim sweep: " +
@@ -576,8 +562,9 @@ HtmlReport sweep_report_page(const SweepReportInputs& in, const ReportTools& too
     for (std::size_t r = 0; r < in.table->rows.size() && r < kSweepTableRows; ++r) {
       std::vector<std::string> row;
       for (const auto& c : cols)
-        row.push_back(c == "point" && r < points.size() ? points[r].key
-                                                        : cell_text(view.at(r, c), c, units));
+        row.push_back(c == "point" && r < points.size()
+                          ? points[r].key
+                          : cell_text(view.at(r, c), c, in.table->units));
       rows.push_back(std::move(row));
       bold.push_back(view.at(r, "status") != "ok");
     }

@@ -7,7 +7,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -237,25 +236,17 @@ TEST_P(ReportOfEveryMachine, NoRawJsonAndNoExponents) {
   // Every number of stats.json as the console, diff and reports show it (format_figure): no
   // exponent, a rate never as a time, a count never with a unit.
   std::size_t figures = 0;
-  std::function<void(const nlohmann::json&, const std::string&)> walk =
-      [&](const nlohmann::json& j, const std::string& path) {
-        if (j.is_object()) {
-          for (const auto& [k, v] : j.items())
-            if (path != "params") walk(v, path.empty() ? k : path + "." + k);
-        } else if (j.is_array()) {
-          for (const auto& v : j) walk(v, path);
-        } else if (j.is_number()) {
-          ++figures;
-          const std::string text = rtsim::app::format_figure(path, j.get<double>());
-          EXPECT_FALSE(std::regex_search(text, std::regex("[0-9]e[-+]?[0-9]")))
+  rtsim::test::each_number(
+      nlohmann::json::parse(read_file(dir / "stats.json")), [&](const std::string& path, double x) {
+        ++figures;
+        const std::string text = rtsim::app::format_figure(path, x);
+        EXPECT_FALSE(std::regex_search(text, std::regex("[0-9]e[-+]?[0-9]")))
+            << path << " = " << text;
+        if (path.ends_with("_per_s") || path.ends_with(".count")) {
+          EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?")))
               << path << " = " << text;
-          if (path.ends_with("_per_s") || path.ends_with(".count")) {
-            EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?")))
-                << path << " = " << text;
-          }
         }
-      };
-  walk(nlohmann::json::parse(read_file(dir / "stats.json")), "");
+      });
   EXPECT_GT(figures, 50u) << m.name;
   // Opened 1280 px wide, nothing runs off the page (a wide table, a long unbroken word).
   if (const std::string browser = chromium(); !browser.empty()) {

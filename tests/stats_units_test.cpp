@@ -5,7 +5,6 @@
 // and a sampled run; the functional render too.
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -25,71 +24,58 @@ std::size_t check_units(const nlohmann::ordered_json& stats, const std::string& 
   EXPECT_FALSE(units.empty()) << label << ": stats.json has no `units`";
   std::size_t checked = 0;
   std::set<std::string> reported;
-  std::function<void(const nlohmann::ordered_json&, const std::string&)> walk =
-      [&](const nlohmann::ordered_json& j, const std::string& path) {
-        if (j.is_object()) {
-          for (const auto& [k, v] : j.items())
-            if (!(path.empty() && (k == "params" || k == "units")))
-              walk(v, path.empty() ? k : path + "." + k);
-          return;
-        }
-        if (j.is_array()) {
-          for (const auto& v : j) walk(v, path);
-          return;
-        }
-        if (!j.is_number()) return;
-        ++checked;
-        const auto unit = units.unit_of(path);
-        if (!unit) {
-          if (reported.insert(path).second) ADD_FAILURE() << label << ": no unit for " << path;
-          return;
-        }
-        // The declaration agrees with what the key's own name says (not its module's:
-        // node3.link_s is the south link); a summary's by the name of what it summarises.
-        const std::string_view name = rtsim::modules::unit_name(*unit);
-        std::string key = path.substr(path.rfind('.') + 1);
-        static const std::set<std::string> kSummaries = {"min", "mean", "max", "sum",
-                                                         "p10", "p50",  "p90", "p99"};
-        if (kSummaries.contains(key) && key.size() < path.size()) {
-          const std::string head = path.substr(0, path.rfind('.'));
-          key = head.substr(head.rfind('.') + 1) + "." + key;
-        }
-        if (rtsim::app::names_seconds(key)) {
-          EXPECT_EQ(*unit, StatUnit::seconds) << label << ": " << path << " is declared " << name;
-        }
-        if (key.ends_with("_per_s") || key.ends_with("per_second")) {
-          EXPECT_EQ(*unit, StatUnit::rate) << label << ": " << path << " is declared " << name;
-        }
-        if (rtsim::app::names_fraction(key)) {
-          EXPECT_EQ(*unit, StatUnit::fraction) << label << ": " << path << " is declared " << name;
-        }
-        const std::string text = rtsim::app::format_figure(units, path, j.get<double>());
-        EXPECT_FALSE(std::regex_search(text, std::regex("[0-9]e[-+]?[0-9]")))
+  rtsim::test::each_number(stats, [&](const std::string& path, double x) {
+    ++checked;
+    const auto unit = units.unit_of(path);
+    if (!unit) {
+      if (reported.insert(path).second) ADD_FAILURE() << label << ": no unit for " << path;
+      return;
+    }
+    // The declaration agrees with what the key's own name says (not its module's:
+    // node3.link_s is the south link); a summary's by the name of what it summarises.
+    const std::string_view name = rtsim::modules::unit_name(*unit);
+    std::string key = path.substr(path.rfind('.') + 1);
+    static const std::set<std::string> kSummaries = {"min", "mean", "max", "sum",
+                                                     "p10", "p50",  "p90", "p99"};
+    if (kSummaries.contains(key) && key.size() < path.size()) {
+      const std::string head = path.substr(0, path.rfind('.'));
+      key = head.substr(head.rfind('.') + 1) + "." + key;
+    }
+    if (rtsim::app::names_seconds(key)) {
+      EXPECT_EQ(*unit, StatUnit::seconds) << label << ": " << path << " is declared " << name;
+    }
+    if (key.ends_with("_per_s") || key.ends_with("per_second")) {
+      EXPECT_EQ(*unit, StatUnit::rate) << label << ": " << path << " is declared " << name;
+    }
+    if (rtsim::app::names_fraction(key)) {
+      EXPECT_EQ(*unit, StatUnit::fraction) << label << ": " << path << " is declared " << name;
+    }
+    const std::string text = rtsim::app::format_figure(units, path, x);
+    EXPECT_FALSE(std::regex_search(text, std::regex("[0-9]e[-+]?[0-9]")))
+        << label << ": " << path << " = " << text;
+    switch (*unit) {
+      case StatUnit::count:
+      case StatUnit::ratio:
+        EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?")))
             << label << ": " << path << " = " << text;
-        switch (*unit) {
-          case StatUnit::count:
-          case StatUnit::ratio:
-            EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?")))
-                << label << ": " << path << " = " << text;
-            break;
-          case StatUnit::rate:
-            EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?/s")))
-                << label << ": " << path << " = " << text;
-            break;
-          case StatUnit::seconds:
-            EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9.]+ (ns|µs|ms|s|min|h)")))
-                << label << ": " << path << " = " << text;
-            break;
-          case StatUnit::fraction:
-            EXPECT_TRUE(text.ends_with("%")) << label << ": " << path << " = " << text;
-            break;
-          default:
-            EXPECT_TRUE(text.ends_with(std::string(" ") + std::string(name)) ||
-                        std::regex_search(text, std::regex(" [kMG]B$")))
-                << label << ": " << path << " = " << text;
-        }
-      };
-  walk(stats, "");
+        break;
+      case StatUnit::rate:
+        EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9]+(\\.[0-9]+)?/s")))
+            << label << ": " << path << " = " << text;
+        break;
+      case StatUnit::seconds:
+        EXPECT_TRUE(std::regex_match(text, std::regex("-?[0-9.]+ (ns|µs|ms|s|min|h)")))
+            << label << ": " << path << " = " << text;
+        break;
+      case StatUnit::fraction:
+        EXPECT_TRUE(text.ends_with("%")) << label << ": " << path << " = " << text;
+        break;
+      default:
+        EXPECT_TRUE(text.ends_with(std::string(" ") + std::string(name)) ||
+                    std::regex_search(text, std::regex(" [kMG]B$")))
+            << label << ": " << path << " = " << text;
+    }
+  });
   return checked;
 }
 

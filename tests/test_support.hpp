@@ -98,6 +98,22 @@ inline nlohmann::ordered_json read_json(const std::filesystem::path& p) {
 }
 
 /// A JSON-lines file (a sweep's results.jsonl): one object per non-empty line.
+/// Calls `f(path, value)` for every number of a stats.json document, by its dotted path
+/// ("modules.host.busy_s"; an array's numbers under the array's path), but those of the run's
+/// parameters and units (top-level `params` and `units`, which hold text).
+template <class Json, class F>
+void each_number(const Json& j, const F& f, const std::string& path = "") {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items())
+      if (!(path.empty() && (k == "params" || k == "units")))
+        each_number(v, f, path.empty() ? k : path + "." + k);
+  } else if (j.is_array()) {
+    for (const auto& v : j) each_number(v, f, path);
+  } else if (j.is_number()) {
+    f(path, j.template get<double>());
+  }
+}
+
 inline std::vector<nlohmann::ordered_json> read_jsonl(const std::filesystem::path& p) {
   std::vector<nlohmann::ordered_json> rows;
   std::istringstream in(read_file(p));

@@ -178,7 +178,10 @@ ResultsTable make_results_table(const SweepFile& file, const std::vector<Point>&
   std::vector<std::map<std::string, Json>> stats(points.size());
   std::set<std::string> stat_names;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (outcomes[i].ok) docs[i] = Json::parse(outcomes[i].stats_text);
+    if (outcomes[i].ok) {
+      docs[i] = Json::parse(outcomes[i].stats_text);
+      t.units.add(modules::UnitSchema::from_stats(docs[i]));
+    }
   const std::set<std::string> aggregated = aggregated_classes(docs);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!outcomes[i].ok) continue;

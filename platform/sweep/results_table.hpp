@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "modules/stat_unit.hpp"
 #include "platform/sweep/point_outcome.hpp"
 #include "platform/sweep/sweep_file.hpp"
 #include "platform/sweep/sweep_points.hpp"
@@ -32,6 +33,9 @@ namespace rtsim::sweep {
 struct ResultsTable {
   std::vector<std::string> columns{};
   std::vector<std::vector<nlohmann::ordered_json>> rows{};  ///< null: no value
+  /// The units the points' stats.json declare (`units`), every point's: how a stats column's
+  /// numbers are shown.
+  modules::UnitSchema units{};
 };
 
 /// `outcomes[i]` belongs to `points[i]`.

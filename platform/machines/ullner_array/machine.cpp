@@ -424,8 +424,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                          {"array.words_fetched", StatUnit::words},
                          {"array.termination.credit_bits", StatUnit::bits},
                          {"array.node_busy_fraction", StatUnit::fraction},
-                         {"array.faults_in_flight.*", StatUnit::count},
-                         // rows, cols, subvolumes, polygons, messages, results, credits
+                         // rows, cols, subvolumes, polygons, messages, results, credits,
+                         // the faults' words
                          {"array.*", StatUnit::count}};
   return run.finish(tally.latency, memories);
 }
