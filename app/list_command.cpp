@@ -51,7 +51,8 @@ void list_machines(const std::string& format) {
                      {"description", m->description()},
                      {"sample_scene", m->sample_scene()},
                      {"test_runs", m->info().test_runs},
-                     {"benchmark_runs", m->info().benchmark_runs}});
+                     {"benchmark_runs", m->info().benchmark_runs},
+                     {"samples", m->info().samples}});
     std::cout << all.dump(2) << "\n";
     return;
   }

@@ -129,6 +129,9 @@ int run_run(const RunArgs& args) {
     throw InputError("--image none", 0, "--report shows the image: use --image png or all");
   opts.latency_probe = args.latency_probe;
   const bool sampled = args.sample > 0 || !args.sample_error.empty();
+  if (sampled && !machine.info().samples)
+    throw InputError(args.sample > 0 ? "--sample" : "--sample-error " + args.sample_error, 0,
+                     machine.name() + " does not sample: " + machine.info().sampling_refusal);
   if (args.sample_window > 0 && !sampled)
     throw InputError("--sample-window", 0,
                      "sizes the windows of --sample K or --sample-error E: give one of them too");

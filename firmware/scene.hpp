@@ -44,16 +44,29 @@ struct Material {
   double ior = 1.0;
 };
 
+/// How a rasterizing machine shades and culls a material's surfaces (PixelFlow's shading
+/// functions, seed 004 L97, L112). NFF has no such statement: its materials are Phong and seen
+/// from both sides, as the ray tracers see them.
+struct SurfaceShading {
+  /// The shading function: "phong", or one of the bowling scene's "pin", "alley", "ball".
+  std::string shader = "phong";
+  /// The material covers closed surfaces only: their back faces are hidden anyway, and a
+  /// rasterizer culls them (seed 004 L132 counts front-facing triangles).
+  bool one_sided = false;
+};
+
 struct Sphere {
   Vec3 center{0.0};
   double radius = 1.0;
 };
 
 /// NFF `p` / `pp`: a planar polygon, possibly concave, vertices counter-clockwise.
-/// `normals` is empty for `p`, one per vertex for `pp`.
+/// `normals` is empty for `p`, one per vertex for `pp`. `uvs` (texture coordinates, one per
+/// vertex) only generated scenes give: NFF has none, and a rasterizer then takes (0, 0).
 struct Polygon {
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;
+  std::vector<glm::dvec2> uvs;
 };
 
 /// NFF `c`: an open cone or cylinder (no end caps) between base and apex.
@@ -89,6 +102,8 @@ struct Scene {
   Color background{0.0};
   std::vector<Light> lights;
   std::vector<Material> materials;
+  /// One per material, or empty: every material "phong" and two-sided.
+  std::vector<SurfaceShading> surface_shading;
   std::vector<Primitive> primitives;
   std::vector<Sphere> spheres;
   std::vector<Polygon> polygons;

@@ -121,6 +121,11 @@ struct MachineInfo {
   bool default_machine = false;
   /// The plots of its own figures a run's report draws.
   std::vector<ReportPlot> report_plots{};
+  /// It takes --sample and --sample-error (platform/machines/frame_sample.hpp). A machine that
+  /// does not says why (`sampling_refusal`), and `rtsim run` refuses those options before
+  /// anything runs.
+  bool samples = true;
+  std::string sampling_refusal{};
 };
 
 class Machine {

@@ -7,6 +7,7 @@
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 #include "scenes/bpt_reader.hpp"
+#include "scenes/generators/bowling.hpp"
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/newell_teapot.hpp"
 #include "scenes/generators/npp_scene.hpp"
@@ -73,6 +74,9 @@ const std::vector<BuiltinScene>& builtin_scenes() {
     list.push_back({"spd-teapot-patches",
                     "SPD's teapot scene with the teapot as its 32 Bezier patches: patches beside "
                     "the checkerboard's 4 polygons, 2 lights"});
+    list.push_back({"bowling",
+                    "PixelFlow's bowling frame (seed 004 L89-L112): ten pins, a lane and a ball "
+                    "as about 10,700 textured triangles, pin/alley/ball shaders, 1 light"});
     for (int n : kListedNppBranching) {
       for (int pp : kListedNppSpheres) {
         const std::string digits = std::to_string(n) + (pp < 10 ? "0" : "") + std::to_string(pp);
@@ -97,6 +101,7 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "default") return make_default_scene();
   if (name == "ullner-cubes") return make_ullner_cubes(seeds.ullner_cubes);
   if (name == "teapot") return make_newell_teapot();
+  if (name == "bowling") return make_bowling();
   if (name == "spd-teapot") return make_spd_teapot();
   if (name == "spd-teapot-patches") return make_spd_teapot_patches();
   int n = 0;

@@ -406,7 +406,7 @@ TEST(AccelShellTree, BroadcastMemoryImages) {
 TEST(AccelShellTree, PrimitiveBoundsOfEveryKind) {
   scenes::Scene s;
   s.spheres = {{Vec3(1.0, 2.0, 3.0), -0.5}};
-  s.polygons = {{{Vec3(0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 2.0, 0.0)}, {}}};
+  s.polygons = {{{Vec3(0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 2.0, 0.0)}, {}, {}}};
   s.cones = {{Vec3(0.0), 1.0, Vec3(0.0, 0.0, 4.0), 0.5}};
   scenes::BezierPatch patch;
   for (int i = 0; i < 16; ++i) patch.control[i] = Vec3(i % 4, i / 4, (i % 5) * 0.1);

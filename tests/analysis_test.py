@@ -44,6 +44,7 @@ import utilisation_timeline  # noqa: E402
 import wang_accuracy  # noqa: E402
 import wang_arithmetic  # noqa: E402
 import wang_substages  # noqa: E402
+import pixelflow_passes  # noqa: E402
 
 PYTHON = sys.executable
 
@@ -505,6 +506,40 @@ class WangSubstagesTest(ScratchTest):
         r = run_script("wang_substages.py", path, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("wang.substages", r.stderr)
+
+
+class PixelflowPassesTest(ScratchTest):
+    def stats(self):
+        return {"machine": "pixelflow", "scene": "s", "spp": 5, "simulated_time_s": 0.025,
+                "params": {"composition.link.lanes": "256",
+                           "composition.link.bit_rate": "204.8 Mbit/s"},
+                "pixelflow": {"rasterizers": 3, "shaders": 12, "passes": {
+                    "shadow0": {"begin_s": 0.0, "done_s": 0.0061, "rasterize_busiest_s": 1e-4,
+                                "shade_busiest_s": 0.0, "network_bytes": 1048576},
+                    "camera": {"begin_s": 0.012, "done_s": 0.025, "rasterize_busiest_s": 0.0096,
+                               "shade_busiest_s": 0.0086, "network_bytes": 60620800}}}}
+
+    def test_rows_rate_and_png(self):
+        rows, frame = pixelflow_passes.pass_rows(self.stats())
+        self.assertEqual([r[0] for r in rows], ["shadow0", "camera"])
+        self.assertEqual(rows[1][1:3], (0.012, 0.025))
+        self.assertEqual(frame, 0.025)
+        # 256 lanes of 204.8 Mbit/s: 6.5536 GB/s (seed 004 L120's 8K depths in 5 us).
+        self.assertAlmostEqual(pixelflow_passes.network_rate(self.stats()), 6.5536e9)
+        with open(os.path.join(self.dir, "stats.json"), "w") as f:
+            json.dump(self.stats(), f)
+        out = os.path.join(self.dir, "p.png")
+        r = run_script("pixelflow_passes.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"machine": "pixelflow", "pixelflow": {"passes": {}}}, f)
+        r = run_script("pixelflow_passes.py", path, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("pixelflow.passes", r.stderr)
 
 
 class WangAccuracyTest(ScratchTest):

@@ -25,6 +25,13 @@ class SampledSimulation : public testing::TestWithParam<rtsim::test::MachineInfo
 TEST_P(SampledSimulation, TheIntervalHoldsTheFullFrameAndTheImageIsTheSame) {
   const std::string& machine = GetParam().name;
   const std::string args = GetParam().small_run() + " --width 48 --height 48";
+  if (!GetParam().samples) {
+    // A machine that does not sample refuses it with exit 2, before anything runs.
+    const auto r = rtsim::test::run_kit("run --machine " + machine + " " + args + " --sample 4 -q");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("does not sample"), std::string::npos) << r.output;
+    GTEST_SKIP() << machine << " does not sample";
+  }
   {
     SCOPED_TRACE(machine);
     const auto full = rtsim::test::run_machine(machine, "sample-full", args);

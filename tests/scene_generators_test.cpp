@@ -279,7 +279,7 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 27u);
+  ASSERT_EQ(names.size(), 28u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
@@ -289,6 +289,7 @@ TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   EXPECT_EQ(names[9], "teapot");
   EXPECT_EQ(names[10], "spd-teapot");
   EXPECT_EQ(names[11], "spd-teapot-patches");
+  EXPECT_EQ(names[12], "bowling");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());

@@ -87,6 +87,7 @@ const std::map<std::string, std::string> kSlowed = {
     {"gaudet-pert", "-p pert.prim.clock=\"0.5 MHz\""},
     {"pxpl5-raytrace", "-p gp.clock=\"4 MHz\""},
     {"wang-bezier", "-p host.clock=\"35 MHz\""},
+    {"pixelflow", "-p rasterizer.triangle_time=\"8.5 us\""},
 };
 
 TEST_P(SceneSkipping, AnIdleModuleCostsNoEvents) {

@@ -56,6 +56,8 @@ struct MachineInfo {
   /// Scene and parameters of the runs the generic tests make (no size); the first is the small
   /// run every generic test uses.
   std::vector<std::string> test_runs;
+  /// It takes --sample (a machine that does not refuses it, saying why).
+  bool samples = true;
   /// The first test run: `--scene SCENE -p ...`.
   const std::string& small_run() const { return test_runs.front(); }
 };
@@ -70,7 +72,7 @@ inline std::vector<MachineInfo> machines_of(const std::string& program) {
   std::vector<MachineInfo> out;
   for (const auto& m : nlohmann::json::parse(r.output, nullptr, false)) {
     MachineInfo info{m.value("name", std::string()), m.value("sample_scene", std::string()),
-                     m.value("test_runs", std::vector<std::string>())};
+                     m.value("test_runs", std::vector<std::string>()), m.value("samples", true)};
     if (info.test_runs.empty()) info.test_runs.push_back("--scene " + info.sample_scene);
     out.push_back(std::move(info));
   }

@@ -790,7 +790,13 @@ const std::map<std::string, std::string> kOpenFigures = {
     {"V17d", "as V17c"},
     {"V19",
      "with the CPU's own bus traffic on the shared memory the array is about 2x the peripheral, "
-     "at the edge of \"a few times\" (docs/validation.md)"}};
+     "at the edge of \"a few times\" (docs/validation.md)"},
+    {"PF3b",
+     "L130's formula has stages that never wait for one another; the model's nodes hold few "
+     "regions, so a shader busy with pins holds up the in-order composition (docs/validation.md)"},
+    {"PF7a",
+     "the composition network every node shares sets the pace at 6 + 24 nodes at L120's rate "
+     "(docs/validation.md)"}};
 
 // A sensitivity run on one machine (pxpl5-raytrace): X4b's master share rests on the master's
 // assumed cost a region, and the run says so.

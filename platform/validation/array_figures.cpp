@@ -25,15 +25,6 @@ RunRequest machine_run(std::string key, const char* machine, int side,
                              40.0 * side * side);
 }
 
-/// A time parameter of a run, in seconds, from its stats.json `params`.
-double param_seconds(const RunResults& r, const std::string& key, const std::string& name) {
-  const nlohmann::json& s = stats_of(r, key);
-  if (!s.contains("params") || !s["params"].contains(name) || !s["params"][name].is_string())
-    throw MeasureError("stats.json of run " + key + " has no parameter " + name);
-  return params::parse_quantity(s["params"][name].get<std::string>(), params::UnitClass::kTime)
-      .value;
-}
-
 /// Max / mean of the processors' busy fractions: 1 is perfect balance.
 double imbalance(const RunResults& r, const std::string& key) {
   const nlohmann::json& s = stats_of(r, key);

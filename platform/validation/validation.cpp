@@ -9,6 +9,7 @@
 
 #include "common/csv_field.hpp"
 #include "common/seed_citation.hpp"
+#include "params/units.hpp"
 
 namespace rtsim::validation {
 
@@ -249,6 +250,48 @@ RunRequest machine_run_request(std::string key, const std::string& machine,
   }
   r.cost_hint = cost_hint;
   return r;
+}
+
+namespace {
+const std::string& param_text(const RunResults& r, const std::string& key,
+                              const std::string& name) {
+  const nlohmann::json& s = stats_of(r, key);
+  if (!s.contains("params") || !s["params"].contains(name) || !s["params"][name].is_string())
+    throw MeasureError("stats.json of run " + key + " has no parameter " + name);
+  return s["params"][name].get_ref<const std::string&>();
+}
+}  // namespace
+
+Figure stats_figure(std::string id, std::string title, std::string seed_ref, std::string seed_text,
+                    double seed_value, std::string unit, Tolerance tolerance, std::string workload,
+                    const std::string& key, std::string path, double scale) {
+  return Figure{.id = std::move(id),
+                .title = std::move(title),
+                .seed_ref = std::move(seed_ref),
+                .seed_text = std::move(seed_text),
+                .seed_value = seed_value,
+                .unit = std::move(unit),
+                .tolerance = std::move(tolerance),
+                .workload = std::move(workload),
+                .runs = {key},
+                .measure = [key, path, scale](const RunResults& r) {
+                  return Measured{stats_number(r, key, path) * scale, "stats.json " + path};
+                }};
+}
+
+double param_seconds(const RunResults& r, const std::string& key, const std::string& name) {
+  return params::parse_quantity(param_text(r, key, name), params::UnitClass::kTime).value;
+}
+
+double param_number(const RunResults& r, const std::string& key, const std::string& name) {
+  const std::string& text = param_text(r, key, name);
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {
+  }
+  throw MeasureError("stats.json of run " + key + ": parameter " + name + " is not a number");
 }
 
 double stats_number(const RunResults& results, const std::string& key, const std::string& path) {

@@ -202,6 +202,15 @@ void check_classes(const Plan& plan, const RunResults& results, std::vector<Row>
 
 /// Readers for the measure functions. Each throws MeasureError with a clear message.
 const nlohmann::json& stats_of(const RunResults& results, const std::string& key);
+/// A figure whose value is one number of one run's stats.json (`path`, times `scale`): the
+/// common case of a figures file.
+Figure stats_figure(std::string id, std::string title, std::string seed_ref, std::string seed_text,
+                    double seed_value, std::string unit, Tolerance tolerance, std::string workload,
+                    const std::string& key, std::string path, double scale);
+/// A time parameter of a run, in seconds, from its stats.json `params` ("760 us").
+double param_seconds(const RunResults& results, const std::string& key, const std::string& name);
+/// A plain-number parameter of a run (a count, a ratio), from its stats.json `params` ("4").
+double param_number(const RunResults& results, const std::string& key, const std::string& name);
 /// Value at a dotted path ("peripheral.time_per_ray_s") of a run's stats.json.
 double stats_number(const RunResults& results, const std::string& key, const std::string& path);
 

@@ -18,23 +18,6 @@ RunRequest wang_run(std::string key, int side, const std::vector<std::string>& p
                              10.0 * side * side);
 }
 
-Figure figure(std::string id, std::string title, std::string seed_ref, std::string seed_text,
-              double seed_value, std::string unit, Tolerance tol, std::string workload,
-              const std::string& key, std::string path, double scale) {
-  return Figure{.id = std::move(id),
-                .title = std::move(title),
-                .seed_ref = std::move(seed_ref),
-                .seed_text = std::move(seed_text),
-                .seed_value = seed_value,
-                .unit = std::move(unit),
-                .tolerance = std::move(tol),
-                .workload = std::move(workload),
-                .runs = {key},
-                .measure = [key, path, scale](const RunResults& r) {
-                  return Measured{stats_number(r, key, path) * scale, "stats.json " + path};
-                }};
-}
-
 }  // namespace
 
 namespace {
@@ -53,12 +36,13 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
       0.01,
       "the issue's 1%: the seed prints 9.16e5 for 1 / 1.092 us = 9.1575e5; a cycle other than "
       "the slowest substage's (a stall, a substage mis-timed) moves it");
-  plan.figures.push_back(figure("W1a", "Bezier pipeline cycle (Table 4)", "seed 002 L437",
-                                "\"pipeline cycle 1.092 x 10^-6 s\" (182 cycles of 6 ns)", 1.092,
-                                "us", one, workload, base, "wang.cycle_s", kMicro));
-  plan.figures.push_back(figure("W1b", "Bezier pipeline throughput (Table 4)", "seed 002 L437",
-                                "\"overall system throughput 9.16 x 10^5 RPI/s\"", 9.16e5, "RPI/s",
-                                one, workload, base, "wang.throughput_rpi_per_s", 1.0));
+  plan.figures.push_back(stats_figure("W1a", "Bezier pipeline cycle (Table 4)", "seed 002 L437",
+                                      "\"pipeline cycle 1.092 x 10^-6 s\" (182 cycles of 6 ns)",
+                                      1.092, "us", one, workload, base, "wang.cycle_s", kMicro));
+  plan.figures.push_back(
+      stats_figure("W1b", "Bezier pipeline throughput (Table 4)", "seed 002 L437",
+                   "\"overall system throughput 9.16 x 10^5 RPI/s\"", 9.16e5, "RPI/s", one,
+                   workload, base, "wang.throughput_rpi_per_s", 1.0));
   // Table 4's cycle is the slowest substage's DSP cycles times 6 ns, and its throughput one over
   // that: the paper's arithmetic [D], which the model's parameters restate (W1h measures it).
   plan.figures[plan.figures.size() - 2].figure_class = FigureClass::kDerived;
@@ -73,7 +57,7 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
     const auto& [name, us] = substages[i];
     // A substage's time is its DSP cycles times 6 ns (or the Culler's 800 ns): the model's
     // parameters against Table 4, not a figure the run could miss.
-    plan.figures.push_back(figure(
+    plan.figures.push_back(stats_figure(
         std::string("W1") + suffix[i], "Substage " + std::to_string(i + 1) + " (" + name + ")",
         "seed 002 L437-L441",
         "Table 4: 4 x SplitInHalf, 8 x SplitInHalf, 32 x "
@@ -89,7 +73,7 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
   // weigh (measured 77% of the steady state); 64x64 takes a fraction of a second.
   const int busy_side = 64;
   const std::string fed = plan.add_run(wang_run("wang-fed", busy_side, {fast_host}));
-  plan.figures.push_back(figure(
+  plan.figures.push_back(stats_figure(
       "W1h", "Bezier pipeline throughput, measured over a frame", "seed 002 L437",
       "\"overall system throughput 9.16 x 10^5 RPI/s\" (the steady state of a full pipeline)",
       9.16e5, "RPI/s",
@@ -107,7 +91,7 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
   const std::string fast = plan.add_run(
       wang_run("wang-split166", side,
                {fast_host, "pipeline.split_u.cycles=166", "pipeline.split_v.cycles=166"}));
-  plan.figures.push_back(figure(
+  plan.figures.push_back(stats_figure(
       "W2a", "SplitInHalf at 166 cycles", "seed 002 L62, L332 (the what-if: L326)",
       "\"a system throughput of over 10^6 ray/patch intersections per second is achievable\" "
       "(L62; L332: \"more than one million\"); L326: assembly-level SplitInHalf would shorten "
@@ -119,7 +103,7 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
   const std::string faster = plan.add_run(
       wang_run("wang-split120", side,
                {fast_host, "pipeline.split_u.cycles=120", "pipeline.split_v.cycles=120"}));
-  plan.figures.push_back(figure(
+  plan.figures.push_back(stats_figure(
       "W2b", "The Culler caps it", "seed 002 L318, L326",
       "once SplitInHalf is faster the 800 ns Culler sets the cycle: 1.25 x 10^6 RPI/s [D]", 1.25e6,
       "RPI/s",
@@ -129,11 +113,11 @@ void add_wang_figures(Plan& plan, const PlanOptions& options) {
   plan.figures.back().figure_class = FigureClass::kDerived;
   const std::string soft =
       plan.add_run(wang_run("wang-software", side, {fast_host, "pipeline.culler.kind=software"}));
-  plan.figures.push_back(figure("W3", "Software Culler (no custom hardware)", "seed 002 L302, L432",
-                                "the Culler in software, 3081 cycles: about 5.4 x 10^4 RPI/s [D]",
-                                5.4e4, "RPI/s",
-                                Tolerance::relative(0.01, "1 / (3081 x 6 ns) = 5.41e4"), workload,
-                                soft, "wang.throughput_rpi_per_s", 1.0));
+  plan.figures.push_back(
+      stats_figure("W3", "Software Culler (no custom hardware)", "seed 002 L302, L432",
+                   "the Culler in software, 3081 cycles: about 5.4 x 10^4 RPI/s [D]", 5.4e4,
+                   "RPI/s", Tolerance::relative(0.01, "1 / (3081 x 6 ns) = 5.41e4"), workload, soft,
+                   "wang.throughput_rpi_per_s", 1.0));
   plan.figures.back().figure_class = FigureClass::kDerived;
 }
 

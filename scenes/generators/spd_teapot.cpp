@@ -57,7 +57,7 @@ void add_polygon(Scene& s, std::vector<Vec3> vertices, std::vector<Vec3> normals
                  std::uint32_t material) {
   s.primitives.push_back(
       {PrimitiveKind::Polygon, static_cast<std::uint32_t>(s.polygons.size()), material, 0});
-  s.polygons.push_back({std::move(vertices), std::move(normals)});
+  s.polygons.push_back({std::move(vertices), std::move(normals), {}});
 }
 
 /// SPD's teapot scene without its teapot: the view, lights, background, materials (the teapot's

@@ -1,0 +1,126 @@
+#include "platform/machines/pixelflow/frame_setup.hpp"
+
+#include <string>
+
+#include "common/input_error.hpp"
+#include "common/suggest.hpp"
+
+namespace rtsim::platform::pixelflow {
+
+namespace {
+
+/// The shading function material `m` names; InputError for a name no function has.
+deferred::ShadingFunction function_of(const scenes::Scene& scene, std::uint32_t m) {
+  const std::string& name = raster::surface_shading(scene, m).shader;
+  if (const auto f = deferred::shading_function_named(name)) return *f;
+  const std::vector<std::string_view> names(deferred::kShadingFunctionNames.begin(),
+                                            deferred::kShadingFunctionNames.end());
+  throw InputError(scene.name, 0,
+                   "pixelflow: material " + std::to_string(m) + " asks for shading function '" +
+                       name + "', which PixelFlow's shading nodes do not have" +
+                       did_you_mean(name, names));
+}
+
+}  // namespace
+
+FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& settings, int width,
+                            int height, int spp) {
+  FrameSetup f;
+  f.width = width;
+  f.height = height;
+  f.spp = spp;
+  // Fig. 8's shader id is one byte and 0 is the background (appearance.hpp).
+  if (scene.materials.size() > 255)
+    throw InputError(scene.name, 0,
+                     "pixelflow: the scene has " + std::to_string(scene.materials.size()) +
+                         " materials; a sample's shader id is one byte (seed 004 Fig. 8, L110), "
+                         "so at most 255 can be told apart");
+  // The tessellation's size, bounded before anything is allocated: a scene of many spheres at
+  // a fine mesh.sphere_segments would otherwise take all the memory there is.
+  double estimate = 0.0;
+  for (const auto& p : scene.primitives) {
+    switch (p.kind) {
+      case scenes::PrimitiveKind::Polygon:
+        estimate += static_cast<double>(scene.polygons[p.index].vertices.size());
+        break;
+      case scenes::PrimitiveKind::Sphere:
+        estimate += static_cast<double>(settings.mesh.sphere_segments) * settings.mesh.sphere_segments;
+        break;
+      case scenes::PrimitiveKind::Cone:
+        estimate += 2.0 * settings.mesh.cone_segments;
+        break;
+      case scenes::PrimitiveKind::Patch:
+        estimate += 2.0 * settings.mesh.patch_segments * settings.mesh.patch_segments;
+        break;
+    }
+  }
+  if (estimate > kMaxTriangles)
+    throw InputError(scene.name, 0,
+                     "pixelflow: tessellated at mesh.sphere_segments = " +
+                         std::to_string(settings.mesh.sphere_segments) + ", mesh.cone_segments = " +
+                         std::to_string(settings.mesh.cone_segments) + " and mesh.patch_segments = " +
+                         std::to_string(settings.mesh.patch_segments) + " the scene would be about " +
+                         std::to_string(static_cast<long long>(estimate)) +
+                         " triangles, more than the " + std::to_string(kMaxTriangles) +
+                         " the rasterizers are given memory for; lower them");
+  f.mesh = raster::build_raster_mesh(scene, settings.mesh);
+  f.shading.lights = scene.lights;
+  f.shading.shade = settings.shade;
+  f.shading.background = scene.background;
+  f.shading.shadow_bias_texels = settings.shadow_bias_texels;
+  f.shading.bump_scale = settings.bump_scale;
+  std::vector<bool> not_alley(scene.materials.size(), true);
+  bool any_alley = false;
+  for (std::uint32_t m = 0; m < scene.materials.size(); ++m) {
+    const auto& mat = scene.materials[m];
+    const deferred::ShadingFunction fn = function_of(scene, m);
+    f.words.push_back({static_cast<std::uint8_t>(m + 1),
+                       {raster::colour_byte(mat.color.r), raster::colour_byte(mat.color.g),
+                        raster::colour_byte(mat.color.b)}});
+    f.shading.materials.push_back({fn, mat.kd, mat.ks, mat.shine});
+    if (fn == deferred::ShadingFunction::Pin || fn == deferred::ShadingFunction::Alley)
+      f.uses_textures = true;
+    if (fn == deferred::ShadingFunction::Alley) {
+      not_alley[m] = false;
+      any_alley = true;
+    }
+  }
+  if (f.uses_textures) f.textures = deferred::make_bowling_textures();
+  f.camera = raster::ViewTransform::camera(scene.camera, width, height, f.mesh.bounds);
+  // A shadow map covers what the camera sees: aimed from the light at the box of the vertices
+  // in the camera's view (a triangle with a vertex there is on the screen), so its texels are
+  // spent where they are looked up; the whole scene if no vertex is in view.
+  Bounds seen;
+  for (const auto& t : f.mesh.triangles)
+    for (const auto& v : t.v) {
+      const Vec3 e = f.camera.to_eye(v.position);
+      if (!(e.z > f.camera.near)) continue;
+      const double sx = f.camera.screen_x(e), sy = f.camera.screen_y(e);
+      if (sx >= -0.1 * width && sx <= 1.1 * width && sy >= -0.1 * height && sy <= 1.1 * height)
+        seen.extend(v.position);
+    }
+  if (seen.empty()) seen = f.mesh.bounds;
+  for (const auto& light : scene.lights)
+    f.shadow_views.push_back(
+        raster::ViewTransform::enclosing(light.position, seen, f.mesh.bounds, settings.map_size));
+  if (any_alley) {
+    // The reflector's plane: its first triangle's, facing the camera. A reflector the camera sees
+    // from behind reflects nothing it could show.
+    for (const auto& t : f.mesh.triangles) {
+      if (not_alley[t.material]) continue;
+      Vec3 n = t.face_normal;
+      const Vec3 p = t.v[0].position;
+      if (glm::dot(n, f.camera.origin - p) < 0.0) n = -n;
+      if (!(glm::dot(n, f.camera.origin - p) > 0.0)) break;
+      MirrorPass mirror;
+      mirror.plane = {p, n};
+      mirror.view = f.camera.mirrored(p, n, settings.map_size, f.mesh.bounds);
+      mirror.include = not_alley;
+      f.mirror = std::move(mirror);
+      break;
+    }
+  }
+  return f;
+}
+
+}  // namespace rtsim::platform::pixelflow

@@ -1,0 +1,360 @@
+// pixelflow: PixelFlow's deferred shading (seed 004 L1-L193; note 004 "Paper 1"): identical
+// nodes assigned as rasterizers and shaders (L160) on an image-composition network, a frame-
+// buffer node (L93), the screen in 128 x 64 regions taken one at a time (L21), shaders taking one
+// of every s regions (L23), and a frame of passes: shadow maps, a reflection map, the camera's
+// image at 5 samples a pixel (L114-L128). It rasterizes rather than traces: firmware/raster/
+// scan-converts, firmware/deferred/ shades.
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <systemc>
+
+#include "common/input_error.hpp"
+#include "modules/module_params.hpp"
+#include "modules/stat_directory.hpp"
+#include "platform/machine_registry.hpp"
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/pixelflow/composition_network.hpp"
+#include "platform/machines/pixelflow/frame_buffer_node.hpp"
+#include "platform/machines/pixelflow/functional_passes.hpp"
+#include "platform/machines/pixelflow/pass_plan.hpp"
+#include "platform/machines/pixelflow/rasterizer_node.hpp"
+#include "platform/machines/pixelflow/shading_node.hpp"
+
+namespace rtsim::platform {
+
+class Pixelflow final : public Machine {
+ public:
+  using Machine::Machine;
+  void declare_params(params::ParamRegistry& registry) const override;
+  FunctionalTwin make_twin(scenes::Scene& scene,
+                           const params::ParamRegistry& registry) const override;
+  RunResult run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& registry,
+                const RunOptions& opts) const override;
+};
+
+namespace {
+
+constexpr const char* kRasterizer = "rasterizer";
+constexpr const char* kShader = "shader";
+constexpr const char* kNetwork = "composition";
+constexpr const char* kFrameBuffer = "frame_buffer";
+
+const modules::CountParam kRasterizers(
+    {.name = "nodes.rasterizers",
+     .default_value = "3",
+     .min = "1",
+     .max = "64",
+     .unit = "nodes",
+     .description = "nodes assigned as rasterizers; the primitives are divided among them",
+     .source = "seed 004 L93 (the bowling configuration); L160: chosen at run time"});
+const modules::CountParam kShaders(
+    {.name = "nodes.shaders",
+     .default_value = "12",
+     .min = "1",
+     .max = "256",
+     .unit = "nodes",
+     .description = "nodes assigned as shaders; each takes one of every s region-samples",
+     .source = "seed 004 L93 (the bowling configuration); L23, L160"});
+
+// What the image depends on: the machine's own conversion of the scene and its maps.
+const modules::IntParam kSphereSegments(
+    {.name = "mesh.sphere_segments",
+     .default_value = "24",
+     .min = "3",
+     .max = "1024",
+     .description = "segments round a sphere (and half as many rings) when it is tessellated "
+                    "into triangles",
+     .source = "assumption: the seed's scene is triangles already (L93); 24 keeps an NFF "
+               "sphere's outline within a pixel of round at a few hundred pixels across"});
+const modules::IntParam kConeSegments(
+    {.name = "mesh.cone_segments",
+     .default_value = "24",
+     .min = "3",
+     .max = "1024",
+     .description = "segments round a cone or cylinder when it is tessellated",
+     .source = "assumption: as mesh.sphere_segments"});
+const modules::IntParam kPatchSegments(
+    {.name = "mesh.patch_segments",
+     .default_value = "8",
+     .min = "1",
+     .max = "256",
+     .description = "quads a side of a Bezier patch's tessellation (each two triangles)",
+     .source = "assumption: the teapot's 32 patches become 4096 triangles, as many as the "
+               "bowling frame's pins"});
+const modules::IntParam kMapSize({.name = "maps.size",
+                                  .default_value = "512",
+                                  .min = "128",
+                                  .max = "4096",
+                                  .description = "texels a side of the shadow and reflection maps",
+                                  .source = "seed 004 L116"});
+const modules::RealParam kShadowBias(
+    {.name = "shading.shadow_bias",
+     .default_value = "1.5",
+     .min = "0",
+     .max = "100",
+     .unit = "texels",
+     .description = "how much farther than the shadow map's depth a surface may be and still be "
+                    "lit, in the map's texels at its depth (more on surfaces steep to the light)",
+     .source = "assumption: the seed gives none; 1.5 texels removes self-shadowing on the "
+               "bowling frame's curved pins without detaching the ball's shadow"});
+const modules::RealParam kBumpScale(
+    {.name = "shading.bump_scale",
+     .default_value = "0.004",
+     .min = "0",
+     .max = "1",
+     .description = "how far the scuffs' bump map tilts a pin's normal per unit of its height "
+                    "field's slope",
+     .source = "assumption: the seed gives the bump map (L97), not its depth"});
+
+using pixelflow::FrameSettings;
+
+FrameSettings read_frame_settings(const params::ParamRegistry& r,
+                                  const shading::ShadeParams& shade) {
+  const modules::ModuleParams p(r, "");
+  FrameSettings s;
+  s.mesh.sphere_segments = static_cast<int>(p.get(kSphereSegments));
+  s.mesh.cone_segments = static_cast<int>(p.get(kConeSegments));
+  s.mesh.patch_segments = static_cast<int>(p.get(kPatchSegments));
+  s.map_size = static_cast<int>(p.get(kMapSize));
+  s.shadow_bias_texels = p.get(kShadowBias);
+  s.bump_scale = p.get(kBumpScale);
+  s.shade = shade;
+  return s;
+}
+
+}  // namespace
+
+void Pixelflow::declare_params(params::ParamRegistry& r) const {
+  // The twin reads only render.spp, scene.seed and shade.* of the render parameters.
+  declare_common_params(
+      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
+  const modules::ParamDecls machine(r, "", /*per_instance=*/false);
+  machine.add(kRasterizers);
+  machine.add(kShaders);
+  const modules::ParamDecls image = machine.affecting_image();
+  for (const auto* p : {&kSphereSegments, &kConeSegments, &kPatchSegments, &kMapSize})
+    image.add(*p);
+  image.add(kShadowBias);
+  image.add(kBumpScale);
+  r.declare_family({.cls = kRasterizer, .count_param = kRasterizers.name()});
+  pixelflow::RasterizerNode::declare_params(machine.sub(kRasterizer));
+  r.declare_family({.cls = kShader, .count_param = kShaders.name()});
+  pixelflow::ShadingNode::declare_params(machine.sub(kShader));
+  pixelflow::CompositionNetwork::declare_params(machine.sub(kNetwork));
+}
+
+FunctionalTwin Pixelflow::make_twin(scenes::Scene& scene, const params::ParamRegistry& r) const {
+  auto settings = functional::read_render_settings(r);
+  settings.accel = functional::AccelKind::None;
+  FunctionalTwin twin = make_functional_twin(scene, settings);
+  const FrameSettings frame = read_frame_settings(r, twin.settings.shade);
+  // Checked now: a scene the machine cannot hold is bad input before anything runs.
+  (void)pixelflow::make_frame_setup(scene, frame, 1, 1, 1);
+  twin.render = [frame](const scenes::Scene& s, const Tracer&,
+                        const functional::RenderOptions& opts) {
+    const auto start = std::chrono::steady_clock::now();
+    const int w = opts.width > 0 ? opts.width : s.camera.width;
+    const int h = opts.height > 0 ? opts.height : s.camera.height;
+    const int spp = std::max(1, opts.spp);
+    const auto f = pixelflow::make_frame_setup(s, frame, w, h, spp);
+    const auto maps = pixelflow::render_maps(f);
+    functional::FrameState state(w, h, spp, opts.aov_id, opts.aov_depth);
+    pixelflow::render_camera(f, maps, state);
+    return state.finish(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  };
+  return twin;
+}
+
+RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const params::ParamRegistry& r,
+                         const RunOptions& opts) const {
+  using namespace pixelflow;
+  if (opts.sample_every > 0) throw InputError("--sample", 0, "pixelflow does not sample");
+  MachineRun run(name(), scene, twin, r, opts, /*rows_sampled=*/false);
+  const modules::ModuleParams top(r, "");
+  const int rasterizers = static_cast<int>(top.get(kRasterizers));
+  const int shaders = static_cast<int>(top.get(kShaders));
+  const FrameSetup frame = make_frame_setup(scene, read_frame_settings(r, twin.settings.shade),
+                                            run.width(), run.height(), run.frame().spp());
+  const PassPlan plan = plan_passes(frame, rasterizers);
+  const Pass& camera = *plan.camera();
+
+  // In-flight faults on the composition network; the machine has no memory at rest to corrupt.
+  std::vector<MemoryFault> at_rest = opts.faults;
+  std::vector<CompositionFault> in_flight;
+  for (const auto& f : take_faults(
+           at_rest, [](const std::string& n) { return n == CompositionNetwork::kFaultPoint; }))
+    in_flight.push_back({f.word, f.xor_mask, false});
+  inject_faults(name(), at_rest, {}, {CompositionNetwork::kFaultPoint});
+
+  // --latency-probe follows the camera pass's region-samples through the nodes.
+  modules::LatencyProbe& probe = run.probe();
+  probe.describe("region-sample",
+                 "a camera region-sample, from the first rasterizer beginning it to the frame "
+                 "buffer taking its colours");
+  const ProbeStages stages{.rasterizer = probe.stage("rasterizer*"),
+                           .from_rasterizer = probe.stage("composition.from_rasterizer*"),
+                           .network = probe.stage(kNetwork),
+                           .link = probe.stage("composition.link"),
+                           .shader_in = probe.stage("shader*.in"),
+                           .shader = probe.stage("shader*"),
+                           .from_shader = probe.stage("composition.from_shader*"),
+                           .frame_buffer_in = probe.stage("frame_buffer.in")};
+  std::vector<std::unique_ptr<ShadingNode>> shader_nodes;
+  for (int s = 0; s < shaders; ++s)
+    shader_nodes.push_back(std::make_unique<ShadingNode>((kShader + std::to_string(s)).c_str(), run,
+                                                         frame, plan, s, shaders, stages));
+  FrameBufferNode fb(kFrameBuffer, run, camera.region_samples(), stages.frame_buffer_in);
+  NetworkEnds ends;
+  for (const auto& s : shader_nodes) {
+    ends.shaders.push_back(&s->in.fifo);
+    ends.tables.push_back(&s->table.in.fifo);
+  }
+  ends.frame_buffer = &fb.in.fifo;
+  const std::size_t buffers =
+      RasterizerNode::buffered_regions(modules::ModuleParams(r, std::string(kRasterizer) + "0"));
+  CompositionNetwork network(kNetwork, run, plan, shaders, buffers, ends, in_flight, stages);
+  std::vector<std::unique_ptr<RasterizerNode>> rasterizer_nodes;
+  for (int k = 0; k < rasterizers; ++k) {
+    rasterizer_nodes.push_back(std::make_unique<RasterizerNode>(
+        (kRasterizer + std::to_string(k)).c_str(), run, plan, k,
+        network.from_rasterizer[static_cast<std::size_t>(k)]->fifo));
+    rasterizer_nodes.back()->out.bind(network.from_rasterizer[static_cast<std::size_t>(k)]->socket);
+  }
+  for (int s = 0; s < shaders; ++s) {
+    auto& node = *shader_nodes[static_cast<std::size_t>(s)];
+    network.to_shader[static_cast<std::size_t>(s)]->bind(node.in.socket);
+    network.to_table[static_cast<std::size_t>(s)]->bind(node.table.in.socket);
+    node.out.bind(network.from_shader[static_cast<std::size_t>(s)]->socket);
+    node.feeds(network.from_shader[static_cast<std::size_t>(s)]->fifo);
+  }
+  network.to_frame_buffer.bind(fb.in.socket);
+  run.simulate();
+
+  const sc_core::sc_time end = fb.frame_end();
+  run.stats_over(sc_core::SC_ZERO_TIME, end);
+
+  // Each pass: when its first rasterization began and its result was in place (a map stored in
+  // every table memory, the camera's last region-sample in the frame buffer), its work.
+  nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+  for (std::size_t pi = 0; pi < plan.passes.size(); ++pi) {
+    const Pass& p = plan.passes[pi];
+    sc_core::sc_time raster_busy = sc_core::SC_ZERO_TIME, raster_max = sc_core::SC_ZERO_TIME;
+    std::uint64_t triangles = 0;
+    sc_core::sc_time begun = end;
+    for (const auto& n : rasterizer_nodes) {
+      begun = std::min(begun, n->began_pass()[pi]);
+      raster_busy += n->busy_by_pass()[pi];
+      raster_max = std::max(raster_max, n->busy_by_pass()[pi]);
+      triangles += n->triangles_by_pass()[pi];
+    }
+    sc_core::sc_time shade_busy = sc_core::SC_ZERO_TIME, shade_max = sc_core::SC_ZERO_TIME;
+    for (const auto& n : shader_nodes) {
+      shade_busy += n->busy_by_pass()[pi];
+      shade_max = std::max(shade_max, n->busy_by_pass()[pi]);
+    }
+    sc_core::sc_time done = end;
+    for (const auto& [index, at] : shader_nodes.front()->table.stored_at())
+      if (static_cast<std::size_t>(index) == pi) done = at;
+    for (const auto& n : shader_nodes)
+      for (const auto& [index, at] : n->table.stored_at())
+        if (static_cast<std::size_t>(index) == pi) done = std::max(done, at);
+    passes[p.name()] = {{"region_samples", p.region_samples()},
+                        {"front_facing_triangles", p.setup.front_facing},
+                        {"triangles_set_up", triangles},
+                        {"rasterize_s", raster_busy.to_seconds()},
+                        {"rasterize_busiest_s", raster_max.to_seconds()},
+                        {"shade_s", shade_busy.to_seconds()},
+                        {"shade_busiest_s", shade_max.to_seconds()},
+                        {"network_bytes", network.bytes_by_pass()[pi]},
+                        {"begin_s", begun.to_seconds()},
+                        {"done_s", done.to_seconds()}};
+  }
+  // The passes end one after another: each pass's time is from the one before's end.
+  double previous = 0.0;
+  for (auto& item : passes.items()) {
+    auto& p = item.value();
+    const double done = p["done_s"].get<double>();
+    p["time_s"] = done - previous;
+    previous = done;
+  }
+  nlohmann::ordered_json regions_per_shader = nlohmann::ordered_json::array();
+  sc_core::sc_time worst = sc_core::SC_ZERO_TIME;
+  const deferred::RegionWork* worst_work = nullptr;
+  for (const auto& n : shader_nodes) {
+    std::uint64_t total = 0;
+    for (const auto c : n->regions_by_pass()) total += c;
+    regions_per_shader.push_back(total);
+    if (n->worst_time() > worst) {
+      worst = n->worst_time();
+      worst_work = &n->worst_work();
+    }
+  }
+  nlohmann::ordered_json& res = run.machine_stats();
+  auto& pf = res["pixelflow"];
+  pf["rasterizers"] = rasterizers;
+  pf["shaders"] = shaders;
+  pf["regions"] = camera.grid.count();
+  pf["samples"] = camera.samples;
+  pf["triangles"] = frame.mesh.triangles.size();
+  pf["passes"] = std::move(passes);
+  pf["regions_per_shader"] = std::move(regions_per_shader);
+  std::uint64_t network_bytes = 0;
+  for (const auto b : network.bytes_by_pass()) network_bytes += b;
+  pf["network_bytes"] = network_bytes;
+  if (worst_work) {
+    nlohmann::ordered_json pixels = nlohmann::ordered_json::object();
+    for (int f = 0; f < deferred::kShadingFunctions; ++f)
+      pixels[std::string(deferred::kShadingFunctionNames[static_cast<std::size_t>(f)])] =
+          worst_work->pixels[static_cast<std::size_t>(f)];
+    nlohmann::ordered_json lookups = nlohmann::ordered_json::object();
+    for (int l = 0; l < deferred::kLookups; ++l)
+      lookups[std::string(deferred::kLookupNames[static_cast<std::size_t>(l)])] =
+          worst_work->lookups[static_cast<std::size_t>(l)];
+    pf["worst_region"] = {{"time_s", worst.to_seconds()},
+                          {"pixels", std::move(pixels)},
+                          {"lookup_pixels", std::move(lookups)}};
+  }
+  for (const auto& f : network.faults())
+    pf["faults_in_flight"].push_back(
+        {{"at", kNetwork}, {"word", f.word}, {"xor_mask", f.xor_mask}, {"applied", f.applied}});
+  using modules::StatUnit;
+  run.machine_units() = {{"pixelflow.passes.*_s", StatUnit::seconds},
+                         {"pixelflow.worst_region.time_s", StatUnit::seconds},
+                         {"pixelflow.*network_bytes", StatUnit::bytes},
+                         {"pixelflow.passes.network_bytes", StatUnit::bytes},
+                         // Nodes, regions, samples, triangles, pixels, words.
+                         {"pixelflow.*", StatUnit::count}};
+  return run.finish(modules::LatencyRecorder{}, {});
+}
+
+namespace {
+
+const RegisterMachine<Pixelflow> kRegistered(
+    {.name = "pixelflow",
+     .description = "PixelFlow's deferred shading: rasterizer and shader nodes on an "
+                    "image-composition network, shadow and reflection map passes, 128 x 64 "
+                    "regions (seed 004, Lastra et al. 1995)",
+     .sample_scene = "builtin:bowling",
+     .test_runs = {"--scene builtin:bowling", "--scene builtin:default -p nodes.shaders=3",
+                   "--scene builtin:spd-teapot -p nodes.rasterizers=1"},
+     .benchmark_runs = {"--scene builtin:bowling", "--scene builtin:default",
+                        "--scene builtin:spd-teapot"},
+     .report_plots = {{.object = "pixelflow",
+                       .key = "passes",
+                       .script = "pixelflow_passes.py",
+                       .title = "PixelFlow's passes",
+                       .caption = "When each pass ran, from its first rasterization to its result "
+                                  "in place, and its busiest rasterizer's, busiest shader's and "
+                                  "the composition network's busy time (stats.json "
+                                  "pixelflow.passes; analysis/pixelflow_passes.py)"}},
+     .samples = false,
+     .sampling_refusal =
+         "its frame is passes of regions, each map needed whole before the camera's pass (seed "
+         "004 L116), and a frame of the paper's size takes half a second whole; run the whole "
+         "frame"});
+
+}  // namespace
+}  // namespace rtsim::platform
