@@ -52,6 +52,11 @@ TEST(Pixelflow, ACorruptedRecordOnTheCompositionNetworkChangesTheImage) {
             read_file(bad["image_png"].get<std::string>()));
   ASSERT_TRUE(bad["pixelflow"].contains("faults_in_flight"));
   EXPECT_TRUE(bad["pixelflow"]["faults_in_flight"][0]["applied"].get<bool>());
+  // A word past the camera pass's records: exit 2, saying how many there are.
+  const auto past =
+      run_rtsim("run --machine pixelflow " + kBowling + " -q --fault composition:99999999999:1");
+  EXPECT_EQ(past.exit_code, 2) << past.output;
+  EXPECT_NE(past.output.find("words of records"), std::string::npos) << past.output;
   // A fault point the machine does not have: exit 2, naming the one it has.
   const auto r = run_rtsim("run --machine pixelflow " + kBowling + " -q --fault compositor:0:1");
   EXPECT_EQ(r.exit_code, 2) << r.output;

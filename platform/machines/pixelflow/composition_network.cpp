@@ -8,10 +8,6 @@
 namespace rtsim::platform::pixelflow {
 
 namespace {
-/// Words of 32 bits in one region-sample's records (8K records of 34 bytes).
-constexpr std::uint64_t kWordsPerRegion =
-    static_cast<std::uint64_t>(raster::kRegionPixels) * raster::kAppearanceBytes / 4;
-
 /// XORs `mask` into the 4 bytes at byte `offset` of the records (little-endian; a word may
 /// straddle two records).
 void corrupt(raster::RegionSamples& s, std::uint64_t offset, std::uint32_t mask) {
@@ -105,8 +101,8 @@ class CompositionNetwork::Compositor : public modules::Processor {
 
   void apply_faults(RasterRegion& r, int k) {
     for (auto& f : net_.faults_) {
-      if (f.word / kWordsPerRegion != static_cast<std::uint64_t>(k)) continue;
-      corrupt(*r.samples, (f.word % kWordsPerRegion) * 4, f.xor_mask);
+      if (f.word / CompositionNetwork::kWordsPerRegion != static_cast<std::uint64_t>(k)) continue;
+      corrupt(*r.samples, (f.word % CompositionNetwork::kWordsPerRegion) * 4, f.xor_mask);
       f.applied = true;
     }
   }

@@ -51,6 +51,9 @@ class CompositionNetwork : public sc_core::sc_module {
   static void declare_params(const modules::ParamDecls& network);
   /// The name of its fault point.
   static constexpr const char* kFaultPoint = "composition";
+  /// 32-bit words of one region-sample's records (8K records of 34 bytes).
+  static constexpr std::uint64_t kWordsPerRegion =
+      static_cast<std::uint64_t>(raster::kRegionPixels) * raster::kAppearanceBytes / 4;
 
   CompositionNetwork(sc_core::sc_module_name name, MachineRun& run, const PassPlan& plan,
                      int shaders, std::size_t rasterizer_buffers, NetworkEnds ends,

@@ -44,7 +44,8 @@ FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& set
         estimate += static_cast<double>(scene.polygons[p.index].vertices.size());
         break;
       case scenes::PrimitiveKind::Sphere:
-        estimate += static_cast<double>(settings.mesh.sphere_segments) * settings.mesh.sphere_segments;
+        estimate +=
+            static_cast<double>(settings.mesh.sphere_segments) * settings.mesh.sphere_segments;
         break;
       case scenes::PrimitiveKind::Cone:
         estimate += 2.0 * settings.mesh.cone_segments;
@@ -55,14 +56,15 @@ FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& set
     }
   }
   if (estimate > kMaxTriangles)
-    throw InputError(scene.name, 0,
-                     "pixelflow: tessellated at mesh.sphere_segments = " +
-                         std::to_string(settings.mesh.sphere_segments) + ", mesh.cone_segments = " +
-                         std::to_string(settings.mesh.cone_segments) + " and mesh.patch_segments = " +
-                         std::to_string(settings.mesh.patch_segments) + " the scene would be about " +
-                         std::to_string(static_cast<long long>(estimate)) +
-                         " triangles, more than the " + std::to_string(kMaxTriangles) +
-                         " the rasterizers are given memory for; lower them");
+    throw InputError(
+        scene.name, 0,
+        "pixelflow: tessellated at mesh.sphere_segments = " +
+            std::to_string(settings.mesh.sphere_segments) +
+            ", mesh.cone_segments = " + std::to_string(settings.mesh.cone_segments) +
+            " and mesh.patch_segments = " + std::to_string(settings.mesh.patch_segments) +
+            " the scene would be about " + std::to_string(static_cast<long long>(estimate)) +
+            " triangles, more than the " + std::to_string(kMaxTriangles) +
+            " the rasterizers are given memory for; lower them");
   f.mesh = raster::build_raster_mesh(scene, settings.mesh);
   f.shading.lights = scene.lights;
   f.shading.shade = settings.shade;

@@ -185,8 +185,17 @@ RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const param
   std::vector<MemoryFault> at_rest = opts.faults;
   std::vector<CompositionFault> in_flight;
   for (const auto& f : take_faults(
-           at_rest, [](const std::string& n) { return n == CompositionNetwork::kFaultPoint; }))
+           at_rest, [](const std::string& n) { return n == CompositionNetwork::kFaultPoint; })) {
+    const std::uint64_t words =
+        static_cast<std::uint64_t>(camera.region_samples()) * CompositionNetwork::kWordsPerRegion;
+    if (f.word >= words)
+      throw InputError(
+          "--fault " + f.memory + ":" + std::to_string(f.word), 0,
+          "the camera pass composites " + std::to_string(words) + " words of records (" +
+              std::to_string(camera.region_samples()) + " region-samples of " +
+              std::to_string(CompositionNetwork::kWordsPerRegion) + "): give a word below that");
     in_flight.push_back({f.word, f.xor_mask, false});
+  }
   inject_faults(name(), at_rest, {}, {CompositionNetwork::kFaultPoint});
 
   // --latency-probe follows the camera pass's region-samples through the nodes.
