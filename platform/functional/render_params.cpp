@@ -181,8 +181,10 @@ void declare_render_params(params::ParamRegistry& r, const RenderParamUse& use) 
   }
   top.add(kSceneSeed);
   top.add(kAmbient);
-  top.add(kMaxDepth);
-  top.add(kContributionThreshold);
+  if (use.ray_tree) {
+    top.add(kMaxDepth);
+    top.add(kContributionThreshold);
+  }
   top.add(kLightIntensity);
   top.add(kViewAzimuth);
   top.add(kViewElevation);
@@ -228,8 +230,10 @@ RenderSettings read_render_settings(const params::ParamRegistry& r) {
   }
   s.scene_seed = read_scene_seed(r);
   s.shade.ambient = p.get(kAmbient);
-  s.shade.max_depth = static_cast<int>(p.get(kMaxDepth));
-  s.shade.contribution_threshold = p.get(kContributionThreshold);
+  if (r.contains(kMaxDepth.name())) {
+    s.shade.max_depth = static_cast<int>(p.get(kMaxDepth));
+    s.shade.contribution_threshold = p.get(kContributionThreshold);
+  }
   s.shade.light_intensity = p.get(kLightIntensity);
   s.view_azimuth_deg = p.get(kViewAzimuth);
   s.view_elevation_deg = p.get(kViewElevation);

@@ -45,13 +45,16 @@ struct RenderSettings {
 
 /// Which optional groups of render parameters a functional twin reads. A machine declares only
 /// what its twin reads, so setting another (say render.grid.divisions on a machine whose grid is
-/// its own) is an error rather than a silent no-op. render.spp, scene.seed and shade.* are read
-/// by every twin and always declared.
+/// its own) is an error rather than a silent no-op. render.spp, scene.seed, shade.ambient,
+/// shade.light_intensity and view.* are read by every twin and always declared.
 struct RenderParamUse {
   bool accel = true;           ///< render.accel, render.grid.divisions: the structure's choice
   bool shells = true;          ///< render.shells.*: the box-shell hierarchy's shape
   bool polygon_kernel = true;  ///< render.polygon_kernel
   bool bezier = true;          ///< bezier.iterations (scenes with patches)
+  /// shade.max_depth, shade.contribution_threshold: the ray tree's depth and pruning (a machine
+  /// that traces no secondary rays, pixelflow, reads neither).
+  bool ray_tree = true;
 };
 
 /// Declares the render and shading parameters of `use` (all of them by default: the functional

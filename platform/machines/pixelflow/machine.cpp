@@ -127,9 +127,13 @@ FrameSettings read_frame_settings(const params::ParamRegistry& r,
 }  // namespace
 
 void Pixelflow::declare_params(params::ParamRegistry& r) const {
-  // The twin reads only render.spp, scene.seed and shade.* of the render parameters.
-  declare_common_params(
-      r, {.accel = false, .shells = false, .polygon_kernel = false, .bezier = false});
+  // The twin reads render.spp, scene.seed, view.* and the shading model's ambient and light
+  // intensity: it searches nothing (no grid, no shells) and traces no ray tree.
+  declare_common_params(r, {.accel = false,
+                            .shells = false,
+                            .polygon_kernel = false,
+                            .bezier = false,
+                            .ray_tree = false});
   const modules::ParamDecls machine(r, "", /*per_instance=*/false);
   machine.add(kRasterizers);
   machine.add(kShaders);
