@@ -67,12 +67,10 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y * raster::kRegionWidth + x);
       const raster::Appearance a = raster::unpack(in.words[i]);
-      if (!a.covered() || a.depth == raster::kBackgroundDepth) {
-        ++work.background;
-        continue;
-      }
+      if (!a.covered() || a.depth == raster::kBackgroundDepth) continue;
       PixelState& p = px[i];
       p.covered = true;
+      ++work.lit_pixels;
       p.material = a.shader;
       p.position = view.world_at(g.screen_x(x), g.screen_y(y), view.depth_of(a.depth));
       const Vec3 eye = view.origin - p.position;
@@ -123,7 +121,6 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
       }
     }
   }
-  for (const auto& p : px) work.lit_pixels += p.covered ? 1u : 0u;
 
   // Post-light, every function's pixels: Phong (R I_a + k_d n.l + k_s (r.v)^n, seed 000 L414-
   // L448 as the ray tracers shade), the alley adding its reflection map weighted by k_s.

@@ -61,7 +61,6 @@ struct RegionWork {
   std::uint32_t lit_pixels = 0;  ///< covered pixels (every light's loop runs over them)
   std::uint32_t lights = 0;
   std::array<std::uint32_t, kLookups> lookups{};
-  std::uint32_t background = 0;  ///< pixels no surface covers
 
   bool has(ShadingFunction f) const { return pixels[static_cast<std::size_t>(f)] > 0; }
   std::uint32_t lookup(Lookup l) const { return lookups[static_cast<std::size_t>(l)]; }

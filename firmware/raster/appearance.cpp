@@ -25,7 +25,6 @@ std::uint16_t get16(const std::uint8_t* p) {
 
 Vec3 Appearance::shading_normal() const { return unit_of(normal); }
 Vec3 Appearance::tangent_x() const { return unit_of(dp_dx); }
-Vec3 Appearance::tangent_y() const { return unit_of(dp_dy); }
 
 std::int16_t unit_component(double c) {
   return static_cast<std::int16_t>(std::lround(std::clamp(c, -1.0, 1.0) * 32767.0));
@@ -66,8 +65,7 @@ AppearanceWord pack(const Appearance& a) {
 Appearance unpack(const AppearanceWord& w) {
   Appearance a;
   const std::uint8_t* p = w.data();
-  a.depth = static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
-            (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
+  a.depth = depth_word(w);
   a.shader = p[4];
   a.colour = {p[5], p[6], p[7]};
   for (int i = 0; i < 3; ++i) a.normal[i] = static_cast<std::int16_t>(get16(p + 8 + 2 * i));

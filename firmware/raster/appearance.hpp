@@ -43,7 +43,6 @@ struct Appearance {
   bool covered() const { return shader != 0; }
   Vec3 shading_normal() const;
   Vec3 tangent_x() const;
-  Vec3 tangent_y() const;
   double tex_u() const { return u / 65536.0; }
   double tex_v() const { return v / 65536.0; }
   Color intrinsic_colour() const { return Color(colour[0], colour[1], colour[2]) / 255.0; }
@@ -58,17 +57,18 @@ std::uint16_t texture_fraction(double t);
 std::uint16_t footprint_word(double f);
 std::uint8_t colour_byte(double c);
 
+/// The depth word of a packed record (its first 4 bytes, little-endian).
+inline std::uint32_t depth_word(const AppearanceWord& w) {
+  return static_cast<std::uint32_t>(w[0]) | (static_cast<std::uint32_t>(w[1]) << 8) |
+         (static_cast<std::uint32_t>(w[2]) << 16) | (static_cast<std::uint32_t>(w[3]) << 24);
+}
+
 /// The z-compositing order of two packed records: nearer depth first; at equal depth words the
 /// lower record, byte by byte. Any order of compositing then keeps the same sample, so the
 /// image does not depend on how primitives are divided among rasterizers or in which order they
 /// arrive (an assumption: the seed says only that depths are compared, L120).
 inline bool nearer(const AppearanceWord& a, const AppearanceWord& b) {
-  const std::uint32_t da =
-      static_cast<std::uint32_t>(a[0]) | (static_cast<std::uint32_t>(a[1]) << 8) |
-      (static_cast<std::uint32_t>(a[2]) << 16) | (static_cast<std::uint32_t>(a[3]) << 24);
-  const std::uint32_t db =
-      static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
-      (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+  const std::uint32_t da = depth_word(a), db = depth_word(b);
   if (da != db) return da < db;
   return std::memcmp(a.data() + 4, b.data() + 4, kAppearanceBytes - 4) < 0;
 }

@@ -35,10 +35,7 @@ void add(RasterMesh& mesh, const RasterVertex& a, const RasterVertex& b, const R
 void add_polygon(RasterMesh& mesh, const scenes::Polygon& poly, std::uint32_t material,
                  std::uint32_t primitive, bool one_sided) {
   const auto tri = geometry::triangulate_polygon(poly.vertices);
-  if (!tri.ok()) {
-    ++mesh.rejected_polygons;
-    return;
-  }
+  if (!tri.ok()) return;  // zero area: nothing to draw (the twin's conversion counts it)
   const bool normals = poly.normals.size() == poly.vertices.size();
   const bool uvs = poly.uvs.size() == poly.vertices.size();
   const auto vertex = [&](std::uint32_t i) {
@@ -48,10 +45,8 @@ void add_polygon(RasterMesh& mesh, const scenes::Polygon& poly, std::uint32_t ma
     v.uv = uvs ? poly.uvs[i] : glm::dvec2(0.0);
     return v;
   };
-  const std::size_t before = mesh.triangles.size();
   for (const auto& t : tri.triangles)
     add(mesh, vertex(t[0]), vertex(t[1]), vertex(t[2]), material, primitive, one_sided);
-  mesh.from_polygons += mesh.triangles.size() - before;
 }
 
 void add_sphere(RasterMesh& mesh, const scenes::Sphere& s, int segments, std::uint32_t material,
@@ -63,7 +58,6 @@ void add_sphere(RasterMesh& mesh, const scenes::Sphere& s, int segments, std::ui
     const Vec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
     return RasterVertex{s.center + r * n, n, glm::dvec2(double(j) / around, double(i) / rings)};
   };
-  const std::size_t before = mesh.triangles.size();
   for (int i = 0; i < rings; ++i)
     for (int j = 0; j < around; ++j) {
       const RasterVertex a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1),
@@ -79,7 +73,6 @@ void add_sphere(RasterMesh& mesh, const scenes::Sphere& s, int segments, std::ui
         add(mesh, d, b, c, material, primitive, true);
       }
     }
-  mesh.from_spheres += mesh.triangles.size() - before;
 }
 
 void add_cone(RasterMesh& mesh, const scenes::Cone& c, int segments, std::uint32_t material,
@@ -101,7 +94,6 @@ void add_cone(RasterMesh& mesh, const scenes::Cone& c, int segments, std::uint32
     return RasterVertex{(top ? c.apex : c.base) + (top ? r1 : r0) * radial, n,
                         glm::dvec2(double(j) / around, top ? 0.999 : 0.0)};
   };
-  const std::size_t before = mesh.triangles.size();
   for (int j = 0; j < around; ++j) {
     const RasterVertex a = vertex(j, false), b = vertex(j + 1, false), c1 = vertex(j + 1, true),
                        d = vertex(j, true);
@@ -109,7 +101,6 @@ void add_cone(RasterMesh& mesh, const scenes::Cone& c, int segments, std::uint32
     add(mesh, a, b, c1, material, primitive, false);
     add(mesh, a, c1, d, material, primitive, false);
   }
-  mesh.from_cones += mesh.triangles.size() - before;
 }
 
 void add_patch(RasterMesh& mesh, const scenes::BezierPatch& patch, int segments,
@@ -127,7 +118,6 @@ void add_patch(RasterMesh& mesh, const scenes::BezierPatch& patch, int segments,
       if (!kernels::patch_normal(net, s, t, normal)) normal = Vec3(0.0, 0.0, 1.0);
       grid[static_cast<std::size_t>(i * (n + 1) + j)] = {q, normal, glm::dvec2(s, t)};
     }
-  const std::size_t before = mesh.triangles.size();
   const auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (n + 1) + j)]; };
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
@@ -135,7 +125,6 @@ void add_patch(RasterMesh& mesh, const scenes::BezierPatch& patch, int segments,
       add(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), material, primitive, false);
       add(mesh, at(i, j), at(i + 1, j + 1), at(i, j + 1), material, primitive, false);
     }
-  mesh.from_patches += mesh.triangles.size() - before;
 }
 
 }  // namespace
@@ -143,6 +132,27 @@ void add_patch(RasterMesh& mesh, const scenes::BezierPatch& patch, int segments,
 const scenes::SurfaceShading& surface_shading(const scenes::Scene& scene, std::uint32_t m) {
   static const scenes::SurfaceShading kPhong{};
   return m < scene.surface_shading.size() ? scene.surface_shading[m] : kPhong;
+}
+
+double estimated_triangles(const scenes::Scene& scene, const MeshSettings& settings) {
+  double n = 0.0;
+  for (const auto& p : scene.primitives) {
+    switch (p.kind) {
+      case scenes::PrimitiveKind::Polygon:
+        n += static_cast<double>(scene.polygons[p.index].vertices.size());
+        break;
+      case scenes::PrimitiveKind::Sphere:
+        n += static_cast<double>(settings.sphere_segments) * settings.sphere_segments;
+        break;
+      case scenes::PrimitiveKind::Cone:
+        n += 2.0 * settings.cone_segments;
+        break;
+      case scenes::PrimitiveKind::Patch:
+        n += 2.0 * settings.patch_segments * settings.patch_segments;
+        break;
+    }
+  }
+  return n;
 }
 
 RasterMesh build_raster_mesh(const scenes::Scene& scene, const MeshSettings& settings) {

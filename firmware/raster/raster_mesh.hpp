@@ -43,9 +43,12 @@ struct MeshSettings {
 struct RasterMesh {
   std::vector<RasterTriangle> triangles;
   Bounds bounds;
-  std::size_t rejected_polygons = 0;  ///< degenerate polygons (zero area): nothing to draw
-  std::size_t from_polygons = 0, from_spheres = 0, from_cones = 0, from_patches = 0;
 };
+
+/// About how many triangles build_raster_mesh would make of `scene` (an upper bound: at most
+/// one a polygon's vertex, each sphere's segments squared, each cone's and patch's grid twice),
+/// without making them: a caller bounds the memory first.
+double estimated_triangles(const scenes::Scene& scene, const MeshSettings& settings);
 
 /// The scene's primitives as triangles, in scene order (each primitive's triangles together).
 RasterMesh build_raster_mesh(const scenes::Scene& scene, const MeshSettings& settings);

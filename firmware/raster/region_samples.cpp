@@ -162,10 +162,7 @@ ScanCount scan_convert(const ScreenTriangle& t, const ViewTransform& view, Regio
     const Weights depth_only = weigh(t, ed, e, false);
     const std::uint32_t depth = view.depth_word(depth_only.z);
     AppearanceWord& held = into.word(x, y);
-    const std::uint32_t held_depth =
-        static_cast<std::uint32_t>(held[0]) | (static_cast<std::uint32_t>(held[1]) << 8) |
-        (static_cast<std::uint32_t>(held[2]) << 16) | (static_cast<std::uint32_t>(held[3]) << 24);
-    if (depth > held_depth) return;
+    if (depth > depth_word(held)) return;
     const AppearanceWord word = pack(record(t, weigh(t, ed, e, true), depth));
     if (nearer(word, held)) {
       held = word;

@@ -71,11 +71,4 @@ ScanCount scan_depth(const ScreenTriangle& t, const ViewTransform& view, RegionD
 std::size_t z_composite(RegionSamples& into, const RegionSamples& from);
 std::size_t z_composite(RegionDepths& into, const RegionDepths& from);
 
-/// Whether `t`'s bounding box meets the region of `g` (a triangle is set up once for every region
-/// it meets: the duplicates at region boundaries of L132).
-inline bool overlaps(const ScreenTriangle& t, const RegionSampleGrid& g) {
-  return t.x_max >= g.x0 && t.x_min < g.x0 + g.width && t.y_max >= g.y0 &&
-         t.y_min < g.y0 + g.height;
-}
-
 }  // namespace rtsim::raster

@@ -60,10 +60,7 @@ ViewSetup set_up_view(const RasterMesh& mesh, const ViewTransform& view,
     const RasterTriangle& tri = mesh.triangles[t];
     if (!include.empty() && (tri.material >= include.size() || !include[tri.material])) continue;
     const double facing = glm::dot(tri.face_normal, view.origin - tri.v[0].position);
-    if (tri.one_sided && !(facing > 0.0)) {
-      ++out.culled;
-      continue;
-    }
+    if (tri.one_sided && !(facing > 0.0)) continue;  // a closed surface's back face
     poly.clear();
     for (const auto& v : tri.v) poly.push_back({view.to_eye(v.position), v});
     clip(poly, scratch, [&](const ClipVertex& c) { return c.eye.z - view.near; });
@@ -79,10 +76,7 @@ ViewSetup set_up_view(const RasterMesh& mesh, const ViewTransform& view,
       clip(poly, scratch, [&](const ClipVertex& c) {
         return glm::dot(plane->normal, c.v.position - plane->point);
       });
-    if (poly.size() < 3) {
-      ++out.clipped_away;
-      continue;
-    }
+    if (poly.size() < 3) continue;  // wholly outside the depth range or the guard band
     ++out.front_facing;
     const MaterialWord word =
         tri.material < materials.size() ? materials[tri.material] : MaterialWord{};

@@ -52,9 +52,8 @@ struct ClipPlane {
 
 struct ViewSetup {
   std::vector<ScreenTriangle> triangles;
-  std::size_t front_facing = 0;  ///< mesh triangles set up (not culled, not wholly clipped away)
-  std::size_t culled = 0;        ///< back faces of closed surfaces
-  std::size_t clipped_away = 0;  ///< wholly outside the view's depth range or guard band
+  /// Mesh triangles set up: not a closed surface's back face, not wholly clipped away.
+  std::size_t front_facing = 0;
 };
 
 /// Sets up every triangle of `mesh` whose material `include` allows (all, when empty) for

@@ -20,12 +20,50 @@ void corrupt(raster::RegionSamples& s, std::uint64_t offset, std::uint32_t mask)
 }
 }  // namespace
 
+/// One end of the network's link: what both directions do with a region once they have it.
+class CompositionNetwork::Port : public modules::Processor {
+ protected:
+  Port(sc_core::sc_module_name name, MachineRun& run, CompositionNetwork& net)
+      : modules::Processor(name, run.trace()), net_(net) {}
+
+  /// Carries `bits` of pass `pass` over the link from now; when they arrive.
+  sc_core::sc_time carry(std::size_t pass, std::uint64_t bits) {
+    net_.bytes_by_pass_[pass] += bits / 8;
+    return net_.link.transfer(bits, clock_.now());
+  }
+
+  /// A map's region to every table memory at once, when each has room (L120, L122).
+  void to_tables(TableRegion region, std::uint64_t bits) {
+    for (const auto* t : net_.ends_.tables) wait_for_room(*t);
+    const sc_core::sc_time arrived = carry(static_cast<std::size_t>(region.pass), bits);
+    for (auto& s : net_.to_table) modules::send_message(*s, region, arrived, bits);
+  }
+
+  /// `msg` to the one queue behind `socket` when it has room; its journey's wait and transfer.
+  template <class Message, class Socket>
+  void to_one(const modules::TimedFifo<Message>& queue, Socket& socket, Message msg,
+              std::uint64_t bits) {
+    const sc_core::sc_time ready = clock_.now();
+    wait_for_room(queue);
+    const sc_core::sc_time sending = clock_.now();
+    const sc_core::sc_time arrived = carry(static_cast<std::size_t>(msg.pass), bits);
+    net_.probe_.add(msg.journey, net_.stages_.network, modules::LatencyPart::kQueueing,
+                    sending - ready);
+    net_.probe_.add(msg.journey, net_.stages_.link, modules::LatencyPart::kTransfer,
+                    arrived - sending);
+    msg.arrived = arrived;
+    modules::send_message(socket, msg, arrived, bits);
+  }
+
+  CompositionNetwork& net_;
+};
+
 /// Rasterizers to shaders and table memories, region-sample by region-sample in pass order.
-class CompositionNetwork::Compositor : public modules::Processor {
+class CompositionNetwork::Compositor : public Port {
  public:
   SC_HAS_PROCESS(Compositor);
   Compositor(sc_core::sc_module_name name, MachineRun& run, CompositionNetwork& net)
-      : modules::Processor(name, run.trace()), net_(net) {
+      : Port(name, run, net) {
     SC_THREAD(run);
   }
 
@@ -69,34 +107,15 @@ class CompositionNetwork::Compositor : public modules::Processor {
         if (pass.kind == PassKind::Camera) apply_faults(merged, k);
         const std::uint64_t bits = region_bits(pass.bytes_per_pixel());
         if (pass.kind == PassKind::Shadow) {
-          // To every shader's table memory at once (L120).
-          for (const auto* t : net_.ends_.tables) wait_for_room(*t);
-          const sc_core::sc_time arrived = transfer(pi, bits);
-          TableRegion region{static_cast<int>(pi), merged.depths->at, merged.depths, nullptr};
-          for (auto& s : net_.to_table) modules::send_message(*s, region, arrived, bits);
+          to_tables({static_cast<int>(pi), merged.depths->at, merged.depths, nullptr}, bits);
         } else {
-          const int shader = k % net_.shaders_;  // one of every s (L23)
-          const sc_core::sc_time ready = clock_.now();
-          wait_for_room(*net_.ends_.shaders[static_cast<std::size_t>(shader)]);
-          const sc_core::sc_time sending = clock_.now();
-          const sc_core::sc_time arrived = transfer(pi, bits);
-          probe.add(journey, net_.stages_.network, modules::LatencyPart::kQueueing,
-                    sending - ready);
-          probe.add(journey, net_.stages_.link, modules::LatencyPart::kTransfer, arrived - sending);
+          const auto shader = static_cast<std::size_t>(k % net_.shaders_);  // one of every s (L23)
           merged.journey = journey;
-          merged.arrived = arrived;
-          modules::send_message(*net_.to_shader[static_cast<std::size_t>(shader)], merged, arrived,
-                                bits);
+          to_one(*net_.ends_.shaders[shader], *net_.to_shader[shader], std::move(merged), bits);
         }
       }
     }
     clock_.sync();
-  }
-
-  sc_core::sc_time transfer(std::size_t pass, std::uint64_t bits) {
-    net_.bytes_by_pass_[pass] += bits / 8;
-    const sc_core::sc_time arrived = net_.link.transfer(bits, clock_.now());
-    return arrived;
   }
 
   void apply_faults(RasterRegion& r, int k) {
@@ -106,16 +125,14 @@ class CompositionNetwork::Compositor : public modules::Processor {
       f.applied = true;
     }
   }
-
-  CompositionNetwork& net_;
 };
 
 /// Shaders to the frame buffer and the table memories, in the order their colours are ready.
-class CompositionNetwork::Collector : public modules::Processor {
+class CompositionNetwork::Collector : public Port {
  public:
   SC_HAS_PROCESS(Collector);
   Collector(sc_core::sc_module_name name, MachineRun& run, CompositionNetwork& net)
-      : modules::Processor(name, run.trace()), net_(net) {
+      : Port(name, run, net) {
     for (auto& q : net_.from_shader) puts_ |= q->fifo.put_event();
     SC_THREAD(run);
   }
@@ -154,32 +171,17 @@ class CompositionNetwork::Collector : public modules::Processor {
       clock_.catch_up(taken);
       const Pass& pass = plan.passes[static_cast<std::size_t>(r.pass)];
       const std::uint64_t bits = region_bits(kColourBytes);
-      net_.bytes_by_pass_[static_cast<std::size_t>(r.pass)] += bits / 8;
       if (pass.kind == PassKind::Reflection) {
-        // A reflection map's region goes to every table memory.
-        for (const auto* t : net_.ends_.tables) wait_for_room(*t);
-        const sc_core::sc_time arrived = net_.link.transfer(bits, clock_.now());
-        TableRegion region{r.pass, r.at, nullptr, r.colours};
-        for (auto& s : net_.to_table) modules::send_message(*s, region, arrived, bits);
+        to_tables({r.pass, r.at, nullptr, r.colours}, bits);  // the map goes to every table
       } else {
-        const sc_core::sc_time ready = clock_.now();
-        wait_for_room(*net_.ends_.frame_buffer);
-        const sc_core::sc_time sending = clock_.now();
-        const sc_core::sc_time arrived = net_.link.transfer(bits, sending);
-        modules::LatencyProbe& probe = net_.probe_;
-        const ProbeStages& st = net_.stages_;
-        probe.add(r.journey, st.from_shader, modules::LatencyPart::kQueueing, ready - r.sent);
-        probe.add(r.journey, st.network, modules::LatencyPart::kQueueing, sending - ready);
-        probe.add(r.journey, st.link, modules::LatencyPart::kTransfer, arrived - sending);
-        ShadedRegion copy = r;
-        copy.arrived = arrived;
-        modules::send_message(net_.to_frame_buffer, copy, arrived, bits);
+        net_.probe_.add(r.journey, net_.stages_.from_shader, modules::LatencyPart::kQueueing,
+                        clock_.now() - r.sent);
+        to_one(*net_.ends_.frame_buffer, net_.to_frame_buffer, r, bits);
       }
     }
     clock_.sync();
   }
 
-  CompositionNetwork& net_;
   sc_core::sc_event_or_list puts_;
 };
 

@@ -76,10 +76,9 @@ class CompositionNetwork : public sc_core::sc_module {
   const std::vector<CompositionFault>& faults() const { return faults_; }
 
  private:
+  class Port;
   class Compositor;
   class Collector;
-  friend class Compositor;
-  friend class Collector;
 
   const PassPlan& plan_;
   int shaders_;

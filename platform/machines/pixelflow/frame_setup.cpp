@@ -37,24 +37,7 @@ FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& set
                          "so at most 255 can be told apart");
   // The tessellation's size, bounded before anything is allocated: a scene of many spheres at
   // a fine mesh.sphere_segments would otherwise take all the memory there is.
-  double estimate = 0.0;
-  for (const auto& p : scene.primitives) {
-    switch (p.kind) {
-      case scenes::PrimitiveKind::Polygon:
-        estimate += static_cast<double>(scene.polygons[p.index].vertices.size());
-        break;
-      case scenes::PrimitiveKind::Sphere:
-        estimate +=
-            static_cast<double>(settings.mesh.sphere_segments) * settings.mesh.sphere_segments;
-        break;
-      case scenes::PrimitiveKind::Cone:
-        estimate += 2.0 * settings.mesh.cone_segments;
-        break;
-      case scenes::PrimitiveKind::Patch:
-        estimate += 2.0 * settings.mesh.patch_segments * settings.mesh.patch_segments;
-        break;
-    }
-  }
+  const double estimate = raster::estimated_triangles(scene, settings.mesh);
   if (estimate > kMaxTriangles)
     throw InputError(
         scene.name, 0,

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <systemc>
 
 #include "common/input_error.hpp"
@@ -252,6 +253,7 @@ RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const param
   // Each pass: when its first rasterization began and its result was in place (a map stored in
   // every table memory, the camera's last region-sample in the frame buffer), its work.
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+  sc_core::sc_time previous_done = sc_core::SC_ZERO_TIME;
   for (std::size_t pi = 0; pi < plan.passes.size(); ++pi) {
     const Pass& p = plan.passes[pi];
     sc_core::sc_time raster_busy = sc_core::SC_ZERO_TIME, raster_max = sc_core::SC_ZERO_TIME;
@@ -268,12 +270,12 @@ RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const param
       shade_busy += n->busy_by_pass()[pi];
       shade_max = std::max(shade_max, n->busy_by_pass()[pi]);
     }
-    sc_core::sc_time done = end;
-    for (const auto& [index, at] : shader_nodes.front()->table.stored_at())
-      if (static_cast<std::size_t>(index) == pi) done = at;
+    // A map is in place when the last table memory has stored it; the camera's image at the end.
+    std::optional<sc_core::sc_time> stored;
     for (const auto& n : shader_nodes)
       for (const auto& [index, at] : n->table.stored_at())
-        if (static_cast<std::size_t>(index) == pi) done = std::max(done, at);
+        if (static_cast<std::size_t>(index) == pi) stored = std::max(stored.value_or(at), at);
+    const sc_core::sc_time done = stored.value_or(end);
     passes[p.name()] = {{"region_samples", p.region_samples()},
                         {"front_facing_triangles", p.setup.front_facing},
                         {"triangles_set_up", triangles},
@@ -283,15 +285,10 @@ RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const param
                         {"shade_busiest_s", shade_max.to_seconds()},
                         {"network_bytes", network.bytes_by_pass()[pi]},
                         {"begin_s", begun.to_seconds()},
-                        {"done_s", done.to_seconds()}};
-  }
-  // The passes end one after another: each pass's time is from the one before's end.
-  double previous = 0.0;
-  for (auto& item : passes.items()) {
-    auto& p = item.value();
-    const double done = p["done_s"].get<double>();
-    p["time_s"] = done - previous;
-    previous = done;
+                        {"done_s", done.to_seconds()},
+                        // The seed adds the passes' times (L158): each from the one before's end.
+                        {"time_s", done.to_seconds() - previous_done.to_seconds()}};
+    previous_done = done;
   }
   nlohmann::ordered_json regions_per_shader = nlohmann::ordered_json::array();
   sc_core::sc_time worst = sc_core::SC_ZERO_TIME;

@@ -19,12 +19,6 @@ std::string Pass::name() const {
 
 int Pass::bytes_per_pixel() const { return depth_only() ? 4 : raster::kAppearanceBytes; }
 
-std::size_t Pass::triangles_in(int k) const {
-  std::size_t n = 0;
-  for (const auto& share : shares[static_cast<std::size_t>(region_of(k))]) n += share.size();
-  return n;
-}
-
 std::vector<int> PassPlan::map_passes() const {
   std::vector<int> out;
   for (std::size_t i = 0; i < passes.size(); ++i)

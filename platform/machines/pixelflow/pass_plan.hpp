@@ -36,8 +36,6 @@ struct Pass {
   /// Bytes a pixel processor sends over the composition network: a depth word (L118-L120) or
   /// the appearance record (Fig. 8, L110).
   int bytes_per_pixel() const;
-  /// The triangles set up for region-sample k over all rasterizers (the duplicates counted).
-  std::size_t triangles_in(int k) const;
 };
 
 struct PassPlan {

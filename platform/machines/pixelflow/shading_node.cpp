@@ -74,6 +74,9 @@ void ShadingNode::run() {
   for (std::size_t pi = 0; pi < plan_.passes.size(); ++pi) {
     const Pass& pass = plan_.passes[pi];
     if (pass.kind == PassKind::Shadow) continue;  // depth goes to the table memories
+    // Its own table memory: the reflection pass shades without the reflection map.
+    const deferred::ShadingTables tables =
+        tables_of(frame_, table.maps(), pass.kind != PassKind::Camera);
     for (int k = index_; k < pass.region_samples(); k += count_) {
       const sc_core::sc_time since = clock_.now();
       modules::wait_for_item(in.fifo, clock_);
@@ -87,11 +90,6 @@ void ShadingNode::run() {
       const sc_core::sc_time ready = clock_.now();
       await_maps(pass);
       probe_.add(r.journey, stages_.shader, modules::LatencyPart::kQueueing, clock_.now() - ready);
-      deferred::ShadingTables tables;
-      tables.textures = frame_.uses_textures ? &frame_.textures : nullptr;
-      for (const auto& m : table.shadow_maps()) tables.shadow.push_back(&m);
-      if (pass.kind == PassKind::Camera && table.reflection_map())
-        tables.reflection = &*table.reflection_map();
       const deferred::RegionWork work =
           deferred::shade_region(*r.samples, pass.view, frame_.shading, tables, colours);
       const sc_core::sc_time t = costs_.time_for(work);

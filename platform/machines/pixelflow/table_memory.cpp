@@ -46,8 +46,8 @@ TableMemory::TableMemory(sc_core::sc_module_name name, MachineRun& run, const Pa
       plan_(plan),
       write_time_(params_.get(kWriteTime)) {
   for (const auto& p : plan.passes) {
-    if (p.kind == PassKind::Shadow) shadow_.emplace_back(p.view);
-    if (p.kind == PassKind::Reflection) reflection_.emplace(p.view, run.scene().background);
+    if (p.kind == PassKind::Shadow) maps_.shadow.emplace_back(p.view);
+    if (p.kind == PassKind::Reflection) maps_.reflection.emplace(p.view, run.scene().background);
   }
   // Every shader holds every texture and every map (L57): they must fit in its table memory.
   double bytes = static_cast<double>(textures_bytes);
@@ -64,7 +64,7 @@ TableMemory::TableMemory(sc_core::sc_module_name name, MachineRun& run, const Pa
                          std::to_string(static_cast<long long>(capacity)) +
                          " (shader.table.capacity; seed 004 L15: 16 MB): lower maps.size or have "
                          "fewer lights");
-  shadows_begun_ = shadow_.empty();
+  shadows_begun_ = maps_.shadow.empty();
   maps_stored_ = plan.map_passes().empty();
   SC_THREAD(run);
 }
@@ -72,7 +72,7 @@ TableMemory::TableMemory(sc_core::sc_module_name name, MachineRun& run, const Pa
 void TableMemory::run() {
   const std::size_t group = in.fifo.capacity();
   const std::vector<int> maps = plan_.map_passes();
-  int shadows_left = static_cast<int>(shadow_.size());
+  int shadows_left = static_cast<int>(maps_.shadow.size());
   for (std::size_t m = 0; m < maps.size(); ++m) {
     const Pass& pass = plan_.passes[static_cast<std::size_t>(maps[m])];
     const int regions = pass.grid.count();
@@ -86,13 +86,13 @@ void TableMemory::run() {
         const TableRegion r = in.fifo.get(clock_.now(), taken);
         clock_.catch_up(taken);
         waited_since(since, Wait::kWork);
-        if (r.depths) shadow_[static_cast<std::size_t>(pass.light)].store(*r.depths);
-        if (r.colours && reflection_)
+        if (r.depths) maps_.shadow[static_cast<std::size_t>(pass.light)].store(*r.depths);
+        if (r.colours && maps_.reflection)
           for (int y = 0; y < r.at.height; ++y)
             for (int x = 0; x < r.at.width; ++x) {
               const ColourBytes& c =
                   (*r.colours)[static_cast<std::size_t>(y * raster::kRegionWidth + x)];
-              reflection_->set(r.at.x0 + x, r.at.y0 + y, Color(c[0], c[1], c[2]) / 255.0);
+              maps_.reflection->set(r.at.x0 + x, r.at.y0 + y, Color(c[0], c[1], c[2]) / 255.0);
             }
         ++regions_;
       }

@@ -17,6 +17,7 @@
 #include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
 #include "modules/processor.hpp"
+#include "platform/machines/pixelflow/functional_passes.hpp"
 #include "platform/machines/pixelflow/pass_plan.hpp"
 #include "platform/machines/pixelflow/region_messages.hpp"
 
@@ -36,8 +37,7 @@ class TableMemory : public modules::Processor {
               std::size_t textures_bytes);
 
   /// The shadow maps (one per light) and the reflection map, as written so far.
-  const std::vector<raster::DepthMap>& shadow_maps() const { return shadow_; }
-  const std::optional<raster::ColourMap>& reflection_map() const { return reflection_; }
+  const FrameMaps& maps() const { return maps_; }
   /// Whether the last shadow-map write has begun; whether every map is stored.
   bool shadows_begun() const { return shadows_begun_; }
   bool maps_stored() const { return maps_stored_; }
@@ -57,8 +57,7 @@ class TableMemory : public modules::Processor {
 
   const PassPlan& plan_;
   sc_core::sc_time write_time_;
-  std::vector<raster::DepthMap> shadow_;
-  std::optional<raster::ColourMap> reflection_;
+  FrameMaps maps_;
   bool shadows_begun_ = false;
   bool maps_stored_ = false;
   sc_core::sc_event ready_;
