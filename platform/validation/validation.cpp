@@ -108,7 +108,7 @@ bool is_group_member(const std::string& id, const std::string& group) {
 
 // ---- Runs and plans -------------------------------------------------------------------------
 
-const std::string& Plan::add_run(RunRequest run) {
+std::string Plan::add_run(RunRequest run) {
   for (const auto& r : runs) {
     if (r.key == run.key) {
       if (r.args != run.args)

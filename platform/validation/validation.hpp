@@ -171,8 +171,9 @@ struct Plan {
   std::vector<Figure> figures;
   std::vector<Artifact> artifacts;
 
-  /// Adds a run unless one with the same key exists (figures share runs); returns the key.
-  const std::string& add_run(RunRequest run);
+  /// Adds a run unless one with the same key exists (figures share runs); returns the key (a
+  /// copy: a reference into `runs` would dangle once a later run grows it).
+  std::string add_run(RunRequest run);
   /// Sets the class and the assumptions of the figures named `ids` (exact ids, or groups: "P9"
   /// names P9a, P9b, ...), for figures built in loops or by helpers. std::logic_error if an id
   /// names none.
