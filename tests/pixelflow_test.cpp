@@ -89,6 +89,44 @@ TEST(Pixelflow, ItsTimeComesFromItsNodesInteraction) {
   }
 }
 
+TEST(Pixelflow, InstructionCountedShadingTakesFig6sTimesAndLeavesTheImage) {
+  const std::string counted = kBowling + " -p shader.cost.model=instructions";
+  const auto parts = run_machine("pixelflow", "parts", kBowling);
+  const auto parts_slow =
+      run_machine("pixelflow", "parts-slow", kBowling + " -p shader.simd.mul_short=\"1 us\"");
+  const auto instructions = run_machine("pixelflow", "instructions", counted);
+  const auto slow =
+      run_machine("pixelflow", "instr-slow", counted + " -p shader.simd.mul_short=\"1 us\"");
+  ASSERT_FALSE(parts.empty() || parts_slow.empty() || instructions.empty() || slow.empty());
+  const auto shading = [](const nlohmann::ordered_json& s) {
+    return s["pixelflow"]["passes"]["camera"]["shade_s"].get<double>();
+  };
+  const auto light = [](const nlohmann::ordered_json& s) {
+    return s["pixelflow"]["shading_programs"]["light"]["time_s"].get<double>();
+  };
+  std::printf("camera shading: parts %.3f ms, instructions %.3f ms, slower shorts %.3f ms\n",
+              1e3 * shading(parts), 1e3 * shading(instructions), 1e3 * shading(slow));
+  // The instruction model times the nodes: a slower short multiply slows the shading.
+  EXPECT_NE(shading(instructions), shading(parts));
+  EXPECT_GT(shading(slow), 1.05 * shading(instructions));
+  EXPECT_GT(light(slow), light(instructions));
+  // Fig. 9's parts time them by default: Fig. 6 moves only the programs' report.
+  EXPECT_EQ(shading(parts_slow), shading(parts));
+  EXPECT_GT(light(parts_slow), light(parts));
+  // The image is the shading code's, whichever model times it.
+  EXPECT_EQ(read_file(instructions["image_png"].get<std::string>()),
+            read_file(parts["image_png"].get<std::string>()));
+  // The costliest shading holds all three functions (seed 004 L150-L152).
+  const auto& w = instructions["pixelflow"]["worst_shading"];
+  for (const char* f : {"pin", "alley", "ball"}) EXPECT_GT(w["pixels"][f].get<int>(), 0) << f;
+  EXPECT_GT(w["instructions"].get<int>(), 0);
+  // A model it does not have: exit 2, naming the ones it has.
+  const auto bad =
+      run_rtsim("run --machine pixelflow " + kBowling + " -q -p shader.cost.model=simd");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("instructions"), std::string::npos) << bad.output;
+}
+
 TEST(Pixelflow, ARegionCostsWhatItHolds) {
   // The same frame's worst region-sample holds all three shading functions (seed 004 L150-L152).
   const auto s = run_machine("pixelflow", "worst", kBowling);

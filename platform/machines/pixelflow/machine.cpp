@@ -327,12 +327,39 @@ RunResult Pixelflow::run(scenes::Scene& scene, FunctionalTwin& twin, const param
                           {"pixels", std::move(pixels)},
                           {"lookup_pixels", std::move(lookups)}};
   }
+  // The shading programs' instructions and their time at Fig. 6's (whichever model timed the
+  // nodes), and the region-sample whose shading parts took longest (lookups aside).
+  const ShadingCosts& costs = shader_nodes.front()->costs();
+  nlohmann::ordered_json programs = nlohmann::ordered_json::object();
+  for (int k = 0; k < deferred::kShadingParts; ++k) {
+    const auto& mix = costs.programs().parts[static_cast<std::size_t>(k)];
+    programs[std::string(deferred::kShadingPartNames[static_cast<std::size_t>(k)])] = {
+        {"instructions", mix.total()}, {"time_s", costs.instruction_times().time_of(mix)}};
+  }
+  pf["shading_programs"] = std::move(programs);
+  const ShadingNode* worst_shading = nullptr;
+  for (const auto& n : shader_nodes)
+    if (!worst_shading || n->worst_shading() > worst_shading->worst_shading())
+      worst_shading = n.get();
+  {
+    const deferred::RegionWork& w = worst_shading->worst_shading_work();
+    nlohmann::ordered_json pixels = nlohmann::ordered_json::object();
+    for (int f = 0; f < deferred::kShadingFunctions; ++f)
+      pixels[std::string(deferred::kShadingFunctionNames[static_cast<std::size_t>(f)])] =
+          w.pixels[static_cast<std::size_t>(f)];
+    pf["worst_shading"] = {
+        {"time_s", worst_shading->worst_shading().to_seconds()},
+        {"instructions", deferred::region_instructions(costs.programs(), w).total()},
+        {"pixels", std::move(pixels)}};
+  }
   for (const auto& f : network.faults())
     pf["faults_in_flight"].push_back(
         {{"at", kNetwork}, {"word", f.word}, {"xor_mask", f.xor_mask}, {"applied", f.applied}});
   using modules::StatUnit;
   run.machine_units() = {{"pixelflow.passes.*_s", StatUnit::seconds},
                          {"pixelflow.worst_region.time_s", StatUnit::seconds},
+                         {"pixelflow.worst_shading.time_s", StatUnit::seconds},
+                         {"pixelflow.shading_programs.*.time_s", StatUnit::seconds},
                          {"pixelflow.*network_bytes", StatUnit::bytes},
                          {"pixelflow.passes.network_bytes", StatUnit::bytes},
                          // Nodes, regions, samples, triangles, pixels, words.

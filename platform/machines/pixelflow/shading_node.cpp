@@ -1,10 +1,23 @@
 #include "platform/machines/pixelflow/shading_node.hpp"
 
+#include <algorithm>
+
 #include "platform/machines/machine_run.hpp"
 
 namespace rtsim::platform::pixelflow {
 
 namespace {
+/// What the shading programs take from the frame: its materials' largest Phong exponent, its
+/// textures' mip-map levels.
+deferred::ProgramUniforms program_uniforms(const FrameSetup& frame) {
+  deferred::ProgramUniforms u;
+  for (const auto& m : frame.shading.materials) u.max_shine = std::max(u.max_shine, m.shine);
+  int levels = 1;
+  for (int size = frame.textures.label.size(); size > 1; size /= 2) ++levels;
+  u.texture_levels = levels;
+  return u;
+}
+
 const modules::CountParam kInputRegions(
     {.name = "input_regions",
      .default_value = "1",
@@ -33,7 +46,7 @@ ShadingNode::ShadingNode(sc_core::sc_module_name name, MachineRun& run, const Fr
       plan_(plan),
       index_(index),
       count_(count),
-      costs_(params_),
+      costs_(params_, program_uniforms(frame)),
       regions_by_pass_(plan.passes.size(), 0),
       busy_by_pass_(plan.passes.size(), sc_core::SC_ZERO_TIME),
       probe_(run.probe()),
@@ -103,6 +116,10 @@ void ShadingNode::run() {
       if (t > worst_time_) {
         worst_time_ = t;
         worst_work_ = work;
+      }
+      if (const sc_core::sc_time shading = costs_.shading_part(work); shading > worst_shading_) {
+        worst_shading_ = shading;
+        worst_shading_work_ = work;
       }
       probe_.add(r.journey, stages_.shader, modules::LatencyPart::kService, t);
       ShadedRegion shaded{static_cast<int>(pi), k, r.samples->at, colour_bytes(colours)};

@@ -4,7 +4,7 @@
 // the appearance records it received with the maps its own table memory holds (Fig. 7), and
 // sends the 8-bit colours (L110) back onto the network: to the frame buffer, or, in the
 // reflection pass, to every node's table memory. Its time for a region comes from what the
-// region holds (ShadingCosts: Fig. 9 and the lookups of L148).
+// region holds (ShadingCosts: Fig. 9's parts or Fig. 6's instructions, and the lookups of L148).
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <memory>
@@ -47,6 +47,10 @@ class ShadingNode : public modules::Processor {
   /// The work of its most expensive region-sample and that region-sample's time.
   const deferred::RegionWork& worst_work() const { return worst_work_; }
   sc_core::sc_time worst_time() const { return worst_time_; }
+  /// The region-sample whose shading parts (lookups aside) took longest, and that time.
+  const deferred::RegionWork& worst_shading_work() const { return worst_shading_work_; }
+  sc_core::sc_time worst_shading() const { return worst_shading_; }
+  const ShadingCosts& costs() const { return costs_; }
 
  private:
   modules::ModuleParams params_;
@@ -75,6 +79,8 @@ class ShadingNode : public modules::Processor {
   ProbeStages stages_;
   TraceCounters& counters_;
   sc_core::sc_time worst_time_ = sc_core::SC_ZERO_TIME;
+  deferred::RegionWork worst_shading_work_{};
+  sc_core::sc_time worst_shading_ = sc_core::SC_ZERO_TIME;
   modules::Counter regions_{*this, "regions", "region-samples shaded"};
   modules::Counter pixels_shaded_{*this, "pixels_shaded", "pixels a shading function ran for"};
   modules::Counter lookups_{*this, "lookup_pixels", "pixels that read a table (all lookups)"};
