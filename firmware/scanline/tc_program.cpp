@@ -27,7 +27,6 @@ constexpr std::uint8_t kYTop = 216, kXTop = 217, kTop = 218;  // the top vertex 
 constexpr std::uint8_t kStepLeft = 219, kStepRight = 220;     // list steps down each chain
 constexpr std::uint8_t kQ = 221;                              // 1 / quant(dy)
 constexpr std::uint8_t kDone = 222, kChain = 223;
-constexpr std::uint8_t kFlat = 224;  // 0 on a chain's first step, half a quantum of y after
 }  // namespace mem
 
 // Index registers.
@@ -352,7 +351,6 @@ void scan_conversion_preprocessing(Assembler& a) {
   a.store_literal(mem::kTwo, 2.0f);
   a.store_literal(mem::kDone, 0.0f);
   a.store_literal(mem::kChain, 0.0f);
-  a.store_literal(mem::kFlat, 0.0f);
   a.index_load(kI, mem::kTop);
   a.index_load(kN, mem::kStepLeft);
   a.load(mem::kNu);  // nothing to send for no polygon
@@ -376,11 +374,6 @@ void scan_conversion_preprocessing(Assembler& a) {
     a.load(mem::kT0);
     a.sub(mem::kT1);
     a.store(mem::kT2);
-    // The chain's bottom: the next is higher, or level after the first step (a chain starts
-    // along a level top edge but ends at a level bottom one). dy is whole quanta of 1/2048, so
-    // dy - flat < 0 says both.
-    a.sub(mem::kFlat);
-    a.store(mem::kT4);
     a.store_literal(mem::kQ, 0.0f);
     a.reset();
     // q := 1 / quant(dy) where the next is lower.
@@ -414,12 +407,13 @@ void scan_conversion_preprocessing(Assembler& a) {
       a.send();
     }
     a.reset();
-    // This was the chain's bottom. The right chain starts from the top again; after it, done.
+    // The next is higher: this was the chain's bottom (a level edge is followed: at the top it
+    // starts the right chain, at the bottom both chains take it, and a repeated vertex is a
+    // level edge of no length). The right chain starts from the top again; after it, done.
     a.load(mem::kDone);
     a.off_if(Op::OffIfNotEqual, mem::kZero);
-    a.load(mem::kT4);
+    a.load(mem::kT2);
     a.off_if(Op::OffIfGreaterEqual, mem::kZero);
-    a.store_literal(mem::kFlat, 0.0f);
     a.load(mem::kChain);
     a.add(mem::kOne);
     a.store(mem::kChain);
@@ -431,10 +425,9 @@ void scan_conversion_preprocessing(Assembler& a) {
     // Otherwise down the chain.
     a.load(mem::kDone);
     a.off_if(Op::OffIfNotEqual, mem::kZero);
-    a.load(mem::kT4);
+    a.load(mem::kT2);
     a.off_if(Op::OffIfLess, mem::kZero);
     a.index_copy(kI, kJ);
-    a.store_literal(mem::kFlat, 1.0f / 4096.0f);
     a.reset();
   }
 }

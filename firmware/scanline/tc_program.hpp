@@ -81,7 +81,9 @@ inline constexpr int kEdgeEntryWords = 11;
 
 /// What a T&C processor sent its scan conversion processor: the left chain's entries from the
 /// top vertex down, then the right chain's (which starts at the top vertex again, so the first
-/// entry higher than the one before begins it).
+/// entry higher than the one before begins it). A chain ends at a vertex whose next is higher,
+/// so a level bottom edge is in both; the loop's 12 passes (Fig. 3-15) may leave the last entry
+/// of a 10-vertex polygon's right chain unsent, one level with the entry before it.
 struct EdgeChains {
   std::vector<EdgeEntry> left, right;
   bool empty() const { return left.empty() || right.empty(); }
