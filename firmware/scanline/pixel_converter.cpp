@@ -1,0 +1,35 @@
+#include "firmware/scanline/pixel_converter.hpp"
+
+#include <algorithm>
+
+namespace rtsim::scanline {
+
+std::pair<int, int> covered_pixels(const Segment& s, int width) {
+  // Centre (2p + 1) S / (2w) in [x_l, x_r + 1): 2 w x_l <= (2p + 1) S < 2 w (x_r + 1).
+  const std::int64_t w = width, steps = kWordSteps;
+  // The smallest p whose centre is at or past `bound` (in units of 1 / (2w) steps).
+  const auto first_at = [&](std::int64_t bound) {
+    const std::int64_t num = bound - steps;
+    return num <= 0 ? std::int64_t{0} : (num + 2 * steps - 1) / (2 * steps);
+  };
+  const std::int64_t first = std::min(first_at(2 * w * s.left.x), w);
+  const std::int64_t end = std::min(first_at(2 * w * (s.right.x + 1)), w);
+  return {static_cast<int>(first), static_cast<int>(std::max(first, end))};
+}
+
+void paint(const Segment& s, int width, PixelRow& row) {
+  const auto [first, end] = covered_pixels(s, width);
+  const int span = s.right.x - s.left.x;
+  for (int p = first; p < end; ++p) {
+    const double c = (2.0 * p + 1.0) * kWordSteps / (2.0 * width);
+    const double t = span > 0 ? std::clamp((c - s.left.x) / span, 0.0, 1.0) : 0.0;
+    const auto lerp = [&](int a, int b) { return (a + (b - a) * t) / kWordMax; };
+    const auto i = static_cast<std::size_t>(p);
+    row.colour[i] =
+        Color(lerp(s.left.r, s.right.r), lerp(s.left.g, s.right.g), lerp(s.left.b, s.right.b));
+    if (!row.polygon.empty()) row.polygon[i] = s.polygon;
+    if (!row.depth.empty()) row.depth[i] = static_cast<float>(lerp(s.left.z, s.right.z));
+  }
+}
+
+}  // namespace rtsim::scanline
