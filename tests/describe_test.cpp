@@ -89,6 +89,12 @@ TEST_P(Describe, TreeHoldsEveryModuleParameterAndStatisticsGroup) {
     EXPECT_EQ(count(dot, "color=royalblue"), stops);
     EXPECT_EQ(count(dot, "{ rank=same;"), stops / 2);
     EXPECT_LT(count(dot, " -> ") - stops, count(listed, " -> "));
+  } else if (dot.find(" more ") != std::string::npos &&
+             dot.find("each holding:") == std::string::npos) {
+    // A class of more instances than a picture holds (ullner-scanline-tree's processors, one a
+    // polygon) is drawn as its first few and a box counting the rest: the text lists them all.
+    EXPECT_LT(count(dot, " -> "), count(listed, " -> "));
+    EXPECT_GT(count(dot, " -> "), 0u);
   } else if (dot.find("each holding:") == std::string::npos) {
     EXPECT_EQ(count(dot, " -> "), count(listed, " -> "));
   } else {

@@ -88,6 +88,7 @@ const std::map<std::string, std::string> kSlowed = {
     {"pxpl5-raytrace", "-p gp.clock=\"4 MHz\""},
     {"wang-bezier", "-p host.clock=\"35 MHz\""},
     {"pixelflow", "-p rasterizer.triangle_time=\"8.5 us\""},
+    {"ullner-scanline-tree", "-p tc.instruction_time=\"65 us\""},
 };
 
 TEST_P(SceneSkipping, AnIdleModuleCostsNoEvents) {

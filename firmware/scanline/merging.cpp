@@ -57,6 +57,7 @@ MergingProcessor::Pass MergingProcessor::pass() {
   if (s0.dummy() && s1.dummy()) {
     finished_ = true;
     p.out = s0;
+    p.dropped = s1.journey;
     held_[0].reset();
     held_[1].reset();
     return p;
@@ -75,6 +76,7 @@ MergingProcessor::Pass MergingProcessor::pass() {
       ++since_fetch_ > kPassBound) {
     p.kind = MergeCase::Apart;
     p.out = v;
+    p.from = visible_;
     fetch(visible_);
     return p;
   }
@@ -83,6 +85,7 @@ MergingProcessor::Pass MergingProcessor::pass() {
   if (other.left.x > v.left.x && lv.at(other.left.x, other.left.z) > 0) {
     p.kind = MergeCase::Disappears;
     p.out = cut(v, v.left.x, other.left.x - 1);
+    p.from = p.shares = visible_;
     v = cut(v, other.left.x, v.right.x);
     visible_ = o;
     return p;
@@ -98,7 +101,10 @@ MergingProcessor::Pass MergingProcessor::pass() {
       const int x = static_cast<int>(
           std::clamp(std::lround(std::isfinite(xi) ? xi : lo_x), long(lo_x), long(hi_x)));
       p.kind = MergeCase::Intersects;
-      if (x - 1 >= v.left.x) p.out = cut(v, v.left.x, x - 1);
+      if (x - 1 >= v.left.x) {
+        p.out = cut(v, v.left.x, x - 1);
+        p.from = p.shares = visible_;
+      }
       // Both keep the crossing's step (O's in front from there; V's is clipped or hidden by
       // it next): with whole steps, O starting a step after it (the seed's epsilon) would
       // leave the step to V's part, which O then hides — a one-step hole.
@@ -113,11 +119,13 @@ MergingProcessor::Pass MergingProcessor::pass() {
     p.kind = MergeCase::Protrudes;
     other = cut(other, v.right.x + 1, other.right.x);
     p.out = v;
+    p.from = visible_;
     fetch(visible_);
     return p;
   }
   // 6: O is hidden.
   p.kind = MergeCase::Hidden;
+  p.dropped = other.journey;
   fetch(o);
   return p;
 }

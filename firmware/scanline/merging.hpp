@@ -58,9 +58,20 @@ class MergingProcessor {
   struct Pass {
     MergeCase kind = MergeCase::Apart;
     std::optional<Segment> out;
+    /// The input whose segment `out` is (a part of).
+    int from = 0;
+    /// The input that still holds another part of the same segment (-1: none): its journey
+    /// forks (Segment::journey).
+    int shares = -1;
+    /// A segment dropped whole (hidden, or the second dummy): its journey ends unfinished.
+    std::optional<std::uint32_t> dropped;
   };
   /// One pass of the algorithm; both inputs held and not finished.
   Pass pass();
+  /// Gives the segment input k holds another journey (a fork's).
+  void set_journey(int k, std::uint32_t journey) {
+    if (held_[static_cast<std::size_t>(k)]) held_[static_cast<std::size_t>(k)]->journey = journey;
+  }
 
  private:
   std::array<std::optional<Segment>, 2> held_;

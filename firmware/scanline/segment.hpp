@@ -20,6 +20,7 @@ inline constexpr int kSegmentWords = 11;
 inline constexpr int kSegmentBits = kSegmentWords * kWordBits;  ///< 132
 /// The dummy's line: past any screen's last (a 12-bit line number's largest).
 inline constexpr std::int16_t kDummyLine = kWordMax;
+inline constexpr std::uint32_t kNoJourney = ~std::uint32_t{0};
 
 /// An end of a segment: x, z, r, g, b.
 struct SegmentEnd {
@@ -29,8 +30,10 @@ struct SegmentEnd {
 struct Segment {
   std::int16_t y = kDummyLine;  ///< the scan line, 0 at the top
   SegmentEnd left, right;
-  /// Not on the wire: the polygon it comes from (for the id image and traces).
+  /// Not on the wire: the polygon it comes from (for the id image and traces), and the journey
+  /// the latency probe follows it by (kNoJourney: none).
   std::uint32_t polygon = 0;
+  std::uint32_t journey = kNoJourney;
 
   bool dummy() const { return y >= kDummyLine; }
   /// Its eleven words, as the link sends them (Fig. 3-25's order, L1610).

@@ -47,6 +47,7 @@ TcFrame tc_frame(const scenes::Scene& scene, const raster::RasterMesh& mesh, int
     f.literals.matrix[3][c] = static_cast<float>(offsets[c]);
   }
   for (std::size_t k = 0; k < 3; ++k) f.literals.ambient[k] = static_cast<float>(shade.ambient);
+  f.literals.point_light = !scene.lights.empty();
   if (!scene.lights.empty()) {
     const scenes::Light& l = scene.lights.front();
     const Vec3 centre = mesh.bounds.empty() ? Vec3(0.0) : mesh.bounds.center();

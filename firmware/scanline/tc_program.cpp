@@ -112,12 +112,22 @@ void colour_computation(Assembler& a, const TcLiterals& lit) {
   a.store_literal(mem::kOne, 1.0f);
   for (std::uint8_t k = 0; k < 3; ++k) {
     a.store_literal(mem::kAmbient + k, lit.ambient[k]);
+    if (!lit.point_light) continue;
     a.store_literal(mem::kPoint + k, lit.point[k]);
     a.store_literal(mem::kDirection + k, lit.direction[k]);
   }
   const std::uint8_t colour[3] = {mem::kCr, mem::kCg, mem::kCb};
   const std::uint8_t out[3] = {mem::kR, mem::kG, mem::kB};
   for (std::uint8_t v = 0; v < 4; ++v) {
+    if (!lit.point_light) {
+      // No point source: r := a_r c_r, and g, b.
+      for (std::uint8_t k = 0; k < 3; ++k) {
+        a.load(mem::kAmbient + k);
+        a.mul(colour[k]);
+        a.store(static_cast<std::uint8_t>(out[k] + v));
+      }
+      continue;
+    }
     // d := max(0, n.p): the sum, then 0 where it is negative (a shutdown block).
     a.load(mem::kNx + v);
     a.mul(mem::kDirection);
@@ -144,7 +154,7 @@ void colour_computation(Assembler& a, const TcLiterals& lit) {
   }
 }
 
-/// The accumulator := the signed distance of vertex ix[reg] inside plane p (>= 0: visible):
+// The accumulator := the signed distance of vertex ix[reg] inside plane p (>= 0: visible):
 /// w - x, w + x, w - y, w + y, z, w - z (L1005: -w <= x, y <= w, 0 <= z <= w).
 void distance(Assembler& a, int plane, std::uint8_t reg) {
   switch (plane) {

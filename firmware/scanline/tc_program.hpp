@@ -47,6 +47,9 @@ struct TcLiterals {
   std::array<float, 3> ambient{};                ///< a_r, a_g, a_b
   std::array<float, 3> point{};                  ///< p_r, p_g, p_b
   std::array<float, 3> direction{};              ///< p_x, p_y, p_z: unit, towards the light
+  /// Whether there is a point source: without one the program computes the ambient term only
+  /// (a scene skips the work it does not need).
+  bool point_light = true;
 };
 
 struct BroadcastProgram {

@@ -16,6 +16,7 @@
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
+#include "platform/machines/mesh_params.hpp"
 #include "platform/machines/pixelflow/composition_network.hpp"
 #include "platform/machines/pixelflow/frame_buffer_node.hpp"
 #include "platform/machines/pixelflow/functional_passes.hpp"
@@ -60,30 +61,6 @@ const modules::CountParam kShaders(
      .source = "seed 004 L93 (the bowling configuration); L23, L160"});
 
 // What the image depends on: the machine's own conversion of the scene and its maps.
-const modules::IntParam kSphereSegments(
-    {.name = "mesh.sphere_segments",
-     .default_value = "24",
-     .min = "3",
-     .max = "1024",
-     .description = "segments round a sphere (and half as many rings) when it is tessellated "
-                    "into triangles",
-     .source = "assumption: the seed's scene is triangles already (L93); 24 keeps an NFF "
-               "sphere's outline within a pixel of round at a few hundred pixels across"});
-const modules::IntParam kConeSegments(
-    {.name = "mesh.cone_segments",
-     .default_value = "24",
-     .min = "3",
-     .max = "1024",
-     .description = "segments round a cone or cylinder when it is tessellated",
-     .source = "assumption: as mesh.sphere_segments"});
-const modules::IntParam kPatchSegments(
-    {.name = "mesh.patch_segments",
-     .default_value = "8",
-     .min = "1",
-     .max = "256",
-     .description = "quads a side of a Bezier patch's tessellation (each two triangles)",
-     .source = "assumption: the teapot's 32 patches become 4096 triangles, as many as the "
-               "bowling frame's pins"});
 const modules::IntParam kMapSize({.name = "maps.size",
                                   .default_value = "512",
                                   .min = "128",
@@ -115,9 +92,7 @@ FrameSettings read_frame_settings(const params::ParamRegistry& r,
                                   const shading::ShadeParams& shade) {
   const modules::ModuleParams p(r, "");
   FrameSettings s;
-  s.mesh.sphere_segments = static_cast<int>(p.get(kSphereSegments));
-  s.mesh.cone_segments = static_cast<int>(p.get(kConeSegments));
-  s.mesh.patch_segments = static_cast<int>(p.get(kPatchSegments));
+  s.mesh = read_mesh_params(r);
   s.map_size = static_cast<int>(p.get(kMapSize));
   s.shadow_bias_texels = p.get(kShadowBias);
   s.bump_scale = p.get(kBumpScale);
@@ -139,8 +114,8 @@ void Pixelflow::declare_params(params::ParamRegistry& r) const {
   machine.add(kRasterizers);
   machine.add(kShaders);
   const modules::ParamDecls image = machine.affecting_image();
-  for (const auto* p : {&kSphereSegments, &kConeSegments, &kPatchSegments, &kMapSize})
-    image.add(*p);
+  declare_mesh_params(image);
+  image.add(kMapSize);
   image.add(kShadowBias);
   image.add(kBumpScale);
   r.declare_family({.cls = kRasterizer, .count_param = kRasterizers.name()});

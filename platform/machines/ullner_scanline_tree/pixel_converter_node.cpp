@@ -1,0 +1,151 @@
+#include "platform/machines/ullner_scanline_tree/pixel_converter_node.hpp"
+
+#include <algorithm>
+
+#include "platform/machines/machine_run.hpp"
+#include "platform/machines/ullner_scanline_tree/frame_output.hpp"
+#include "platform/machines/ullner_scanline_tree/tc_array.hpp"
+
+namespace rtsim::platform::ullner_scanline_tree {
+
+namespace {
+const modules::TimeParam kPixelTime(
+    {.name = "pixel_time",
+     .default_value = "127 ns",
+     .description = "time to put out one pixel of a segment (its colour registers step once)",
+     .source = "derived: the seed gives none; a 512-pixel line in the 65 us a line has at 30 "
+               "frames a second and 512 lines (seed 000 L1551), 127 ns a pixel"});
+const modules::FlagParam kPaced(
+    {.name = "paced",
+     .default_value = "true",
+     .description = "paint as the video beam passes (30 frames a second); false: as fast as the "
+                    "pixel time allows, to measure what the tree delivers",
+     .source = "seed 000 L1521-L1525: the processor keeps up with the beam"});
+const modules::FrequencyParam kFrameRate(
+    {.name = "frame_rate",
+     .default_value = "30 Hz",
+     .description = "video frames a second: a line's time is a frame's over the lines",
+     .source = "seed 000 L959, L1551"});
+const modules::CountParam kQueueDepth(
+    {.name = "queue_depth",
+     .default_value = "2",
+     .min = "1",
+     .max = "4096",
+     .unit = "segments",
+     .description = "segments its input queue holds",
+     .source = "assumption: the merging processors' short queues (seed 000 L1519)"});
+}  // namespace
+
+void PixelConverterNode::declare_params(const modules::ParamDecls& pcp) {
+  pcp.add(kPixelTime);
+  pcp.add(kPaced);
+  pcp.add(kFrameRate);
+  pcp.add(kQueueDepth);
+}
+
+PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun& run,
+                                       const TcArray& tc, const scanline::TcFrame& frame,
+                                       std::vector<RootFault> faults, const ProbeStages& stages)
+    : modules::Processor(name, run.trace()),
+      in("in", modules::ModuleParams(run.registry(), kName).get(kQueueDepth)),
+      params_(run.registry(), kName),
+      run_(run),
+      tc_(tc),
+      frame_(frame),
+      faults_(std::move(faults)),
+      probe_(run.probe()),
+      stages_(stages),
+      paced_(params_.get(kPaced)),
+      pixel_time_(params_.get(kPixelTime)),
+      line_time_(
+          sc_core::sc_time(1.0 / (params_.get(kFrameRate).hz * run.height()), sc_core::SC_SEC)) {
+  const auto h = static_cast<std::size_t>(run.height());
+  rows_ = scanline::paint_frame({}, run.width(), run.height(), run.scene().background,
+                                run.options().aov_id, run.options().aov_depth);
+  per_line_.assign(h, 0);
+  line_late_.assign(h, 0);
+  SC_THREAD(run);
+}
+
+std::uint64_t PixelConverterNode::late_lines() const {
+  std::uint64_t n = 0;
+  for (const char l : line_late_) n += l ? 1 : 0;
+  return n;
+}
+
+void PixelConverterNode::run() {
+  const int width = run_.width(), height = run_.height();
+  for (;;) {
+    const sc_core::sc_time since = clock_.now();
+    modules::wait_for_item(in.fifo, clock_);
+    sc_core::sc_time taken;
+    SegmentMessage m = in.fifo.get(clock_.now(), taken);
+    clock_.catch_up(taken);
+    waited_since(since, Wait::kData);
+    if (!begun_) {
+      begin_ = tc_.done();
+      begun_ = true;
+    }
+    // A word corrupted on the way in (--fault root:WORD:XOR), 12 bits of it.
+    const std::uint64_t first_word = words_seen_;
+    words_seen_ += scanline::kSegmentWords;
+    for (RootFault& f : faults_) {
+      if (f.applied || f.word < first_word || f.word >= words_seen_) continue;
+      auto w = m.segment.words();
+      auto& word = w[static_cast<std::size_t>(f.word - first_word)];
+      word = static_cast<std::int16_t>((word ^ f.xor_mask) & scanline::kWordMax);
+      m.segment = scanline::Segment::from_words(w, m.segment.polygon);
+      f.applied = true;
+    }
+    const scanline::Segment& s = m.segment;
+    probe_.add(s.journey, stages_.pcp_in, modules::LatencyPart::kQueueing,
+               clock_.now() - m.arrived);
+    if (s.dummy()) break;
+    if (s.y >= height) {
+      probe_.drop(s.journey);
+      continue;
+    }
+    const auto [first, end] = scanline::covered_pixels(s, width);
+    const auto line = static_cast<std::size_t>(s.y);
+    ++per_line_[line];
+    if (paced_) {
+      // The beam reaches the segment's first pixel at T0 + y t_line + first t_line / width.
+      const sc_core::sc_time beam =
+          begin_ + line_time_ * (static_cast<double>(s.y) +
+                                 static_cast<double>(first) / static_cast<double>(width));
+      if (clock_.now() > beam) {
+        ++late_;
+        lateness_ += clock_.now() - beam;
+        line_late_[line] = 1;
+      } else if (beam > clock_.now()) {
+        // The beam has not reached it yet.
+        probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kQueueing, beam - clock_.now());
+        idle_until(beam, Wait::kData);
+      }
+    }
+    const sc_core::sc_time painting = clock_.now();
+    if (end > first)
+      compute_for(pixel_time_ * static_cast<double>(end - first), "paint", {{"y", s.y}});
+    probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kService, clock_.now() - painting);
+    probe_.end(s.journey, clock_.now());
+    scanline::paint(s, width, rows_[line]);
+    ++segments_;
+    pixels_ += static_cast<std::uint64_t>(end - first);
+  }
+  frame_end_ = clock_.now();
+  if (paced_) frame_end_ = std::max(frame_end_, begin_ + line_time_ * static_cast<double>(height));
+  deliver();
+  clock_.sync();
+}
+
+void PixelConverterNode::deliver() {
+  // Every pixel's visibility is answered (a segment's or the background), as every machine
+  // reports its primary rays; the pixels a segment covered are its hits.
+  TraceCounters& counters = run_.frame().counters();
+  counters.rays[static_cast<std::size_t>(RayKind::Primary)] +=
+      static_cast<std::uint64_t>(run_.width()) * static_cast<std::uint64_t>(run_.height());
+  counters.hits += pixels_.value();
+  deliver_rows(rows_, frame_.view, frame_.primitive, run_.frame());
+}
+
+}  // namespace rtsim::platform::ullner_scanline_tree

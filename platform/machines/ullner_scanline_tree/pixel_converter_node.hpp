@@ -1,0 +1,87 @@
+#pragma once
+// The pixel conversion processor at the root (seed 000 §3.3.4, L1521-L1547): it takes the root's
+// segments and paints their pixels as the video beam passes them, background where no segment
+// covers (firmware/scanline/pixel_converter.hpp). With `video.paced` the beam sweeps line y from
+// T0 + y t_line, T0 when the scan-out begins (the T&C broadcast's end) and t_line a 30th of a
+// second over the lines (L1551: 65 us at 512 lines): a segment that reaches it after the beam
+// has passed its first pixel is late, and its line misses its time (L1551-L1553). Unpaced, it
+// paints as fast as its pixel time allows, to measure what the tree can deliver.
+#include <systemc>
+#include <vector>
+
+#include "firmware/scanline/pixel_converter.hpp"
+#include "firmware/scanline/tc_frame.hpp"
+#include "firmware/scanline/tree_frame.hpp"
+#include "modules/latency_probe.hpp"
+#include "modules/message_channel.hpp"
+#include "modules/module_params.hpp"
+#include "modules/processor.hpp"
+#include "platform/machines/machine_support.hpp"
+#include "platform/machines/ullner_scanline_tree/tree_messages.hpp"
+
+namespace rtsim::platform {
+class MachineRun;
+}
+
+namespace rtsim::platform::ullner_scanline_tree {
+
+class TcArray;
+
+/// A corrupted word on the link into the pixel conversion processor (--fault root:WORD:XOR):
+/// WORD counts the root's segments' words in the order they arrive, 11 a segment.
+struct RootFault {
+  std::uint64_t word = 0;
+  std::uint64_t xor_mask = 0;
+  bool applied = false;
+};
+
+class PixelConverterNode : public modules::Processor {
+ public:
+  static constexpr const char* kName = "pcp";
+  static constexpr const char* kFaultPoint = "root";
+  static void declare_params(const modules::ParamDecls& pcp);
+
+  SC_HAS_PROCESS(PixelConverterNode);
+  PixelConverterNode(sc_core::sc_module_name name, MachineRun& run, const TcArray& tc,
+                     const scanline::TcFrame& frame, std::vector<RootFault> faults,
+                     const ProbeStages& stages);
+
+  modules::MessageQueue<SegmentMessage> in;
+
+  /// When the frame ended: the last line's time (paced), or its last pixel.
+  sc_core::sc_time frame_end() const { return frame_end_; }
+  sc_core::sc_time scan_out_begin() const { return begin_; }
+  const std::vector<std::uint32_t>& segments_per_line() const { return per_line_; }
+  const std::vector<RootFault>& faults() const { return faults_; }
+  sc_core::sc_time line_time() const { return line_time_; }
+  bool paced() const { return paced_; }
+  std::uint64_t late_lines() const;
+
+ private:
+  void run();
+  /// The frame's pixels into the run's frame buffer and id/depth images.
+  void deliver();
+
+  modules::ModuleParams params_;
+  MachineRun& run_;
+  const TcArray& tc_;
+  const scanline::TcFrame& frame_;
+  bool begun_ = false;
+  std::vector<RootFault> faults_;
+  modules::LatencyProbe& probe_;
+  ProbeStages stages_;
+  bool paced_;
+  sc_core::sc_time pixel_time_, line_time_;
+  sc_core::sc_time begin_ = sc_core::SC_ZERO_TIME, frame_end_ = sc_core::SC_ZERO_TIME;
+  std::vector<scanline::PixelRow> rows_;
+  std::vector<std::uint32_t> per_line_;
+  std::vector<char> line_late_;
+  std::uint64_t words_seen_ = 0;
+  modules::Counter segments_{*this, "segments", "segments painted"};
+  modules::Counter pixels_{*this, "pixels", "pixels painted from segments"};
+  modules::Counter late_{*this, "late_segments",
+                         "segments that arrived after the beam had passed their first pixel"};
+  modules::Duration lateness_{*this, "lateness_s", "how long after the beam they arrived, summed"};
+};
+
+}  // namespace rtsim::platform::ullner_scanline_tree
