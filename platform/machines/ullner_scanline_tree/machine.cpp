@@ -227,7 +227,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   st["polygons"] = frame.polygons.size();
   st["merging_processors"] = tree.mps.size();
   // The T&C broadcast: its instructions against the frame's (L1334-L1336).
-  const double frame_period = 1.0 / (30.0);
+  const double frame_period = pcp.line_time().to_seconds() * run.height();  // pcp.frame_rate's
   const double instruction_s = tc.instruction_time().to_seconds();
   st["tc"] = {{"instructions", tc.program().total()},
               {"time_s", tc.done().to_seconds()},
