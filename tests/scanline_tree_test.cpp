@@ -157,7 +157,7 @@ TEST(ScanlineTree, ATreeFrameIsTheNearestOfItsLeavesSegments) {
     const TreeFrame tree = evaluate_tree(frame, height, leaves);
     expect_stream(tree.root);
     // The leaves' streams again, for the brute-force answer.
-    const auto chains = transform_and_clip(frame, nullptr);
+    const auto chains = transform_and_clip(frame);
     std::vector<std::vector<Segment>> streams;
     for (std::uint32_t p = 0; p < chains.size(); ++p)
       streams.push_back(scan_convert(chains[p], height, p));

@@ -19,22 +19,29 @@ std::vector<std::uint32_t> leaf_assignment(std::size_t polygons, bool random, st
   return leaf;
 }
 
-std::vector<EdgeChains> transform_and_clip(const TcFrame& frame, std::uint64_t* instructions) {
-  const BroadcastProgram program = build_tc_program(frame.literals);
-  if (instructions) *instructions = program.total();
+std::vector<EdgeChains> transform_and_clip(const BroadcastProgram& program,
+                                           const std::vector<TcPolygon>& polygons,
+                                           std::uint64_t* executed) {
   std::vector<EdgeChains> chains;
-  chains.reserve(frame.polygons.size());
+  chains.reserve(polygons.size());
   // The processors hear the same stream; a batch at a time keeps their memories in the cache.
   constexpr std::size_t kBatch = 64;
   std::vector<TcProcessor> batch;
-  for (std::size_t first = 0; first < frame.polygons.size(); first += kBatch) {
-    const std::size_t n = std::min(kBatch, frame.polygons.size() - first);
+  for (std::size_t first = 0; first < polygons.size(); first += kBatch) {
+    const std::size_t n = std::min(kBatch, polygons.size() - first);
     batch.assign(n, TcProcessor{});
-    for (std::size_t k = 0; k < n; ++k) load_polygon(batch[k], frame.polygons[first + k]);
+    for (std::size_t k = 0; k < n; ++k) load_polygon(batch[k], polygons[first + k]);
     broadcast(program, batch);
-    for (const TcProcessor& p : batch) chains.push_back(edge_chains(p.sent));
+    for (const TcProcessor& p : batch) {
+      if (executed) *executed += p.executed;
+      chains.push_back(edge_chains(p.sent));
+    }
   }
   return chains;
+}
+
+std::vector<EdgeChains> transform_and_clip(const TcFrame& frame) {
+  return transform_and_clip(build_tc_program(frame.literals), frame.polygons, nullptr);
 }
 
 namespace {
@@ -56,7 +63,7 @@ std::vector<Segment> merge_tree(const std::vector<std::vector<Segment>>& streams
 TreeFrame evaluate_tree(const TcFrame& frame, int lines,
                         const std::vector<std::uint32_t>& leaf_polygon) {
   TreeFrame out;
-  const std::vector<EdgeChains> chains = transform_and_clip(frame, nullptr);
+  const std::vector<EdgeChains> chains = transform_and_clip(frame);
   std::vector<std::vector<Segment>> streams;
   streams.reserve(leaf_polygon.size());
   for (const std::uint32_t p : leaf_polygon) {

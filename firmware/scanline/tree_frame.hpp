@@ -22,8 +22,13 @@ namespace rtsim::scanline {
 /// `random` (a deterministic generator: the same seed, the same tree).
 std::vector<std::uint32_t> leaf_assignment(std::size_t polygons, bool random, std::uint64_t seed);
 
-/// The T&C processors' edge chains, polygon by polygon (one broadcast of the program).
-std::vector<EdgeChains> transform_and_clip(const TcFrame& frame, std::uint64_t* instructions);
+/// The T&C processors' edge chains, polygon by polygon: `program` broadcast to a processor a
+/// polygon; `executed` (if not null) adds the instructions they executed (not shut down).
+std::vector<EdgeChains> transform_and_clip(const BroadcastProgram& program,
+                                           const std::vector<TcPolygon>& polygons,
+                                           std::uint64_t* executed);
+/// The same for the frame's polygons with the program of its literals.
+std::vector<EdgeChains> transform_and_clip(const TcFrame& frame);
 
 /// The merging tree over `streams` (one a leaf, in leaf order): leaves [lo, hi) merge as
 /// [lo, mid) with [mid, hi), mid = (lo + hi) / 2.

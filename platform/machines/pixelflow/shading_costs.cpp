@@ -157,8 +157,4 @@ sc_core::sc_time ShadingCosts::lookup_part(const deferred::RegionWork& w) const 
   return lookup_ * (static_cast<double>(pixels) / raster::kRegionPixels);
 }
 
-sc_core::sc_time ShadingCosts::time_for(const deferred::RegionWork& w) const {
-  return shading_part(w) + lookup_part(w);
-}
-
 }  // namespace rtsim::platform::pixelflow

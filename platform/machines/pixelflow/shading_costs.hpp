@@ -26,14 +26,11 @@ class ShadingCosts {
   static void declare_params(const modules::ParamDecls& shader);
   ShadingCosts(const modules::ModuleParams& shader, const deferred::ProgramUniforms& uniforms);
 
-  /// The node's time for a region-sample whose shading did `work`.
-  sc_core::sc_time time_for(const deferred::RegionWork& work) const;
-  /// The parts of it (for the traces): pre- and post-light, the lights, the lookups.
+  /// The node's time for a region-sample whose shading did `work`, in its two parts: pre- and
+  /// post-light with the lights, and the lookups.
   sc_core::sc_time shading_part(const deferred::RegionWork& work) const;
   sc_core::sc_time lookup_part(const deferred::RegionWork& work) const;
 
-  /// Whether the shading part counts instructions ("instructions") or takes Fig. 9's times.
-  bool counts_instructions() const { return instructions_; }
   /// The shading programs and Fig. 6's times, whichever model times the node.
   const deferred::ShadingPrograms& programs() const { return programs_; }
   const deferred::simd::InstructionTimes& instruction_times() const { return times_; }

@@ -105,7 +105,8 @@ void ShadingNode::run() {
       probe_.add(r.journey, stages_.shader, modules::LatencyPart::kQueueing, clock_.now() - ready);
       const deferred::RegionWork work =
           deferred::shade_region(*r.samples, pass.view, frame_.shading, tables, colours);
-      const sc_core::sc_time t = costs_.time_for(work);
+      const sc_core::sc_time shading = costs_.shading_part(work);
+      const sc_core::sc_time t = shading + costs_.lookup_part(work);
       compute_for(t, "shade",
                   {{"pass", pi}, {"region", pass.region_of(k)}, {"sample", pass.sample_of(k)}});
       busy_by_pass_[pi] += t;
@@ -117,7 +118,7 @@ void ShadingNode::run() {
         worst_time_ = t;
         worst_work_ = work;
       }
-      if (const sc_core::sc_time shading = costs_.shading_part(work); shading > worst_shading_) {
+      if (shading > worst_shading_) {
         worst_shading_ = shading;
         worst_shading_work_ = work;
       }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "firmware/scanline/tree_frame.hpp"
 #include "platform/machines/machine_run.hpp"
 
 namespace rtsim::platform::ullner_scanline_tree {
@@ -33,22 +34,15 @@ TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::
 
 void TcArray::run() {
   // The processors' memories, loaded by the bus (27 words a polygon, L1272), hear the program
-  // in lockstep: a batch at a time here, the same instructions in the same order for each.
+  // in lockstep.
+  std::uint64_t executed = 0;
   std::vector<ChainsMessage> out(std::max<std::size_t>(1, frame_.polygons.size()));
-  constexpr std::size_t kBatch = 64;
-  std::vector<scanline::TcProcessor> batch;
-  for (std::size_t first = 0; first < frame_.polygons.size(); first += kBatch) {
-    const std::size_t n = std::min(kBatch, frame_.polygons.size() - first);
-    batch.assign(n, scanline::TcProcessor{});
-    for (std::size_t k = 0; k < n; ++k)
-      scanline::load_polygon(batch[k], frame_.polygons[first + k]);
-    scanline::broadcast(program_, batch);
-    for (std::size_t k = 0; k < n; ++k) {
-      executed_ += batch[k].executed;
-      out[first + k].chains = scanline::edge_chains(batch[k].sent);
-      if (!out[first + k].chains.empty()) ++polygons_out_;
-    }
+  const auto chains = scanline::transform_and_clip(program_, frame_.polygons, &executed);
+  for (std::size_t k = 0; k < chains.size(); ++k) {
+    out[k].chains = chains[k];
+    if (!chains[k].empty()) ++polygons_out_;
   }
+  executed_ += executed;
   instructions_ += program_.total();
   // The frame's counts in the terms every machine reports (stats.json `rays`): a vertex's light
   // term (Fig. 3-11: n.p, no shadow) is the light's work, as a shadow ray is a ray tracer's.
