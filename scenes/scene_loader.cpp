@@ -13,6 +13,7 @@
 #include "scenes/generators/npp_scene.hpp"
 #include "scenes/generators/spd_teapot.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
+#include "scenes/generators/ullner_mosaic.hpp"
 #include "scenes/generators/ullner_random.hpp"
 #include "scenes/generators/ullner_sheets.hpp"
 #include "scenes/nff_reader.hpp"
@@ -86,6 +87,10 @@ const std::vector<BuiltinScene>& builtin_scenes() {
                             " spheres (" + std::to_string(64 * pp) + "), " + tree + " shell tree"});
       }
     }
+    list.push_back({std::string(kUllnerMosaicPrefix) + "64",
+                    "the scan-line tree's bandwidth scene: one sheet facing the eye in 64 "
+                    "columns x 8 rows of quads, 128 visible triangles' segments a line; any "
+                    "ullner-mosaic-N"});
     return list;
   }();
   return scenes;
@@ -114,6 +119,14 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
                            kUllnerRandomMinPolygons, " to ", kUllnerRandomMaxPolygons));
     }
     return make_ullner_random(*polygons, seeds.ullner_random);
+  }
+  if (const auto columns = parse_ullner_mosaic_name(name)) {
+    if (*columns < kUllnerMosaicMinColumns || *columns > kUllnerMosaicMaxColumns) {
+      throw InputError("", 0,
+                       cat("builtin scene ", quote_token(name), ": ullner-mosaic-N takes N from ",
+                           kUllnerMosaicMinColumns, " to ", kUllnerMosaicMaxColumns));
+    }
+    return make_ullner_mosaic(*columns);
   }
   bool lit = false;
   if (const auto polygons = parse_ullner_sheets_name(name, &lit)) {

@@ -279,7 +279,7 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 28u);
+  ASSERT_EQ(names.size(), 29u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
@@ -291,6 +291,11 @@ TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   EXPECT_EQ(names[11], "spd-teapot-patches");
   EXPECT_EQ(names[12], "bowling");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
+  EXPECT_EQ(names[28], "ullner-mosaic-64");
+  // ullner-mosaic-N: N columns of 8 quads; N within a line's 4096 steps.
+  EXPECT_EQ(load_scene("builtin:ullner-mosaic-10").polygons.size(), 80u);
+  EXPECT_THROW(load_scene("builtin:ullner-mosaic-5000"), rtsim::InputError);
+  EXPECT_THROW(load_scene("builtin:ullner-mosaic-0"), rtsim::InputError);
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());
     EXPECT_EQ(s.description.find('\n'), std::string::npos);

@@ -55,6 +55,63 @@ TEST(UllnerScanlineTree, TheImageIsTheTwinsWhateverTheTiming) {
   }
 }
 
+TEST(UllnerScanlineTree, ASplitRootsImageIsTheTwinsWhateverTheTiming) {
+  // Root splitting (L1561-L1637) changes the image only by the rounding of the breaks at the
+  // strips' edges; the twin splits the same way.
+  for (const std::string& split_opts : {std::string(" -p tree.split_levels=2"),
+                                  std::string(" -p tree.split_levels=5 -p tree.assignment=subvolume")}) {
+    SCOPED_TRACE(split_opts);
+    const auto dir = scratch_dir("scanline-split-render");
+    const auto r = run_rtsim("render --machine " + kMachine + " " + kTeapot + split_opts + " -q --out " +
+                             dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const std::string& p :
+         {std::string(), std::string(" -p sp.stage_time=\"20 us\" -p sp.queue_depth=64"),
+          std::string(" -p pcp.paced=false -p sp.link.bit_time=\"1 us\"")}) {
+      SCOPED_TRACE(p);
+      const auto s = run_machine(kMachine, "split-root", kTeapot + split_opts + p);
+      ASSERT_FALSE(s.empty());
+      EXPECT_EQ(read_file(s["image_png"].get<std::string>()), read_file(dir / "image.png"));
+      // The seed's processor counts (L1594), and every strip painted by its own processor.
+      const auto& split = tree(s)["split"];
+      const int n = split["levels"].get<int>();
+      EXPECT_EQ(split["splitting_processors"].get<int>(), n << n);
+      EXPECT_EQ(split["extra_merging_processors"].get<int>(), (n - 1) * (1 << n) + 1);
+      EXPECT_EQ(split["strips"].get<int>(), 1 << n);
+    }
+  }
+}
+
+TEST(UllnerScanlineTree, SplittingDoublesTheRootsBandwidthOnAScenesVisibleSegments) {
+  // builtin:ullner-mosaic-N: 2N visible segments a line, none hidden. Unpaced, one root delivers
+  // a segment every 3 us (the non-overlapping case); two roots twice that.
+  const std::string mosaic = "--scene builtin:ullner-mosaic-32 --width 256 --height 32 "
+                             "-p pcp.paced=false";
+  double rate[2] = {0, 0};
+  for (int n = 0; n < 2; ++n) {
+    const auto s = run_machine(kMachine, "mosaic" + std::to_string(n),
+                               mosaic + " -p tree.split_levels=" + std::to_string(n));
+    ASSERT_FALSE(s.empty());
+    const auto& out = tree(s)["scan_out"];
+    rate[n] = out["root_segments"].get<double>() / out["time_s"].get<double>();
+  }
+  std::printf("segments a second: %.0f unsplit, %.0f split once (ratio %.2f)\n", rate[0], rate[1],
+              rate[1] / rate[0]);
+  EXPECT_GT(rate[1] / rate[0], 1.6);
+}
+
+TEST(UllnerScanlineTree, SplitterQueuesShorterThanALineDeadlockTheTreeAndSaySo) {
+  // A line bringing more segments to a splitting processor than its queues hold stops the tree
+  // (L1633-L1637): bad input, with the depth the run needed, and nothing written.
+  const auto dir = scratch_dir("scanline-deadlock");
+  const auto r = run_rtsim("run --machine " + kMachine + " " + kTeapot +
+                           " -p tree.split_levels=1 -p sp.queue_depth=1 -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("sp.queue_depth"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("deadlocked"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
+}
+
 TEST(UllnerScanlineTree, ACorruptedSegmentWordOnTheRootsLinkChangesTheImage) {
   const auto clean = run_machine(kMachine, "clean", kTeapot);
   // Segment 400 of the root's stream, its left x (word 1).

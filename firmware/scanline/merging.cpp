@@ -62,6 +62,23 @@ MergingProcessor::Pass MergingProcessor::pass() {
     held_[1].reset();
     return p;
   }
+  const auto fetch = [&](int k) { held_[static_cast<std::size_t>(k)].reset(); };
+  if (s0.mark || s1.mark) {
+    // The earlier mark (either, if both are): its input sends nothing before its line.
+    const int m = s0.mark && (!s1.mark || s0.y <= s1.y) ? 0 : 1;
+    const Segment& mark = *held_[static_cast<std::size_t>(m)];
+    const Segment& seg = *held_[static_cast<std::size_t>(1 - m)];
+    if (!seg.mark && seg.y < mark.y) {
+      p.kind = MergeCase::Apart;
+      p.out = seg;
+      p.from = 1 - m;
+      fetch(1 - m);
+      return p;
+    }
+    p.kind = MergeCase::Mark;
+    fetch(m);
+    return p;
+  }
   if (!classified_) {
     visible_ = key(s1) < key(s0) ? 1 : 0;
     classified_ = true;
@@ -69,7 +86,6 @@ MergingProcessor::Pass MergingProcessor::pass() {
   const int o = 1 - visible_;
   Segment& v = *held_[static_cast<std::size_t>(visible_)];
   Segment& other = *held_[static_cast<std::size_t>(o)];
-  const auto fetch = [&](int k) { held_[static_cast<std::size_t>(k)].reset(); };
 
   // 2: apart — V on an earlier line, or ending before O begins.
   if (v.y < other.y || (v.y == other.y && v.right.x < other.left.x) ||

@@ -16,6 +16,9 @@
 //   6. O is hidden: drop it, fetch its successor.
 //
 // After a fetch the next pass classifies again; after a swap it goes on as classified (L1391).
+// A line mark from a splitting processor (splitting.hpp) is not a segment: the other input's
+// segment goes out if it is on an earlier line (nothing from the mark's input can come before
+// it), and otherwise the mark is dropped — one stage, stage 1's comparison.
 // The arithmetic is integer, on the 12-bit words; the epsilon of L1421-L1427 is one step of x.
 // What each pass needs of the five stages of Fig. 3-22 (L1457) times it: step 2 the first stage
 // only, steps 3, 5 and 6 the first and the fifth (the segments overlap), step 4 all five.
@@ -31,13 +34,13 @@
 
 namespace rtsim::scanline {
 
-enum class MergeCase : std::uint8_t { Apart, Disappears, Intersects, Protrudes, Hidden };
-inline constexpr int kMergeCases = 5;
+enum class MergeCase : std::uint8_t { Apart, Disappears, Intersects, Protrudes, Hidden, Mark };
+inline constexpr int kMergeCases = 6;
 inline constexpr std::array<std::string_view, kMergeCases> kMergeCaseNames = {
-    "apart", "disappears", "intersects", "protrudes", "hidden"};
+    "apart", "disappears", "intersects", "protrudes", "hidden", "mark"};
 /// Fig. 3-22's stages a case needs (L1457, L1519: 3 us non-overlapping, 6 overlapping, 15
-/// intersecting).
-inline constexpr std::array<int, kMergeCases> kMergeStages = {1, 2, 5, 2, 2};
+/// intersecting; a line mark dropped, stage 1).
+inline constexpr std::array<int, kMergeCases> kMergeStages = {1, 2, 5, 2, 2, 1};
 
 /// The passes of each case a processor (or a tree) made.
 struct MergeTally {

@@ -6,6 +6,10 @@
 //
 // A pixel belongs to a segment if its centre lies in the steps the segment covers: pixel p of a
 // row of `width` has its centre at (2p + 1) 4096 / (2 width) steps.
+//
+// Under root splitting (splitting.hpp) each of the 2^n strips has its own processor (L1596),
+// whose segments are in the strip's coordinates: step x of strip k is step k 4096 / 2^n + x / 2^n
+// of the screen. It paints the pixels whose centres lie in its strip.
 #include <cstdint>
 #include <vector>
 
@@ -22,10 +26,16 @@ struct PixelRow {
   std::vector<float> depth;           ///< the segment's z (0..1); infinity: background
 };
 
-/// The pixels of `width` whose centres `s` covers: [first, end).
-std::pair<int, int> covered_pixels(const Segment& s, int width);
+/// Which strip of a split tree's screen a segment's coordinates are in (none split: the screen).
+struct Strip {
+  int levels = 0;  ///< the tree's split levels n: 2^n strips
+  int index = 0;   ///< 0 .. 2^n - 1, left to right
+};
+
+/// The pixels of `width` whose centres `s` covers: [first, end), counted across the screen.
+std::pair<int, int> covered_pixels(const Segment& s, int width, const Strip& strip = {});
 
 /// Writes segment `s` into `row` (sized `width`).
-void paint(const Segment& s, int width, PixelRow& row);
+void paint(const Segment& s, int width, PixelRow& row, const Strip& strip = {});
 
 }  // namespace rtsim::scanline

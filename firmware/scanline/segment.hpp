@@ -34,6 +34,9 @@ struct Segment {
   /// the latency probe follows it by (kNoJourney: none).
   std::uint32_t polygon = 0;
   std::uint32_t journey = kNoJourney;
+  /// A line mark (splitting.hpp): no segment, only "this stream sends nothing before line y";
+  /// a flag beside the eleven words. Merging processors drop it.
+  bool mark = false;
 
   bool dummy() const { return y >= kDummyLine; }
   /// Its eleven words, as the link sends them (Fig. 3-25's order, L1610).
@@ -46,6 +49,13 @@ struct Segment {
 
 /// The dummy that ends every stream.
 inline Segment dummy_segment() { return Segment{}; }
+/// A line mark for line y.
+inline Segment line_mark(std::int16_t y) {
+  Segment s;
+  s.y = y;
+  s.mark = true;
+  return s;
+}
 
 /// The point of `s` at step x (rounded): z, r, g, b interpolated between its ends.
 SegmentEnd point_at(const Segment& s, int x);

@@ -1,21 +1,85 @@
 #include "firmware/scanline/tree_frame.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 #include "firmware/scanline/scan_converter.hpp"
+#include "firmware/scanline/splitting.hpp"
 
 namespace rtsim::scanline {
 
-std::vector<std::uint32_t> leaf_assignment(std::size_t polygons, bool random, std::uint64_t seed) {
-  std::vector<std::uint32_t> leaf(polygons);
-  std::iota(leaf.begin(), leaf.end(), 0u);
-  if (random) {
-    // Fisher-Yates with a fixed generator (std::shuffle's use of it is not specified).
-    std::mt19937_64 rng(seed);
-    for (std::size_t i = leaf.size(); i > 1; --i) std::swap(leaf[i - 1], leaf[rng() % i]);
+namespace {
+/// Deals `order` to leaves [lo, hi): alternately to the right subtree (first) and the left, so
+/// the right, the larger, takes ceil((hi - lo) / 2) of them.
+void deal(const std::vector<std::uint32_t>& order, std::size_t lo, std::size_t hi,
+          std::vector<std::uint32_t>& leaf) {
+  if (hi - lo == 1) {
+    leaf[lo] = order.front();
+    return;
   }
+  std::vector<std::uint32_t> left, right;
+  for (std::size_t k = 0; k < order.size(); ++k) (k % 2 == 0 ? right : left).push_back(order[k]);
+  const std::size_t mid = (lo + hi) / 2;
+  deal(left, lo, mid, leaf);
+  deal(right, mid, hi, leaf);
+}
+
+/// The polygons in subvolume order: by the cell of a cells^3 grid over their bounds holding
+/// their centroid (x fastest), the scene's order within a cell.
+std::vector<std::uint32_t> by_subvolume(const std::vector<TcPolygon>& polygons, int cells) {
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  std::vector<Vec3> centre(polygons.size());
+  for (std::size_t k = 0; k < polygons.size(); ++k) {
+    Vec3 c(0.0);
+    for (const Vec3& v : polygons[k].vertex) {
+      lo = glm::min(lo, v);
+      hi = glm::max(hi, v);
+      c += v;
+    }
+    centre[k] = c / 4.0;
+  }
+  const auto cell = [&](const Vec3& c) {
+    std::int64_t index = 0;
+    for (int a = 2; a >= 0; --a) {
+      const double extent = hi[a] - lo[a];
+      const double f = extent > 0.0 ? (c[a] - lo[a]) / extent : 0.0;
+      // NaN or out of range (a vertex at infinity) clamps to the grid.
+      const int i = f >= 0.0 ? std::min(cells - 1, static_cast<int>(f * cells)) : 0;
+      index = index * cells + i;
+    }
+    return index;
+  };
+  std::vector<std::pair<std::int64_t, std::uint32_t>> keyed(polygons.size());
+  for (std::size_t k = 0; k < polygons.size(); ++k)
+    keyed[k] = {cell(centre[k]), static_cast<std::uint32_t>(k)};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order;
+  order.reserve(keyed.size());
+  for (const auto& [c, k] : keyed) order.push_back(k);
+  return order;
+}
+}  // namespace
+
+std::vector<std::uint32_t> leaf_assignment(const std::vector<TcPolygon>& polygons,
+                                           std::size_t leaves, const LeafPlan& plan) {
+  const std::size_t n = polygons.size();
+  if (leaves < n) throw std::invalid_argument("leaf_assignment: fewer leaves than polygons");
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  if (plan.order == LeafOrder::Random) {
+    // Fisher-Yates with a fixed generator (std::shuffle's use of it is not specified).
+    std::mt19937_64 rng(plan.seed);
+    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng() % i]);
+  } else if (plan.order == LeafOrder::Subvolume) {
+    order = by_subvolume(polygons, std::max(1, plan.subvolumes));
+  }
+  for (std::size_t k = n; k < leaves; ++k) order.push_back(static_cast<std::uint32_t>(k));
+  if (plan.order != LeafOrder::Subvolume || leaves == 0) return order;
+  std::vector<std::uint32_t> leaf(leaves);
+  deal(order, 0, leaves, leaf);
   return leaf;
 }
 
@@ -61,21 +125,30 @@ std::vector<Segment> merge_tree(const std::vector<std::vector<Segment>>& streams
 }
 
 TreeFrame evaluate_tree(const TcFrame& frame, int lines,
-                        const std::vector<std::uint32_t>& leaf_polygon) {
+                        const std::vector<std::uint32_t>& leaf_polygon, int split_levels) {
   TreeFrame out;
   const std::vector<EdgeChains> chains = transform_and_clip(frame);
   std::vector<std::vector<Segment>> streams;
   streams.reserve(leaf_polygon.size());
   for (const std::uint32_t p : leaf_polygon) {
-    streams.push_back(scan_convert(chains[p], lines, p));
+    // An idle leaf's scan converter has no polygon: its stream is the dummy.
+    streams.push_back(p < chains.size() ? scan_convert(chains[p], lines, p)
+                                        : std::vector<Segment>{dummy_segment()});
     out.leaf_segments += streams.back().size() - 1;
   }
-  out.root = merge_tree(streams, &out.tally);
+  std::vector<std::vector<Segment>> roots;
+  if (streams.empty()) {
+    roots.push_back({dummy_segment()});
+  } else {
+    for (const auto& [lo, hi] : subtree_ranges(streams.size(), split_levels))
+      roots.push_back(merge_range(streams, lo, hi, &out.tally));
+  }
+  out.strips = split_network(std::move(roots), split_levels, &out.tally, &out.broken);
   return out;
 }
 
-std::vector<PixelRow> paint_frame(const std::vector<Segment>& root, int width, int height,
-                                  const Color& background, bool ids, bool depth) {
+std::vector<PixelRow> blank_frame(int width, int height, const Color& background, bool ids,
+                                  bool depth) {
   std::vector<PixelRow> rows(static_cast<std::size_t>(height));
   const auto w = static_cast<std::size_t>(width);
   for (PixelRow& r : rows) {
@@ -83,8 +156,19 @@ std::vector<PixelRow> paint_frame(const std::vector<Segment>& root, int width, i
     if (ids) r.polygon.assign(w, -1);
     if (depth) r.depth.assign(w, std::numeric_limits<float>::infinity());
   }
-  for (const Segment& s : root)
-    if (!s.dummy() && s.y < height) paint(s, width, rows[static_cast<std::size_t>(s.y)]);
+  return rows;
+}
+
+std::vector<PixelRow> paint_frame(const std::vector<std::vector<Segment>>& strips, int width,
+                                  int height, const Color& background, bool ids, bool depth) {
+  std::vector<PixelRow> rows = blank_frame(width, height, background, ids, depth);
+  int levels = 0;
+  while ((std::size_t{1} << levels) < strips.size()) ++levels;
+  for (std::size_t k = 0; k < strips.size(); ++k)
+    for (const Segment& s : strips[k])
+      if (!s.dummy() && s.y < height)
+        paint(s, width, rows[static_cast<std::size_t>(s.y)],
+              {.levels = levels, .index = static_cast<int>(k)});
   return rows;
 }
 

@@ -18,9 +18,23 @@
 
 namespace rtsim::scanline {
 
-/// The polygon at each leaf: a permutation of 0 .. polygons - 1, shuffled by `seed` if
-/// `random` (a deterministic generator: the same seed, the same tree).
-std::vector<std::uint32_t> leaf_assignment(std::size_t polygons, bool random, std::uint64_t seed);
+enum class LeafOrder : std::uint8_t { Random, Scene, Subvolume };
+
+struct LeafPlan {
+  LeafOrder order = LeafOrder::Random;
+  std::uint64_t seed = 1983;  ///< Random: the shuffle's seed
+  int subvolumes = 8;         ///< Subvolume: the modelling space's cells a side
+};
+
+/// The polygon at each of `leaves` leaves (leaves >= polygons.size()): a permutation of
+/// 0 .. leaves - 1, where an index past the last polygon is an idle leaf. Random shuffles the
+/// polygons with a fixed generator (the same seed, the same tree) and puts the idle leaves
+/// last; Scene keeps the scene's order; Subvolume sorts the polygons by the cell of a
+/// subvolumes^3 grid over their bounds that holds their centroid, and deals that list (idle
+/// leaves last) down the balanced tree, alternately to the right and the left subtree at every
+/// node, so each subtree at every depth holds an even share of every subvolume.
+std::vector<std::uint32_t> leaf_assignment(const std::vector<TcPolygon>& polygons,
+                                           std::size_t leaves, const LeafPlan& plan);
 
 /// The T&C processors' edge chains, polygon by polygon: `program` broadcast to a processor a
 /// polygon; `executed` (if not null) adds the instructions they executed (not shut down).
@@ -36,18 +50,24 @@ std::vector<Segment> merge_tree(const std::vector<std::vector<Segment>>& streams
                                 MergeTally* tally);
 
 struct TreeFrame {
-  std::vector<Segment> root;  ///< the root's stream, the dummy last
+  /// Each strip's stream, left to right, the dummy last (one, the root's, unsplit).
+  std::vector<std::vector<Segment>> strips;
   MergeTally tally;
   std::uint64_t leaf_segments = 0;  ///< segments the scan conversion processors sent
+  std::uint64_t broken = 0;         ///< segments the splitting processors cut
 };
 
-/// The frame on a screen of `lines` scan lines (x is 4096 steps whatever the width).
+/// The frame on a screen of `lines` scan lines (x is 4096 steps whatever the width), the top
+/// `split_levels` levels of the tree split (needs 2^split_levels leaves).
 TreeFrame evaluate_tree(const TcFrame& frame, int lines,
-                        const std::vector<std::uint32_t>& leaf_polygon);
+                        const std::vector<std::uint32_t>& leaf_polygon, int split_levels = 0);
 
-/// The pixel conversion processor's image of a root stream: rows of `width`, top first, with
-/// the id and depth images if asked for.
-std::vector<PixelRow> paint_frame(const std::vector<Segment>& root, int width, int height,
-                                  const Color& background, bool ids, bool depth);
+/// The pixel conversion processors' image of the strips' streams (2^split_levels of them): rows
+/// of `width`, top first, with the id and depth images if asked for.
+std::vector<PixelRow> paint_frame(const std::vector<std::vector<Segment>>& strips, int width,
+                                  int height, const Color& background, bool ids, bool depth);
+/// Rows of background (and no id, infinite depth), for processors to paint into.
+std::vector<PixelRow> blank_frame(int width, int height, const Color& background, bool ids,
+                                  bool depth);
 
 }  // namespace rtsim::scanline

@@ -1,9 +1,10 @@
 #include "scenes/generators/ullner_sheets.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string>
+
+#include "scenes/generators/name_number.hpp"
 
 namespace rtsim::scenes {
 namespace {
@@ -79,15 +80,7 @@ Scene make_ullner_sheets(std::size_t polygon_count, bool lit) {
 std::optional<std::size_t> parse_ullner_sheets_name(std::string_view name, bool* lit) {
   const bool is_lit = name.substr(0, kUllnerSheetsLitPrefix.size()) == kUllnerSheetsLitPrefix;
   if (lit) *lit = is_lit;
-  const std::string_view prefix = is_lit ? kUllnerSheetsLitPrefix : kUllnerSheetsPrefix;
-  if (name.substr(0, prefix.size()) != prefix) return std::nullopt;
-  const std::string_view digits = name.substr(prefix.size());
-  if (digits.empty() || digits.size() > 9 || (digits.size() > 1 && digits[0] == '0'))
-    return std::nullopt;
-  std::size_t n = 0;
-  const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-  if (ec != std::errc() || ptr != digits.data() + digits.size()) return std::nullopt;
-  return n;
+  return number_after_prefix(name, is_lit ? kUllnerSheetsLitPrefix : kUllnerSheetsPrefix);
 }
 
 }  // namespace rtsim::scenes

@@ -2,8 +2,10 @@
 // 000-ch3 §2.3-2.8): a T&C processor a polygon on one broadcast bus (SIMD, L1100-L1102), a scan
 // conversion processor each, a binary tree of merging processors merging their segment streams,
 // and the pixel conversion processor at the root painting the root's stream as the beam passes
-// (Fig. 3-9). It does not trace rays: firmware/scanline/ transforms, clips, scan-converts, merges
-// and paints, on the 12-bit words the segments carry.
+// (Fig. 3-9). With tree.split_levels = n the top n levels are replaced by splitting and merging
+// processors (L1561-L1637), and each of the 2^n strips of the screen has its own pixel
+// conversion processor (L1596). It does not trace rays: firmware/scanline/ transforms, clips,
+// scan-converts, merges and paints, on the 12-bit words the segments carry.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <systemc>
 
 #include "common/input_error.hpp"
+#include "firmware/scanline/splitting.hpp"
 #include "firmware/scanline/tree_frame.hpp"
 #include "modules/module_params.hpp"
 #include "platform/machine_registry.hpp"
@@ -21,6 +24,7 @@
 #include "platform/machines/ullner_scanline_tree/merging_node.hpp"
 #include "platform/machines/ullner_scanline_tree/pixel_converter_node.hpp"
 #include "platform/machines/ullner_scanline_tree/scan_converter_node.hpp"
+#include "platform/machines/ullner_scanline_tree/splitting_node.hpp"
 #include "platform/machines/ullner_scanline_tree/tc_array.hpp"
 
 namespace rtsim::platform {
@@ -42,10 +46,30 @@ using namespace ullner_scanline_tree;
 const modules::ChoiceParam kAssignment(
     {.name = "tree.assignment",
      .default_value = "random",
-     .allowed = {"random", "scene"},
-     .description = "which polygon sits at which leaf: shuffled, or in the scene's order (a "
-                    "scene's neighbouring polygons then share subtrees)",
+     .allowed = {"random", "scene", "subvolume"},
+     .description = "which polygon sits at which leaf: shuffled; in the scene's order (a "
+                    "scene's neighbouring polygons then share subtrees); or by subvolume, each "
+                    "subvolume's polygons dealt evenly over the subtrees at every depth",
      .source = "seed 000 L1592: polygons assigned to leaves at random, or by subvolume"});
+const modules::CountParam kSubvolumes(
+    {.name = "tree.subvolumes",
+     .default_value = "8",
+     .min = "1",
+     .max = "64",
+     .unit = "cells a side",
+     .description = "tree.assignment = subvolume: the grid over the polygons' bounds whose "
+                    "cells are the subvolumes (a polygon's is its centroid's)",
+     .source = "assumption: the seed names the scheme (L1592), not its grid; 8 a side, 512 "
+               "subvolumes"});
+const modules::IntParam kSplitLevels(
+    {.name = "tree.split_levels",
+     .default_value = "0",
+     .min = "0",
+     .max = "6",
+     .description = "levels of the tree's top replaced by splitting and merging processors: 2^n "
+                    "roots, each a strip of the screen with its own pixel conversion processor",
+     .source = "seed 000 L1561-L1637 (Figs. 3-23, 3-24): n levels give 2^n times the root's "
+               "bandwidth with n 2^n splitting and (n - 1) 2^n + 1 more merging processors"});
 const modules::IntParam kSeed({.name = "tree.seed",
                                .default_value = "1983",
                                .min = "0",
@@ -57,17 +81,30 @@ constexpr std::size_t kMaxPolygons = 200000;
 
 struct TreeSettings {
   raster::MeshSettings mesh;
-  bool random = true;
-  std::uint64_t seed = 1983;
+  scanline::LeafPlan leaves;
+  int split_levels = 0;
 };
 
 TreeSettings read_settings(const params::ParamRegistry& r) {
   const modules::ModuleParams p(r, "");
   TreeSettings s;
   s.mesh = read_mesh_params(r);
-  s.random = p.get(kAssignment) == "random";
-  s.seed = static_cast<std::uint64_t>(p.get(kSeed));
+  const std::string order = p.get(kAssignment);
+  s.leaves.order = order == "random"  ? scanline::LeafOrder::Random
+                   : order == "scene" ? scanline::LeafOrder::Scene
+                                      : scanline::LeafOrder::Subvolume;
+  s.leaves.seed = static_cast<std::uint64_t>(p.get(kSeed));
+  s.leaves.subvolumes = static_cast<int>(p.get(kSubvolumes));
+  s.split_levels = static_cast<int>(p.get(kSplitLevels));
   return s;
+}
+
+/// The polygon (or idle scan converter) at each leaf: one a polygon, at least one, and at least
+/// one a subtree of a split root (a scene with fewer polygons has idle leaves).
+std::vector<std::uint32_t> assign_leaves(const scanline::TcFrame& frame, const TreeSettings& s) {
+  const std::size_t leaves =
+      std::max({frame.polygons.size(), std::size_t{1}, std::size_t{1} << s.split_levels});
+  return scanline::leaf_assignment(frame.polygons, leaves, s.leaves);
 }
 
 /// The scene as the tree's host loads it, checked: a scene the machine cannot hold is bad input.
@@ -97,33 +134,116 @@ void check_samples(int spp) {
 
 /// The tree's processors, built from the root down so that each knows the queue it feeds.
 struct Tree {
-  std::vector<std::unique_ptr<ScanConverterNode>> scps;  ///< by polygon
+  std::vector<std::unique_ptr<ScanConverterNode>> scps;  ///< by leaf index (polygon, or idle)
   std::vector<std::unique_ptr<MergingNode>> mps;
+  /// The split root's splitting processors, stage by stage (0: the subtrees' roots').
+  std::vector<std::vector<std::unique_ptr<SplittingNode>>> sps;
+  std::vector<std::unique_ptr<PixelConverterNode>> pcps;  ///< a strip each, left to right
 };
 
+MergingNode& add_mp(MachineRun& run, Tree& tree, modules::MessageQueue<SegmentMessage>& parent,
+                    const ProbeStages& stages) {
+  auto mp = std::make_unique<MergingNode>(
+      (std::string(MergingNode::kClass) + std::to_string(tree.mps.size())).c_str(), run,
+      parent.fifo, stages);
+  mp->out.bind(parent.socket);
+  tree.mps.push_back(std::move(mp));
+  return *tree.mps.back();
+}
+
 /// Leaves [lo, hi), hi > lo.
-template <class Target>
+/// The subtree over leaves [lo, hi), hi > lo, whose root feeds `parent`.
 void build(MachineRun& run, Tree& tree, const std::vector<std::uint32_t>& leaf, std::size_t lo,
            std::size_t hi, int lines, const ProbeStages& stages,
-           modules::MessageQueue<SegmentMessage>& parent, Target& feeds) {
+           modules::MessageQueue<SegmentMessage>& parent) {
   if (hi - lo == 1) {
     const std::uint32_t polygon = leaf[lo];
     auto scp = std::make_unique<ScanConverterNode>(
         (std::string(ScanConverterNode::kClass) + std::to_string(polygon)).c_str(), run, polygon,
         lines, parent.fifo, stages);
-    scp->out.bind(feeds);
+    scp->out.bind(parent.socket);
     tree.scps[polygon] = std::move(scp);
     return;
   }
-  auto mp = std::make_unique<MergingNode>(
-      (std::string(MergingNode::kClass) + std::to_string(tree.mps.size())).c_str(), run,
-      parent.fifo, stages);
-  mp->out.bind(feeds);
-  MergingNode& m = *mp;
-  tree.mps.push_back(std::move(mp));
+  MergingNode& m = add_mp(run, tree, parent, stages);
   const std::size_t mid = (lo + hi) / 2;
-  build(run, tree, leaf, lo, mid, lines, stages, m.in0, m.in0.socket);
-  build(run, tree, leaf, mid, hi, lines, stages, m.in1, m.in1.socket);
+  build(run, tree, leaf, lo, mid, lines, stages, m.in0);
+  build(run, tree, leaf, mid, hi, lines, stages, m.in1);
+}
+
+/// The split root (splitting.hpp's network) from the strips' pixel conversion processors down:
+/// the queues the 2^n subtrees' roots feed, left to right.
+std::vector<modules::MessageQueue<SegmentMessage>*> build_split(MachineRun& run, Tree& tree,
+                                                                int levels,
+                                                                const ProbeStages& stages) {
+  std::vector<modules::MessageQueue<SegmentMessage>*> feeds;
+  for (auto& pcp : tree.pcps) feeds.push_back(&pcp->in);
+  tree.sps.resize(static_cast<std::size_t>(levels));
+  for (int stage = levels - 1; stage >= 0; --stage) {
+    std::vector<modules::MessageQueue<SegmentMessage>*> below(feeds.size());
+    for (const scanline::SplitPair& p : scanline::split_stage(levels, stage)) {
+      MergingNode& left = add_mp(run, tree, *feeds[p.left], stages);
+      MergingNode& right = add_mp(run, tree, *feeds[p.right], stages);
+      for (const auto& [stream, input] : {std::pair{p.first, 0}, std::pair{p.second, 1}}) {
+        auto& l_in = input == 0 ? left.in0 : left.in1;
+        auto& r_in = input == 0 ? right.in0 : right.in1;
+        auto sp =
+            std::make_unique<SplittingNode>((std::string(SplittingNode::kClass) +
+                                             std::to_string(stage) + "_" + std::to_string(stream))
+                                                .c_str(),
+                                            run, l_in.fifo, r_in.fifo, stages);
+        sp->outputs[0]->out.bind(l_in.socket);
+        sp->outputs[1]->out.bind(r_in.socket);
+        below[stream] = &sp->in;
+        tree.sps[static_cast<std::size_t>(stage)].push_back(std::move(sp));
+      }
+    }
+    feeds = std::move(below);
+  }
+  return feeds;
+}
+
+/// A split tree whose strips did not all finish deadlocked: a splitting processor's output
+/// queue filled while the merging processor it feeds waited for the other output's segments of
+/// the same line (L1633-L1637). That is a queue too short for the scene: bad input, said so.
+void check_finished(const Tree& tree) {
+  bool finished = true;
+  for (const auto& p : tree.pcps) finished = finished && p->finished();
+  if (finished) return;
+  std::string full;
+  int line = -1;
+  std::uint32_t need = 0;
+  for (const auto& stage : tree.sps)
+    for (const auto& sp : stage) {
+      need = std::max(need, sp->line_segments_max());
+      for (const auto& o : sp->outputs)
+        if (o->queue.fifo.full() && full.empty()) {
+          full = o->queue.fifo.name();
+          line = sp->line();
+        }
+    }
+  throw InputError(
+      SplittingNode::kClass + std::string(".queue_depth"), 0,
+      "the split tree deadlocked" + (line >= 0 ? " at line " + std::to_string(line) : "") +
+          (full.empty() ? "" : " (" + full + " full)") +
+          ": a splitting processor's output queue filled while the merging processor it feeds "
+          "waited for the other output's segments of the line; a queue must hold the segments "
+          "a line brings to its input (seed 000 L1633-L1637), and here a line brought up to " +
+          std::to_string(need) + " before it stopped; raise sp.queue_depth (now " +
+          std::to_string(tree.sps.front().front()->outputs[0]->queue.fifo.capacity()) +
+          ") to at least that");
+}
+
+/// The frame's pixels into the run's frame buffer and id/depth images. Every pixel's visibility
+/// is answered (a segment's or the background), as every machine reports its primary rays; the
+/// pixels a segment covered are its hits.
+void deliver(MachineRun& run, const scanline::TcFrame& frame,
+             const std::vector<scanline::PixelRow>& rows, const Tree& tree) {
+  TraceCounters& counters = run.frame().counters();
+  counters.rays[static_cast<std::size_t>(RayKind::Primary)] +=
+      static_cast<std::uint64_t>(run.width()) * static_cast<std::uint64_t>(run.height());
+  for (const auto& p : tree.pcps) counters.hits += p->pixels();
+  deliver_rows(rows, frame.view, frame.primitive, run.frame());
 }
 
 }  // namespace
@@ -141,9 +261,12 @@ void UllnerScanlineTree::declare_params(params::ParamRegistry& r) const {
   declare_mesh_params(image);
   image.add(kAssignment);
   image.add(kSeed);
+  image.add(kSubvolumes);
+  image.add(kSplitLevels);
   TcArray::declare_params(machine.sub(TcArray::kName));
   ScanConverterNode::declare_params(machine.sub(ScanConverterNode::kClass));
   MergingNode::declare_params(machine.sub(MergingNode::kClass));
+  SplittingNode::declare_params(machine.sub(SplittingNode::kClass));
   PixelConverterNode::declare_params(machine.sub(PixelConverterNode::kName));
 }
 
@@ -162,10 +285,10 @@ FunctionalTwin UllnerScanlineTree::make_twin(scenes::Scene& scene,
     const int w = opts.width > 0 ? opts.width : s.camera.width;
     const int h = opts.height > 0 ? opts.height : s.camera.height;
     const scanline::TcFrame frame = load_frame(s, tree, w, h, opts.shade);
-    const auto leaves = scanline::leaf_assignment(frame.polygons.size(), tree.random, tree.seed);
-    const scanline::TreeFrame out = scanline::evaluate_tree(frame, h, leaves);
+    const scanline::TreeFrame out =
+        scanline::evaluate_tree(frame, h, assign_leaves(frame, tree), tree.split_levels);
     functional::FrameState state(w, h, 1, opts.aov_id, opts.aov_depth);
-    deliver_rows(scanline::paint_frame(out.root, w, h, s.background, opts.aov_id, opts.aov_depth),
+    deliver_rows(scanline::paint_frame(out.strips, w, h, s.background, opts.aov_id, opts.aov_depth),
                  frame.view, frame.primitive, state);
     return state.finish(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -182,9 +305,8 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   const TreeSettings settings = read_settings(r);
   const scanline::TcFrame frame =
       load_frame(scene, settings, run.width(), run.height(), twin.settings.shade);
-  // A scene with no polygon keeps one leaf, whose scan converter sends the dummy alone.
-  const auto leaves = scanline::leaf_assignment(std::max<std::size_t>(1, frame.polygons.size()),
-                                                settings.random, settings.seed);
+  const auto leaves = assign_leaves(frame, settings);
+  const int levels = settings.split_levels;
 
   // In-flight faults on the root's link; the machine has no memory at rest to corrupt.
   std::vector<MemoryFault> at_rest = opts.faults;
@@ -200,32 +322,59 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   probe.describe("segment",
                  "a segment, from its scan converter forming it to the pixel conversion "
                  "processor painting it");
-  const ProbeStages stages{.scp = probe.stage("scp*"),
-                           .scp_link = probe.stage("scp*.link"),
-                           .mp_in = probe.stage("mp*.in*"),
-                           .mp = probe.stage("mp*"),
-                           .mp_link = probe.stage("mp*.link"),
-                           .pcp_in = probe.stage("pcp.in"),
-                           .pcp = probe.stage("pcp")};
-  TcArray tc(TcArray::kName, run, frame);
-  PixelConverterNode pcp(PixelConverterNode::kName, run, tc, frame, root_faults, stages);
+  ProbeStages stages{.scp = probe.stage("scp*"),
+                     .scp_link = probe.stage("scp*.link"),
+                     .mp_in = probe.stage("mp*.in*"),
+                     .mp = probe.stage("mp*"),
+                     .mp_link = probe.stage("mp*.link"),
+                     .pcp_in = probe.stage("pcp.in"),
+                     .pcp = probe.stage("pcp")};
+  if (levels > 0) {
+    stages.sp_in = probe.stage("sp*.in");
+    stages.sp = probe.stage("sp*");
+    stages.sp_out = probe.stage("sp*.queue");
+    stages.sp_link = probe.stage("sp*.link");
+  }
+  TcArray tc(TcArray::kName, run, frame, leaves.size());
+  std::vector<scanline::PixelRow> rows = scanline::blank_frame(
+      run.width(), run.height(), scene.background, run.options().aov_id, run.options().aov_depth);
   Tree tree;
+  const std::size_t strips = std::size_t{1} << levels;
+  for (std::size_t k = 0; k < strips; ++k) {
+    // Unsplit, the one processor is "pcp"; the faults are the first strip's.
+    const std::string name =
+        std::string(PixelConverterNode::kName) + (levels > 0 ? std::to_string(k) : std::string());
+    tree.pcps.push_back(std::make_unique<PixelConverterNode>(
+        name.c_str(), run, tc, rows,
+        scanline::Strip{.levels = levels, .index = static_cast<int>(k)},
+        k == 0 ? root_faults : std::vector<RootFault>{}, stages));
+  }
+  const auto roots = build_split(run, tree, levels, stages);
   tree.scps.resize(leaves.size());
-  build(run, tree, leaves, 0, leaves.size(), run.height(), stages, pcp.in, pcp.in.socket);
+  const auto subtrees = scanline::subtree_ranges(leaves.size(), levels);
+  for (std::size_t k = 0; k < subtrees.size(); ++k)
+    build(run, tree, leaves, subtrees[k].first, subtrees[k].second, run.height(), stages,
+          *roots[k]);
   for (std::size_t k = 0; k < tree.scps.size(); ++k) tc.to_scp[k]->bind(tree.scps[k]->in.socket);
   run.simulate();
 
-  const sc_core::sc_time end = pcp.frame_end();
+  check_finished(tree);
+  sc_core::sc_time end = sc_core::SC_ZERO_TIME;
+  for (const auto& pcp : tree.pcps) end = std::max(end, pcp->frame_end());
   run.stats_over(sc_core::SC_ZERO_TIME, end);
-  for (const RootFault& f : pcp.faults())
+  const PixelConverterNode& first = *tree.pcps.front();
+  for (const RootFault& f : first.faults())
     if (!f.applied)
       throw InputError("--fault root:" + std::to_string(f.word), 0,
-                       "the root sent fewer words than that (11 a segment)");
+                       std::string("the root sent fewer words than that (11 a segment)") +
+                           (levels > 0 ? " to the first strip's pixel conversion processor" : ""));
+  deliver(run, frame, rows, tree);
 
   nlohmann::ordered_json& res = run.machine_stats();
   auto& st = res["scanline_tree"];
   st["polygons"] = frame.polygons.size();
   st["merging_processors"] = tree.mps.size();
+  const PixelConverterNode& pcp = first;
   // The T&C broadcast: its instructions against the frame's (L1334-L1336).
   const double frame_period = pcp.line_time().to_seconds() * run.height();  // pcp.frame_rate's
   const double instruction_s = tc.instruction_time().to_seconds();
@@ -238,8 +387,18 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     tasks[std::string(scanline::kTcTaskNames[static_cast<std::size_t>(t)])] =
         tc.program().count[static_cast<std::size_t>(t)];
   st["tc"]["tasks"] = std::move(tasks);
-  // The scan-out: from the broadcast's end to the frame's.
-  const auto& per_line = pcp.segments_per_line();
+  // The scan-out: from the broadcast's end to the frame's, every strip's segments a line.
+  const auto h = static_cast<std::size_t>(run.height());
+  std::vector<std::uint64_t> per_line(h, 0);
+  std::uint64_t late_lines = 0;
+  for (std::size_t y = 0; y < h; ++y) {
+    bool late = false;
+    for (const auto& p : tree.pcps) {
+      per_line[y] += p->segments_per_line()[y];
+      late = late || p->line_late(y);
+    }
+    late_lines += late ? 1 : 0;
+  }
   std::uint64_t segments = 0, busiest = 0;
   for (const auto n : per_line) {
     segments += n;
@@ -248,11 +407,35 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   st["scan_out"] = {{"time_s", (end - pcp.scan_out_begin()).to_seconds()},
                     {"line_time_s", pcp.line_time().to_seconds()},
                     {"paced", pcp.paced()},
-                    {"late_lines", pcp.late_lines()},
+                    {"late_lines", late_lines},
                     {"root_segments", segments},
                     {"segments_a_line_mean",
                      per_line.empty() ? 0.0 : static_cast<double>(segments) / per_line.size()},
                     {"segments_a_line_max", busiest}};
+  // The split root (L1594): its processors, and the most segments a splitting processor's
+  // output queue held, stage by stage (L1637: the same at every stage).
+  const scanline::SplitCounts counts = scanline::split_counts(levels);
+  nlohmann::ordered_json queued = nlohmann::ordered_json::array(),
+                         needed = nlohmann::ordered_json::array();
+  std::uint64_t broken = 0;
+  for (const auto& stage : tree.sps) {
+    int most = 0;
+    std::uint32_t need = 0;
+    for (const auto& sp : stage) {
+      most = std::max(most, sp->max_queued());
+      need = std::max(need, sp->line_segments_max());
+      broken += sp->broken();
+    }
+    queued.push_back(most);
+    needed.push_back(need);
+  }
+  st["split"] = {{"levels", levels},
+                 {"strips", strips},
+                 {"splitting_processors", counts.splitters},
+                 {"extra_merging_processors", counts.extra_merging},
+                 {"broken_segments", broken},
+                 {"line_segments_max_by_stage", std::move(needed)},
+                 {"queue_max_by_stage", std::move(queued)}};
   std::array<std::uint64_t, scanline::kMergeCases> cases{};
   for (const auto& mp : tree.mps)
     for (std::size_t k = 0; k < cases.size(); ++k) cases[k] += mp->passes()[k];
@@ -260,7 +443,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (std::size_t k = 0; k < cases.size(); ++k)
     passes[std::string(scanline::kMergeCaseNames[k])] = cases[k];
   st["merge_passes"] = std::move(passes);
-  for (const auto& f : pcp.faults())
+  for (const auto& f : first.faults())
     st["faults_in_flight"].push_back({{"at", PixelConverterNode::kFaultPoint},
                                       {"word", f.word},
                                       {"xor_mask", f.xor_mask},

@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "platform/machines/machine_run.hpp"
-#include "platform/machines/ullner_scanline_tree/frame_output.hpp"
 #include "platform/machines/ullner_scanline_tree/tc_array.hpp"
 
 namespace rtsim::platform::ullner_scanline_tree {
@@ -44,14 +43,16 @@ void PixelConverterNode::declare_params(const modules::ParamDecls& pcp) {
 }
 
 PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun& run,
-                                       const TcArray& tc, const scanline::TcFrame& frame,
-                                       std::vector<RootFault> faults, const ProbeStages& stages)
+                                       const TcArray& tc, std::vector<scanline::PixelRow>& rows,
+                                       const scanline::Strip& strip, std::vector<RootFault> faults,
+                                       const ProbeStages& stages)
     : modules::Processor(name, run.trace()),
       in("in", modules::ModuleParams(run.registry(), kName).get(kQueueDepth)),
       params_(run.registry(), kName),
       run_(run),
       tc_(tc),
-      frame_(frame),
+      rows_(rows),
+      strip_(strip),
       faults_(std::move(faults)),
       probe_(run.probe()),
       stages_(stages),
@@ -60,8 +61,6 @@ PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun&
       line_time_(
           sc_core::sc_time(1.0 / (params_.get(kFrameRate).hz * run.height()), sc_core::SC_SEC)) {
   const auto h = static_cast<std::size_t>(run.height());
-  rows_ = scanline::paint_frame({}, run.width(), run.height(), run.scene().background,
-                                run.options().aov_id, run.options().aov_depth);
   per_line_.assign(h, 0);
   line_late_.assign(h, 0);
   SC_THREAD(run);
@@ -105,7 +104,7 @@ void PixelConverterNode::run() {
       probe_.drop(s.journey);
       continue;
     }
-    const auto [first, end] = scanline::covered_pixels(s, width);
+    const auto [first, end] = scanline::covered_pixels(s, width, strip_);
     const auto line = static_cast<std::size_t>(s.y);
     ++per_line_[line];
     if (paced_) {
@@ -128,24 +127,14 @@ void PixelConverterNode::run() {
       compute_for(pixel_time_ * static_cast<double>(end - first), "paint", {{"y", s.y}});
     probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kService, clock_.now() - painting);
     probe_.end(s.journey, clock_.now());
-    scanline::paint(s, width, rows_[line]);
+    scanline::paint(s, width, rows_[line], strip_);
     ++segments_;
     pixels_ += static_cast<std::uint64_t>(end - first);
   }
+  finished_ = true;
   frame_end_ = clock_.now();
   if (paced_) frame_end_ = std::max(frame_end_, begin_ + line_time_ * static_cast<double>(height));
-  deliver();
   clock_.sync();
-}
-
-void PixelConverterNode::deliver() {
-  // Every pixel's visibility is answered (a segment's or the background), as every machine
-  // reports its primary rays; the pixels a segment covered are its hits.
-  TraceCounters& counters = run_.frame().counters();
-  counters.rays[static_cast<std::size_t>(RayKind::Primary)] +=
-      static_cast<std::uint64_t>(run_.width()) * static_cast<std::uint64_t>(run_.height());
-  counters.hits += pixels_.value();
-  deliver_rows(rows_, frame_.view, frame_.primitive, run_.frame());
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

@@ -6,6 +6,10 @@
 // second over the lines (L1551: 65 us at 512 lines): a segment that reaches it after the beam
 // has passed its first pixel is late, and its line misses its time (L1551-L1553). Unpaced, it
 // paints as fast as its pixel time allows, to measure what the tree can deliver.
+//
+// A split root has one processor a strip (L1596), each painting its strip's pixels into the
+// frame's rows; the "faster hardware" composing the strips into one video stream is ideal here:
+// a line is late if any strip's segment is.
 #include <systemc>
 #include <vector>
 
@@ -42,14 +46,21 @@ class PixelConverterNode : public modules::Processor {
   static void declare_params(const modules::ParamDecls& pcp);
 
   SC_HAS_PROCESS(PixelConverterNode);
+  /// The processor of `strip`, painting into `rows` (the frame's, shared by the strips).
   PixelConverterNode(sc_core::sc_module_name name, MachineRun& run, const TcArray& tc,
-                     const scanline::TcFrame& frame, std::vector<RootFault> faults,
-                     const ProbeStages& stages);
+                     std::vector<scanline::PixelRow>& rows, const scanline::Strip& strip,
+                     std::vector<RootFault> faults, const ProbeStages& stages);
 
   modules::MessageQueue<SegmentMessage> in;
 
+  /// Whether its stream's dummy arrived (false after the run: the tree above it deadlocked).
+  bool finished() const { return finished_; }
   /// When the frame ended: the last line's time (paced), or its last pixel.
   sc_core::sc_time frame_end() const { return frame_end_; }
+  /// Pixels painted from segments.
+  std::uint64_t pixels() const { return pixels_.value(); }
+  /// Whether line y missed its time here.
+  bool line_late(std::size_t y) const { return line_late_[y] != 0; }
   sc_core::sc_time scan_out_begin() const { return begin_; }
   const std::vector<std::uint32_t>& segments_per_line() const { return per_line_; }
   const std::vector<RootFault>& faults() const { return faults_; }
@@ -59,21 +70,20 @@ class PixelConverterNode : public modules::Processor {
 
  private:
   void run();
-  /// The frame's pixels into the run's frame buffer and id/depth images.
-  void deliver();
 
   modules::ModuleParams params_;
   MachineRun& run_;
   const TcArray& tc_;
-  const scanline::TcFrame& frame_;
+  std::vector<scanline::PixelRow>& rows_;
+  scanline::Strip strip_;
   bool begun_ = false;
+  bool finished_ = false;
   std::vector<RootFault> faults_;
   modules::LatencyProbe& probe_;
   ProbeStages stages_;
   bool paced_;
   sc_core::sc_time pixel_time_, line_time_;
   sc_core::sc_time begin_ = sc_core::SC_ZERO_TIME, frame_end_ = sc_core::SC_ZERO_TIME;
-  std::vector<scanline::PixelRow> rows_;
   std::vector<std::uint32_t> per_line_;
   std::vector<char> line_late_;
   std::uint64_t words_seen_ = 0;

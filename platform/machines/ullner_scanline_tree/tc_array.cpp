@@ -18,15 +18,17 @@ const modules::TimeParam kInstructionTime(
 
 void TcArray::declare_params(const modules::ParamDecls& tc) { tc.add(kInstructionTime); }
 
-TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame)
+TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
+                 std::size_t leaves)
     : modules::Processor(name, run.trace()),
       params_(run.registry(), this->name()),
       run_(run),
       frame_(frame),
       program_(scanline::build_tc_program(frame.literals)),
-      instruction_time_(params_.get(kInstructionTime)) {
-  // A scene with no polygon still has one scan converter, whose stream is the dummy alone.
-  for (std::size_t k = 0; k < std::max<std::size_t>(1, frame.polygons.size()); ++k)
+      instruction_time_(params_.get(kInstructionTime)),
+      leaves_(std::max(leaves, frame.polygons.size())) {
+  // An idle scan converter (no polygon) gets no edge list: its stream is the dummy alone.
+  for (std::size_t k = 0; k < leaves_; ++k)
     to_scp.push_back(std::make_unique<tlm_utils::simple_initiator_socket<TcArray>>(
         ("to_scp" + std::to_string(k)).c_str()));
   SC_THREAD(run);
@@ -36,7 +38,7 @@ void TcArray::run() {
   // The processors' memories, loaded by the bus (27 words a polygon, L1272), hear the program
   // in lockstep.
   std::uint64_t executed = 0;
-  std::vector<ChainsMessage> out(std::max<std::size_t>(1, frame_.polygons.size()));
+  std::vector<ChainsMessage> out(leaves_);
   const auto chains = scanline::transform_and_clip(program_, frame_.polygons, &executed);
   for (std::size_t k = 0; k < chains.size(); ++k) {
     out[k].chains = chains[k];

@@ -29,10 +29,12 @@ class TcArray : public modules::Processor {
   static void declare_params(const modules::ParamDecls& tc);
 
   SC_HAS_PROCESS(TcArray);
-  TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame);
+  /// `leaves` (at least the frame's polygons): the scan converters, idle ones past the last
+  /// polygon (a split tree's, or a scene without polygons).
+  TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
+          std::size_t leaves);
 
-  /// Polygon k's scan converter's queue (bound before the simulation); one, if the scene has
-  /// no polygon.
+  /// Scan converter k's queue (bound before the simulation): polygon k's, or an idle one's.
   std::vector<std::unique_ptr<tlm_utils::simple_initiator_socket<TcArray>>> to_scp;
 
   /// When the broadcast ended and the edge lists went to the scan converters.
@@ -49,6 +51,7 @@ class TcArray : public modules::Processor {
   scanline::BroadcastProgram program_;
   sc_core::sc_time instruction_time_;
   sc_core::sc_time done_ = sc_core::SC_ZERO_TIME;
+  std::size_t leaves_;
   modules::Counter instructions_{*this, "instructions", "instructions broadcast"};
   modules::Counter executed_{*this, "executed",
                              "instructions the processors executed (not shut down), summed"};

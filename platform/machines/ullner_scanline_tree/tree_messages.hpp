@@ -29,6 +29,9 @@ struct SegmentMessage {
 /// formed them to the pixels they became), in the order a segment meets them.
 struct ProbeStages {
   int scp = -1, scp_link = -1, mp_in = -1, mp = -1, mp_link = -1, pcp_in = -1, pcp = -1;
+  /// A split root's splitting processors: its input, the test and break, its output queues and
+  /// their links.
+  int sp_in = -1, sp = -1, sp_out = -1, sp_link = -1;
 };
 inline constexpr std::uint64_t kSegmentBits = scanline::kSegmentBits;
 
