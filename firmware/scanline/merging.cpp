@@ -51,6 +51,12 @@ void MergingProcessor::give(int k, const Segment& s) {
 }
 
 MergingProcessor::Pass MergingProcessor::pass() {
+  Pass p = step();
+  if (p.out && !p.out->mark) last_line_ = std::max<int>(last_line_, p.out->y);
+  return p;
+}
+
+MergingProcessor::Pass MergingProcessor::step() {
   Pass p;
   Segment& s0 = *held_[0];
   Segment& s1 = *held_[1];
@@ -76,6 +82,11 @@ MergingProcessor::Pass MergingProcessor::pass() {
       return p;
     }
     p.kind = MergeCase::Mark;
+    if (mark.y > last_line_) {
+      p.out = mark;
+      p.from = m;
+      last_line_ = mark.y;
+    }
     fetch(m);
     return p;
   }

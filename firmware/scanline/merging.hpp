@@ -16,9 +16,11 @@
 //   6. O is hidden: drop it, fetch its successor.
 //
 // After a fetch the next pass classifies again; after a swap it goes on as classified (L1391).
-// A line mark from a splitting processor (splitting.hpp) is not a segment: the other input's
-// segment goes out if it is on an earlier line (nothing from the mark's input can come before
-// it), and otherwise the mark is dropped — one stage, stage 1's comparison.
+// A line mark (splitting.hpp) is not a segment: the other input's segment goes out if it is on
+// an earlier line (nothing from the mark's input can come before it); otherwise nothing from
+// either input can come before the mark's line, and the mark goes on to the output — unless the
+// output has reached that line already — so that the processors after it learn it too: one
+// stage, stage 1's comparison.
 // The arithmetic is integer, on the 12-bit words; the epsilon of L1421-L1427 is one step of x.
 // What each pass needs of the five stages of Fig. 3-22 (L1457) times it: step 2 the first stage
 // only, steps 3, 5 and 6 the first and the fifth (the segments overlap), step 4 all five.
@@ -81,6 +83,9 @@ class MergingProcessor {
   int visible_ = 0;
   bool classified_ = false;
   bool finished_ = false;
+  Pass step();
+  /// The line of its last output (segment or mark); -1 before the first.
+  int last_line_ = -1;
   /// Passes since the last fetch: a bound that no pair of 12-bit segments reaches (each swap
   /// moves a break a step right), kept so that corrupted words cannot hold a processor forever.
   int since_fetch_ = 0;

@@ -35,6 +35,15 @@ SplitParts split_segment(const Segment& s) {
 
 SplittingProcessor::Sent SplittingProcessor::take(const Segment& s) {
   Sent out;
+  if (s.mark) {
+    // Nothing comes before line y: each output that has not reached it learns so.
+    for (int k = 0; k < 2; ++k)
+      if (last_line_[k] < s.y) {
+        out.to[k] = s;
+        last_line_[k] = s.y;
+      }
+    return out;
+  }
   const SplitParts p = split_segment(s);
   out.to[0] = p.left;
   out.to[1] = p.right;

@@ -22,8 +22,12 @@
 // one-line bound on the queues (L1633-L1637) holds only if a merging processor learns that a
 // line is over on an input that sends nothing for it. So a splitting processor that sends a
 // segment of line y to one output, having sent the other nothing of line y, sends the other a
-// line mark (segment.hpp), which the merging processor drops (merging.hpp): at most one a line
-// an output. The seed does not describe this; it is this model's, named so.
+// line mark (segment.hpp): at most one a line an output. A merging processor passes a mark on
+// when neither input can send anything before its line (merging.hpp), and a splitting
+// processor that takes a mark passes it to each output that has not reached its line, so the
+// news that a line has begun travels down every path of the split network to the strips' pixel
+// conversion processors, which ignore it (as conservative simulators' null messages do). The
+// seed does not describe this; it is this model's, named so.
 //
 // Stage s (0 first) holds 2^s strips; each strip's 2^(n-s) streams are paired in order (2j with
 // 2j + 1), and the pair's left parts merge into stream j of the strip's left half, its right

@@ -166,7 +166,7 @@ std::vector<PixelRow> paint_frame(const std::vector<std::vector<Segment>>& strip
   while ((std::size_t{1} << levels) < strips.size()) ++levels;
   for (std::size_t k = 0; k < strips.size(); ++k)
     for (const Segment& s : strips[k])
-      if (!s.dummy() && s.y < height)
+      if (!s.dummy() && !s.mark && s.y < height)
         paint(s, width, rows[static_cast<std::size_t>(s.y)],
               {.levels = levels, .index = static_cast<int>(k)});
   return rows;

@@ -20,6 +20,26 @@ RunRequest tree_run(std::string key, const std::string& scene, std::vector<std::
   return machine_run_request(std::move(key), kTree, scene, 512, 512, params, 512.0 * 512.0);
 }
 
+/// builtin:ullner-mosaic-N split n levels, unpaced, on `lines` lines of 65.1 us (the frame rate
+/// raised to keep 512 lines' line time, L1551): N columns give 2N visible segments a line.
+RunRequest mosaic_run(int levels, int columns, int lines) {
+  const double rate = 30.0 * 512.0 / lines;
+  return machine_run_request("tree-mosaic-n" + std::to_string(levels), kTree,
+                             "builtin:ullner-mosaic-" + std::to_string(columns), lines, lines,
+                             {"pcp.paced=false", "pcp.frame_rate=" + format_number(rate) + " Hz",
+                              "tree.split_levels=" + std::to_string(levels)},
+                             16.0 * columns * lines);
+}
+
+/// Segments a line's time a run delivered at its strips' processors (unpaced: its bandwidth).
+double segments_a_line(const RunResults& r, const std::string& key) {
+  const double segments = stats_number(r, key, "scanline_tree.scan_out.root_segments");
+  const double time = stats_number(r, key, "scanline_tree.scan_out.time_s");
+  const double line = stats_number(r, key, "scanline_tree.scan_out.line_time_s");
+  if (!(segments > 0.0 && time > 0.0)) throw MeasureError(key + ": the tree delivered nothing");
+  return segments * line / time;
+}
+
 /// A run's share of merge passes that found intersecting segments.
 double intersecting_share(const RunResults& r, const std::string& key) {
   double total = 0.0;
@@ -168,6 +188,100 @@ void add_scanline_tree_figures(Plan& plan, const PlanOptions&) {
                                                      format_number(100 * q) + "%"};
           },
       .figure_class = FigureClass::kQualitative,
+  });
+
+  // --- Root splitting (L1561-L1637) ----------------------------------------------------------
+  // Mosaics sized to each split's bandwidth (about 22 segments a line a root: 2^n x 11
+  // columns), so each subtree's stream carries about a real-time line, as the seed assumes.
+  const std::string unsplit = plan.add_run(mosaic_run(0, 22, 64));
+  struct Split {
+    int levels, columns, lines;
+    const char* id;
+    double seed;
+  };
+  std::vector<std::string> split_runs;
+  for (const Split& s : {Split{1, 22, 64, "ST5a", 20}, Split{2, 44, 64, "ST5b", 40},
+                         Split{4, 176, 64, "ST5c", 160}, Split{6, 704, 32, "ST5d", 640}}) {
+    const std::string run = plan.add_run(mosaic_run(s.levels, s.columns, s.lines));
+    split_runs.push_back(run);
+    const double times = static_cast<double>(1 << s.levels);
+    plan.figures.push_back(Figure{
+        .id = s.id,
+        .title = "The bandwidth of a root split " + std::to_string(s.levels) +
+                 (s.levels == 1 ? " level" : " levels") + ", over the unsplit root's",
+        .seed_ref = "seed 000 L1583-L1594, Figs. 3-23, 3-24",
+        .seed_text = "replacing n levels increases the output by 2^n: \"about twenty\" segments "
+                     "a line at n = 1, 40 at 2, 160 at 4 (Fig. 3-24), 640 at 6, over the root's "
+                     "ten or eleven [D: " +
+                     format_number(s.seed) + " / 10]",
+        .seed_value = times,
+        .unit = "x",
+        .tolerance = Tolerance::range(
+            0.6 * times, 1.05 * times,
+            "the seed's 2^n holds \"if everything in the new root can run at full speed\" "
+            "(L1583); with queues of a line's segments (L1637) the strips wait for each other "
+            "line by line, so the model delivers less, and less as n grows; under 0.6 2^n "
+            "splitting would not give most of what it promises"),
+        .workload = "builtin:ullner-mosaic-" + std::to_string(s.columns) + " (" +
+                    std::to_string(2 * s.columns) + " visible segments a line, none hidden), " +
+                    std::to_string(s.lines) +
+                    " lines of 65.1 us, pcp.paced = false; against builtin:ullner-mosaic-22 "
+                    "unsplit",
+        .runs = {unsplit, run},
+        .measure =
+            [unsplit, run, seed = s.seed](const RunResults& r) {
+              const double root = segments_a_line(r, unsplit), split = segments_a_line(r, run);
+              return Measured{split / root,
+                              format_number(split) +
+                                  " segments a line against the unsplit "
+                                  "root's " +
+                                  format_number(root) + " (seed: " + format_number(seed) +
+                                  " against 10.5; the model's non-overlapping pass is 3 us, "
+                                  "the seed's pace 6)"};
+            },
+    });
+  }
+  plan.figures.push_back(Figure{
+      .id = "ST6",
+      .title = "What a splitting processor's queue must hold, the same at every stage and "
+               "every split",
+      .seed_ref = "seed 000 L1633-L1637",
+      .seed_text = "\"the amount of memory required for buffering segments does not depend upon "
+                   "the position of the processor within the tree ... [or] the number of other "
+                   "splitting processors\": about a scan line's segments",
+      .seed_value = 1.0,
+      .seed_display = "the same",
+      .unit = "x",
+      .tolerance = Tolerance::range(1.0, 1.5,
+                                    "the largest stage's need over the smallest's, over the "
+                                    "stages of the four splits"),
+      .workload = "the runs of ST5a-d: the most segments one line brought to a splitting "
+                  "processor, stage by stage",
+      .runs = split_runs,
+      .measure =
+          [split_runs](const RunResults& r) {
+            double lo = 0.0, hi = 0.0;
+            std::string detail;
+            for (const std::string& key : split_runs) {
+              const nlohmann::json& tree = stats_of(r, key)["scanline_tree"];
+              if (!tree.is_object() || !tree.contains("split"))
+                throw MeasureError(key + ": no scanline_tree.split");
+              const nlohmann::json& stages = tree["split"]["line_segments_max_by_stage"];
+              if (!stages.is_array() || stages.empty())
+                throw MeasureError(key + ": no splitting processors");
+              detail += (detail.empty() ? "" : "; ");
+              std::string row;
+              for (const auto& v : stages) {
+                const double need = v.get<double>();
+                lo = lo > 0.0 ? std::min(lo, need) : need;
+                hi = std::max(hi, need);
+                row += (row.empty() ? "" : ", ") + format_number(need);
+              }
+              detail += row;
+            }
+            return Measured{hi / lo, "segments by stage: " + detail +
+                                         " (a line's time over a 3 us pass is 21.7)"};
+          },
   });
 }
 

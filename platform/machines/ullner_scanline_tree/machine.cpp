@@ -231,7 +231,8 @@ void check_finished(const Tree& tree) {
           "a line brings to its input (seed 000 L1633-L1637), and here a line brought up to " +
           std::to_string(need) + " before it stopped; raise sp.queue_depth (now " +
           std::to_string(tree.sps.front().front()->outputs[0]->queue.fifo.capacity()) +
-          ") to at least that");
+          ") above that, or spread every subtree's polygons over the screen (tree.assignment = "
+          "random or subvolume)");
 }
 
 /// The frame's pixels into the run's frame buffer and id/depth images. Every pixel's visibility
@@ -467,7 +468,8 @@ const RegisterMachine<UllnerScanlineTree> kRegistered(
      // One T&C processor, scan converter and merging processor a polygon: the generic tests run
      // scenes of 100 to 1000 polygons.
      .test_runs = {"--scene builtin:ullner-random-100",
-                   "--scene builtin:ullner-cubes -p mp.queue_depth=1",
+                   "--scene builtin:ullner-cubes -p mp.queue_depth=1 -p tree.split_levels=3 "
+                   "-p tree.assignment=subvolume",
                    "--scene builtin:spd-teapot -p pcp.paced=false -p tree.assignment=scene"},
      .benchmark_runs = {"--scene builtin:spd-teapot", "--scene builtin:ullner-cubes"},
      .samples = false,

@@ -99,7 +99,7 @@ void MergingNode::run() {
                arrived - clock_.now());
     SegmentMessage msg{*p.out, arrived};
     modules::send_message(out, msg, arrived, kSegmentBits);
-    if (!p.out->dummy()) ++segments_;
+    if (!p.out->dummy() && !p.out->mark) ++segments_;
   }
   clock_.sync();
 }

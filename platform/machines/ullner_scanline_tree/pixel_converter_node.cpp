@@ -25,6 +25,18 @@ const modules::FrequencyParam kFrameRate(
      .default_value = "30 Hz",
      .description = "video frames a second: a line's time is a frame's over the lines",
      .source = "seed 000 L959, L1551"});
+const modules::CountParam kStripLinesAhead(
+    {.name = "strip_lines_ahead",
+     .default_value = "1",
+     .min = "0",
+     .max = "4094",
+     .unit = "lines",
+     .description = "a split root's strips: lines a strip's processor may paint before the beam "
+                    "reaches them (the composing hardware's line buffers); unsplit, the one "
+                    "processor paints as the beam passes",
+     .source = "assumption: \"some faster hardware must still be included to compose the "
+               "resulting bands of pixels into the continuous stream\" (seed 000 L1629): it "
+               "holds a line of each strip, so a strip is painted during the line before"});
 const modules::CountParam kQueueDepth(
     {.name = "queue_depth",
      .default_value = "2",
@@ -40,6 +52,7 @@ void PixelConverterNode::declare_params(const modules::ParamDecls& pcp) {
   pcp.add(kPaced);
   pcp.add(kFrameRate);
   pcp.add(kQueueDepth);
+  pcp.add(kStripLinesAhead);
 }
 
 PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun& run,
@@ -57,6 +70,7 @@ PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun&
       probe_(run.probe()),
       stages_(stages),
       paced_(params_.get(kPaced)),
+      ahead_(strip.levels > 0 ? params_.get(kStripLinesAhead) : 0),
       pixel_time_(params_.get(kPixelTime)),
       line_time_(
           sc_core::sc_time(1.0 / (params_.get(kFrameRate).hz * run.height()), sc_core::SC_SEC)) {
@@ -85,6 +99,8 @@ void PixelConverterNode::run() {
       begin_ = tc_.done();
       begun_ = true;
     }
+    // A line mark of a split root's network (firmware/scanline/splitting.hpp): no pixels.
+    if (m.segment.mark) continue;
     // A word corrupted on the way in (--fault root:WORD:XOR), 12 bits of it.
     const std::uint64_t first_word = words_seen_;
     words_seen_ += scanline::kSegmentWords;
@@ -112,14 +128,19 @@ void PixelConverterNode::run() {
       const sc_core::sc_time beam =
           begin_ + line_time_ * (static_cast<double>(s.y) +
                                  static_cast<double>(first) / static_cast<double>(width));
+      // A strip's processor may paint up to `ahead_` lines before the beam, into the line
+      // buffers of the hardware composing the strips.
+      const double ahead = static_cast<double>(ahead_);
+      const sc_core::sc_time from =
+          beam > line_time_ * ahead ? beam - line_time_ * ahead : sc_core::SC_ZERO_TIME;
       if (clock_.now() > beam) {
         ++late_;
         lateness_ += clock_.now() - beam;
         line_late_[line] = 1;
-      } else if (beam > clock_.now()) {
-        // The beam has not reached it yet.
-        probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kQueueing, beam - clock_.now());
-        idle_until(beam, Wait::kData);
+      } else if (from > clock_.now()) {
+        // The beam (or the line buffer) has not reached it yet.
+        probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kQueueing, from - clock_.now());
+        idle_until(from, Wait::kData);
       }
     }
     const sc_core::sc_time painting = clock_.now();

@@ -82,6 +82,7 @@ class PixelConverterNode : public modules::Processor {
   modules::LatencyProbe& probe_;
   ProbeStages stages_;
   bool paced_;
+  std::uint64_t ahead_;
   sc_core::sc_time pixel_time_, line_time_;
   sc_core::sc_time begin_ = sc_core::SC_ZERO_TIME, frame_end_ = sc_core::SC_ZERO_TIME;
   std::vector<std::uint32_t> per_line_;

@@ -1,6 +1,7 @@
 #include "platform/machines/ullner_scanline_tree/splitting_node.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "firmware/scanline/splitting.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -126,7 +127,7 @@ void SplittingNode::run() {
     waited_since(since, Wait::kData);
     probe_.add(m.segment.journey, stages_.sp_in, modules::LatencyPart::kQueueing,
                clock_.now() - m.arrived);
-    if (!m.segment.dummy()) {
+    if (!m.segment.dummy() && !m.segment.mark) {
       if (m.segment.y != line_) {
         line_max_ = std::max(line_max_, line_count_);
         line_count_ = 0;
@@ -136,13 +137,25 @@ void SplittingNode::run() {
     }
     const scanline::SplittingProcessor::Sent sent = sp_.take(m.segment);
     const sc_core::sc_time start = clock_.now();
-    if (!m.segment.dummy()) {
+    if (m.segment.mark) {
+      // A mark from the merging processor below: the test alone.
+      compute_for(stage_time_, "mark", {{"y", m.segment.y}});
+    } else if (!m.segment.dummy()) {
       compute_for(stage_time_ * (sent.broken ? 2.0 : 1.0), sent.broken ? "break" : "test",
                   {{"y", m.segment.y}});
       ++(sent.broken ? broken_ : whole_);
     }
     probe_.add(m.segment.journey, stages_.sp, modules::LatencyPart::kService, clock_.now() - start);
-    for (int k = 0; k < 2; ++k) {
+    // The order it writes its outputs: a line mark first (the merging processor it tells may be
+    // all that is waiting, and the other output's queue may be full), then the parts, a part
+    // whose queue has room before one whose queue is full.
+    int order[2] = {0, 1};
+    const auto rank = [&](int k) {
+      if (sent.to[k] && sent.to[k]->mark) return 0;
+      return outputs[static_cast<std::size_t>(k)]->queue.fifo.full() ? 2 : 1;
+    };
+    if (rank(1) < rank(0)) std::swap(order[0], order[1]);
+    for (const int k : order) {
       if (!sent.to[k]) continue;
       SegmentMessage out{*sent.to[k], m.arrived};
       if (out.segment.mark) {
