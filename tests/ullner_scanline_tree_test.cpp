@@ -112,6 +112,33 @@ TEST(UllnerScanlineTree, SplitterQueuesShorterThanALineDeadlockTheTreeAndSaySo) 
   EXPECT_FALSE(fs::exists(dir / "image.png"));
 }
 
+TEST(UllnerScanlineTree, FramesArePipelinedAndAVersionNotReadyInTimeIsRescanned) {
+  // L1350-L1352: the T&C array transforms the next version while the scan converters scan the
+  // last; a version not ready at a frame's start leaves the last on the screen again. Three
+  // versions of a turning view: at 6.5 us an instruction the broadcast (26 ms) fits a frame
+  // (33.3 ms); with 2000 more instructions a frame (39 ms) each version shows twice but the
+  // last. The image is the last version's, the scene's own view, whatever the timing.
+  const auto dir = scratch_dir("scanline-frames-render");
+  const auto r = run_rtsim("render --machine " + kMachine + " " + kTeapot + " -q --out " +
+                           dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string frames = kTeapot + " -p frames=3 -p camera.spin=10";
+  const auto in_time = run_machine(kMachine, "frames-in-time", frames);
+  const auto late = run_machine(kMachine, "frames-late", frames + " -p tc.motion_instructions=2000");
+  ASSERT_FALSE(in_time.empty());
+  ASSERT_FALSE(late.empty());
+  const auto& a = tree(in_time)["frames"];
+  const auto& b = tree(late)["frames"];
+  std::printf("in time: %s\nlate: %s\n", a.dump().c_str(), b.dump().c_str());
+  EXPECT_EQ(a["shown"].get<int>(), 3);
+  EXPECT_EQ(a["rescans"].get<int>(), 0);
+  EXPECT_EQ(b["version_by_frame"], nlohmann::json::parse("[0, 0, 1, 1, 2]"));
+  EXPECT_EQ(b["rescans"].get<int>(), 2);
+  EXPECT_EQ(b["rescanned_polygons"].get<int>(), 2 * tree(late)["polygons"].get<int>());
+  for (const auto* s : {&in_time, &late})
+    EXPECT_EQ(read_file((*s)["image_png"].get<std::string>()), read_file(dir / "image.png"));
+}
+
 TEST(UllnerScanlineTree, ACorruptedSegmentWordOnTheRootsLinkChangesTheImage) {
   const auto clean = run_machine(kMachine, "clean", kTeapot);
   // Segment 400 of the root's stream, its left x (word 1).

@@ -8,6 +8,7 @@
 #include "firmware/math.hpp"
 #include "firmware/scene.hpp"
 #include "params/registry.hpp"
+#include "platform/machines/camera_turn.hpp"
 
 namespace rtsim::platform::pxpl5 {
 
@@ -41,15 +42,7 @@ inline void move_eye(scenes::Camera& c, double distance) {
 /// The camera of frame f: the last frame's `last` turned back about the vertical axis by the
 /// turns between f and the last frame.
 inline scenes::Camera frame_camera(const scenes::Camera& last, const CameraPath& path, int f) {
-  scenes::Camera c = last;
-  const double a = -path.turns_after(f) * path.spin_deg * kPi / 180.0;
-  if (a == 0.0) return c;
-  const Vec3 k = glm::normalize(last.up);
-  const Vec3 v = last.from - last.at;
-  // Rodrigues' rotation of the eye about the axis k through `at`.
-  c.from = last.at + v * std::cos(a) + glm::cross(k, v) * std::sin(a) +
-           k * glm::dot(k, v) * (1.0 - std::cos(a));
-  return c;
+  return turned_about_up(last, -path.turns_after(f) * path.spin_deg);
 }
 
 }  // namespace rtsim::platform::pxpl5

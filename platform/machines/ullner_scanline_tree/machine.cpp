@@ -17,10 +17,12 @@
 #include "firmware/scanline/tree_frame.hpp"
 #include "modules/module_params.hpp"
 #include "platform/machine_registry.hpp"
+#include "platform/machines/camera_turn.hpp"
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/machine_support.hpp"
 #include "platform/machines/mesh_params.hpp"
 #include "platform/machines/ullner_scanline_tree/frame_output.hpp"
+#include "platform/machines/ullner_scanline_tree/frame_sequencer.hpp"
 #include "platform/machines/ullner_scanline_tree/merging_node.hpp"
 #include "platform/machines/ullner_scanline_tree/pixel_converter_node.hpp"
 #include "platform/machines/ullner_scanline_tree/scan_converter_node.hpp"
@@ -76,6 +78,26 @@ const modules::IntParam kSeed({.name = "tree.seed",
                                .max = "2147483647",
                                .description = "the random assignment's seed",
                                .source = "assumption: any fixed seed (the same tree every run)"});
+const modules::CountParam kFrames(
+    {.name = "frames",
+     .default_value = "1",
+     .min = "1",
+     .max = "1000",
+     .unit = "versions",
+     .description = "versions of the scene, one a view (the eye turned camera.spin between "
+                    "them, the last the scene's own): the run shows frames at pcp.frame_rate "
+                    "until the last version is on the screen, re-scanning a version whose "
+                    "successor is not transformed in time; the image is the last frame's",
+     .source = "study setting: T&C and scan conversion pipelined across frames (seed 000 "
+               "L1350-L1352)"});
+const modules::RealParam kSpin({.name = "camera.spin",
+                                .default_value = "0",
+                                .min = "-360",
+                                .max = "360",
+                                .unit = "degrees",
+                                .description = "turn of the eye about the view's vertical axis "
+                                               "between one version and the next",
+                                .source = "study setting: a simple camera path"});
 /// The most polygons a run takes: one T&C processor, scan converter and merging processor each.
 constexpr std::size_t kMaxPolygons = 200000;
 
@@ -206,9 +228,9 @@ std::vector<modules::MessageQueue<SegmentMessage>*> build_split(MachineRun& run,
 /// A split tree whose strips did not all finish deadlocked: a splitting processor's output
 /// queue filled while the merging processor it feeds waited for the other output's segments of
 /// the same line (L1633-L1637). That is a queue too short for the scene: bad input, said so.
-void check_finished(const Tree& tree) {
+void check_finished(const Tree& tree, std::size_t frames) {
   bool finished = true;
-  for (const auto& p : tree.pcps) finished = finished && p->finished();
+  for (const auto& p : tree.pcps) finished = finished && p->frames_done() == frames;
   if (finished) return;
   std::string full;
   int line = -1;
@@ -264,6 +286,8 @@ void UllnerScanlineTree::declare_params(params::ParamRegistry& r) const {
   image.add(kSeed);
   image.add(kSubvolumes);
   image.add(kSplitLevels);
+  machine.add(kFrames);
+  machine.add(kSpin);
   TcArray::declare_params(machine.sub(TcArray::kName));
   ScanConverterNode::declare_params(machine.sub(ScanConverterNode::kClass));
   MergingNode::declare_params(machine.sub(MergingNode::kClass));
@@ -336,7 +360,30 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     stages.sp_out = probe.stage("sp*.queue");
     stages.sp_link = probe.stage("sp*.link");
   }
-  TcArray tc(TcArray::kName, run, frame, leaves.size());
+  // The versions of the scene, one a frame's view: the eye turned back from the scene's own
+  // camera by camera.spin a version, so that the last is the scene's (the image).
+  const modules::ModuleParams top(r, "");
+  const int versions = static_cast<int>(top.get(kFrames));
+  std::vector<scanline::TcFrame> frames;
+  frames.reserve(static_cast<std::size_t>(versions));
+  {
+    const scenes::Camera own = scene.camera;
+    const raster::RasterMesh mesh = raster::build_raster_mesh(scene, settings.mesh);
+    for (int v = 0; v < versions; ++v) {
+      scene.camera = turned_about_up(own, -(versions - 1 - v) * top.get(kSpin));
+      frames.push_back(v + 1 == versions ? frame
+                                         : scanline::tc_frame(scene, mesh, run.width(),
+                                                              run.height(), twin.settings.shade));
+    }
+    scene.camera = own;
+  }
+  TcArray tc(TcArray::kName, run, frames);
+  const sc_core::sc_time period(1.0 / modules::ModuleParams(r, PixelConverterNode::kName)
+                                          .get(PixelConverterNode::frame_rate())
+                                          .hz,
+                                sc_core::SC_SEC);
+  FrameSequencer sequencer(FrameSequencer::kName, run, tc, leaves.size(), frame.polygons.size(),
+                           versions, period);
   std::vector<scanline::PixelRow> rows = scanline::blank_frame(
       run.width(), run.height(), scene.background, run.options().aov_id, run.options().aov_depth);
   Tree tree;
@@ -346,7 +393,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     const std::string name =
         std::string(PixelConverterNode::kName) + (levels > 0 ? std::to_string(k) : std::string());
     tree.pcps.push_back(std::make_unique<PixelConverterNode>(
-        name.c_str(), run, tc, rows,
+        name.c_str(), run, sequencer, rows,
         scanline::Strip{.levels = levels, .index = static_cast<int>(k)},
         k == 0 ? root_faults : std::vector<RootFault>{}, stages));
   }
@@ -356,10 +403,11 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (std::size_t k = 0; k < subtrees.size(); ++k)
     build(run, tree, leaves, subtrees[k].first, subtrees[k].second, run.height(), stages,
           *roots[k]);
-  for (std::size_t k = 0; k < tree.scps.size(); ++k) tc.to_scp[k]->bind(tree.scps[k]->in.socket);
+  for (std::size_t k = 0; k < tree.scps.size(); ++k)
+    sequencer.to_scp[k]->bind(tree.scps[k]->in.socket);
   run.simulate();
 
-  check_finished(tree);
+  check_finished(tree, sequencer.shown().size());
   sc_core::sc_time end = sc_core::SC_ZERO_TIME;
   for (const auto& pcp : tree.pcps) end = std::max(end, pcp->frame_end());
   run.stats_over(sc_core::SC_ZERO_TIME, end);
@@ -388,31 +436,49 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     tasks[std::string(scanline::kTcTaskNames[static_cast<std::size_t>(t)])] =
         tc.program().count[static_cast<std::size_t>(t)];
   st["tc"]["tasks"] = std::move(tasks);
-  // The scan-out: from the broadcast's end to the frame's, every strip's segments a line.
+  // The scan-out: from the first broadcast's end to the last frame's end, every strip's
+  // segments a line, over the frames.
   const auto h = static_cast<std::size_t>(run.height());
-  std::vector<std::uint64_t> per_line(h, 0);
-  std::uint64_t late_lines = 0;
-  for (std::size_t y = 0; y < h; ++y) {
-    bool late = false;
-    for (const auto& p : tree.pcps) {
-      per_line[y] += p->segments_per_line()[y];
-      late = late || p->line_late(y);
+  const std::size_t shown = sequencer.shown().size();
+  std::uint64_t late_lines = 0, segments = 0, busiest = 0;
+  nlohmann::ordered_json late_by_frame = nlohmann::ordered_json::array();
+  for (std::size_t f = 0; f < shown; ++f) {
+    std::uint64_t late_here = 0;
+    for (std::size_t y = 0; y < h; ++y) {
+      bool late = false;
+      std::uint64_t on_line = 0;
+      for (const auto& p : tree.pcps) {
+        on_line += p->segments_on(f, y);
+        late = late || p->line_late(f, y);
+      }
+      late_here += late ? 1 : 0;
+      segments += on_line;
+      busiest = std::max(busiest, on_line);
     }
-    late_lines += late ? 1 : 0;
+    late_lines += late_here;
+    late_by_frame.push_back(late_here);
   }
-  std::uint64_t segments = 0, busiest = 0;
-  for (const auto n : per_line) {
-    segments += n;
-    busiest = std::max<std::uint64_t>(busiest, n);
-  }
-  st["scan_out"] = {{"time_s", (end - pcp.scan_out_begin()).to_seconds()},
+  const double frame_lines = static_cast<double>(h * shown);
+  st["scan_out"] = {{"time_s", (end - sequencer.frame_start(0)).to_seconds()},
                     {"line_time_s", pcp.line_time().to_seconds()},
                     {"paced", pcp.paced()},
                     {"late_lines", late_lines},
                     {"root_segments", segments},
                     {"segments_a_line_mean",
-                     per_line.empty() ? 0.0 : static_cast<double>(segments) / per_line.size()},
+                     frame_lines > 0.0 ? static_cast<double>(segments) / frame_lines : 0.0},
                     {"segments_a_line_max", busiest}};
+  // The frames (L1350-L1352): versions transformed, frames shown, versions shown again.
+  nlohmann::ordered_json version_by_frame = nlohmann::ordered_json::array();
+  for (const int v : sequencer.shown()) version_by_frame.push_back(v);
+  st["frames"] = {
+      {"versions", versions},
+      {"shown", shown},
+      {"rescans", sequencer.rescans()},
+      {"rescanned_polygons", sequencer.rescans() * frame.polygons.size()},
+      {"tc_version_time_s",
+       (tc.instruction_time() * static_cast<double>(tc.instructions_a_version())).to_seconds()},
+      {"version_by_frame", std::move(version_by_frame)},
+      {"late_lines_by_frame", std::move(late_by_frame)}};
   // The split root (L1594): its processors, and the most segments a splitting processor's
   // output queue held, stage by stage (L1637: the same at every stage).
   const scanline::SplitCounts counts = scanline::split_counts(levels);

@@ -64,7 +64,12 @@ MergingNode::MergingNode(sc_core::sc_module_name name, MachineRun& run,
 
 void MergingNode::run() {
   modules::MessageQueue<SegmentMessage>* in[2] = {&in0, &in1};
-  while (!mp_.finished()) {
+  // A frame's streams end with the dummies; the next frame's follow.
+  for (;;) {
+    if (mp_.finished()) {
+      clock_.sync();
+      mp_ = scanline::MergingProcessor{};
+    }
     for (int k = 0; k < 2; ++k) {
       if (!mp_.needs(k)) continue;
       auto& fifo = in[k]->fifo;
@@ -101,7 +106,6 @@ void MergingNode::run() {
     modules::send_message(out, msg, arrived, kSegmentBits);
     if (!p.out->dummy() && !p.out->mark) ++segments_;
   }
-  clock_.sync();
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

@@ -1,9 +1,10 @@
 #include "platform/machines/ullner_scanline_tree/pixel_converter_node.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "platform/machines/machine_run.hpp"
-#include "platform/machines/ullner_scanline_tree/tc_array.hpp"
+#include "platform/machines/ullner_scanline_tree/frame_sequencer.hpp"
 
 namespace rtsim::platform::ullner_scanline_tree {
 
@@ -47,6 +48,8 @@ const modules::CountParam kQueueDepth(
      .source = "assumption: the merging processors' short queues (seed 000 L1519)"});
 }  // namespace
 
+const modules::FrequencyParam& PixelConverterNode::frame_rate() { return kFrameRate; }
+
 void PixelConverterNode::declare_params(const modules::ParamDecls& pcp) {
   pcp.add(kPixelTime);
   pcp.add(kPaced);
@@ -56,14 +59,15 @@ void PixelConverterNode::declare_params(const modules::ParamDecls& pcp) {
 }
 
 PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun& run,
-                                       const TcArray& tc, std::vector<scanline::PixelRow>& rows,
+                                       const FrameSequencer& frames,
+                                       std::vector<scanline::PixelRow>& rows,
                                        const scanline::Strip& strip, std::vector<RootFault> faults,
                                        const ProbeStages& stages)
     : modules::Processor(name, run.trace()),
       in("in", modules::ModuleParams(run.registry(), kName).get(kQueueDepth)),
       params_(run.registry(), kName),
       run_(run),
-      tc_(tc),
+      frames_(frames),
       rows_(rows),
       strip_(strip),
       faults_(std::move(faults)),
@@ -74,16 +78,7 @@ PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun&
       pixel_time_(params_.get(kPixelTime)),
       line_time_(
           sc_core::sc_time(1.0 / (params_.get(kFrameRate).hz * run.height()), sc_core::SC_SEC)) {
-  const auto h = static_cast<std::size_t>(run.height());
-  per_line_.assign(h, 0);
-  line_late_.assign(h, 0);
   SC_THREAD(run);
-}
-
-std::uint64_t PixelConverterNode::late_lines() const {
-  std::uint64_t n = 0;
-  for (const char l : line_late_) n += l ? 1 : 0;
-  return n;
 }
 
 void PixelConverterNode::run() {
@@ -95,9 +90,14 @@ void PixelConverterNode::run() {
     SegmentMessage m = in.fifo.get(clock_.now(), taken);
     clock_.catch_up(taken);
     waited_since(since, Wait::kData);
-    if (!begun_) {
-      begin_ = tc_.done();
-      begun_ = true;
+    if (!open_) {
+      // A frame's first message: its beam starts at the frame's start (L1551).
+      const std::size_t f = per_line_.size();
+      begin_ = frames_.frame_start(f);
+      per_line_.emplace_back(static_cast<std::size_t>(height), 0);
+      line_late_.emplace_back(static_cast<std::size_t>(height), 0);
+      open_ = true;
+      if (f > 0) clear_strip();
     }
     // A line mark of a split root's network (firmware/scanline/splitting.hpp): no pixels.
     if (m.segment.mark) continue;
@@ -115,14 +115,21 @@ void PixelConverterNode::run() {
     const scanline::Segment& s = m.segment;
     probe_.add(s.journey, stages_.pcp_in, modules::LatencyPart::kQueueing,
                clock_.now() - m.arrived);
-    if (s.dummy()) break;
+    if (s.dummy()) {
+      open_ = false;
+      frame_end_ = clock_.now();
+      if (paced_)
+        frame_end_ = std::max(frame_end_, begin_ + line_time_ * static_cast<double>(height));
+      clock_.sync();
+      continue;
+    }
     if (s.y >= height) {
       probe_.drop(s.journey);
       continue;
     }
     const auto [first, end] = scanline::covered_pixels(s, width, strip_);
     const auto line = static_cast<std::size_t>(s.y);
-    ++per_line_[line];
+    ++per_line_.back()[line];
     if (paced_) {
       // The beam reaches the segment's first pixel at T0 + y t_line + first t_line / width.
       const sc_core::sc_time beam =
@@ -136,7 +143,7 @@ void PixelConverterNode::run() {
       if (clock_.now() > beam) {
         ++late_;
         lateness_ += clock_.now() - beam;
-        line_late_[line] = 1;
+        line_late_.back()[line] = 1;
       } else if (from > clock_.now()) {
         // The beam (or the line buffer) has not reached it yet.
         probe_.add(s.journey, stages_.pcp, modules::LatencyPart::kQueueing, from - clock_.now());
@@ -152,10 +159,23 @@ void PixelConverterNode::run() {
     ++segments_;
     pixels_ += static_cast<std::uint64_t>(end - first);
   }
-  finished_ = true;
-  frame_end_ = clock_.now();
-  if (paced_) frame_end_ = std::max(frame_end_, begin_ + line_time_ * static_cast<double>(height));
-  clock_.sync();
+}
+
+void PixelConverterNode::clear_strip() {
+  // The pixels whose centres lie in its strip: a segment over the strip's every step covers them.
+  scanline::Segment all;
+  all.y = 0;
+  all.left.x = 0;
+  all.right.x = scanline::kWordMax;
+  const auto [first, end] = scanline::covered_pixels(all, run_.width(), strip_);
+  const Color background = run_.scene().background;
+  for (scanline::PixelRow& row : rows_)
+    for (int p = first; p < end; ++p) {
+      const auto i = static_cast<std::size_t>(p);
+      row.colour[i] = background;
+      if (!row.polygon.empty()) row.polygon[i] = -1;
+      if (!row.depth.empty()) row.depth[i] = std::numeric_limits<float>::infinity();
+    }
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

@@ -29,7 +29,7 @@ class MachineRun;
 
 namespace rtsim::platform::ullner_scanline_tree {
 
-class TcArray;
+class FrameSequencer;
 
 /// A corrupted word on the link into the pixel conversion processor (--fault root:WORD:XOR):
 /// WORD counts the root's segments' words in the order they arrive, 11 a segment.
@@ -44,40 +44,42 @@ class PixelConverterNode : public modules::Processor {
   static constexpr const char* kName = "pcp";
   static constexpr const char* kFaultPoint = "root";
   static void declare_params(const modules::ParamDecls& pcp);
+  /// Its frame rate parameter (the frame sequencer's period).
+  static const modules::FrequencyParam& frame_rate();
 
   SC_HAS_PROCESS(PixelConverterNode);
   /// The processor of `strip`, painting into `rows` (the frame's, shared by the strips).
-  PixelConverterNode(sc_core::sc_module_name name, MachineRun& run, const TcArray& tc,
+  PixelConverterNode(sc_core::sc_module_name name, MachineRun& run, const FrameSequencer& frames,
                      std::vector<scanline::PixelRow>& rows, const scanline::Strip& strip,
                      std::vector<RootFault> faults, const ProbeStages& stages);
 
   modules::MessageQueue<SegmentMessage> in;
 
-  /// Whether its stream's dummy arrived (false after the run: the tree above it deadlocked).
-  bool finished() const { return finished_; }
-  /// When the frame ended: the last line's time (paced), or its last pixel.
+  /// Frames whose stream it has painted to the dummy (fewer than the frames begun after the
+  /// run: the tree above it deadlocked).
+  std::size_t frames_done() const { return per_line_.size() - (open_ ? 1 : 0); }
+  /// When the last frame it finished ended: the last line's time (paced), or its last pixel.
   sc_core::sc_time frame_end() const { return frame_end_; }
   /// Pixels painted from segments.
   std::uint64_t pixels() const { return pixels_.value(); }
-  /// Whether line y missed its time here.
-  bool line_late(std::size_t y) const { return line_late_[y] != 0; }
-  sc_core::sc_time scan_out_begin() const { return begin_; }
-  const std::vector<std::uint32_t>& segments_per_line() const { return per_line_; }
+  /// Frame f's segments on line y; whether line y of frame f missed its time here.
+  std::uint32_t segments_on(std::size_t f, std::size_t y) const { return per_line_[f][y]; }
+  bool line_late(std::size_t f, std::size_t y) const { return line_late_[f][y] != 0; }
   const std::vector<RootFault>& faults() const { return faults_; }
   sc_core::sc_time line_time() const { return line_time_; }
   bool paced() const { return paced_; }
-  std::uint64_t late_lines() const;
 
  private:
   void run();
+  /// Its strip's pixels back to the background, for a new frame.
+  void clear_strip();
 
   modules::ModuleParams params_;
   MachineRun& run_;
-  const TcArray& tc_;
+  const FrameSequencer& frames_;
   std::vector<scanline::PixelRow>& rows_;
   scanline::Strip strip_;
-  bool begun_ = false;
-  bool finished_ = false;
+  bool open_ = false;  ///< a frame begun and not finished
   std::vector<RootFault> faults_;
   modules::LatencyProbe& probe_;
   ProbeStages stages_;
@@ -85,8 +87,8 @@ class PixelConverterNode : public modules::Processor {
   std::uint64_t ahead_;
   sc_core::sc_time pixel_time_, line_time_;
   sc_core::sc_time begin_ = sc_core::SC_ZERO_TIME, frame_end_ = sc_core::SC_ZERO_TIME;
-  std::vector<std::uint32_t> per_line_;
-  std::vector<char> line_late_;
+  std::vector<std::vector<std::uint32_t>> per_line_;  ///< by frame, by line
+  std::vector<std::vector<char>> line_late_;
   std::uint64_t words_seen_ = 0;
   modules::Counter segments_{*this, "segments", "segments painted"};
   modules::Counter pixels_{*this, "pixels", "pixels painted from segments"};

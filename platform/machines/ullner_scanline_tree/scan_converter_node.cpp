@@ -46,28 +46,33 @@ ScanConverterNode::ScanConverterNode(sc_core::sc_module_name name, MachineRun& r
 }
 
 void ScanConverterNode::run() {
-  const sc_core::sc_time since = clock_.now();
-  modules::wait_for_item(in.fifo, clock_);
-  sc_core::sc_time taken;
-  const ChainsMessage m = in.fifo.get(clock_.now(), taken);
-  clock_.catch_up(taken);
-  waited_since(since, Wait::kData);
-  for (scanline::Segment s : scanline::scan_convert(m.chains, lines_, polygon_)) {
-    const sc_core::sc_time formed = clock_.now();
-    if (!s.dummy()) s.journey = probe_.begin(formed);
-    if (segment_time_ > sc_core::SC_ZERO_TIME) compute_for(segment_time_, "segment", {{"y", s.y}});
-    probe_.add(s.journey, stages_.scp, modules::LatencyPart::kService, clock_.now() - formed);
-    const sc_core::sc_time ready = clock_.now();
-    wait_for_room(parent_);
-    probe_.add(s.journey, stages_.scp, modules::LatencyPart::kQueueing, clock_.now() - ready);
-    const sc_core::sc_time arrived = link.transfer(kSegmentBits, clock_.now());
-    probe_.add(s.journey, stages_.scp_link, modules::LatencyPart::kTransfer,
-               arrived - clock_.now());
-    SegmentMessage msg{s, arrived};
-    modules::send_message(out, msg, arrived, kSegmentBits);
-    if (!s.dummy()) ++segments_;
+  // A frame at a time: the edge lists the frame sequencer hands over (a new version, or the
+  // one it scanned last, L1352), a segment a line, then the dummy.
+  for (;;) {
+    const sc_core::sc_time since = clock_.now();
+    modules::wait_for_item(in.fifo, clock_);
+    sc_core::sc_time taken;
+    const ChainsMessage m = in.fifo.get(clock_.now(), taken);
+    clock_.catch_up(taken);
+    waited_since(since, Wait::kData);
+    for (scanline::Segment s : scanline::scan_convert(m.chains, lines_, polygon_)) {
+      const sc_core::sc_time formed = clock_.now();
+      if (!s.dummy()) s.journey = probe_.begin(formed);
+      if (segment_time_ > sc_core::SC_ZERO_TIME)
+        compute_for(segment_time_, "segment", {{"y", s.y}});
+      probe_.add(s.journey, stages_.scp, modules::LatencyPart::kService, clock_.now() - formed);
+      const sc_core::sc_time ready = clock_.now();
+      wait_for_room(parent_);
+      probe_.add(s.journey, stages_.scp, modules::LatencyPart::kQueueing, clock_.now() - ready);
+      const sc_core::sc_time arrived = link.transfer(kSegmentBits, clock_.now());
+      probe_.add(s.journey, stages_.scp_link, modules::LatencyPart::kTransfer,
+                 arrived - clock_.now());
+      SegmentMessage msg{s, arrived};
+      modules::send_message(out, msg, arrived, kSegmentBits);
+      if (!s.dummy()) ++segments_;
+    }
+    clock_.sync();
   }
-  clock_.sync();
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

@@ -78,9 +78,8 @@ void SplittingOutput::run() {
                arrived - clock_.now());
     m.arrived = arrived;
     modules::send_message(out, m, arrived, kSegmentBits);
-    if (m.segment.dummy()) break;
+    if (m.segment.dummy()) clock_.sync();
   }
-  clock_.sync();
 }
 
 SplittingNode::SplittingNode(sc_core::sc_module_name name, MachineRun& run,
@@ -167,10 +166,16 @@ void SplittingNode::run() {
       }
       enqueue(k, out);
     }
-    if (m.segment.dummy()) break;
+    if (m.segment.dummy()) {
+      // The frame's stream is over; the next frame's begins afresh.
+      ++frames_done_;
+      sp_ = scanline::SplittingProcessor{};
+      line_max_ = std::max(line_max_, line_count_);
+      line_count_ = 0;
+      line_ = -1;
+      clock_.sync();
+    }
   }
-  finished_ = true;
-  clock_.sync();
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

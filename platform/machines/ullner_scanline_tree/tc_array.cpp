@@ -14,49 +14,75 @@ const modules::TimeParam kInstructionTime(
      .description = "time of one broadcast instruction (every processor executes it at once)",
      .source = "seed 000 L1276, L1334: \"some six or seven microseconds\" (a 5 us shift-and-add "
                "floating-point operation, L1276)"});
+const modules::CountParam kMotion(
+    {.name = "motion_instructions",
+     .default_value = "0",
+     .min = "0",
+     .max = "100000000",
+     .unit = "instructions",
+     .description = "instructions broadcast a frame besides the program: loading the "
+                    "transformation matrices of objects that move (a what-if: more than the "
+                    "spare ~1000 and the frames' versions come late and are re-scanned)",
+     .source = "seed 000 L1336: the nearly 1400 spare instructions \"may be put to good use\" "
+               "for independently moving objects"});
 }  // namespace
 
-void TcArray::declare_params(const modules::ParamDecls& tc) { tc.add(kInstructionTime); }
+void TcArray::declare_params(const modules::ParamDecls& tc) {
+  tc.add(kInstructionTime);
+  tc.add(kMotion);
+}
 
-TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
-                 std::size_t leaves)
+TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run,
+                 const std::vector<scanline::TcFrame>& versions)
     : modules::Processor(name, run.trace()),
+      versions(std::string(this->name()) + ".versions", modules::TimedFifo<int>::kUnbounded),
+      shown(std::string(this->name()) + ".shown", modules::TimedFifo<int>::kUnbounded),
       params_(run.registry(), this->name()),
       run_(run),
-      frame_(frame),
-      program_(scanline::build_tc_program(frame.literals)),
+      versions_(versions),
+      program_(scanline::build_tc_program(versions.front().literals)),
       instruction_time_(params_.get(kInstructionTime)),
-      leaves_(std::max(leaves, frame.polygons.size())) {
-  // An idle scan converter (no polygon) gets no edge list: its stream is the dummy alone.
-  for (std::size_t k = 0; k < leaves_; ++k)
-    to_scp.push_back(std::make_unique<tlm_utils::simple_initiator_socket<TcArray>>(
-        ("to_scp" + std::to_string(k)).c_str()));
+      motion_(params_.get(kMotion)),
+      chains_(versions.size()) {
   SC_THREAD(run);
 }
 
 void TcArray::run() {
-  // The processors' memories, loaded by the bus (27 words a polygon, L1272), hear the program
-  // in lockstep.
-  std::uint64_t executed = 0;
-  std::vector<ChainsMessage> out(leaves_);
-  const auto chains = scanline::transform_and_clip(program_, frame_.polygons, &executed);
-  for (std::size_t k = 0; k < chains.size(); ++k) {
-    out[k].chains = chains[k];
-    if (!chains[k].empty()) ++polygons_out_;
+  for (std::size_t v = 0; v < versions_.size(); ++v) {
+    if (v > 0) {
+      // Version v - 1 is on the screen: the processors' memories are free for version v.
+      const sc_core::sc_time since = clock_.now();
+      modules::wait_for_item(shown, clock_);
+      sc_core::sc_time taken;
+      (void)shown.get(clock_.now(), taken);
+      clock_.catch_up(taken);
+      waited_since(since, Wait::kWork);
+    }
+    // The processors' memories, loaded by the bus (27 words a polygon, L1272), hear the program
+    // in lockstep.
+    const scanline::TcFrame& frame = versions_[v];
+    std::uint64_t executed = 0;
+    // The view is in the program's literals (Figs. 3-10, 3-11): each version's own broadcast.
+    const scanline::BroadcastProgram program =
+        v == 0 ? program_ : scanline::build_tc_program(frame.literals);
+    chains_[v] = scanline::transform_and_clip(program, frame.polygons, &executed);
+    for (const auto& c : chains_[v])
+      if (!c.empty()) ++polygons_out_;
+    executed_ += executed;
+    instructions_ += instructions_a_version();
+    // The frame's counts in the terms every machine reports (stats.json `rays`): a vertex's
+    // light term (Fig. 3-11: n.p, no shadow) is the light's work, as a shadow ray is a ray
+    // tracer's.
+    if (frame.literals.point_light)
+      run_.frame().counters().rays[static_cast<std::size_t>(RayKind::Shadow)] +=
+          4 * frame.polygons.size();
+    // Lockstep: the program's length at the instruction time, whatever the number of
+    // processors.
+    compute_for(instruction_time_ * static_cast<double>(instructions_a_version()), "broadcast",
+                {{"instructions", instructions_a_version()}, {"version", v}});
+    if (v == 0) done_ = clock_.now();
+    versions.put(static_cast<int>(v), clock_.now());
   }
-  executed_ += executed;
-  instructions_ += program_.total();
-  // The frame's counts in the terms every machine reports (stats.json `rays`): a vertex's light
-  // term (Fig. 3-11: n.p, no shadow) is the light's work, as a shadow ray is a ray tracer's.
-  if (frame_.literals.point_light)
-    run_.frame().counters().rays[static_cast<std::size_t>(RayKind::Shadow)] +=
-        4 * frame_.polygons.size();
-  // Lockstep: the program's length at the instruction time, whatever the number of processors.
-  compute_for(instruction_time_ * static_cast<double>(program_.total()), "broadcast",
-              {{"instructions", program_.total()}});
-  done_ = clock_.now();
-  for (std::size_t k = 0; k < out.size(); ++k)
-    modules::send_message(*to_scp[k], out[k], clock_.now(), out[k].bits());
   clock_.sync();
 }
 

@@ -2,20 +2,22 @@
 // The T&C processors on their shared bus (seed 000 §3.3.1, L1096-L1336): one processor a
 // polygon, the program broadcast from the bus's end and executed in lockstep (SIMD, L1100-
 // L1102), so the array takes the program's length times the instruction time (6-7 us, L1276,
-// L1334) whatever its size. It then hands each processor's edge chains (what its `send`s
-// wrote) to that processor's scan conversion processor.
-#include <tlm_utils/simple_initiator_socket.h>
-
+// L1334) whatever its size, plus the instructions a frame spends on moving objects (L1336).
+//
+// A run of several frames has a version of the scene a frame (the camera turned between
+// them): the array transforms version v once version v - 1 is on the screen — while the scan
+// converters scan v - 1 out of their own memories (L1350) — and puts it in `versions` when done.
+// The frame sequencer (frame_sequencer.hpp) hands the scan converters the latest version at
+// every frame's start.
 #include <memory>
 #include <systemc>
 #include <vector>
 
 #include "firmware/scanline/tc_frame.hpp"
 #include "firmware/scanline/tc_program.hpp"
-#include "modules/message_channel.hpp"
 #include "modules/module_params.hpp"
 #include "modules/processor.hpp"
-#include "platform/machines/ullner_scanline_tree/tree_messages.hpp"
+#include "modules/timed_fifo.hpp"
 
 namespace rtsim::platform {
 class MachineRun;
@@ -29,34 +31,43 @@ class TcArray : public modules::Processor {
   static void declare_params(const modules::ParamDecls& tc);
 
   SC_HAS_PROCESS(TcArray);
-  /// `leaves` (at least the frame's polygons): the scan converters, idle ones past the last
-  /// polygon (a split tree's, or a scene without polygons).
-  TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
-          std::size_t leaves);
+  /// `versions`: the scene as loaded for each frame's view, in order (one for a single frame).
+  TcArray(sc_core::sc_module_name name, MachineRun& run,
+          const std::vector<scanline::TcFrame>& versions);
 
-  /// Scan converter k's queue (bound before the simulation): polygon k's, or an idle one's.
-  std::vector<std::unique_ptr<tlm_utils::simple_initiator_socket<TcArray>>> to_scp;
+  /// A transformed version (its index) when its broadcast ended, for the frame sequencer.
+  modules::TimedFifo<int> versions;
+  /// From the frame sequencer: version v first on the screen (its index), so v + 1 may begin.
+  modules::TimedFifo<int> shown;
 
-  /// When the broadcast ended and the edge lists went to the scan converters.
+  /// Version v's edge chains, polygon by polygon (ready once v is in `versions`).
+  const std::vector<scanline::EdgeChains>& chains(int v) const {
+    return chains_[static_cast<std::size_t>(v)];
+  }
+  /// When the first version's broadcast ended: the first frame's start.
   sc_core::sc_time done() const { return done_; }
   const scanline::BroadcastProgram& program() const { return program_; }
   sc_core::sc_time instruction_time() const { return instruction_time_; }
+  /// Instructions broadcast a frame: the program and the motion's.
+  std::uint64_t instructions_a_version() const { return program_.total() + motion_; }
 
  private:
   void run();
 
   modules::ModuleParams params_;
   MachineRun& run_;
-  const scanline::TcFrame& frame_;
+  const std::vector<scanline::TcFrame>& versions_;
   scanline::BroadcastProgram program_;
   sc_core::sc_time instruction_time_;
+  std::uint64_t motion_;
   sc_core::sc_time done_ = sc_core::SC_ZERO_TIME;
-  std::size_t leaves_;
+  std::vector<std::vector<scanline::EdgeChains>> chains_;
   modules::Counter instructions_{*this, "instructions", "instructions broadcast"};
   modules::Counter executed_{*this, "executed",
                              "instructions the processors executed (not shut down), summed"};
   modules::Counter polygons_out_{*this, "polygons_out",
-                                 "polygons left with an edge list after clipping"};
+                                 "polygons left with an edge list after clipping, summed over "
+                                 "the versions"};
 };
 
 }  // namespace rtsim::platform::ullner_scanline_tree
