@@ -246,13 +246,19 @@ void add_scanline_tree_figures(Plan& plan, const PlanOptions&) {
         .measure =
             [unsplit, run, seed = s.seed](const RunResults& r) {
               const double root = segments_a_line(r, unsplit), split = segments_a_line(r, run);
+              const double splitters =
+                  stats_number(r, run, "scanline_tree.split.splitting_processors");
+              const double extra =
+                  stats_number(r, run, "scanline_tree.split.extra_merging_processors");
               return Measured{split / root,
                               format_number(split) +
                                   " segments a line against the unsplit "
                                   "root's " +
                                   format_number(root) + " (seed: " + format_number(seed) +
                                   " against 10.5; the model's non-overlapping pass is 3 us, "
-                                  "the seed's pace 6)"};
+                                  "the seed's pace 6); " +
+                                  format_number(splitters) + " splitting and " +
+                                  format_number(extra) + " extra merging processors"};
             },
     });
   }

@@ -397,6 +397,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
         scanline::Strip{.levels = levels, .index = static_cast<int>(k)},
         k == 0 ? root_faults : std::vector<RootFault>{}, stages));
   }
+  if (levels == 0) SplittingNode::check_params(r);
   const auto roots = build_split(run, tree, levels, stages);
   tree.scps.resize(leaves.size());
   const auto subtrees = scanline::subtree_ranges(leaves.size(), levels);

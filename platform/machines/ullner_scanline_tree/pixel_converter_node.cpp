@@ -74,7 +74,8 @@ PixelConverterNode::PixelConverterNode(sc_core::sc_module_name name, MachineRun&
       probe_(run.probe()),
       stages_(stages),
       paced_(params_.get(kPaced)),
-      ahead_(strip.levels > 0 ? params_.get(kStripLinesAhead) : 0),
+      // Read (and checked) unsplit too, where no strip paints ahead.
+      ahead_(params_.get(kStripLinesAhead) * (strip.levels > 0 ? 1 : 0)),
       pixel_time_(params_.get(kPixelTime)),
       line_time_(
           sc_core::sc_time(1.0 / (params_.get(kFrameRate).hz * run.height()), sc_core::SC_SEC)) {

@@ -45,6 +45,16 @@ std::size_t SplittingNode::queue_depth(const params::ParamRegistry& registry) {
   return modules::ModuleParams(registry, kClass).get(kQueueDepth);
 }
 
+void SplittingNode::check_params(const params::ParamRegistry& registry) {
+  const modules::ModuleParams p(registry, kClass);
+  (void)p.get(kStageTime);
+  (void)p.get(kQueueDepth);
+  const std::string link = std::string(kClass) + "." + kLink;
+  (void)registry.get_time_ps(link + ".latency");
+  (void)registry.get_int(link + ".lanes");
+  (void)registry.get_time_ps(link + ".bit_time");
+}
+
 SplittingOutput::SplittingOutput(sc_core::sc_module_name name, MachineRun& run, std::size_t depth,
                                  const modules::TimedFifo<SegmentMessage>& parent,
                                  const ProbeStages& stages)

@@ -54,6 +54,9 @@ class SplittingNode : public modules::Processor {
   static constexpr const char* kClass = "sp";
   static void declare_params(const modules::ParamDecls& sp);
   static std::size_t queue_depth(const params::ParamRegistry& registry);
+  /// Reads its class's parameters without building one: an unsplit tree has no splitting
+  /// processor, but a value set for them is still checked (and counted as read).
+  static void check_params(const params::ParamRegistry& registry);
 
   SC_HAS_PROCESS(SplittingNode);
   /// `left`, `right`: the merging processors' input queues its outputs feed.
