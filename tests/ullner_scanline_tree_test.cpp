@@ -261,6 +261,12 @@ TEST(UllnerScanlineTree, BadInputIsRefusedClearly) {
                              " --scene builtin:default -p mesh.sphere_segments=1024 -q");
   EXPECT_EQ(big.exit_code, 2) << big.output;
   EXPECT_NE(big.output.find("polygons"), std::string::npos) << big.output;
+  // A run that would show more frames than it may (versions whose broadcast spans many
+  // frames) is refused before it starts.
+  const auto frames = run_rtsim("run --machine " + kMachine + " " + kTeapot +
+                                " -p frames=1000 -p tc.motion_instructions=100000000 -q");
+  EXPECT_EQ(frames.exit_code, 2) << frames.output;
+  EXPECT_NE(frames.output.find("would show"), std::string::npos) << frames.output;
 }
 
 }  // namespace

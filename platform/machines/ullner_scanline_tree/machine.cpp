@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <systemc>
 
@@ -98,6 +99,8 @@ const modules::RealParam kSpin({.name = "camera.spin",
                                 .description = "turn of the eye about the view's vertical axis "
                                                "between one version and the next",
                                 .source = "study setting: a simple camera path"});
+/// The most frames a run shows (each takes every processor of the tree through a frame).
+constexpr int kMaxFrames = 10000;
 /// The most polygons a run takes: one T&C processor, scan converter and merging processor each.
 constexpr std::size_t kMaxPolygons = 200000;
 
@@ -361,27 +364,46 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     stages.sp_link = probe.stage("sp*.link");
   }
   // The versions of the scene, one a frame's view: the eye turned back from the scene's own
-  // camera by camera.spin a version, so that the last is the scene's (the image).
+  // camera by camera.spin a version, so that the last is the scene's (the image). A version
+  // differs only in the literals broadcast with the program (the view, the light).
   const modules::ModuleParams top(r, "");
   const int versions = static_cast<int>(top.get(kFrames));
-  std::vector<scanline::TcFrame> frames;
-  frames.reserve(static_cast<std::size_t>(versions));
-  {
-    const scenes::Camera own = scene.camera;
-    const raster::RasterMesh mesh = raster::build_raster_mesh(scene, settings.mesh);
-    for (int v = 0; v < versions; ++v) {
-      scene.camera = turned_about_up(own, -(versions - 1 - v) * top.get(kSpin));
-      frames.push_back(v + 1 == versions ? frame
-                                         : scanline::tc_frame(scene, mesh, run.width(),
-                                                              run.height(), twin.settings.shade));
-    }
-    scene.camera = own;
-  }
-  TcArray tc(TcArray::kName, run, frames);
   const sc_core::sc_time period(1.0 / modules::ModuleParams(r, PixelConverterNode::kName)
                                           .get(PixelConverterNode::frame_rate())
                                           .hz,
                                 sc_core::SC_SEC);
+  // The frames the run will show: a version takes ceil(broadcast / period) frames after the
+  // first. A run of more than kMaxFrames is refused before it starts.
+  const double broadcast_s =
+      TcArray::instruction_time(r).to_seconds() *
+      static_cast<double>(scanline::build_tc_program(frame.literals).total() +
+                          TcArray::motion_instructions(r));
+  const double frames_shown =
+      1.0 + (versions - 1) * std::max(1.0, std::ceil(broadcast_s / period.to_seconds()));
+  if (frames_shown > kMaxFrames) {
+    char why[256];
+    std::snprintf(why, sizeof why,
+                  "ullner-scanline-tree: %d versions, each a broadcast of %.4g s, at %.4g frames "
+                  "a second would show %.0f frames; at most %d (fewer frames, fewer "
+                  "tc.motion_instructions, or a shorter tc.instruction_time)",
+                  versions, broadcast_s, 1.0 / period.to_seconds(), frames_shown, kMaxFrames);
+    throw InputError("frames", 0, why);
+  }
+  std::vector<scanline::TcLiterals> views;
+  views.reserve(static_cast<std::size_t>(versions));
+  {
+    const scenes::Camera own = scene.camera;
+    const raster::RasterMesh mesh =
+        versions > 1 ? raster::build_raster_mesh(scene, settings.mesh) : raster::RasterMesh{};
+    for (int v = 0; v + 1 < versions; ++v) {
+      scene.camera = turned_about_up(own, -(versions - 1 - v) * top.get(kSpin));
+      views.push_back(
+          scanline::tc_frame(scene, mesh, run.width(), run.height(), twin.settings.shade).literals);
+    }
+    scene.camera = own;
+    views.push_back(frame.literals);
+  }
+  TcArray tc(TcArray::kName, run, frame, std::move(views));
   FrameSequencer sequencer(FrameSequencer::kName, run, tc, leaves.size(), frame.polygons.size(),
                            versions, period);
   std::vector<scanline::PixelRow> rows = scanline::blank_frame(

@@ -29,11 +29,15 @@ class TcArray : public modules::Processor {
  public:
   static constexpr const char* kName = "tc";
   static void declare_params(const modules::ParamDecls& tc);
+  /// Its parameters, read before it is built (the frames a run will show).
+  static sc_core::sc_time instruction_time(const params::ParamRegistry& registry);
+  static std::uint64_t motion_instructions(const params::ParamRegistry& registry);
 
   SC_HAS_PROCESS(TcArray);
-  /// `versions`: the scene as loaded for each frame's view, in order (one for a single frame).
-  TcArray(sc_core::sc_module_name name, MachineRun& run,
-          const std::vector<scanline::TcFrame>& versions);
+  /// `frame`: the scene as loaded; `views`: the literals (the view, the light) of each version,
+  /// in order (one for a single frame).
+  TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
+          std::vector<scanline::TcLiterals> views);
 
   /// A transformed version (its index) when its broadcast ended, for the frame sequencer.
   modules::TimedFifo<int> versions;
@@ -56,7 +60,8 @@ class TcArray : public modules::Processor {
 
   modules::ModuleParams params_;
   MachineRun& run_;
-  const std::vector<scanline::TcFrame>& versions_;
+  const scanline::TcFrame& frame_;
+  std::vector<scanline::TcLiterals> views_;
   scanline::BroadcastProgram program_;
   sc_core::sc_time instruction_time_;
   std::uint64_t motion_;
