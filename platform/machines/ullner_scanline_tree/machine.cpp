@@ -389,6 +389,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
                   versions, broadcast_s, 1.0 / period.to_seconds(), frames_shown, kMaxFrames);
     throw InputError("frames", 0, why);
   }
+  const double spin = top.get(kSpin);
   std::vector<scanline::TcLiterals> views;
   views.reserve(static_cast<std::size_t>(versions));
   {
@@ -396,7 +397,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     const raster::RasterMesh mesh =
         versions > 1 ? raster::build_raster_mesh(scene, settings.mesh) : raster::RasterMesh{};
     for (int v = 0; v + 1 < versions; ++v) {
-      scene.camera = turned_about_up(own, -(versions - 1 - v) * top.get(kSpin));
+      scene.camera = turned_about_up(own, -(versions - 1 - v) * spin);
       views.push_back(
           scanline::tc_frame(scene, mesh, run.width(), run.height(), twin.settings.shade).literals);
     }
