@@ -1,6 +1,7 @@
 #include "firmware/scanline/pixel_converter.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace rtsim::scanline {
 
@@ -18,6 +19,24 @@ std::pair<int, int> covered_pixels(const Segment& s, int width, const Strip& str
   const std::int64_t first = std::min(first_at(2 * w * (s.left.x + offset)), w);
   const std::int64_t end = std::min(first_at(2 * w * (s.right.x + 1 + offset)), w);
   return {static_cast<int>(first), static_cast<int>(std::max(first, end))};
+}
+
+std::pair<int, int> strip_pixels(int width, const Strip& strip) {
+  // A segment over the strip's every step covers them.
+  Segment all;
+  all.y = 0;
+  all.left.x = 0;
+  all.right.x = kWordMax;
+  return covered_pixels(all, width, strip);
+}
+
+void blank_pixels(PixelRow& row, int first, int end, const Color& background) {
+  for (int p = first; p < end; ++p) {
+    const auto i = static_cast<std::size_t>(p);
+    row.colour[i] = background;
+    if (!row.polygon.empty()) row.polygon[i] = -1;
+    if (!row.depth.empty()) row.depth[i] = std::numeric_limits<float>::infinity();
+  }
 }
 
 void paint(const Segment& s, int width, PixelRow& row, const Strip& strip) {

@@ -35,6 +35,13 @@ struct Strip {
 /// The pixels of `width` whose centres `s` covers: [first, end), counted across the screen.
 std::pair<int, int> covered_pixels(const Segment& s, int width, const Strip& strip = {});
 
+/// The pixels of `width` whose centres lie in `strip`: [first, end).
+std::pair<int, int> strip_pixels(int width, const Strip& strip);
+
+/// Pixels [first, end) of `row` back to `background` (and no polygon, infinite depth, where the
+/// row keeps them).
+void blank_pixels(PixelRow& row, int first, int end, const Color& background);
+
 /// Writes segment `s` into `row` (sized `width`).
 void paint(const Segment& s, int width, PixelRow& row, const Strip& strip = {});
 

@@ -152,9 +152,10 @@ std::vector<PixelRow> blank_frame(int width, int height, const Color& background
   std::vector<PixelRow> rows(static_cast<std::size_t>(height));
   const auto w = static_cast<std::size_t>(width);
   for (PixelRow& r : rows) {
-    r.colour.assign(w, background);
-    if (ids) r.polygon.assign(w, -1);
-    if (depth) r.depth.assign(w, std::numeric_limits<float>::infinity());
+    r.colour.resize(w);
+    if (ids) r.polygon.resize(w);
+    if (depth) r.depth.resize(w);
+    blank_pixels(r, 0, width, background);
   }
   return rows;
 }

@@ -49,7 +49,6 @@ void FrameSequencer::run() {
     for (std::size_t k = 0; k < leaves_; ++k) {
       ChainsMessage m;
       if (k < polygons_) m.chains = chains[k];
-      m.rescan = !fresh;
       modules::send_message(*to_scp[k], m, clock_.now(), m.bits());
     }
     if (current + 1 >= versions_) break;

@@ -176,7 +176,6 @@ MergingNode& add_mp(MachineRun& run, Tree& tree, modules::MessageQueue<SegmentMe
   return *tree.mps.back();
 }
 
-/// Leaves [lo, hi), hi > lo.
 /// The subtree over leaves [lo, hi), hi > lo, whose root feeds `parent`.
 void build(MachineRun& run, Tree& tree, const std::vector<std::uint32_t>& leaf, std::size_t lo,
            std::size_t hi, int lines, const ProbeStages& stages,
@@ -375,9 +374,10 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   // The frames the run will show: a version takes ceil(broadcast / period) frames after the
   // first. A run of more than kMaxFrames is refused before it starts.
   const double broadcast_s =
-      TcArray::instruction_time(r).to_seconds() *
-      static_cast<double>(scanline::build_tc_program(frame.literals).total() +
-                          TcArray::motion_instructions(r));
+      (TcArray::instruction_time(r) *
+       static_cast<double>(scanline::build_tc_program(frame.literals).total() +
+                           TcArray::motion_instructions(r)))
+          .to_seconds();
   const double frames_shown =
       1.0 + (versions - 1) * std::max(1.0, std::ceil(broadcast_s / period.to_seconds()));
   if (frames_shown > kMaxFrames) {
@@ -435,8 +435,8 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   sc_core::sc_time end = sc_core::SC_ZERO_TIME;
   for (const auto& pcp : tree.pcps) end = std::max(end, pcp->frame_end());
   run.stats_over(sc_core::SC_ZERO_TIME, end);
-  const PixelConverterNode& first = *tree.pcps.front();
-  for (const RootFault& f : first.faults())
+  const PixelConverterNode& pcp = *tree.pcps.front();
+  for (const RootFault& f : pcp.faults())
     if (!f.applied)
       throw InputError("--fault root:" + std::to_string(f.word), 0,
                        std::string("the root sent fewer words than that (11 a segment)") +
@@ -447,9 +447,8 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   auto& st = res["scanline_tree"];
   st["polygons"] = frame.polygons.size();
   st["merging_processors"] = tree.mps.size();
-  const PixelConverterNode& pcp = first;
   // The T&C broadcast: its instructions against the frame's (L1334-L1336).
-  const double frame_period = pcp.line_time().to_seconds() * run.height();  // pcp.frame_rate's
+  const double frame_period = period.to_seconds();
   const double instruction_s = tc.instruction_time().to_seconds();
   st["tc"] = {{"instructions", tc.program().total()},
               {"time_s", tc.done().to_seconds()},
@@ -494,15 +493,13 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   // The frames (L1350-L1352): versions transformed, frames shown, versions shown again.
   nlohmann::ordered_json version_by_frame = nlohmann::ordered_json::array();
   for (const int v : sequencer.shown()) version_by_frame.push_back(v);
-  st["frames"] = {
-      {"versions", versions},
-      {"shown", shown},
-      {"rescans", sequencer.rescans()},
-      {"rescanned_polygons", sequencer.rescans() * frame.polygons.size()},
-      {"tc_version_time_s",
-       (tc.instruction_time() * static_cast<double>(tc.instructions_a_version())).to_seconds()},
-      {"version_by_frame", std::move(version_by_frame)},
-      {"late_lines_by_frame", std::move(late_by_frame)}};
+  st["frames"] = {{"versions", versions},
+                  {"shown", shown},
+                  {"rescans", sequencer.rescans()},
+                  {"rescanned_polygons", sequencer.rescans() * frame.polygons.size()},
+                  {"tc_version_time_s", broadcast_s},
+                  {"version_by_frame", std::move(version_by_frame)},
+                  {"late_lines_by_frame", std::move(late_by_frame)}};
   // The split root (L1594): its processors, and the most segments a splitting processor's
   // output queue held, stage by stage (L1637: the same at every stage).
   const scanline::SplitCounts counts = scanline::split_counts(levels);
@@ -534,7 +531,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (std::size_t k = 0; k < cases.size(); ++k)
     passes[std::string(scanline::kMergeCaseNames[k])] = cases[k];
   st["merge_passes"] = std::move(passes);
-  for (const auto& f : first.faults())
+  for (const auto& f : pcp.faults())
     st["faults_in_flight"].push_back({{"at", PixelConverterNode::kFaultPoint},
                                       {"word", f.word},
                                       {"xor_mask", f.xor_mask},

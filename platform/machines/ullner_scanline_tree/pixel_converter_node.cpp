@@ -1,7 +1,6 @@
 #include "platform/machines/ullner_scanline_tree/pixel_converter_node.hpp"
 
 #include <algorithm>
-#include <limits>
 
 #include "platform/machines/machine_run.hpp"
 #include "platform/machines/ullner_scanline_tree/frame_sequencer.hpp"
@@ -163,20 +162,9 @@ void PixelConverterNode::run() {
 }
 
 void PixelConverterNode::clear_strip() {
-  // The pixels whose centres lie in its strip: a segment over the strip's every step covers them.
-  scanline::Segment all;
-  all.y = 0;
-  all.left.x = 0;
-  all.right.x = scanline::kWordMax;
-  const auto [first, end] = scanline::covered_pixels(all, run_.width(), strip_);
-  const Color background = run_.scene().background;
+  const auto [first, end] = scanline::strip_pixels(run_.width(), strip_);
   for (scanline::PixelRow& row : rows_)
-    for (int p = first; p < end; ++p) {
-      const auto i = static_cast<std::size_t>(p);
-      row.colour[i] = background;
-      if (!row.polygon.empty()) row.polygon[i] = -1;
-      if (!row.depth.empty()) row.depth[i] = std::numeric_limits<float>::infinity();
-    }
+    scanline::blank_pixels(row, first, end, run_.scene().background);
 }
 
 }  // namespace rtsim::platform::ullner_scanline_tree

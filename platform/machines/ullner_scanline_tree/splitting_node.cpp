@@ -177,11 +177,9 @@ void SplittingNode::run() {
       enqueue(k, out);
     }
     if (m.segment.dummy()) {
-      // The frame's stream is over; the next frame's begins afresh.
-      ++frames_done_;
+      // The frame's stream is over; the next frame's begins afresh (its first segment closes
+      // this frame's last line's count).
       sp_ = scanline::SplittingProcessor{};
-      line_max_ = std::max(line_max_, line_count_);
-      line_count_ = 0;
       line_ = -1;
       clock_.sync();
     }

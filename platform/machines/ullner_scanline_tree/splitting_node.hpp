@@ -70,8 +70,6 @@ class SplittingNode : public modules::Processor {
 
   /// The most segments its output queues held at once, each.
   int max_queued() const;
-  /// Frames whose dummy has passed it.
-  std::uint64_t frames_done() const { return frames_done_; }
   /// The line of the last segment it took.
   int line() const { return line_; }
   /// The most segments one line brought to its input: what a queue must hold so that one
@@ -91,7 +89,6 @@ class SplittingNode : public modules::Processor {
       tlm_utils::simple_initiator_socket<SplittingNode>("to_left"),
       tlm_utils::simple_initiator_socket<SplittingNode>("to_right")};
   scanline::SplittingProcessor sp_;
-  std::uint64_t frames_done_ = 0;
   int line_ = -1;
   std::uint32_t line_count_ = 0, line_max_ = 0;
   modules::Counter whole_{*this, "whole", "segments that went whole to one side"};

@@ -13,7 +13,6 @@ namespace rtsim::platform::ullner_scanline_tree {
 
 struct ChainsMessage {
   scanline::EdgeChains chains;
-  bool rescan = false;  ///< the version the scan converter scanned last frame, again
   /// Its size: 12 bits a number (L1344: the scan converter's edge-list memory).
   std::uint64_t bits() const {
     return static_cast<std::uint64_t>(chains.left.size() + chains.right.size()) *
