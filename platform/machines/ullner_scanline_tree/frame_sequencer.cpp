@@ -36,6 +36,7 @@ void FrameSequencer::run() {
       // A version done by the frame's start replaces the one on the screen.
       fresh = tc_.versions.has_item_by(start);
       if (fresh) {
+        tc_.release(current);
         current = tc_.versions.get(start, taken);
         clock_.catch_up(taken);
       } else {

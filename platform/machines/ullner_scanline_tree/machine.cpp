@@ -362,9 +362,7 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
     stages.sp_out = probe.stage("sp*.queue");
     stages.sp_link = probe.stage("sp*.link");
   }
-  // The versions of the scene, one a frame's view: the eye turned back from the scene's own
-  // camera by camera.spin a version, so that the last is the scene's (the image). A version
-  // differs only in the literals broadcast with the program (the view, the light).
+  // The versions of the scene, one a frame's view.
   const modules::ModuleParams top(r, "");
   const int versions = static_cast<int>(top.get(kFrames));
   const sc_core::sc_time period(1.0 / modules::ModuleParams(r, PixelConverterNode::kName)
@@ -389,22 +387,20 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
                   versions, broadcast_s, 1.0 / period.to_seconds(), frames_shown, kMaxFrames);
     throw InputError("frames", 0, why);
   }
+  // Version v: the scene loaded with the eye turned back from its own camera by camera.spin a
+  // version, so that the last is the scene's (the image); each version's polygons face its eye.
   const double spin = top.get(kSpin);
-  std::vector<scanline::TcLiterals> views;
-  views.reserve(static_cast<std::size_t>(versions));
-  {
-    const scenes::Camera own = scene.camera;
-    const raster::RasterMesh mesh =
-        versions > 1 ? raster::build_raster_mesh(scene, settings.mesh) : raster::RasterMesh{};
-    for (int v = 0; v + 1 < versions; ++v) {
-      scene.camera = turned_about_up(own, -(versions - 1 - v) * spin);
-      views.push_back(
-          scanline::tc_frame(scene, mesh, run.width(), run.height(), twin.settings.shade).literals);
-    }
+  const scenes::Camera own = scene.camera;
+  const raster::RasterMesh mesh =
+      versions > 1 ? raster::build_raster_mesh(scene, settings.mesh) : raster::RasterMesh{};
+  scanline::TcFrame turned_frame;  // the version being loaded, before the last
+  TcArray tc(TcArray::kName, run, versions, [&](int v) -> const scanline::TcFrame& {
+    if (v + 1 == versions) return frame;
+    scene.camera = turned_about_up(own, -(versions - 1 - v) * spin);
+    turned_frame = scanline::tc_frame(scene, mesh, run.width(), run.height(), twin.settings.shade);
     scene.camera = own;
-    views.push_back(frame.literals);
-  }
-  TcArray tc(TcArray::kName, run, frame, std::move(views));
+    return turned_frame;
+  });
   FrameSequencer sequencer(FrameSequencer::kName, run, tc, leaves.size(), frame.polygons.size(),
                            versions, period);
   std::vector<scanline::PixelRow> rows = scanline::blank_frame(

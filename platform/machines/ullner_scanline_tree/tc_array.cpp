@@ -41,24 +41,21 @@ std::uint64_t TcArray::motion_instructions(const params::ParamRegistry& registry
   return modules::ModuleParams(registry, kName).get(kMotion);
 }
 
-TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
-                 std::vector<scanline::TcLiterals> views)
+TcArray::TcArray(sc_core::sc_module_name name, MachineRun& run, int versions, Loader load)
     : modules::Processor(name, run.trace()),
       versions(std::string(this->name()) + ".versions", modules::TimedFifo<int>::kUnbounded),
       shown(std::string(this->name()) + ".shown", modules::TimedFifo<int>::kUnbounded),
       params_(run.registry(), this->name()),
       run_(run),
-      frame_(frame),
-      views_(std::move(views)),
-      program_(scanline::build_tc_program(views_.front())),
+      load_(std::move(load)),
       instruction_time_(params_.get(kInstructionTime)),
       motion_(params_.get(kMotion)),
-      chains_(views_.size()) {
+      chains_(static_cast<std::size_t>(versions)) {
   SC_THREAD(run);
 }
 
 void TcArray::run() {
-  for (std::size_t v = 0; v < views_.size(); ++v) {
+  for (std::size_t v = 0; v < chains_.size(); ++v) {
     if (v > 0) {
       // Version v - 1 is on the screen: the processors' memories are free for version v.
       const sc_core::sc_time since = clock_.now();
@@ -70,11 +67,13 @@ void TcArray::run() {
     }
     // The processors' memories, loaded by the bus (27 words a polygon, L1272), hear the program
     // in lockstep.
-    const scanline::TcFrame& frame = frame_;
+    const scanline::TcFrame& frame = load_(static_cast<int>(v));
     std::uint64_t executed = 0;
     // The view is in the program's literals (Figs. 3-10, 3-11): each version's own broadcast.
-    const scanline::BroadcastProgram program =
-        v == 0 ? program_ : scanline::build_tc_program(views_[v]);
+    // The first's is the array's program (its counts, Fig. 3-16).
+    scanline::BroadcastProgram later;
+    (v == 0 ? program_ : later) = scanline::build_tc_program(frame.literals);
+    const scanline::BroadcastProgram& program = v == 0 ? program_ : later;
     chains_[v] = scanline::transform_and_clip(program, frame.polygons, &executed);
     for (const auto& c : chains_[v])
       if (!c.empty()) ++polygons_out_;
@@ -83,7 +82,7 @@ void TcArray::run() {
     // The frame's counts in the terms every machine reports (stats.json `rays`): a vertex's
     // light term (Fig. 3-11: n.p, no shadow) is the light's work, as a shadow ray is a ray
     // tracer's.
-    if (views_[v].point_light)
+    if (frame.literals.point_light)
       run_.frame().counters().rays[static_cast<std::size_t>(RayKind::Shadow)] +=
           4 * frame.polygons.size();
     // Lockstep: the program's length at the instruction time, whatever the number of

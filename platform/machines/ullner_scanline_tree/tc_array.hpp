@@ -9,6 +9,7 @@
 // converters scan v - 1 out of their own memories (L1350) — and puts it in `versions` when done.
 // The frame sequencer (frame_sequencer.hpp) hands the scan converters the latest version at
 // every frame's start.
+#include <functional>
 #include <memory>
 #include <systemc>
 #include <vector>
@@ -34,19 +35,26 @@ class TcArray : public modules::Processor {
   static std::uint64_t motion_instructions(const params::ParamRegistry& registry);
 
   SC_HAS_PROCESS(TcArray);
-  /// `frame`: the scene as loaded; `views`: the literals (the view, the light) of each version,
-  /// in order (one for a single frame).
-  TcArray(sc_core::sc_module_name name, MachineRun& run, const scanline::TcFrame& frame,
-          std::vector<scanline::TcLiterals> views);
+  /// Version v of the scene as the host loads it (its view's literals, its polygons' normals
+  /// turned to that view's eye): valid until the next call.
+  using Loader = std::function<const scanline::TcFrame&(int v)>;
+  /// `versions` versions (one for a single frame), each loaded by `load` when its turn comes.
+  TcArray(sc_core::sc_module_name name, MachineRun& run, int versions, Loader load);
 
   /// A transformed version (its index) when its broadcast ended, for the frame sequencer.
   modules::TimedFifo<int> versions;
   /// From the frame sequencer: version v first on the screen (its index), so v + 1 may begin.
   modules::TimedFifo<int> shown;
 
-  /// Version v's edge chains, polygon by polygon (ready once v is in `versions`).
+  /// Version v's edge chains, polygon by polygon (ready once v is in `versions`, until
+  /// released).
   const std::vector<scanline::EdgeChains>& chains(int v) const {
     return chains_[static_cast<std::size_t>(v)];
+  }
+  /// Version v is off the screen for good: its chains are dropped (a run of many versions keeps
+  /// two at most).
+  void release(int v) {
+    std::vector<scanline::EdgeChains>().swap(chains_[static_cast<std::size_t>(v)]);
   }
   /// When the first version's broadcast ended: the first frame's start.
   sc_core::sc_time done() const { return done_; }
@@ -60,8 +68,7 @@ class TcArray : public modules::Processor {
 
   modules::ModuleParams params_;
   MachineRun& run_;
-  const scanline::TcFrame& frame_;
-  std::vector<scanline::TcLiterals> views_;
+  Loader load_;
   scanline::BroadcastProgram program_;
   sc_core::sc_time instruction_time_;
   std::uint64_t motion_;
