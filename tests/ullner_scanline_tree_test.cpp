@@ -267,6 +267,12 @@ TEST(UllnerScanlineTree, BadInputIsRefusedClearly) {
                                 " -p frames=1000 -p tc.motion_instructions=100000000 -q");
   EXPECT_EQ(frames.exit_code, 2) << frames.output;
   EXPECT_NE(frames.output.find("would show"), std::string::npos) << frames.output;
+  // More polygons than the host can start a SystemC thread for (two a polygon): refused, not a
+  // crash while the stacks are mapped.
+  const auto threads = run_rtsim("run --machine " + kMachine +
+                                 " --scene builtin:ullner-mosaic-751 --width 16 --height 16 -q");
+  EXPECT_EQ(threads.exit_code, 2) << threads.output;
+  EXPECT_NE(threads.output.find("at most 12000"), std::string::npos) << threads.output;
 }
 
 }  // namespace

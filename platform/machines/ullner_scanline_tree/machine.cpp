@@ -101,8 +101,14 @@ const modules::RealParam kSpin({.name = "camera.spin",
                                 .source = "study setting: a simple camera path"});
 /// The most frames a run shows (each takes every processor of the tree through a frame).
 constexpr int kMaxFrames = 10000;
-/// The most polygons a run takes: one T&C processor, scan converter and merging processor each.
+/// The most polygons the host loads (the estimate before tessellating, against a mesh without
+/// bound).
 constexpr std::size_t kMaxPolygons = 200000;
+/// The most polygons a simulated tree holds: each has a scan converter and a merging processor,
+/// a SystemC thread each, whose stacks the host maps. Past about 30,000 threads (16,384
+/// polygons did) the kernel's map count (vm.max_map_count 65530) runs out and SystemC cannot
+/// start the run; 12,000 polygons (24,000 threads, and a split root's) start.
+constexpr std::size_t kMaxSimulatedPolygons = 12000;
 
 struct TreeSettings {
   raster::MeshSettings mesh;
@@ -332,6 +338,14 @@ RunResult UllnerScanlineTree::run(scenes::Scene& scene, FunctionalTwin& twin,
   const TreeSettings settings = read_settings(r);
   const scanline::TcFrame frame =
       load_frame(scene, settings, run.width(), run.height(), twin.settings.shade);
+  if (frame.polygons.size() > kMaxSimulatedPolygons)
+    throw InputError(
+        scene.name, 0,
+        "ullner-scanline-tree: the scene makes " + std::to_string(frame.polygons.size()) +
+            " polygons; a simulated tree holds at most " + std::to_string(kMaxSimulatedPolygons) +
+            " (a SystemC thread a scan converter and a merging processor, and the "
+            "host maps their stacks); render --machine ullner-scanline-tree draws "
+            "larger scenes");
   const auto leaves = assign_leaves(frame, settings);
   const int levels = settings.split_levels;
 
