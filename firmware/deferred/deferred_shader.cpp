@@ -11,7 +11,6 @@ namespace {
 
 /// A pixel between the parts of Fig. 7: what pre-light leaves for the light loop and post-light.
 struct PixelState {
-  bool covered = false;
   std::uint8_t material = 0;
   Vec3 position{0.0};
   Vec3 normal{0.0};
@@ -53,7 +52,10 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
   RegionWork work;
   const auto& g = in.at;
   colours.assign(in.words.size(), setup.background);
-  std::vector<PixelState> px(in.words.size());
+  // The covered pixels' states, in row order (a region partly covered, or a small tile of a
+  // larger buffer, costs what it covers).
+  std::vector<PixelState> px;
+  std::vector<std::size_t> at;
   const auto uniforms = [&](std::uint8_t shader) -> const MaterialUniforms& {
     static const MaterialUniforms kDefault{};
     return shader >= 1 && shader <= setup.materials.size() ? setup.materials[shader - 1u]
@@ -68,8 +70,8 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
       const std::size_t i = static_cast<std::size_t>(y * raster::kRegionWidth + x);
       const raster::Appearance a = raster::unpack(in.words[i]);
       if (!a.covered() || a.depth == raster::kBackgroundDepth) continue;
-      PixelState& p = px[i];
-      p.covered = true;
+      at.push_back(i);
+      PixelState& p = px.emplace_back();
       ++work.lit_pixels;
       p.material = a.shader;
       p.position = view.world_at(g.screen_x(x), g.screen_y(y), view.depth_of(a.depth));
@@ -102,9 +104,7 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
   for (std::size_t l = 0; l < setup.lights.size(); ++l) {
     const raster::DepthMap* map = l < tables.shadow.size() ? tables.shadow[l] : nullptr;
     const Color light = intensity * setup.lights[l].color;
-    for (std::size_t i = 0; i < px.size(); ++i) {
-      PixelState& p = px[i];
-      if (!p.covered) continue;
+    for (PixelState& p : px) {
       if (map) count_lookup(Lookup::Shadow);
       const Vec3 to_light = setup.lights[l].position - p.position;
       const double dist = glm::length(to_light);
@@ -124,9 +124,9 @@ RegionWork shade_region(const raster::RegionSamples& in, const raster::ViewTrans
 
   // Post-light, every function's pixels: Phong (R I_a + k_d n.l + k_s (r.v)^n, seed 000 L414-
   // L448 as the ray tracers shade), the alley adding its reflection map weighted by k_s.
-  for (std::size_t i = 0; i < px.size(); ++i) {
-    const PixelState& p = px[i];
-    if (!p.covered) continue;
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    const PixelState& p = px[k];
+    const std::size_t i = at[k];
     const MaterialUniforms& m = uniforms(p.material);
     Color c = setup.shade.ambient * m.kd * p.base + m.kd * p.base * p.diffuse + m.ks * p.specular;
     if (m.function == ShadingFunction::Alley && tables.reflection) {

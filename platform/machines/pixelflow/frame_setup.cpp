@@ -3,25 +3,9 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "common/suggest.hpp"
+#include "firmware/deferred/scene_materials.hpp"
 
 namespace rtsim::platform::pixelflow {
-
-namespace {
-
-/// The shading function material `m` names; InputError for a name no function has.
-deferred::ShadingFunction function_of(const scenes::Scene& scene, std::uint32_t m) {
-  const std::string& name = raster::surface_shading(scene, m).shader;
-  if (const auto f = deferred::shading_function_named(name)) return *f;
-  const std::vector<std::string_view> names(deferred::kShadingFunctionNames.begin(),
-                                            deferred::kShadingFunctionNames.end());
-  throw InputError(scene.name, 0,
-                   "pixelflow: material " + std::to_string(m) + " asks for shading function '" +
-                       name + "', which PixelFlow's shading nodes do not have" +
-                       did_you_mean(name, names));
-}
-
-}  // namespace
 
 FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& settings, int width,
                             int height, int spp) {
@@ -29,12 +13,7 @@ FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& set
   f.width = width;
   f.height = height;
   f.spp = spp;
-  // Fig. 8's shader id is one byte and 0 is the background (appearance.hpp).
-  if (scene.materials.size() > 255)
-    throw InputError(scene.name, 0,
-                     "pixelflow: the scene has " + std::to_string(scene.materials.size()) +
-                         " materials; a sample's shader id is one byte (seed 004 Fig. 8, L110), "
-                         "so at most 255 can be told apart");
+  const deferred::SceneMaterials materials = deferred::scene_materials(scene, "pixelflow");
   // The tessellation's size, bounded before anything is allocated: a scene of many spheres at
   // a fine mesh.sphere_segments would otherwise take all the memory there is.
   const double estimate = raster::estimated_triangles(scene, settings.mesh);
@@ -54,22 +33,16 @@ FrameSetup make_frame_setup(const scenes::Scene& scene, const FrameSettings& set
   f.shading.background = scene.background;
   f.shading.shadow_bias_texels = settings.shadow_bias_texels;
   f.shading.bump_scale = settings.bump_scale;
+  f.words = materials.words;
+  f.shading.materials = materials.uniforms;
+  f.uses_textures = materials.uses_textures;
   std::vector<bool> not_alley(scene.materials.size(), true);
   bool any_alley = false;
-  for (std::uint32_t m = 0; m < scene.materials.size(); ++m) {
-    const auto& mat = scene.materials[m];
-    const deferred::ShadingFunction fn = function_of(scene, m);
-    f.words.push_back({static_cast<std::uint8_t>(m + 1),
-                       {raster::colour_byte(mat.color.r), raster::colour_byte(mat.color.g),
-                        raster::colour_byte(mat.color.b)}});
-    f.shading.materials.push_back({fn, mat.kd, mat.ks, mat.shine});
-    if (fn == deferred::ShadingFunction::Pin || fn == deferred::ShadingFunction::Alley)
-      f.uses_textures = true;
-    if (fn == deferred::ShadingFunction::Alley) {
+  for (std::size_t m = 0; m < materials.alley.size(); ++m)
+    if (materials.alley[m]) {
       not_alley[m] = false;
       any_alley = true;
     }
-  }
   if (f.uses_textures) f.textures = deferred::make_bowling_textures();
   f.camera = raster::ViewTransform::camera(scene.camera, width, height, f.mesh.bounds);
   // A shadow map covers what the camera sees: aimed from the light at the box of the vertices
