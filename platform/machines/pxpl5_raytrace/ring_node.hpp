@@ -6,8 +6,7 @@
 #include <string>
 #include <systemc>
 
-#include "modules/message_channel.hpp"
-#include "modules/processor.hpp"
+#include "modules/inbox_processor.hpp"
 #include "modules/ring_channel.hpp"
 #include "params/registry.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -28,20 +27,14 @@ struct WireSizes {
   static WireSizes read(const params::ParamRegistry& r);
 };
 
-class RingNode : public modules::Processor {
+class RingNode : public modules::InboxProcessor<Message> {
  public:
-  modules::MessageQueue<Message> inbox;
-
   int index() const { return index_; }
 
  protected:
   RingNode(const sc_core::sc_module_name& name, MachineTrace& trace,
            modules::RingChannel<Message>& ring, int index, const WireSizes& sizes)
-      : modules::Processor(name, trace),
-        inbox("inbox", modules::TimedFifo<Message>::kUnbounded),
-        ring_(ring),
-        index_(index),
-        sizes_(sizes) {
+      : modules::InboxProcessor<Message>(name, trace), ring_(ring), index_(index), sizes_(sizes) {
     ring.attach(static_cast<std::size_t>(index), inbox);
   }
 
@@ -53,24 +46,6 @@ class RingNode : public modules::Processor {
     ring_.send(static_cast<std::size_t>(index_), static_cast<std::size_t>(to), std::move(m), bytes,
                clock_.now(), cls);
   }
-
-  /// The next message that has arrived, waiting for one (idle, `why`) if none has.
-  Message receive(Wait why) {
-    const sc_core::sc_time since = clock_.now();
-    modules::wait_for_item(inbox.fifo, clock_);
-    waited_since(since, why);
-    // A message stamped ahead (it is still on the ring until then).
-    if (auto t = inbox.fifo.next_item_time(); t && *t > clock_.now()) idle_until(*t, why);
-    last_delivered_ = inbox.fifo.next_item_time().value_or(clock_.now());
-    sc_core::sc_time taken;
-    Message m = inbox.fifo.get(clock_.now(), taken);
-    clock_.catch_up(taken);
-    last_taken_ = taken;
-    return m;
-  }
-  /// The message receive() returned last: when the ring delivered it into the inbox, and when
-  /// this node took it out (--latency-probe).
-  sc_core::sc_time last_delivered_, last_taken_;
 
  private:
   modules::RingChannel<Message>& ring_;
