@@ -556,7 +556,7 @@ void modules_section(HtmlReport& page, const modules::UnitSchema& units, const j
       std::string queue;
       if (const json* q = find(m, "queue"))
         queue = "capacity " + value_text((*q)["capacity"]) + ", mean " +
-                format_number(num(*q, "mean_occupancy"), 4) + ", max " +
+                format_significant(num(*q, "mean_occupancy"), 4) + ", max " +
                 value_text((*q)["max_occupancy"]);
       rows.push_back({name, format_seconds(num(m, "busy_s", 0.0)),
                       format_number(100.0 * num(m, "utilization", 0.0), 4) + " %", queue, other});
@@ -574,7 +574,7 @@ void modules_section(HtmlReport& page, const modules::UnitSchema& units, const j
                format_number(100.0 * num(*u, "max", 0.0), 4) + " % (" +
                value_text((*u)["max_instance"]) + ")";
       if (find(c, "queue.mean_occupancy"))
-        queue = "mean " + format_number(agg("queue.mean_occupancy", "mean"), 4) + ", max " +
+        queue = "mean " + format_significant(agg("queue.mean_occupancy", "mean"), 4) + ", max " +
                 format_number(agg("queue.max_occupancy", "max"), 4);
       for (const auto& [k, a] : c.items()) {
         if (k == "instances" || k == "busy_s" || k == "utilization" || k.rfind("queue.", 0) == 0 ||

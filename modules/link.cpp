@@ -50,6 +50,12 @@ sc_core::sc_time read_bit_time(const ModuleParams& params) {
 }
 }  // namespace
 
+void Link::check_params(const ModuleParams& params) {
+  (void)params.get_time(kLatency);
+  (void)params.get_count(kLanes);
+  (void)read_bit_time(params);
+}
+
 Link::Link(std::string name, const ModuleParams& params)
     : StatGroup(std::move(name)),
       latency_(params.get_time(kLatency)),

@@ -35,6 +35,10 @@ class Link : public StatGroup {
   /// Declares `latency`, `lanes` and `bit_rate` (or `bit_time`) under the link's path.
   static void declare_params(const ParamDecls& link, const Defaults& d);
 
+  /// Reads its parameters under `params` without building it: a machine that may not build the
+  /// link reads them anyway, so a bad value is an error whichever layout is chosen.
+  static void check_params(const ModuleParams& params);
+
   /// Reads its parameters under `params` (its name: "pert0.link.shade_to_shell").
   explicit Link(const ModuleParams& params) : Link(params.path(), params) {}
   /// A link named `name` whose parameters are its class's, under `params` (the pipeline's

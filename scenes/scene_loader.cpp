@@ -11,6 +11,7 @@
 #include "scenes/generators/default_scene.hpp"
 #include "scenes/generators/newell_teapot.hpp"
 #include "scenes/generators/npp_scene.hpp"
+#include "scenes/generators/plb_head.hpp"
 #include "scenes/generators/spd_teapot.hpp"
 #include "scenes/generators/ullner_cubes.hpp"
 #include "scenes/generators/ullner_mosaic.hpp"
@@ -87,6 +88,10 @@ const std::vector<BuiltinScene>& builtin_scenes() {
                             " spheres (" + std::to_string(64 * pp) + "), " + tree + " shell tree"});
       }
     }
+    list.push_back({"plb-head",
+                    "sort-first's stand-in for the coherence study's PLB head (seed 004 L570): a "
+                    "closed head-like surface of 59,536 triangles at the screen's centre, 1 "
+                    "light"});
     list.push_back({std::string(kUllnerMosaicPrefix) + "64",
                     "the scan-line tree's bandwidth scene: one sheet facing the eye in 64 "
                     "columns x 8 rows of quads, 128 visible triangles' segments a line; any "
@@ -109,6 +114,7 @@ Scene make_builtin_scene(std::string_view name, const GeneratorSeeds& seeds) {
   if (name == "bowling") return make_bowling();
   if (name == "spd-teapot") return make_spd_teapot();
   if (name == "spd-teapot-patches") return make_spd_teapot_patches();
+  if (name == "plb-head") return make_plb_head();
   int n = 0;
   int pp = 0;
   if (parse_npp_name(name, n, pp)) return make_npp_scene(n, pp, seeds.npp);

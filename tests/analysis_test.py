@@ -45,6 +45,8 @@ import wang_accuracy  # noqa: E402
 import wang_arithmetic  # noqa: E402
 import wang_substages  # noqa: E402
 import pixelflow_passes  # noqa: E402
+import sort_first_frames  # noqa: E402
+import sort_first_migration  # noqa: E402
 
 PYTHON = sys.executable
 
@@ -706,6 +708,71 @@ class ArrayScalingTest(ScratchTest):
         r = run_script("array_scaling.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("array.rows", r.stderr)
+
+
+class SortFirstMigrationTest(ScratchTest):
+    def write(self, points):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for i, (side, spin, frames) in enumerate(points):
+                d = f"points/{i:04d}"
+                os.makedirs(os.path.join(self.dir, d))
+                stats = {"sort_first": {
+                    "per_frame": [{"migrated_percent": p} for p in frames],
+                    "migrated_percent": {"mean": sum(frames[1:]) / (len(frames) - 1),
+                                         "p95": max(frames[1:])}}}
+                with open(os.path.join(self.dir, d, "stats.json"), "w") as s:
+                    json.dump(stats, s)
+                f.write(json.dumps({"status": "ok", "dir": d, "regions": side,
+                                    "camera.spin": spin}) + "\n")
+
+    def test_series_table_and_png(self):
+        self.write([(4, 4.5, [120.0, 4.0, 5.0]), (8, 4.5, [130.0, 8.0, 9.0]),
+                    (4, 9, [120.0, 8.0, 9.0])])
+        data = sort_first_migration.points(self.dir)
+        # The first frame (the random distribution's) is left out.
+        self.assertEqual(data[4.5][4], ([4.0, 5.0], 4.5, 5.0))
+        out = os.path.join(self.dir, "f.png")
+        r = run_script("sort_first_migration.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| 4.5 | 4.50 (5.00) | 8.50 (9.00) |", r.stdout)
+        self.assertIn("| 9 | 8.50 (9.00) | - |", r.stdout)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            f.write(json.dumps({"status": "ok", "dir": "points/0000", "regions": 4,
+                                "camera.spin": 4.5}) + "\n")
+        os.makedirs(os.path.join(self.dir, "points", "0000"))
+        with open(os.path.join(self.dir, "points", "0000", "stats.json"), "w") as s:
+            s.write("{}")
+        r = run_script("sort_first_migration.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("sort_first.per_frame", r.stderr)
+
+
+class SortFirstFramesTest(ScratchTest):
+    def test_rows_and_png(self):
+        frames = [{"frame": f, "migrated_percent": p, "time_s": 0.002, "load_imbalance": 2.0,
+                   "bytes": {"view": 64, "redistribution": b, "pixels": 300, "partial": 0}}
+                  for f, p, b in ((0, 120.0, 5000), (1, 4.0, 200), (2, 5.0, 250))]
+        path = os.path.join(self.dir, "stats.json")
+        with open(path, "w") as f:
+            json.dump({"scene": "builtin:plb-head", "sort_first": {
+                "sort": "first", "region_grid": "4x4", "interconnect": "ring",
+                "per_frame": frames, "migrated_percent": {"mean": 4.5, "p95": 5.0}}}, f)
+        _, stats = common.read_stats(path)
+        rows = sort_first_frames.frame_rows(stats)
+        self.assertEqual(rows[1][:2], (1, 4.0))
+        self.assertEqual(rows[2][2]["redistribution"], 250.0)
+        out = os.path.join(self.dir, "f.png")
+        r = run_script("sort_first_frames.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGoodPng(out)
+        with open(path, "w") as f:
+            json.dump({"sort_first": {}}, f)
+        r = run_script("sort_first_frames.py", path, out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("sort_first.per_frame", r.stderr)
 
 
 class ParetoPlotTest(ScratchTest):

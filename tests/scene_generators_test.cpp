@@ -279,7 +279,7 @@ TEST(SceneGenerators, GeneratorsAreByteForByteDeterministicAndRoundTrip) {
 
 TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   const auto names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 29u);
+  ASSERT_EQ(names.size(), 30u);
   EXPECT_EQ(names[0], "default");
   EXPECT_EQ(names[1], "ullner-cubes");
   EXPECT_EQ(names[2], "ullner-random-100");
@@ -291,7 +291,10 @@ TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   EXPECT_EQ(names[11], "spd-teapot-patches");
   EXPECT_EQ(names[12], "bowling");
   EXPECT_NE(std::find(names.begin(), names.end(), "npp-812"), names.end());
-  EXPECT_EQ(names[28], "ullner-mosaic-64");
+  EXPECT_EQ(names[28], "plb-head");
+  EXPECT_EQ(names[29], "ullner-mosaic-64");
+  // plb-head: the PLB head's stand-in, about its 59,592 polygons (seed 004 L570).
+  EXPECT_EQ(load_scene("builtin:plb-head").polygons.size(), 59536u);
   // ullner-mosaic-N: N columns of 8 quads; N within a line's 4096 steps.
   EXPECT_EQ(load_scene("builtin:ullner-mosaic-10").polygons.size(), 80u);
   EXPECT_THROW(load_scene("builtin:ullner-mosaic-5000"), rtsim::InputError);

@@ -89,6 +89,7 @@ const std::map<std::string, std::string> kSlowed = {
     {"wang-bezier", "-p host.clock=\"35 MHz\""},
     {"pixelflow", "-p rasterizer.triangle_time=\"8.5 us\""},
     {"ullner-scanline-tree", "-p tc.instruction_time=\"65 us\""},
+    {"sort-first", "-p renderer.triangle_time=\"40 us\""},
 };
 
 TEST_P(SceneSkipping, AnIdleModuleCostsNoEvents) {
