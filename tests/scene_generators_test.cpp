@@ -299,6 +299,13 @@ TEST(SceneLoader, BuiltinNamesAndDescriptions) {
   EXPECT_EQ(load_scene("builtin:ullner-mosaic-10").polygons.size(), 80u);
   EXPECT_THROW(load_scene("builtin:ullner-mosaic-5000"), rtsim::InputError);
   EXPECT_THROW(load_scene("builtin:ullner-mosaic-0"), rtsim::InputError);
+  // A number past the range, however long, gets the range, not "unknown scene".
+  try {
+    load_scene("builtin:ullner-mosaic-12345678901");
+    ADD_FAILURE() << "an 11-digit mosaic was accepted";
+  } catch (const rtsim::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("takes N from"), std::string::npos) << e.what();
+  }
   for (const auto& s : builtin_scenes()) {
     EXPECT_FALSE(s.description.empty());
     EXPECT_EQ(s.description.find('\n'), std::string::npos);

@@ -49,10 +49,7 @@ void SplittingNode::check_params(const params::ParamRegistry& registry) {
   const modules::ModuleParams p(registry, kClass);
   (void)p.get(kStageTime);
   (void)p.get(kQueueDepth);
-  const std::string link = std::string(kClass) + "." + kLink;
-  (void)registry.get_time_ps(link + ".latency");
-  (void)registry.get_int(link + ".lanes");
-  (void)registry.get_time_ps(link + ".bit_time");
+  modules::Link::check_params(p.sub(kLink));
 }
 
 SplittingOutput::SplittingOutput(sc_core::sc_module_name name, MachineRun& run, std::size_t depth,
