@@ -7,6 +7,11 @@
 // host says how many will come and they have, classifies those too, renders its region from
 // what it holds (`triangle_time` a triangle set up, `sample_time` a covered sample,
 // `shade_time` a shaded pixel) and sends its finished pixels to the frame buffer.
+//
+// With `sort = middle` it keeps its initial share and sends every primitive to every other
+// region it covers, each frame; with `sort = last` it sends nothing, renders its share over the
+// whole screen and sends its partial image, tile by tile, to be composited
+// (firmware/sortfirst/region_store.hpp's Sort).
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -43,8 +48,8 @@ class RegionRenderer : public InterconnectNode {
   static void declare_params(const modules::ParamDecls& renderer);
 
   SC_HAS_PROCESS(RegionRenderer);
-  /// Region `region` (its ring node too); `host` the host's ring node; its share of the initial
-  /// distribution loaded from `initial` (a region a primitive).
+  /// Region `region` (its interconnect node too); `host` the host's node; `sort` the layout; its
+  /// share of the initial distribution loaded from `initial` (a region a primitive).
   RegionRenderer(sc_core::sc_module_name name, MachineRun& run, Interconnect& net,
                  const FrameData& data, sortfirst::Sort sort, int region, int host, int frames,
                  const std::vector<int>& initial, MigrationFaults& faults,
