@@ -256,6 +256,11 @@ TEST(SortFirst, ARecordCorruptedInFlightChangesTheImage) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("words of records"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "image.png"));
+  // A fly path whose dolly brings the eye onto the point it looks at: exit 2, before the run.
+  const auto eye = run_rtsim("run --machine " + kMachine + " " + path +
+                             " -p camera.path=fly -p camera.dolly=-0.5 -p camera.sequence=3 -q");
+  EXPECT_EQ(eye.exit_code, 2) << eye.output;
+  EXPECT_NE(eye.output.find("camera.dolly"), std::string::npos) << eye.output;
 }
 
 TEST(SortFirst, SortMiddleRoutesEveryPrimitiveAndSortLastCompositesWholeScreens) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <systemc>
@@ -221,6 +222,17 @@ RunResult SortFirst::run(scenes::Scene& scene, FunctionalTwin& twin, const param
                         .spin = top.get(kSpin),
                         .dolly = top.get(kDolly),
                         .sequence = static_cast<int>(top.get(kSequence))};
+  // A fly path's eye stays on its side of the point it looks at: at the start of the longest
+  // sequence it is 1 + dolly (frames before its end) times as far as the scene's eye.
+  const int longest = std::min(path.sequence, frames) - 1;
+  if (path.fly && 1.0 + path.dolly * longest < 0.01) {
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "sort-first: camera.dolly %g over a sequence of %d frames brings the eye onto "
+                  "(or past) the point it looks at; a dolly above %.4g, or shorter sequences",
+                  path.dolly, longest + 1, -0.99 / longest);
+    throw InputError("camera.dolly", 0, why);
+  }
   const sortfirst::Sort sort = sort_of(top.get(kSort));
   const bool mesh = top.get(kInterconnect) == "mesh";
   FrameData data;
