@@ -58,10 +58,7 @@ ClassifyResult RegionStore::classify_all(const raster::ViewTransform& view) {
           const int to = regions_.index(r, c);
           if (to != region_ && !h.range.covers(r, c)) out.sends.push_back({to, h.record});
         }
-      if (owner != region_) {
-        ++out.handed_over;
-        h.master = false;
-      }
+      if (owner != region_) h.master = false;
     } else if (owner == region_) {
       h.master = true;
     }

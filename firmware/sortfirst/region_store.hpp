@@ -52,7 +52,6 @@ struct ClassifyResult {
   std::vector<Migration> sends;      ///< in primitive order, then region order
   std::uint64_t classified = 0;      ///< primitives classified
   std::uint64_t dropped_copies = 0;  ///< copies no longer covering the region
-  std::uint64_t handed_over = 0;     ///< masters whose ownership moved to another region
 };
 
 class RegionStore {

@@ -49,7 +49,6 @@ using FrameBytes = std::array<std::uint64_t, kMessageKinds>;
 
 class InterconnectNode : public modules::InboxProcessor<Message> {
  public:
-  int node() const { return node_; }
   const std::map<int, FrameBytes>& bytes_by_frame() const { return bytes_; }
 
  protected:

@@ -262,6 +262,10 @@ RunResult SortFirst::run(scenes::Scene& scene, FunctionalTwin& twin, const param
     views.push_back(frame_view(scene, data.mesh, run.width(), run.height(), f, frames, path));
   const std::vector<int> initial = sortfirst::random_distribution(
       data.mesh.triangles.size(), regions, static_cast<std::uint64_t>(top.get(kSeed)));
+  // Each renderer's share of it, the primitives' database indices.
+  std::vector<std::vector<std::uint32_t>> shares(static_cast<std::size_t>(regions));
+  for (std::uint32_t i = 0; i < initial.size(); ++i)
+    shares[static_cast<std::size_t>(initial[i])].push_back(i);
 
   // In-flight faults on migrating records; the machine has no memory at rest to corrupt.
   std::vector<MemoryFault> at_rest = opts.faults;
@@ -302,7 +306,7 @@ RunResult SortFirst::run(scenes::Scene& scene, FunctionalTwin& twin, const param
   for (int k = 0; k < regions; ++k)
     renderers.push_back(std::make_unique<RegionRenderer>(
         (std::string(RegionRenderer::kClass) + std::to_string(k)).c_str(), run, *net, data, sort, k,
-        regions, frames, initial, faults, stages));
+        regions, frames, shares[static_cast<std::size_t>(k)], faults, stages));
   FrameHost host(FrameHost::kName, run, *net, data, sort, regions, regions, views, stages);
   run.simulate();
 

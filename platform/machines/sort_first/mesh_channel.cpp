@@ -98,7 +98,6 @@ void MeshChannel::run() {
     const modules::Direction d = topology_.next_hop(at, topology_.node(static_cast<int>(p.to)));
     modules::Link& link = *links_[h.node * 4 + static_cast<std::size_t>(d)];
     const modules::GridNode next = *topology_.neighbour(at, d);
-    ++hops_;
     push(link.transfer(p.bits, h.at), h.id, static_cast<std::size_t>(topology_.index(next)));
   }
 }

@@ -45,9 +45,6 @@ class MeshChannel : public sc_core::sc_module {
   void send(std::size_t from, std::size_t to, Message msg, std::uint64_t bytes,
             const sc_core::sc_time& ready);
 
-  /// Hops messages took over mesh links (not the host bus).
-  std::uint64_t hops() const { return hops_; }
-
  private:
   struct Hop {
     sc_core::sc_time at;
@@ -75,7 +72,7 @@ class MeshChannel : public sc_core::sc_module {
   std::vector<std::unique_ptr<tlm_utils::simple_initiator_socket<MeshChannel>>> out_;
   std::priority_queue<Hop, std::vector<Hop>, Later> hops_queue_;
   std::unordered_map<std::uint64_t, Pending> pending_;
-  std::uint64_t next_id_ = 0, next_seq_ = 0, hops_ = 0;
+  std::uint64_t next_id_ = 0, next_seq_ = 0;
   sc_core::sc_event put_event_;
 };
 

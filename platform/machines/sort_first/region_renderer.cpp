@@ -52,8 +52,8 @@ void RegionRenderer::declare_params(const modules::ParamDecls& d) {
 
 RegionRenderer::RegionRenderer(sc_core::sc_module_name name, MachineRun& run, Interconnect& net,
                                const FrameData& data, sortfirst::Sort sort, int region, int host,
-                               int frames, const std::vector<int>& initial, MigrationFaults& faults,
-                               const ProbeStages& stages)
+                               int frames, const std::vector<std::uint32_t>& share,
+                               MigrationFaults& faults, const ProbeStages& stages)
     : InterconnectNode(name, run.trace(), net, region),
       // Every renderer reads its class's parameters ("renderer.triangle_time").
       params_(run.registry(), kClass),
@@ -73,11 +73,9 @@ RegionRenderer::RegionRenderer(sc_core::sc_module_name name, MachineRun& run, In
       sample_time_(params_.get(kSampleTime)),
       shade_time_(params_.get(kShadeTime)),
       sent_by_frame_(static_cast<std::size_t>(frames), 0),
-      busy_by_frame_(static_cast<std::size_t>(frames), sc_core::SC_ZERO_TIME),
-      triangles_by_frame_(static_cast<std::size_t>(frames), 0) {
+      busy_by_frame_(static_cast<std::size_t>(frames), sc_core::SC_ZERO_TIME) {
   // The database initially partitioned among the processors (L499, L562).
-  for (std::uint32_t i = 0; i < primitives_; ++i)
-    if (initial[i] == region) store_.load(sortfirst::pack(data.mesh.triangles[i], i));
+  for (const std::uint32_t i : share) store_.load(sortfirst::pack(data.mesh.triangles[i], i));
   SC_THREAD(run);
 }
 
@@ -116,12 +114,10 @@ void RegionRenderer::busy(const sc_core::sc_time& t, std::string_view what, int 
   busy_by_frame_[static_cast<std::size_t>(frame)] += t;
 }
 
-void RegionRenderer::count_work(const sortfirst::RegionWork& w, std::uint64_t pixels,
-                                std::size_t fi) {
+void RegionRenderer::count_work(const sortfirst::RegionWork& w, std::uint64_t pixels) {
   triangles_ += w.triangles;
   samples_ += w.samples;
   shaded_ += w.shaded;
-  triangles_by_frame_[fi] = w.triangles;
   // The frame's counts in the terms every machine reports (stats.json `rays`, `hits`), over
   // every frame of the path: a pixel is a primary visibility query, a shaded pixel's light
   // term the light's work as a shadow ray is a ray tracer's (no shadow is computed).
@@ -186,7 +182,7 @@ void RegionRenderer::run() {
       // Its share over the whole screen, each tile of the partial image sent to be composited.
       sortfirst::PartialImage partial = sortfirst::render_partial(
           store_.to_render(), view, data_.regions.width, data_.regions.height, data_.shading.words);
-      count_work(partial.work, partial.work.shaded, fi);
+      count_work(partial.work, partial.work.shaded);
       busy(render_time(partial.work), "render", f);
       for (auto& tile : partial.tiles) {
         Message m;
@@ -199,7 +195,7 @@ void RegionRenderer::run() {
       // Its region, from what it holds (L505).
       auto pixels = std::make_shared<sortfirst::RegionPixels>(sortfirst::render_region(
           store_.to_render(), view, data_.regions, region_, data_.shading));
-      count_work(pixels->work, pixels->pixels.size(), fi);
+      count_work(pixels->work, pixels->pixels.size());
       busy(render_time(pixels->work), "render", f);
       Message m;
       m.kind = MessageKind::kPixels;

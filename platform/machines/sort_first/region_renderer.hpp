@@ -49,16 +49,15 @@ class RegionRenderer : public InterconnectNode {
 
   SC_HAS_PROCESS(RegionRenderer);
   /// Region `region` (its interconnect node too); `host` the host's node; `sort` the layout; its
-  /// share of the initial distribution loaded from `initial` (a region a primitive).
+  /// share of the initial distribution (database indices) loaded from `share`.
   RegionRenderer(sc_core::sc_module_name name, MachineRun& run, Interconnect& net,
                  const FrameData& data, sortfirst::Sort sort, int region, int host, int frames,
-                 const std::vector<int>& initial, MigrationFaults& faults,
+                 const std::vector<std::uint32_t>& share, MigrationFaults& faults,
                  const ProbeStages& stages);
 
   /// Per frame: records it sent, its busy time.
   const std::vector<std::uint64_t>& sent_by_frame() const { return sent_by_frame_; }
   const std::vector<sc_core::sc_time>& busy_by_frame() const { return busy_by_frame_; }
-  const std::vector<std::uint64_t>& triangles_by_frame() const { return triangles_by_frame_; }
 
  private:
   void run();
@@ -69,7 +68,7 @@ class RegionRenderer : public InterconnectNode {
   /// Sends this frame's records to their regions, tells the host, and takes what comes.
   void redistribute(int f, const raster::ViewTransform& view,
                     std::vector<sortfirst::Migration>& sends);
-  void count_work(const sortfirst::RegionWork& w, std::uint64_t pixels, std::size_t fi);
+  void count_work(const sortfirst::RegionWork& w, std::uint64_t pixels);
   sc_core::sc_time render_time(const sortfirst::RegionWork& w) const;
 
   modules::ModuleParams params_;
@@ -92,7 +91,6 @@ class RegionRenderer : public InterconnectNode {
   std::map<int, std::vector<sortfirst::PrimitiveRecord>> arrived_;
   std::vector<std::uint64_t> sent_by_frame_;
   std::vector<sc_core::sc_time> busy_by_frame_;
-  std::vector<std::uint64_t> triangles_by_frame_;
   modules::Counter classified_{*this, "classified", "primitives classified by screen box"};
   modules::Counter sent_{*this, "records_sent", "primitive records sent to other regions"};
   modules::Counter received_{*this, "records_received", "primitive records that arrived"};
