@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -63,6 +64,7 @@ bool clip_segment(Vec3& a, Vec3& b, const std::array<glm::dvec4, 5>& planes) {
 struct Projection {
   const raster::ViewTransform& view;
   double units_per_pixel;
+  double near, far;  ///< the depths mapped to 0 and 2^16 - 1
   ScreenPoint operator()(const Vec3& eye) const {
     const auto unit = [](double v) {
       return static_cast<std::int32_t>(
@@ -70,8 +72,8 @@ struct Projection {
     };
     const double sx = view.screen_x(eye), sy = view.screen_y(eye);
     // Projective depth: 1/z between 1/near (0) and 1/far (2^16 - 1).
-    const double inv = 1.0 / std::max(eye.z, view.near);
-    const double depth = (1.0 / view.near - inv) / (1.0 / view.near - 1.0 / view.far);
+    const double inv = 1.0 / std::max(eye.z, near);
+    const double depth = (1.0 / near - inv) / (1.0 / near - 1.0 / far);
     return {unit((sx + view.width) * units_per_pixel), unit((sy + view.height) * units_per_pixel),
             unit(depth * (kScreenUnits - 1))};
   }
@@ -99,24 +101,27 @@ ScreenScene to_screen(const scenes::Scene& scene, const raster::RasterMesh& mesh
   out.origin_x = -view.width;
   out.origin_y = -view.height;
   const auto planes = clip_planes(view);
-  const Projection project{view, out.units_per_pixel};
-  // A hiding polygon (world space), clipped and projected.
+  // Everything is clipped in eye space first; the depths kept then set the depth's range, so
+  // the 16 bits cover the scene's own depth and not the view's whole near-far range.
+  std::vector<std::vector<Vec3>> eye_polygons;
+  std::vector<std::pair<Vec3, Vec3>> eye_segments;
+  double z_min = std::numeric_limits<double>::infinity(), z_max = 0.0;
+  const auto depth_range = [&](const Vec3& p) {
+    z_min = std::min(z_min, p.z);
+    z_max = std::max(z_max, p.z);
+  };
+  // A hiding polygon (world space), clipped.
   const auto add_polygon = [&](const std::vector<Vec3>& world) {
     std::vector<Vec3> eye;
     for (const Vec3& p : world) eye.push_back(view.to_eye(p));
-    const std::vector<Vec3> kept = clip_polygon(eye, planes);
+    std::vector<Vec3> kept = clip_polygon(eye, planes);
     if (kept.size() < 3) {
       ++out.culled;
       return;
     }
     if (kept.size() != eye.size()) ++out.clipped;
-    std::vector<ScreenPoint> screen;
-    for (const Vec3& p : kept) {
-      const ScreenPoint s = project(p);
-      if (screen.empty() || s != screen.back()) screen.push_back(s);
-    }
-    while (screen.size() > 1 && screen.front() == screen.back()) screen.pop_back();
-    if (screen.size() >= 3) out.polygons.push_back(std::move(screen));
+    for (const Vec3& p : kept) depth_range(p);
+    eye_polygons.push_back(std::move(kept));
   };
   // A segment (world space): clipped and projected; shared edges once.
   std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, bool> seen;
@@ -126,9 +131,9 @@ ScreenScene to_screen(const scenes::Scene& scene, const raster::RasterMesh& mesh
     if (!seen.emplace(std::make_pair(ka, kb), true).second) return;
     Vec3 a = view.to_eye(wa), b = view.to_eye(wb);
     if (!clip_segment(a, b, planes)) return;
-    const ScreenPoint sa = project(a), sb = project(b);
-    if (sa == sb) return;
-    out.segments.push_back({sa, sb, static_cast<std::uint32_t>(out.segments.size())});
+    depth_range(a);
+    depth_range(b);
+    eye_segments.emplace_back(a, b);
   };
   std::vector<bool> is_polygon(scene.primitives.size(), false);
   for (std::size_t k = 0; k < scene.primitives.size(); ++k) {
@@ -154,6 +159,26 @@ ScreenScene to_screen(const scenes::Scene& scene, const raster::RasterMesh& mesh
     for (int i = 0; i < 3; ++i)
       add_segment(t.v[static_cast<std::size_t>(i)].position,
                   t.v[static_cast<std::size_t>((i + 1) % 3)].position);
+  }
+  // Projected: 1/z over the depths kept (a flat scene gets a range of its own depth to twice it).
+  if (!(z_max > z_min)) {
+    z_min = std::isfinite(z_min) ? z_min : view.near;
+    z_max = 2.0 * z_min;
+  }
+  const Projection project{view, out.units_per_pixel, z_min, z_max};
+  for (const std::vector<Vec3>& kept : eye_polygons) {
+    std::vector<ScreenPoint> screen;
+    for (const Vec3& p : kept) {
+      const ScreenPoint s = project(p);
+      if (screen.empty() || s != screen.back()) screen.push_back(s);
+    }
+    while (screen.size() > 1 && screen.front() == screen.back()) screen.pop_back();
+    if (screen.size() >= 3) out.polygons.push_back(std::move(screen));
+  }
+  for (const auto& [a, b] : eye_segments) {
+    const ScreenPoint sa = project(a), sb = project(b);
+    if (sa == sb) continue;
+    out.segments.push_back({sa, sb, static_cast<std::uint32_t>(out.segments.size())});
   }
   return out;
 }

@@ -9,8 +9,9 @@
 //
 // Each polygon and segment is clipped in eye space to the near plane and to a guard band one
 // screen width and height round the view, then projected: x and y map the guard band onto
-// [0, 2^16), and depth is 1/z mapped onto [0, 2^16) between the view's near and far (a
-// projective depth, so a plane stays a plane on the screen). Coordinates are rounded to
+// [0, 2^16), and depth is 1/z mapped onto [0, 2^16) between the nearest and the farthest
+// depth of what was kept (a projective depth, so a plane stays a plane on the screen; the
+// view's own near and far would crowd a scene far from its near plane into a few values). Coordinates are rounded to
 // integers; a polygon's boundary planes are exact for those integers (plane.hpp), and so the
 // pipe's results are exact to the numbers' precision (L1681).
 #include <cstdint>
