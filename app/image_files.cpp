@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -66,6 +67,11 @@ void write_exr(const std::filesystem::path& path, int width, int height, int cha
 
 void stage_png(OutputSet& out, const functional::RenderResult& r) {
   write_png(out.stage("image.png"), r.width, r.height, r.rgb);
+  if (!r.drawing_svg.empty()) {
+    std::ofstream svg(out.stage("drawing.svg"), std::ios::binary);
+    svg << r.drawing_svg;
+    if (!svg) throw std::runtime_error("cannot write drawing.svg");
+  }
 }
 
 void stage_images(OutputSet& out, const functional::RenderResult& r) {

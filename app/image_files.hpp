@@ -27,9 +27,10 @@ void write_png(const std::filesystem::path& path, int width, int height,
 void write_exr(const std::filesystem::path& path, int width, int height, int channels,
                const std::vector<float>& data, const char* channel_name = "Y");
 
-/// Stages image.png, image.exr and the AOVs the result carries (id.exr, depth.exr) in `out`.
+/// Stages image.png, image.exr and the AOVs the result carries (id.exr, depth.exr) in `out`, and
+/// drawing.svg when the result has a line drawing (RenderResult::drawing_svg).
 void stage_images(OutputSet& out, const functional::RenderResult& r);
-/// Stages image.png only (rtsim run --image png).
+/// Stages image.png only (rtsim run --image png), and drawing.svg as above.
 void stage_png(OutputSet& out, const functional::RenderResult& r);
 
 }  // namespace rtsim::app

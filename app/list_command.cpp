@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string_view>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
@@ -57,10 +58,14 @@ void list_machines(const std::string& format) {
     return;
   }
   std::cout << "Machines (rtsim run --machine NAME; rtsim list params --machine NAME):\n";
+  // The names' column, two spaces wider than the longest name.
+  std::size_t width = std::string_view("(none)").size();
+  for (const platform::Machine* m : platform::machines()) width = std::max(width, m->name().size());
+  const int column = static_cast<int>(width + 2);
   for (const platform::Machine* m : platform::machines())
-    std::cout << "  " << std::left << std::setw(20) << m->name() << cite_seeds(m->description())
+    std::cout << "  " << std::left << std::setw(column) << m->name() << cite_seeds(m->description())
               << "\n";
-  std::cout << "  " << std::left << std::setw(20) << "(none)"
+  std::cout << "  " << std::left << std::setw(column) << "(none)"
             << "rtsim render: the functional renderer, firmware with no timing\n";
 }
 

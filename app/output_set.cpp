@@ -76,10 +76,10 @@ void check_output_folder(const fs::path& dir) {
 }
 
 bool is_rtsim_output_name(std::string_view name) {
-  static constexpr std::array<std::string_view, 14> kNames = {
-      "image.png", "image.exr",  "id.exr",        "depth.exr",        "stats.json",
-      "trace.vcd", "trace.json", "report.html",   "results.csv",      "results.jsonl",
-      "points",    "run.log",    ".report-plots", ".rtsim-sweep.lock"};
+  static constexpr std::array<std::string_view, 15> kNames = {
+      "image.png",     "image.exr", "id.exr",     "depth.exr",     "stats.json",
+      "drawing.svg",   "trace.vcd", "trace.json", "report.html",   "results.csv",
+      "results.jsonl", "points",    "run.log",    ".report-plots", ".rtsim-sweep.lock"};
   if (std::find(kNames.begin(), kNames.end(), name) != kNames.end()) return true;
   // A staging folder (this run's or a killed one's), or a sweep table being written.
   return name.starts_with(".rtsim-partial-") || name.find(".partial-") != std::string_view::npos;

@@ -40,9 +40,9 @@ class OutputSet {
   std::filesystem::path staged_path(const std::string& name) const { return staging_ / name; }
   /// The files of a single frame's outputs (image, AOVs, stats, traces, report): what a run
   /// or a render writes, any of which an earlier one in the same folder may have written.
-  static constexpr std::string_view kFrameOutputs[] = {"image.png",  "image.exr",  "id.exr",
-                                                       "depth.exr",  "stats.json", "trace.vcd",
-                                                       "trace.json", "report.html"};
+  static constexpr std::string_view kFrameOutputs[] = {"image.png",  "image.exr",   "id.exr",
+                                                       "depth.exr",  "stats.json",  "trace.vcd",
+                                                       "trace.json", "report.html", "drawing.svg"};
   /// On commit(), the files of `names` that this set did not stage are removed from DIR: they
   /// are an earlier run's, and would otherwise sit beside this run's outputs as if its own.
   void supersede(std::span<const std::string_view> names) {

@@ -73,6 +73,8 @@ int run_render(const RenderArgs& args) {
               << "  image  " << (out.dir() / "image.png").string() << "  "
               << (out.dir() / "image.exr").string() << "\n"
               << "  stats  " << (out.dir() / "stats.json").string() << "\n";
+    if (!result.drawing_svg.empty())
+      std::cout << "  drawing  " << (out.dir() / "drawing.svg").string() << "\n";
     if (opts.aov_id || opts.aov_depth) {
       std::cout << "  aovs  ";
       if (opts.aov_id) std::cout << " " << (out.dir() / "id.exr").string();

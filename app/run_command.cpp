@@ -253,6 +253,8 @@ int run_run(const RunArgs& args) {
       outputs.emplace_back(
           "image", (out.dir() / "image.png").string() + "  " + (out.dir() / "image.exr").string());
     if (args.image == "png") outputs.emplace_back("image", (out.dir() / "image.png").string());
+    if (args.image != "none" && !result.image.drawing_svg.empty())
+      outputs.emplace_back("drawing", (out.dir() / "drawing.svg").string());
     outputs.emplace_back("stats", (out.dir() / "stats.json").string());
     if (!opts.vcd_path.empty()) outputs.emplace_back("trace", (out.dir() / "trace.vcd").string());
     if (!opts.perfetto_path.empty())

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "firmware/scene.hpp"
@@ -37,6 +38,9 @@ struct RenderResult {
   /// Worker threads that ran: fewer than RenderOptions::threads when the system would not create
   /// more (the rows are shared out dynamically, so the image is the same).
   int threads = 1;
+  /// A machine that draws lines (ullner-hidden-line) gives them as an SVG drawing too, which
+  /// `render` and `run` write as drawing.svg; empty: no drawing.
+  std::string drawing_svg{};
 };
 
 RenderResult render(const scenes::Scene& scene, const Tracer& tracer, const RenderOptions& opts);
