@@ -45,6 +45,7 @@ import wang_accuracy  # noqa: E402
 import wang_arithmetic  # noqa: E402
 import wang_substages  # noqa: E402
 import pixelflow_passes  # noqa: E402
+import hidden_line_polygons  # noqa: E402
 import sort_first_frames  # noqa: E402
 import sort_first_migration  # noqa: E402
 
@@ -748,6 +749,44 @@ class SortFirstMigrationTest(ScratchTest):
         r = run_script("sort_first_migration.py", self.dir, os.path.join(self.dir, "x.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("sort_first.per_frame", r.stderr)
+
+
+class HiddenLinePolygonsTest(ScratchTest):
+    def write(self, points):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            for i, (polygons, frame, first, mean) in enumerate(points):
+                d = f"points/{i:04d}"
+                os.makedirs(os.path.join(self.dir, d))
+                stats = {"hidden_line": {
+                    "polygons": polygons, "plane_processors": 5 * polygons,
+                    "frame_time_s": frame,
+                    "segment_latency_s": {"first": first, "mean": mean, "max": mean},
+                    "along_pipe": [{"link_utilization": 0.2}, {"link_utilization": 0.25}]}}
+                with open(os.path.join(self.dir, d, "stats.json"), "w") as s:
+                    json.dump(stats, s)
+                f.write(json.dumps({"status": "ok", "dir": d,
+                                    "scene": f"builtin:ullner-random-{polygons}"}) + "\n")
+
+    def test_table_and_png(self):
+        self.write([(200, 0.05, 0.02, 0.03), (100, 0.02, 0.01, 0.012)])
+        data = hidden_line_polygons.points(self.dir)
+        self.assertEqual([p[0] for p in data], [100, 200])  # by polygons
+        out = os.path.join(self.dir, "h.png")
+        r = run_script("hidden_line_polygons.py", self.dir, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| 100 | 500 | 20.0 | 10.0 | 12.0 | 4.0 |", r.stdout)
+        self.assertGoodPng(out)
+
+    def test_bad_input(self):
+        with open(os.path.join(self.dir, "results.jsonl"), "w") as f:
+            f.write(json.dumps({"status": "ok", "dir": "points/0000",
+                                "scene": "builtin:ullner-random-100"}) + "\n")
+        os.makedirs(os.path.join(self.dir, "points", "0000"))
+        with open(os.path.join(self.dir, "points", "0000", "stats.json"), "w") as s:
+            s.write("{}")
+        r = run_script("hidden_line_polygons.py", self.dir, os.path.join(self.dir, "x.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("hidden_line.segment_latency_s", r.stderr)
 
 
 class SortFirstFramesTest(ScratchTest):

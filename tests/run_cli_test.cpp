@@ -224,7 +224,7 @@ TEST(RunCli, ConfigExamplesHoldEachMachinesPresetValues) {
         << e.path() << " changes a preset value:\n"
         << changed.output;
   }
-  EXPECT_EQ(files, 11u);  // one a machine, and the functional renderer's
+  EXPECT_EQ(files, 12u);  // one a machine, and the functional renderer's
 }
 
 TEST(RunCli, RunSppIsRenderSpp) {

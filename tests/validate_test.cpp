@@ -784,6 +784,11 @@ const std::map<std::string, std::string> kOpenFigures = {
      "Fig. 6-11's order effect is not reproduced: a ShellProcessor spends ~40 us a box test, so "
      "the bus has cycled several times whenever it asks again (docs/validation.md)"},
     {"P4b", "as P4a"},
+    {"HL2b",
+     "a plane processor holds its intersection until the next message, a cleanup processor its "
+     "segment until the next segment: a hop costs the spacing of segments, not one message time "
+     "(docs/validation.md)"},
+    {"HL3", "as HL2b"},
     {"V17c",
      "L891 assumes every processor is kept busy fetching; simulated, their CPUs' other work and "
      "waiting take most of the frame (docs/validation.md)"},
