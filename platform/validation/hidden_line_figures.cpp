@@ -78,8 +78,8 @@ void add_hidden_line_figures(Plan& plan, const PlanOptions& options) {
           "\"about\": a plane processor forwards a segment before it computes (Fig. 3-32), so "
           "an idle processor passes it in one message time (9,500 of them: 76 ms), but each "
           "of the 100 polygons' cleanup processors holds it until the segment behind it "
-          "arrives (HL2b), about 15% more here. Forwarding after computing (8 us more a hop) "
-          "doubles it and fails"),
+          "arrives (HL2b), about 15% more here. 625 ns a bit (10 us a message) gives 117 ms "
+          "and fails"),
       .workload = "builtin:ullner-random-100 (100 squares: 500 planes) in a pipe of 10,000 plane "
                   "processors, the other 9,500 idle, 256 x 256: the first segment's delay" +
                   latency_tail,
