@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <utility>
 
-#include "firmware/hiddenline/plane.hpp"
-
 namespace rtsim::hiddenline {
 
 std::vector<Stage> build_chain(const std::vector<std::vector<ScreenPoint>>& polygons,
                                int trailing_cleanups) {
+  std::vector<std::vector<Plane>> planes;
+  for (const auto& poly : polygons)
+    if (std::vector<Plane> p = boundary_planes(poly); !p.empty()) planes.push_back(std::move(p));
+  return build_chain(planes, trailing_cleanups);
+}
+
+std::vector<Stage> build_chain(const std::vector<std::vector<Plane>>& polygon_planes,
+                               int trailing_cleanups) {
   std::vector<Stage> chain;
-  for (const auto& poly : polygons) {
-    const std::vector<Plane> planes = boundary_planes(poly);
-    if (planes.empty()) continue;
+  for (const auto& planes : polygon_planes) {
     for (const Plane& p : planes) chain.emplace_back(PlaneProcessor(p));
     chain.emplace_back(CleanupProcessor());
   }

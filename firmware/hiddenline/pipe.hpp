@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "firmware/hiddenline/cleanup_processor.hpp"
+#include "firmware/hiddenline/plane.hpp"
 #include "firmware/hiddenline/plane_processor.hpp"
 
 namespace rtsim::hiddenline {
@@ -20,6 +21,9 @@ using Stage = std::variant<PlaneProcessor, CleanupProcessor>;
 /// planes and a cleanup processor after them, then `trailing_cleanups` more. Polygons that hide
 /// nothing (edge-on) get no stage.
 std::vector<Stage> build_chain(const std::vector<std::vector<ScreenPoint>>& polygons,
+                               int trailing_cleanups);
+/// The same from each hiding polygon's boundary planes (boundary_planes, none empty).
+std::vector<Stage> build_chain(const std::vector<std::vector<Plane>>& polygon_planes,
                                int trailing_cleanups);
 
 /// The messages for `segments`, in order, and the end.

@@ -35,8 +35,6 @@ void DividerNode::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& de
     gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return;
   }
-  if (!any_) first_ = f->at;
-  any_ = true;
   const sc_core::sc_time accepted = std::max(f->at, done_);
   accepted_ = accepted;
   done_ = accepted;

@@ -13,7 +13,6 @@
 
 #include "firmware/hiddenline/pipe.hpp"
 #include "modules/module_params.hpp"
-#include "modules/processor.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::platform::ullner_hidden_line {
@@ -38,16 +37,14 @@ class DividerNode : public sc_core::sc_module, public modules::StatGroup {
   /// When it was done with the end of the stream (the frame's end); zero before.
   const sc_core::sc_time& finished() const { return finished_; }
   bool ended() const { return ended_; }
-  /// When the first message reached it.
-  const sc_core::sc_time& first_arrival() const { return first_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
 
   sc_core::sc_time division_time_;
   sc_core::sc_time accepted_ = sc_core::SC_ZERO_TIME, done_ = sc_core::SC_ZERO_TIME,
-                   finished_ = sc_core::SC_ZERO_TIME, first_ = sc_core::SC_ZERO_TIME;
-  bool ended_ = false, any_ = false;
+                   finished_ = sc_core::SC_ZERO_TIME;
+  bool ended_ = false;
   std::vector<hiddenline::Message> received_;
   std::vector<std::pair<std::uint32_t, sc_core::sc_time>> segment_arrivals_;
   modules::Counter segments_{*this, "segments", "segments that came out of the pipe"};

@@ -77,12 +77,10 @@ std::string under(const sc_core::sc_module& m, const char* child) {
 }
 
 StageTiming class_timing(const params::ParamRegistry& r, const char* cls,
-                         const modules::Link& link) {
+                         const modules::CountParam& multipliers, const modules::Link& link) {
   const modules::ModuleParams p(r, cls);
   return {.multiplication_time = p.get(kMultiplicationTime),
-          .multipliers = std::string(cls) == HiddenLinePipe::kPlaneClass
-                             ? p.get(kPlaneMultipliers)
-                             : p.get(kCleanupMultipliers),
+          .multipliers = p.get(multipliers),
           .bit_time = link.bit_time(),
           .lanes = link.lanes(),
           .word_bits = HiddenLinePipe::word_bits(r),
@@ -129,8 +127,8 @@ std::uint64_t HiddenLinePipe::word_bits(const params::ParamRegistry& r) {
   return modules::ModuleParams(r, kName).get(kWordBits);
 }
 
-HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run,
-                               const PipeLayout& layout, std::vector<IntersectionFault> faults)
+HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run, PipeLayout layout,
+                               std::vector<IntersectionFault> faults)
     : sc_core::sc_module(name),
       modules::StatGroup(this->name()),
       probe_(run.probe()),
@@ -140,13 +138,13 @@ HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run,
       divider_(DividerNode::kName, run.registry()),
       faults_(std::move(faults)) {
   link_out_.trace_to(run.trace());
-  const StageTiming pp = class_timing(run.registry(), kPlaneClass, link_out_);
-  const StageTiming cp = class_timing(run.registry(), kCleanupClass, link_out_);
+  const StageTiming pp = class_timing(run.registry(), kPlaneClass, kPlaneMultipliers, link_out_);
+  const StageTiming cp =
+      class_timing(run.registry(), kCleanupClass, kCleanupMultipliers, link_out_);
   LinkWatch& watch = *this;
   // Every processor's state first, in one array that does not move, then the modules.
-  std::size_t count = layout.idle_plane_processors + layout.trailing_cleanups;
-  for (const auto& polygon : layout.polygons) count += polygon.size() + 1;
-  states_.reserve(std::max<std::size_t>(count, 1));
+  states_.reserve(std::max<std::size_t>(
+      layout.polygons.size() + layout.idle_plane_processors + layout.trailing_cleanups, 1));
   const auto add = [&](const char* cls, std::optional<hiddenline::Stage> firmware,
                        const StageTiming& timing) {
     const std::string n = cls + std::to_string(stages_.size());
@@ -155,12 +153,10 @@ HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run,
     stages_.push_back(
         std::make_unique<PipeStage>(n.c_str(), stages_.size(), states_.back(), timing, watch));
   };
-  for (const auto& polygon : layout.polygons) {
-    for (const hiddenline::Plane& plane : polygon) {
-      add(kPlaneClass, hiddenline::Stage(hiddenline::PlaneProcessor(plane)), pp);
-      ++plane_processors_;
-    }
-    add(kCleanupClass, hiddenline::Stage(hiddenline::CleanupProcessor()), cp);
+  for (hiddenline::Stage& stage : layout.polygons) {
+    const bool plane = std::holds_alternative<hiddenline::PlaneProcessor>(stage);
+    add(plane ? kPlaneClass : kCleanupClass, std::move(stage), plane ? pp : cp);
+    plane_processors_ += plane ? 1 : 0;
   }
   for (std::size_t k = 0; k < layout.idle_plane_processors; ++k) {
     add(kPlaneClass, std::nullopt, pp);
@@ -209,10 +205,8 @@ void HiddenLinePipe::accepted(std::size_t index, const Message& m, const sc_core
 
 void HiddenLinePipe::handed(std::size_t index, MessageInFlight& f, const sc_core::sc_time& ready,
                             const sc_core::sc_time& start) {
-  ++messages_;
   const bool last = index + 1 == stages_.size();
   if (f.message.kind == Message::Kind::kIntersection) {
-    ++intersections_;
     if (last) {
       for (IntersectionFault& fault : faults_)
         if (fault.index == out_intersections_) {
@@ -264,7 +258,11 @@ void HiddenLinePipe::end_journeys() {
 }
 
 void HiddenLinePipe::account() {
+  // What one processor handed on is what the next received (the last's, what the divider did).
+  messages_ += divider_.received().size();
   for (const StageState& s : states_) {
+    if (&s != &states_.front()) messages_ += s.inputs;
+    intersections_ += s.intersections_out;
     link_busy_ += s.link_busy;
     waited_ += s.waited;
     if (!s.firmware) continue;

@@ -42,9 +42,10 @@ struct IntersectionFault {
   bool applied = false;
 };
 
-/// The pipe's layout: a polygon's planes and its cleanup processor, in the scene's order.
+/// The pipe's layout: the polygons' processors in the scene's order (hiddenline::build_chain
+/// with no trailing ones), then the idle plane processors, then the trailing cleanup ones.
 struct PipeLayout {
-  std::vector<std::vector<hiddenline::Plane>> polygons;  ///< each hiding polygon's planes
+  std::vector<hiddenline::Stage> polygons;
   std::size_t idle_plane_processors = 0;
   std::size_t trailing_cleanups = 0;
 };
@@ -65,7 +66,7 @@ class HiddenLinePipe : public sc_core::sc_module, public modules::StatGroup, pri
   /// `pipe.word_bits` and the links' class parameters.
   static std::uint64_t word_bits(const params::ParamRegistry& registry);
 
-  HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run, const PipeLayout& layout,
+  HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run, PipeLayout layout,
                  std::vector<IntersectionFault> faults);
 
   /// The first processor (the host sends to its `in`).

@@ -153,7 +153,7 @@ FunctionalTwin UllnerHiddenLine::make_twin(scenes::Scene& scene,
     const int w = opts.width > 0 ? opts.width : s.camera.width;
     const int h = opts.height > 0 ? opts.height : s.camera.height;
     const HiddenLineFrame frame = load_frame(s, mesh, w, h);
-    auto chain = hiddenline::build_chain(frame.screen.polygons, static_cast<int>(trailing));
+    auto chain = hiddenline::build_chain(frame.planes, static_cast<int>(trailing));
     const auto pieces = hiddenline::divide(
         hiddenline::run_chain(chain, hiddenline::segment_stream(frame.screen.segments)));
     functional::FrameState state(w, h, 1, opts.aov_id, opts.aov_depth);
@@ -196,7 +196,7 @@ RunResult UllnerHiddenLine::run(scenes::Scene& scene, FunctionalTwin& twin,
                            std::to_string(static_cast<long long>(kMaxCheckTests)) +
                            " point-polygon tests a check makes; fewer points");
   }
-  PipeLayout layout{.polygons = frame.planes,
+  PipeLayout layout{.polygons = hiddenline::build_chain(frame.planes, 0),
                     .idle_plane_processors = wanted > 0 ? wanted - frame.plane_count : 0,
                     .trailing_cleanups = HiddenLinePipe::trailing_cleanups(r)};
 
@@ -208,7 +208,8 @@ RunResult UllnerHiddenLine::run(scenes::Scene& scene, FunctionalTwin& twin,
     faults.push_back({f.word, f.xor_mask, false});
   inject_faults(name(), at_rest, {}, {HiddenLinePipe::kFaultPoint});
 
-  HiddenLinePipe pipe(HiddenLinePipe::kName, run, layout, std::move(faults));
+  const std::size_t idle = layout.idle_plane_processors;
+  HiddenLinePipe pipe(HiddenLinePipe::kName, run, std::move(layout), std::move(faults));
   PipeHost host(PipeHost::kName, run, pipe, hiddenline::segment_stream(frame.screen.segments),
                 frame.plane_count);
   // --latency-probe follows every segment from the host to the divider (a segment found
@@ -305,7 +306,7 @@ RunResult UllnerHiddenLine::run(scenes::Scene& scene, FunctionalTwin& twin,
   hl["segments"] = screen.segments.size();
   hl["planes"] = frame.plane_count;
   hl["plane_processors"] = pipe.plane_processors();
-  hl["idle_plane_processors"] = layout.idle_plane_processors;
+  hl["idle_plane_processors"] = idle;
   hl["cleanup_processors"] = pipe.cleanup_processors();
   hl["frame_time_s"] = frame_s;
   hl["plane_load_s"] = host.planes_loaded().to_seconds();

@@ -51,7 +51,6 @@ void PipeHost::run() {
     MessageInFlight f{m, link_.transfer(bits, ready)};
     const sc_core::sc_time started = f.at - link_.latency() - link_.serialisation(bits);
     blocked_until(started);
-    last_sent_ = f.at;
     if (m.kind == hiddenline::Message::Kind::kSegment) {
       ++segments_;
       const std::uint32_t e = m.segment.edge;

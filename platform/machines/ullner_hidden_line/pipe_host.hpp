@@ -8,7 +8,6 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <cstdint>
-#include <functional>
 #include <systemc>
 #include <vector>
 
@@ -41,8 +40,6 @@ class PipeHost : public modules::Processor {
   const sc_core::sc_time& planes_loaded() const { return planes_loaded_; }
   /// When the host handed each segment to its link (by edge number).
   const std::vector<sc_core::sc_time>& handed() const { return handed_; }
-  /// When the last message (the end of the stream) reached the first processor.
-  const sc_core::sc_time& last_sent() const { return last_sent_; }
   /// The frame's end: the divider done with the stream.
   const sc_core::sc_time& frame_end() const { return frame_end_; }
 
@@ -63,8 +60,7 @@ class PipeHost : public modules::Processor {
   modules::Link plane_link_;
   std::uint64_t word_bits_;
   std::vector<sc_core::sc_time> handed_;
-  sc_core::sc_time planes_loaded_ = sc_core::SC_ZERO_TIME, last_sent_ = sc_core::SC_ZERO_TIME,
-                   frame_end_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time planes_loaded_ = sc_core::SC_ZERO_TIME, frame_end_ = sc_core::SC_ZERO_TIME;
   std::vector<modules::LatencyProbe::Journey>* journeys_ = nullptr;
   int probe_link_ = -1;
   modules::Counter segments_{*this, "segments", "segments sent into the pipe"};
