@@ -7,6 +7,7 @@
 // (docs/stats.md), so two scenes' runs show what an idle module costs.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string_view>
 #include <systemc>
 #include <utility>
 
@@ -15,6 +16,10 @@ namespace rtsim::modules {
 /// The current process ran once more (called after each wait and at each method activation).
 void count_activation();
 
+/// The count of the activations of `as`'s `process` ("node12" + "activate": named as the
+/// SC_METHOD it stands for would be), to add to directly: a stable address, which a processor run
+/// by a WakeQueue (one SystemC process for many) keeps rather than look itself up each time.
+std::uint64_t& activation_count(const sc_core::sc_object& as, std::string_view process);
 /// sc_core::wait, counted: the process resumes once each time it returns.
 template <class... Args>
 void sim_wait(Args&&... args) {

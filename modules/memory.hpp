@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "modules/payload_pool.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/statistics.hpp"
 
@@ -230,8 +231,8 @@ bool read_words(Socket& port, tlm::tlm_generic_payload& gp, std::uint64_t word,
 template <class Socket>
 bool write_words(Socket& port, std::uint64_t word, const std::uint32_t* words, std::size_t n,
                  sc_core::sc_time& delay) {
-  tlm::tlm_generic_payload gp;
-  return write_words(port, gp, word, words, n, delay);
+  const PooledPayload gp;  // a payload made for each call costs more than the write
+  return write_words(port, *gp, word, words, n, delay);
 }
 
 }  // namespace rtsim::modules

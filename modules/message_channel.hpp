@@ -17,6 +17,7 @@
 #include <tlm>
 #include <vector>
 
+#include "modules/payload_pool.hpp"
 #include "modules/timed_fifo.hpp"
 
 namespace rtsim::modules {
@@ -76,34 +77,6 @@ class MessageQueue : public sc_core::sc_module {
   Counter bits_;
 };
 
-namespace detail {
-/// Generic payloads for send_message, kept for reuse: making one allocates its extension
-/// array, once a message otherwise. A payload is taken for one b_transport and given back after
-/// it; a thread blocked in a full queue keeps its own, so threads never share one.
-class PayloadPool {
- public:
-  static tlm::tlm_generic_payload* take() {
-    auto& free = instance().free_;
-    if (free.empty()) {
-      instance().all_.push_back(std::make_unique<tlm::tlm_generic_payload>());
-      return instance().all_.back().get();
-    }
-    tlm::tlm_generic_payload* gp = free.back();
-    free.pop_back();
-    return gp;
-  }
-  static void give_back(tlm::tlm_generic_payload* gp) { instance().free_.push_back(gp); }
-
- private:
-  static PayloadPool& instance() {
-    static PayloadPool pool;
-    return pool;
-  }
-  std::vector<std::unique_ptr<tlm::tlm_generic_payload>> all_;
-  std::vector<tlm::tlm_generic_payload*> free_;
-};
-}  // namespace detail
-
 /// Puts `msg` into the queue behind `socket` at absolute time `t` (when it arrives there: after
 /// its Link, if it crossed one); returns the absolute time it was accepted (later than t if the
 /// FIFO was full). `bits`: its size on the hardware.
@@ -111,7 +84,7 @@ template <class Socket, class T>
 sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
                               std::uint64_t bits) {
   MessageExtension<T> ext(&msg, bits);
-  tlm::tlm_generic_payload& gp = *detail::PayloadPool::take();
+  tlm::tlm_generic_payload& gp = *PayloadPool::take();
   gp.set_command(tlm::TLM_WRITE_COMMAND);
   gp.set_address(0);
   gp.set_data_ptr(nullptr);
@@ -129,7 +102,7 @@ sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
     MessageExtension<T>& ext;
     ~GiveBack() {
       gp.clear_extension(&ext);
-      detail::PayloadPool::give_back(&gp);
+      PayloadPool::give_back(&gp);
     }
   };
   bool error = false;

@@ -62,7 +62,10 @@ void Processor::blocked_until(const sc_core::sc_time& t) {
 }
 
 void Processor::resume() {
-  count_activation();
+  if (queue_activations_)
+    ++*queue_activations_;
+  else
+    count_activation();
   clock_.resync();
   if (!idle_since_) return;
   account(idle_since_->second) += clock_.now() - idle_since_->first;

@@ -105,6 +105,16 @@ class Processor : public sc_core::sc_module, public StatGroup {
   /// by `event`, whichever comes first; the time is accounted as `why` at resume().
   void idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
                     Wait why);
+  /// A processor run by a WakeQueue (modules/wake_queue.hpp) rather than by SystemC: it asks
+  /// the queue for its next activation itself, and its activations are counted as those of
+  /// `activation` ("activate": its name as an SC_METHOD, so both ways count under one name).
+  void make_queue_driven(std::string_view activation) {
+    clock_.never_wait();
+    queue_activations_ = &activation_count(*this, activation);
+  }
+  /// Ends a queue-driven activation in an idle (its queue wakes it): the time is accounted as
+  /// `why` at resume().
+  void begin_idle(Wait why) { idle_since_.emplace(clock_.now(), why); }
   /// A host's wait when it can neither take an answer nor send (call it in its loop): until
   /// the next answer in `answers`, or, if it `wants_to_send`, until `out` has room, whichever
   /// comes first. Waiting for room is being blocked on output, waiting for an answer waiting
@@ -167,6 +177,9 @@ class Processor : public sc_core::sc_module, public StatGroup {
   std::string track_;  ///< its trace track: its hierarchical name
   /// An event-driven processor's idle: since when, and why (idle_trigger, resume).
   std::optional<std::pair<sc_core::sc_time, Wait>> idle_since_;
+  /// A queue-driven processor's count of its activations (else resume() counts the running
+  /// process's).
+  std::uint64_t* queue_activations_ = nullptr;
 };
 
 }  // namespace rtsim::modules

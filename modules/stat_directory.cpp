@@ -29,16 +29,16 @@ std::map<std::string, StatReport> StatDirectory::reports(const StatWindow& windo
   return out;
 }
 
-nlohmann::ordered_json report_json(const StatReport& r, const StatWindow& window) {
+nlohmann::ordered_json report_json(StatReport&& r, const StatWindow& window) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   const double frame = (window.end - window.begin).to_seconds();
   if (r.busy_reported) {
     j["busy_s"] = r.busy.to_seconds();
     j["utilization"] = frame > 0 ? r.busy.to_seconds() / frame : 0.0;
   }
-  for (const auto& [k, v] : r.values) j[k] = v;
-  if (!r.queue.is_null()) j["queue"] = r.queue;
-  if (!r.windows.is_null()) j["utilization_windows"] = r.windows;
+  for (auto& [k, v] : r.values) j[k] = std::move(v);
+  if (!r.queue.is_null()) j["queue"] = std::move(r.queue);
+  if (!r.windows.is_null()) j["utilization_windows"] = std::move(r.windows);
   return j;
 }
 
@@ -47,12 +47,16 @@ nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window, UnitSche
   // The names are unique and sorted: appended without ordered_json's linear search for an
   // existing key (a 16 x 16 array has thousands of modules).
   auto& modules = out.get_ref<nlohmann::ordered_json::object_t&>();
+  // Its (const name, report) pairs are copied, not moved, when the vector grows.
+  modules.reserve(groups_.size());
   for (auto& [name, r] : reports(window)) {
-    modules.emplace_back(name, report_json(r, window));
-    if (!units) continue;
-    // Under the class's name: an array's 1024 nodes declare their keys once.
-    for (const auto& [key, unit] : r.units)
-      units->add(instance_class("modules." + name + "." + key), unit);
+    if (units && !r.units.empty()) {
+      // Under the class's name: an array's 1024 nodes declare their keys once. (A path's class
+      // is its parts' classes: the group's is worked out once, not once a key.)
+      const std::string group_class = instance_class("modules." + name) + ".";
+      for (const auto& [key, unit] : r.units) units->add(group_class + instance_class(key), unit);
+    }
+    modules.emplace_back(name, report_json(std::move(r), window));
   }
   return out;
 }

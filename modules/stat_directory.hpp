@@ -73,7 +73,8 @@ class StatDirectory {
   std::multimap<std::string, const StatGroup*> groups_;
 };
 
-/// A group's report as stats.json writes it.
-nlohmann::ordered_json report_json(const StatReport& r, const StatWindow& window);
+/// A group's report as stats.json writes it (its values moved out: the utilisation windows of
+/// thousands of modules are not copied).
+nlohmann::ordered_json report_json(StatReport&& r, const StatWindow& window);
 
 }  // namespace rtsim::modules

@@ -398,14 +398,15 @@ TEST(UllnerArray, ThePerfettoTraceFollowsEachMessageAcrossTheArray) {
   EXPECT_GE(longest, 4u);  // link, processor, link, processor at least somewhere
 }
 
-// node.process = method runs each processor as an SC_METHOD that handles what is due at its time
-// and computes ahead of the simulation within an activation; node.process = thread is the
-// reference, a thread that waits wherever it spends time. The method is allowed only because it
-// is exact: on three scenes at 8 x 8 (cubes with its reflections, a faceted tetrahedron whose
-// rays cross many subvolumes, a thousand lit sheets seen from the side), on the ring, and with
-// sampled rows (windows timed by when contributions land), every statistic and the image are the
-// thread's.
-TEST(UllnerArray, ProcessorsAsMethodsGiveTheThreadsStatisticsExactly) {
+// node.process = queue (the default) and method run each processor event-driven: an activation
+// handles what is due at its time and computes ahead, the array's own event queue (one SystemC
+// process for all of them, modules/wake_queue.hpp) or SystemC (an SC_METHOD each) activating it.
+// node.process = thread is the reference, a thread that waits wherever it spends time. The two
+// are allowed only because they are exact: on three scenes at 8 x 8 (cubes with its
+// reflections, a faceted tetrahedron whose rays cross many subvolumes, a thousand lit sheets seen
+// from the side), on the ring, and with sampled rows (windows timed by when contributions land),
+// every statistic and the image are the thread's.
+TEST(UllnerArray, EventDrivenProcessorsGiveTheThreadsStatisticsExactly) {
   const auto comparable = [](nlohmann::ordered_json s) {
     // And what the simulation cost in events: a method runs where a thread waits.
     for (const char* key : {"wall_time_s", "rays_per_second", "params", "image_bytes", "image_png",
@@ -420,17 +421,22 @@ TEST(UllnerArray, ProcessorsAsMethodsGiveTheThreadsStatisticsExactly) {
         std::string("--scene builtin:ullner-cubes -p array.interconnect=ring"),
         std::string("--scene builtin:ullner-cubes --sample 4 --sample-window 2")}) {
     const std::string args = run + " --width 32 --height 32 -p array.rows=8 -p array.cols=8";
-    const auto method = run_array("method", args);
     const auto thread = run_array("thread", args + " -p node.process=thread");
-    ASSERT_FALSE(method.empty() || thread.empty()) << args;
-    EXPECT_EQ(read_file(method.at("image_png").get<std::string>()),
-              read_file(thread.at("image_png").get<std::string>()))
-        << args;
-    const nlohmann::json differences = nlohmann::json::diff(comparable(thread), comparable(method));
-    std::printf("%s: frame %.6g s (thread) %.6g s (method), %zu statistics differ\n", args.c_str(),
-                thread.at("simulated_time_s").get<double>(),
-                method.at("simulated_time_s").get<double>(), differences.size());
-    EXPECT_TRUE(differences.empty()) << args << "\n" << differences.dump().substr(0, 3000);
+    ASSERT_FALSE(thread.empty()) << args;
+    for (const char* kind : {"queue", "method"}) {
+      const auto driven = run_array(kind, args + " -p node.process=" + kind);
+      ASSERT_FALSE(driven.empty()) << args << " " << kind;
+      EXPECT_EQ(read_file(driven.at("image_png").get<std::string>()),
+                read_file(thread.at("image_png").get<std::string>()))
+          << args << " " << kind;
+      const nlohmann::json differences =
+          nlohmann::json::diff(comparable(thread), comparable(driven));
+      std::printf("%s: frame %.6g s (thread) %.6g s (%s), %zu statistics differ\n", args.c_str(),
+                  thread.at("simulated_time_s").get<double>(),
+                  driven.at("simulated_time_s").get<double>(), kind, differences.size());
+      EXPECT_TRUE(differences.empty()) << args << " " << kind << "\n"
+                                       << differences.dump().substr(0, 3000);
+    }
   }
 }
 

@@ -12,6 +12,8 @@ namespace rtsim::platform {
 
 namespace {
 int or_default(int asked, int scene) { return asked > 0 ? asked : scene; }
+/// Top-level keys stats.json may have, with room to spare (about 40 today).
+constexpr std::size_t kStatsKeys = 96;
 }  // namespace
 
 MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const FunctionalTwin& twin,
@@ -87,7 +89,11 @@ RunResult MachineRun::finish(const modules::LatencyRecorder& ray_latency,
                              const std::vector<modules::Memory*>& fault_memories) {
   if (!window_) throw std::logic_error(machine_ + ": finish() before stats_over()");
   // The machine's keys first were added by the machine; the common ones lead.
-  nlohmann::ordered_json out;
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  // Room for every key, the command's own included: an ordered_json object is a vector of
+  // (const key, value) pairs, which copies every value when it grows: `modules` whole, thousands
+  // of modules, once each time.
+  out.get_ref<nlohmann::ordered_json::object_t&>().reserve(kStatsKeys);
   // The unit of each number (modules/stat_unit.hpp), declared beside what writes it.
   using modules::StatUnit;
   modules::UnitSchema units{{"module_classes.*.instances", StatUnit::count},

@@ -180,13 +180,14 @@ const modules::ChoiceParam kCreditTravel(
                "the credit messages"});
 const modules::ChoiceParam kProcess(
     {.name = "process",
-     .default_value = "method",
-     .allowed = {"method", "thread"},
+     .default_value = "queue",
+     .allowed = {"queue", "method", "thread"},
      .description =
-         "How the simulator runs each processor: an event-driven SC_METHOD that handles what is "
-         "due at its time and computes ahead (method), or a SystemC thread that waits wherever "
-         "it spends time (thread: the reference, 1.4 times slower at 32 x 32). The "
-         "statistics and the image are the same (tests/ullner_array_test.cpp)",
+         "How the simulator runs each processor: event-driven, handling what is due at its "
+         "time and computing ahead, activated by the array's own event queue (queue) or by "
+         "SystemC as an SC_METHOD each (method); or as a SystemC thread that waits wherever it "
+         "spends time (thread: the reference). The statistics and the image are the same "
+         "(tests/ullner_array_test.cpp)",
      .source = "simulator setting, not of the machine"});
 /// Its links to the neighbours (the class's: node.link.*).
 constexpr const char* kLinkClass = "link";
@@ -224,6 +225,10 @@ sc_core::sc_time cpu_cycle(const modules::ModuleParams& p) {
       static_cast<std::int64_t>(std::max(1.0, std::round(1e12 / p.get(kClock).hz))));
 }
 }  // namespace
+
+std::string ArrayNode::process_kind(const params::ParamRegistry& registry) {
+  return modules::ModuleParams(registry, kClass).get(kProcess);
+}
 
 std::size_t ArrayNode::memory_words(const params::ParamRegistry& registry) {
   return modules::ModuleParams(registry, kClass).get(kMemoryWords);
@@ -273,10 +278,13 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
   frame_buffer_port_.bind(frame_buffer.socket);
   broadcast_in.register_b_transport(this, &ArrayNode::receive_record);
   const modules::MeshTopology& topo = *ctx_.topology;
+  // Only a thread waits on its ports' put events; an event-driven processor is woken by
+  // item_put.
+  const bool thread = p.get(kProcess) == "thread";
   if (ctx_.ring) {
     in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
         "in_ring", modules::TimedFifo<RayMessage>::kUnbounded);
-    in[kRingPort]->fifo.listen(this);
+    in[kRingPort]->fifo.listen(this, thread);
   }
   for (const Direction d : modules::kDirections) {
     if (ctx_.ring || !topo.neighbour(position_, d)) continue;
@@ -284,7 +292,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
     // A port's buffer holds the node's stockpile of untraced messages (L825): not bounded here.
     in[static_cast<int>(d)] = std::make_unique<modules::MessageQueue<RayMessage>>(
         ("in_" + dir).c_str(), modules::TimedFifo<RayMessage>::kUnbounded);
-    in[static_cast<int>(d)]->fifo.listen(this);
+    in[static_cast<int>(d)]->fifo.listen(this, thread);
     out_[static_cast<int>(d)] =
         std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
     links_[static_cast<int>(d)] =
@@ -318,8 +326,12 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
   }
   // Its frame-buffer block: the image rows and columns whose processor it is (L781).
   block_ = block_of(context, position_);
-  if (p.get(kProcess) == "thread") {
+  if (thread) {
     SC_THREAD(run);
+  } else if (p.get(kProcess) == "queue") {
+    if (!ctx_.queue) throw std::logic_error("ullner-array: node.process = queue without a queue");
+    make_queue_driven("activate");
+    queue_slot_ = ctx_.queue->add(*this);  // its first activation when the view has been sent
   } else {
     make_event_driven();
     SC_METHOD(activate);
@@ -580,7 +592,10 @@ void ArrayNode::item_put(const sc_core::sc_time& stamp) {
   ++waiting_;
   if (!idle_) return;  // it looks at its ports when it has done what it is doing
   const sc_core::sc_time now = sc_core::sc_time_stamp();
-  wake_.notify(stamp > now ? stamp - now : sc_core::SC_ZERO_TIME);  // the sooner one stands
+  if (ctx_.queue)
+    ctx_.queue->wake_at(queue_slot_, std::max(stamp, now));  // the sooner one stands
+  else
+    wake_.notify(stamp > now ? stamp - now : sc_core::SC_ZERO_TIME);
 }
 
 bool ArrayNode::next_message(RayMessage& msg) {
@@ -721,12 +736,20 @@ void ArrayNode::activate() {
       // Woken when the first message is due or the quiet time ends, or sooner by a put
       // (item_put), not by every put into its ports.
       idle_ = true;
+      if (ctx_.queue) {
+        begin_idle(Wait::kWork);
+        if (s.until) ctx_.queue->wake_at(queue_slot_, *s.until);
+        return;
+      }
       if (s.until) wake_.notify(*s.until - sc_core::sc_time_stamp());
       idle_trigger(std::nullopt, wake_, Wait::kWork);
       return;
     }
   }
-  resume_at_local_time();
+  if (ctx_.queue)
+    ctx_.queue->wake_at(queue_slot_, clock_.now());
+  else
+    resume_at_local_time();
 }
 
 void ArrayNode::process(RayMessage msg) {
@@ -812,10 +835,10 @@ void ArrayNode::accumulate(std::uint32_t pixel, const Color& c) {
                     "a result reached a processor "
                     "whose block does not hold its pixel");
   std::array<std::uint32_t, kPixelWords> words{};
-  tlm::tlm_generic_payload gp;
+  const modules::PooledPayload gp;
   sc_core::sc_time unused = sc_core::SC_ZERO_TIME;
   const std::uint64_t at = block_.offset(x, y);
-  modules::read_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
+  modules::read_words(frame_buffer_port_, *gp, at, words.data(), kPixelWords, unused);
   const std::array<double, 3> add{c.r, c.g, c.b};
   for (int k = 0; k < 3; ++k) {
     auto sum = static_cast<std::int64_t>(words[2 * k] |
@@ -824,7 +847,7 @@ void ArrayNode::accumulate(std::uint32_t pixel, const Color& c) {
     words[2 * k] = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sum));
     words[2 * k + 1] = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sum) >> 32);
   }
-  modules::write_words(frame_buffer_port_, gp, at, words.data(), kPixelWords, unused);
+  modules::write_words(frame_buffer_port_, *gp, at, words.data(), kPixelWords, unused);
   book_memory(times(timing_.memory_cycle, 4));
   // Sampled simulation times its windows by these (at this processor's time, which may be
   // ahead of the simulation's).

@@ -32,14 +32,16 @@
 // whole array (which made half the message hops and a hot column at 32x32). The frame is complete
 // when the detector holds all the credit.
 //
-// How it is simulated (node.process): by default an event-driven SC_METHOD (no stack of its own:
-// a thousand switch as cheaply as function calls). An activation at simulated time t takes what
-// is due by t and handles it all, its local time running ahead; it is triggered again at its
-// local time, or, idle, when its first message is due or its quiet time ends (a put of a message
-// due sooner brings that forward, item_put). This is exact, not an approximation: every message
-// is put before its stamp (a link takes time), so what is due by t is there at t. The thread
-// (node.process = thread) waits wherever it spends time, the plain reading of the same steps;
-// tests/ullner_array_test.cpp shows every statistic identical on both.
+// How it is simulated (node.process): by default event-driven, run by the array's own event
+// queue (modules/wake_queue.hpp: one SystemC process for all the processors, node.process =
+// queue) or by SystemC as an SC_METHOD each (method); no stack of its own either way. An
+// activation at simulated time t takes what is due by t and handles it all, its local time
+// running ahead; it is activated again at its local time, or, idle, when its first message is due
+// or its quiet time ends (a put of a message due sooner brings that forward, item_put). This is
+// exact, not an approximation: every message is put before its stamp (a link takes time), so what
+// is due by t is there at t, whichever processor due at t runs first. The thread (node.process =
+// thread) waits wherever it spends time, the plain reading of the same steps;
+// tests/ullner_array_test.cpp shows every statistic identical on all three.
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
@@ -64,6 +66,7 @@
 #include "modules/processor.hpp"
 #include "modules/ring_channel.hpp"
 #include "modules/statistics.hpp"
+#include "modules/wake_queue.hpp"
 #include "platform/functional/frame_state.hpp"
 #include "platform/functional/scene_geometry.hpp"
 #include "platform/machines/machine_trace.hpp"
@@ -123,6 +126,8 @@ struct ArrayContext {
   /// class of stage (every node alike): the processor, its intersection unit, the links (or
   /// the ring) and the input queues.
   modules::LatencyProbe* probe = nullptr;
+  /// node.process = queue: the array's own event queue, which runs every processor.
+  modules::WakeQueue* queue = nullptr;
   struct ProbeStages {
     int node = -1, pipeline = -1, link = -1, ring = -1, in = -1;
   } stages;
@@ -146,7 +151,9 @@ struct ArrayTally {
   modules::LatencyRecorder latency;    ///< a ray's creation to its contribution being added
 };
 
-class ArrayNode : public modules::Processor, private modules::PutListener {
+class ArrayNode : public modules::Processor,
+                  private modules::PutListener,
+                  private modules::WakeQueue::Client {
  public:
   /// The input port from the neighbour in each direction (absent at an unconnected edge, and
   /// all four on a ring), and the ring's (in[kRingPort], on a ring only).
@@ -177,6 +184,8 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   };
   const Block& block() const { return block_; }
 
+  /// node.process: how the simulator runs it ("queue", "method", "thread").
+  static std::string process_kind(const params::ParamRegistry& registry);
   /// The class name its parameters are declared and read under: all processors alike.
   static constexpr const char* kClass = "node";
   /// Parameters of every processor, under kClass.
@@ -250,6 +259,8 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   /// due at its time and computing ahead, triggered again at its local time or by what it
   /// idles for.
   void activate();
+  /// node.process = queue: the array's queue runs it (an activation).
+  void woken() override { activate(); }
   /// The frame starts (the host has broadcast the view): its camera, its ports' events.
   void start_frame();
   /// One step of its loop at its local time, which is simulated time: takes and handles the
@@ -351,6 +362,8 @@ class ArrayNode : public modules::Processor, private modules::PutListener {
   /// node.process = method: it idles on this alone, notified for when it must look again (the
   /// first message due, the end of its quiet time); a put notifies it only if sooner.
   sc_core::sc_event wake_{"wake"};
+  /// node.process = queue: its number in ctx_.queue.
+  std::size_t queue_slot_ = 0;
   bool idle_ = false;
   sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
   std::vector<shading::TracedRay> spawned_;

@@ -16,6 +16,7 @@
 #include <tlm>
 
 #include "modules/extension_guard.hpp"
+#include "modules/payload_pool.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::ullner_array {
@@ -34,7 +35,8 @@ class BroadcastCopy : public tlm::tlm_extension<BroadcastCopy> {
 template <class Socket>
 sc_core::sc_time offer_record(Socket& socket, std::span<const std::uint32_t> record,
                               const sc_core::sc_time& offered, const sc_core::sc_time& duration) {
-  tlm::tlm_generic_payload gp;
+  const modules::PooledPayload pooled;  // one record a hop of the tree: no payload made each
+  tlm::tlm_generic_payload& gp = *pooled;
   BroadcastCopy copy;
   copy.duration = duration;
   gp.set_extension(&copy);
@@ -44,6 +46,8 @@ sc_core::sc_time offer_record(Socket& socket, std::span<const std::uint32_t> rec
   gp.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<std::uint32_t*>(record.data())));
   gp.set_data_length(static_cast<unsigned>(record.size() * 4));
   gp.set_streaming_width(static_cast<unsigned>(record.size() * 4));
+  gp.set_byte_enable_ptr(nullptr);
+  gp.set_dmi_allowed(false);
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   sc_core::sc_time delay = offered > now ? offered - now : sc_core::SC_ZERO_TIME;

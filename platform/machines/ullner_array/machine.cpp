@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <systemc>
 
 #include "common/input_error.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stat_directory.hpp"
+#include "modules/wake_queue.hpp"
 #include "platform/functional/scene_tracer.hpp"
 #include "platform/machine_registry.hpp"
 #include "platform/machines/machine_run.hpp"
@@ -299,8 +301,23 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   else
     ctx.stages.link = probe.stage("node*.link_*");
   ctx.stages.in = probe.stage(ring ? "node*.in_ring" : "node*.in_*");
+  // node.process = queue (the default): the array's own event queue runs its processors, one
+  // SystemC process for all of them; it starts them once the host has sent the view.
+  std::optional<modules::WakeQueue> queue;
+  if (ArrayNode::process_kind(r) == "queue") {
+    queue.emplace("queue", host.loaded());
+    ctx.queue = &*queue;
+  }
   ullner_array::ArrayTally tally;
   std::vector<std::unique_ptr<ArrayNode>> nodes;
+  // Destroyed last made first: SystemC looks for a port to unregister from the newest, so the
+  // other order walks every processor's ports for each (seconds at 32 x 32 after the run).
+  struct NewestFirst {
+    std::vector<std::unique_ptr<ArrayNode>>& nodes;
+    ~NewestFirst() {
+      while (!nodes.empty()) nodes.pop_back();
+    }
+  } const destroy_newest_first{nodes};
   nodes.reserve(static_cast<std::size_t>(topology.nodes()));
   for (int i = 0; i < topology.nodes(); ++i)
     nodes.push_back(std::make_unique<ArrayNode>(("node" + std::to_string(i)).c_str(), r, ctx, tally,

@@ -1,0 +1,69 @@
+#include "modules/wake_queue.hpp"
+
+#include <stdexcept>
+
+namespace rtsim::modules {
+
+WakeQueue::WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_event& start)
+    : sc_core::sc_module(name) {
+  SC_METHOD(dispatch);
+  sensitive << start;  // its first run; from then it triggers itself (next_trigger)
+  dont_initialize();
+}
+
+std::size_t WakeQueue::add(Client& client) {
+  clients_.push_back(&client);
+  pending_.push_back(kNone);
+  pending_t_.push_back(kNone);
+  return clients_.size() - 1;
+}
+
+void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
+  const std::uint64_t now = sc_core::sc_time_stamp().value();
+  if (t.value() < now)
+    throw std::logic_error(std::string(name()) + ": a wake asked for in the past");
+  if (pending_[k] != kNone && pending_t_[k] <= t.value()) return;  // the sooner one stands
+  pending_[k] = seq_;
+  pending_t_[k] = t.value();
+  heap_.push({t.value(), seq_++, static_cast<std::uint32_t>(k)});
+  // From outside a dispatch (a SystemC process): SystemC must run the queue by then.
+  if (!dispatching_ && t.value() < scheduled_) {
+    scheduled_ = t.value();
+    kick_.notify(sc_core::sc_time::from_value(t.value() - now));
+  }
+}
+
+void WakeQueue::dispatch() {
+  dispatching_ = true;
+  const std::uint64_t now = sc_core::sc_time_stamp().value();
+  if (!started_) {
+    started_ = true;
+    for (std::size_t k = 0; k < clients_.size(); ++k) wake_at(k, sc_core::sc_time_stamp());
+  }
+  // Every client due now, those woken for now by the ones that run included.
+  while (!heap_.empty()) {
+    const Entry e = heap_.top();
+    if (stale(e)) {
+      heap_.pop();
+      continue;
+    }
+    if (e.t > now) break;
+    heap_.pop();
+    pending_[e.client] = kNone;
+    pending_t_[e.client] = kNone;
+    ++wakes_;
+    clients_[e.client]->woken();
+  }
+  dispatching_ = false;
+  // SystemC runs the queue again at its earliest wake (or when a process asks for one).
+  kick_.cancel();
+  if (heap_.empty()) {
+    scheduled_ = kNone;
+  } else {
+    scheduled_ = heap_.top().t;
+    kick_.notify(sc_core::sc_time::from_value(scheduled_ - now));
+  }
+  next_trigger(kick_);
+}
+
+}  // namespace rtsim::modules

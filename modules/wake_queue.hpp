@@ -1,0 +1,78 @@
+#pragma once
+// An event queue of its own for many event-driven processors, with SystemC at its edge
+// (DESIGN.md "The three layers": a kit part). A thousand SC_METHODs each cost SystemC a timed
+// notification, a place in its priority queue and a process dispatch for every activation; here
+// one SC_METHOD (`dispatch`) runs them instead: it keeps when each of its clients must run next
+// in a binary heap and, at each simulated time, runs every client due then, in the order their
+// wakes were asked for (first asked, first run). SystemC sees one process and one timed
+// notification: the earliest wake.
+//
+// A client asks to run at an absolute time (wake_at); a client has at most one wake pending,
+// the earliest asked for, as an sc_event keeps its earliest notification. A wake may be asked
+// for from a client's own run, from another client's (a message put into its port) or from any
+// SystemC process (a ring delivering), at the current simulated time or later.
+//
+// Exact where the clients are: a processor that handles what is due by its time and computes
+// ahead (modules::Processor's event-driven mode) does not depend on which of two processors due
+// at the same time runs first, because every message it takes was put before its stamp.
+// Used by ullner-array's 1024 processors (node.process = queue); tests/ullner_array_test.cpp
+// shows its statistics those of the SystemC methods and threads.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <systemc>
+#include <vector>
+
+namespace rtsim::modules {
+
+class WakeQueue : public sc_core::sc_module {
+ public:
+  /// What the queue runs.
+  class Client {
+   public:
+    /// Runs at the simulated time its wake was asked for (sc_time_stamp()).
+    virtual void woken() = 0;
+
+   protected:
+    ~Client() = default;
+  };
+
+  SC_HAS_PROCESS(WakeQueue);
+  /// Runs every client added, in the order added, when `start` fires; from then, as they ask.
+  WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_event& start);
+
+  /// Elaboration: a client; returns its number (for wake_at).
+  std::size_t add(Client& client);
+  /// Client `k` runs at `t` (absolute; now or later), unless it has a wake pending by then.
+  void wake_at(std::size_t k, const sc_core::sc_time& t);
+  /// Wakes run so far (the clients' activations).
+  std::uint64_t wakes() const { return wakes_; }
+
+ private:
+  struct Entry {
+    std::uint64_t t;    ///< ticks (sc_time values)
+    std::uint64_t seq;  ///< asked for in this order: ties run first asked, first run
+    std::uint32_t client;
+    bool operator>(const Entry& o) const { return t != o.t ? t > o.t : seq > o.seq; }
+  };
+  static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
+  void dispatch();
+  /// An entry is stale when its client has since been given a sooner wake (or has run).
+  bool stale(const Entry& e) const { return pending_[e.client] != e.seq; }
+
+  std::vector<Client*> clients_;
+  /// By client: the sequence number of its pending wake's entry, or kNone.
+  std::vector<std::uint64_t> pending_;
+  std::vector<std::uint64_t> pending_t_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
+  std::uint64_t seq_ = 0;
+  std::uint64_t wakes_ = 0;
+  bool started_ = false;
+  bool dispatching_ = false;
+  /// When SystemC will next run dispatch (kNone: only when asked).
+  std::uint64_t scheduled_ = kNone;
+  sc_core::sc_event kick_{"kick"};
+};
+
+}  // namespace rtsim::modules
