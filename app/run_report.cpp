@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -215,6 +216,32 @@ void machine_section(HtmlReport& page, const modules::UnitSchema& units, const s
                         : ":"));
     page.table(head, rows);
   }
+}
+
+/// stats.json `simulation` with its `activations` folded by class: the processes of a class of
+/// many instances (an array's 1024 "node12.activate") are one row, their sum, named
+/// "node*.activate (1024 processes)"; stats.json keeps every process.
+json folded_activations(const json& simulation) {
+  json out = simulation;
+  const auto it = simulation.find("activations");
+  if (it == simulation.end() || !it->is_object()) return out;
+  std::map<std::string, std::pair<double, std::size_t>> by_class;  // sum, processes
+  std::vector<std::string> order;
+  for (const auto& [process, n] : it->items()) {
+    if (!n.is_number()) continue;
+    const std::string cls = modules::instance_class(process);
+    auto [c, added] = by_class.try_emplace(cls, 0.0, 0);
+    if (added) order.push_back(cls);
+    c->second.first += n.get<double>();
+    ++c->second.second;
+  }
+  json folded = json::object();
+  for (const auto& cls : order) {
+    const auto& [sum, processes] = by_class.at(cls);
+    folded[processes > 1 ? cls + " (" + std::to_string(processes) + " processes)" : cls] = sum;
+  }
+  out["activations"] = std::move(folded);
+  return out;
 }
 
 const json* find(const json& j, const std::string& key) {
@@ -670,7 +697,7 @@ HtmlReport run_report_page(const RunReportInputs& in, const ReportTools& tools_i
   for (const auto& [key, v] : stats.items()) {
     if (kShownKeys.count(key) || !v.is_object()) continue;
     page.heading(key);
-    machine_section(page, units, key, v);
+    machine_section(page, units, key, key == "simulation" ? folded_activations(v) : v);
   }
   modules_section(page, units, stats);
   scene_section(page, units, stats);

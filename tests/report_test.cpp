@@ -145,6 +145,9 @@ TEST(Report, AClassOfManyInstancesIsOneRowOfItsAggregates) {
     EXPECT_NE(page.find(s), std::string::npos) << s;
   EXPECT_EQ(page.find(">node17<"), std::string::npos);
   EXPECT_EQ(page.find(">node17.memory<"), std::string::npos);
+  // And the processes' activations: one row, not 256 (stats.json keeps them all).
+  EXPECT_NE(page.find(">node*.activate (256 processes)<"), std::string::npos);
+  EXPECT_EQ(page.find(">node17.activate<"), std::string::npos);
 }
 
 TEST(Report, BadInputWritesNothing) {
