@@ -13,8 +13,7 @@ WakeQueue::WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_even
 
 std::size_t WakeQueue::add(Client& client) {
   clients_.push_back(&client);
-  pending_.push_back(kNone);
-  pending_t_.push_back(kNone);
+  pending_.emplace_back();
   return clients_.size() - 1;
 }
 
@@ -22,9 +21,8 @@ void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
   const std::uint64_t now = sc_core::sc_time_stamp().value();
   if (t.value() < now)
     throw std::logic_error(std::string(name()) + ": a wake asked for in the past");
-  if (pending_[k] != kNone && pending_t_[k] <= t.value()) return;  // the sooner one stands
-  pending_[k] = seq_;
-  pending_t_[k] = t.value();
+  if (pending_[k].seq != kNone && pending_[k].t <= t.value()) return;  // the sooner one stands
+  pending_[k] = {seq_, t.value()};
   heap_.push({t.value(), seq_++, static_cast<std::uint32_t>(k)});
   // From outside a dispatch (a SystemC process): SystemC must run the queue by then.
   if (!dispatching_ && t.value() < scheduled_) {
@@ -49,8 +47,7 @@ void WakeQueue::dispatch() {
     }
     if (e.t > now) break;
     heap_.pop();
-    pending_[e.client] = kNone;
-    pending_t_[e.client] = kNone;
+    pending_[e.client] = {};
     ++wakes_;
     clients_[e.client]->woken();
   }

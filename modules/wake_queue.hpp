@@ -19,7 +19,6 @@
 // shows its statistics those of the SystemC methods and threads.
 #include <cstdint>
 #include <limits>
-#include <optional>
 #include <queue>
 #include <systemc>
 #include <vector>
@@ -58,13 +57,16 @@ class WakeQueue : public sc_core::sc_module {
   };
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
   void dispatch();
+  /// A client's pending wake: its entry's sequence number and time (kNone: none).
+  struct Pending {
+    std::uint64_t seq = kNone;
+    std::uint64_t t = kNone;
+  };
   /// An entry is stale when its client has since been given a sooner wake (or has run).
-  bool stale(const Entry& e) const { return pending_[e.client] != e.seq; }
+  bool stale(const Entry& e) const { return pending_[e.client].seq != e.seq; }
 
   std::vector<Client*> clients_;
-  /// By client: the sequence number of its pending wake's entry, or kNone.
-  std::vector<std::uint64_t> pending_;
-  std::vector<std::uint64_t> pending_t_;
+  std::vector<Pending> pending_;  ///< by client
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
   std::uint64_t seq_ = 0;
   std::uint64_t wakes_ = 0;

@@ -5,6 +5,7 @@
 // module on a ring. Used by gaudet-pert's buses and the token ring's channel (pxpl5-raytrace,
 // ullner-array on a ring).
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rtsim::modules {
@@ -16,6 +17,16 @@ struct Connection {
 
 /// Every connection recorded in this process (one simulation per process).
 std::vector<Connection>& wiring();
+
+/// A child's hierarchical name under `parent` ("pipe" + "link_out" -> "pipe.link_out"): the
+/// name of a block a module builds that is not an sc_module child of it (a Link, a class of
+/// processors in a connection).
+inline std::string child_name(std::string_view parent, std::string_view child) {
+  std::string name(parent);
+  name += '.';
+  name += child;
+  return name;
+}
 
 inline void connect(std::string from, std::string to, std::string what) {
   wiring().push_back({std::move(from), std::move(to), std::move(what)});

@@ -72,10 +72,6 @@ const modules::CountParam kCleanupMultipliers(
 constexpr const char* kLink = "link";
 constexpr const char* kPlaneLink = "plane_link";
 
-std::string under(const sc_core::sc_module& m, const char* child) {
-  return std::string(m.name()) + "." + child;
-}
-
 StageTiming class_timing(const params::ParamRegistry& r, const char* cls,
                          const modules::CountParam& multipliers, const modules::Link& link) {
   const modules::ModuleParams p(r, cls);
@@ -133,8 +129,8 @@ HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run, Pi
       modules::StatGroup(this->name()),
       probe_(run.probe()),
       word_bits_(word_bits(run.registry())),
-      link_out_(under(*this, "link_out"),
-                modules::ModuleParams(run.registry(), under(*this, kLink))),
+      link_out_(modules::child_name(this->name(), "link_out"),
+                modules::ModuleParams(run.registry(), modules::child_name(this->name(), kLink))),
       divider_(DividerNode::kName, run.registry()),
       faults_(std::move(faults)) {
   link_out_.trace_to(run.trace());
@@ -172,9 +168,12 @@ HiddenLinePipe::HiddenLinePipe(sc_core::sc_module_name name, MachineRun& run, Pi
   stages_.back()->out.bind(divider_.in);
   stages_.back()->set_next(&divider_.register_free());
   // `rtsim describe` draws the pipe as its classes.
-  modules::connect(under(*this, "pp*"), under(*this, "cp*"), "segments and intersections");
-  modules::connect(under(*this, "cp*"), under(*this, "pp*"), "segments and intersections");
-  modules::connect(under(*this, "cp*"), link_out_.name(), "the pipe's output stream");
+  modules::connect(modules::child_name(this->name(), "pp*"),
+                   modules::child_name(this->name(), "cp*"), "segments and intersections");
+  modules::connect(modules::child_name(this->name(), "cp*"),
+                   modules::child_name(this->name(), "pp*"), "segments and intersections");
+  modules::connect(modules::child_name(this->name(), "cp*"), link_out_.name(),
+                   "the pipe's output stream");
   modules::connect(link_out_.name(), divider_.name(), "the pipe's output stream");
 }
 

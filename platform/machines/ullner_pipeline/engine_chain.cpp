@@ -90,10 +90,6 @@ constexpr const char* kEngine = "engine";
 constexpr const char* kLinkIn = "link_in";
 constexpr const char* kLink = "link";
 
-std::string under(const sc_core::sc_module& m, const char* child) {
-  return std::string(m.name()) + "." + child;
-}
-
 }  // namespace
 
 std::size_t EngineChain::engines(const modules::ModuleParams& pipeline) {
@@ -138,12 +134,14 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
       polygons_(run.twin().geometry->shapes.size()),
       counters_(run.frame().counters()),
       probe_(run.probe()),
-      inner_link_(under(*this, kLink), modules::ModuleParams(run.registry(), under(*this, kLink))),
-      link_out_(under(*this, "link_out"),
-                modules::ModuleParams(run.registry(), under(*this, kLink))),
+      inner_link_(modules::child_name(this->name(), kLink),
+                  modules::ModuleParams(run.registry(), modules::child_name(this->name(), kLink))),
+      link_out_(modules::child_name(this->name(), "link_out"),
+                modules::ModuleParams(run.registry(), modules::child_name(this->name(), kLink))),
       timing_(
           [&] {
-            const modules::ModuleParams engine(run.registry(), under(*this, kEngine));
+            const modules::ModuleParams engine(run.registry(),
+                                               modules::child_name(this->name(), kEngine));
             return EngineTiming{.issue_interval = engine.get(kIssueInterval),
                                 .hop_latency = engine.get(kHopLatency),
                                 .compute_latency = engine.get(kComputeLatency)};
@@ -153,7 +151,7 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
       polygon_time_(inner_link_.serialisation(PolygonDescription::kWireBits)),
       overwrites_(timing_.engines(), 0),
       answers_(timing_.engines(), 0),
-      engine_class_(under(*this, kEngine)) {
+      engine_class_(modules::child_name(this->name(), kEngine)) {
   load.register_b_transport(this, &EngineChain::load_transport);
   inner_link_.trace_to(run.trace());
   link_out_.trace_to(run.trace());
@@ -179,15 +177,16 @@ EngineChain::EngineChain(sc_core::sc_module_name name, MachineRun& run)
     // The chain in one module: its parts in the order a ray description meets them, so that
     // `rtsim describe` draws the chain (the engines and their inner links are a class each).
     const std::string n = std::to_string(engines());
-    modules::connect(under(*this, kLinkIn), input.name(), "ray descriptions");
-    modules::connect(input.name(), under(*this, kEngine), "to processor 0");
-    modules::connect(under(*this, kEngine), inner_link_.name(), "processor k to k+1, x " + n);
+    modules::connect(modules::child_name(this->name(), kLinkIn), input.name(), "ray descriptions");
+    modules::connect(input.name(), modules::child_name(this->name(), kEngine), "to processor 0");
+    modules::connect(modules::child_name(this->name(), kEngine), inner_link_.name(),
+                     "processor k to k+1, x " + n);
     modules::connect(inner_link_.name(), link_out_.name(),
                      "from processor " + std::to_string(engines() - 1));
   }
   // A ray meets them in this order (after the host's link in).
   probe_input_ = probe_.stage(input.name());
-  probe_engines_ = probe_.stage(under(*this, kEngine));
+  probe_engines_ = probe_.stage(modules::child_name(this->name(), kEngine));
   probe_link_out_ = probe_.stage(link_out_.name());
   SC_THREAD(run);
 }
