@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "modules/sim_time.hpp"
+
 namespace rtsim::modules {
 
 void BusyTimeline::merge_pairs() {
@@ -94,7 +96,7 @@ sc_core::sc_time BusyTimeline::total() const {
   std::uint64_t sum = 0;
   for (std::uint64_t v : busy_) sum += v;
   for (const Interval& i : sparse_) sum += i.end - i.start;
-  return sc_core::sc_time::from_value(sum);
+  return from_ticks(sum);
 }
 
 UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc_core::sc_time& end,

@@ -8,12 +8,13 @@ Processor::Processor(const sc_core::sc_module_name& name, SliceSink& trace)
     : sc_core::sc_module(name),
       StatGroup(sc_core::sc_module::name()),
       trace_(trace),
+      traced_(trace.records()),
       track_(this->name()) {}
 
 void Processor::compute_for(const sc_core::sc_time& t, std::string_view what,
                             std::initializer_list<PerfettoTrace::Arg> args) {
   if (t == sc_core::SC_ZERO_TIME) return;
-  trace_.slice(track_, what, clock_.now(), t, args);
+  if (traced_) trace_.slice(track_, what, clock_.now(), t, args);
   busy_.record(clock_.now(), t);
   clock_.advance(t);
 }

@@ -70,7 +70,7 @@ class Processor : public sc_core::sc_module, public StatGroup {
   /// The work it starts now is a step of item `id`'s journey (`flow`: "ray"): the traces link
   /// it to the item's slices on the links and the other processors (SliceSink::hop).
   void hop(std::string_view flow, std::uint64_t id) {
-    if (trace_.records()) trace_.hop(track_, flow, id, clock_.now());
+    if (traced_) trace_.hop(track_, flow, id, clock_.now());
   }
   /// Idle until `until` (if known) or until one of `events` fires, whichever comes first.
   /// A thread ahead of simulated time only catches up and returns (an event may have fired
@@ -164,6 +164,8 @@ class Processor : public sc_core::sc_module, public StatGroup {
 
   LocalClock clock_;
   SliceSink& trace_;
+  /// trace_.records(), asked once (it holds for the whole run): a processor's every step asks.
+  const bool traced_;
 
  private:
   template <class Events>

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <systemc>
+#include <type_traits>
 
 namespace rtsim::modules {
 
@@ -25,11 +26,24 @@ class TimeOverflow : public std::overflow_error {
 /// Whether time_overflow() was called in this process.
 bool time_overflowed();
 
+/// The time of `v` ticks (picoseconds), as sc_time::from_value gives it but inline: from_value
+/// is a call into the library that checks the time resolution each time (a few percent of a
+/// large array's run, where every step of a processor's time is made this way). The resolution
+/// is fixed long before: every parameter is an sc_time with a unit. sc_time is standard-layout
+/// with the tick count its only member, so its address is the count's.
+inline sc_core::sc_time from_ticks(sc_core::sc_time::value_type v) {
+  static_assert(std::is_standard_layout_v<sc_core::sc_time> &&
+                sizeof(sc_core::sc_time) == sizeof(sc_core::sc_time::value_type));
+  sc_core::sc_time t;
+  *reinterpret_cast<sc_core::sc_time::value_type*>(&t) = v;
+  return t;
+}
+
 /// n x t, exactly (integer picoseconds; sc_time * double would round through a double).
 inline sc_core::sc_time times(const sc_core::sc_time& t, std::uint64_t n) {
   sc_core::sc_time::value_type v = 0;
   if (__builtin_mul_overflow(t.value(), n, &v)) time_overflow();
-  return sc_core::sc_time::from_value(v);
+  return from_ticks(v);
 }
 
 /// a + b, exactly, or TimeOverflow.
@@ -42,7 +56,7 @@ inline sc_core::sc_time plus(const sc_core::sc_time& a, const sc_core::sc_time& 
 }
 
 inline sc_core::sc_time from_ps(std::int64_t ps) {
-  return sc_core::sc_time::from_value(static_cast<sc_core::sc_time::value_type>(ps));
+  return from_ticks(static_cast<sc_core::sc_time::value_type>(ps));
 }
 
 inline double seconds(const sc_core::sc_time& t) { return t.to_seconds(); }

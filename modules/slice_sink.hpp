@@ -28,7 +28,8 @@ class SliceSink {
   /// module, by a flow (its first step starts it). Nothing unless the traces take flows.
   virtual void hop(std::string_view /*module*/, std::string_view /*flow*/, std::uint64_t /*id*/,
                    const sc_core::sc_time& /*t*/) {}
-  /// Whether slices go anywhere: a module may skip preparing what it would record.
+  /// Whether slices go anywhere: a module may skip preparing what it would record. It does not
+  /// change over a run (a module may ask once).
   virtual bool records() const { return true; }
 };
 

@@ -12,13 +12,13 @@
 // a slot and how long (back-pressure on its producers).
 // Used by every machine's queues (MessageQueue).
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <string>
 #include <systemc>
 #include <vector>
 
 #include "modules/activations.hpp"
+#include "modules/ring_buffer.hpp"
 #include "modules/statistics.hpp"
 
 namespace rtsim::modules {
@@ -95,7 +95,9 @@ class TimedFifo : public StatGroup {
     while (items_.size() >= capacity_) modules::sim_wait(got_);
     const sc_core::sc_time stamp =
         capacity_ == kUnbounded ? t : std::max(t, slot_free_[messages_.value() % capacity_]);
-    items_.push_back(Entry{std::move(item), stamp});
+    Entry& e = items_.append();
+    e.item = std::move(item);
+    e.stamp = stamp;
     ++messages_;
     if (stamp > t) {
       ++waits_;
@@ -111,15 +113,15 @@ class TimedFifo : public StatGroup {
   /// the time it was taken (>= t and >= the time it was put).
   T get(sc_core::sc_time t, sc_core::sc_time& stamp) {
     while (items_.empty()) modules::sim_wait(put_);
-    Entry e = std::move(items_.front());
+    T item = std::move(items_.front().item);  // returned as it is (no second copy)
+    stamp = std::max(t, items_.front().stamp);
     items_.pop_front();
-    stamp = std::max(t, e.stamp);
     if (capacity_ != kUnbounded) slot_free_[get_count_ % capacity_] = stamp;
     ++get_count_;
     depth_.got(stamp);
     // Only a producer blocked on a full FIFO waits for a take (an unbounded one is never full).
     if (capacity_ != kUnbounded) got_.notify(sc_core::SC_ZERO_TIME);
-    return std::move(e.item);
+    return item;
   }
 
   /// Notified (next delta) when an item is put / taken.
@@ -135,7 +137,7 @@ class TimedFifo : public StatGroup {
     sc_core::sc_time stamp;
   };
   std::size_t capacity_;
-  std::deque<Entry> items_;
+  RingBuffer<Entry> items_;
   std::vector<sc_core::sc_time> slot_free_;  ///< per slot: when its last item was taken
   std::uint64_t get_count_ = 0;
   sc_core::sc_event put_;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "modules/sim_time.hpp"
+
 namespace rtsim::modules {
 
 WakeQueue::WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_event& start)
@@ -27,7 +29,7 @@ void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
   // From outside a dispatch (a SystemC process): SystemC must run the queue by then.
   if (!dispatching_ && t.value() < scheduled_) {
     scheduled_ = t.value();
-    kick_.notify(sc_core::sc_time::from_value(t.value() - now));
+    kick_.notify(from_ticks(t.value() - now));
   }
 }
 
@@ -58,7 +60,7 @@ void WakeQueue::dispatch() {
     scheduled_ = kNone;
   } else {
     scheduled_ = heap_.top().t;
-    kick_.notify(sc_core::sc_time::from_value(scheduled_ - now));
+    kick_.notify(from_ticks(scheduled_ - now));
   }
   next_trigger(kick_);
 }

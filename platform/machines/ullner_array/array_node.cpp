@@ -617,7 +617,7 @@ bool ArrayNode::next_message(RayMessage& msg) {
     --waiting_;
     received_.add(type_index(msg.type));
     // --trace perfetto: the message's flow steps through the processor that takes it.
-    if (msg.links > 0 && trace_.records())
+    if (msg.links > 0 && traced_)
       trace_.flow(name(), "message", msg.id, modules::PerfettoTrace::FlowPhase::kStep, now);
     // On a ring the journey ran from the copy out to the delivery into this port.
     probe_to(msg, ctx_.stages.ring, modules::LatencyPart::kTransfer, best_t);
@@ -752,7 +752,7 @@ void ArrayNode::activate() {
     resume_at_local_time();
 }
 
-void ArrayNode::process(RayMessage msg) {
+void ArrayNode::process(RayMessage&& msg) {
   spend(timing_.message, "message");
   switch (msg.type) {
     case MessageType::kNew: {
@@ -1067,7 +1067,7 @@ void ArrayNode::answer(const RayMessage& msg, bool found, const Hit& hit) {
   }
 }
 
-void ArrayNode::forward(RayMessage msg, const GridNode& to) {
+void ArrayNode::forward(RayMessage&& msg, const GridNode& to) {
   if (++msg.hops > ctx_.hop_limit) {
     ++tally_.looping;
     if (ctx_.probe) ctx_.probe->drop(msg.journey);
@@ -1121,7 +1121,7 @@ sc_core::sc_time ArrayNode::copy_out() {
   return book_memory(times(timing_.memory_cycle, 2 * RayMessage::kWords));
 }
 
-void ArrayNode::send(RayMessage msg, Direction d) {
+void ArrayNode::send(RayMessage&& msg, Direction d) {
   // The port copies the message out of this memory into the neighbour's (L854).
   const int k = static_cast<int>(d);
   if (!out_[k]) SC_REPORT_ERROR("rtsim/ullner-array", "a message was routed off the array");
@@ -1132,7 +1132,7 @@ void ArrayNode::send(RayMessage msg, Direction d) {
   probe_to(msg, ctx_.stages.link, modules::LatencyPart::kTransfer, arrived);
   sent_.add(type_index(msg.type));
   sent_by_link_[k]->add(type_index(msg.type));
-  if (trace_.records()) {
+  if (traced_) {
     // --trace perfetto: the message on the link, and its flow from link to processor to link.
     const int to = ctx_.topology->index(*ctx_.topology->neighbour(position_, d));
     trace_.slice(link.name(), message_type_names()[type_index(msg.type)], start, arrived - start,

@@ -46,7 +46,6 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include <array>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -64,6 +63,7 @@
 #include "modules/mesh_topology.hpp"
 #include "modules/message_channel.hpp"
 #include "modules/processor.hpp"
+#include "modules/ring_buffer.hpp"
 #include "modules/ring_channel.hpp"
 #include "modules/statistics.hpp"
 #include "modules/wake_queue.hpp"
@@ -285,11 +285,11 @@ class ArrayNode : public modules::Processor,
   void item_put(const sc_core::sc_time& stamp) override;
   /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
   bool next_message(RayMessage& msg);
-  void process(RayMessage msg);
+  void process(RayMessage&& msg);
   void search(RayMessage& msg);
   /// Sends `msg` one hop toward `to` on the mesh, or on the ring straight to `to`.
-  void forward(RayMessage msg, const modules::GridNode& to);
-  void send(RayMessage msg, modules::Direction d);
+  void forward(RayMessage&& msg, const modules::GridNode& to);
+  void send(RayMessage&& msg, modules::Direction d);
   /// Books its memory for `d` from when it is free (its unit's fetches, a port's copy out, a
   /// frame-buffer update: first come, first served in its own order of time); returns the start.
   sc_core::sc_time book_memory(const sc_core::sc_time& d);
@@ -345,8 +345,8 @@ class ArrayNode : public modules::Processor,
   std::vector<std::pair<std::size_t, std::uint64_t>> list_at_;
   std::vector<kernels::UllnerQuadParams<double>> decoded_;
   std::uint64_t decoded_after_ = ~std::uint64_t{0};
-  std::deque<RayMessage> own_;  ///< rays spawned here, not yet searched
-  Block block_;                 ///< its pixels: the vision rays it makes, the results it adds
+  modules::RingBuffer<RayMessage> own_;  ///< rays spawned here, not yet searched
+  Block block_;  ///< its pixels: the vision rays it makes, the results it adds
   tlm_utils::simple_initiator_socket<ArrayNode> frame_buffer_port_;
   int next_row_ = 0;  ///< of its block, the next to make vision rays for
   std::unique_ptr<tasks::VisionRayTask> vision_;

@@ -2,14 +2,11 @@
 
 #include <array>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 
 #include "modules/sim_time.hpp"
 
 namespace rtsim::platform::ullner_array {
-
-using modules::plus;
 
 namespace {
 
@@ -31,22 +28,42 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
   out.memory_end = start;
   out.done = start;
   if (tests.empty()) return out;
+  // In ticks (sc_time values) throughout: a processor runs this for every subvolume it
+  // searches, and it was a tenth of a large array's run in sc_time.
+  using Ticks = std::uint64_t;
+  const auto add = [](Ticks a, Ticks b) {
+    Ticks sum = 0;
+    if (__builtin_add_overflow(a, b, &sum)) modules::time_overflow();
+    return sum;
+  };
+  const Ticks stage_time = timing.stage_time.value();
+  // A fetch holds the memory two 16-bit transfers a word.
+  const auto fetch_time = [&](std::uint64_t words) {
+    return modules::times(timing.memory_cycle, 2 * words).value();
+  };
+  const Ticks entry_time = fetch_time(kEntryWords), first_entry_time = fetch_time(kEntryWords + 1),
+              t_time = fetch_time(kTWords), u_time = fetch_time(kUWords),
+              v_time = fetch_time(kVWords);
   const std::size_t n = tests.size();
   struct Slot {
     std::size_t item = 0;
-    bool full = false;
     bool started = false;  ///< its stage's work (a fetch, a computation) has begun
-    sc_core::sc_time ready;
-    int passes = -1;      ///< stage 3: whether t passed, decided when it was computed (-1: not yet)
-    bool wasted = false;  ///< it passed stage 3 only on a bound still on its way back
+    bool wasted = false;   ///< it passed stage 3 only on a bound still on its way back
+    int passes = -1;  ///< stage 3: whether t passed, decided when it was computed (-1: not yet)
+    Ticks ready = 0;
   };
   std::array<Slot, kStages> stage{};
+  // Bit s: stage s holds a polygon. The passes below visit only these (a stream of a few
+  // polygons leaves most of the nine stages empty most of the time).
+  unsigned full = 0;
+  const auto holds = [&](int s) { return (full >> s & 1u) != 0; };
   // The bound stage 9 passed back, and the list it belongs to.
   double fed_back = std::numeric_limits<double>::infinity();
   std::uint32_t fed_back_list = 0;
   bool any_fed_back = false;
   std::size_t issued = 0, left = 0;
-  sc_core::sc_time now = start, memory_free = start;
+  Ticks now = start.value(), memory_free = start.value(), memory_busy = 0, done = now,
+        memory_end = now;
   const std::array<int, 4> later_first{kFetchV, kFetchU, kFetchT, kAddress};
   const std::array<int, 4> earlier_first{kAddress, kFetchT, kFetchU, kFetchV};
   const auto& order = timing.priority == FetchPriority::kLaterStages ? later_first : earlier_first;
@@ -56,10 +73,13 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
     while (progress) {
       progress = false;
       // Done polygons move on, the latest stage first (so that each finds the room the one
-      // ahead of it has just left), or leave: no output at 3, 6 or 8, or kept at 9.
-      for (int s = kStages - 1; s >= 0; --s) {
+      // ahead of it has just left), or leave: no output at 3, 6 or 8, or kept at 9. A polygon
+      // moved on in this pass is not visited again in it (its new stage is later).
+      for (unsigned visit = full; visit != 0;) {
+        const int s = 31 - __builtin_clz(visit);
+        visit &= ~(1u << s);
         Slot& here = stage[static_cast<std::size_t>(s)];
-        if (!here.full || !here.started || here.ready > now) continue;
+        if (!here.started || here.ready > now) continue;
         const PipelineTest& T = tests[here.item];
         bool leaves = false;
         if (s == kComputeT) {
@@ -84,54 +104,48 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
           leaves = true;
         }
         if (leaves) {
-          here = Slot{};
+          full &= ~(1u << s);
           ++left;
-          out.done = now;
+          done = now;
           progress = true;
           continue;
         }
+        if (holds(s + 1)) continue;  // it waits in its stage
         Slot& next = stage[static_cast<std::size_t>(s + 1)];
-        if (next.full) continue;  // it waits in its stage
-        next = Slot{.item = here.item,
-                    .full = true,
-                    .started = false,
-                    .ready = now,
-                    .passes = -1,
-                    .wasted = here.wasted};
+        next = Slot{
+            .item = here.item, .started = false, .wasted = here.wasted, .passes = -1, .ready = now};
         if (!is_fetch(s + 1)) {
           next.started = true;
-          next.ready = plus(now, timing.stage_time);
+          next.ready = add(now, stage_time);
         }
-        here = Slot{};
+        full = (full & ~(1u << s)) | (1u << (s + 1));
         progress = true;
       }
       // The next polygon enters stage 1.
-      Slot& first = stage[kAddress];
-      if (!first.full && issued < n) {
-        first = Slot{.item = issued++,
-                     .full = true,
-                     .started = false,
-                     .ready = now,
-                     .passes = -1,
-                     .wasted = false};
+      if (!holds(kAddress) && issued < n) {
+        stage[kAddress] = Slot{.item = issued++, .started = false, .passes = -1, .ready = now};
+        full |= 1u << kAddress;
         progress = true;
       }
       // A free memory goes to the waiting fetch of highest priority.
       if (memory_free <= now) {
         for (const int s : order) {
           Slot& f = stage[static_cast<std::size_t>(s)];
-          if (!f.full || f.started) continue;
+          if (!holds(s) || f.started) continue;
           const PipelineTest& T = tests[f.item];
-          std::uint64_t words = s == kAddress  ? kEntryWords + (T.first_of_list ? 1 : 0)
-                                : s == kFetchT ? kTWords
-                                : s == kFetchU ? kUWords
-                                               : kVWords;
-          const sc_core::sc_time d = modules::times(timing.memory_cycle, 2 * words);
+          const std::uint64_t words = s == kAddress  ? kEntryWords + (T.first_of_list ? 1 : 0)
+                                      : s == kFetchT ? kTWords
+                                      : s == kFetchU ? kUWords
+                                                     : kVWords;
+          const Ticks d = s == kAddress  ? (T.first_of_list ? first_entry_time : entry_time)
+                          : s == kFetchT ? t_time
+                          : s == kFetchU ? u_time
+                                         : v_time;
           f.started = true;
-          f.ready = plus(now, d);
+          f.ready = add(now, d);
           memory_free = f.ready;
-          out.memory_end = memory_free;
-          out.memory_busy = plus(out.memory_busy, d);
+          memory_end = memory_free;
+          memory_busy = add(memory_busy, d);
           out.words += words;
           if ((s == kFetchU || s == kFetchV) && f.wasted) out.wasted_words += words;
           progress = true;
@@ -141,17 +155,26 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
     }
     if (left == n) break;
     // The next thing to happen: a stage's work ending, or the memory coming free for a fetch.
-    std::optional<sc_core::sc_time> next;
-    bool waiting = false;
-    for (const Slot& s : stage) {
-      if (!s.full) continue;
-      if (s.started && s.ready > now && (!next || s.ready < *next)) next = s.ready;
+    Ticks next = 0;
+    bool any = false, waiting = false;
+    for (unsigned visit = full; visit != 0; visit &= visit - 1) {
+      const Slot& s = stage[static_cast<std::size_t>(__builtin_ctz(visit))];
+      if (s.started && s.ready > now && (!any || s.ready < next)) {
+        next = s.ready;
+        any = true;
+      }
       if (!s.started) waiting = true;
     }
-    if (waiting && memory_free > now && (!next || memory_free < *next)) next = memory_free;
-    if (!next) throw std::logic_error("ullner-array: the intersection pipeline stalled");
-    now = *next;
+    if (waiting && memory_free > now && (!any || memory_free < next)) {
+      next = memory_free;
+      any = true;
+    }
+    if (!any) throw std::logic_error("ullner-array: the intersection pipeline stalled");
+    now = next;
   }
+  out.memory_end = modules::from_ticks(memory_end);
+  out.done = modules::from_ticks(done);
+  out.memory_busy = modules::from_ticks(memory_busy);
   return out;
 }
 
