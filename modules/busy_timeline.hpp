@@ -90,18 +90,19 @@ class BusyTimeline {
   std::uint64_t bins_for(std::uint64_t ticks) const {
     return (ticks >> shift_) + ((ticks & ((std::uint64_t{1} << shift_) - 1)) != 0 ? 1 : 0);
   }
+  // What add() reads first, together (a large machine's every busy interval comes here).
   bool keep_ = false;
-  std::vector<Interval> intervals_;
-  std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
+  bool recorded_ = false;  ///< anything added yet
+  bool binned_ = false;    ///< bins in use (else sparse_ holds everything)
   /// Ticks per bin: 1 << shift_. A power of two (merge_pairs doubles it), so the hot path of
   /// every busy interval shifts instead of dividing.
   unsigned shift_ = 0;
-  std::uint64_t first_ = 0;  ///< earliest start recorded
-  std::uint64_t last_ = 0;   ///< latest end recorded
+  std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
+  std::uint64_t first_ = 0;   ///< earliest start recorded
+  std::uint64_t last_ = 0;    ///< latest end recorded
   std::vector<std::uint64_t> busy_;
-  bool recorded_ = false;         ///< anything added yet
-  bool binned_ = false;           ///< bins in use (else sparse_ holds everything)
   std::vector<Interval> sparse_;  ///< the intervals until the timeline turns to bins
+  std::vector<Interval> intervals_;
 };
 
 }  // namespace rtsim::modules

@@ -171,17 +171,18 @@ class Processor : public sc_core::sc_module, public StatGroup {
   template <class Events>
   void idle_on(std::optional<sc_core::sc_time> until, const Events& events, Wait why);
   Duration& account(Wait why) { return why == Wait::kData ? waiting_for_data_ : waiting_for_work_; }
-  ProcessorTiming timing_;
-  Busy busy_{*this, "time computing (its utilisation)"};
-  Duration waiting_for_data_{*this, "waiting_for_data_s", "time idle for data it asked for"};
-  Duration waiting_for_work_{*this, "waiting_for_work_s", "time idle for work to arrive"};
-  Duration blocked_{*this, "blocked_s", "time blocked on output: the next queue was full"};
-  std::string track_;  ///< its trace track: its hierarchical name
+  // What every activation and computation touches first, together.
   /// An event-driven processor's idle: since when, and why (idle_trigger, resume).
   std::optional<std::pair<sc_core::sc_time, Wait>> idle_since_;
   /// A queue-driven processor's count of its activations (else resume() counts the running
   /// process's).
   std::uint64_t* queue_activations_ = nullptr;
+  Busy busy_{*this, "time computing (its utilisation)"};
+  Duration waiting_for_data_{*this, "waiting_for_data_s", "time idle for data it asked for"};
+  Duration waiting_for_work_{*this, "waiting_for_work_s", "time idle for work to arrive"};
+  Duration blocked_{*this, "blocked_s", "time blocked on output: the next queue was full"};
+  ProcessorTiming timing_;
+  std::string track_;  ///< its trace track: its hierarchical name
 };
 
 }  // namespace rtsim::modules

@@ -1,6 +1,9 @@
 #include "modules/statistics.hpp"
 
+#include <mutex>
+#include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "modules/stat_directory.hpp"
 
@@ -21,8 +24,20 @@ StatGroup::StatGroup(const StatGroup& parent, std::string_view child)
 StatGroup::~StatGroup() { StatDirectory::instance().remove(*this); }
 
 Statistic::Statistic(StatGroup& group, std::string name, std::string description, StatUnit unit)
-    : name_(std::move(name)), description_(std::move(description)), unit_(unit) {
+    : label_(&intern(std::move(name), std::move(description), unit)) {
   group.statistics_.push_back(this);
+}
+
+const Statistic::Label& Statistic::intern(std::string name, std::string description,
+                                          StatUnit unit) {
+  // Labels live as long as the process: a machine's statistics have a bounded set of them (the
+  // names are relative to their groups), however many instances.
+  const auto key = [](const Label& l) { return std::tie(l.name, l.description, l.unit); };
+  const auto less = [key](const Label& a, const Label& b) { return key(a) < key(b); };
+  static std::mutex mutex;
+  static std::set<Label, decltype(less)> labels(less);
+  const std::lock_guard<std::mutex> lock(mutex);
+  return *labels.insert(Label{std::move(name), std::move(description), unit}).first;
 }
 
 void Counter::report(StatReport& out, const StatWindow& /*window*/) const {

@@ -28,7 +28,8 @@ namespace rtsim::modules {
 /// instead of at every put).
 class PutListener {
  public:
-  virtual void item_put(const sc_core::sc_time& stamp) = 0;
+  /// An item stamped `stamp` was put into the FIFO the listener registered as `port`.
+  virtual void item_put(int port, const sc_core::sc_time& stamp) = 0;
 
  protected:
   ~PutListener() = default;
@@ -64,9 +65,11 @@ class TimedFifo : public StatGroup {
   /// `listener` is told of every put. One that never waits on put_event() (an event-driven
   /// processor woken by the listener) says `notify_puts` = false: a put then costs SystemC no
   /// notification (a delta cycle each).
-  void listen(PutListener* listener, bool notify_puts = true) {
+  /// `port` tells the listener which of its FIFOs this is.
+  void listen(PutListener* listener, bool notify_puts = true, int port = 0) {
     listener_ = listener;
     notify_puts_ = notify_puts;
+    port_ = port;
   }
   /// When the oldest waiting item was (or will be) put; nothing if the FIFO is empty.
   std::optional<sc_core::sc_time> next_item_time() const {
@@ -105,7 +108,7 @@ class TimedFifo : public StatGroup {
     }
     depth_.put(stamp);
     if (notify_puts_) put_.notify(sc_core::SC_ZERO_TIME);
-    if (listener_) listener_->item_put(stamp);
+    if (listener_) listener_->item_put(port_, stamp);
     return stamp;
   }
 
@@ -143,6 +146,7 @@ class TimedFifo : public StatGroup {
   sc_core::sc_event put_;
   sc_core::sc_event got_;
   PutListener* listener_ = nullptr;
+  int port_ = 0;
   bool notify_puts_ = true;
   Level depth_;
   Counter messages_{*this, "messages", "messages put"};

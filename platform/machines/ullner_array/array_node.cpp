@@ -284,7 +284,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
   if (ctx_.ring) {
     in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
         "in_ring", modules::TimedFifo<RayMessage>::kUnbounded);
-    in[kRingPort]->fifo.listen(this, thread);
+    in[kRingPort]->fifo.listen(this, thread, kRingPort);
   }
   for (const Direction d : modules::kDirections) {
     if (ctx_.ring || !topo.neighbour(position_, d)) continue;
@@ -292,7 +292,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
     // A port's buffer holds the node's stockpile of untraced messages (L825): not bounded here.
     in[static_cast<int>(d)] = std::make_unique<modules::MessageQueue<RayMessage>>(
         ("in_" + dir).c_str(), modules::TimedFifo<RayMessage>::kUnbounded);
-    in[static_cast<int>(d)]->fifo.listen(this, thread);
+    in[static_cast<int>(d)]->fifo.listen(this, thread, static_cast<int>(d));
     out_[static_cast<int>(d)] =
         std::make_unique<tlm_utils::simple_initiator_socket<ArrayNode>>(("out_" + dir).c_str());
     links_[static_cast<int>(d)] =
@@ -588,8 +588,10 @@ const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
   return decoded_;
 }
 
-void ArrayNode::item_put(const sc_core::sc_time& stamp) {
+void ArrayNode::item_put(int port, const sc_core::sc_time& stamp) {
   ++waiting_;
+  std::uint64_t& front = front_[static_cast<std::size_t>(port)];
+  if (front == kNoMessage) front = stamp.value();  // else an older message is first
   if (!idle_) return;  // it looks at its ports when it has done what it is doing
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   if (ctx_.queue)
@@ -602,18 +604,21 @@ bool ArrayNode::next_message(RayMessage& msg) {
   const sc_core::sc_time now = clock_.now();
   // The port whose message arrived first, if one has by now.
   int best = -1;
-  sc_core::sc_time best_t;
-  for (int d = 0; waiting_ > 0 && d < static_cast<int>(in.size()); ++d) {
-    if (!in[d] || !in[d]->fifo.has_item_by(now)) continue;
-    const sc_core::sc_time t = *in[d]->fifo.next_item_time();
-    if (best < 0 || t < best_t) {
+  std::uint64_t first = now.value();
+  for (int d = 0; waiting_ > 0 && d < static_cast<int>(front_.size()); ++d) {
+    const std::uint64_t t = front_[static_cast<std::size_t>(d)];
+    if (t != kNoMessage && (best < 0 ? t <= first : t < first)) {
       best = d;
-      best_t = t;
+      first = t;
     }
   }
   if (best >= 0) {
+    const sc_core::sc_time best_t = modules::from_ticks(first);
     sc_core::sc_time taken;
-    msg = in[best]->fifo.get(now, taken);
+    modules::TimedFifo<RayMessage>& port = in[best]->fifo;
+    msg = port.get(now, taken);
+    const std::optional<sc_core::sc_time> next = port.next_item_time();
+    front_[static_cast<std::size_t>(best)] = next ? next->value() : kNoMessage;
     --waiting_;
     received_.add(type_index(msg.type));
     // --trace perfetto: the message's flow steps through the processor that takes it.
@@ -706,9 +711,10 @@ ArrayNode::Step ArrayNode::step() {
   // Wait for a message: the first stamped ahead of its local time, or one put meanwhile on
   // another port that comes sooner; or for the quiet time to be over.
   std::optional<sc_core::sc_time> until;
-  for (auto& q : in)
-    if (q && waiting_ > 0)
-      if (const auto t = q->fifo.next_item_time(); t && (!until || *t < *until)) until = t;
+  if (waiting_ > 0) {
+    const std::uint64_t first = *std::min_element(front_.begin(), front_.end());
+    if (first != kNoMessage) until = modules::from_ticks(first);
+  }
   if (credit_held_ > 0 && (!until || send_at < *until)) until = send_at;
   return {.kind = Step::Kind::kIdle, .until = until};
 }

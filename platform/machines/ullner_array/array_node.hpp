@@ -282,7 +282,7 @@ class ArrayNode : public modules::Processor,
   std::span<const std::uint32_t> candidates(const accel::CellIndex& c) const;
   /// A message was put into one of its ports, to be there at `stamp`: counted, and an idle
   /// event-driven processor wakes then if that is sooner than it would have.
-  void item_put(const sc_core::sc_time& stamp) override;
+  void item_put(int port, const sc_core::sc_time& stamp) override;
   /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
   bool next_message(RayMessage& msg);
   void process(RayMessage&& msg);
@@ -359,6 +359,10 @@ class ArrayNode : public modules::Processor,
   bool started_ = false;
   /// Messages in its ports (those put and not yet taken): none, and it need not look at them.
   std::size_t waiting_ = 0;
+  /// The stamp (ticks) of the oldest message in each port, kNoMessage if none: which port's
+  /// message came first is read here, not from five queues each step (in[] order).
+  static constexpr std::uint64_t kNoMessage = ~std::uint64_t{0};
+  std::array<std::uint64_t, 5> front_{kNoMessage, kNoMessage, kNoMessage, kNoMessage, kNoMessage};
   /// node.process = method: it idles on this alone, notified for when it must look again (the
   /// first message due, the end of its quiet time); a put notifies it only if sooner.
   sc_core::sc_event wake_{"wake"};
