@@ -23,6 +23,7 @@
 #include "modules/activations.hpp"
 #include "modules/busy_timeline.hpp"
 #include "modules/local_clock.hpp"
+#include "modules/prefetch.hpp"
 #include "modules/processor_timing.hpp"
 #include "modules/slice_sink.hpp"
 #include "modules/statistics.hpp"
@@ -161,6 +162,13 @@ class Processor : public sc_core::sc_module, public StatGroup {
     }
   }
   const ProcessorTiming& timing() const { return timing_; }
+  /// Prefetches what an activation's resume() and its first computation read (a queue-driven
+  /// processor's Client::prepare, modules/wake_queue.hpp).
+  void prepare_activation() const {
+    prefetch_object(clock_);
+    prefetch_object(idle_since_);
+    prefetch_object(busy_);
+  }
 
   LocalClock clock_;
   SliceSink& trace_;

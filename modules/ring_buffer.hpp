@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "modules/prefetch.hpp"
+
 namespace rtsim::modules {
 
 template <class T>
@@ -18,8 +20,20 @@ class RingBuffer {
   std::size_t size() const { return size_; }
   T& front() { return slots_[head_]; }
   const T& front() const { return slots_[head_]; }
+  /// Prefetches the front item's lines (modules/prefetch.hpp), if there is one.
+  void prefetch_front() const {
+    if (size_ > 0) prefetch_object(slots_[head_]);
+  }
 
   void push_back(T item) { append() = std::move(item); }
+
+  /// Prefetches, for writing, the slot the next append() fills (if it has room for it).
+  void prefetch_back() const {
+    if (size_ == slots_.size()) return;
+    std::size_t at = head_ + size_;
+    if (at >= slots_.size()) at -= slots_.size();
+    prefetch_object<PrefetchFor::kWrite>(slots_[at]);
+  }
 
   /// Appends a slot and returns it for the caller to fill in place (a large item is then copied
   /// once, not into a parameter and again into the slot). It holds what a slot last held.

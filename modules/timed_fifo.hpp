@@ -71,6 +71,19 @@ class TimedFifo : public StatGroup {
     notify_puts_ = notify_puts;
     port_ = port;
   }
+  /// Prefetches what a get() reads: the oldest item and the FIFO's own state.
+  void prepare_get() const {
+    prefetch_object(items_);
+    prefetch_object(depth_);
+    items_.prefetch_front();
+  }
+  /// Prefetches what a put() writes: the slot it fills and the FIFO's own state.
+  void prepare_put() const {
+    prefetch_object(items_);
+    prefetch_object(depth_);
+    prefetch_object(messages_);
+    items_.prefetch_back();
+  }
   /// When the oldest waiting item was (or will be) put; nothing if the FIFO is empty.
   std::optional<sc_core::sc_time> next_item_time() const {
     if (items_.empty()) return std::nullopt;

@@ -51,9 +51,11 @@ void WakeQueue::dispatch() {
     heap_.pop();
     pending_[e.client] = {};
     ++wakes_;
+    prepare_next();
     clients_[e.client]->woken();
   }
   dispatching_ = false;
+  prepare_next();
   // SystemC runs the queue again at its earliest wake (or when a process asks for one).
   kick_.cancel();
   if (heap_.empty()) {
@@ -63,6 +65,12 @@ void WakeQueue::dispatch() {
     kick_.notify(from_ticks(scheduled_ - now));
   }
   next_trigger(kick_);
+}
+
+void WakeQueue::prepare_next() {
+  if (heap_.empty()) return;
+  const Entry& next = heap_.top();
+  if (!stale(next)) clients_[next.client]->prepare();
 }
 
 }  // namespace rtsim::modules

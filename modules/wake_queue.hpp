@@ -32,6 +32,10 @@ class WakeQueue : public sc_core::sc_module {
    public:
     /// Runs at the simulated time its wake was asked for (sc_time_stamp()).
     virtual void woken() = 0;
+    /// Called just before the client that runs before it: it may prefetch what its woken()
+    /// reads first (modules/prefetch.hpp), so that its state is on its way into the cache while
+    /// the other runs. A hint only: it must change nothing.
+    virtual void prepare() const {}
 
    protected:
     ~Client() = default;
@@ -57,6 +61,8 @@ class WakeQueue : public sc_core::sc_module {
   };
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
   void dispatch();
+  /// The client of the earliest live wake prepares (Client::prepare).
+  void prepare_next();
   /// A client's pending wake: its entry's sequence number and time (kNone: none).
   struct Pending {
     std::uint64_t seq = kNone;

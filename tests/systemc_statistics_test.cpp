@@ -4,6 +4,7 @@
 // leaving the directory when they are destroyed. Plain arithmetic on sc_time, no simulation.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <systemc>
@@ -102,6 +103,29 @@ TEST(Statistics, EachKindDeclaresTheUnitOfWhatItWrites) {
     EXPECT_EQ(units.unit_of("module_classes.node*.link_e." + key + ".max"), unit) << key;
   }
   EXPECT_FALSE(units.unit_of("modules.node3.link_e.unknown").has_value());
+}
+
+TEST(Statistics, ManyStatisticsReportAsEachWouldAlone) {
+  // 400 units hold 4,000 statistics: the directory works their windows out on two threads
+  // (StatDirectory::reports), and each unit's report is what it reports alone, in its order.
+  std::vector<std::unique_ptr<Unit>> units;
+  for (int k = 0; k < 400; ++k) {
+    units.push_back(std::make_unique<Unit>("many" + std::to_string(k)));
+    Unit& u = *units.back();
+    for (int i = 0; i <= k % 7; ++i)
+      u.busy.record(ps(100 + 37 * static_cast<std::uint64_t>(i * k % 29)), ps(11 + i));
+    u.jobs += static_cast<std::uint64_t>(k);
+  }
+  const auto reports = StatDirectory::instance().reports(kFrame);
+  for (const auto& u : units) {
+    StatReport alone;
+    for (const Statistic* s : u->statistics()) s->report(alone, kFrame);
+    const StatReport& r = reports.at(u->stat_path());
+    EXPECT_EQ(r.busy, alone.busy) << u->stat_path();
+    EXPECT_EQ(r.windows, alone.windows) << u->stat_path();
+    EXPECT_EQ(r.values, alone.values) << u->stat_path();
+    EXPECT_EQ(r.units, alone.units) << u->stat_path();
+  }
 }
 
 TEST(Statistics, AGroupLeavesTheDirectoryWithItsObject) {

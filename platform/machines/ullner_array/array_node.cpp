@@ -6,6 +6,7 @@
 #include "firmware/accel/grid_traversal.hpp"
 #include "firmware/kernels/ullner_quad_words.hpp"
 #include "modules/activations.hpp"
+#include "modules/prefetch.hpp"
 #include "modules/sim_time.hpp"
 #include "platform/machines/ullner_array/broadcast_record.hpp"
 
@@ -363,6 +364,14 @@ std::size_t ArrayNode::block_words(const ArrayContext& ctx, const GridNode& at) 
 
 void ArrayNode::connect(Direction d, ArrayNode& neighbour) {
   out_[static_cast<int>(d)]->bind(neighbour.in[static_cast<int>(modules::opposite(d))]->socket);
+  neighbour_[static_cast<std::size_t>(d)] = &neighbour;
+}
+
+void ArrayNode::prepare_receive(Direction from) const {
+  // A hint to the cache, no more: what the put into that port and item_put() touch.
+  in[static_cast<std::size_t>(from)]->fifo.prepare_put();
+  modules::prefetch_object(front_);
+  modules::prefetch_object(idle_);
 }
 
 std::vector<GridNode> ArrayNode::broadcast_children() const {
@@ -598,6 +607,20 @@ void ArrayNode::item_put(int port, const sc_core::sc_time& stamp) {
     ctx_.queue->wake_at(queue_slot_, std::max(stamp, now));  // the sooner one stands
   else
     wake_.notify(stamp > now ? stamp - now : sc_core::SC_ZERO_TIME);
+}
+
+void ArrayNode::prepare() const {
+  // A hint to the cache, no more: the lines activate(), step() and next_message() read first.
+  prepare_activation();
+  modules::prefetch_object(position_);
+  modules::prefetch_object(own_);
+  modules::prefetch_object(front_);
+  modules::prefetch_object(idle_);
+  modules::prefetch_object(received_);
+  if (waiting_ == 0) return;
+  const auto first = std::min_element(front_.begin(), front_.end());
+  if (*first != kNoMessage)
+    in[static_cast<std::size_t>(first - front_.begin())]->fifo.prepare_get();
 }
 
 bool ArrayNode::next_message(RayMessage& msg) {
@@ -1132,6 +1155,10 @@ void ArrayNode::send(RayMessage&& msg, Direction d) {
   const int k = static_cast<int>(d);
   if (!out_[k]) SC_REPORT_ERROR("rtsim/ullner-array", "a message was routed off the array");
   modules::Link& link = *links_[k];
+  // The neighbour's port and state, on their way into the cache while the copy and the link
+  // are timed.
+  if (const ArrayNode* to = neighbour_[static_cast<std::size_t>(k)])
+    to->prepare_receive(modules::opposite(d));
   const sc_core::sc_time start = copy_out();
   const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
   probe_to(msg, ctx_.stages.link, modules::LatencyPart::kQueueing, start);

@@ -202,6 +202,8 @@ class ArrayNode : public modules::Processor,
   /// Wires this processor's output in direction `d` to `neighbour`'s input from the opposite
   /// side (elaboration).
   void connect(modules::Direction d, ArrayNode& neighbour);
+  /// Prefetches what a message put into its port from `from` touches (send()'s hint).
+  void prepare_receive(modules::Direction from) const;
   /// Its children in the broadcast's spanning tree (the host feeds processor (0, 0)): on the
   /// mesh, row 0 passes east and every processor south; on a ring, each to its successor.
   std::vector<modules::GridNode> broadcast_children() const;
@@ -261,6 +263,9 @@ class ArrayNode : public modules::Processor,
   void activate();
   /// node.process = queue: the array's queue runs it (an activation).
   void woken() override { activate(); }
+  /// node.process = queue: prefetches what its next activation reads first (its state, the
+  /// port whose message came first and that message), while the processor before it runs.
+  void prepare() const override;
   /// The frame starts (the host has broadcast the view): its camera, its ports' events.
   void start_frame();
   /// One step of its loop at its local time, which is simulated time: takes and handles the
@@ -329,6 +334,7 @@ class ArrayNode : public modules::Processor,
   accel::Dda dda_;
   std::array<std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>>, 4> out_;
   std::array<std::unique_ptr<modules::Link>, 4> links_;
+  std::array<const ArrayNode*, 4> neighbour_{};  ///< the processor each link leads to (mesh)
   std::array<std::vector<MessageFault*>, 4> link_faults_;  ///< what each link corrupts
   tlm_utils::simple_initiator_socket<ArrayNode> memory_port_;
   std::vector<BroadcastHop> broadcast_out_;
