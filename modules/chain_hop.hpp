@@ -2,14 +2,17 @@
 // A module on a chain of loosely timed hops (the ray-tracing pipeline's polygon processors, the
 // Bezier pipeline's substages): a transaction reaches it through `in` (b_transport, the one
 // call a hop implements) and it passes the transaction on through `out`. The rest of TLM's
-// forward and backward interfaces (non-blocking transport, DMI, debug) are declined here, once.
+// forward (modules/blocking_target.hpp) and backward interfaces (non-blocking transport, DMI,
+// debug) are declined.
 #include <systemc>
 #include <tlm>
+
+#include "modules/blocking_target.hpp"
 
 namespace rtsim::modules {
 
 class ChainHop : public sc_core::sc_module,
-                 public tlm::tlm_fw_transport_if<>,
+                 public BlockingTarget,
                  public tlm::tlm_bw_transport_if<> {
  public:
   tlm::tlm_target_socket<> in;      ///< from the hop before (or the chain's entry)
@@ -22,12 +25,6 @@ class ChainHop : public sc_core::sc_module,
   }
 
  private:
-  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
-                                     sc_core::sc_time&) override {
-    return tlm::TLM_COMPLETED;
-  }
-  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
-  unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
   tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload&, tlm::tlm_phase&,
                                      sc_core::sc_time&) override {
     return tlm::TLM_COMPLETED;

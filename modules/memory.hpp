@@ -10,7 +10,6 @@
 // Used by ullner-peripheral (the parameter memories) and gaudet-pert (the Broadcast Processors'
 // memories); the array's node memories next.
 #include <sys/mman.h>
-#include <tlm_utils/simple_target_socket.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -25,6 +24,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "modules/blocking_target.hpp"
 #include "modules/payload_pool.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/statistics.hpp"
@@ -58,9 +58,9 @@ struct HostWordsFree {
   }
 };
 
-class Memory : public sc_core::sc_module, public StatGroup {
+class Memory : public sc_core::sc_module, public StatGroup, public BlockingTarget {
  public:
-  tlm_utils::simple_target_socket<Memory> socket;
+  tlm::tlm_target_socket<> socket;
 
   Memory(sc_core::sc_module_name name, std::size_t words, unsigned line_words,
          sc_core::sc_time write_word_time, sc_core::sc_time read_line_time)
@@ -72,7 +72,7 @@ class Memory : public sc_core::sc_module, public StatGroup {
         line_words_(line_words ? line_words : 1),
         write_word_time_(write_word_time),
         read_line_time_(read_line_time) {
-    socket.register_b_transport(this, &Memory::b_transport);
+    socket.bind(*this);
   }
 
   ~Memory() override { modelled_memory_bytes() -= words_ * sizeof(std::uint32_t); }
@@ -118,7 +118,7 @@ class Memory : public sc_core::sc_module, public StatGroup {
   const BusyTimeline& read_timeline() const { return read_busy_.timeline(); }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override {
     const std::uint64_t addr = gp.get_address();
     const unsigned len = gp.get_data_length();
     if (addr % 4 != 0 || len % 4 != 0 || gp.get_byte_enable_ptr() != nullptr ||

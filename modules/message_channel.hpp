@@ -8,7 +8,6 @@
 // to a type; the payload's data length is the message's size on the hardware, ceil(bits / 8),
 // which the Link in front of the queue (modules/link.hpp) charges. Used by every machine.
 #include <tlm_utils/simple_initiator_socket.h>
-#include <tlm_utils/simple_target_socket.h>
 
 #include <cstdint>
 #include <memory>
@@ -17,6 +16,7 @@
 #include <tlm>
 #include <vector>
 
+#include "modules/blocking_target.hpp"
 #include "modules/payload_pool.hpp"
 #include "modules/timed_fifo.hpp"
 
@@ -47,9 +47,9 @@ class MessageExtension : public tlm::tlm_extension<MessageExtension<T>> {
 /// the name the machine's vocabulary gives the queue ("pert0.queue.shade_to_shell" for the
 /// SystemC module pert0.shell.input).
 template <class T>
-class MessageQueue : public sc_core::sc_module {
+class MessageQueue : public sc_core::sc_module, public BlockingTarget {
  public:
-  tlm_utils::simple_target_socket<MessageQueue<T>> socket;
+  tlm::tlm_target_socket<> socket;
   TimedFifo<T> fifo;
 
   MessageQueue(sc_core::sc_module_name name, std::size_t depth, std::string stats_name = {})
@@ -58,11 +58,11 @@ class MessageQueue : public sc_core::sc_module {
         fifo(stats_name.empty() ? std::string(this->name()) : std::move(stats_name), depth),
         bits_(fifo, "bits", "bits its messages carried (their sizes on the hardware)",
               StatUnit::bits) {
-    socket.register_b_transport(this, &MessageQueue::b_transport);
+    socket.bind(*this);
   }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override {
     const auto* ext = gp.get_extension<MessageExtension<T>>();
     if (!ext || !ext->message()) {
       gp.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);

@@ -108,7 +108,7 @@ class TimedFifo : public StatGroup {
   /// Put `item` at local time `t`; blocks while the FIFO is full. Returns the time the item
   /// actually entered (>= t: later if it had to wait for a slot).
   sc_core::sc_time put(T item, sc_core::sc_time t) {
-    while (items_.size() >= capacity_) modules::sim_wait(got_);
+    while (items_.size() >= capacity_) modules::sim_wait(event_of_get());
     const sc_core::sc_time stamp =
         capacity_ == kUnbounded ? t : std::max(t, slot_free_[messages_.value() % capacity_]);
     Entry& e = items_.append();
@@ -120,7 +120,7 @@ class TimedFifo : public StatGroup {
       waited_ += stamp - t;
     }
     depth_.put(stamp);
-    if (notify_puts_) put_.notify(sc_core::SC_ZERO_TIME);
+    if (notify_puts_) event_of_put().notify(sc_core::SC_ZERO_TIME);
     if (listener_) listener_->item_put(port_, stamp);
     return stamp;
   }
@@ -128,7 +128,7 @@ class TimedFifo : public StatGroup {
   /// Take the oldest item at local time `t`; blocks while the FIFO is empty. `stamp` receives
   /// the time it was taken (>= t and >= the time it was put).
   T get(sc_core::sc_time t, sc_core::sc_time& stamp) {
-    while (items_.empty()) modules::sim_wait(put_);
+    while (items_.empty()) modules::sim_wait(event_of_put());
     T item = std::move(items_.front().item);  // returned as it is (no second copy)
     stamp = std::max(t, items_.front().stamp);
     items_.pop_front();
@@ -136,13 +136,13 @@ class TimedFifo : public StatGroup {
     ++get_count_;
     depth_.got(stamp);
     // Only a producer blocked on a full FIFO waits for a take (an unbounded one is never full).
-    if (capacity_ != kUnbounded) got_.notify(sc_core::SC_ZERO_TIME);
+    if (capacity_ != kUnbounded) event_of_get().notify(sc_core::SC_ZERO_TIME);
     return item;
   }
 
   /// Notified (next delta) when an item is put / taken.
-  const sc_core::sc_event& put_event() const { return put_; }
-  const sc_core::sc_event& get_event() const { return got_; }
+  const sc_core::sc_event& put_event() const { return event_of_put(); }
+  const sc_core::sc_event& get_event() const { return event_of_get(); }
 
   std::uint64_t puts() const { return messages_.value(); }
   const Occupancy& occupancy() const { return depth_.occupancy(); }
@@ -156,8 +156,14 @@ class TimedFifo : public StatGroup {
   RingBuffer<Entry> items_;
   std::vector<sc_core::sc_time> slot_free_;  ///< per slot: when its last item was taken
   std::uint64_t get_count_ = 0;
-  sc_core::sc_event put_;
-  sc_core::sc_event got_;
+  /// The put and get events, made when first asked for or notified: a put's notification
+  /// reaches only processes waiting on the event, and there are none before it exists, so a
+  /// FIFO nobody waits on (an event-driven processor's port) never makes them. Events are a
+  /// large part of building a machine of thousands of queues (SystemC names each one).
+  sc_core::sc_event& event_of_put() const { return put_ ? *put_ : put_.emplace(); }
+  sc_core::sc_event& event_of_get() const { return got_ ? *got_ : got_.emplace(); }
+  mutable std::optional<sc_core::sc_event> put_;
+  mutable std::optional<sc_core::sc_event> got_;
   PutListener* listener_ = nullptr;
   int port_ = 0;
   bool notify_puts_ = true;

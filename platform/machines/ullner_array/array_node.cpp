@@ -282,6 +282,7 @@ ArrayNode::ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& 
   // Only a thread waits on its ports' put events; an event-driven processor is woken by
   // item_put.
   const bool thread = p.get(kProcess) == "thread";
+  waits_on_ports_ = thread;
   if (ctx_.ring) {
     in[kRingPort] = std::make_unique<modules::MessageQueue<RayMessage>>(
         "in_ring", modules::TimedFifo<RayMessage>::kUnbounded);
@@ -692,8 +693,8 @@ void ArrayNode::start_frame() {
   camera_.emplace(local_.camera, ctx_.frame->width(), ctx_.frame->height());
   for (auto& q : in) {
     if (!q) continue;
-    any_ |= q->fifo.put_event();
     ports_ = true;
+    if (waits_on_ports_) any_ |= q->fifo.put_event();
   }
   started_ = true;
   // The load ran in annotated time when the host broadcast; the frame starts once this

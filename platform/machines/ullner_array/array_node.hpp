@@ -362,6 +362,7 @@ class ArrayNode : public modules::Processor,
   /// each wait allocates); `ports_`: whether it has any.
   sc_core::sc_event_or_list any_;
   bool ports_ = false;
+  bool waits_on_ports_ = false;  ///< node.process = thread: it waits on any_ (else it is woken)
   bool started_ = false;
   /// Messages in its ports (those put and not yet taken): none, and it need not look at them.
   std::size_t waiting_ = 0;
