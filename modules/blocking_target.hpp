@@ -4,9 +4,9 @@
 // declined here, once. A module that derives from it binds a plain tlm::tlm_target_socket to
 // itself instead of using a simple_target_socket, whose machinery for converting between
 // blocking and non-blocking calls costs three sc_events a socket, each an entry in SystemC's
-// name tables: a 32 x 32 ullner-array has 6,000 queues and memories, and the events were a
-// tenth of building it. Used by MessageQueue (modules/message_channel.hpp), Memory
-// (modules/memory.hpp) and ChainHop (modules/chain_hop.hpp).
+// name tables: a 32 x 32 ullner-array has 6,000 queues and memories, and their events were
+// 0.3 G of the 0.75 G instructions building its processors took. Used by MessageQueue
+// (modules/message_channel.hpp), Memory (modules/memory.hpp) and ChainHop (modules/chain_hop.hpp).
 #include <systemc>
 #include <tlm>
 

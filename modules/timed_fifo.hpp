@@ -61,11 +61,10 @@ class TimedFifo : public StatGroup {
     return items_.size() < capacity_ && slot_free_[messages_.value() % capacity_] <= t;
   }
   bool full() const { return items_.size() >= capacity_; }
-  /// `listener` is told of every put from now on (one at most; null: none).
-  /// `listener` is told of every put. One that never waits on put_event() (an event-driven
-  /// processor woken by the listener) says `notify_puts` = false: a put then costs SystemC no
-  /// notification (a delta cycle each).
-  /// `port` tells the listener which of its FIFOs this is.
+  /// `listener` is told of every put from now on (one at most; null: none), with `port`, which
+  /// of its FIFOs this is. One that never waits on put_event() (an event-driven processor woken
+  /// by the listener) says `notify_puts` = false: a put then costs SystemC no notification (a
+  /// delta cycle each).
   void listen(PutListener* listener, bool notify_puts = true, int port = 0) {
     listener_ = listener;
     notify_puts_ = notify_puts;

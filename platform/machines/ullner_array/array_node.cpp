@@ -599,7 +599,6 @@ const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
 }
 
 void ArrayNode::item_put(int port, const sc_core::sc_time& stamp) {
-  ++waiting_;
   std::uint64_t& front = front_[static_cast<std::size_t>(port)];
   if (front == kNoMessage) front = stamp.value();  // else an older message is first
   if (!idle_) return;  // it looks at its ports when it has done what it is doing
@@ -618,32 +617,21 @@ void ArrayNode::prepare() const {
   modules::prefetch_object(front_);
   modules::prefetch_object(idle_);
   modules::prefetch_object(received_);
-  if (waiting_ == 0) return;
-  const auto first = std::min_element(front_.begin(), front_.end());
-  if (*first != kNoMessage)
-    in[static_cast<std::size_t>(first - front_.begin())]->fifo.prepare_get();
+  const std::size_t first = first_port();
+  if (front_[first] != kNoMessage) in[first]->fifo.prepare_get();
 }
 
 bool ArrayNode::next_message(RayMessage& msg) {
   const sc_core::sc_time now = clock_.now();
   // The port whose message arrived first, if one has by now.
-  int best = -1;
-  std::uint64_t first = now.value();
-  for (int d = 0; waiting_ > 0 && d < static_cast<int>(front_.size()); ++d) {
-    const std::uint64_t t = front_[static_cast<std::size_t>(d)];
-    if (t != kNoMessage && (best < 0 ? t <= first : t < first)) {
-      best = d;
-      first = t;
-    }
-  }
-  if (best >= 0) {
-    const sc_core::sc_time best_t = modules::from_ticks(first);
+  const std::size_t best = first_port();
+  if (front_[best] != kNoMessage && front_[best] <= now.value()) {
+    const sc_core::sc_time best_t = modules::from_ticks(front_[best]);
     sc_core::sc_time taken;
     modules::TimedFifo<RayMessage>& port = in[best]->fifo;
     msg = port.get(now, taken);
     const std::optional<sc_core::sc_time> next = port.next_item_time();
-    front_[static_cast<std::size_t>(best)] = next ? next->value() : kNoMessage;
-    --waiting_;
+    front_[best] = next ? next->value() : kNoMessage;
     received_.add(type_index(msg.type));
     // --trace perfetto: the message's flow steps through the processor that takes it.
     if (msg.links > 0 && traced_)
@@ -735,10 +723,8 @@ ArrayNode::Step ArrayNode::step() {
   // Wait for a message: the first stamped ahead of its local time, or one put meanwhile on
   // another port that comes sooner; or for the quiet time to be over.
   std::optional<sc_core::sc_time> until;
-  if (waiting_ > 0) {
-    const std::uint64_t first = *std::min_element(front_.begin(), front_.end());
-    if (first != kNoMessage) until = modules::from_ticks(first);
-  }
+  if (const std::uint64_t first = front_[first_port()]; first != kNoMessage)
+    until = modules::from_ticks(first);
   if (credit_held_ > 0 && (!until || send_at < *until)) until = send_at;
   return {.kind = Step::Kind::kIdle, .until = until};
 }

@@ -45,6 +45,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
@@ -285,8 +286,9 @@ class ArrayNode : public modules::Processor,
   sc_core::sc_time sort(sc_core::sc_time t);
   /// The candidates its memory lists for subvolume `c` (line numbers; empty if none).
   std::span<const std::uint32_t> candidates(const accel::CellIndex& c) const;
-  /// A message was put into one of its ports, to be there at `stamp`: counted, and an idle
-  /// event-driven processor wakes then if that is sooner than it would have.
+  /// A message was put into one of its ports, to be there at `stamp`: noted as its port's first if
+  /// the port was empty, and an idle event-driven processor wakes then if that is sooner than it
+  /// would have.
   void item_put(int port, const sc_core::sc_time& stamp) override;
   /// Takes the next message: an arrived one, then this processor's own, then a new vision ray.
   bool next_message(RayMessage& msg);
@@ -364,12 +366,16 @@ class ArrayNode : public modules::Processor,
   bool ports_ = false;
   bool waits_on_ports_ = false;  ///< node.process = thread: it waits on any_ (else it is woken)
   bool started_ = false;
-  /// Messages in its ports (those put and not yet taken): none, and it need not look at them.
-  std::size_t waiting_ = 0;
   /// The stamp (ticks) of the oldest message in each port, kNoMessage if none: which port's
   /// message came first is read here, not from five queues each step (in[] order).
   static constexpr std::uint64_t kNoMessage = ~std::uint64_t{0};
   std::array<std::uint64_t, 5> front_{kNoMessage, kNoMessage, kNoMessage, kNoMessage, kNoMessage};
+  /// The port whose oldest message came first (the lowest in in[] order on a tie); its front_
+  /// is kNoMessage if no port holds one.
+  std::size_t first_port() const {
+    return static_cast<std::size_t>(std::min_element(front_.begin(), front_.end()) -
+                                    front_.begin());
+  }
   /// node.process = method: it idles on this alone, notified for when it must look again (the
   /// first message due, the end of its quiet time); a put notifies it only if sooner.
   sc_core::sc_event wake_{"wake"};
