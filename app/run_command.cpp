@@ -207,12 +207,13 @@ int run_run(const RunArgs& args) {
     stats["overhead_ratio"] = result.image.wall_time_s / functional_result.wall_time_s;
     stats["functional_image_identical"] = functional_result.rgb == result.image.rgb;
   }
-  // Machine keys are added; an object the app already wrote (scene_stats) is extended.
+  // Machine keys are added; an object the app already wrote (scene_stats) is extended. Moved,
+  // not copied: `modules` of a 32 x 32 array is 12 MB of JSON.
   for (auto& [key, value] : result.stats.items()) {
     if (value.is_object() && stats.contains(key) && stats[key].is_object())
       stats[key].update(value);
     else
-      stats[key] = value;
+      stats[key] = std::move(value);
   }
   if (plan) stats["sample"]["plan"] = plan->json;
   // The unit of every number above, from where each is declared (modules/stat_unit.hpp).
@@ -222,7 +223,7 @@ int run_run(const RunArgs& args) {
 
   // A trace that lost events says so wherever the numbers are read: here, stats.json `trace`,
   // the report.
-  for (const std::string& warning : trace_warnings(nlohmann::json(stats)))
+  for (const std::string& warning : trace_warnings(stats))
     std::cerr << "rtsim: warning: " << warning << "\n";
 
   if (args.image == "all") stage_images(out, result.image);

@@ -64,7 +64,8 @@ modules::TraceFilter trace_filter_from(const std::string& window,
   return f;
 }
 
-std::vector<std::string> trace_warnings(const nlohmann::json& stats) {
+template <class Json>
+std::vector<std::string> trace_warnings(const Json& stats) {
   std::vector<std::string> out;
   if (!stats.contains("trace") || !stats["trace"].is_object()) return out;
   const auto& t = stats["trace"];
@@ -76,8 +77,8 @@ std::vector<std::string> trace_warnings(const nlohmann::json& stats) {
     if (dropped == 0) continue;
     std::string whole;
     if (t.contains("window_s") && t["window_s"].is_array() && t["window_s"].size() == 2)
-      whole = ": it holds every event from " + format_seconds(t["window_s"][0].get<double>()) +
-              " to " + format_seconds(t["window_s"][1].get<double>()) + " only";
+      whole = ": it holds every event from " + format_seconds(t["window_s"][0].template get<double>()) +
+              " to " + format_seconds(t["window_s"][1].template get<double>()) + " only";
     out.push_back(t[key].value("file", std::string(key)) + ": " + std::to_string(dropped) +
                   (std::string(key) == "vcd" ? " value changes" : " events") +
                   " dropped at --trace-max-events " + cap + "; the trace is incomplete" + whole +
@@ -100,16 +101,18 @@ std::vector<std::string> trace_warnings(const nlohmann::json& stats) {
   if (t.contains("modules") && stats.contains("modules")) {
     for (const auto& pattern : t["modules"]) {
       modules::TraceFilter one;
-      one.modules = {pattern.get<std::string>()};
+      one.modules = {pattern.template get<std::string>()};
       bool any = false;
       for (const auto& [name, m] : stats["modules"].items()) any = any || one.keeps_module(name);
       if (!any)
-        out.push_back("--trace-modules " + pattern.get<std::string>() +
+        out.push_back("--trace-modules " + pattern.template get<std::string>() +
                       " matched no module (the names are stats.json's `modules`)");
     }
   }
   return out;
 }
+template std::vector<std::string> trace_warnings(const nlohmann::json&);
+template std::vector<std::string> trace_warnings(const nlohmann::ordered_json&);
 
 bool trace_is_complete(const nlohmann::json& stats) {
   if (!stats.contains("trace") || !stats["trace"].is_object()) return false;

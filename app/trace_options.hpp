@@ -24,7 +24,10 @@ using modules::kTraceWarnBytes;
 /// (`trace`, `modules`): events dropped at the cap, a file larger than kTraceWarnBytes (with
 /// the options that keep less), patterns that kept no module. Empty when the traces are
 /// complete as asked and open.
-std::vector<std::string> trace_warnings(const nlohmann::json& stats);
+/// For stats.json as read (nlohmann::json) and as written (ordered_json): the run reads it in
+/// place, without a copy of every module's statistics.
+template <class Json>
+std::vector<std::string> trace_warnings(const Json& stats);
 
 /// The traces hold every event of the whole frame for every module (no window, no module
 /// patterns, nothing dropped): only then can a plot of the frame be drawn from them.
