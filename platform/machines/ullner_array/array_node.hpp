@@ -155,6 +155,45 @@ struct ArrayTally {
 class ArrayNode : public modules::Processor,
                   private modules::PutListener,
                   private modules::WakeQueue::Client {
+ private:
+  // What a step of the frame and a record of the load read of the processor itself, declared
+  // first so that they share a few cache lines: a 32 x 32 array's 1024 processors take turns,
+  // and each turn finds its processor's state out of the cache (the rest of the object is
+  // kilobytes of sockets, modules and the scene's copy).
+  struct Timing {
+    std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
+    sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
+    double cpu_memory_share;        ///< of its computing time, its bus cycles' hold on the memory
+    PipelineTiming pipeline;        ///< its intersection unit's (Fig. 2-28)
+    sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
+    bool credit_carried;            ///< held credit also rides on messages toward the detector
+  };
+  /// The stamp (ticks) of the oldest message in each port, kNoMessage if none: which port's
+  /// message came first is read here, not from five queues each step (in[] order).
+  static constexpr std::uint64_t kNoMessage = ~std::uint64_t{0};
+  std::array<std::uint64_t, 5> front_{kNoMessage, kNoMessage, kNoMessage, kNoMessage, kNoMessage};
+  /// node.process = queue: its number in ctx_.queue.
+  std::size_t queue_slot_ = 0;
+  sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time cycle_;
+  std::uint64_t credit_held_ = 0;
+  std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is
+  bool idle_ = false;
+  bool ports_ = false;  ///< whether it has any port
+  bool waits_on_ports_ = false;  ///< node.process = thread: it waits on any_ (else it is woken)
+  bool started_ = false;
+  int next_row_ = 0;  ///< of its block, the next to make vision rays for
+  const ArrayContext& ctx_;
+  ArrayTally& tally_;
+  modules::GridNode position_;
+  std::array<const ArrayNode*, 4> neighbour_{};  ///< the processor each link leads to (mesh)
+  /// The load's state: where the next record goes, when its buffer is free, the CPU's time.
+  std::uint64_t next_free_ = 0;
+  sc_core::sc_time buffer_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time load_cpu_free_ = sc_core::SC_ZERO_TIME;
+  sc_core::sc_time frame_ready_ = sc_core::SC_ZERO_TIME;
+  Timing timing_;
+
  public:
   /// The input port from the neighbour in each direction (absent at an unconnected edge, and
   /// all four on a ring), and the ring's (in[kRingPort], on a ring only).
@@ -228,14 +267,6 @@ class ArrayNode : public modules::Processor,
                                   "bound a closer hit still in the pipe was about to tighten "
                                   "(L847)",
                                   modules::StatUnit::words};
-  };
-  struct Timing {
-    std::uint64_t message, route, subvolume, shade, spawn, result, new_ray, keep_test, sort;
-    sc_core::sc_time memory_cycle;  ///< one 16-bit transfer (L835, L891)
-    double cpu_memory_share;        ///< of its computing time, its bus cycles' hold on the memory
-    PipelineTiming pipeline;        ///< its intersection unit's (Fig. 2-28)
-    sc_core::sc_time credit_quiet;  ///< idle this long before credit goes on (node.*)
-    bool credit_carried;            ///< held credit also rides on messages toward the detector
   };
   /// A child in the broadcast's tree: the socket to its broadcast port and the link to it (none
   /// on a ring: the segment to the successor), and when that is free. The load's use of a link
@@ -324,11 +355,6 @@ class ArrayNode : public modules::Processor,
   modules::GridNode pixel_owner(std::uint32_t pixel) const;
   const std::vector<kernels::UllnerQuadParams<double>>& held();
 
-  const ArrayContext& ctx_;
-  ArrayTally& tally_;
-  modules::GridNode position_;
-  Timing timing_;
-  sc_core::sc_time cycle_;
   /// What its memory says of the scene: lights, materials, background, view.
   scenes::Scene local_;
   std::optional<shading::PinholeCamera> camera_;
@@ -336,15 +362,9 @@ class ArrayNode : public modules::Processor,
   accel::Dda dda_;
   std::array<std::unique_ptr<tlm_utils::simple_initiator_socket<ArrayNode>>, 4> out_;
   std::array<std::unique_ptr<modules::Link>, 4> links_;
-  std::array<const ArrayNode*, 4> neighbour_{};  ///< the processor each link leads to (mesh)
   std::array<std::vector<MessageFault*>, 4> link_faults_;  ///< what each link corrupts
   tlm_utils::simple_initiator_socket<ArrayNode> memory_port_;
   std::vector<BroadcastHop> broadcast_out_;
-  /// The load's state: where the next record goes, when its buffer is free, the CPU's time.
-  std::uint64_t next_free_ = 0;
-  sc_core::sc_time buffer_free_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time load_cpu_free_ = sc_core::SC_ZERO_TIME;
-  sc_core::sc_time frame_ready_ = sc_core::SC_ZERO_TIME;
   std::vector<std::uint32_t> line_at_;  ///< line number -> word address of its header
   /// Line numbers kept for each of its subvolumes (by the grid's linear index), until the sort.
   std::unordered_map<std::size_t, std::vector<std::uint32_t>> pending_;
@@ -356,20 +376,10 @@ class ArrayNode : public modules::Processor,
   modules::RingBuffer<RayMessage> own_;  ///< rays spawned here, not yet searched
   Block block_;  ///< its pixels: the vision rays it makes, the results it adds
   tlm_utils::simple_initiator_socket<ArrayNode> frame_buffer_port_;
-  int next_row_ = 0;  ///< of its block, the next to make vision rays for
   std::unique_ptr<tasks::VisionRayTask> vision_;
-  std::uint64_t credit_held_ = 0;
-  std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is
   /// Its ports' arrivals, the events it idles on: one list for the whole frame (a list made for
-  /// each wait allocates); `ports_`: whether it has any.
+  /// each wait allocates); ports_ says whether it has any.
   sc_core::sc_event_or_list any_;
-  bool ports_ = false;
-  bool waits_on_ports_ = false;  ///< node.process = thread: it waits on any_ (else it is woken)
-  bool started_ = false;
-  /// The stamp (ticks) of the oldest message in each port, kNoMessage if none: which port's
-  /// message came first is read here, not from five queues each step (in[] order).
-  static constexpr std::uint64_t kNoMessage = ~std::uint64_t{0};
-  std::array<std::uint64_t, 5> front_{kNoMessage, kNoMessage, kNoMessage, kNoMessage, kNoMessage};
   /// The port whose oldest message came first (the lowest in in[] order on a tie); its front_
   /// is kNoMessage if no port holds one.
   std::size_t first_port() const {
@@ -379,10 +389,6 @@ class ArrayNode : public modules::Processor,
   /// node.process = method: it idles on this alone, notified for when it must look again (the
   /// first message due, the end of its quiet time); a put notifies it only if sooner.
   sc_core::sc_event wake_{"wake"};
-  /// node.process = queue: its number in ctx_.queue.
-  std::size_t queue_slot_ = 0;
-  bool idle_ = false;
-  sc_core::sc_time memory_free_ = sc_core::SC_ZERO_TIME;
   std::vector<shading::TracedRay> spawned_;
   std::vector<PipelineTest> stream_;  ///< a search's tests, for its unit's timing
 
