@@ -155,14 +155,6 @@ class TimedFifo : public StatGroup {
   RingBuffer<Entry> items_;
   std::vector<sc_core::sc_time> slot_free_;  ///< per slot: when its last item was taken
   std::uint64_t get_count_ = 0;
-  /// The put and get events, made when first asked for or notified: a put's notification
-  /// reaches only processes waiting on the event, and there are none before it exists, so a
-  /// FIFO nobody waits on (an event-driven processor's port) never makes them. Events are a
-  /// large part of building a machine of thousands of queues (SystemC names each one).
-  sc_core::sc_event& event_of_put() const { return put_ ? *put_ : put_.emplace(); }
-  sc_core::sc_event& event_of_get() const { return got_ ? *got_ : got_.emplace(); }
-  mutable std::optional<sc_core::sc_event> put_;
-  mutable std::optional<sc_core::sc_event> got_;
   PutListener* listener_ = nullptr;
   int port_ = 0;
   bool notify_puts_ = true;
@@ -170,6 +162,16 @@ class TimedFifo : public StatGroup {
   Counter messages_{*this, "messages", "messages put"};
   Counter waits_{*this, "waits", "puts that waited for a free slot"};
   Duration waited_{*this, "waited_s", "time puts waited for a free slot (back-pressure)"};
+  /// The put and get events, made when first asked for or notified: a put's notification
+  /// reaches only processes waiting on the event, and there are none before it exists, so a
+  /// FIFO nobody waits on (an event-driven processor's port) never makes them. Events are a
+  /// large part of building a machine of thousands of queues (SystemC names each one). Last:
+  /// two events are some 300 bytes, which between the items and the depth put every put and
+  /// get of a FIFO nobody waits on several cache lines apart.
+  sc_core::sc_event& event_of_put() const { return put_ ? *put_ : put_.emplace(); }
+  sc_core::sc_event& event_of_get() const { return got_ ? *got_ : got_.emplace(); }
+  mutable std::optional<sc_core::sc_event> put_;
+  mutable std::optional<sc_core::sc_event> got_;
 };
 
 /// Returns once `fifo` holds an item; a thread whose local time is `clock` (a LocalClock) first
