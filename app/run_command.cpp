@@ -190,18 +190,13 @@ int run_run(const RunArgs& args) {
   };
   // The image library (OpenImageIO and the 260 libraries it brings) takes 0.2-0.6 s to load,
   // all of it relocations on one core: loaded on another while the machine runs, it is there
-  // when the image is written. Joined on every way out (and call_once makes the writer wait
-  // for it); its threads block the interrupt signals as this one does. Not under --overhead:
-  // the ratio's simulation has the machine to itself, as the functional render it is set
-  // against does.
-  struct ImageModuleLoad {
-    std::thread loading;
-    ~ImageModuleLoad() {
-      if (loading.joinable()) loading.join();
-    }
-  } image_module;
+  // when the image is written. A jthread: joined on every way out (and call_once makes the
+  // writer wait for it); its threads block the interrupt signals as this one does. Not under
+  // --overhead: the ratio's simulation has the machine to itself, as the functional render it
+  // is set against does.
+  std::jthread image_module_load;
   if (args.image != "none" && !args.overhead)
-    image_module.loading = std::thread([] {
+    image_module_load = std::jthread([] {
       try {
         preload_image_module();
       } catch (...) {

@@ -77,8 +77,9 @@ std::vector<std::string> trace_warnings(const Json& stats) {
     if (dropped == 0) continue;
     std::string whole;
     if (t.contains("window_s") && t["window_s"].is_array() && t["window_s"].size() == 2)
-      whole = ": it holds every event from " + format_seconds(t["window_s"][0].template get<double>()) +
-              " to " + format_seconds(t["window_s"][1].template get<double>()) + " only";
+      whole = ": it holds every event from " +
+              format_seconds(t["window_s"][0].template get<double>()) + " to " +
+              format_seconds(t["window_s"][1].template get<double>()) + " only";
     out.push_back(t[key].value("file", std::string(key)) + ": " + std::to_string(dropped) +
                   (std::string(key) == "vcd" ? " value changes" : " events") +
                   " dropped at --trace-max-events " + cap + "; the trace is incomplete" + whole +

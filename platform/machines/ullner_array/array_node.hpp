@@ -179,7 +179,7 @@ class ArrayNode : public modules::Processor,
   std::uint64_t credit_held_ = 0;
   std::optional<sc_core::sc_time> quiet_since_;  ///< out of work since, if it is
   bool idle_ = false;
-  bool ports_ = false;  ///< whether it has any port
+  bool ports_ = false;           ///< whether it has any port
   bool waits_on_ports_ = false;  ///< node.process = thread: it waits on any_ (else it is woken)
   bool started_ = false;
   int next_row_ = 0;  ///< of its block, the next to make vision rays for
