@@ -26,18 +26,24 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
     else
       intervals_.push_back({s, e});
   }
-  first_ = recorded_ ? std::min(first_, s) : s;
-  last_ = recorded_ ? std::max(last_, e) : e;
+  const bool first = !recorded_;
+  first_ = first ? s : std::min(first_, s);
+  last_ = first ? e : std::max(last_, e);
   recorded_ = true;
   if (binned_) {
     add_to_bins(s, e);
     return;
   }
-  if (!sparse_.empty() && sparse_.back().end == s)
-    sparse_.back().end = e;
-  else
-    sparse_.push_back({s, e});
-  if (sparse_.size() > kSparseIntervals) to_bins();
+  if (first) {
+    open_ = {s, e};
+  } else if (open_.end == s) {
+    open_.end = e;
+  } else {
+    sparse_.push_back(open_);
+    open_ = {s, e};
+    // Intervals held: sparse_ and open_.
+    if (sparse_.size() + 1 > kSparseIntervals) to_bins();
+  }
 }
 
 void BusyTimeline::to_bins() {
@@ -48,6 +54,7 @@ void BusyTimeline::to_bins() {
   busy_.assign(1, 0);
   binned_ = true;
   for (const Interval& i : sparse_) add_to_bins(i.start, i.end);
+  add_to_bins(open_.start, open_.end);
   std::vector<Interval>().swap(sparse_);
 }
 
@@ -96,6 +103,7 @@ sc_core::sc_time BusyTimeline::total() const {
   std::uint64_t sum = 0;
   for (std::uint64_t v : busy_) sum += v;
   for (const Interval& i : sparse_) sum += i.end - i.start;
+  if (recorded_ && !binned_) sum += open_.end - open_.start;
   return from_ticks(sum);
 }
 
@@ -129,6 +137,7 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
   };
   // Sparse: each interval exactly.
   for (const Interval& i : sparse_) spread(i.end - i.start, i.start, i.end);
+  if (recorded_ && !binned_) spread(open_.end - open_.start, open_.start, open_.end);
   for (std::size_t i = 0; i < busy_.size(); ++i) {
     if (busy_[i] == 0) continue;
     // The bin, less what lies outside everything recorded (exact edges for the first and last).

@@ -93,15 +93,18 @@ class BusyTimeline {
   // What add() reads first, together (a large machine's every busy interval comes here).
   bool keep_ = false;
   bool recorded_ = false;  ///< anything added yet
-  bool binned_ = false;    ///< bins in use (else sparse_ holds everything)
+  bool binned_ = false;    ///< bins in use (else sparse_ and open_ hold everything)
   /// Ticks per bin: 1 << shift_. A power of two (merge_pairs doubles it), so the hot path of
   /// every busy interval shifts instead of dividing.
   unsigned shift_ = 0;
   std::uint64_t origin_ = 0;  ///< ticks (sc_time values) at the start of bin 0
   std::uint64_t first_ = 0;   ///< earliest start recorded
   std::uint64_t last_ = 0;    ///< latest end recorded
+  /// Sparse: the interval recorded last (while recorded_), kept here rather than at the end of
+  /// sparse_ so that extending it, the common case, reads no line but this object's.
+  Interval open_{0, 0};
   std::vector<std::uint64_t> busy_;
-  std::vector<Interval> sparse_;  ///< the intervals until the timeline turns to bins
+  std::vector<Interval> sparse_;  ///< the intervals before open_, until it turns to bins
   std::vector<Interval> intervals_;
 };
 

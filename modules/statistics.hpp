@@ -244,8 +244,9 @@ class Busy final : public Statistic {
 
  private:
   UtilizationWindows windows(const StatWindow& window) const;
-  BusyTimeline timeline_;
+  // What record() touches first, together: the total, then the timeline's head.
   sc_core::sc_time total_ = sc_core::SC_ZERO_TIME;
+  BusyTimeline timeline_;
   /// The windows prepare_report worked out, and over what: report() takes them (once).
   struct Prepared {
     sc_core::sc_time begin, end;

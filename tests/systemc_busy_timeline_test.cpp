@@ -47,6 +47,29 @@ TEST(BusyTimeline, HalfBusyFrameShowsTheEdgeWithinOneBin) {
   EXPECT_NEAR(sum_busy_s(w), 500e-6, 1e-12);
 }
 
+TEST(BusyTimeline, TurnsToBinsAfterItsSparseIntervalsAndKeepsTheLastOneExact) {
+  // Back-to-back intervals extend the one recorded last: 5000 of them are one interval, and the
+  // timeline stays sparse (no bins).
+  BusyTimeline joined;
+  for (std::uint64_t k = 0; k < 5000; ++k) joined.add(ps(k * 1'000), ps(1'000));
+  EXPECT_EQ(joined.bins(), 0u);
+  EXPECT_EQ(joined.total(), ps(5'000'000));
+  const auto whole = joined.windows(ps(0), ps(5'000'000), 10);
+  for (const double v : whole.values) EXPECT_NEAR(v, 1.0, 1e-12);
+  // With gaps, exactly kSparseIntervals intervals stay sparse; the next one turns the timeline
+  // to bins, with every interval in them, the last one recorded included.
+  BusyTimeline gaps;
+  const std::uint64_t n = BusyTimeline::kSparseIntervals;
+  for (std::uint64_t k = 0; k < n; ++k) gaps.add(ps(2 * k * 1'000), ps(1'000));
+  EXPECT_EQ(gaps.bins(), 0u);
+  EXPECT_EQ(gaps.total(), ps(n * 1'000));
+  EXPECT_NEAR(sum_busy_s(gaps.windows(ps(0), ps(2 * n * 1'000), 8)), n * 1e-9, 1e-15);
+  gaps.add(ps(2 * n * 1'000), ps(1'000));
+  EXPECT_GT(gaps.bins(), 0u);
+  EXPECT_EQ(gaps.total(), ps((n + 1) * 1'000));
+  EXPECT_NEAR(sum_busy_s(gaps.windows(ps(0), ps(2 * (n + 1) * 1'000), 8)), (n + 1) * 1e-9, 1e-15);
+}
+
 TEST(BusyTimeline, IntervalsInAnyOrderAndWindowsOfASubRange) {
   // Recorded late first, then earlier (a temporally decoupled thread may do that); windows
   // over [10 us, 30 us) only: the interval before 10 us is left out.
