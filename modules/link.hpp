@@ -17,6 +17,7 @@
 #include <systemc>
 
 #include "modules/module_params.hpp"
+#include "modules/prefetch.hpp"
 #include "modules/slice_sink.hpp"
 #include "modules/statistics.hpp"
 
@@ -76,6 +77,13 @@ class Link : public StatGroup {
   sc_core::sc_time transfer(std::uint64_t bits, const sc_core::sc_time& start,
                             const sc_core::sc_time& written, const Carried& c);
 
+  /// A hint to the cache, no more: brings in what transfer() reads and writes (a sender that
+  /// knows its link early calls it while it does other work; modules/prefetch.hpp).
+  void prepare_transfer() const {
+    const auto* from = reinterpret_cast<const char*>(&free_);
+    const auto* to = reinterpret_cast<const char*>(&waited_ + 1);
+    prefetch_bytes<PrefetchFor::kWrite>(from, static_cast<std::size_t>(to - from));
+  }
   std::uint64_t messages() const { return messages_.value(); }
   std::uint64_t bits() const { return bits_.value(); }
   /// Time it carried bits (its utilisation) and when.

@@ -1090,6 +1090,15 @@ void ArrayNode::forward(RayMessage&& msg, const GridNode& to) {
     return_credit(msg.credit);
     return;
   }
+  // On the mesh: the link and the neighbour's port and state, on their way into the cache while
+  // the route, the copy and the link are timed.
+  std::optional<Direction> d;
+  if (!ctx_.ring) {
+    d = ctx_.topology->next_hop(position_, to);
+    const auto k = static_cast<std::size_t>(*d);
+    if (links_[k]) links_[k]->prepare_transfer();
+    if (const ArrayNode* n = neighbour_[k]) n->prepare_receive(modules::opposite(*d));
+  }
   spend(timing_.route, "route");
   probe_to(msg, ctx_.stages.node, modules::LatencyPart::kService, clock_.now());
   if (ctx_.ring) {
@@ -1104,7 +1113,7 @@ void ArrayNode::forward(RayMessage&& msg, const GridNode& to) {
     ctx_.ring->send(me, dest, std::move(msg), RayMessage::kWireBits / 8, start, cls);
     return;
   }
-  send(std::move(msg), ctx_.topology->next_hop(position_, to));
+  send(std::move(msg), *d);
 }
 
 void ArrayNode::receive_copy(const sc_core::sc_time& arrived) {
@@ -1142,10 +1151,6 @@ void ArrayNode::send(RayMessage&& msg, Direction d) {
   const int k = static_cast<int>(d);
   if (!out_[k]) SC_REPORT_ERROR("rtsim/ullner-array", "a message was routed off the array");
   modules::Link& link = *links_[k];
-  // The neighbour's port and state, on their way into the cache while the copy and the link
-  // are timed.
-  if (const ArrayNode* to = neighbour_[static_cast<std::size_t>(k)])
-    to->prepare_receive(modules::opposite(d));
   const sc_core::sc_time start = copy_out();
   const sc_core::sc_time arrived = link.transfer(RayMessage::kWireBits, start);
   probe_to(msg, ctx_.stages.link, modules::LatencyPart::kQueueing, start);
