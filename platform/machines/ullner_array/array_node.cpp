@@ -504,10 +504,26 @@ void ArrayNode::pass_on(BroadcastHop& hop, std::span<const std::uint32_t> record
 
 bool ArrayNode::keep(std::span<const std::uint32_t> record, std::uint32_t line) {
   accel::CellIndex first, last;
-  if (!ctx_.grid->cells_touched(polygon_bounds(record), first, last)) return false;
+  const bool touched = ctx_.record_cells
+                           ? ctx_.record_cells->touched(record, first, last)
+                           : ctx_.grid->cells_touched(polygon_bounds(record), first, last);
+  if (!touched) return false;
   // The subvolumes the bounds touch that are its own: in each depth layer, the block of them
   // within its own block of that layer (SubvolumeMapping's inverse).
   const SubvolumeMapping& m = ctx_.mapping;
+  // A processor's block along the rows is the same in every layer but on the torus, and along
+  // the columns in the straight mapping only: a record whose bounds miss such a block misses it
+  // in every layer (most of a large array's processors, for most records), and the layers need
+  // not be visited.
+  const auto misses = [](SubvolumeMapping::Range own, int lo, int hi) {
+    return std::max(own.lo, lo) > std::min(own.hi - 1, hi);
+  };
+  if (m.mapping != Mapping::kTorus &&
+      misses(m.owned_along_rows(position_.row, 0), first[m.row_axis], last[m.row_axis]))
+    return false;
+  if (m.mapping == Mapping::kStraight &&
+      misses(m.owned_along_cols(position_.col, 0), first[m.col_axis], last[m.col_axis]))
+    return false;
   bool kept = false;
   for (int d = first[m.depth_axis]; d <= last[m.depth_axis]; ++d) {
     const SubvolumeMapping::Range a = m.owned_along_cols(position_.col, d);

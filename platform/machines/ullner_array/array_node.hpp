@@ -75,6 +75,7 @@
 #include "platform/machines/ullner_array/intersection_pipeline.hpp"
 #include "platform/machines/ullner_array/message_fault.hpp"
 #include "platform/machines/ullner_array/ray_message.hpp"
+#include "platform/machines/ullner_array/record_cells.hpp"
 #include "platform/machines/ullner_array/subvolume_mapping.hpp"
 
 namespace rtsim::platform::ullner_array {
@@ -101,6 +102,9 @@ struct ArrayContext {
   /// The subdivision of the modelling space (its planes and divisions: what the DDA walks and
   /// the keep test compares with; the lists in it are the functional twin's, never read here).
   const accel::UniformGrid* grid = nullptr;
+  /// The cells each broadcast record touches, worked out once a record for every processor
+  /// (null: each works them out itself).
+  RecordCells* record_cells = nullptr;
   shading::ShadeParams shade;
   functional::FrameState* frame = nullptr;
   std::uint64_t credit_per_ray = 0;  ///< credit the host gives for each vision ray

@@ -225,6 +225,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                                        ctx.mapping.wrap_cols());
   ctx.topology = &topology;
   ctx.grid = grid.get();
+  ullner_array::RecordCells record_cells(*grid);
+  ctx.record_cells = &record_cells;
   ctx.shade = twin.settings.shade;
   ctx.frame = &frame;
   // The vision rays of the rows simulated in detail (all of them unless --sample).
