@@ -470,5 +470,53 @@ TEST(AccelDda, VisitorCanStopAndStepsCount) {
   EXPECT_EQ(w.steps, all.cells.size() - 1);
 }
 
+// A walk gone on from any place it reached (traverse_from: ullner-array's processors hand a ray
+// on with the place their walk stopped) visits the same cells with the same t's from there, and
+// its result counts the whole walk, on both variants; axis-parallel rays and segments included.
+TEST(AccelDda, AWalkGoneOnFromAPlaceItReachedIsTheSameWalk) {
+  std::mt19937_64 rng(20261206);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int places = 0;
+  for (int grid_no = 0; grid_no < 40; ++grid_no) {
+    const Scenario s = random_grid(rng, 16);
+    const UniformGrid g({}, s.box, s.n);
+    for (const DdaVariant variant : {DdaVariant::Corrected, DdaVariant::AsPrinted}) {
+      const Dda dda(g, variant);
+      for (int r = 0; r < 40; ++r) {
+        Ray ray{random_point(rng, g.box(), 2.5), random_unit(rng)};
+        if (r % 2 == 1)
+          ray.direction = glm::normalize(random_point(rng, g.box(), 1.0) - ray.origin);
+        if (r % 5 == 4) ray.direction[r % 3] = 0.0;  // axis-parallel in one axis
+        if (r % 5 == 4 && glm::length(ray.direction) == 0.0) continue;
+        const double t_max =
+            r % 4 == 3 ? u01(rng) * 2.0 * max_abs_component(g.box().extent()) : kInfinity;
+        const Visited all = run(dda, ray, 0.0, t_max);
+        for (std::size_t k = 0; k < all.cells.size(); ++k) {
+          const DdaPlace at{.cell = all.cells[k], .t_enter = all.t0[k], .visited = k + 1};
+          Visited rest;
+          rest.result = dda.traverse_from(ray, 0.0, t_max, at,
+                                          [&](const CellIndex& c, auto, double t0, double t1) {
+                                            rest.cells.push_back(c);
+                                            rest.t0.push_back(t0);
+                                            rest.t1.push_back(t1);
+                                          });
+          ASSERT_EQ(rest.cells.size(), all.cells.size() - k) << "grid " << grid_no << " ray " << r;
+          for (std::size_t j = 0; j < rest.cells.size(); ++j) {
+            EXPECT_EQ(rest.cells[j], all.cells[k + j]);
+            EXPECT_EQ(rest.t0[j], all.t0[k + j]);
+            EXPECT_EQ(rest.t1[j], all.t1[k + j]);
+          }
+          EXPECT_EQ(rest.result.cells_visited, all.result.cells_visited);
+          EXPECT_EQ(rest.result.steps, all.result.steps);
+          EXPECT_EQ(rest.result.entered, all.result.entered);
+          ++places;
+        }
+      }
+    }
+  }
+  std::printf("[ dda ] walks gone on from %d places\n", places);
+  EXPECT_GT(places, 1000);
+}
+
 }  // namespace
 }  // namespace rtsim::accel

@@ -71,6 +71,17 @@ inline constexpr Cost kDdaSetupCost{.fp_add = 3 * 7,
 inline constexpr Cost kDdaStepCost{
     .fp_add = 3, .fp_mul = 0, .fp_div = 0, .fp_sqrt = 0, .mem_words = 0, .instructions = 2};
 
+/// Where a walk stopped, to go on from there: the subvolume it was in, the t at which the ray
+/// entered it (the visitor's t_enter there), and the subvolumes the walk had visited by then,
+/// that one included (DdaResult::cells_visited at that visit). A processor that hands a ray on
+/// to the one owning its next subvolume (ullner-array) gives it this, so that the next does not
+/// walk again from the ray's origin.
+struct DdaPlace {
+  CellIndex cell{};
+  double t_enter = 0.0;
+  std::uint64_t visited = 0;  ///< 0: no place (walk from the start)
+};
+
 /// Walks the subvolumes of a UniformGrid along a ray.
 ///
 /// visit(CellIndex cell, std::span<const std::uint32_t> polygon_addresses, double t_enter,
@@ -95,6 +106,22 @@ class Dda {
     return variant_ == DdaVariant::Corrected ? traverse_corrected(ray, t_min, t_max, visit)
                                              : traverse_as_printed(ray, t_min, t_max, visit);
   }
+  /// traverse(), going on from `at` (a place a walk of this ray with these limits reached): the
+  /// visitor is called from `at.cell` on, and the result (cells visited, steps) is the whole
+  /// walk's, as if it had visited the cells before without stopping. The corrected walk starts
+  /// there (its state is the cell: each crossing is worked out from the cell's index, L2128);
+  /// the printed one walks from the start and skips the cells before.
+  template <class Visit>
+  DdaResult traverse_from(const Ray& ray, double t_min, double t_max, const DdaPlace& at,
+                          Visit&& visit) const {
+    if (at.visited == 0) return traverse(ray, t_min, t_max, visit);
+    if (variant_ == DdaVariant::Corrected) return traverse_corrected(ray, t_min, t_max, visit, &at);
+    std::uint64_t calls = 0;
+    auto from_at = [&](const CellIndex& c, std::span<const std::uint32_t> s, double t0, double t1) {
+      return ++calls >= at.visited && call(visit, c, s, t0, t1);
+    };
+    return traverse_as_printed(ray, t_min, t_max, from_at);
+  }
 
  private:
   template <class Visit>
@@ -109,7 +136,8 @@ class Dda {
   }
 
   template <class Visit>
-  DdaResult traverse_corrected(const Ray& ray, double t_min, double t_max, Visit& visit) const;
+  DdaResult traverse_corrected(const Ray& ray, double t_min, double t_max, Visit& visit,
+                               const DdaPlace* from = nullptr) const;
   template <class Visit>
   DdaResult traverse_as_printed(const Ray& ray, double t_min, double t_max, Visit& visit) const;
 
@@ -118,7 +146,8 @@ class Dda {
 };
 
 template <class Visit>
-DdaResult Dda::traverse_corrected(const Ray& ray, double t_min, double t_max, Visit& visit) const {
+DdaResult Dda::traverse_corrected(const Ray& ray, double t_min, double t_max, Visit& visit,
+                                  const DdaPlace* from) const {
   DdaResult res;
   if (!is_finite(ray.origin) || !is_finite(ray.direction)) return res;
   const Bounds& box = grid_->box();
@@ -156,7 +185,21 @@ DdaResult Dda::traverse_corrected(const Ray& ray, double t_min, double t_max, Vi
   // Fix 5: the ray must run a positive length inside the box (this also rejects NaN limits).
   if (!(t_enter < t_exit)) return res;
 
-  for (int k = 0; k < 3; ++k) {
+  double t_cell = t_enter;
+  if (from) {
+    // Going on from a place this walk reached: its cell is the whole state (the crossings are
+    // worked out from the indices below, as every step does).
+    for (int k = 0; k < 3; ++k) {
+      if (!moves[k]) continue;
+      i[k] = from->cell[k];
+      step[k] = a[k] > 0.0 ? 1 : -1;
+      t_next[k] = a[k] * (i[k] + (step[k] > 0 ? 1 : 0)) + b[k];
+    }
+    t_cell = from->t_enter;
+    res.cells_visited = from->visited - 1;
+    res.steps = from->visited - 1;  // corrected: steps = visited cells - 1
+  }
+  for (int k = 0; k < 3 && !from; ++k) {
     if (!moves[k]) continue;
     // Solve t = a i + b for i (L2136). Fix 2: the cell the ray moves into from t_enter.
     const double f = (t_enter - b[k]) / a[k];
@@ -173,7 +216,6 @@ DdaResult Dda::traverse_corrected(const Ray& ray, double t_min, double t_max, Vi
     }
   }
 
-  double t_cell = t_enter;
   const std::uint64_t bound = step_bound();
   for (;;) {
     const double t_step = std::min(t_next[0], std::min(t_next[1], t_next[2]));

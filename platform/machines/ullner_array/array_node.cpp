@@ -943,14 +943,25 @@ void ArrayNode::search(RayMessage& msg) {
   };
   accel::GridTraversalStats st;
   bool occluded = false;
-  const auto walk = dda_.traverse(
-      r.ray, t_min, r.t_max,
-      [&](const accel::CellIndex& c, std::span<const std::uint32_t>, double, double t_exit) {
+  // Where the last processor's walk stopped, if the message still says (ray_message.hpp): the
+  // walk goes on from that subvolume rather than from the ray's origin.
+  accel::DdaPlace from;
+  if (msg.resume > 0 && msg.walk_at == msg.resume) {
+    from = {.cell = msg.walk_cell, .t_enter = msg.walk_t_enter, .visited = msg.resume + 1u};
+    step = msg.resume;
+  }
+  const auto walk = dda_.traverse_from(
+      r.ray, t_min, r.t_max, from,
+      [&](const accel::CellIndex& c, std::span<const std::uint32_t>, double t_enter,
+          double t_exit) {
         if (step++ < msg.resume) return false;
         const GridNode owner = ctx_.mapping.node_of(c);
         if (!(owner == position_)) {
           next_owner = owner;
           msg.resume = step - 1;
+          msg.walk_at = msg.resume;
+          msg.walk_cell = c;
+          msg.walk_t_enter = t_enter;
           return true;
         }
         ++cells;

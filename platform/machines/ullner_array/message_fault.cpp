@@ -32,6 +32,9 @@ std::string MessageFault::name() const {
 
 void MessageFault::apply(RayMessage& m, int width, int height) {
   ++applied;
+  // The simulator's note of the walk was worked out from the words before the fault: the next
+  // processor walks the corrupted ray from its origin, as the machine would.
+  m.walk_at = RayMessage::kNoWalk;
   shading::TracedRay& r = m.ray;
   const auto w = static_cast<std::uint32_t>(width), h = static_cast<std::uint32_t>(height);
   Color& colour = m.type == MessageType::kResult   ? m.contribution

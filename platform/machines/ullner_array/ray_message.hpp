@@ -15,6 +15,7 @@
 #include <systemc>
 #include <vector>
 
+#include "firmware/accel/uniform_grid.hpp"
 #include "firmware/math.hpp"
 #include "firmware/shading/traced_ray.hpp"
 #include "modules/latency_probe.hpp"
@@ -33,8 +34,14 @@ struct RayMessage {
   /// Pixel (as y * width + x), r0, r_d, c: the ray as the firmware carries it (its weight or,
   /// for a shadow ray, its light contribution is the colour field c).
   shading::TracedRay ray;
-  Color contribution{0.0};    ///< result: the colour to add to the pixel
-  std::uint32_t resume = 0;   ///< subvolumes of the ray's walk already searched
+  Color contribution{0.0};   ///< result: the colour to add to the pixel
+  std::uint32_t resume = 0;  ///< subvolumes of the ray's walk already searched
+  /// The simulator's note of where the walk stopped (accel::DdaPlace: the subvolume `resume`
+  /// counts up to, and the t the ray entered it), valid while `walk_at` equals `resume`: the next
+  /// processor goes on from there instead of walking again from the ray's origin. Worked out from
+  /// the words above, so not on the wire; a fault in flight drops it (walk_at = kNoWalk).
+  static constexpr std::uint32_t kNoWalk = 0xffffffffu;
+  std::uint32_t walk_at = kNoWalk;
   std::uint64_t credit = 0;   ///< the termination detector's share carried
   bool first_sample = false;  ///< a pixel's first vision ray: its answer fills the AOVs
   sc_core::sc_time created;   ///< when its ray was made (ray latency)
@@ -45,6 +52,8 @@ struct RayMessage {
   /// Links it and the messages of its ray tree before it have crossed (the model's watchdog,
   /// ArrayContext::hop_limit). Not on the wire.
   std::uint32_t hops = 0;
+  accel::CellIndex walk_cell{};  ///< with walk_at: the subvolume the walk stopped in
+  double walk_t_enter = 0.0;     ///< with walk_at: the t at which the ray entered it
   /// The traces' names: this message (1, 2, ... in the order they are made), its ray tree (its
   /// vision ray's number; 0 for credit), and the links it has crossed itself. Not on the wire.
   std::uint64_t id = 0;
