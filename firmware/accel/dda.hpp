@@ -185,35 +185,33 @@ DdaResult Dda::traverse_corrected(const Ray& ray, double t_min, double t_max, Vi
   // Fix 5: the ray must run a positive length inside the box (this also rejects NaN limits).
   if (!(t_enter < t_exit)) return res;
 
-  double t_cell = t_enter;
-  if (from) {
-    // Going on from a place this walk reached: its cell is the whole state (the crossings are
-    // worked out from the indices below, as every step does).
-    for (int k = 0; k < 3; ++k) {
-      if (!moves[k]) continue;
-      i[k] = from->cell[k];
-      step[k] = a[k] > 0.0 ? 1 : -1;
-      t_next[k] = a[k] * (i[k] + (step[k] > 0 ? 1 : 0)) + b[k];
-    }
-    t_cell = from->t_enter;
-    res.cells_visited = from->visited - 1;
-    res.steps = from->visited - 1;  // corrected: steps = visited cells - 1
-  }
-  for (int k = 0; k < 3 && !from; ++k) {
+  for (int k = 0; k < 3; ++k) {
     if (!moves[k]) continue;
-    // Solve t = a i + b for i (L2136). Fix 2: the cell the ray moves into from t_enter.
-    const double f = (t_enter - b[k]) / a[k];
-    const double cell = a[k] > 0.0 ? std::floor(f) : std::ceil(f) - 1.0;
-    i[k] = static_cast<int>(std::clamp(cell, 0.0, static_cast<double>(n[k] - 1)));
     step[k] = a[k] > 0.0 ? 1 : -1;
+    if (from) {
+      // Going on from a place this walk reached: its cell is the whole state (every crossing
+      // is worked out from the indices, below and at each step).
+      i[k] = from->cell[k];
+    } else {
+      // Solve t = a i + b for i (L2136). Fix 2: the cell the ray moves into from t_enter.
+      const double f = (t_enter - b[k]) / a[k];
+      const double cell = a[k] > 0.0 ? std::floor(f) : std::ceil(f) - 1.0;
+      i[k] = static_cast<int>(std::clamp(cell, 0.0, static_cast<double>(n[k] - 1)));
+    }
     // Fix 1: the next plane is i+1 when moving up, i when moving down (0-based cells).
     t_next[k] = a[k] * (i[k] + (step[k] > 0 ? 1 : 0)) + b[k];
     // Rounding in f can leave us one cell short (its far plane at or before t_enter): settle.
-    while (t_next[k] <= t_enter) {
+    // (A place the walk reached was settled then.)
+    while (!from && t_next[k] <= t_enter) {
       i[k] += step[k];
       if (i[k] < 0 || i[k] >= n[k]) return res;
       t_next[k] = a[k] * (i[k] + (step[k] > 0 ? 1 : 0)) + b[k];
     }
+  }
+  double t_cell = from ? from->t_enter : t_enter;
+  if (from) {
+    res.cells_visited = from->visited - 1;
+    res.steps = from->visited - 1;  // corrected: steps = visited cells - 1
   }
 
   const std::uint64_t bound = step_bound();

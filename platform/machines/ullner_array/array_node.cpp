@@ -504,10 +504,7 @@ void ArrayNode::pass_on(BroadcastHop& hop, std::span<const std::uint32_t> record
 
 bool ArrayNode::keep(std::span<const std::uint32_t> record, std::uint32_t line) {
   accel::CellIndex first, last;
-  const bool touched = ctx_.record_cells
-                           ? ctx_.record_cells->touched(record, first, last)
-                           : ctx_.grid->cells_touched(polygon_bounds(record), first, last);
-  if (!touched) return false;
+  if (!ctx_.record_cells->touched(record, first, last)) return false;
   // The subvolumes the bounds touch that are its own: in each depth layer, the block of them
   // within its own block of that layer (SubvolumeMapping's inverse).
   const SubvolumeMapping& m = ctx_.mapping;

@@ -102,8 +102,7 @@ struct ArrayContext {
   /// The subdivision of the modelling space (its planes and divisions: what the DDA walks and
   /// the keep test compares with; the lists in it are the functional twin's, never read here).
   const accel::UniformGrid* grid = nullptr;
-  /// The cells each broadcast record touches, worked out once a record for every processor
-  /// (null: each works them out itself).
+  /// The cells each broadcast record touches, worked out once a record for every processor.
   RecordCells* record_cells = nullptr;
   shading::ShadeParams shade;
   functional::FrameState* frame = nullptr;
