@@ -28,7 +28,10 @@ def run(rtsim, scene, size, every, out):
            "--width", str(size), "--height", str(size), "--image", "none", "-q", "--out", out]
     if every > 1:
         cmd += ["--sample", str(every)]
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    done = subprocess.run(cmd, check=False, stdout=subprocess.DEVNULL)
+    if done.returncode != 0:
+        # rtsim has said why on stderr (a bad --size, say).
+        raise SystemExit(2)
     with open(os.path.join(out, "stats.json"), encoding="utf-8") as f:
         d = json.load(f)
     frame = d.get("sample", {}).get("detailed_frame_s", d["simulated_time_s"])
@@ -47,6 +50,10 @@ def main():
     ap.add_argument("--rtsim", default="build/rtsim")
     ap.add_argument("--size", type=int, default=128)
     args = ap.parse_args()
+    if not os.access(args.rtsim, os.X_OK):
+        print(f"array_sample_scaling.py: {args.rtsim}: not an executable rtsim (--rtsim PATH)",
+              file=sys.stderr)
+        return 2
     print("| scene (full frame) | K | systematic estimate | scaled compute | work ratio | "
           "two densities |")
     print("|---|---|---|---|---|---|")
