@@ -33,6 +33,7 @@
 #include "common/input_error.hpp"
 #include "common/seed_citation.hpp"
 #include "common/spawn_logged.hpp"
+#include "modules/removal_order.hpp"
 #include "modules/wiring.hpp"
 #include "platform/machine.hpp"
 #include "platform/machine_registry.hpp"
@@ -75,8 +76,11 @@ class TreeReader : public sc_core::sc_module {
     std::map<const sc_core::sc_interface*, std::string> exported;  // interface -> its module
     std::vector<std::pair<std::string, const sc_core::sc_interface*>> bound;
     std::vector<const sc_core::sc_object*> todo;
+    // Neither this reader nor the module that only orders the others' removal
+    // (modules/removal_order.hpp) is part of the machine.
     for (const auto* o : sc_core::sc_get_top_level_objects())
-      if (o != this) todo.push_back(o);
+      if (o != this && std::string_view(o->kind()) != modules::RemovalOrder::kKind)
+        todo.push_back(o);
     while (!todo.empty()) {
       const sc_core::sc_object* o = todo.back();
       todo.pop_back();

@@ -146,6 +146,14 @@ TEST(Describe, ConnectionsFollowTheWiring) {
       << "a target's backward path is no connection of its own";
 }
 
+TEST(Describe, LeavesOutTheModulesThatOnlyOrderTheOthersRemoval) {
+  // ullner-array makes a few empty modules before its own (modules/removal_order.hpp).
+  const auto d = run_rtsim("describe ullner-array -p array.rows=2 -p array.cols=2");
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  EXPECT_NE(d.output.find("node3"), std::string::npos) << d.output;
+  EXPECT_EQ(d.output.find("removal_order"), std::string::npos) << d.output;
+}
+
 TEST(Describe, BadInputIsExitTwo) {
   // A machine's name with an "s" too many: the message suggests the name.
   const std::string name = rtsim::platform::default_machine().name();

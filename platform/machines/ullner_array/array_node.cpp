@@ -611,6 +611,11 @@ const std::vector<kernels::UllnerQuadParams<double>>& ArrayNode::held() {
   return decoded_;
 }
 
+ArrayNode::~ArrayNode() {
+  // Made in the constructor's body, after the memories: destroyed before them.
+  for (auto port = in.rbegin(); port != in.rend(); ++port) port->reset();
+}
+
 void ArrayNode::item_put(int port, const sc_core::sc_time& stamp) {
   std::uint64_t& front = front_[static_cast<std::size_t>(port)];
   if (front == kNoMessage) front = stamp.value();  // else an older message is first

@@ -241,6 +241,9 @@ class ArrayNode : public modules::Processor,
   ArrayNode(sc_core::sc_module_name name, const params::ParamRegistry& registry,
             const ArrayContext& context, ArrayTally& tally, modules::GridNode position,
             MachineTrace& trace);
+  /// Its ports go first, newest first, then its memories: the reverse of the order they were
+  /// made in, so that SystemC finds each where modules/removal_order.hpp leaves it, at the front.
+  ~ArrayNode() override;
 
   /// Wires this processor's output in direction `d` to `neighbour`'s input from the opposite
   /// side (elaboration).

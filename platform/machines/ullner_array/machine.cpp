@@ -9,6 +9,7 @@
 #include <systemc>
 
 #include "common/input_error.hpp"
+#include "modules/removal_order.hpp"
 #include "modules/sim_time.hpp"
 #include "modules/stat_directory.hpp"
 #include "modules/wake_queue.hpp"
@@ -258,6 +259,9 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
                            array.path_of(kRows.name()) + ", " + array.path_of(kCols.name()) + ", " +
                            array.path_of(kSubvolumes.name()) + ") or a larger memory");
   }
+  // Before the array's first module, so that its thousands are unregistered each at the front
+  // of SystemC's registry after the run, not looked for through all the others.
+  modules::RemovalOrder removal_order;
   // The interconnect: the mesh links of each processor, or one ring (its parameters are read
   // either way, so a bad value is an error whichever is chosen).
   const modules::TokenRing::Config ring_config =
@@ -346,6 +350,8 @@ RunResult UllnerArray::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (auto& n : nodes) by_index.push_back(n.get());
   ullner_array::FrameBufferReadout readout(ullner_array::FrameBufferReadout::kName, r,
                                            std::move(by_index), topology, frame, tally.frame_done);
+  // The array's last module: from here on its modules go newest first, each found first.
+  const modules::RemovalOrder::Release removal_order_first{removal_order};
   std::vector<modules::Memory*> memories;
   for (auto& n : nodes) memories.push_back(&n->memory);
   for (auto& n : nodes) memories.push_back(&n->frame_buffer);
