@@ -26,8 +26,7 @@ class LocalClock {
   /// Spend `d` of local time; synchronise if the thread is a quantum ahead.
   void advance(const sc_core::sc_time& d) {
     local_ = plus(local_, d);
-    if (waits_ && local_ - sc_core::sc_time_stamp() >= tlm::tlm_global_quantum::instance().get())
-      sync();
+    if (waits_ && local_ - modules::sim_now() >= tlm::tlm_global_quantum::instance().get()) sync();
   }
 
   /// For an SC_METHOD: advance() never waits (elaboration, before the simulation starts).
@@ -41,12 +40,12 @@ class LocalClock {
 
   /// Wait in global time until local time (no-op if already there).
   void sync() {
-    const sc_core::sc_time g = sc_core::sc_time_stamp();
+    const sc_core::sc_time g = modules::sim_now();
     if (local_ > g) modules::sim_wait(local_ - g);
   }
 
   /// After a wait() on an event: local time is at least the global time.
-  void resync() { local_ = std::max(local_, sc_core::sc_time_stamp()); }
+  void resync() { local_ = std::max(local_, modules::sim_now()); }
 
  private:
   sc_core::sc_time local_ = sc_core::SC_ZERO_TIME;

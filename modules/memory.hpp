@@ -144,8 +144,8 @@ class Memory : public sc_core::sc_module, public StatGroup, public BlockingTarge
       delay += t;
     } else if (gp.is_read()) {
       std::memcpy(gp.get_data_ptr(), &data_[first], len);
-      delay += account_line_reads((words + line_words_ - 1) / line_words_,
-                                  sc_core::sc_time_stamp() + delay);
+      delay +=
+          account_line_reads((words + line_words_ - 1) / line_words_, modules::sim_now() + delay);
     }
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }

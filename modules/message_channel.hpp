@@ -18,6 +18,7 @@
 
 #include "modules/blocking_target.hpp"
 #include "modules/payload_pool.hpp"
+#include "modules/sim_time.hpp"
 #include "modules/timed_fifo.hpp"
 
 namespace rtsim::modules {
@@ -69,8 +70,8 @@ class MessageQueue : public sc_core::sc_module, public BlockingTarget {
       return;
     }
     bits_ += ext->bits();
-    const sc_core::sc_time stamp = fifo.put(*ext->message(), sc_core::sc_time_stamp() + delay);
-    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    const sc_core::sc_time stamp = fifo.put(*ext->message(), modules::sim_now() + delay);
+    const sc_core::sc_time now = modules::sim_now();
     delay = stamp > now ? stamp - now : sc_core::SC_ZERO_TIME;
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
@@ -106,7 +107,7 @@ sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
     }
   };
   bool error = false;
-  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  const sc_core::sc_time now = modules::sim_now();
   sc_core::sc_time delay = t > now ? t - now : sc_core::SC_ZERO_TIME;
   {
     const GiveBack give_back{gp, ext};
@@ -114,7 +115,7 @@ sc_core::sc_time send_message(Socket& socket, T& msg, const sc_core::sc_time& t,
     error = gp.is_response_error();
   }
   if (error) SC_REPORT_ERROR("rtsim/message", "a message reached a queue of another type");
-  return sc_core::sc_time_stamp() + delay;
+  return modules::sim_now() + delay;
 }
 
 }  // namespace rtsim::modules

@@ -1,6 +1,7 @@
 #include "modules/processor.hpp"
 
 #include "modules/activations.hpp"
+#include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
 
@@ -26,11 +27,11 @@ void Processor::idle_on(std::optional<sc_core::sc_time> until, const Events& eve
   // While this thread waited, the others ran up to its local time, and an event it would wait
   // for may have fired then (a slot freed, an item put): waiting on it now could miss it and
   // sleep until `until`, or forever.
-  if (before > sc_core::sc_time_stamp()) {
+  if (before > modules::sim_now()) {
     clock_.sync();
     return;
   }
-  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  const sc_core::sc_time g = modules::sim_now();
   // A time already reached is something the caller cannot act on yet: wait for a change.
   if (until && *until > g)
     modules::sim_wait(*until - g, events);
@@ -74,13 +75,13 @@ void Processor::resume() {
 }
 
 void Processor::resume_at_local_time() {
-  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  const sc_core::sc_time g = modules::sim_now();
   next_trigger(clock_.now() > g ? clock_.now() - g : sc_core::SC_ZERO_TIME);
 }
 
 void Processor::idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
                              Wait why) {
-  const sc_core::sc_time g = sc_core::sc_time_stamp();
+  const sc_core::sc_time g = modules::sim_now();
   // Ahead of simulated time: catch up first and look again (as idle() does).
   if (clock_.now() > g) {
     resume_at_local_time();

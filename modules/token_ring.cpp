@@ -112,7 +112,7 @@ std::uint64_t TokenRing::send(std::size_t source, std::size_t destination, std::
                             std::to_string(queues_.size()));
   const std::uint64_t id = messages_.value();
   ++messages_;
-  const sc_core::sc_time stamp = std::max(ready, sc_core::sc_time_stamp());
+  const sc_core::sc_time stamp = std::max(ready, modules::sim_now());
   const std::size_t cls = std::min(traffic_class, classes_.size() - 1);
   std::uint64_t left = std::max<std::uint64_t>(1, bytes);
   while (left > 0) {
@@ -167,8 +167,8 @@ void TokenRing::serve() {
   std::uint64_t sent = 0;
   for (;;) {
     // Exhaustive service takes packets queued while it sends: let their senders run first.
-    if (service_ == RingService::kExhaustive && sc_core::sc_time_stamp() < time_)
-      modules::sim_wait(time_ - sc_core::sc_time_stamp());
+    if (service_ == RingService::kExhaustive && modules::sim_now() < time_)
+      modules::sim_wait(time_ - modules::sim_now());
     if (q.empty()) break;
     const sc_core::sc_time limit = service_ == RingService::kGated ? gate : time_;
     if (q.front().ready > limit) break;
@@ -206,7 +206,7 @@ void TokenRing::run() {
   first_pass_at_0_ = last_pass_at_0_ = time_;
   bool served = false;  // the token's visit to at_ at time_ has been served
   for (;;) {
-    if (sc_core::sc_time_stamp() < time_) modules::sim_wait(time_ - sc_core::sc_time_stamp());
+    if (modules::sim_now() < time_) modules::sim_wait(time_ - modules::sim_now());
     if (!served) {
       served = true;
       if (eligible(at_, time_)) serve();
@@ -214,7 +214,7 @@ void TokenRing::run() {
     if (queued_ == 0) {
       // Nothing anywhere: wait for a message, then work out where the token is by then.
       modules::sim_wait(put_event_);
-      const sc_core::sc_time now = sc_core::sc_time_stamp();
+      const sc_core::sc_time now = modules::sim_now();
       const std::uint64_t h = now > time_ ? (now - time_).value() / hop_.value() : 0;
       advance(h);
       served = served && h == 0;
@@ -237,9 +237,9 @@ void TokenRing::run() {
       best = std::min(best, k);
     }
     const sc_core::sc_time target = plus(time_, times(hop_, best));
-    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    const sc_core::sc_time now = modules::sim_now();
     if (target > now) modules::sim_wait(target - now, put_event_);
-    const sc_core::sc_time woke = sc_core::sc_time_stamp();
+    const sc_core::sc_time woke = modules::sim_now();
     if (woke < target) {
       // A new message came before the token got there: where is the token now?
       const std::uint64_t h = woke > time_ ? (woke - time_).value() / hop_.value() : 0;

@@ -20,7 +20,7 @@ std::size_t WakeQueue::add(Client& client) {
 }
 
 void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
-  const std::uint64_t now = sc_core::sc_time_stamp().value();
+  const std::uint64_t now = modules::sim_now().value();
   if (t.value() < now)
     throw std::logic_error(std::string(name()) + ": a wake asked for in the past");
   if (pending_[k].seq != kNone && pending_[k].t <= t.value()) return;  // the sooner one stands
@@ -35,10 +35,10 @@ void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
 
 void WakeQueue::dispatch() {
   dispatching_ = true;
-  const std::uint64_t now = sc_core::sc_time_stamp().value();
+  const std::uint64_t now = modules::sim_now().value();
   if (!started_) {
     started_ = true;
-    for (std::size_t k = 0; k < clients_.size(); ++k) wake_at(k, sc_core::sc_time_stamp());
+    for (std::size_t k = 0; k < clients_.size(); ++k) wake_at(k, modules::sim_now());
   }
   // Every client due now, those woken for now by the ones that run included.
   while (!heap_.empty()) {

@@ -37,7 +37,7 @@ MachineRun::MachineRun(std::string machine, const scenes::Scene& scene, const Fu
     frame_.set_detailed_rows(sample_->detailed_rows());
     // A window is done when its last contribution lands in the frame buffer.
     frame_.fb().set_observer([this](std::uint32_t pixel, std::optional<std::uint64_t> at) {
-      sample_->contribution(pixel, at ? *at : sc_core::sc_time_stamp().value());
+      sample_->contribution(pixel, at ? *at : modules::sim_now().value());
     });
   }
 }

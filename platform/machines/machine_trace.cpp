@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "modules/sim_time.hpp"
 #include "modules/stat_directory.hpp"
 
 namespace rtsim::platform {
@@ -40,7 +41,7 @@ MachineTrace::MachineTrace(const RunOptions& opts)
     if (too_large_)
       perfetto_->on_size(modules::kTraceWarnBytes,
                          [this, name = opts.perfetto_path.filename().string()](std::uint64_t b) {
-                           too_large_(name, b, sc_core::sc_time_stamp().to_seconds());
+                           too_large_(name, b, modules::sim_now().to_seconds());
                          });
   }
   if (!opts.vcd_path.empty()) vcd_ = std::make_unique<modules::VcdTrace>(opts.vcd_path);

@@ -134,8 +134,7 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
   }
   idle_cycle_ = offset_.back() + timing_.loop_reset;
   cursor_ = Cursor{0, t};
-  start_.notify(t > sc_core::sc_time_stamp() ? t - sc_core::sc_time_stamp()
-                                             : sc_core::SC_ZERO_TIME);
+  start_.notify(t > modules::sim_now() ? t - modules::sim_now() : sc_core::SC_ZERO_TIME);
 }
 
 sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
@@ -321,28 +320,28 @@ void BroadcastProcessor::run() {
   for (;;) {
     if (total_demand_ <= 0) {
       modules::sim_wait(wake_);
-      skip_to(sc_core::sc_time_stamp());
+      skip_to(modules::sim_now());
       continue;
     }
     // The next slot whose ID some BIC holds in a register valid by then (at most one cycle
     // ahead). A register is valid from its processor's local time, which may lie ahead of
     // simulated time (a quantum > 0): a strobe before then could not match it.
     const std::size_t n = next_wanted();
-    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    const sc_core::sc_time now = modules::sim_now();
     if (n == slots_.size()) {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
       // a new request), instead of strobing a cycle of slots no comparator can match yet.
       const auto first = first_request_time();
       modules::sim_wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
-      skip_to(sc_core::sc_time_stamp());
+      skip_to(modules::sim_now());
       continue;
     }
     const Cursor c = after(cursor_, n);
     if (c.t > now) {
       modules::sim_wait(c.t - now, wake_);
       // Woken early by a new request or a freed buffer: nothing was wanted before now.
-      if (sc_core::sc_time_stamp() < c.t) {
-        skip_to(sc_core::sc_time_stamp());
+      if (modules::sim_now() < c.t) {
+        skip_to(modules::sim_now());
         continue;
       }
     }
@@ -371,15 +370,14 @@ void BroadcastProcessor::run() {
     }
     pass(cursor_, sent, true);
     // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
-    if (cursor_.t > sc_core::sc_time_stamp())
-      modules::sim_wait(cursor_.t - sc_core::sc_time_stamp());
+    if (cursor_.t > modules::sim_now()) modules::sim_wait(cursor_.t - modules::sim_now());
     // A wanted ID missed: every BIC that wants one may be full until its processor frees a
     // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
     // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a
     // simulated second). Sleep until a wake or the next change the BICs already hold, and
     // count the strobes slept through as the misses they were.
     if (hitters_.empty()) {
-      const sc_core::sc_time now = sc_core::sc_time_stamp();
+      const sc_core::sc_time now = modules::sim_now();
       if (total_demand_ > 0 && every_strobe_misses(now)) {
         const auto change = next_change(now);
         if (!change || *change > now) {
@@ -388,8 +386,8 @@ void BroadcastProcessor::run() {
             modules::sim_wait(*change - now, wake_);
           else
             modules::sim_wait(wake_);
-          count_missed_strobes(sc_core::sc_time_stamp());
-          skip_to(sc_core::sc_time_stamp());
+          count_missed_strobes(modules::sim_now());
+          skip_to(modules::sim_now());
         }
       }
     }

@@ -148,7 +148,7 @@ void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
                            const sc_core::sc_time& arrival, const sc_core::sc_time& first_word,
                            const sc_core::sc_time& word_time,
                            std::span<const std::uint32_t> words) {
-  const int i = free_buffer(sc_core::sc_time_stamp());
+  const int i = free_buffer(modules::sim_now());
   if (i < 0) return;  // hit() said otherwise: cannot happen
   Buffer& b = buffers_[static_cast<std::size_t>(i)];
   b.state = BufferState::kFilled;

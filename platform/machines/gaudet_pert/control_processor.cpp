@@ -78,7 +78,7 @@ void ControlProcessor::run() {
   words_loaded_ += g;
   delay = modules::plus(delay, modules::times(load_word_time_, g));
   modules::sim_wait(delay);
-  load_time_ = sc_core::sc_time_stamp();
+  load_time_ = modules::sim_now();
   for (std::size_t b = 0; b < buses_.size(); ++b)
     buses_[b]->start(load_time_, sets_[b]->order.size(), sets_[b]->image.id_list_entry_words());
   start_.notify(sc_core::SC_ZERO_TIME);

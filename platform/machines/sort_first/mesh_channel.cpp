@@ -1,5 +1,7 @@
 #include "platform/machines/sort_first/mesh_channel.hpp"
 
+#include "modules/sim_time.hpp"
+
 namespace rtsim::platform::sort_first {
 
 void MeshChannel::declare_params(const modules::ParamDecls& machine) {
@@ -73,7 +75,7 @@ void MeshChannel::run() {
       continue;
     }
     const Hop h = hops_queue_.top();
-    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    const sc_core::sc_time now = modules::sim_now();
     if (h.at > now) {
       // A message handed over meanwhile may be due sooner.
       sc_core::wait(h.at - now, put_event_);

@@ -431,7 +431,7 @@ void ArrayNode::receive_record(tlm::tlm_generic_payload& gp, sc_core::sc_time& d
   }
   // The copy starts when the sender offers it and this processor's buffer and memory are free;
   // the port writes the record into the buffer (a fault in this memory applies there).
-  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  const sc_core::sc_time now = modules::sim_now();
   const sc_core::sc_time start = std::max({plus(now, delay), buffer_free_, memory_free_});
   const sc_core::sc_time arrived = plus(start, copy->duration);
   memory_free_ = arrived;
@@ -620,7 +620,7 @@ void ArrayNode::item_put(int port, const sc_core::sc_time& stamp) {
   std::uint64_t& front = front_[static_cast<std::size_t>(port)];
   if (front == kNoMessage) front = stamp.value();  // else an older message is first
   if (!idle_) return;  // it looks at its ports when it has done what it is doing
-  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  const sc_core::sc_time now = modules::sim_now();
   if (ctx_.queue)
     ctx_.queue->wake_at(queue_slot_, std::max(stamp, now));  // the sooner one stands
   else
@@ -763,7 +763,7 @@ void ArrayNode::activate() {
   if (!started_) start_frame();
   // Handle what is due at this time; once it has computed ahead, look again then (a message
   // stamped by then may yet come: every message is put before its stamp).
-  while (clock_.now() == sc_core::sc_time_stamp()) {
+  while (clock_.now() == modules::sim_now()) {
     const Step s = step();
     if (s.kind == Step::Kind::kFinished) return;  // never triggered again
     if (s.kind == Step::Kind::kIdle) {
@@ -775,7 +775,7 @@ void ArrayNode::activate() {
         if (s.until) ctx_.queue->wake_at(queue_slot_, *s.until);
         return;
       }
-      if (s.until) wake_.notify(*s.until - sc_core::sc_time_stamp());
+      if (s.until) wake_.notify(*s.until - modules::sim_now());
       idle_trigger(std::nullopt, wake_, Wait::kWork);
       return;
     }
@@ -833,7 +833,7 @@ void ArrayNode::process(RayMessage&& msg) {
       tally_.credit_returned += msg.credit;
       if (tally_.credit_returned == ctx_.total_credit) {
         tally_.done = clock_.now();
-        tally_.frame_done.notify(clock_.now() - sc_core::sc_time_stamp());
+        tally_.frame_done.notify(clock_.now() - modules::sim_now());
       }
       return;
   }

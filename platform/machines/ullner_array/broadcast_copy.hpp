@@ -49,7 +49,7 @@ sc_core::sc_time offer_record(Socket& socket, std::span<const std::uint32_t> rec
   gp.set_byte_enable_ptr(nullptr);
   gp.set_dmi_allowed(false);
   gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  const sc_core::sc_time now = modules::sim_now();
   sc_core::sc_time delay = offered > now ? offered - now : sc_core::SC_ZERO_TIME;
   socket->b_transport(gp, delay);
   if (gp.is_response_error())

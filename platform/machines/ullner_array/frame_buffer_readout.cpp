@@ -38,7 +38,7 @@ FrameBufferReadout::FrameBufferReadout(sc_core::sc_module_name name,
 void FrameBufferReadout::run() {
   modules::sim_wait(frame_done_);
   const int w = frame_.width(), h = frame_.height();
-  const sc_core::sc_time start = sc_core::sc_time_stamp();
+  const sc_core::sc_time start = modules::sim_now();
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       // The pixel's processor (the block its position in the array holds, L781).
@@ -56,8 +56,8 @@ void FrameBufferReadout::run() {
     modules::sim_wait(modules::times(pixel_time_, static_cast<std::uint64_t>(w)));
   }
   pixels_ += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
-  busy_.record(start, sc_core::sc_time_stamp() - start);
-  done_ = sc_core::sc_time_stamp();
+  busy_.record(start, modules::sim_now() - start);
+  done_ = modules::sim_now();
 }
 
 }  // namespace rtsim::platform::ullner_array

@@ -210,7 +210,7 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
   // the same a polygon time (and a link latency) later, and so on, so the polygon that was in
   // the last processor reaches the host N of those after this one arrived. The next
   // description can come in once this one is accepted (the register is free).
-  const sc_core::sc_time arrived = sc_core::sc_time_stamp() + delay;
+  const sc_core::sc_time arrived = modules::sim_now() + delay;
   sc_core::sc_time accepted;
   if (engine_modules_.empty()) {
     // The shortcut: each presentation's wave moves every description one processor on, so
@@ -257,7 +257,7 @@ void EngineChain::load_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time&
     msg.returned_at = wave.at;
   }
   ++loaded_;
-  delay = accepted - sc_core::sc_time_stamp();
+  delay = accepted - modules::sim_now();
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 

@@ -130,12 +130,12 @@ void PipelineHost::load_scene() {
     kernels::describe(params, static_cast<std::uint32_t>(slot), msg.presented.words);
     clock_.advance(format);
     const sc_core::sc_time arrived = modules::plus(clock_.now(), on_link);
-    sc_core::sc_time delay = arrived - sc_core::sc_time_stamp();
+    sc_core::sc_time delay = arrived - modules::sim_now();
     gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
     load_out->b_transport(gp, delay);
     if (gp.is_response_error()) SC_REPORT_ERROR("rtsim/ullner-pipeline", "polygon load failed");
     // Held until the first processor accepted it (its input register is free again).
-    clock_.catch_up(sc_core::sc_time_stamp() + delay);
+    clock_.catch_up(modules::sim_now() + delay);
     all_back = std::max(all_back, msg.returned_at);
     ++returned_;
   }

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "firmware/scanline/splitting.hpp"
+#include "modules/sim_time.hpp"
 #include "platform/machines/machine_run.hpp"
 
 namespace rtsim::platform::ullner_scanline_tree {
@@ -110,8 +111,7 @@ int SplittingNode::max_queued() const {
   int most = 0;
   for (const auto& o : outputs)
     most = std::max(
-        most,
-        o->queue.fifo.occupancy().summarize(sc_core::SC_ZERO_TIME, sc_core::sc_time_stamp()).max);
+        most, o->queue.fifo.occupancy().summarize(sc_core::SC_ZERO_TIME, modules::sim_now()).max);
   return most;
 }
 

@@ -319,7 +319,7 @@ void BezierPipeline::run() {
 
 void BezierPipeline::leave(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   JobInFlight& f = *gp.get_extension<modules::MessageExtension<JobInFlight>>()->message();
-  const sc_core::sc_time left = sc_core::sc_time_stamp() + delay;
+  const sc_core::sc_time left = modules::sim_now() + delay;
   // Jobs leave in the order they entered: one that waited to enter left a cycle of the full
   // pipeline after the one before it.
   if (f.waited && jobs_.value() > 1) {

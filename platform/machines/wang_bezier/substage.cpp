@@ -83,7 +83,7 @@ void Substage::compute(const PatchJob& in, kernels::WangJob<T>& w,
 void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   JobInFlight& f = *gp.get_extension<modules::MessageExtension<JobInFlight>>()->message();
   // S(j): the job is in its input buffer `delay` from now; it takes it once free.
-  const sc_core::sc_time start = std::max(sc_core::sc_time_stamp() + delay, free_);
+  const sc_core::sc_time start = std::max(modules::sim_now() + delay, free_);
   taken_[count_ & ring_mask_] = start;
   ++count_;
   ++jobs_;
@@ -109,7 +109,7 @@ void Substage::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay
   gp.set_data_length(bytes);
   gp.set_streaming_width(bytes);
   const sc_core::sc_time arrives = link_ ? link_->transfer(32 * words, handed) : handed;
-  delay = arrives - sc_core::sc_time_stamp();
+  delay = arrives - modules::sim_now();
   out->b_transport(gp, delay);
 }
 
