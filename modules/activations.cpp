@@ -8,19 +8,9 @@
 
 namespace rtsim::modules {
 
+using activations_detail::Count;
+
 namespace {
-struct Count {
-  std::string name;  ///< taken at its first activation: SystemC deletes a thread that has ended
-  std::uint64_t n = 0;
-};
-/// By process, indexed by the kernel's number for it (sc_process_b::proc_id: 0, 1, 2, ... in the
-/// order the processes were made; none is made where an ended one was). A wait then costs an
-/// index, not a hash lookup: gaudet-pert's processors switch at every wait, and the lookup was
-/// about a twentieth of its run.
-std::vector<Count>& by_process() {
-  static std::vector<Count> counts;
-  return counts;
-}
 /// activation_count's, by the object a WakeQueue's client stands for.
 std::unordered_map<const sc_core::sc_object*, Count>& by_object() {
   static std::unordered_map<const sc_core::sc_object*, Count> counts;
@@ -28,15 +18,12 @@ std::unordered_map<const sc_core::sc_object*, Count>& by_object() {
 }
 }  // namespace
 
-void count_activation() {
-  // The kernel's pointer to the running process: no handle (and its reference count) a wait.
-  const sc_core::sc_process_b* p = sc_core::sc_get_current_process_b();
-  if (p == nullptr || p->proc_id < 0) return;
-  std::vector<Count>& counts = by_process();
-  const auto id = static_cast<std::size_t>(p->proc_id);
+void activations_detail::count_first(const sc_core::sc_process_b& p) {
+  std::vector<Count>& counts = by_process;
+  const auto id = static_cast<std::size_t>(p.proc_id);
   if (id >= counts.size()) counts.resize(std::max(id + 1, 2 * counts.size()));
   Count& c = counts[id];
-  if (c.n++ == 0) c.name = p->name();
+  if (c.n++ == 0) c.name = p.name();
 }
 
 std::uint64_t& activation_count(const sc_core::sc_object& as, std::string_view process) {
@@ -53,7 +40,7 @@ nlohmann::ordered_json activations_json() {
     named[c.name] += c.n;
     total += c.n;
   };
-  for (const Count& c : by_process()) add(c);
+  for (const Count& c : activations_detail::by_process) add(c);
   for (const auto& [object, c] : by_object()) add(c);
   nlohmann::ordered_json out;
   out["delta_cycles"] = sc_core::sc_delta_count();
