@@ -24,6 +24,11 @@ bool is_fetch(int stage) {
 
 PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_time& start,
                          const PipelineTiming& timing) {
+  return run_pipeline(tests, start, timing, PipelineLooks::kAsNeeded);
+}
+
+PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_time& start,
+                         const PipelineTiming& timing, PipelineLooks looks) {
   PipelineRun out;
   out.memory_end = start;
   out.done = start;
@@ -67,6 +72,10 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
   const std::array<int, 4> later_first{kFetchV, kFetchU, kFetchT, kAddress};
   const std::array<int, 4> earlier_first{kAddress, kFetchT, kFetchU, kFetchV};
   const auto& order = timing.priority == FetchPriority::kLaterStages ? later_first : earlier_first;
+  // One look a moment when nothing a look starts can end at that moment (PipelineLooks): about
+  // half of this function's work went into second looks that found nothing to do.
+  const bool look_again =
+      looks == PipelineLooks::kUntilSettled || stage_time == 0 || entry_time == 0;
 
   while (left < n) {
     bool progress = true;
@@ -152,6 +161,7 @@ PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_
           break;
         }
       }
+      if (!look_again) break;
     }
     if (left == n) break;
     // The next thing to happen: a stage's work ending, or the memory coming free for a fetch.

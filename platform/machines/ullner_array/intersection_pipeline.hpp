@@ -71,4 +71,13 @@ inline constexpr std::uint64_t kEntryWords = 1, kTWords = 4, kUWords = 8, kVWord
 PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_time& start,
                          const PipelineTiming& timing);
 
+/// How often run_pipeline looks at the stages at one moment. Once is enough when every compute
+/// stage and every fetch takes time (a look starts nothing that ends at that moment, and a stage
+/// a look frees is looked at after it, the latest stage first); with a zero time it looks again
+/// until nothing changes. kUntilSettled always looks again: the reference that
+/// tests/intersection_pipeline_test.cpp holds run_pipeline to.
+enum class PipelineLooks { kAsNeeded, kUntilSettled };
+PipelineRun run_pipeline(std::span<const PipelineTest> tests, const sc_core::sc_time& start,
+                         const PipelineTiming& timing, PipelineLooks looks);
+
 }  // namespace rtsim::platform::ullner_array
