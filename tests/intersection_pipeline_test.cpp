@@ -75,7 +75,8 @@ TEST(IntersectionPipeline, OneLookAMomentGivesWhatLookingUntilSettledGives) {
         .memory_cycle = sc_core::sc_time::from_value(cycle),
         .stage_time = sc_core::sc_time::from_value(stage),
         .priority = round % 2 == 0 ? FetchPriority::kLaterStages : FetchPriority::kEarlierStages};
-    const sc_core::sc_time start = sc_core::sc_time::from_value(977u * static_cast<unsigned>(round));
+    const sc_core::sc_time start =
+        sc_core::sc_time::from_value(977u * static_cast<unsigned>(round));
     const PipelineRun once = run_pipeline(tests, start, timing);
     const PipelineRun settled = run_pipeline(tests, start, timing, PipelineLooks::kUntilSettled);
     expect_same(once, settled, "round " + std::to_string(round));
