@@ -26,10 +26,25 @@ class TimeOverflow : public std::overflow_error {
 /// Whether time_overflow() was called in this process.
 bool time_overflowed();
 
-/// The simulated time now: modules::sim_now(), inline. That function is a call into the
-/// library, and every step of a processor, every message and every wake asks it (about nine
-/// million times in a 32 x 32 array's run); the simulation context it reads is inline.
-inline const sc_core::sc_time& sim_now() { return sc_core::sc_get_curr_simcontext()->time_stamp(); }
+namespace sim_time_detail {
+/// While a WakeQueue runs its clients ahead of SystemC (modules/wake_queue.hpp): the time of
+/// the wake it runs; else null.
+inline const sc_core::sc_time* ahead = nullptr;
+}  // namespace sim_time_detail
+
+/// SystemC's own time: sc_core::sc_time_stamp(), inline (that function is a call into the
+/// library). A delay handed to SystemC (an event's notify, a wait) counts from this time.
+inline const sc_core::sc_time& systemc_now() {
+  return sc_core::sc_get_curr_simcontext()->time_stamp();
+}
+
+/// The simulated time now, as the model sees it: SystemC's, or, while a WakeQueue runs its
+/// clients ahead of SystemC, the time of the wake it runs. Every step of a processor, every
+/// message and every wake asks it (about nine million times in a 32 x 32 array's run).
+inline const sc_core::sc_time& sim_now() {
+  if (sim_time_detail::ahead != nullptr) return *sim_time_detail::ahead;
+  return systemc_now();
+}
 
 /// The time of `v` ticks (picoseconds), as sc_time::from_value gives it but inline: from_value
 /// is a call into the library that checks the time resolution each time (a few percent of a

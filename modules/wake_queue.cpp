@@ -26,34 +26,58 @@ void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
   if (pending_[k].seq != kNone && pending_[k].t <= t.value()) return;  // the sooner one stands
   pending_[k] = {seq_, t.value()};
   heap_.push({t.value(), seq_++, static_cast<std::uint32_t>(k)});
-  // From outside a dispatch (a SystemC process): SystemC must run the queue by then.
+  // From outside a dispatch (a SystemC process, at SystemC's time): SystemC must run the queue
+  // by then.
   if (!dispatching_ && t.value() < scheduled_) {
     scheduled_ = t.value();
-    kick_.notify(from_ticks(t.value() - now));
+    kick_.notify(from_ticks(t.value() - systemc_now().value()));
   }
 }
 
 void WakeQueue::dispatch() {
   dispatching_ = true;
-  const std::uint64_t now = modules::sim_now().value();
+  const std::uint64_t now = systemc_now().value();
   if (!started_) {
     started_ = true;
-    for (std::size_t k = 0; k < clients_.size(); ++k) wake_at(k, modules::sim_now());
+    for (std::size_t k = 0; k < clients_.size(); ++k) wake_at(k, systemc_now());
   }
-  // Every client due now, those woken for now by the ones that run included.
-  while (!heap_.empty()) {
-    const Entry e = heap_.top();
-    if (stale(e)) {
+  // While its clients run ahead, they see the time of their wake (sim_now); back to SystemC's
+  // at the end, or if one throws.
+  struct Ahead {
+    sc_core::sc_time at;
+    ~Ahead() { sim_time_detail::ahead = nullptr; }
+  } ahead;
+  std::uint64_t at = now;
+  for (;;) {
+    // Every client due at `at`, those woken for then by the ones that run included.
+    while (!heap_.empty()) {
+      const Entry e = heap_.top();
+      if (stale(e)) {
+        heap_.pop();
+        continue;
+      }
+      if (e.t > at) break;
       heap_.pop();
-      continue;
+      pending_[e.client] = {};
+      ++wakes_;
+      prepare_next();
+      clients_[e.client]->woken();
     }
-    if (e.t > now) break;
-    heap_.pop();
-    pending_[e.client] = {};
-    ++wakes_;
-    prepare_next();
-    clients_[e.client]->woken();
+    // On to the next wake without SystemC when nothing else would happen before it: no other
+    // process to run now and no event due until after it (events a client notified included:
+    // they count from SystemC's time). The clients then run in the order SystemC would have
+    // run them, one wake time after another, and SystemC's scheduling of each wake (a timed
+    // notification, a delta cycle, a method's dispatch) is saved.
+    while (!heap_.empty() && stale(heap_.top())) heap_.pop();
+    if (heap_.empty()) break;
+    const std::uint64_t next = heap_.top().t;
+    if (sc_core::sc_pending_activity_at_current_time()) break;
+    if (next - now >= sc_core::sc_time_to_pending_activity().value()) break;
+    at = next;
+    ahead.at = from_ticks(at);
+    sim_time_detail::ahead = &ahead.at;
   }
+  sim_time_detail::ahead = nullptr;
   dispatching_ = false;
   prepare_next();
   // SystemC runs the queue again at its earliest wake (or when a process asks for one).

@@ -7,6 +7,16 @@
 // wakes were asked for (first asked, first run). SystemC sees one process and one timed
 // notification: the earliest wake.
 //
+// It runs ahead of SystemC: when SystemC has nothing else to do before the queue's next wake (no
+// other process to run now, no event due until after it), the queue goes on to that wake itself,
+// and so on, instead of handing back to SystemC for each (a timed notification, a delta cycle and
+// a method's dispatch a wake: 0.56 G of a 32 x 32 array's 3.83 G instructions of simulation).
+// While it does, its clients see the time of their wake through modules::sim_now(), which the
+// model reads time by everywhere; SystemC's own time (modules::systemc_now) lags, so a delay a
+// client hands to SystemC (an event it notifies) must count from systemc_now(). Such an event is
+// then due, and the queue stops running ahead before it; a wake due at the same time as another
+// process's activity is left to SystemC, as without running ahead.
+//
 // A client asks to run at an absolute time (wake_at); a client has at most one wake pending,
 // the earliest asked for, as an sc_event keeps its earliest notification. A wake may be asked
 // for from a client's own run, from another client's (a message put into its port) or from any
@@ -16,7 +26,8 @@
 // ahead (modules::Processor's event-driven mode) does not depend on which of two processors due
 // at the same time runs first, because every message it takes was put before its stamp.
 // Used by ullner-array's 1024 processors (node.process = queue); tests/ullner_array_test.cpp
-// shows its statistics those of the SystemC methods and threads.
+// shows its statistics those of the SystemC methods and threads, tests/wake_queue_test.cpp where
+// it runs ahead and where it stops.
 #include <cstdint>
 #include <limits>
 #include <queue>

@@ -833,7 +833,8 @@ void ArrayNode::process(RayMessage&& msg) {
       tally_.credit_returned += msg.credit;
       if (tally_.credit_returned == ctx_.total_credit) {
         tally_.done = clock_.now();
-        tally_.frame_done.notify(clock_.now() - modules::sim_now());
+        // A delay for SystemC counts from its own time (the queue may run this ahead of it).
+        tally_.frame_done.notify(clock_.now() - modules::systemc_now());
       }
       return;
   }
