@@ -26,7 +26,8 @@ class LocalClock {
   /// Spend `d` of local time; synchronise if the thread is a quantum ahead.
   void advance(const sc_core::sc_time& d) {
     local_ = plus(local_, d);
-    if (waits_ && local_ - modules::sim_now() >= tlm::tlm_global_quantum::instance().get()) sync();
+    if (waits_ && local_ - modules::systemc_now() >= tlm::tlm_global_quantum::instance().get())
+      sync();
   }
 
   /// For an SC_METHOD: advance() never waits (elaboration, before the simulation starts).
@@ -40,7 +41,7 @@ class LocalClock {
 
   /// Wait in global time until local time (no-op if already there).
   void sync() {
-    const sc_core::sc_time g = modules::sim_now();
+    const sc_core::sc_time g = modules::systemc_now();
     if (local_ > g) modules::sim_wait(local_ - g);
   }
 

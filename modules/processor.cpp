@@ -27,11 +27,11 @@ void Processor::idle_on(std::optional<sc_core::sc_time> until, const Events& eve
   // While this thread waited, the others ran up to its local time, and an event it would wait
   // for may have fired then (a slot freed, an item put): waiting on it now could miss it and
   // sleep until `until`, or forever.
-  if (before > modules::sim_now()) {
+  if (before > modules::systemc_now()) {
     clock_.sync();
     return;
   }
-  const sc_core::sc_time g = modules::sim_now();
+  const sc_core::sc_time g = modules::systemc_now();
   // A time already reached is something the caller cannot act on yet: wait for a change.
   if (until && *until > g)
     modules::sim_wait(*until - g, events);
@@ -75,13 +75,13 @@ void Processor::resume() {
 }
 
 void Processor::resume_at_local_time() {
-  const sc_core::sc_time g = modules::sim_now();
+  const sc_core::sc_time g = modules::systemc_now();
   next_trigger(clock_.now() > g ? clock_.now() - g : sc_core::SC_ZERO_TIME);
 }
 
 void Processor::idle_trigger(std::optional<sc_core::sc_time> until, const sc_core::sc_event& event,
                              Wait why) {
-  const sc_core::sc_time g = modules::sim_now();
+  const sc_core::sc_time g = modules::systemc_now();
   // Ahead of simulated time: catch up first and look again (as idle() does).
   if (clock_.now() > g) {
     resume_at_local_time();

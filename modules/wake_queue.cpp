@@ -77,7 +77,6 @@ void WakeQueue::dispatch() {
     ahead.at = from_ticks(at);
     sim_time_detail::ahead = &ahead.at;
   }
-  sim_time_detail::ahead = nullptr;
   dispatching_ = false;
   prepare_next();
   // SystemC runs the queue again at its earliest wake (or when a process asks for one).

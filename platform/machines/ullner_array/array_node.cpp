@@ -775,7 +775,7 @@ void ArrayNode::activate() {
         if (s.until) ctx_.queue->wake_at(queue_slot_, *s.until);
         return;
       }
-      if (s.until) wake_.notify(*s.until - modules::sim_now());
+      if (s.until) wake_.notify(*s.until - modules::systemc_now());
       idle_trigger(std::nullopt, wake_, Wait::kWork);
       return;
     }
