@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <map>
-#include <regex>
 
 #include "app/json_number.hpp"
 #include "app/number_text.hpp"
@@ -31,9 +30,18 @@ std::pair<std::string, double> longest_waiter(const json& modules, const std::st
 /// A module's class: numbers as "*", a final one-letter suffix after "_" as "*" (the links and
 /// ports of a mesh, one a direction).
 std::string module_class(const std::string& name) {
-  static const std::regex digits("[0-9]+");
-  static const std::regex direction("_[a-z]$");
-  return std::regex_replace(std::regex_replace(name, digits, "*"), direction, "_*");
+  std::string c;
+  c.reserve(name.size());
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const bool digit = name[i] >= '0' && name[i] <= '9';
+    if (!digit)
+      c += name[i];
+    else if (i == 0 || name[i - 1] < '0' || name[i - 1] > '9')
+      c += '*';  // a run of digits, once
+  }
+  const std::size_t n = c.size();
+  if (n >= 2 && c[n - 2] == '_' && c[n - 1] >= 'a' && c[n - 1] <= 'z') c[n - 1] = '*';
+  return c;
 }
 
 /// Where the time went, by class and way, largest first (only when nothing is saturated).

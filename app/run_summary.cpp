@@ -160,4 +160,32 @@ std::string format_run_summary(const json& stats,
   return out.str();
 }
 
+nlohmann::json summary_view(const nlohmann::ordered_json& stats) {
+  json view = json::object();
+  for (const auto& [key, value] : stats.items()) {
+    if (key != "modules" || !value.is_object()) {
+      view[key] = value;
+      continue;
+    }
+    json& modules = view[key];
+    modules = json::object();
+    for (const auto& [name, module] : value.items()) {
+      if (!module.is_object()) {
+        modules[name] = module;
+        continue;
+      }
+      json& m = modules[name];
+      m = json::object();
+      for (const auto& [k, v] : module.items())
+        if (k != "utilization_windows") m[k] = v;
+    }
+  }
+  return view;
+}
+
+std::string format_run_summary(const nlohmann::ordered_json& stats,
+                               const std::vector<std::pair<std::string, std::string>>& outputs) {
+  return format_run_summary(summary_view(stats), outputs);
+}
+
 }  // namespace rtsim::app

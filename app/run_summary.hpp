@@ -13,6 +13,14 @@ namespace rtsim::app {
 /// written ({"image", "out/run/image.png  out/run/image.exr"}, ...).
 std::string format_run_summary(const nlohmann::json& stats,
                                const std::vector<std::pair<std::string, std::string>>& outputs);
+/// The same from the document as `rtsim run` builds it, through summary_view: a 32 x 32
+/// array's stats.json is 21 MB, most of it the modules' utilisation series, and a whole copy
+/// into nlohmann::json (and its release) cost more instructions than the statistics themselves.
+std::string format_run_summary(const nlohmann::ordered_json& stats,
+                               const std::vector<std::pair<std::string, std::string>>& outputs);
+/// What the summary reads of a stats document: every key but the modules' utilisation series
+/// (`modules.*.utilization_windows`), as nlohmann::json.
+nlohmann::json summary_view(const nlohmann::ordered_json& stats);
 
 /// A sampled run's frame time is an estimate: " +- 0.31 s (estimated, 99.7%)", the half-width of
 /// its interval; "" for a run in full detail. The console's and the report's headline.

@@ -160,6 +160,37 @@ TEST(RunSummary, WithNothingSaturatedItSaysWhereTheTimeWent) {
   EXPECT_NE(text.find("node* waiting for memory"), std::string::npos) << text;
 }
 
+// `rtsim run` hands the summary its document as built (nlohmann::ordered_json) through a view
+// without the modules' utilisation series: the text is the same as from the whole document,
+// and the view keeps every key but those series (the queue's occupancy, the waits, the busy).
+TEST(RunSummary, TheDocumentAsBuiltGivesTheSameTextThroughItsView) {
+  auto whole = nlohmann::json::parse(R"({
+    "machine": "m", "scene": "s", "width": 8, "height": 8, "simulated_time_s": 2.0,
+    "wall_time_s": 0.5, "overhead_ratio": 12.5, "functional_wall_time_s": 0.04,
+    "ray_latency_s": {"count": 64, "mean": 1e-3, "p50": 1e-3, "p99": 2e-3},
+    "modules": {
+      "node10": {"busy_s": 0.6, "utilization": 0.3, "memory_waited_s": 0.2,
+                 "utilization_windows": {"begin_s": 0, "window_s": 1, "values": [0.2, 0.4]}},
+      "node2": {"busy_s": 0.8, "utilization": 0.4, "blocked_s": 0.1},
+      "node2.in_e": {"queue": {"mean_occupancy": 0.5, "capacity": 4}},
+      "node10.link_w": {"busy_s": 0.2, "utilization": 0.1, "waited_s": 0.2}
+    }})");
+  const auto as_built = nlohmann::ordered_json::parse(whole.dump());
+  const nlohmann::json view = rtsim::app::summary_view(as_built);
+  EXPECT_FALSE(view["modules"]["node10"].contains("utilization_windows"));
+  auto expected = whole;
+  expected["modules"]["node10"].erase("utilization_windows");
+  EXPECT_EQ(view, expected);
+  for (const double u : {0.3, 0.99}) {  // nothing saturated (where the time went) and saturated
+    whole["modules"]["node2"]["utilization"] = u;
+    auto built = nlohmann::ordered_json::parse(whole.dump());
+    const std::string text = format_run_summary(built, {{"stats", "s.json"}});
+    EXPECT_EQ(text, format_run_summary(whole, {{"stats", "s.json"}}));
+    EXPECT_NE(text.find(u < 0.5 ? "node*.in_* queued" : "node2, 99.0% busy"), std::string::npos)
+        << text;
+  }
+}
+
 // A sequence of frames (pxpl5-raytrace with frames > 1): the heading counts them, and a line
 // gives the frame rate and latency, then each frame's start, display, latency and interval.
 TEST(RunSummary, ASequenceOfFramesGivesItsRateAndEachFrame) {
