@@ -1,6 +1,7 @@
 #include "modules/stat_directory.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <thread>
 #include <unordered_map>
@@ -31,39 +32,68 @@ void StatDirectory::remove(const StatGroup& group) {
     }
 }
 
-std::map<std::string, StatReport> StatDirectory::reports(const StatWindow& window) const {
-  // What each statistic can work out alone (a busy time's utilisation windows: 6,000 timelines
-  // in a 32 x 32 array) is done first on two threads, every other statistic each; the reports
-  // are then written in order on this one, so they do not depend on the threads.
-  std::vector<const Statistic*> all;
-  for (const auto& [name, group] : groups_)
-    for (const Statistic* s : group->statistics()) all.push_back(s);
-  const auto prepare = [&](std::size_t first) {
-    for (std::size_t k = first; k < all.size(); k += 2) all[k]->prepare_report(window);
-  };
-  if (all.size() >= kStatisticsForTwoThreads) {
-    std::exception_ptr failed;
-    std::thread other([&] {
-      try {
-        prepare(1);
-      } catch (...) {
-        failed = std::current_exception();
+std::vector<StatDirectory::NamedReport> StatDirectory::named_reports(const StatWindow& window,
+                                                                     bool as_json) const {
+  // One entry a name: groups of one name report as one.
+  std::vector<NamedReport> out;
+  std::vector<std::pair<Groups::const_iterator, Groups::const_iterator>> ranges;
+  std::size_t statistics = 0;
+  for (auto it = groups_.begin(); it != groups_.end();) {
+    const auto last = groups_.upper_bound(it->first);
+    out.push_back({it->first, {}, {}});
+    ranges.emplace_back(it, last);
+    for (auto g = it; g != last; ++g) statistics += g->second->statistics().size();
+    it = last;
+  }
+  // Every name's statistics work out their reports (a busy time's utilisation windows: 6,000
+  // timelines in a 32 x 32 array) and, for stats.json, their JSON, every second name on a second
+  // thread. Each name's report is its own statistics' alone, so it does not depend on the
+  // threads; the caller takes them in name order.
+  const auto report = [&](std::size_t k) {
+    NamedReport& n = out[k];
+    for (auto g = ranges[k].first; g != ranges[k].second; ++g)
+      for (const Statistic* s : g->second->statistics()) {
+        s->prepare_report(window);
+        s->report(n.report, window);
       }
-    });
-    try {
-      prepare(0);
-    } catch (...) {
-      other.join();
-      throw;
+    if (as_json) {
+      n.units = std::move(n.report.units);
+      n.json = report_json(std::move(n.report), window);
+      n.report = StatReport{};
     }
+  };
+  // A failure is the first name's in name order, as if one thread had done them all.
+  struct Failure {
+    std::size_t at = SIZE_MAX;
+    std::exception_ptr error;
+  };
+  const auto run = [&](std::size_t first, std::size_t step, Failure& failed) {
+    for (std::size_t k = first; k < out.size(); k += step) {
+      try {
+        report(k);
+      } catch (...) {
+        failed = {k, std::current_exception()};
+        return;
+      }
+    }
+  };
+  Failure mine, other_failed;
+  if (statistics >= kStatisticsForTwoThreads) {
+    std::thread other([&] { run(1, 2, other_failed); });
+    run(0, 2, mine);
     other.join();
-    if (failed) std::rethrow_exception(failed);
+  } else {
+    run(0, 1, mine);
   }
+  const Failure& first = mine.at <= other_failed.at ? mine : other_failed;
+  if (first.error) std::rethrow_exception(first.error);
+  return out;
+}
+
+std::map<std::string, StatReport> StatDirectory::reports(const StatWindow& window) const {
   std::map<std::string, StatReport> out;
-  for (const auto& [name, group] : groups_) {
-    StatReport& r = out[name];
-    for (const Statistic* s : group->statistics()) s->report(r, window);
-  }
+  for (NamedReport& n : named_reports(window, false))
+    out.emplace(std::move(n.name), std::move(n.report));
   return out;
 }
 
@@ -91,18 +121,18 @@ nlohmann::ordered_json StatDirectory::to_json(const StatWindow& window, UnitSche
   // adds nothing the schema has not got (UnitSchema::add keeps the first unit of a pattern), so
   // its keys are not worked out again: 1024 processors' hundred keys were 136,000 adds.
   std::unordered_map<std::string, std::vector<std::pair<std::string, StatUnit>>> declared;
-  for (auto& [name, r] : reports(window)) {
-    if (units && !r.units.empty()) {
+  for (NamedReport& n : named_reports(window, true)) {
+    if (units && !n.units.empty()) {
       // Under the class's name: an array's 1024 nodes declare their keys once. (A path's class
       // is its parts' classes: the group's is worked out once, not once a key.)
-      const std::string group_class = instance_class("modules." + name) + ".";
+      const std::string group_class = instance_class("modules." + n.name) + ".";
       auto& last = declared[group_class];
-      if (last != r.units) {
-        for (const auto& [key, unit] : r.units) units->add(group_class + instance_class(key), unit);
-        last = r.units;
+      if (last != n.units) {
+        for (const auto& [key, unit] : n.units) units->add(group_class + instance_class(key), unit);
+        last = std::move(n.units);
       }
     }
-    modules.emplace_back(name, report_json(std::move(r), window));
+    modules.emplace_back(std::move(n.name), std::move(n.json));
   }
   return out;
 }

@@ -70,7 +70,18 @@ class StatDirectory {
   }
 
  private:
-  std::multimap<std::string, const StatGroup*> groups_;
+  using Groups = std::multimap<std::string, const StatGroup*>;
+  /// A name's report, or (as_json) its stats.json object and the units of its keys.
+  struct NamedReport {
+    std::string name;
+    StatReport report;
+    nlohmann::ordered_json json;
+    std::vector<std::pair<std::string, StatUnit>> units{};
+  };
+  /// Every name's report over `window`, in name order (on two threads for a large machine).
+  std::vector<NamedReport> named_reports(const StatWindow& window, bool as_json) const;
+
+  Groups groups_;
 };
 
 /// A group's report as stats.json writes it (its values moved out: the utilisation windows of
