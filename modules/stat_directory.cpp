@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -71,6 +72,10 @@ std::vector<StatDirectory::NamedReport> StatDirectory::named_reports(const StatW
     for (std::size_t k = first; k < out.size(); k += step) {
       try {
         report(k);
+      } catch (const std::logic_error& e) {
+        // A modelling error (two busy times under one name): which module it is in.
+        failed = {k, std::make_exception_ptr(std::logic_error(out[k].name + ": " + e.what()))};
+        return;
       } catch (...) {
         failed = {k, std::current_exception()};
         return;

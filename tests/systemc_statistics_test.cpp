@@ -128,6 +128,27 @@ TEST(Statistics, ManyStatisticsReportAsEachWouldAlone) {
   }
 }
 
+TEST(Statistics, AFailingReportIsTheFirstNamesWhateverThreadMetIt) {
+  // Enough statistics for two threads; two names each hold two queues (Level statistics), which
+  // cannot report under one name. The error names the first of them in name order, whether the
+  // thread that met it was the first or the second, as one thread would.
+  std::vector<std::unique_ptr<Unit>> units;
+  for (int k = 0; k < 300; ++k) units.push_back(std::make_unique<Unit>("fill" + std::to_string(k)));
+  for (const char* first : {"clash_a", "clash_b"}) {
+    SCOPED_TRACE(first);
+    const std::string second = first == std::string("clash_a") ? "clash_b" : "clash_c";
+    StatGroup a(first), a2(first), b(second), b2(second);
+    Level qa(a, 4), qa2(a2, 4), qb(b, 4), qb2(b2, 4);
+    try {
+      modules_json();
+      ADD_FAILURE() << "two queues under one name reported";
+    } catch (const std::logic_error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string(first) + ": two Level statistics report under one name (queue)");
+    }
+  }
+}
+
 TEST(Statistics, AGroupLeavesTheDirectoryWithItsObject) {
   {
     Unit u("short_lived");
