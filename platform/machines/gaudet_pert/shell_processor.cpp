@@ -66,9 +66,11 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const PertContext& 
 void ShellProcessor::ask(std::uint32_t packet, int search) {
   compute_for(searches_[static_cast<std::size_t>(search)].ticket, Stage::kShell,
               tasks::kAskPacketCost, "ask");
+  if (packet >= waiting_.size()) waiting_.resize(std::size_t{packet} + 1);
   auto& w = waiting_[packet];
   w.push_back(search);
   if (w.size() > 1) return;  // already asked for by another ray
+  ++packets_awaited_;
   if (!port_.request(packet, clock_.now())) {
     overflow_.push_back(packet);
     overflow_peak_.note(overflow_.size());
@@ -106,8 +108,15 @@ void ShellProcessor::begin(ShadeToShell msg) {
 }
 
 void ShellProcessor::process(const ReceivedPacket& p) {
-  const auto node = waiting_.extract(p.id);
-  read_and_test(p, node.empty() ? nullptr : &node.mapped());
+  const std::vector<int>* rays = nullptr;
+  if (p.id < waiting_.size() && !waiting_[p.id].empty()) {
+    // Taken out (a ray reading it may ask for it again); its place keeps an empty list's room.
+    caught_for_.clear();
+    caught_for_.swap(waiting_[p.id]);
+    --packets_awaited_;
+    rays = &caught_for_;
+  }
+  read_and_test(p, rays);
   port_.release(p, clock_.now());
 }
 
@@ -202,11 +211,12 @@ void ShellProcessor::run() {
       const sc_core::sc_time ask_start = clock_.now();
       compute(tasks::kAskPacketCost, "ask");
       // Asked for every ray waiting for the ID, which till now waited for an ID register.
-      if (const auto w = waiting_.find(id); w != waiting_.end()) {
-        for (std::size_t i = 0; i < w->second.size(); ++i) {
-          RayTicket& t = searches_[static_cast<std::size_t>(w->second[i])].ticket;
+      if (id < waiting_.size()) {
+        const std::vector<int>& w = waiting_[id];
+        for (std::size_t i = 0; i < w.size(); ++i) {
+          RayTicket& t = searches_[static_cast<std::size_t>(w[i])].ticket;
           probe_->to(t, Stage::kShellBus, RayProbe::Part::kQueueing, ask_start);
-          probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w->second.size());
+          probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w.size());
         }
       }
       if (port_.request(id, clock_.now())) overflow_.pop_back();
@@ -231,7 +241,7 @@ void ShellProcessor::run() {
     // Waiting for a packet is latency only when the processor has nothing else it could do:
     // with a ray slot free and no ray in its input queue, it is starved of rays instead
     // (L1060-L1062: waiting that a new ray could overlap is not latency).
-    const bool for_bus = !waiting_.empty();
+    const bool for_bus = packets_awaited_ > 0;
     if (for_bus && slot_free && done_.empty())
       idle_starved(next, starved_on);
     else

@@ -23,7 +23,6 @@
 
 #include <algorithm>
 #include <deque>
-#include <map>
 #include <span>
 #include <vector>
 
@@ -85,7 +84,11 @@ class ShellProcessor : public PertProcessor {
   const modules::TimedFifo<ShellToPrim>* out_queue_ = nullptr;
 
   std::vector<Search> searches_;
-  std::map<std::uint32_t, std::vector<int>> waiting_;  ///< packet ID -> searches waiting for it
+  /// Packet ID -> the searches waiting for it (none: empty), by ID. A packet asked for and caught
+  /// again and again reuses its list: a map's node and list were allocated and freed for each.
+  std::vector<std::vector<int>> waiting_;
+  std::size_t packets_awaited_ = 0;      ///< IDs of waiting_ whose list is not empty
+  std::vector<int> caught_for_;          ///< the list of the packet being read, out of waiting_
   std::vector<std::uint32_t> overflow_;  ///< IDs stacked in memory, no register free (L910)
   std::deque<int> done_;                 ///< searches whose list is ready to send
   std::vector<std::uint32_t> children_;
