@@ -1,6 +1,7 @@
 #include "platform/machines/ullner_array/array_node.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 
 #include "firmware/accel/grid_traversal.hpp"
@@ -20,6 +21,14 @@ using modules::times;
 namespace {
 
 std::size_t type_index(MessageType t) { return static_cast<std::size_t>(t); }
+
+/// std::llround (half away from zero) inline for a non-negative x below 2^62, where it is the
+/// same: x - trunc(x) is exact. The library's is a call, 1.9 M of them at 32 x 32 (spend).
+std::int64_t round_half_away(double x) {
+  if (!(x >= 0.0 && x < 0x1p62)) return std::llround(x);
+  const auto whole = static_cast<std::int64_t>(x);
+  return whole + (x - static_cast<double>(whole) >= 0.5 ? 1 : 0);
+}
 
 }  // namespace
 
@@ -392,7 +401,7 @@ void ArrayNode::spend(std::uint64_t cycles, std::string_view what) {
   // memory already owes the ports' copies and the unit's fetches: it computes meanwhile, and is
   // done when its own time has passed and the memory has served it too (it waits for the rest).
   const auto hold = modules::from_ps(static_cast<std::int64_t>(
-      std::llround(static_cast<double>(t.value()) * timing_.cpu_memory_share)));
+      round_half_away(static_cast<double>(t.value()) * timing_.cpu_memory_share)));
   memory_free_ = plus(std::max(clock_.now(), memory_free_), hold);
   memory_busy_ += hold;
   cpu_memory_busy_ += hold;
