@@ -31,7 +31,16 @@ void BusyTimeline::add(const sc_core::sc_time& start, const sc_core::sc_time& du
   last_ = first ? e : std::max(last_, e);
   recorded_ = true;
   if (binned_) {
-    add_to_bins(s, e);
+    // An interval that starts where the one before ended extends it; the bins take it when the
+    // next does not, or when they are read (settle). Adding [a, c) once puts every tick in the
+    // bin [a, b) and [b, c) would have put it in: the bins' width and origin depend only on the
+    // earliest start and latest end added, and merging pairs keeps each bin's ticks.
+    if (pending_.end == s && pending_.end > pending_.start) {
+      pending_.end = e;
+      return;
+    }
+    settle_pending();
+    pending_ = {s, e};
     return;
   }
   if (first) {
@@ -86,6 +95,18 @@ void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
   }
 }
 
+void BusyTimeline::settle_pending() {
+  if (pending_.end <= pending_.start) return;
+  add_to_bins(pending_.start, pending_.end);
+  pending_ = {0, 0};
+}
+
+void BusyTimeline::settle() const {
+  // The timelines are members of modules, never const objects themselves: a reader that finds
+  // an interval still pending hands it to the bins (each timeline is read by one thread).
+  const_cast<BusyTimeline*>(this)->settle_pending();
+}
+
 std::vector<LevelChange> BusyTimeline::level_changes() const {
   std::vector<std::uint64_t> starts, ends;
   starts.reserve(intervals_.size());
@@ -102,6 +123,7 @@ std::vector<LevelChange> BusyTimeline::level_changes() const {
 sc_core::sc_time BusyTimeline::total() const {
   std::uint64_t sum = 0;
   for (std::uint64_t v : busy_) sum += v;
+  sum += pending_.end - pending_.start;
   for (const Interval& i : sparse_) sum += i.end - i.start;
   if (recorded_ && !binned_) sum += open_.end - open_.start;
   return from_ticks(sum);
@@ -113,6 +135,7 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
   const std::uint64_t B = begin.value();
   const std::uint64_t E = end.value();
   if (n == 0 || E <= B) return out;
+  settle();
   const long double window = static_cast<long double>(E - B) / static_cast<long double>(n);
   out.begin_s = begin.to_seconds();
   out.window_s = (end - begin).to_seconds() / static_cast<double>(n);

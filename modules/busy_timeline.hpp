@@ -68,8 +68,14 @@ class BusyTimeline {
 
   /// Total busy time recorded (exact: the bins hold integer ticks).
   sc_core::sc_time total() const;
-  std::uint64_t bin_width_ticks() const { return std::uint64_t{1} << shift_; }
-  std::size_t bins() const { return busy_.size(); }
+  std::uint64_t bin_width_ticks() const {
+    settle();
+    return std::uint64_t{1} << shift_;
+  }
+  std::size_t bins() const {
+    settle();
+    return busy_.size();
+  }
 
   /// Whether the intervals are kept (made while a KeepIntervals was alive).
   bool keeps_intervals() const { return keep_; }
@@ -84,6 +90,9 @@ class BusyTimeline {
   };
   inline static int keeping_ = 0;
   void merge_pairs();
+  /// The bins take the pending interval, if any.
+  void settle_pending();
+  void settle() const;
   void add_to_bins(std::uint64_t s, std::uint64_t e);
   void to_bins();
   /// ceil(ticks / the bin width): the bins `ticks` of time take.
@@ -103,6 +112,10 @@ class BusyTimeline {
   /// Sparse: the interval recorded last (while recorded_), kept here rather than at the end of
   /// sparse_ so that extending it, the common case, reads no line but this object's.
   Interval open_{0, 0};
+  /// Binned: the interval recorded last, not yet in the bins (empty: start == end). Most of a
+  /// processor's intervals start where the one before ended; they extend it here instead of
+  /// each visiting the bins.
+  Interval pending_{0, 0};
   std::vector<std::uint64_t> busy_;
   std::vector<Interval> sparse_;  ///< the intervals before open_, until it turns to bins
   std::vector<Interval> intervals_;

@@ -3,8 +3,11 @@
 // the traces' signals are drawn from. Plain arithmetic on sc_time, no simulation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
+#include <random>
 #include <systemc>
+#include <utility>
 
 #include "modules/busy_timeline.hpp"
 #include "modules/occupancy.hpp"
@@ -90,6 +93,45 @@ TEST(BusyTimeline, IntervalsInAnyOrderAndWindowsOfASubRange) {
   EXPECT_NEAR(w.values[2], 1.0, tol);
   EXPECT_NEAR(w.values[3], 1.0, tol);
   EXPECT_NEAR(sum_busy_s(w), 13e-6, 1e-15);  // everything after 10 us
+}
+
+TEST(BusyTimeline, BackToBackPiecesGiveTheBinsOfEachPieceAddedAlone) {
+  // A binned timeline holds an interval that starts where the one before ended and extends it
+  // until another comes or the bins are read. Read after every add, each piece goes into the
+  // bins alone (as before it was held); left alone, back-to-back pieces go in as one. The bins,
+  // the total and the windows are the same either way, in every order of bursts, with bursts
+  // reaching back before the first and far past the last (so pairs merge and bins grow left).
+  std::mt19937_64 random(11);
+  for (int trial = 0; trial < 40; ++trial) {
+    BusyTimeline each, merged;
+    std::uint64_t lo = ~std::uint64_t{0}, hi = 0;
+    const int bursts = 1500 + static_cast<int>(random() % 1500);
+    for (int b = 0; b < bursts; ++b) {
+      std::uint64_t at = 1'000'000'000 + random() % (trial % 2 ? 400'000'000 : 4'000'000'000ull);
+      if (b > 1200 && random() % 50 == 0) at /= 2;  // a burst before everything so far
+      const int pieces = 1 + static_cast<int>(random() % 6);
+      for (int k = 0; k < pieces; ++k) {
+        const std::uint64_t d = 1 + random() % 50'000;
+        each.add(ps(at), ps(d));
+        ASSERT_GT(each.bins() + 1, 0u);  // read: the piece goes into the bins now
+        merged.add(ps(at), ps(d));
+        lo = std::min(lo, at);
+        at += d;
+        hi = std::max(hi, at);
+      }
+    }
+    // The total and the windows first: they take the interval still held as they find it.
+    EXPECT_EQ(merged.total(), each.total()) << trial;
+    for (const auto& [begin, end] : {std::pair{lo, hi}, std::pair{lo + (hi - lo) / 3, hi - 7}}) {
+      const auto a = each.windows(ps(begin), ps(end), 100);
+      const auto m = merged.windows(ps(begin), ps(end), 100);
+      ASSERT_EQ(m.values.size(), a.values.size());
+      for (std::size_t j = 0; j < a.values.size(); ++j)
+        ASSERT_EQ(m.values[j], a.values[j]) << trial << " window " << j;  // bit for bit
+    }
+    ASSERT_EQ(merged.bins(), each.bins()) << trial;
+    EXPECT_EQ(merged.bin_width_ticks(), each.bin_width_ticks()) << trial;
+  }
 }
 
 TEST(BusyTimeline, EmptyOrDegenerateFrameGivesNoWindows) {
