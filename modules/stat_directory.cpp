@@ -53,10 +53,7 @@ std::vector<StatDirectory::NamedReport> StatDirectory::named_reports(const StatW
   const auto report = [&](std::size_t k) {
     NamedReport& n = out[k];
     for (auto g = ranges[k].first; g != ranges[k].second; ++g)
-      for (const Statistic* s : g->second->statistics()) {
-        s->prepare_report(window);
-        s->report(n.report, window);
-      }
+      for (const Statistic* s : g->second->statistics()) s->report(n.report, window);
     if (as_json) {
       n.units = std::move(n.report.units);
       n.json = report_json(std::move(n.report), window);

@@ -67,20 +67,6 @@ void Duration::report(StatReport& out, const StatWindow& /*window*/) const {
   declare_unit(out, name());
 }
 
-UtilizationWindows Busy::windows(const StatWindow& window) const {
-  if (prepared_ && prepared_->begin == window.begin && prepared_->end == window.end) {
-    UtilizationWindows w = std::move(prepared_->windows);
-    prepared_.reset();
-    return w;
-  }
-  return timeline_.windows(window.begin, window.end, kUtilizationWindows);
-}
-
-void Busy::prepare_report(const StatWindow& window) const {
-  prepared_ = Prepared{window.begin, window.end,
-                       timeline_.windows(window.begin, window.end, kUtilizationWindows)};
-}
-
 void Busy::report(StatReport& out, const StatWindow& window) const {
   // One busy time a name: two would add, and their windows would overwrite each other.
   if (out.busy_reported)
@@ -89,7 +75,7 @@ void Busy::report(StatReport& out, const StatWindow& window) const {
   out.busy = total_;
   out.units.emplace_back("busy_s", StatUnit::seconds);
   out.units.emplace_back("utilization", StatUnit::fraction);
-  const UtilizationWindows w = windows(window);
+  const UtilizationWindows w = timeline_.windows(window.begin, window.end, kUtilizationWindows);
   if (!w.values.empty()) {
     out.windows = {{"begin_s", w.begin_s}, {"window_s", w.window_s}, {"values", w.values}};
     out.units.emplace_back("utilization_windows.begin_s", StatUnit::seconds);

@@ -26,7 +26,6 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <systemc>
@@ -103,10 +102,6 @@ class Statistic {
   StatUnit unit() const { return label_->unit; }
   /// Adds itself to its group's report over `window`.
   virtual void report(StatReport& out, const StatWindow& window) const = 0;
-  /// Work report(out, window) will need that reads this statistic alone, done ahead: the
-  /// directory runs it for many statistics on two threads (StatDirectory::reports). None by
-  /// default.
-  virtual void prepare_report(const StatWindow& /*window*/) const {}
   /// Its trace signals (Busy, Level, LevelSignal); none by default.
   virtual void signals(std::vector<TraceSignal>& /*out*/) const {}
 
@@ -237,22 +232,15 @@ class Busy final : public Statistic {
   }
   const sc_core::sc_time& total() const { return total_; }
   const BusyTimeline& timeline() const { return timeline_; }
+  /// With its utilisation windows (most of a large machine's report: thousands of timelines,
+  /// reported on two threads, StatDirectory::to_json).
   void report(StatReport& out, const StatWindow& window) const override;
-  /// Its utilisation windows (most of a large machine's report: thousands of timelines).
-  void prepare_report(const StatWindow& window) const override;
   void signals(std::vector<TraceSignal>& out) const override;
 
  private:
-  UtilizationWindows windows(const StatWindow& window) const;
   // What record() touches first, together: the total, then the timeline's head.
   sc_core::sc_time total_ = sc_core::SC_ZERO_TIME;
   BusyTimeline timeline_;
-  /// The windows prepare_report worked out, and over what: report() takes them (once).
-  struct Prepared {
-    sc_core::sc_time begin, end;
-    UtilizationWindows windows;
-  };
-  mutable std::optional<Prepared> prepared_;
 };
 
 /// A queue's depth over time: queue.{capacity, mean_occupancy, max_occupancy} (time-weighted

@@ -106,8 +106,9 @@ TEST(Statistics, EachKindDeclaresTheUnitOfWhatItWrites) {
 }
 
 TEST(Statistics, ManyStatisticsReportAsEachWouldAlone) {
-  // 400 units hold 4,000 statistics: the directory works their windows out on two threads
-  // (StatDirectory::reports), and each unit's report is what it reports alone, in its order.
+  // 400 units hold 4,000 statistics: the directory reports them (their windows included) on two
+  // threads (StatDirectory::reports), and each unit's report is what it reports alone, in its
+  // order.
   std::vector<std::unique_ptr<Unit>> units;
   for (int k = 0; k < 400; ++k) {
     units.push_back(std::make_unique<Unit>("many" + std::to_string(k)));
