@@ -315,6 +315,79 @@ TEST(BusInterface, StreamedPacketIsTakenAtItsFirstRecordAndReadAsItArrives) {
             0);
 }
 
+TEST(BusInterface, ARequestWithdrawnAtTheStrobesTimeIsStillMatched) {
+  // A strobe sees the registers as they were just before it (bus_interface.hpp): a request
+  // withdrawn at the very time of its ID's strobe is matched, its packet streams in and is
+  // dropped, and the register is freed on receipt (L912) -- whether the processor withdraws it
+  // before the Broadcast Processor strobes (a method, which SystemC runs before threads) or
+  // after (a thread one delta later). ID 1's strobe is at 1000 ns: its 5-word packet is in at
+  // 1000 + 1000 + 800 + 5 x 400 = 4800 ns.
+  for (const bool before : {true, false}) {
+    SCOPED_TRACE(before ? "withdrawn before the strobe" : "withdrawn after the strobe");
+    EXPECT_EQ(rtsim::test::run_in_child([before] {
+                using namespace rtsim::platform::gaudet;
+                using rtsim::modules::ModuleParams;
+                using rtsim::modules::ParamDecls;
+                rtsim::params::ParamRegistry r;
+                BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
+                BusInterface::declare_params(
+                    ParamDecls(r, "bic"), {.value = "1", .description = "test", .source = "test"});
+                BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
+                BusInterface bic(ModuleParams(r, "bic"));
+                bp.attach(bic);
+                const std::uint32_t words[] = {0, 6, 2, 1, 8, 5, 7, 7, 1, 2, 3, 4, 5};
+                struct Driver : sc_core::sc_module {
+                  SC_HAS_PROCESS(Driver);
+                  Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
+                         const std::uint32_t* w, bool early)
+                      : sc_module(n), bp(b), bic(i), words(w), early(early) {
+                    SC_THREAD(run);
+                    SC_METHOD(withdraw_early);
+                    sensitive << at_strobe;
+                    dont_initialize();
+                  }
+                  void run() {
+                    load_words(socket, words, 13);
+                    bp.start(sc_time(0, SC_NS), 2, 3);
+                    EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                    if (early) {
+                      at_strobe.notify(sc_time(1000, SC_NS));
+                      return;
+                    }
+                    sc_core::wait(sc_time(1000, SC_NS));
+                    sc_core::wait(sc_core::SC_ZERO_TIME);
+                    withdraw();
+                  }
+                  void withdraw_early() { withdraw(); }
+                  void withdraw() {
+                    EXPECT_EQ(sc_core::sc_time_stamp(), sc_time(1000, SC_NS));
+                    bic.cancel(1, sc_core::sc_time_stamp());
+                    EXPECT_FALSE(bic.pending(1));
+                  }
+                  tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
+                  sc_core::sc_event at_strobe;
+                  BroadcastProcessor& bp;
+                  BusInterface& bic;
+                  const std::uint32_t* words;
+                  bool early;
+                } drv("drv", bp, bic, words, before);
+                drv.socket.bind(bp.memory.socket);
+                sc_core::sc_start(sc_time(1, sc_core::SC_MS));
+                EXPECT_EQ(bp.stats().captures, 1u);
+                EXPECT_EQ(bp.stats().hit_packets, 1u);
+                // Dropped: nothing to take, and its buffer is free once the packet is in.
+                EXPECT_FALSE(bic.next_arrival().has_value());
+                EXPECT_FALSE(bic.take(sc_time(1, sc_core::SC_MS)).has_value());
+                EXPECT_FALSE(bic.register_free(sc_time(4799, SC_NS)));
+                EXPECT_TRUE(bic.register_free(sc_time(4800, SC_NS)));
+                // Nothing is wanted any more: the loop went back to sleep.
+                EXPECT_FALSE(bic.requested(1, sc_time(1001, SC_NS)));
+                return ::testing::Test::HasFailure() ? 1 : 0;
+              }),
+              0);
+  }
+}
+
 TEST(ExpectedLatency, GaudetsFormula) {
   using rtsim::platform::gaudet::EalInputs;
   using rtsim::platform::gaudet::expected_average_latency_s;

@@ -105,6 +105,7 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
   positions_.clear();
   demand_.clear();
   demanded_.clear();
+  withdrawn_.clear();
   total_demand_ = 0;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     const std::uint32_t id = slots_[i].id;
@@ -158,6 +159,17 @@ void BroadcastProcessor::demand(std::uint32_t id, int delta) {
   }
 }
 
+void BroadcastProcessor::withdrawn(std::uint32_t id, const sc_core::sc_time& t) {
+  const std::uint32_t key = key_of(id);
+  if (key != kUnlisted) withdrawn_.emplace_back(key, t);
+}
+
+bool BroadcastProcessor::withdrawals_pending() {
+  const sc_core::sc_time now = modules::sim_now();
+  std::erase_if(withdrawn_, [&now](const auto& w) { return w.second < now; });
+  return !withdrawn_.empty();
+}
+
 sc_core::sc_time BroadcastProcessor::packet_time(const Slot& s) const {
   return timing_.packet_overhead + modules::times(timing_.word_time, s.words);
 }
@@ -194,6 +206,9 @@ std::size_t BroadcastProcessor::next_wanted() {
   const std::size_t n = slots_.size();
   candidates_.clear();
   for (const std::uint32_t key : demanded_)
+    for (const std::uint32_t p : positions_[key])
+      candidates_.emplace_back((p + n - cursor_.pos) % n, key);
+  for (const auto& [key, at] : withdrawn_)
     for (const std::uint32_t p : positions_[key])
       candidates_.emplace_back((p + n - cursor_.pos) % n, key);
   std::sort(candidates_.begin(), candidates_.end());
@@ -247,7 +262,10 @@ void BroadcastProcessor::skip_to(const sc_core::sc_time& t) {
 }
 
 bool BroadcastProcessor::wanted(std::uint32_t key, const sc_core::sc_time& t) const {
-  if (demand_[key] <= 0) return false;
+  if (demand_[key] <= 0 && std::none_of(withdrawn_.begin(), withdrawn_.end(), [&](const auto& w) {
+        return w.first == key && t <= w.second;
+      }))
+    return false;
   const std::uint32_t id = id_of_key_[key];
   return std::any_of(bics_.begin(), bics_.end(),
                      [&](const BusInterface* b) { return b->requested(id, t); });
@@ -318,7 +336,9 @@ void BroadcastProcessor::run() {
   modules::sim_wait(start_);
   if (slots_.empty()) return;
   for (;;) {
-    if (total_demand_ <= 0) {
+    // A request withdrawn now is still met by a strobe now (bus_interface.hpp).
+    const bool withdrawals = withdrawals_pending();
+    if (total_demand_ <= 0 && !withdrawals) {
       modules::sim_wait(wake_);
       skip_to(modules::sim_now());
       continue;
@@ -328,6 +348,12 @@ void BroadcastProcessor::run() {
     // simulated time (a quantum > 0): a strobe before then could not match it.
     const std::size_t n = next_wanted();
     const sc_core::sc_time now = modules::sim_now();
+    if (n == slots_.size() && total_demand_ <= 0) {
+      // Only withdrawn requests, which no strobe can meet any more: as with none.
+      modules::sim_wait(wake_);
+      skip_to(modules::sim_now());
+      continue;
+    }
     if (n == slots_.size()) {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
       // a new request), instead of strobing a cycle of slots no comparator can match yet.

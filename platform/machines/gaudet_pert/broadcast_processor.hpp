@@ -87,6 +87,9 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
 
   /// Called by the BICs.
   void demand(std::uint32_t id, int delta);
+  /// A BIC's request for `id` was withdrawn at `t`: a strobe up to then still matches it
+  /// (bus_interface.hpp), so the loop plans for it until then, though it left the demand.
+  void withdrawn(std::uint32_t id, const sc_core::sc_time& t);
   void wake() { wake_.notify(sc_core::SC_ZERO_TIME); }
 
  private:
@@ -151,6 +154,11 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   /// By key: its slots in the ID list (one, unless a corrupted memory lists an ID twice).
   std::vector<std::vector<std::uint32_t>> positions_;
   std::vector<std::uint32_t> demanded_;  ///< the keys whose demand_ is positive, in no order
+  /// Requests withdrawn (key, when), kept until the loop is past them: at quantum 0 a strobe at
+  /// the very time of the withdrawal is all they can still meet.
+  std::vector<std::pair<std::uint32_t, sc_core::sc_time>> withdrawn_;
+  /// Forgets the withdrawals before now; true if any is left.
+  bool withdrawals_pending();
   std::vector<std::pair<std::size_t, std::uint32_t>>
       candidates_;  ///< next_wanted's (distance, key)
   std::vector<std::pair<std::uint32_t, std::vector<BusInterface*>>> miss_plan_;  ///< key, BICs

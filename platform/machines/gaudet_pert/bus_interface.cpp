@@ -61,9 +61,17 @@ bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
 void BusInterface::cancel(std::uint32_t id, const sc_core::sc_time& t) {
   for (Register& r : registers_) {
     if (!r.valid || r.id != id) continue;
+    // A strobe at t still matches it (bus_interface.hpp): the bus keeps it in mind until then.
+    r.withdrawn = true;
+    r.withdrawn_id = id;
+    r.withdrawn_from = r.from;
+    r.withdrawn_at = t;
     r.valid = false;
     r.from = std::max(t, r.from);
-    if (bus_) bus_->demand(id, -1);
+    if (bus_) {
+      bus_->demand(id, -1);
+      bus_->withdrawn(id, t);
+    }
   }
   for (Buffer& b : buffers_) {
     if (b.state != BufferState::kFilled || b.id != id) continue;
@@ -130,9 +138,11 @@ int BusInterface::free_buffer(const sc_core::sc_time& t) const {
 }
 
 bool BusInterface::requested(std::uint32_t id, const sc_core::sc_time& t) const {
-  return std::any_of(registers_.begin(), registers_.end(),
-                     // Valid before the strobe at t, not at it (bus_interface.hpp says why).
-                     [&](const Register& r) { return r.valid && r.id == id && r.from < t; });
+  return std::any_of(registers_.begin(), registers_.end(), [&](const Register& r) {
+    // Valid before the strobe at t, not at it, and not withdrawn before it (bus_interface.hpp
+    // says why).
+    return (r.valid && r.id == id && r.from < t) || r.withdrawn_match(id, t);
+  });
 }
 
 bool BusInterface::hit(std::uint32_t id, const sc_core::sc_time& t) {
@@ -163,11 +173,26 @@ void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
                 : arrival;
   b.words.assign(words.begin(), words.end());
   ++received_;
+  const sc_core::sc_time strobe = modules::sim_now();
+  bool wanted = false;
   for (Register& r : registers_) {
     if (!r.valid || r.id != id) continue;
     r.valid = false;
     r.from = arrival;  // freed when the packet has been received (L912)
+    wanted = true;
     if (bus_) bus_->demand(id, -1);
+  }
+  // A request withdrawn at the strobe's very time was matched: its register is freed on
+  // receipt as any other's, and the packet is dropped as the withdrawal drops a packet in.
+  for (Register& r : registers_) {
+    if (!r.withdrawn_match(id, strobe)) continue;
+    r.withdrawn = false;
+    if (!r.valid) r.from = std::max(r.from, arrival);
+    if (!wanted) {
+      b.state = BufferState::kFree;
+      b.at = std::max(r.withdrawn_at, b.at);
+      wanted = true;  // one buffer, dropped once
+    }
   }
   changed_.notify(sc_core::SC_ZERO_TIME);
 }

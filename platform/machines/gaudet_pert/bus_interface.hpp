@@ -18,10 +18,12 @@
 //
 // A strobe sees the registers and buffers as they were just before it: a request or a freed
 // buffer at the strobe's very time counts from the next strobe (the comparator latches the
-// registers as the strobe comes, L920). Which of two threads SystemC runs first at one time is
-// the order of its event queue, which any other event can change: with `<=`, a request and a
-// strobe at the same picosecond met or missed by that order, and an unrelated timed event in the
-// simulation moved 8-PERT frame times by up to 0.3% (tests/gaudet_tie_order_test.cpp).
+// registers as the strobe comes, L920), and a request withdrawn at its very time (cancel) is
+// still matched: its packet streams in and is dropped, as when the withdrawal came after. Which of
+// two threads SystemC runs first at one time is the order of its event queue, which any other event
+// can change: with `<=`, a request and a strobe at the same picosecond met or missed by that order,
+// and an unrelated timed event in the simulation moved 8-PERT frame times by up to 0.3%
+// (tests/gaudet_tie_order_test.cpp).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -83,7 +85,8 @@ class BusInterface final : public PacketPort, public modules::StatGroup {
                const sc_core::sc_time& first_word, const sc_core::sc_time& word_time,
                std::span<const std::uint32_t> words);
 
-  /// Some register holds `id`, valid at `t` (the comparator would match it then).
+  /// Some register holds `id`, valid at `t` (the comparator would match it then): valid
+  /// before `t`, and not withdrawn before it.
   bool requested(std::uint32_t id, const sc_core::sc_time& t) const;
   std::uint64_t missed_no_buffer() const { return missed_.value(); }
 
@@ -93,6 +96,15 @@ class BusInterface final : public PacketPort, public modules::StatGroup {
     std::uint32_t id = 0;
     bool valid = false;
     sc_core::sc_time from = sc_core::SC_ZERO_TIME;  ///< valid from / free from
+    /// The request its processor withdrew last (cancel): its ID, valid from `withdrawn_from`,
+    /// withdrawn at `withdrawn_at`. Strobes up to then match it (until one captures it).
+    bool withdrawn = false;
+    std::uint32_t withdrawn_id = 0;
+    sc_core::sc_time withdrawn_from = sc_core::SC_ZERO_TIME;
+    sc_core::sc_time withdrawn_at = sc_core::SC_ZERO_TIME;
+    bool withdrawn_match(std::uint32_t i, const sc_core::sc_time& t) const {
+      return withdrawn && withdrawn_id == i && withdrawn_from < t && t <= withdrawn_at;
+    }
   };
   enum class BufferState { kFree, kFilled, kInUse };
   struct Buffer {
