@@ -32,6 +32,9 @@ class LocalClock {
 
   /// For an SC_METHOD: advance() never waits (elaboration, before the simulation starts).
   void never_wait() { waits_ = false; }
+  /// For a thread: whether advance() synchronises (a quantum ahead) or only moves local time on;
+  /// a thread that does not wait there calls sync() itself before it interacts.
+  void set_waits(bool waits) { waits_ = waits; }
   bool waits() const { return waits_; }
 
   /// Move local time forward to `t` if it is later (a message that arrives at t).

@@ -31,6 +31,17 @@ const modules::CountParam kShadeToShell =
     queue(Pert::kLinks[0], "ShadeProcessor -> ShellProcessor");
 const modules::CountParam kShellToPrim = queue(Pert::kLinks[1], "ShellProcessor -> PrimProcessor");
 const modules::CountParam kPrimToShade = queue(Pert::kLinks[2], "PrimProcessor -> ShadeProcessor");
+const modules::ChoiceParam kSync(
+    {.name = "sync",
+     .default_value = "interactions",
+     .allowed = {"interactions", "computations"},
+     .description =
+         "When a PERT processor's thread waits for simulated time to reach its own: only before "
+         "it interacts with another module (its queues, its bus interface; interactions), or "
+         "after every computation as well (computations: the reference). At quantum 0 the "
+         "statistics and the image are the same either way (tests/gaudet_sync_test.cpp); the "
+         "first waits about a third less. Above quantum 0 the quantum decides",
+     .source = "simulator setting, not of the machine"});
 /// Its three processors (their names and their parameters' paths), in ring order, and its links.
 constexpr const char* kShade = "shade";
 constexpr const char* kShell = "shell";
@@ -44,6 +55,7 @@ void Pert::declare_params(const modules::ParamDecls& pert) {
   ShellProcessor::declare_params(pert.sub(kShell));
   PrimProcessor::declare_params(pert.sub(kPrim));
   pert.add(kFirstAccess);
+  pert.add(kSync);
   for (const auto* q : {&kShadeToShell, &kShellToPrim, &kPrimToShade}) pert.add(*q);
   // The links the messages cross into those queues: FIFOs a 32-bit word wide, written a word
   // per cycle, so a message arrives as its sender writes its last word.
@@ -86,6 +98,12 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   shade->set_output_link(*links[0]);
   shell->set_output_link(*links[1]);
   prim->set_output_link(*links[2]);
+  const auto sync = params.get(kSync) == "computations" ? PertProcessor::Sync::kComputations
+                                                        : PertProcessor::Sync::kInteractions;
+  for (PertProcessor* p :
+       {static_cast<PertProcessor*>(shade.get()), static_cast<PertProcessor*>(shell.get()),
+        static_cast<PertProcessor*>(prim.get())})
+    p->set_sync(sync);
   shade->set_probe(c.probe);
   shell->set_probe(c.probe);
   prim->set_probe(c.probe);

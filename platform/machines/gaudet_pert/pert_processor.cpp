@@ -46,6 +46,10 @@ PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& ru
 void PertProcessor::begin_frame() {
   if (frame_start_) modules::sim_wait(*frame_start_);
   clock_.resync();
+  // At quantum 0 only: above it, the quantum says how far the thread runs ahead.
+  if (sync_ == Sync::kInteractions &&
+      tlm::tlm_global_quantum::instance().get() == sc_core::SC_ZERO_TIME)
+    clock_.set_waits(false);
 }
 
 }  // namespace rtsim::platform::gaudet

@@ -12,6 +12,16 @@
 // free ray slot and an empty input queue). That wait is not the thesis's latency, which is
 // waiting with nothing else to do (L1060-L1062): had a ray come, the processor would have worked
 // on it during the wait. In the processor's accounts (modules::Processor) it is waiting for work.
+//
+// At quantum 0 its thread waits for simulated time to reach its local time only before it
+// interacts with another module: its BIC (a request, a take, a release, a withdrawal), its
+// queues (a look, a take) or the frame's progress (settle()). The computations in between cost
+// no wait (pert.sync = interactions, the default: about a third fewer thread switches). Two
+// rules make the answers those of a thread that waits after every computation as well
+// (pert.sync = computations, the reference; tests/gaudet_sync_test.cpp): a message goes into
+// the next queue as its sender begins writing it, stamped with its arrival (WritingAhead), so a
+// processor that looks at the queue at the arrival finds it whichever thread SystemC runs
+// first; and a strobe still matches a request withdrawn at its very time (bus_interface.hpp).
 #include <optional>
 #include <string>
 #include <systemc>
@@ -67,6 +77,13 @@ class PertProcessor : public modules::Processor {
   }
   /// Elaboration: the event that starts the frame (the control processor's).
   void set_frame_start(const sc_core::sc_event& e) { frame_start_ = &e; }
+  /// When its thread waits for simulated time to reach its local time (pert.sync).
+  enum class Sync {
+    kInteractions,  ///< only before it interacts with another module: its queues, its port
+    kComputations,  ///< after every computation (the reference the other is tested against)
+  };
+  /// Elaboration: how its thread waits (default kInteractions).
+  void set_sync(Sync s) { sync_ = s; }
   /// Elaboration: the --latency-probe the rays' journeys are recorded in (default: disabled).
   void set_probe(RayProbe& p) { probe_ = &p; }
   /// Elaboration: the link its messages cross to the next processor's queue (none: they arrive
@@ -97,6 +114,27 @@ class PertProcessor : public modules::Processor {
   }
   /// Waits for the frame to start.
   void begin_frame();
+  /// Before it touches what another process reads or writes (its port, its queues, the frame's
+  /// progress): catches up with its local time, if its computations have run ahead of it.
+  void settle() { clock_.sync(); }
+  /// While it lives, the processor's computations only move its local time on, whatever its
+  /// Sync: it writes a message into the next queue (the message goes in as its sender begins
+  /// writing it, stamped with its arrival, so the receiver looking at the queue then finds it
+  /// whichever of the two threads SystemC runs first). The caller settles afterwards, or the
+  /// loop does before its next look.
+  class WritingAhead {
+   public:
+    explicit WritingAhead(PertProcessor& p) : clock_(p.clock_), waits_(p.clock_.waits()) {
+      clock_.set_waits(false);
+    }
+    ~WritingAhead() { clock_.set_waits(waits_); }
+    WritingAhead(const WritingAhead&) = delete;
+    WritingAhead& operator=(const WritingAhead&) = delete;
+
+   private:
+    modules::LocalClock& clock_;
+    bool waits_;
+  };
   /// The statistics name of its PERT's ring queue `which` ("shade_to_shell" ->
   /// "pert0.queue.shade_to_shell"): the queue the thesis names, which the processor's input is.
   std::string ring_queue(std::string_view which) const {
@@ -140,6 +178,7 @@ class PertProcessor : public modules::Processor {
 
  private:
   const sc_core::sc_event* frame_start_ = nullptr;
+  Sync sync_ = Sync::kInteractions;
   modules::Link* out_link_ = nullptr;
   /// Its PERT's number ("pert3.shade": 3), and that number in the high bits of its rays' flows
   /// (a ray's id is its PERT's own count).

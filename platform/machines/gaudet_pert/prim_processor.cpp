@@ -35,6 +35,7 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const PertContext& c,
 void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k, RayTicket& t) {
   if (k >= msg.leaf_shells.size() || asked_[k]) return;
   compute_for(t, Stage::kPrim, tasks::kAskPacketCost, "ask");
+  settle();
   asked_[k] = port_.request(msg.leaf_shells[k].child_index, clock_.now());
 }
 
@@ -80,7 +81,9 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     const std::size_t j = k;
     const std::uint32_t id = msg.leaf_shells[j].child_index;
     std::optional<ReceivedPacket> p;
-    while (!(p = port_.take(clock_.now(), id))) {
+    for (;;) {
+      settle();  // the packets caught by now are in
+      if ((p = port_.take(clock_.now(), id))) break;
       if (!asked_[j]) {
         if (port_.register_free(clock_.now())) {
           // Till now the ray waited for an ID register.
@@ -126,6 +129,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
     }
     probe_->packet_gap(t, Stage::kPrim, Stage::kPrimBus, *p, clock_.now());
     compute_for(t, Stage::kPrim, work, "primitive tests");
+    settle();
     port_.release(*p, clock_.now());
     // Stop rule (L646-L648): the nearest hit so far is closer than the next leaf shell.
     done = j + 1 == n || (best_slot >= 0 && (light || best_t < msg.leaf_shells[j + 1].t));
@@ -148,12 +152,14 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   // Withdraw what the search no longer needs.
   for (std::size_t e = k; e < n; ++e) {
     if (!asked_[e]) continue;
+    settle();
     port_.cancel(msg.leaf_shells[e].child_index, clock_.now());
     ++cancelled_;
   }
   if (res.found) compute_for(t, Stage::kPrim, tasks::kHitInfoCost, "hit info");
   // From the end of the send until the ShadeProcessor takes it, the answer is in (or, while
   // the queue is full, blocked before) queue.prim_to_shade.
+  const WritingAhead ahead(*this);
   const sc_core::sc_time since = clock_.now();
   compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
   ++rays_;
@@ -166,6 +172,7 @@ void PrimProcessor::serve(ShellToPrim& msg) {
 void PrimProcessor::run() {
   begin_frame();
   for (;;) {
+    settle();
     if (!input.fifo.has_item_by(clock_.now())) {
       idle(input.fifo.next_item_time(), input.fifo.put_event(), false);
       continue;

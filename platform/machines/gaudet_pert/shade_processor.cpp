@@ -90,6 +90,7 @@ void ShadeProcessor::receive(PrimToShade msg) {
   // From the PrimProcessor's send to here the answer waited in the queue.
   probe_->to(t, Stage::kPrimToShade, RayProbe::Part::kQueueing, clock_.now());
   compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
+  settle();
   frame_.counters().count_ray(t.ray.kind);
   progress_.ray_back(clock_.now() - t.sent);
   probe_->end(t, clock_.now());
@@ -104,6 +105,7 @@ void ShadeProcessor::receive(PrimToShade msg) {
   waiting.push_back(std::move(msg));
   if (waiting.size() > 1) return;
   compute(tasks::kAskPacketCost, "ask");
+  settle();
   if (!port_.request(id, clock_.now())) unasked_.push_back(id);
 }
 
@@ -123,6 +125,7 @@ void ShadeProcessor::run() {
       input.fifo.put_event() | port_.changed_event() | out_queue_->get_event();
   bool vision_left = true;
   for (;;) {
+    settle();
     const sc_core::sc_time now = clock_.now();
     // Answers first: they finish pixels and free the ring.
     if (input.fifo.has_item_by(now)) {
@@ -135,6 +138,7 @@ void ShadeProcessor::run() {
     if (auto p = port_.take(now)) {
       compute(tasks::words_cost(packet_words_[p->id]) + tasks::kPacketBookkeepingCost, "packet");
       auto node = awaiting_.extract(p->id);
+      settle();
       port_.release(*p, clock_.now());
       if (!node.empty())
         for (const auto& msg : node.mapped()) shade(msg);
@@ -142,6 +146,7 @@ void ShadeProcessor::run() {
     }
     if (!unasked_.empty() && port_.register_free(now)) {
       compute(tasks::kAskPacketCost, "ask");
+      settle();
       if (port_.request(unasked_.back(), clock_.now())) unasked_.pop_back();
       continue;
     }
@@ -150,6 +155,7 @@ void ShadeProcessor::run() {
     if (room && !backlog_.empty()) {
       RayTicket t = backlog_.front();
       backlog_.pop_front();
+      const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
       compute(tasks::words_cost(ShadeToShell::kWords), "send");
       send(t, since);
@@ -162,6 +168,7 @@ void ShadeProcessor::run() {
         vision_left = false;
         continue;
       }
+      const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
       compute(tasks::VisionRayTask::kCost + tasks::words_cost(ShadeToShell::kWords), "spawn");
       t.tree = free_trees_.back();

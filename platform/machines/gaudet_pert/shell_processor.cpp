@@ -71,6 +71,7 @@ void ShellProcessor::ask(std::uint32_t packet, int search) {
   w.push_back(search);
   if (w.size() > 1) return;  // already asked for by another ray
   ++packets_awaited_;
+  settle();
   if (!port_.request(packet, clock_.now())) {
     overflow_.push_back(packet);
     overflow_peak_.note(overflow_.size());
@@ -117,6 +118,7 @@ void ShellProcessor::process(const ReceivedPacket& p) {
     rays = &caught_for_;
   }
   read_and_test(p, rays);
+  settle();
   port_.release(p, clock_.now());
 }
 
@@ -183,6 +185,7 @@ void ShellProcessor::run() {
   const sc_core::sc_event_or_list idle_on =
       port_.changed_event() | input.fifo.put_event() | out_queue_->get_event();
   for (;;) {
+    settle();
     const sc_core::sc_time now = clock_.now();
     // A finished search goes on to the PrimProcessor when its queue has room.
     if (!done_.empty() && out_queue_->has_room_by(now)) {
@@ -195,6 +198,7 @@ void ShellProcessor::run() {
       // this processor.
       if (const auto room = out_queue_->next_room_time())
         probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
+      const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
       compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
       modules::send_message(out, msg, over_link(msg.words(), since, msg.ticket),
@@ -219,6 +223,7 @@ void ShellProcessor::run() {
           probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w.size());
         }
       }
+      settle();
       if (port_.request(id, clock_.now())) overflow_.pop_back();
       continue;
     }
