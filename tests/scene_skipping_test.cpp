@@ -9,6 +9,7 @@
 //   frame's length).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -123,10 +124,16 @@ TEST_P(SceneSkipping, AnIdleModuleCostsNoEvents) {
   EXPECT_GT(longer, 1.2) << "the slowed module does not set the frame: choose another";
   // Interleavings change with the timing (gaudet-pert's packets meet differently): 10%.
   EXPECT_NEAR(more, 1.0, 0.10);
-  // Process by process: none wakes in proportion to the frame.
+  // Process by process: none wakes in proportion to the frame, which would add (longer - 1)
+  // times its count. A process may wake a little more where the slowed one makes others wait
+  // more often: gaudet-pert's ShellProcessor, woken by puts and takes it cannot act on while
+  // its one search waits for room in the slow PrimProcessor's queue, gains 1,713 activations at
+  // a frame 5.8 times longer whether it waits after each computation or not, +31% of its count
+  // now that it does not. A quarter, or a tenth of the frame's growth if that is more.
+  const double allowed = std::max(0.25, 0.1 * (longer - 1.0));
   for (const auto& [process, count] : slow["simulation"]["activations"].items()) {
     const double before = base["simulation"]["activations"].value(process, 0.0);
-    EXPECT_LE(count.get<double>(), 1.25 * before + 20) << process;
+    EXPECT_LE(count.get<double>(), (1.0 + allowed) * before + 20) << process;
   }
 }
 
