@@ -388,6 +388,56 @@ TEST(BusInterface, ARequestWithdrawnAtTheStrobesTimeIsStillMatched) {
   }
 }
 
+TEST(BroadcastProcessor, ARequestMadeWhileAPacketIsSentWaitsForItsEnd) {
+  // The loop is busy while it sends a packet: a request made meanwhile is strobed at its first
+  // slot after the packet, not during it. IDs 0,
+  // 1, 2 with 2, 5 and 1 words: ID 1's strobe at 1000 ns, its packet on the bus until 1000 +
+  // 1000 + 800 + 5 x 400 = 4800 ns; ID 2, asked for at 3000 ns, has the next slot, at 4800 ns:
+  // in at 4800 + 1000 + 800 + 400 = 7000 ns.
+  EXPECT_EQ(rtsim::test::run_in_child([] {
+              using namespace rtsim::platform::gaudet;
+              using rtsim::modules::ModuleParams;
+              using rtsim::modules::ParamDecls;
+              rtsim::params::ParamRegistry r;
+              BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
+              BusInterface::declare_params(ParamDecls(r, "bic"),
+                                           {.value = "2", .description = "test", .source = "test"});
+              BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
+              BusInterface bic(ModuleParams(r, "bic"));
+              bp.attach(bic);
+              const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
+              struct Driver : sc_core::sc_module {
+                SC_HAS_PROCESS(Driver);
+                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
+                       const std::uint32_t* w)
+                    : sc_module(n), bp(b), bic(i), words(w) {
+                  SC_THREAD(run);
+                }
+                void run() {
+                  load_words(socket, words, 9);
+                  bp.start(sc_time(0, SC_NS), 3, 3);
+                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                  sc_core::wait(sc_time(3000, SC_NS));
+                  EXPECT_EQ(bic.next_arrival(1), sc_time(4800, SC_NS));
+                  EXPECT_TRUE(bic.request(2, sc_core::sc_time_stamp()));
+                  sc_core::wait(sc_time(10, sc_core::SC_US));
+                  got2 = bic.next_arrival(2);
+                }
+                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
+                BroadcastProcessor& bp;
+                BusInterface& bic;
+                const std::uint32_t* words;
+                std::optional<sc_time> got2;
+              } drv("drv", bp, bic, words);
+              drv.socket.bind(bp.memory.socket);
+              sc_core::sc_start(sc_time(1, sc_core::SC_MS));
+              EXPECT_EQ(drv.got2, std::optional<sc_time>(sc_time(7000, SC_NS)));
+              EXPECT_EQ(bp.stats().hit_packets, 2u);
+              return ::testing::Test::HasFailure() ? 1 : 0;
+            }),
+            0);
+}
+
 TEST(ExpectedLatency, GaudetsFormula) {
   using rtsim::platform::gaudet::EalInputs;
   using rtsim::platform::gaudet::expected_average_latency_s;
