@@ -26,6 +26,7 @@
 namespace fs = std::filesystem;
 using rtsim::test::read_file;
 using rtsim::test::read_json;
+using rtsim::test::run_ok;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using sc_core::SC_NS;
@@ -33,12 +34,36 @@ using sc_core::sc_time;
 
 namespace {
 
-fs::path run_ok(const std::string& tag, const std::string& args) {
-  const auto dir = scratch_dir(tag);
-  const auto r = run_rtsim(args + " -q --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-  return dir;
-}
+/// A Broadcast Processor with the bus's declared timings (1000 / 800 / 400 / 400 ns, seed 001
+/// L959-L962) and 64 words of memory, and one BIC listening on it with `id_registers`
+/// registers, `overrides` applied to their parameters ("bic.buffers=1"). With `stream_unit` words
+/// the BIC streams its packets that many words a record (0: whole packets). Built in the child that
+/// simulates (SystemC allows one simulation per process).
+struct BusAndBic {
+  BusAndBic(const std::string& id_registers, bool adaptive,
+            const std::vector<std::string>& overrides = {}, std::uint32_t stream_unit = 0)
+      : registry(declared(id_registers, overrides, stream_unit > 0)),
+        bp("bp", rtsim::modules::ModuleParams(registry, "bp"), 64, sc_time(0, SC_NS), adaptive),
+        bic(rtsim::modules::ModuleParams(registry, "bic"), stream_unit) {
+    bp.attach(bic);
+  }
+  static rtsim::params::ParamRegistry declared(const std::string& id_registers,
+                                               const std::vector<std::string>& overrides,
+                                               bool stream) {
+    using namespace rtsim::platform::gaudet;
+    using rtsim::modules::ParamDecls;
+    rtsim::params::ParamRegistry r;
+    BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
+    BusInterface::declare_params(ParamDecls(r, "bic"),
+                                 {.value = id_registers, .description = "test", .source = "test"});
+    if (stream) BusInterface::declare_stream_param(ParamDecls(r, "bic"), "true", "test");
+    for (const auto& o : overrides) r.apply_override(o);
+    return r;
+  }
+  rtsim::params::ParamRegistry registry;
+  rtsim::platform::gaudet::BroadcastProcessor bp;
+  rtsim::platform::gaudet::BusInterface bic;
+};
 
 /// Writes words[0 .. count) into a broadcast processor's memory through its load port, one
 /// 32-bit word at a time (the ID list {ID, address, size} and the packets).
@@ -180,17 +205,10 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
   for (const bool adaptive : {true, false}) {
     EXPECT_EQ(rtsim::test::run_in_child([adaptive] {
                 using namespace rtsim::platform::gaudet;
-                using rtsim::modules::ModuleParams;
-                using rtsim::modules::ParamDecls;
-                // The bus's declared defaults: 1000 / 800 / 400 / 400 ns (seed 001 L959-L962).
-                rtsim::params::ParamRegistry r;
-                BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
-                BusInterface::declare_params(
-                    ParamDecls(r, "bic"), {.value = "4", .description = "test", .source = "test"});
-                r.apply_override("bic.buffers=1");  // one buffer: a second packet must wait
-                BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), adaptive);
-                BusInterface bic(ModuleParams(r, "bic"));
-                bp.attach(bic);
+                // One buffer: a second packet must wait.
+                BusAndBic rig("4", adaptive, {"bic.buffers=1"});
+                BroadcastProcessor& bp = rig.bp;
+                BusInterface& bic = rig.bic;
                 const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
                 struct Driver : sc_core::sc_module {
                   SC_HAS_PROCESS(Driver);
@@ -257,16 +275,9 @@ TEST(BusInterface, StreamedPacketIsTakenAtItsFirstRecordAndReadAsItArrives) {
   // first word + (n + 1) x 400 ns; the ID register is still freed at full arrival (L912).
   EXPECT_EQ(rtsim::test::run_in_child([] {
               using namespace rtsim::platform::gaudet;
-              using rtsim::modules::ModuleParams;
-              using rtsim::modules::ParamDecls;
-              rtsim::params::ParamRegistry r;
-              BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
-              BusInterface::declare_params(ParamDecls(r, "bic"),
-                                           {.value = "1", .description = "test", .source = "test"});
-              BusInterface::declare_stream_param(ParamDecls(r, "bic"), "true", "test");
-              BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
-              BusInterface bic(ModuleParams(r, "bic"), 2);
-              bp.attach(bic);
+              BusAndBic rig("1", true, {}, 2);
+              BroadcastProcessor& bp = rig.bp;
+              BusInterface& bic = rig.bic;
               // Packet 0 (2 words) and packet 1 (5 words), ID list {ID, address, size}.
               const std::uint32_t words[] = {0, 6, 2, 1, 8, 5, 7, 7, 1, 2, 3, 4, 5};
               struct Driver : sc_core::sc_module {
@@ -326,15 +337,9 @@ TEST(BusInterface, ARequestWithdrawnAtTheStrobesTimeIsStillMatched) {
     SCOPED_TRACE(before ? "withdrawn before the strobe" : "withdrawn after the strobe");
     EXPECT_EQ(rtsim::test::run_in_child([before] {
                 using namespace rtsim::platform::gaudet;
-                using rtsim::modules::ModuleParams;
-                using rtsim::modules::ParamDecls;
-                rtsim::params::ParamRegistry r;
-                BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
-                BusInterface::declare_params(
-                    ParamDecls(r, "bic"), {.value = "1", .description = "test", .source = "test"});
-                BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
-                BusInterface bic(ModuleParams(r, "bic"));
-                bp.attach(bic);
+                BusAndBic rig("1", true);
+                BroadcastProcessor& bp = rig.bp;
+                BusInterface& bic = rig.bic;
                 const std::uint32_t words[] = {0, 6, 2, 1, 8, 5, 7, 7, 1, 2, 3, 4, 5};
                 struct Driver : sc_core::sc_module {
                   SC_HAS_PROCESS(Driver);
@@ -396,15 +401,9 @@ TEST(BroadcastProcessor, ARequestMadeWhileAPacketIsSentWaitsForItsEnd) {
   // in at 4800 + 1000 + 800 + 400 = 7000 ns.
   EXPECT_EQ(rtsim::test::run_in_child([] {
               using namespace rtsim::platform::gaudet;
-              using rtsim::modules::ModuleParams;
-              using rtsim::modules::ParamDecls;
-              rtsim::params::ParamRegistry r;
-              BroadcastProcessor::declare_params(ParamDecls(r, "bp"));
-              BusInterface::declare_params(ParamDecls(r, "bic"),
-                                           {.value = "2", .description = "test", .source = "test"});
-              BroadcastProcessor bp("bp", ModuleParams(r, "bp"), 64, sc_time(0, SC_NS), true);
-              BusInterface bic(ModuleParams(r, "bic"));
-              bp.attach(bic);
+              BusAndBic rig("2", true);
+              BroadcastProcessor& bp = rig.bp;
+              BusInterface& bic = rig.bic;
               const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
               struct Driver : sc_core::sc_module {
                 SC_HAS_PROCESS(Driver);

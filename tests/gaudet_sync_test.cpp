@@ -23,17 +23,9 @@ namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 using rtsim::test::read_file;
 using rtsim::test::read_json;
-using rtsim::test::run_rtsim;
-using rtsim::test::scratch_dir;
+using rtsim::test::run_ok;
 
 namespace {
-
-fs::path run_ok(const std::string& tag, const std::string& args) {
-  const auto dir = scratch_dir(tag);
-  const auto r = run_rtsim(args + " -q --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-  return dir;
-}
 
 /// stats.json without what differs by design: wall times, the command line and parameters
 /// (pert.sync itself), and the simulation's own counts (how often the kernel ran the threads).

@@ -13,20 +13,10 @@ namespace fs = std::filesystem;
 using rtsim::test::compare_images;
 using rtsim::test::read_file;
 using rtsim::test::read_json;
+using rtsim::test::run_ok;
 using rtsim::test::run_rtsim;
 using rtsim::test::scratch_dir;
 using rtsim::test::shared_path;
-
-namespace {
-
-fs::path run_ok(const std::string& tag, const std::string& args) {
-  const auto dir = scratch_dir(tag);
-  const auto r = run_rtsim(args + " -q --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-  return dir;
-}
-
-}  // namespace
 
 TEST(RunCli, ImageEqualsTheMachinesFunctionalTwinByteForByte) {
   struct Case {

@@ -150,6 +150,15 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
+/// `rtsim ARGS -q` into a scratch folder named after `tag`: the folder, and a failed expectation
+/// if the run did not exit 0.
+inline std::filesystem::path run_ok(const std::string& tag, const std::string& args) {
+  const auto dir = scratch_dir(tag);
+  const auto r = run_rtsim(args + " -q --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+  return dir;
+}
+
 /// `rtsim-kit run --machine MACHINE ARGS -q` (any machine of rtsim, or the minimal one) into a
 /// scratch folder named after `tag`: its stats.json
 /// with "image_png" (the image's path) added; an empty object, and a failed expectation, if the

@@ -100,10 +100,9 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
   prim->set_output_link(*links[2]);
   const auto sync = params.get(kSync) == "computations" ? PertProcessor::Sync::kComputations
                                                         : PertProcessor::Sync::kInteractions;
-  for (PertProcessor* p :
-       {static_cast<PertProcessor*>(shade.get()), static_cast<PertProcessor*>(shell.get()),
-        static_cast<PertProcessor*>(prim.get())})
-    p->set_sync(sync);
+  shade->set_sync(sync);
+  shell->set_sync(sync);
+  prim->set_sync(sync);
   shade->set_probe(c.probe);
   shell->set_probe(c.probe);
   prim->set_probe(c.probe);
