@@ -10,6 +10,8 @@
 // Without either rule some of these runs differ (a packet captured or not, an answer taken at
 // once or after other work); so does a run whose processor skips a settle() before it touches
 // its port or queues.
+// Likewise the Broadcast Processors, which wake only at the strobes they plan
+// (broadcast.wakes = needed), give the answers of buses that wake at every change.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -60,13 +62,42 @@ void differences(const ordered_json& a, const ordered_json& b, const std::string
   out.push_back(path + ": " + a.dump() + " / " + b.dump());
 }
 
-}  // namespace
+struct Case {
+  std::string tag, args;
+};
 
-TEST(GaudetSync, WaitingOnlyToInteractGivesTheAnswersOfWaitingAfterEveryComputation) {
-  struct Case {
-    std::string tag, args;
-  };
-  const Case cases[] = {
+/// Runs every case with `reference` and with `fast` appended: the same stats.json (less what
+/// differs by design) and the same image, and `fast` activates the threads at most `at_most`
+/// times as often as `reference`.
+void same_answers(const std::string& name, const std::vector<Case>& cases,
+                  const std::string& reference, const std::string& fast, double at_most) {
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.tag);
+    const std::string base = "run --machine gaudet-pert " + c.args;
+    const fs::path every = run_ok(name + "-reference-" + c.tag, base + " " + reference);
+    const fs::path few = run_ok(name + "-fast-" + c.tag, base + " " + fast);
+    const ordered_json a = read_json(every / "stats.json");
+    const ordered_json b = read_json(few / "stats.json");
+    ASSERT_TRUE(a.contains("simulation") && b.contains("simulation"));
+    const auto waits_a = a["simulation"]["process_activations"].get<double>();
+    const auto waits_b = b["simulation"]["process_activations"].get<double>();
+    std::printf("%s %s: frame %.9g s and %.9g s; thread activations %.0f and %.0f (%.2fx)\n",
+                name.c_str(), c.tag.c_str(), a["simulated_time_s"].get<double>(),
+                b["simulated_time_s"].get<double>(), waits_a, waits_b, waits_b / waits_a);
+    std::vector<std::string> diffs;
+    differences(machine_answers(a), machine_answers(b), "", diffs);
+    std::string listed;
+    for (const auto& d : diffs) listed += "\n  " + d;
+    EXPECT_TRUE(diffs.empty()) << "stats.json differs (" << reference << " / " << fast
+                               << "):" << listed;
+    EXPECT_EQ(read_file(every / "image.png"), read_file(few / "image.png"));
+    // What it is for: the threads wait less.
+    EXPECT_LT(waits_b, at_most * waits_a);
+  }
+}
+
+const std::vector<Case>& cases() {
+  static const std::vector<Case> all = {
       {"balls-8", "--scene " + rtsim::test::shared_path("scenes/balls-s2.nff") +
                       " --width 96 --height 96 -p pert_count=8"},
       {"teapot-8", "--scene " + rtsim::test::shared_path("scenes/teapot-s2.nff") +
@@ -78,27 +109,32 @@ TEST(GaudetSync, WaitingOnlyToInteractGivesTheAnswersOfWaitingAfterEveryComputat
        "--scene builtin:npp-412 --width 48 --height 48 -p pert_count=4 "
        "-p broadcast.mode=non-adaptive --latency-probe"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.tag);
-    const std::string base = "run --machine gaudet-pert " + c.args;
-    const fs::path every =
-        run_ok("sync-computations-" + c.tag, base + " -p pert.sync=computations");
-    const fs::path few = run_ok("sync-interactions-" + c.tag, base + " -p pert.sync=interactions");
-    const ordered_json a = read_json(every / "stats.json");
-    const ordered_json b = read_json(few / "stats.json");
-    ASSERT_TRUE(a.contains("simulation") && b.contains("simulation"));
-    const auto waits_a = a["simulation"]["process_activations"].get<double>();
-    const auto waits_b = b["simulation"]["process_activations"].get<double>();
-    std::printf("%s: frame %.9g s and %.9g s; thread activations %.0f and %.0f (%.2fx)\n",
-                c.tag.c_str(), a["simulated_time_s"].get<double>(),
-                b["simulated_time_s"].get<double>(), waits_a, waits_b, waits_b / waits_a);
-    std::vector<std::string> diffs;
-    differences(machine_answers(a), machine_answers(b), "", diffs);
-    std::string listed;
-    for (const auto& d : diffs) listed += "\n  " + d;
-    EXPECT_TRUE(diffs.empty()) << "stats.json differs (computations / interactions):" << listed;
-    EXPECT_EQ(read_file(every / "image.png"), read_file(few / "image.png"));
-    // What it is for: the threads wait less.
-    EXPECT_LT(waits_b, 0.9 * waits_a);
-  }
+  return all;
+}
+
+}  // namespace
+
+TEST(GaudetSync, WaitingOnlyToInteractGivesTheAnswersOfWaitingAfterEveryComputation) {
+  same_answers("sync", cases(), "-p pert.sync=computations", "-p pert.sync=interactions", 0.9);
+}
+
+// The Broadcast Processors plan their next strobe as they strobe, and a request for a sooner
+// slot moves their alarm (broadcast.wakes = needed, the default): the answers of buses that wake
+// at every request, every freed buffer and every packet's end (every_change), on the adaptive
+// runs above (the modes that send every packet, or none, wake as the reference does) and on
+// four that reach the loop's other plans: one PERT (strobes that miss for want of a buffer, and
+// the sleep through them), depth-first ID lists, a quantum (registers valid from a processor's
+// time ahead of the bus's: the loop sleeps until the first of them) and the latency probe.
+TEST(GaudetSync, BusesThatPlanAheadGiveTheAnswersOfBusesThatWakeAtEveryChange) {
+  std::vector<Case> all(cases().begin(), cases().begin() + 3);
+  all.push_back({"npp-probe-adaptive",
+                 "--scene builtin:npp-412 --width 48 --height 48 -p pert_count=4 --latency-probe"});
+  all.push_back({"npp-1", "--scene builtin:npp-412 --width 64 --height 64 -p pert_count=1"});
+  all.push_back({"balls-depth", "--scene " + rtsim::test::shared_path("scenes/balls-s2.nff") +
+                                    " --width 64 --height 64 -p pert_count=4 "
+                                    "-p broadcast.order=depth"});
+  all.push_back({"npp-quantum",
+                 "--scene builtin:npp-412 --width 64 --height 64 -p pert_count=8 "
+                 "--quantum 10us"});
+  same_answers("wakes", all, "-p broadcast.wakes=every_change", "-p broadcast.wakes=needed", 1.0);
 }

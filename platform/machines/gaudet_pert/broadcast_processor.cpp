@@ -35,10 +35,24 @@ const modules::TimeParam kLoopReset(
      .description = "Broadcast Processor: time to reset the loop at the end of the ID list",
      .source = "seed 001 L962"});
 
+const modules::ChoiceParam kWakes(
+    {.name = "wakes",
+     .default_value = "needed",
+     .allowed = {"needed", "every_change"},
+     .description =
+         "When the Broadcast Processor's thread wakes to plan its next strobe: only at the strobe "
+         "it planned, which a request for a sooner slot moves (needed), or at every request, "
+         "every freed buffer and every packet's end as well (every_change: the reference). The "
+         "statistics and the image are the same either way (tests/gaudet_sync_test.cpp); the "
+         "first wakes a bus a half to a third as often. A bus that sends every packet "
+         "(broadcast.mode = non-adaptive) wakes at every change either way",
+     .source = "simulator setting, not of the machine"});
+
 }  // namespace
 
 void BroadcastProcessor::declare_params(const modules::ParamDecls& bus) {
   for (const auto* p : {&kIdTime, &kPacketOverhead, &kWordTime, &kLoopReset}) bus.add(*p);
+  bus.add(kWakes);
 }
 
 BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
@@ -54,7 +68,11 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
               .packet_overhead = params.get(kPacketOverhead),
               .word_time = params.get(kWordTime),
               .loop_reset = params.get(kLoopReset)},
-      adaptive_(adaptive) {
+      adaptive_(adaptive),
+      // A bus that sends every packet records its busy time between wakes a cycle at a time
+      // (skip_to), its utilisation windows depending on where its wakes fall: it wakes at every
+      // change whatever broadcast.wakes says.
+      wake_at_every_change_(params.get(kWakes) == "every_change" || !adaptive) {
   // A pass through the ID list that sends nothing must take time, or the loop never gets past
   // a moment (it ran for ever before this check).
   const bool sends_take_time =
@@ -142,6 +160,13 @@ sc_core::sc_time BroadcastProcessor::minimum_cycle() const {
   return modules::times(timing_.id_slot, slots_.size()) + timing_.loop_reset;
 }
 
+void BroadcastProcessor::run_to(const sc_core::sc_time& end) {
+  if (slots_.empty() || sleep_ == Sleep::kBusy) return;  // not started, or past `end` already
+  if (sleep_ == Sleep::kAnyChange) count_missed_strobes(end);
+  record_until_ = end;
+  skip_to(end);
+}
+
 void BroadcastProcessor::demand(std::uint32_t id, int delta) {
   // An ID the ID list does not hold (only with a corrupted memory) is never broadcast: its
   // requester waits for ever, and the loop must not spin through cycles looking for it.
@@ -157,6 +182,58 @@ void BroadcastProcessor::demand(std::uint32_t id, int delta) {
     *at = demanded_.back();
     demanded_.pop_back();
   }
+}
+
+void BroadcastProcessor::requested(std::uint32_t id, const sc_core::sc_time& t) {
+  if (sleep_ == Sleep::kBusy) return;  // it plans again once the slot ends
+  if (sleep_ == Sleep::kUntil && !wake_at_every_change_) {
+    const std::uint32_t key = key_of(id);
+    if (key == kUnlisted) return;
+    // Its slot comes round only after the strobe (or look) the loop sleeps for: the loop meets
+    // it then, as it would have had it woken now, planned again and slept till the same time.
+    const sc_core::sc_time at = first_strobe_after(key, t);
+    if (at >= planned_) return;
+    // Sooner: the loop sleeps till its slot instead, and plans again then (it finds the slot
+    // wanted at once), rather than waking now only to plan the same sleep.
+    ring_at(at);
+    return;
+  }
+  ring_at(modules::sim_now());
+}
+
+void BroadcastProcessor::ring_at(const sc_core::sc_time& t) {
+  planned_ = t;
+  const sc_core::sc_time now = modules::sim_now();
+  alarm_.cancel();  // a pending notification stays if later than a new one's: cancel it first
+  alarm_.notify(t > now ? t - now : sc_core::SC_ZERO_TIME);
+}
+
+sc_core::sc_time BroadcastProcessor::first_strobe_after(std::uint32_t key,
+                                                        const sc_core::sc_time& t) const {
+  // A cycle with nothing sent that takes no time (no IDs' time, no reset, empty packets sent
+  // in direct mode) has no next slot to speak of: wake, as for any request.
+  if (idle_cycle_ == sc_core::SC_ZERO_TIME) return sc_core::SC_ZERO_TIME;
+  const std::size_t n = slots_.size();
+  sc_core::sc_time first = sc_core::sc_max_time();
+  for (const std::uint32_t p : positions_[key]) {
+    sc_core::sc_time at = after(cursor_, (p + n - cursor_.pos) % n).t;
+    if (at <= t)  // a strobe at t cannot match a register valid from t (bus_interface.hpp)
+      at += modules::times(idle_cycle_, (t - at).value() / idle_cycle_.value() + 1);
+    first = std::min(first, at);
+  }
+  return first;
+}
+
+void BroadcastProcessor::sleep(std::optional<sc_core::sc_time> until, Sleep why) {
+  sleep_ = why;
+  if (until) {
+    ring_at(*until);
+  } else {
+    planned_ = sc_core::sc_max_time();
+    alarm_.cancel();
+  }
+  modules::sim_wait(alarm_);
+  sleep_ = Sleep::kBusy;
 }
 
 void BroadcastProcessor::withdrawn(std::uint32_t id, const sc_core::sc_time& t) {
@@ -182,7 +259,8 @@ void BroadcastProcessor::pass(Cursor& c, bool sent, bool account) {
     if (sent) {
       ++packets_;
       packet_words_ += s.words;
-      busy_.record(c.t, packet_time(s));
+      // Up to the frame's end only, once the loop runs on to it (run_to).
+      if (c.t < record_until_) busy_.record(c.t, std::min(packet_time(s), record_until_ - c.t));
     }
   }
   if (sent) c.t += packet_time(s);
@@ -339,7 +417,7 @@ void BroadcastProcessor::run() {
     // A request withdrawn now is still met by a strobe now (bus_interface.hpp).
     const bool withdrawals = withdrawals_pending();
     if (total_demand_ <= 0 && !withdrawals) {
-      modules::sim_wait(wake_);
+      sleep(std::nullopt, Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
@@ -347,10 +425,11 @@ void BroadcastProcessor::run() {
     // ahead). A register is valid from its processor's local time, which may lie ahead of
     // simulated time (a quantum > 0): a strobe before then could not match it.
     const std::size_t n = next_wanted();
-    const sc_core::sc_time now = modules::sim_now();
+    // While a packet is on the bus the loop plans from the packet's end (the cursor).
+    const sc_core::sc_time now = std::max(modules::sim_now(), packet_end_);
     if (n == slots_.size() && total_demand_ <= 0) {
       // Only withdrawn requests, which no strobe can meet any more: as with none.
-      modules::sim_wait(wake_);
+      sleep(std::nullopt, Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
@@ -358,14 +437,15 @@ void BroadcastProcessor::run() {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
       // a new request), instead of strobing a cycle of slots no comparator can match yet.
       const auto first = first_request_time();
-      modules::sim_wait(first && *first > now ? *first - now : minimum_cycle(), wake_);
+      sleep(now + (first && *first > now ? *first - now : minimum_cycle()), Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
     const Cursor c = after(cursor_, n);
-    if (c.t > now) {
-      modules::sim_wait(c.t - now, wake_);
-      // Woken early by a new request or a freed buffer: nothing was wanted before now.
+    if (c.t > modules::sim_now()) {
+      sleep(c.t, Sleep::kUntil);
+      // Woken early, at the slot of a request made since: nothing was wanted before now, and
+      // the plan from here finds that slot at once.
       if (modules::sim_now() < c.t) {
         skip_to(modules::sim_now());
         continue;
@@ -395,7 +475,15 @@ void BroadcastProcessor::run() {
       if (on_packet) on_packet(s.id, start, packet_time(s), hitters_.size());
     }
     pass(cursor_, sent, true);
-    // The loop is busy until the slot ends (its packet sent): requests made meanwhile wait.
+    if (!hitters_.empty() && !wake_at_every_change_) {
+      // A packet on the bus: the loop plans its next strobe now, from the packet's end (the
+      // cursor), rather than waking at the end only to plan. A request made during the packet
+      // moves its alarm sooner if its slot comes first after the packet, as any request does.
+      packet_end_ = cursor_.t;
+      continue;
+    }
+    // The loop is busy until the slot ends (a packet no one listens to, in the modes that send
+    // them all; the ID alone; or, waking at every change, any packet).
     if (cursor_.t > modules::sim_now()) modules::sim_wait(cursor_.t - modules::sim_now());
     // A wanted ID missed: every BIC that wants one may be full until its processor frees a
     // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
@@ -408,10 +496,7 @@ void BroadcastProcessor::run() {
         const auto change = next_change(now);
         if (!change || *change > now) {
           plan_missed_strobes();
-          if (change)
-            modules::sim_wait(*change - now, wake_);
-          else
-            modules::sim_wait(wake_);
+          sleep(change, Sleep::kAnyChange);
           count_missed_strobes(modules::sim_now());
           skip_to(modules::sim_now());
         }

@@ -18,9 +18,13 @@
 // out (breadth-first, depth-first or random, Fig. 6-11).
 //
 // Events only where order matters (DESIGN.md): the loop runs arithmetically through IDs that no
-// Bus Interface Controller holds, and the thread wakes only for an ID some BIC asked for (or a
-// new request). The bus is cycling all the time all the same: its statistics count every ID and
-// packet the loop went through.
+// Bus Interface Controller holds, and the thread wakes only at the strobe of an ID some BIC
+// asked for. It plans that strobe as it strobes the one before (from the end of the packet it
+// sends), and a request whose slot comes sooner moves its alarm instead of waking it to plan
+// again; a freed buffer wakes it only while every strobe misses for want of one. The bus is
+// cycling all the time all the same: its statistics count every ID and packet the loop went
+// through, to the frame's end (run_to). tests/gaudet_sync_test.cpp holds the plans to a loop
+// that woke at every request and every packet's end.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -49,7 +53,7 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   modules::Memory memory;
 
   /// Its parameters, under `bus` ("broadcast": every bus; "shell_bus": one): the timings of
-  /// the loop (L957-L962).
+  /// the loop (L957-L962), and when its thread wakes (a simulator setting).
   static void declare_params(const modules::ParamDecls& bus);
 
   SC_HAS_PROCESS(BroadcastProcessor);
@@ -64,6 +68,12 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   /// Starts the loop at `t` (absolute) on the ID list the control processor loaded: `ids`
   /// entries of `entry_words` words from address 0.
   void start(const sc_core::sc_time& t, std::size_t ids, std::uint32_t entry_words);
+
+  /// At the frame's end (`end`, now): the loop's counts (IDs, cycles, a sleeping BIC's missed
+  /// strobes) run on to it from wherever the loop last woke. The bus cycles all the time;
+  /// without this its counts would stop at its last wake, a time that depends on how it plans,
+  /// not on the machine.
+  void run_to(const sc_core::sc_time& end);
 
   /// Minimum cycle time (nothing sent): mct of L1068-L1079.
   sc_core::sc_time minimum_cycle() const;
@@ -90,7 +100,15 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   /// A BIC's request for `id` was withdrawn at `t`: a strobe up to then still matches it
   /// (bus_interface.hpp), so the loop plans for it until then, though it left the demand.
   void withdrawn(std::uint32_t id, const sc_core::sc_time& t);
-  void wake() { wake_.notify(sc_core::SC_ZERO_TIME); }
+  /// A BIC's register holds `id` from `t`: if its slot's strobe comes before the one the loop
+  /// sleeps for, the loop's alarm moves to it (at once while every strobe misses).
+  void requested(std::uint32_t id, const sc_core::sc_time& t);
+  /// A BIC freed a buffer: the loop wakes only from a sleep through missed strobes, the one
+  /// plan a free buffer can change (which slots are wanted depends on the registers alone).
+  void buffer_freed() {
+    if (sleep_ == Sleep::kAnyChange || (wake_at_every_change_ && sleep_ != Sleep::kBusy))
+      ring_at(modules::sim_now());
+  }
 
  private:
   struct Slot {
@@ -103,6 +121,22 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
     sc_core::sc_time t = sc_core::SC_ZERO_TIME;  ///< when slot `pos` starts
   };
   void run();
+  /// What the loop sleeps for, so that a BIC's change wakes it only when it could change the
+  /// plan (each wake is a thread switch and a new plan; most requests are for slots after the
+  /// one it sleeps for, and most freed buffers change nothing it planned).
+  enum class Sleep {
+    kBusy,       ///< not on alarm_: a slot no BIC caught, or not started (it plans after)
+    kUntil,      ///< until planned_ (a strobe, or a look again): a sooner strobe moves it
+    kAnyChange,  ///< through missed strobes: a request or a freed buffer may turn one to a hit
+  };
+  /// Sleeps until `until` (none: for ever) or until the alarm is moved sooner, as `why`; then
+  /// sleep_ is kBusy again.
+  void sleep(std::optional<sc_core::sc_time> until, Sleep why);
+  /// Sets the alarm the sleeping loop wakes at to `t` (now or later).
+  void ring_at(const sc_core::sc_time& t);
+  /// The first strobe of `key`'s slots after `t` (its register valid from t), the loop going on
+  /// from the cursor without sending (the slots' starts repeat every idle cycle).
+  sc_core::sc_time first_strobe_after(std::uint32_t key, const sc_core::sc_time& t) const;
   sc_core::sc_time packet_time(const Slot& s) const;
   /// The slot at `c` passes with its packet sent (`sent`) or skipped; `account`: count it.
   void pass(Cursor& c, bool sent, bool account);
@@ -134,6 +168,9 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
 
   BroadcastTiming timing_;
   bool adaptive_;
+  /// broadcast.wakes = every_change (the reference the plans ahead are tested against), or a
+  /// bus that sends every packet.
+  bool wake_at_every_change_;
   std::vector<BusInterface*> bics_;
   std::vector<Slot> slots_;
   // The IDs the ID list holds, each under a key 0, 1, ... (its first slot's order): an ID is a
@@ -170,7 +207,13 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;
   Cursor cursor_;
   sc_core::sc_event start_;
-  sc_core::sc_event wake_;
+  sc_core::sc_event alarm_;  ///< what the loop sleeps on (sleep, ring_at)
+  Sleep sleep_ = Sleep::kBusy;
+  /// The end of the frame once the loop has run on to it (run_to): busy time is recorded up to
+  /// it (a direct-mode packet that starts before it ends after it).
+  sc_core::sc_time record_until_ = sc_core::sc_max_time();
+  sc_core::sc_time planned_ = sc_core::SC_ZERO_TIME;     ///< while sleeping: when it wakes
+  sc_core::sc_time packet_end_ = sc_core::SC_ZERO_TIME;  ///< of the last packet some BIC caught
   modules::Busy busy_{*this,
                       "time the bus carried packet words (its utilisation; IDs go by "
                       "whether or not anyone listens)"};

@@ -50,7 +50,7 @@ bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
     peak_registers_.note(used);
     if (bus_) {
       bus_->demand(id, +1);
-      bus_->wake();
+      bus_->requested(id, t);
     }
     return true;
   }
@@ -77,7 +77,7 @@ void BusInterface::cancel(std::uint32_t id, const sc_core::sc_time& t) {
     if (b.state != BufferState::kFilled || b.id != id) continue;
     b.state = BufferState::kFree;
     b.at = std::max(t, b.at);
-    if (bus_) bus_->wake();
+    if (bus_) bus_->buffer_freed();
   }
 }
 
@@ -127,7 +127,7 @@ void BusInterface::release(const ReceivedPacket& p, const sc_core::sc_time& t) {
   b.state = BufferState::kFree;
   b.at = std::max(t, b.at);  // a streamed packet's FIFO fills until its arrival
   // A free buffer can turn a waiting match into a hit: the bus must look again.
-  if (bus_) bus_->wake();
+  if (bus_) bus_->buffer_freed();
 }
 
 int BusInterface::free_buffer(const sc_core::sc_time& t) const {

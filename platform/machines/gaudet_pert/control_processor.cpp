@@ -93,6 +93,9 @@ void ControlProcessor::run() {
     }
     if (!all) continue;
     frame_time_ = last - load_time_;
+    // The buses cycle on to the frame's end: their counts (and a direct-mode bus's busy time,
+    // traced as it is recorded) do not stop at their last wake.
+    for (BroadcastProcessor* bus : buses_) bus->run_to(last);
     sc_core::sc_stop();
     return;
   }
