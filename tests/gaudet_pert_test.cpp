@@ -437,6 +437,53 @@ TEST(BroadcastProcessor, ARequestMadeWhileAPacketIsSentWaitsForItsEnd) {
             0);
 }
 
+TEST(BroadcastProcessor, ItsCountsRunToTheFrameEnd) {
+  // The loop sleeps while no BIC wants anything, and its IDs and cycles are worked out, not
+  // passed one by one: at the frame's end (run_to) they count every slot begun by then, wherever
+  // the loop last woke. IDs 0, 1, 2 (2, 5, 1 words), adaptive: ID 1 asked for at 0, strobed at
+  // 1000 ns, its packet on the bus until 4800; ID 2's slot to 5800, the reset to 6200 (the first
+  // cycle); then cycles of 3 x 1000 + 400 ns. By 100 us: 27 more cycles (to 98,000 ns) and the
+  // slots of IDs 0 and 1 (98,000 and 99,000; ID 2's begins at 100,000): 86 IDs, 28 cycles.
+  EXPECT_EQ(rtsim::test::run_in_child([] {
+              using namespace rtsim::platform::gaudet;
+              BusAndBic rig("2", true);
+              BroadcastProcessor& bp = rig.bp;
+              BusInterface& bic = rig.bic;
+              const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
+              struct Driver : sc_core::sc_module {
+                SC_HAS_PROCESS(Driver);
+                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
+                       const std::uint32_t* w)
+                    : sc_module(n), bp(b), bic(i), words(w) {
+                  SC_THREAD(run);
+                }
+                void run() {
+                  load_words(socket, words, 9);
+                  bp.start(sc_time(0, SC_NS), 3, 3);
+                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                  sc_core::wait(sc_time(100, sc_core::SC_US));
+                  before = bp.stats();
+                  bp.run_to(sc_core::sc_time_stamp());
+                }
+                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
+                BroadcastProcessor& bp;
+                BusInterface& bic;
+                const std::uint32_t* words;
+                BroadcastProcessor::Stats before;
+              } drv("drv", bp, bic, words);
+              drv.socket.bind(bp.memory.socket);
+              sc_core::sc_start(sc_time(1, sc_core::SC_MS));
+              // Asleep since its packet: its counts stopped at ID 1's slot.
+              EXPECT_EQ(drv.before.ids, 2u);
+              EXPECT_EQ(drv.before.cycles, 0u);
+              EXPECT_EQ(bp.stats().ids, 86u);
+              EXPECT_EQ(bp.stats().cycles, 28u);
+              EXPECT_EQ(bp.stats().hit_packets, 1u);
+              return ::testing::Test::HasFailure() ? 1 : 0;
+            }),
+            0);
+}
+
 TEST(ExpectedLatency, GaudetsFormula) {
   using rtsim::platform::gaudet::EalInputs;
   using rtsim::platform::gaudet::expected_average_latency_s;
