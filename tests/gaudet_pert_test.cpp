@@ -7,6 +7,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -82,6 +83,31 @@ void load_words(Socket& socket, const std::uint32_t* words, std::uint32_t count)
     socket->b_transport(gp, d);
   }
 }
+
+/// A thread on a Broadcast Processor's memory port, as the control processor is: it loads
+/// `words` (the ID list of 3-word entries {ID, address, size}, then the packets), starts the
+/// loop at 0 on `ids` entries, then runs `script` (a test's requests, waits and looks).
+struct BusDriver : sc_core::sc_module {
+  SC_HAS_PROCESS(BusDriver);
+  BusDriver(rtsim::platform::gaudet::BroadcastProcessor& bp, std::span<const std::uint32_t> words,
+            std::size_t ids, std::function<void()> script)
+      : sc_module("drv"), bp_(bp), words_(words), ids_(ids), script_(std::move(script)) {
+    socket.bind(bp.memory.socket);
+    SC_THREAD(run);
+  }
+  void run() {
+    load_words(socket, words_.data(), static_cast<std::uint32_t>(words_.size()));
+    bp_.start(sc_time(0, SC_NS), ids_, 3);
+    script_();
+  }
+  tlm_utils::simple_initiator_socket<BusDriver> socket{"socket"};
+
+ private:
+  rtsim::platform::gaudet::BroadcastProcessor& bp_;
+  std::span<const std::uint32_t> words_;
+  std::size_t ids_;
+  std::function<void()> script_;
+};
 
 }  // namespace
 
@@ -210,56 +236,41 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
                 BroadcastProcessor& bp = rig.bp;
                 BusInterface& bic = rig.bic;
                 const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
-                struct Driver : sc_core::sc_module {
-                  SC_HAS_PROCESS(Driver);
-                  Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
-                         const std::uint32_t* w)
-                      : sc_module(n), bp(b), bic(i), words(w) {
-                    SC_THREAD(run);
-                  }
-                  void run() {
-                    load_words(socket, words, 9);
-                    bp.start(sc_time(0, SC_NS), 3, 3);
-                    EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
-                    sc_core::wait(bic.changed_event());
-                    got1 = bic.next_arrival(1);
-                    // The only buffer holds packet 1: packet 0 matches but cannot be caught.
-                    EXPECT_TRUE(bic.request(0, sc_core::sc_time_stamp()));
-                    sc_core::wait(sc_time(100, sc_core::SC_US));
-                    // Packet 0 matched but found no free buffer: not caught yet.
-                    EXPECT_FALSE(bic.next_arrival(0).has_value());
-                    EXPECT_GT(bic.missed_no_buffer(), 0u);
-                    auto p = bic.take(sc_core::sc_time_stamp(), 1);
-                    EXPECT_TRUE(p.has_value());
-                    bic.release(*p, sc_core::sc_time_stamp());
-                    released = sc_core::sc_time_stamp();
-                    sc_core::wait(bic.changed_event());
-                    got0 = bic.next_arrival(0);
-                  }
-                  tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
-                  BroadcastProcessor& bp;
-                  BusInterface& bic;
-                  const std::uint32_t* words;
-                  std::optional<sc_time> got1, got0;
-                  sc_time released;
-                } drv("drv", bp, bic, words);
-                drv.socket.bind(bp.memory.socket);
+                std::optional<sc_time> got1, got0;
+                sc_time released;
+                BusDriver drv(bp, words, 3, [&] {
+                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                  sc_core::wait(bic.changed_event());
+                  got1 = bic.next_arrival(1);
+                  // The only buffer holds packet 1: packet 0 matches but cannot be caught.
+                  EXPECT_TRUE(bic.request(0, sc_core::sc_time_stamp()));
+                  sc_core::wait(sc_time(100, sc_core::SC_US));
+                  // Packet 0 matched but found no free buffer: not caught yet.
+                  EXPECT_FALSE(bic.next_arrival(0).has_value());
+                  EXPECT_GT(bic.missed_no_buffer(), 0u);
+                  auto p = bic.take(sc_core::sc_time_stamp(), 1);
+                  EXPECT_TRUE(p.has_value());
+                  bic.release(*p, sc_core::sc_time_stamp());
+                  released = sc_core::sc_time_stamp();
+                  sc_core::wait(bic.changed_event());
+                  got0 = bic.next_arrival(0);
+                });
                 sc_core::sc_start(sc_time(1, sc_core::SC_MS));
                 // Packet 1 (5 words): ID 0's slot, then ID 1 at 1000 ns, the packet after its
                 // 1000 ns slot: + 800 + 5 x 400 ns. Non-adaptive, packet 0 (2 words) goes first.
                 const sc_time expect1 = adaptive ? sc_time(1000 + 1000 + 800 + 2000, SC_NS)
                                                  : sc_time(2600 + 1000 + 800 + 2000, SC_NS);
-                EXPECT_TRUE(drv.got1.has_value());
-                if (drv.got1) {
-                  EXPECT_EQ(*drv.got1, expect1) << adaptive;
+                EXPECT_TRUE(got1.has_value());
+                if (got1) {
+                  EXPECT_EQ(*got1, expect1) << adaptive;
                 }
                 // Packet 0 comes at its next slot after the buffer was freed at 100 us.
-                EXPECT_TRUE(drv.got0.has_value());
-                if (drv.got0) {
-                  EXPECT_GT(*drv.got0, drv.released);
+                EXPECT_TRUE(got0.has_value());
+                if (got0) {
+                  EXPECT_GT(*got0, released);
                   const sc_time cycle = adaptive ? sc_time(3400, SC_NS)
                                                  : sc_time(3000 + 3 * 800 + 8 * 400 + 400, SC_NS);
-                  EXPECT_LE(*drv.got0 - drv.released, cycle + sc_time(1800, SC_NS));
+                  EXPECT_LE(*got0 - released, cycle + sc_time(1800, SC_NS));
                 }
                 EXPECT_EQ(bp.minimum_cycle(), sc_time(3400, SC_NS));
                 return 0;
@@ -280,47 +291,32 @@ TEST(BusInterface, StreamedPacketIsTakenAtItsFirstRecordAndReadAsItArrives) {
               BusInterface& bic = rig.bic;
               // Packet 0 (2 words) and packet 1 (5 words), ID list {ID, address, size}.
               const std::uint32_t words[] = {0, 6, 2, 1, 8, 5, 7, 7, 1, 2, 3, 4, 5};
-              struct Driver : sc_core::sc_module {
-                SC_HAS_PROCESS(Driver);
-                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
-                       const std::uint32_t* w)
-                    : sc_module(n), bp(b), bic(i), words(w) {
-                  SC_THREAD(run);
-                }
-                void run() {
-                  load_words(socket, words, 13);
-                  bp.start(sc_time(0, SC_NS), 2, 3);
-                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
-                  sc_core::wait(bic.changed_event());
-                  // ID 1's strobe at 1000 ns, its slot ends at 2000, the words start after the
-                  // 800 ns overhead (2800) and the last is in at 4800.
-                  EXPECT_EQ(bic.next_arrival(1), sc_time(2800 + 2 * 400, SC_NS));
-                  EXPECT_FALSE(bic.take(sc_time(3599, SC_NS)).has_value());
-                  const auto p = bic.take(sc_time(3600, SC_NS));
-                  EXPECT_TRUE(p.has_value());
-                  if (!p) return;
-                  EXPECT_EQ(p->arrival, sc_time(4800, SC_NS));
-                  EXPECT_EQ(p->words_in(1), sc_time(3200, SC_NS));
-                  EXPECT_EQ(p->words_in(4), sc_time(4400, SC_NS));
-                  EXPECT_EQ(p->words_in(5), sc_time(4800, SC_NS));
-                  EXPECT_EQ(p->words_in(9), sc_time(4800, SC_NS));
-                  EXPECT_EQ(p->words.size(), 5u);
-                  EXPECT_EQ(p->words[4], 5u);
-                  // The register is freed when the packet has been received (L912).
-                  EXPECT_FALSE(bic.register_free(sc_time(4799, SC_NS)));
-                  EXPECT_TRUE(bic.register_free(sc_time(4800, SC_NS)));
-                  bic.release(*p, sc_time(3600, SC_NS));
-                  done = true;
-                }
-                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
-                BroadcastProcessor& bp;
-                BusInterface& bic;
-                const std::uint32_t* words;
-                bool done = false;
-              } drv("drv", bp, bic, words);
-              drv.socket.bind(bp.memory.socket);
+              bool done = false;
+              BusDriver drv(bp, words, 2, [&] {
+                EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                sc_core::wait(bic.changed_event());
+                // ID 1's strobe at 1000 ns, its slot ends at 2000, the words start after the
+                // 800 ns overhead (2800) and the last is in at 4800.
+                EXPECT_EQ(bic.next_arrival(1), sc_time(2800 + 2 * 400, SC_NS));
+                EXPECT_FALSE(bic.take(sc_time(3599, SC_NS)).has_value());
+                const auto p = bic.take(sc_time(3600, SC_NS));
+                EXPECT_TRUE(p.has_value());
+                if (!p) return;
+                EXPECT_EQ(p->arrival, sc_time(4800, SC_NS));
+                EXPECT_EQ(p->words_in(1), sc_time(3200, SC_NS));
+                EXPECT_EQ(p->words_in(4), sc_time(4400, SC_NS));
+                EXPECT_EQ(p->words_in(5), sc_time(4800, SC_NS));
+                EXPECT_EQ(p->words_in(9), sc_time(4800, SC_NS));
+                EXPECT_EQ(p->words.size(), 5u);
+                EXPECT_EQ(p->words[4], 5u);
+                // The register is freed when the packet has been received (L912).
+                EXPECT_FALSE(bic.register_free(sc_time(4799, SC_NS)));
+                EXPECT_TRUE(bic.register_free(sc_time(4800, SC_NS)));
+                bic.release(*p, sc_time(3600, SC_NS));
+                done = true;
+              });
               sc_core::sc_start(sc_time(1, sc_core::SC_MS));
-              EXPECT_TRUE(drv.done);
+              EXPECT_TRUE(done);
               return ::testing::Test::HasFailure() ? 1 : 0;
             }),
             0);
@@ -405,32 +401,17 @@ TEST(BroadcastProcessor, ARequestMadeWhileAPacketIsSentWaitsForItsEnd) {
               BroadcastProcessor& bp = rig.bp;
               BusInterface& bic = rig.bic;
               const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
-              struct Driver : sc_core::sc_module {
-                SC_HAS_PROCESS(Driver);
-                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
-                       const std::uint32_t* w)
-                    : sc_module(n), bp(b), bic(i), words(w) {
-                  SC_THREAD(run);
-                }
-                void run() {
-                  load_words(socket, words, 9);
-                  bp.start(sc_time(0, SC_NS), 3, 3);
-                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
-                  sc_core::wait(sc_time(3000, SC_NS));
-                  EXPECT_EQ(bic.next_arrival(1), sc_time(4800, SC_NS));
-                  EXPECT_TRUE(bic.request(2, sc_core::sc_time_stamp()));
-                  sc_core::wait(sc_time(10, sc_core::SC_US));
-                  got2 = bic.next_arrival(2);
-                }
-                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
-                BroadcastProcessor& bp;
-                BusInterface& bic;
-                const std::uint32_t* words;
-                std::optional<sc_time> got2;
-              } drv("drv", bp, bic, words);
-              drv.socket.bind(bp.memory.socket);
+              std::optional<sc_time> got2;
+              BusDriver drv(bp, words, 3, [&] {
+                EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                sc_core::wait(sc_time(3000, SC_NS));
+                EXPECT_EQ(bic.next_arrival(1), sc_time(4800, SC_NS));
+                EXPECT_TRUE(bic.request(2, sc_core::sc_time_stamp()));
+                sc_core::wait(sc_time(10, sc_core::SC_US));
+                got2 = bic.next_arrival(2);
+              });
               sc_core::sc_start(sc_time(1, sc_core::SC_MS));
-              EXPECT_EQ(drv.got2, std::optional<sc_time>(sc_time(7000, SC_NS)));
+              EXPECT_EQ(got2, std::optional<sc_time>(sc_time(7000, SC_NS)));
               EXPECT_EQ(bp.stats().hit_packets, 2u);
               return ::testing::Test::HasFailure() ? 1 : 0;
             }),
@@ -450,32 +431,17 @@ TEST(BroadcastProcessor, ItsCountsRunToTheFrameEnd) {
               BroadcastProcessor& bp = rig.bp;
               BusInterface& bic = rig.bic;
               const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
-              struct Driver : sc_core::sc_module {
-                SC_HAS_PROCESS(Driver);
-                Driver(sc_core::sc_module_name n, BroadcastProcessor& b, BusInterface& i,
-                       const std::uint32_t* w)
-                    : sc_module(n), bp(b), bic(i), words(w) {
-                  SC_THREAD(run);
-                }
-                void run() {
-                  load_words(socket, words, 9);
-                  bp.start(sc_time(0, SC_NS), 3, 3);
-                  EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
-                  sc_core::wait(sc_time(100, sc_core::SC_US));
-                  before = bp.stats();
-                  bp.run_to(sc_core::sc_time_stamp());
-                }
-                tlm_utils::simple_initiator_socket<Driver> socket{"socket"};
-                BroadcastProcessor& bp;
-                BusInterface& bic;
-                const std::uint32_t* words;
-                BroadcastProcessor::Stats before;
-              } drv("drv", bp, bic, words);
-              drv.socket.bind(bp.memory.socket);
+              BroadcastProcessor::Stats before;
+              BusDriver drv(bp, words, 3, [&] {
+                EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
+                sc_core::wait(sc_time(100, sc_core::SC_US));
+                before = bp.stats();
+                bp.run_to(sc_core::sc_time_stamp());
+              });
               sc_core::sc_start(sc_time(1, sc_core::SC_MS));
               // Asleep since its packet: its counts stopped at ID 1's slot.
-              EXPECT_EQ(drv.before.ids, 2u);
-              EXPECT_EQ(drv.before.cycles, 0u);
+              EXPECT_EQ(before.ids, 2u);
+              EXPECT_EQ(before.cycles, 0u);
               EXPECT_EQ(bp.stats().ids, 86u);
               EXPECT_EQ(bp.stats().cycles, 28u);
               EXPECT_EQ(bp.stats().hit_packets, 1u);

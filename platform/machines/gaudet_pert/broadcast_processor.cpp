@@ -203,7 +203,8 @@ void BroadcastProcessor::requested(std::uint32_t id, const sc_core::sc_time& t) 
 
 void BroadcastProcessor::ring_at(const sc_core::sc_time& t) {
   planned_ = t;
-  const sc_core::sc_time now = modules::sim_now();
+  // A delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp).
+  const sc_core::sc_time now = modules::systemc_now();
   alarm_.cancel();  // a pending notification stays if later than a new one's: cancel it first
   alarm_.notify(t > now ? t - now : sc_core::SC_ZERO_TIME);
 }
