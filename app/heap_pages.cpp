@@ -1,0 +1,46 @@
+#include "app/heap_pages.hpp"
+
+#include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
+
+namespace rtsim::app {
+
+namespace {
+/// glibc's default top pad, trim and mmap thresholds (128 KiB).
+constexpr int kGlibcDefault = 128 * 1024;
+}  // namespace
+
+std::size_t use_huge_heap_pages() {
+  const auto kPage = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  // Blocks up to glibc's largest mmap threshold come from the (advised) heap.
+  if (mallopt(M_MMAP_THRESHOLD, 32 << 20) == 0) return 0;
+  // Never hand the reserve back: trimming and growing again would fault it in anew.
+  if (mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0) return 0;
+  if (mallopt(M_TOP_PAD, static_cast<int>(kHeapReserve)) == 0) return 0;
+  // The heap so far (its blocks of static initialisers) and its free top, from which the next
+  // blocks come, are advised with the growth: one mapping.
+  const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const std::uintptr_t from = (before - mallinfo2().arena) & ~(kPage - 1);
+  // A block larger than the heap's free top makes it grow now, by the reserve; freed, the block
+  // is the top again. volatile: a block that is never used could be optimised away.
+  void* volatile block = std::malloc(mallinfo2().keepcost + (std::size_t{1} << 16));
+  std::free(block);
+  const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  if (after <= before) {
+    // No room for the reserve (a limit on address space, ulimit -v): a heap that asked for it at
+    // every growth could not grow at all. Back to glibc's defaults.
+    mallopt(M_TOP_PAD, kGlibcDefault);
+    mallopt(M_TRIM_THRESHOLD, kGlibcDefault);
+    mallopt(M_MMAP_THRESHOLD, kGlibcDefault);
+    return 0;
+  }
+  if (madvise(reinterpret_cast<void*>(from), after - from, MADV_HUGEPAGE) != 0) return 0;
+  return after - from;
+}
+
+}  // namespace rtsim::app
