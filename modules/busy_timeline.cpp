@@ -60,6 +60,9 @@ void BusyTimeline::to_bins() {
   shift_ = 0;
   while (bins_for(last_ - first_) > kMaxBins / 2) ++shift_;
   origin_ = first_;
+  // Room for every bin it may have (128 KiB): the bins grow with the span, a few at a time, and
+  // growing a vector by doubling copied them and left the blocks they outgrew behind.
+  busy_.reserve(kMaxBins);
   busy_.assign(1, 0);
   binned_ = true;
   for (const Interval& i : sparse_) add_to_bins(i.start, i.end);
