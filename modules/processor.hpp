@@ -169,13 +169,6 @@ class Processor : public sc_core::sc_module, public StatGroup {
     prefetch_object(idle_since_);
     prefetch_object(busy_);
   }
-  /// The same lines as (address, bytes) ranges, for a queue's table (WakeQueue::Client).
-  template <class Lines>
-  void activation_lines(std::vector<Lines>& out) const {
-    out.push_back({&clock_, sizeof(clock_)});
-    out.push_back({&idle_since_, sizeof(idle_since_)});
-    out.push_back({&busy_, sizeof(busy_)});
-  }
 
   LocalClock clock_;
   SliceSink& trace_;

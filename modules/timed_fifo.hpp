@@ -76,13 +76,6 @@ class TimedFifo : public StatGroup {
     prefetch_object(depth_);
     items_.prefetch_front();
   }
-  /// The same FIFO state as (address, bytes) ranges, for a queue's table (WakeQueue::Client);
-  /// the oldest item's place depends on the moment, and is left to prepare_get().
-  template <class Lines>
-  void get_lines(std::vector<Lines>& out) const {
-    out.push_back({&items_, sizeof(items_)});
-    out.push_back({&depth_, sizeof(depth_)});
-  }
   /// Prefetches what a put() writes: the slot it fills and the FIFO's own state.
   void prepare_put() const {
     prefetch_object(items_);

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "modules/prefetch.hpp"
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
@@ -17,9 +16,6 @@ WakeQueue::WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_even
 std::size_t WakeQueue::add(Client& client) {
   clients_.push_back(&client);
   pending_.emplace_back();
-  hot_.push_back({&client, 1});  // its first line: a virtual call reads its table there
-  client.hot_lines(hot_);
-  hot_from_.push_back(static_cast<std::uint32_t>(hot_.size()));
   return clients_.size() - 1;
 }
 
@@ -98,17 +94,6 @@ void WakeQueue::prepare_next() {
   if (heap_.empty()) return;
   const Entry& next = heap_.top();
   if (!stale(next)) clients_[next.client]->prepare();
-  // The sooner of the top's two children is likely to run after it: its hot lines start on
-  // their way into the cache a wake ahead, from the queue's own table. Reading the first of
-  // them (the virtual table's, for prepare()) then stalled the queue more than anything else it
-  // did, and prepare()'s own reads of the state it fetched stalled next (a 32 x 32 array's
-  // clients' state is far larger than the cache).
-  const std::vector<Entry>& e = heap_.entries();
-  if (e.size() > 1) {
-    const std::uint32_t after = (e.size() > 2 && e[1] > e[2] ? e[2] : e[1]).client;
-    for (std::uint32_t k = hot_from_[after]; k < hot_from_[after + 1]; ++k)
-      prefetch_bytes(hot_[k].at, hot_[k].bytes);
-  }
 }
 
 }  // namespace rtsim::modules

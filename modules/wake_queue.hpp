@@ -47,16 +47,6 @@ class WakeQueue : public sc_core::sc_module {
     /// reads first (modules/prefetch.hpp), so that its state is on its way into the cache while
     /// the other runs. A hint only: it must change nothing.
     virtual void prepare() const {}
-    /// The memory its prepare() and woken() read first, as (address, bytes) ranges of objects
-    /// that stay where they are (its members). Asked once, when it is added: the queue keeps
-    /// them in a table of its own and fetches them a wake before prepare(), reading nothing of
-    /// the client's (whose own first line, where a virtual call finds its table, is fetched
-    /// with them). A hint only.
-    struct Lines {
-      const void* at;
-      std::size_t bytes;
-    };
-    virtual void hot_lines(std::vector<Lines>& /*out*/) const {}
 
    protected:
     ~Client() = default;
@@ -82,8 +72,7 @@ class WakeQueue : public sc_core::sc_module {
   };
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
   void dispatch();
-  /// The client of the earliest live wake prepares (Client::prepare), and the first line of the
-  /// one likely after it is fetched.
+  /// The client of the earliest live wake prepares (Client::prepare).
   void prepare_next();
   /// A client's pending wake: its entry's sequence number and time (kNone: none).
   struct Pending {
@@ -94,16 +83,8 @@ class WakeQueue : public sc_core::sc_module {
   bool stale(const Entry& e) const { return pending_[e.client].seq != e.seq; }
 
   std::vector<Client*> clients_;
-  /// Each client's hot lines (Client::hot_lines): client k's are hot_[hot_from_[k]] up to
-  /// hot_[hot_from_[k + 1]].
-  std::vector<Client::Lines> hot_;
-  std::vector<std::uint32_t> hot_from_{0};
   std::vector<Pending> pending_;  ///< by client
-  /// The wakes, soonest on top; its entries are read for a hint only (prepare_next).
-  struct Heap : std::priority_queue<Entry, std::vector<Entry>, std::greater<>> {
-    const std::vector<Entry>& entries() const { return c; }
-  };
-  Heap heap_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
   std::uint64_t seq_ = 0;
   std::uint64_t wakes_ = 0;
   bool started_ = false;

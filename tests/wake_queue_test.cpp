@@ -84,40 +84,6 @@ TEST(WakeQueue, RunsEachClientWhenItAsksFirstAskedFirstRun) {
             0);
 }
 
-/// A client that counts the queue's questions about its hot lines.
-struct Hot final : WakeQueue::Client {
-  int asked = 0;
-  int runs = 0;
-  double state[16] = {};
-  void woken() override { ++runs; }
-  void hot_lines(std::vector<Lines>& out) const override {
-    ++const_cast<Hot*>(this)->asked;
-    out.push_back({state, sizeof(state)});
-  }
-};
-
-TEST(WakeQueue, AsksAClientForItsHotLinesOnceWhenItIsAdded) {
-  // Its table is made at elaboration: asking at every wake would read the client's own first
-  // line, the miss the table is there to take ahead.
-  EXPECT_EQ(rtsim::test::run_in_child([] {
-              Starter starter("starter");
-              WakeQueue queue("queue", starter.start);
-              starter.queue = &queue;
-              Hot a, b;
-              queue.add(a);
-              starter.outside_client = queue.add(b);
-              EXPECT_EQ(a.asked, 1);
-              EXPECT_EQ(b.asked, 1);
-              sc_core::sc_start();
-              EXPECT_EQ(a.runs, 1);  // at the start
-              EXPECT_EQ(b.runs, 2);  // at the start and at 40 ns
-              EXPECT_EQ(a.asked, 1);
-              EXPECT_EQ(b.asked, 1);
-              return 0;
-            }),
-            0);
-}
-
 TEST(WakeQueue, AWakeInThePastIsADefect) {
   EXPECT_EQ(rtsim::test::run_in_child([] {
               Starter starter("starter");

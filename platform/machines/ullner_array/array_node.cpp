@@ -648,21 +648,6 @@ void ArrayNode::prepare() const {
   if (front_[first] != kNoMessage) in[first]->fifo.prepare_get();
 }
 
-void ArrayNode::hot_lines(std::vector<Lines>& out) const {
-  // What prepare() fetches of its own state; prepare() then reads them from the cache.
-  activation_lines(out);
-  out.push_back({&position_, sizeof(position_)});
-  out.push_back({&own_, sizeof(own_)});
-  out.push_back({&front_, sizeof(front_)});
-  out.push_back({&idle_, sizeof(idle_)});
-  out.push_back({&received_, sizeof(received_)});
-  // Its ports: which is first is known only then, but prepare() reads each port's pointer and
-  // the first's queue state to find its oldest message.
-  out.push_back({&in, sizeof(in)});
-  for (const auto& port : in)
-    if (port) port->fifo.get_lines(out);
-}
-
 bool ArrayNode::next_message(RayMessage& msg) {
   const sc_core::sc_time now = clock_.now();
   // The port whose message arrived first, if one has by now.

@@ -304,8 +304,6 @@ class ArrayNode : public modules::Processor,
   /// node.process = queue: prefetches what its next activation reads first (its state, the
   /// port whose message came first and that message), while the processor before it runs.
   void prepare() const override;
-  /// node.process = queue: its state that prepare() and an activation read first.
-  void hot_lines(std::vector<Lines>& out) const override;
   /// The frame starts (the host has broadcast the view): its camera, its ports' events.
   void start_frame();
   /// One step of its loop at its local time, which is simulated time: takes and handles the
