@@ -132,12 +132,13 @@ TEST(Statistics, ManyStatisticsReportAsEachWouldAlone) {
 TEST(Statistics, AFailingReportIsTheFirstNamesWhateverThreadMetIt) {
   // Enough statistics for two threads; two names each hold two queues (Level statistics), which
   // cannot report under one name. The error names the first of them in name order, whether the
-  // thread that met it was the first or the second, as one thread would.
+  // thread that met it was the first or the second, as one thread would: the two names side by
+  // side, and far apart (the threads take the names a few at a time).
   std::vector<std::unique_ptr<Unit>> units;
   for (int k = 0; k < 300; ++k) units.push_back(std::make_unique<Unit>("fill" + std::to_string(k)));
   for (const char* first : {"clash_a", "clash_b"}) {
     SCOPED_TRACE(first);
-    const std::string second = first == std::string("clash_a") ? "clash_b" : "clash_c";
+    const std::string second = first == std::string("clash_a") ? "clash_b" : "zz_clash";
     StatGroup a(first), a2(first), b(second), b2(second);
     Level qa(a, 4), qa2(a2, 4), qb(b, 4), qb2(b2, 4);
     try {
