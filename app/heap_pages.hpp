@@ -4,9 +4,10 @@
 //
 // A large machine is hundreds of thousands of small objects made and grown over the whole run:
 // at 32 x 32 ullner-array's processors, ports, queues and busy timelines touch about 230 MB of
-// heap a 4 KiB page at a time, 57,000 page faults that cost this virtual machine's kernel about
-// 0.45 s, a quarter of the run (docs/benchmarks.md, "stop 71"). In 2 MiB pages the same heap
-// faults about 500 times, and the processors' state, spread over the heap, misses the TLB less.
+// heap a 4 KiB page at a time, 57,600 page faults that cost this virtual machine's kernel about
+// 0.45 s, a quarter of the run (docs/benchmarks.md, "stop 71"). With the heap in 2 MiB pages the
+// whole process faults 11,700 times (the rest: its libraries, the statistics thread's own
+// arena, the image), and the processors' state, spread over the heap, misses the TLB less.
 //
 // glibc extends its main heap with brk and cannot be asked to advise the growth (its tunable
 // glibc.malloc.hugetlb is read from the environment at start-up only), so this reserves the
