@@ -2,11 +2,13 @@
 
 #include <malloc.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <climits>
 #include <cstdint>
 #include <cstdlib>
+#include <initializer_list>
 
 namespace rtsim::app {
 
@@ -15,7 +17,19 @@ namespace {
 constexpr int kGlibcDefault = 128 * 1024;
 }  // namespace
 
+bool address_space_limited() {
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit limit{};
+    if (getrlimit(resource, &limit) != 0 || limit.rlim_cur != RLIM_INFINITY) return true;
+  }
+  return false;
+}
+
 std::size_t use_huge_heap_pages() {
+  // Under a limit on address space or data (ulimit -v, ulimit -d) the reserve would count
+  // against it whole, untouched as it is, and leave too little for the rest: threads' stacks,
+  // the image module's libraries. The heap stays as glibc makes it.
+  if (address_space_limited()) return 0;
   const auto kPage = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
   // Blocks up to glibc's largest mmap threshold come from the (advised) heap.
   if (mallopt(M_MMAP_THRESHOLD, 32 << 20) == 0) return 0;
@@ -32,8 +46,8 @@ std::size_t use_huge_heap_pages() {
   std::free(block);
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
   if (after <= before) {
-    // No room for the reserve (a limit on address space, ulimit -v): a heap that asked for it at
-    // every growth could not grow at all. Back to glibc's defaults.
+    // No room for the reserve: a heap that asked for it at every growth could not grow at all.
+    // Back to glibc's defaults.
     mallopt(M_TOP_PAD, kGlibcDefault);
     mallopt(M_TRIM_THRESHOLD, kGlibcDefault);
     mallopt(M_MMAP_THRESHOLD, kGlibcDefault);

@@ -15,7 +15,8 @@
 // is advised MADV_HUGEPAGE, never trimmed back, and blocks up to 32 MiB come from it rather than
 // from mmap (M_MMAP_THRESHOLD, glibc's maximum). Reserved address space costs no memory until
 // it is touched. Beyond the reserve (a run of more than 1 GiB of heap) the heap grows as before,
-// in small pages.
+// in small pages. Under a limit on address space or data (ulimit -v, -d), which the reserve
+// would count against whole, nothing is reserved (address_space_limited).
 //
 // Call it first thing in main(), before any thread starts. It changes where blocks are, never
 // what a program computes.
@@ -26,8 +27,12 @@ namespace rtsim::app {
 /// Address space the heap reserves for large pages.
 inline constexpr std::size_t kHeapReserve = std::size_t{1} << 30;
 
-/// Reserves and advises the heap (see above). Returns the bytes advised: 0 where the allocator
-/// or the kernel refused, which leaves the heap as it was.
+/// Whether the process runs under a finite limit on its address space or data (RLIMIT_AS,
+/// RLIMIT_DATA).
+bool address_space_limited();
+
+/// Reserves and advises the heap (see above). Returns the bytes advised: 0 under a limit, or
+/// where the allocator or the kernel refused, which leaves the heap as it was.
 std::size_t use_huge_heap_pages();
 
 }  // namespace rtsim::app

@@ -3,6 +3,9 @@
 #include "app/heap_pages.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -48,6 +51,8 @@ bool advised(const Mapping& m) {
 }
 
 TEST(HeapPages, BlocksMadeAfterwardsLieInTheAdvisedHeap) {
+  if (rtsim::app::address_space_limited())
+    GTEST_SKIP() << "this process runs under a limit on its address space: nothing is reserved";
   const std::size_t bytes = rtsim::app::use_huge_heap_pages();
   ASSERT_GE(bytes, rtsim::app::kHeapReserve / 2) << "the heap's growth was not advised";
   // A run's kinds of block: many small ones, and a large one glibc would have mapped apart.
@@ -61,6 +66,24 @@ TEST(HeapPages, BlocksMadeAfterwardsLieInTheAdvisedHeap) {
     EXPECT_NE(m.header.find("[heap]"), std::string::npos) << "not in the heap";
     EXPECT_TRUE(advised(m)) << "its mapping is not advised for huge pages (VmFlags hg)";
   }
+}
+
+TEST(HeapPages, UnderAnAddressSpaceLimitNothingIsReserved) {
+  // The reserve would count whole against the limit and leave too little for threads' stacks
+  // and the image module (tests/bad_input_runs_test.cpp runs rtsim under ulimit -v): a child
+  // under a limit of 4 GiB reserves nothing and its heap grows as glibc's does.
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const rlimit limit{std::uint64_t{4} << 30, std::uint64_t{4} << 30};
+    if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
+    if (!rtsim::app::address_space_limited()) _exit(4);
+    _exit(rtsim::app::use_huge_heap_pages() == 0 ? 0 : 5);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "3: setrlimit failed, 4: the limit not seen, 5: reserved";
 }
 
 }  // namespace
