@@ -84,6 +84,10 @@ void load_words(Socket& socket, const std::uint32_t* words, std::uint32_t count)
   }
 }
 
+/// The bus tests' memory: IDs 0, 1 and 2, their packets of 2, 5 and 1 words, the ID list as the
+/// control processor lays it out ({ID, address, size} an entry) and the packets after it.
+constexpr std::uint32_t kThreePackets[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
+
 /// A thread on a Broadcast Processor's memory port, as the control processor is: it loads
 /// `words` (the ID list of 3-word entries {ID, address, size}, then the packets), starts the
 /// loop at 0 on `ids` entries, then runs `script` (a test's requests, waits and looks).
@@ -235,10 +239,9 @@ TEST(BroadcastProcessor, CycleTimingAndTheHitRule) {
                 BusAndBic rig("4", adaptive, {"bic.buffers=1"});
                 BroadcastProcessor& bp = rig.bp;
                 BusInterface& bic = rig.bic;
-                const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
                 std::optional<sc_time> got1, got0;
                 sc_time released;
-                BusDriver drv(bp, words, 3, [&] {
+                BusDriver drv(bp, kThreePackets, 3, [&] {
                   EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
                   sc_core::wait(bic.changed_event());
                   got1 = bic.next_arrival(1);
@@ -400,9 +403,8 @@ TEST(BroadcastProcessor, ARequestMadeWhileAPacketIsSentWaitsForItsEnd) {
               BusAndBic rig("2", true);
               BroadcastProcessor& bp = rig.bp;
               BusInterface& bic = rig.bic;
-              const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
               std::optional<sc_time> got2;
-              BusDriver drv(bp, words, 3, [&] {
+              BusDriver drv(bp, kThreePackets, 3, [&] {
                 EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
                 sc_core::wait(sc_time(3000, SC_NS));
                 EXPECT_EQ(bic.next_arrival(1), sc_time(4800, SC_NS));
@@ -430,9 +432,8 @@ TEST(BroadcastProcessor, ItsCountsRunToTheFrameEnd) {
               BusAndBic rig("2", true);
               BroadcastProcessor& bp = rig.bp;
               BusInterface& bic = rig.bic;
-              const std::uint32_t words[] = {0, 9, 2, 1, 11, 5, 2, 16, 1};
               BroadcastProcessor::Stats before;
-              BusDriver drv(bp, words, 3, [&] {
+              BusDriver drv(bp, kThreePackets, 3, [&] {
                 EXPECT_TRUE(bic.request(1, sc_time(0, SC_NS)));
                 sc_core::wait(sc_time(100, sc_core::SC_US));
                 before = bp.stats();
