@@ -30,12 +30,20 @@ std::size_t use_huge_heap_pages() {
   // against it whole, untouched as it is, and leave too little for the rest: threads' stacks,
   // the image module's libraries. The heap stays as glibc makes it.
   if (address_space_limited()) return 0;
+  // Where anything is refused, the heap goes back to glibc's defaults: a heap that asked for the
+  // reserve at every growth and never got it could not grow at all.
+  const auto back_to_defaults = [] {
+    mallopt(M_TOP_PAD, kGlibcDefault);
+    mallopt(M_TRIM_THRESHOLD, kGlibcDefault);
+    mallopt(M_MMAP_THRESHOLD, kGlibcDefault);
+    return std::size_t{0};
+  };
   const auto kPage = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-  // Blocks up to glibc's largest mmap threshold come from the (advised) heap.
-  if (mallopt(M_MMAP_THRESHOLD, 32 << 20) == 0) return 0;
-  // Never hand the reserve back: trimming and growing again would fault it in anew.
-  if (mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0) return 0;
-  if (mallopt(M_TOP_PAD, static_cast<int>(kHeapReserve)) == 0) return 0;
+  // Blocks up to glibc's largest mmap threshold come from the (advised) heap; the reserve is
+  // never handed back (trimming and growing again would fault it in anew).
+  if (mallopt(M_MMAP_THRESHOLD, 32 << 20) == 0 || mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0 ||
+      mallopt(M_TOP_PAD, static_cast<int>(kHeapReserve)) == 0)
+    return back_to_defaults();
   // The heap so far (its blocks of static initialisers) and its free top, from which the next
   // blocks come, are advised with the growth: one mapping.
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
@@ -45,14 +53,7 @@ std::size_t use_huge_heap_pages() {
   void* volatile block = std::malloc(mallinfo2().keepcost + (std::size_t{1} << 16));
   std::free(block);
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  if (after <= before) {
-    // No room for the reserve: a heap that asked for it at every growth could not grow at all.
-    // Back to glibc's defaults.
-    mallopt(M_TOP_PAD, kGlibcDefault);
-    mallopt(M_TRIM_THRESHOLD, kGlibcDefault);
-    mallopt(M_MMAP_THRESHOLD, kGlibcDefault);
-    return 0;
-  }
+  if (after <= before) return back_to_defaults();  // no room for the reserve
   if (madvise(reinterpret_cast<void*>(from), after - from, MADV_HUGEPAGE) != 0) return 0;
   return after - from;
 }
