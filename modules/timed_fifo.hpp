@@ -35,6 +35,17 @@ class PutListener {
   ~PutListener() = default;
 };
 
+/// Told of every take from a FIFO it listens to (listen_takes): a producer that waits for room
+/// without SystemC events (gaudet-pert's processors on their event queue).
+class TakeListener {
+ public:
+  /// An item was taken from the FIFO the listener registered as `port`.
+  virtual void item_taken(int port) = 0;
+
+ protected:
+  ~TakeListener() = default;
+};
+
 template <class T>
 class TimedFifo : public StatGroup {
  public:
@@ -69,6 +80,12 @@ class TimedFifo : public StatGroup {
     listener_ = listener;
     notify_puts_ = notify_puts;
     port_ = port;
+  }
+  /// `listener` is told of every take from now on (one at most), with `port`; a take then
+  /// notifies no get event (nobody waits on it through SystemC).
+  void listen_takes(TakeListener* listener, int port = 0) {
+    take_listener_ = listener;
+    take_port_ = port;
   }
   /// Prefetches what a get() reads: the oldest item and the FIFO's own state.
   void prepare_get() const {
@@ -135,7 +152,10 @@ class TimedFifo : public StatGroup {
     ++get_count_;
     depth_.got(stamp);
     // Only a producer blocked on a full FIFO waits for a take (an unbounded one is never full).
-    if (capacity_ != kUnbounded) event_of_get().notify(sc_core::SC_ZERO_TIME);
+    if (take_listener_ != nullptr)
+      take_listener_->item_taken(take_port_);
+    else if (capacity_ != kUnbounded)
+      event_of_get().notify(sc_core::SC_ZERO_TIME);
     return item;
   }
 
@@ -158,6 +178,8 @@ class TimedFifo : public StatGroup {
   PutListener* listener_ = nullptr;
   int port_ = 0;
   bool notify_puts_ = true;
+  TakeListener* take_listener_ = nullptr;
+  int take_port_ = 0;
   Level depth_;
   Counter messages_{*this, "messages", "messages put"};
   Counter waits_{*this, "waits", "puts that waited for a free slot"};

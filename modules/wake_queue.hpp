@@ -25,9 +25,10 @@
 // Exact where the clients are: a processor that handles what is due by its time and computes
 // ahead (modules::Processor's event-driven mode) does not depend on which of two processors due
 // at the same time runs first, because every message it takes was put before its stamp.
-// Used by ullner-array's 1024 processors (node.process = queue); tests/ullner_array_test.cpp
-// shows its statistics those of the SystemC methods and threads, tests/wake_queue_test.cpp where
-// it runs ahead and where it stops.
+// Used by ullner-array's 1024 processors (node.process = queue) and gaudet-pert's PERT
+// processors (pert.process = queue); tests/ullner_array_test.cpp and tests/gaudet_sync_test.cpp
+// show their statistics those of SystemC methods, tests/wake_queue_test.cpp where it runs ahead
+// and where it stops.
 #include <cstdint>
 #include <limits>
 #include <queue>

@@ -194,7 +194,7 @@ void BusInterface::capture(std::uint32_t id, const sc_core::sc_time& start,
       wanted = true;  // one buffer, dropped once
     }
   }
-  changed_.notify(sc_core::SC_ZERO_TIME);
+  tell_changed(changed_);
 }
 
 }  // namespace rtsim::platform::gaudet

@@ -37,7 +37,7 @@ class LocalDataSet final : public PacketPort {
       p.words = memory_.subspan(first, std::min<std::size_t>(size, memory_.size() - first));
     }
     ready_.push_back(p);
-    changed_.notify(sc_core::SC_ZERO_TIME);
+    tell_changed(changed_);
     return true;
   }
   void cancel(std::uint32_t id, const sc_core::sc_time&) override {

@@ -146,6 +146,7 @@ struct PertPlatform {
   BroadcastOrder order = BroadcastOrder::kBreadth;
   std::vector<std::unique_ptr<gaudet::BroadcastProcessor>> buses;  // shade, shell, prim
   std::vector<std::unique_ptr<gaudet::Pert>> perts;
+  std::unique_ptr<modules::WakeQueue> queue;  ///< the processors' programs (pert.process = queue)
   std::unique_ptr<gaudet::ControlProcessor> control;
 
   bool broadcasting() const { return mode != BroadcastMode::kDirect; }
@@ -425,6 +426,13 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   for (auto& pert : p.perts) {
     pert->shell->set_frame_start(p.control->frame_start());
     pert->prim->set_frame_start(p.control->frame_start());
+  }
+  // pert.process = queue: the processors' programs on one event queue, started with the frame.
+  for (auto& pert : p.perts) {
+    if (!pert->on_queue()) continue;
+    if (!p.queue)
+      p.queue = std::make_unique<modules::WakeQueue>("pert_queue", p.control->frame_start());
+    pert->join(*p.queue);
   }
 
   run.simulate();

@@ -74,6 +74,30 @@ class PacketPort {
   /// Notified when a packet is captured or a register freed (the processor then looks at
   /// next_arrival(); arrival times may lie ahead of the notification).
   virtual const sc_core::sc_event& changed_event() const = 0;
+
+  /// Told instead of the event from now on (a processor on gaudet-pert's event queue, which waits
+  /// for nothing through SystemC).
+  class Listener {
+   public:
+    virtual void port_changed() = 0;
+
+   protected:
+    ~Listener() = default;
+  };
+  void listen(Listener* listener) { listener_ = listener; }
+
+ protected:
+  /// A packet was captured or a register freed: the listener is told, or `changed` notified
+  /// (next delta).
+  void tell_changed(sc_core::sc_event& changed) {
+    if (listener_ != nullptr)
+      listener_->port_changed();
+    else
+      changed.notify(sc_core::SC_ZERO_TIME);
+  }
+
+ private:
+  Listener* listener_ = nullptr;
 };
 
 }  // namespace rtsim::platform::gaudet

@@ -32,7 +32,7 @@ void PertProcessor::declare_params(const modules::ParamDecls& processor,
   BusInterface::declare_params(processor.sub(kBic), id_registers);
 }
 
-PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& run)
+PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& run, bool on_queue)
     : modules::Processor(name, run.trace()),
       params_(run.registry(), this->name()),
       probe_(&disabled_probe()) {
@@ -41,15 +41,100 @@ PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& ru
   const std::size_t digit = own.find_first_of("0123456789");
   if (digit != std::string::npos) pert_ = std::strtoull(own.c_str() + digit, nullptr, 10);
   flow_base_ = pert_ << 32;
+  // It never waits inside a computation: advanced() does.
+  clock_.never_wait();
+  if (!on_queue) SC_METHOD(run);
 }
 
-void PertProcessor::begin_frame() {
-  if (frame_start_) modules::sim_wait(*frame_start_);
+void PertProcessor::join(modules::WakeQueue& queue) {
+  queue_ = &queue;
+  client_ = queue.add(*this);
+  if (listen_) listen_();
+  // Counted under its method's name, as pert.process = method counts it.
+  activations_ = &modules::activation_count(*this, "run");
+}
+
+void PertProcessor::run() {
+  // A return from a wait counts as a thread's would (modules/activations.hpp); the first
+  // activation starts the program.
+  if (host_.resume()) modules::count_activation();
+}
+
+void PertProcessor::woken() {
+  wanted_ = 0;
+  if (host_.resume()) ++*activations_;
+}
+
+// A change it makes itself (a direct-memory request) finds it running, not waiting: SystemC
+// would wake it a delta cycle later had it begun to wait on its port by then, and it would find
+// nothing new, since every program looks at its port before it idles (an arrival by now is
+// taken, a later one is the idle's `until`). So the queue need not wake it.
+void PertProcessor::port_changed() {
+  if (wanted_ & kPort) queue_->wake_at(client_, modules::sim_now());
+}
+
+void PertProcessor::item_put(int, const sc_core::sc_time&) {
+  if (wanted_ & kInput) queue_->wake_at(client_, modules::sim_now());
+}
+
+void PertProcessor::item_taken(int) {
+  if (wanted_ & kRoom) queue_->wake_at(client_, modules::sim_now());
+}
+
+void PertProcessor::wake_at_local_time() {
+  if (queue_ == nullptr) {
+    // A delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp).
+    sc_core::next_trigger(clock_.now() - modules::systemc_now());
+    return;
+  }
+  queue_->wake_at(client_, clock_.now());
+}
+
+void PertProcessor::wake_on(std::optional<sc_core::sc_time> until, unsigned wakes) {
+  if (queue_ == nullptr) {
+    if (until)
+      sc_core::next_trigger(*until - modules::systemc_now(), events_of(wakes));
+    else
+      sc_core::next_trigger(events_of(wakes));
+    return;
+  }
+  wanted_ = wakes;
+  if (until) queue_->wake_at(client_, *until);
+}
+
+const sc_core::sc_event_or_list& PertProcessor::events_of(unsigned wakes) {
+  std::unique_ptr<sc_core::sc_event_or_list>& list = lists_[wakes & 7u];
+  if (!list) {
+    list = std::make_unique<sc_core::sc_event_or_list>();
+    if (wakes & kPort) *list |= *port_changed_;
+    if (wakes & kInput) *list |= *input_put_;
+    if (wakes & kRoom) *list |= *output_taken_;
+  }
+  return *list;
+}
+
+namespace {
+/// Until `e` fires (SystemC).
+struct OnEvent {
+  modules::ResumableHost& host;
+  const sc_core::sc_event& e;
+  bool await_ready() const noexcept { return false; }
+  void await_suspend(std::coroutine_handle<> h) {
+    host.suspended(h);
+    sc_core::next_trigger(e);
+  }
+  void await_resume() const noexcept {}
+};
+}  // namespace
+
+modules::Resumable PertProcessor::begin_frame() {
+  // On the queue it runs first at the frame's start.
+  if (frame_start_ && queue_ == nullptr) co_await OnEvent{host_, *frame_start_};
   clock_.resync();
-  // At quantum 0 only: above it, the quantum says how far the thread runs ahead.
+  // At quantum 0 only: above it, the quantum says how far the program runs ahead.
   if (sync_ == Sync::kInteractions &&
       tlm::tlm_global_quantum::instance().get() == sc_core::SC_ZERO_TIME)
-    clock_.set_waits(false);
+    waits_ = false;
 }
 
 }  // namespace rtsim::platform::gaudet

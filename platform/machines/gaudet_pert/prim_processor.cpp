@@ -15,7 +15,7 @@ void PrimProcessor::declare_params(const modules::ParamDecls& prim) {
 
 PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const PertContext& c, PacketPort& port,
                              std::size_t input_depth)
-    : PertProcessor(name, c.run),
+    : PertProcessor(name, c.run, c.on_queue),
       input("input", input_depth, ring_queue("shell_to_prim")),
       out("out"),
       geometry_(*c.run.twin().geometry),
@@ -29,13 +29,13 @@ PrimProcessor::PrimProcessor(sc_core::sc_module_name name, const PertContext& c,
       ahead_(std::max<std::size_t>(
           1, std::min<std::size_t>(2, params_.sub(kBic).get_count(BusInterface::kBuffers)))),
       counters_(c.run.frame().counters()) {
-  SC_THREAD(run);
+  start_program(program());
 }
 
-void PrimProcessor::ask(const ShellToPrim& msg, std::size_t k, RayTicket& t) {
-  if (k >= msg.leaf_shells.size() || asked_[k]) return;
-  compute_for(t, Stage::kPrim, tasks::kAskPacketCost, "ask");
-  settle();
+modules::Resumable PrimProcessor::ask(const ShellToPrim& msg, std::size_t k, RayTicket& t) {
+  if (k >= msg.leaf_shells.size() || asked_[k]) co_return;
+  co_await compute_for(t, Stage::kPrim, tasks::kAskPacketCost, "ask");
+  co_await settle();
   asked_[k] = port_.request(msg.leaf_shells[k].child_index, clock_.now());
 }
 
@@ -56,12 +56,12 @@ bool PrimProcessor::test_record(const accel::PrimRecord& rec, const Ray& ray, do
   return k && k->intersect(ray, t_min, t_max, out);
 }
 
-void PrimProcessor::serve(ShellToPrim& msg) {
+modules::Resumable PrimProcessor::serve(ShellToPrim& msg) {
   PrimToShade res{msg.ticket, false, {}};
   RayTicket& t = res.ticket;  // the ray's journey goes on in the answer
   // Until now (taken) the ray waited in the input queue.
   probe_->to(t, Stage::kShellToPrim, RayProbe::Part::kQueueing, clock_.now());
-  compute_for(t, Stage::kPrim, tasks::words_cost(msg.words()), "ray");
+  co_await compute_for(t, Stage::kPrim, tasks::words_cost(msg.words()), "ray");
   const shading::TracedRay& r = msg.ticket.ray;
   const bool light = r.kind == RayKind::Shadow;  // any hit will do (L776)
   const double t_min = msg.ticket.t_min;
@@ -75,26 +75,26 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   asked_.assign(n, false);
   if (n > 0) ++rays_with_packets_;
   const sc_core::sc_time asked_first = clock_.now();
-  for (std::size_t a = 0; a < ahead_; ++a) ask(msg, a, t);
+  for (std::size_t a = 0; a < ahead_; ++a) co_await ask(msg, a, t);
   std::size_t k = 0;  // packets tested
   for (bool done = n == 0; !done; ++k) {
     const std::size_t j = k;
     const std::uint32_t id = msg.leaf_shells[j].child_index;
     std::optional<ReceivedPacket> p;
     for (;;) {
-      settle();  // the packets caught by now are in
+      co_await settle();  // the packets caught by now are in
       if ((p = port_.take(clock_.now(), id))) break;
       if (!asked_[j]) {
         if (port_.register_free(clock_.now())) {
           // Till now the ray waited for an ID register.
           probe_->to(t, Stage::kPrimBus, RayProbe::Part::kQueueing, clock_.now());
-          ask(msg, j, t);
+          co_await ask(msg, j, t);
           continue;
         }
         // Registers free as packets arrive.
-        idle(port_.next_arrival(), port_.changed_event(), true);
+        co_await idle(port_.next_arrival(), kPort, true);
       } else {
-        idle(port_.next_arrival(id), port_.changed_event(), true);
+        co_await idle(port_.next_arrival(id), kPort, true);
       }
     }
     if (j == 0) {
@@ -128,12 +128,12 @@ void PrimProcessor::serve(ShellToPrim& msg) {
       if (light) break;
     }
     probe_->packet_gap(t, Stage::kPrim, Stage::kPrimBus, *p, clock_.now());
-    compute_for(t, Stage::kPrim, work, "primitive tests");
-    settle();
+    co_await compute_for(t, Stage::kPrim, work, "primitive tests");
+    co_await settle();
     port_.release(*p, clock_.now());
     // Stop rule (L646-L648): the nearest hit so far is closer than the next leaf shell.
     done = j + 1 == n || (best_slot >= 0 && (light || best_t < msg.leaf_shells[j + 1].t));
-    if (!done) ask(msg, j + ahead_, t);
+    if (!done) co_await ask(msg, j + ahead_, t);
   }
   res.found = best_slot >= 0;
   if (res.found) {
@@ -152,35 +152,38 @@ void PrimProcessor::serve(ShellToPrim& msg) {
   // Withdraw what the search no longer needs.
   for (std::size_t e = k; e < n; ++e) {
     if (!asked_[e]) continue;
-    settle();
+    co_await settle();
     port_.cancel(msg.leaf_shells[e].child_index, clock_.now());
     ++cancelled_;
   }
-  if (res.found) compute_for(t, Stage::kPrim, tasks::kHitInfoCost, "hit info");
+  if (res.found) co_await compute_for(t, Stage::kPrim, tasks::kHitInfoCost, "hit info");
   // From the end of the send until the ShadeProcessor takes it, the answer is in (or, while
   // the queue is full, blocked before) queue.prim_to_shade.
   const WritingAhead ahead(*this);
   const sc_core::sc_time since = clock_.now();
-  compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
+  co_await compute_for(t, Stage::kPrim, tasks::words_cost(PrimToShade::kWords), "send");
   ++rays_;
+  const sc_core::sc_time arrival = over_link(PrimToShade::kWords, since, t);
+  // A put into a full queue waits for a take (TimedFifo::put).
+  while (out_queue_->full()) co_await room();
   // Blocked until the queue took it, less its flight on the link.
-  blocked_until(modules::send_message(out, res, over_link(PrimToShade::kWords, since, t),
-                                      std::uint64_t{32} * PrimToShade::kWords) -
-                link_latency());
+  co_await blocked_until(
+      modules::send_message(out, res, arrival, std::uint64_t{32} * PrimToShade::kWords) -
+      link_latency());
 }
 
-void PrimProcessor::run() {
-  begin_frame();
+modules::Resumable PrimProcessor::program() {
+  co_await begin_frame();
   for (;;) {
-    settle();
+    co_await settle();
     if (!input.fifo.has_item_by(clock_.now())) {
-      idle(input.fifo.next_item_time(), input.fifo.put_event(), false);
+      co_await idle(input.fifo.next_item_time(), kInput, false);
       continue;
     }
     sc_core::sc_time taken;
     ShellToPrim msg = input.fifo.get(clock_.now(), taken);
-    clock_.catch_up(taken);
-    serve(msg);
+    co_await catch_up(taken);
+    co_await serve(msg);
   }
 }
 

@@ -37,7 +37,6 @@ class PrimProcessor : public PertProcessor {
   modules::MessageQueue<ShellToPrim> input;
   tlm_utils::simple_initiator_socket<PrimProcessor> out;
 
-  SC_HAS_PROCESS(PrimProcessor);
   /// `geometry`: the host's copy of the primitives (slot numbers, materials, vertex normals);
   /// `record_words`: the PRIM records' sizes.
   /// Its data set (the PRIM packets, the record sizes, each shape's test cost) from `context`
@@ -47,13 +46,16 @@ class PrimProcessor : public PertProcessor {
                 std::size_t input_depth);
   /// Its parameters under `prim` ("pert.prim").
   static void declare_params(const modules::ParamDecls& prim);
+  /// Elaboration: the queue `out` feeds (a put into it waits while it is full).
+  void set_output_queue(const modules::TimedFifo<PrimToShade>& q) { out_queue_ = &q; }
 
  private:
-  void run();
-  void serve(ShellToPrim& msg);
+  /// Its loop (PertProcessor::start_program): takes a ray's list and serves it.
+  modules::Resumable program();
+  modules::Resumable serve(ShellToPrim& msg);
   /// Asks for leaf shell `k` of the list (for ray `t`, --latency-probe); keeps it for later if
   /// no register is free.
-  void ask(const ShellToPrim& msg, std::size_t k, RayTicket& t);
+  modules::Resumable ask(const ShellToPrim& msg, std::size_t k, RayTicket& t);
   /// The firmware's test of one decoded primitive (counted in counters_).
   bool test_record(const accel::PrimRecord& rec, const Ray& ray, double t_min, double t_max,
                    SurfaceHit& out);
@@ -65,6 +67,7 @@ class PrimProcessor : public PertProcessor {
   PacketPort& port_;
   std::size_t ahead_;  ///< IDs asked for ahead of the packet being tested
   TraceCounters& counters_;
+  const modules::TimedFifo<PrimToShade>* out_queue_ = nullptr;
 
   std::vector<bool> asked_;  ///< per list entry of the current ray
   modules::Counter packets_{*this, "packets_caught", "packets read off the bus (or its memory)"};

@@ -1,5 +1,8 @@
 #include "platform/machines/gaudet_pert/shade_processor.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "firmware/tasks/pert_task_costs.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -28,7 +31,7 @@ void ShadeProcessor::declare_params(const modules::ParamDecls& shade) {
 
 ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const PertContext& c, int pert,
                                PacketPort& port, std::size_t input_depth)
-    : PertProcessor(name, c.run),
+    : PertProcessor(name, c.run, c.on_queue),
       input("input", input_depth, ring_queue("prim_to_shade")),
       out("out"),
       pert_(pert),
@@ -43,7 +46,7 @@ ShadeProcessor::ShadeProcessor(sc_core::sc_module_name name, const PertContext& 
       outstanding_(std::max<std::size_t>(params_.get(kRaysInFlight), 1), 0) {
   for (std::size_t i = outstanding_.size(); i-- > 0;)
     free_trees_.push_back(static_cast<std::uint32_t>(i));
-  SC_THREAD(run);
+  start_program(program());
 }
 
 bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
@@ -61,11 +64,11 @@ bool ShadeProcessor::next_initial_ray(shading::TracedRay& ray, int& sample) {
   return true;
 }
 
-void ShadeProcessor::shade(const PrimToShade& msg) {
+modules::Resumable ShadeProcessor::shade(const PrimToShade& msg) {
   const RayTicket& t = msg.ticket;
   const Cost c = task_.on_result(t.ray, msg.found, msg.hit, frame_.fb(), spawned_);
   frame_.counters().cost += c;
-  compute(c, "shade");
+  co_await compute(c, "shade");
   ++rays_;
   for (const auto& s : spawned_) {
     RayTicket child;
@@ -85,27 +88,27 @@ void ShadeProcessor::shade(const PrimToShade& msg) {
   }
 }
 
-void ShadeProcessor::receive(PrimToShade msg) {
+modules::Resumable ShadeProcessor::receive(PrimToShade msg) {
   RayTicket& t = msg.ticket;
   // From the PrimProcessor's send to here the answer waited in the queue.
   probe_->to(t, Stage::kPrimToShade, RayProbe::Part::kQueueing, clock_.now());
-  compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
-  settle();
+  co_await compute_for(t, Stage::kShade, tasks::words_cost(PrimToShade::kWords), "receive");
+  co_await settle();
   frame_.counters().count_ray(t.ray.kind);
   progress_.ray_back(clock_.now() - t.sent);
   probe_->end(t, clock_.now());
   if (t.first_sample) frame_.record_primary(t.ray.pixel, msg.found, msg.hit);
   if (!msg.found || t.ray.kind == RayKind::Shadow) {
-    shade(msg);  // no surface to look up: light reached or blocked, or the background
-    return;
+    co_await shade(msg);  // no surface to look up: light reached or blocked, or the background
+    co_return;
   }
   // The surface's characteristics come from the Shade bus (one ID per ray, L910).
   const auto id = static_cast<std::uint32_t>(msg.hit.material);
   auto& waiting = awaiting_[id];
   waiting.push_back(std::move(msg));
-  if (waiting.size() > 1) return;
-  compute(tasks::kAskPacketCost, "ask");
-  settle();
+  if (waiting.size() > 1) co_return;
+  co_await compute(tasks::kAskPacketCost, "ask");
+  co_await settle();
   if (!port_.request(id, clock_.now())) unasked_.push_back(id);
 }
 
@@ -114,39 +117,42 @@ void ShadeProcessor::send(RayTicket& t, const sc_core::sc_time& since) {
   t.sent = clock_.now();  // ray_latency_s and the probe's journey start here
   probe_->begin(t, t.sent);
   ShadeToShell msg{t};
+  // A put into a full queue would wait for a take (TimedFifo::put): the loop looked for room
+  // (has_room_by) and the send waits for nothing, so it never does.
+  if (out_queue_->full()) throw std::logic_error(std::string(name()) + ": sent into a full queue");
   modules::send_message(out, msg, over_link(ShadeToShell::kWords, since, t),
                         std::uint64_t{32} * ShadeToShell::kWords);
 }
 
-void ShadeProcessor::run() {
-  begin_frame();
-  // What it idles on, built once (a list built for each wait allocates).
-  const sc_core::sc_event_or_list idle_on =
-      input.fifo.put_event() | port_.changed_event() | out_queue_->get_event();
+modules::Resumable ShadeProcessor::program() {
+  co_await begin_frame();
+  // What it idles on: an answer, a SHADE packet, room in the queue to the ShellProcessor.
+  constexpr unsigned idle_on = kInput | kPort | kRoom;
   bool vision_left = true;
   for (;;) {
-    settle();
+    co_await settle();
     const sc_core::sc_time now = clock_.now();
     // Answers first: they finish pixels and free the ring.
     if (input.fifo.has_item_by(now)) {
       sc_core::sc_time taken;
       PrimToShade msg = input.fifo.get(now, taken);
-      clock_.catch_up(taken);
-      receive(std::move(msg));
+      co_await catch_up(taken);
+      co_await receive(std::move(msg));
       continue;
     }
     if (auto p = port_.take(now)) {
-      compute(tasks::words_cost(packet_words_[p->id]) + tasks::kPacketBookkeepingCost, "packet");
+      co_await compute(tasks::words_cost(packet_words_[p->id]) + tasks::kPacketBookkeepingCost,
+                       "packet");
       auto node = awaiting_.extract(p->id);
-      settle();
+      co_await settle();
       port_.release(*p, clock_.now());
       if (!node.empty())
-        for (const auto& msg : node.mapped()) shade(msg);
+        for (const auto& msg : node.mapped()) co_await shade(msg);
       continue;
     }
     if (!unasked_.empty() && port_.register_free(now)) {
-      compute(tasks::kAskPacketCost, "ask");
-      settle();
+      co_await compute(tasks::kAskPacketCost, "ask");
+      co_await settle();
       if (port_.request(unasked_.back(), clock_.now())) unasked_.pop_back();
       continue;
     }
@@ -157,7 +163,7 @@ void ShadeProcessor::run() {
       backlog_.pop_front();
       const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
-      compute(tasks::words_cost(ShadeToShell::kWords), "send");
+      co_await compute(tasks::words_cost(ShadeToShell::kWords), "send");
       send(t, since);
       continue;
     }
@@ -170,7 +176,8 @@ void ShadeProcessor::run() {
       }
       const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
-      compute(tasks::VisionRayTask::kCost + tasks::words_cost(ShadeToShell::kWords), "spawn");
+      co_await compute(tasks::VisionRayTask::kCost + tasks::words_cost(ShadeToShell::kWords),
+                       "spawn");
       t.tree = free_trees_.back();
       free_trees_.pop_back();
       ++trees_in_flight_;
@@ -189,12 +196,14 @@ void ShadeProcessor::run() {
     earliest(port_.next_arrival());
     const bool want_send = !backlog_.empty() || (vision_left && !free_trees_.empty());
     if (want_send) earliest(out_queue_->next_room_time());
-    idle(next, idle_on, !awaiting_.empty());
+    co_await idle(next, idle_on, !awaiting_.empty());
   }
   finished_ = true;
   finish_time_ = clock_.now();
-  clock_.sync();
-  if (done_event_) done_event_->notify(sc_core::SC_ZERO_TIME);
+  co_await settle();
+  // At its local time, which the machine's queue may have run ahead of SystemC's (a delta
+  // cycle later otherwise).
+  if (done_event_) done_event_->notify(clock_.now() - modules::systemc_now());
 }
 
 }  // namespace rtsim::platform::gaudet

@@ -43,7 +43,6 @@ class ShadeProcessor : public PertProcessor {
   /// Its parameters under `shade` ("pert.shade").
   static void declare_params(const modules::ParamDecls& shade);
 
-  SC_HAS_PROCESS(ShadeProcessor);
   /// The ShadeProcessor of PERT number `pert`; its data set through `port`, its input queue
   /// `input_depth` messages deep.
   ShadeProcessor(sc_core::sc_module_name name, const PertContext& context, int pert,
@@ -59,10 +58,11 @@ class ShadeProcessor : public PertProcessor {
   sc_core::sc_time finish_time() const { return finish_time_; }
 
  private:
-  void run();
+  /// Its loop (PertProcessor::start_program).
+  modules::Resumable program();
   /// Shading of one answer (its SHADE packet, if it needs one, is in).
-  void shade(const PrimToShade& msg);
-  void receive(PrimToShade msg);
+  modules::Resumable shade(const PrimToShade& msg);
+  modules::Resumable receive(PrimToShade msg);
   /// Numbers the ray, stamps its send time and puts it in the queue to the ShellProcessor, over
   /// the ring link (the send's cost, the words written since `since`, is charged by the caller,
   /// with whatever else the step costs).

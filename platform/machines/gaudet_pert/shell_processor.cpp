@@ -1,5 +1,8 @@
 #include "platform/machines/gaudet_pert/shell_processor.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "firmware/accel/gaudet_data_sets.hpp"
 #include "firmware/tasks/pert_task_costs.hpp"
 
@@ -44,7 +47,7 @@ void ShellProcessor::declare_params(const modules::ParamDecls& shell) {
 
 ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const PertContext& c, PacketPort& port,
                                std::size_t input_depth)
-    : PertProcessor(name, c.run),
+    : PertProcessor(name, c.run, c.on_queue),
       input("input", input_depth, ring_queue("shade_to_shell")),
       out("out"),
       tree_(c.tree),
@@ -60,25 +63,25 @@ ShellProcessor::ShellProcessor(sc_core::sc_module_name name, const PertContext& 
     const auto root = c.sets.shell.image.packet(0);
     local_root_.assign(root.begin(), root.end());
   }
-  SC_THREAD(run);
+  start_program(program());
 }
 
-void ShellProcessor::ask(std::uint32_t packet, int search) {
-  compute_for(searches_[static_cast<std::size_t>(search)].ticket, Stage::kShell,
-              tasks::kAskPacketCost, "ask");
+modules::Resumable ShellProcessor::ask(std::uint32_t packet, int search) {
+  co_await compute_for(searches_[static_cast<std::size_t>(search)].ticket, Stage::kShell,
+                       tasks::kAskPacketCost, "ask");
   if (packet >= waiting_.size()) waiting_.resize(std::size_t{packet} + 1);
   auto& w = waiting_[packet];
   w.push_back(search);
-  if (w.size() > 1) return;  // already asked for by another ray
+  if (w.size() > 1) co_return;  // already asked for by another ray
   ++packets_awaited_;
-  settle();
+  co_await settle();
   if (!port_.request(packet, clock_.now())) {
     overflow_.push_back(packet);
     overflow_peak_.note(overflow_.size());
   }
 }
 
-void ShellProcessor::begin(ShadeToShell msg) {
+modules::Resumable ShellProcessor::begin(ShadeToShell msg) {
   int slot = 0;
   while (searches_[static_cast<std::size_t>(slot)].active) ++slot;
   Search& s = searches_[static_cast<std::size_t>(slot)];
@@ -90,25 +93,25 @@ void ShellProcessor::begin(ShadeToShell msg) {
   s.inv_dir = Vec3(1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z);
   // Until now (taken) the ray waited in the input queue.
   probe_->to(s.ticket, Stage::kShadeToShell, RayProbe::Part::kQueueing, clock_.now());
-  compute_for(s.ticket, Stage::kShell,
-              tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
+  co_await compute_for(s.ticket, Stage::kShell,
+                       tasks::words_cost(ShadeToShell::kWords) + accel::kShellRaySetupCost, "ray");
   if (!accel::shell_search_possible(tree_, ray, s.ticket.t_min, s.ticket.ray.t_max)) {
-    finish(slot);
-    return;
+    co_await finish(slot);
+    co_return;
   }
   s.outstanding = 1;
   if (!root_local_) {
-    ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
-    return;
+    co_await ask(0, slot);  // SHELL_ARRAY[0]: the root's children (L662)
+    co_return;
   }
   // SHELL_ARRAY[0] from its own memory, read at one cycle a word as a FIFO's (L863).
   const std::vector<int> rays{slot};
   const ReceivedPacket root{
       .id = 0, .arrival = clock_.now(), .transfer_start = clock_.now(), .words = local_root_};
-  read_and_test(root, &rays);
+  co_await read_and_test(root, &rays);
 }
 
-void ShellProcessor::process(const ReceivedPacket& p) {
+modules::Resumable ShellProcessor::process(const ReceivedPacket& p) {
   const std::vector<int>* rays = nullptr;
   if (p.id < waiting_.size() && !waiting_[p.id].empty()) {
     // Taken out (a ray reading it may ask for it again); its place keeps an empty list's room.
@@ -117,15 +120,17 @@ void ShellProcessor::process(const ReceivedPacket& p) {
     --packets_awaited_;
     rays = &caught_for_;
   }
-  read_and_test(p, rays);
-  settle();
+  co_await read_and_test(p, rays);
+  co_await settle();
   port_.release(p, clock_.now());
 }
 
-void ShellProcessor::read_and_test(const ReceivedPacket& p, const std::vector<int>* rays) {
+modules::Resumable ShellProcessor::read_and_test(const ReceivedPacket& p,
+                                                 const std::vector<int>* rays) {
   ++packets_;
   const sc_core::sc_time read_start = clock_.now();
-  compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost, "packet");
+  co_await compute(tasks::words_cost(packet_words_[p.id]) + tasks::kPacketBookkeepingCost,
+                   "packet");
   const sc_core::sc_time read_end = clock_.now();
   if (rays) {
     // The packet's SHELL records, read once for every ray waiting for it (as its words were).
@@ -150,42 +155,42 @@ void ShellProcessor::read_and_test(const ReceivedPacket& p, const std::vector<in
       for (const auto& [shell, end] : shells_) {
         // A streamed packet: its record is tested once its words are in (the first ray waits,
         // the others find them in). Nothing else can be done meanwhile: latency.
-        idle_until(p.words_in(end), Wait::kData);
+        co_await idle_until(p.words_in(end), Wait::kData);
         children_.clear();
         const std::size_t before = s.leaves.size();
         accel::shell_box_task(shell, s.ticket.ray.ray, s.inv_dir, s.ticket.t_min,
                               s.ticket.ray.t_max, s.leaves, children_);
         ++box_tests_;
         ++counters_.box_tests;
-        compute_for(
+        co_await compute_for(
             s.ticket, Stage::kShell,
             accel::kShellBoxTestCost + tasks::kLeafShellAppendCost * (s.leaves.size() - before),
             "box test");
         s.outstanding += static_cast<int>(children_.size());
-        for (const std::uint32_t c : children_) ask(c, slot);
+        for (const std::uint32_t c : children_) co_await ask(c, slot);
       }
-      if (--s.outstanding == 0) finish(slot);
+      if (--s.outstanding == 0) co_await finish(slot);
     }
   }
 }
 
-void ShellProcessor::finish(int slot) {
+modules::Resumable ShellProcessor::finish(int slot) {
   Search& s = searches_[static_cast<std::size_t>(slot)];
-  compute_for(s.ticket, Stage::kShell, tasks::leaf_shell_sort_cost(s.leaves.size()), "sort");
+  co_await compute_for(s.ticket, Stage::kShell, tasks::leaf_shell_sort_cost(s.leaves.size()),
+                       "sort");
   accel::sort_leaf_shell_list(s.leaves);
   leaf_shells_ += s.leaves.size();
   if (s.leaves.size() > accel::kLeafShellListCapacity) ++over_capacity_;
   done_.push_back(slot);
 }
 
-void ShellProcessor::run() {
-  begin_frame();
-  // What it idles on, built once (a list built for each wait allocates).
-  const sc_core::sc_event_or_list starved_on = port_.changed_event() | input.fifo.put_event();
-  const sc_core::sc_event_or_list idle_on =
-      port_.changed_event() | input.fifo.put_event() | out_queue_->get_event();
+modules::Resumable ShellProcessor::program() {
+  co_await begin_frame();
+  // What it idles on: a packet, a ray, or (with a list to send) room in the output queue.
+  constexpr unsigned starved_on = kPort | kInput;
+  constexpr unsigned idle_on = kPort | kInput | kRoom;
   for (;;) {
-    settle();
+    co_await settle();
     const sc_core::sc_time now = clock_.now();
     // A finished search goes on to the PrimProcessor when its queue has room.
     if (!done_.empty() && out_queue_->has_room_by(now)) {
@@ -200,20 +205,24 @@ void ShellProcessor::run() {
         probe_->to(msg.ticket, Stage::kShellToPrim, RayProbe::Part::kQueueing, *room);
       const WritingAhead ahead(*this);
       const sc_core::sc_time since = clock_.now();
-      compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
-      modules::send_message(out, msg, over_link(msg.words(), since, msg.ticket),
-                            std::uint64_t{32} * msg.words());
+      co_await compute_for(msg.ticket, Stage::kShell, tasks::words_cost(msg.words()), "send");
+      const sc_core::sc_time arrival = over_link(msg.words(), since, msg.ticket);
+      // A put into a full queue would wait for a take (TimedFifo::put): the loop looked for room
+      // (has_room_by) and the send waits for nothing, so it never does.
+      if (out_queue_->full())
+        throw std::logic_error(std::string(name()) + ": sent into a full queue");
+      modules::send_message(out, msg, arrival, std::uint64_t{32} * msg.words());
       ++rays_;
       continue;
     }
     if (auto p = port_.take(now)) {
-      process(*p);
+      co_await process(*p);
       continue;
     }
     if (!overflow_.empty() && port_.register_free(now)) {
       const std::uint32_t id = overflow_.back();
       const sc_core::sc_time ask_start = clock_.now();
-      compute(tasks::kAskPacketCost, "ask");
+      co_await compute(tasks::kAskPacketCost, "ask");
       // Asked for every ray waiting for the ID, which till now waited for an ID register.
       if (id < waiting_.size()) {
         const std::vector<int>& w = waiting_[id];
@@ -223,7 +232,7 @@ void ShellProcessor::run() {
           probe_->shared(t, Stage::kShell, ask_start, clock_.now(), i, w.size());
         }
       }
-      settle();
+      co_await settle();
       if (port_.request(id, clock_.now())) overflow_.pop_back();
       continue;
     }
@@ -232,8 +241,8 @@ void ShellProcessor::run() {
     if (slot_free && input.fifo.has_item_by(now)) {
       sc_core::sc_time taken;
       ShadeToShell msg = input.fifo.get(now, taken);
-      clock_.catch_up(taken);
-      begin(std::move(msg));
+      co_await catch_up(taken);
+      co_await begin(std::move(msg));
       continue;
     }
     // Nothing to do now: wait for a packet, a ray, or room in the output queue.
@@ -248,9 +257,9 @@ void ShellProcessor::run() {
     // (L1060-L1062: waiting that a new ray could overlap is not latency).
     const bool for_bus = packets_awaited_ > 0;
     if (for_bus && slot_free && done_.empty())
-      idle_starved(next, starved_on);
+      co_await idle_starved(next, starved_on);
     else
-      idle(next, idle_on, for_bus);
+      co_await idle(next, idle_on, for_bus);
   }
 }
 

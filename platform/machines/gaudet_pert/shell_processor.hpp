@@ -40,7 +40,6 @@ class ShellProcessor : public PertProcessor {
   modules::MessageQueue<ShadeToShell> input;
   tlm_utils::simple_initiator_socket<ShellProcessor> out;
 
-  SC_HAS_PROCESS(ShellProcessor);
   /// `tree`: what the control processor knows of the data sets (how many SHELL and PRIM
   /// packets there are); `record_words`: words per SHELL record.
   /// `root_packet`: packet 0's words, copied into its local memory if `root_local` is set.
@@ -66,13 +65,15 @@ class ShellProcessor : public PertProcessor {
     int outstanding = 0;  ///< packets asked for and not yet tested
     bool active = false;
   };
-  void run();
-  void begin(ShadeToShell msg);
-  void process(const ReceivedPacket& p);
+  /// Its loop (PertProcessor::start_program): sends finished lists, reads packets, asks for
+  /// stacked IDs, takes rays.
+  modules::Resumable program();
+  modules::Resumable begin(ShadeToShell msg);
+  modules::Resumable process(const ReceivedPacket& p);
   /// Reads packet `p` (its words, one cycle each) and box-tests its SHELLs for `rays`.
-  void read_and_test(const ReceivedPacket& p, const std::vector<int>* rays);
-  void ask(std::uint32_t packet, int search);
-  void finish(int search);
+  modules::Resumable read_and_test(const ReceivedPacket& p, const std::vector<int>* rays);
+  modules::Resumable ask(std::uint32_t packet, int search);
+  modules::Resumable finish(int search);
 
   const accel::ShellTree& tree_;
   const std::vector<std::uint32_t>& packet_words_;
