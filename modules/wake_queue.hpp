@@ -26,7 +26,7 @@
 // ahead (modules::Processor's event-driven mode) does not depend on which of two processors due
 // at the same time runs first, because every message it takes was put before its stamp.
 // Used by ullner-array's 1024 processors (node.process = queue) and gaudet-pert's PERT
-// processors (pert.process = queue); tests/ullner_array_test.cpp and tests/gaudet_sync_test.cpp
+// processors (process = queue); tests/ullner_array_test.cpp and tests/gaudet_sync_test.cpp
 // show their statistics those of SystemC methods, tests/wake_queue_test.cpp where it runs ahead
 // and where it stops.
 #include <cstdint>
@@ -61,6 +61,9 @@ class WakeQueue : public sc_core::sc_module {
   std::size_t add(Client& client);
   /// Client `k` runs at `t` (absolute; now or later), unless it has a wake pending by then.
   void wake_at(std::size_t k, const sc_core::sc_time& t);
+  /// Client `k`'s pending wake, if any, is dropped: it runs when a wake is asked for again (an
+  /// alarm moved later: cancel, then wake_at).
+  void cancel(std::size_t k) { pending_[k] = {}; }
   /// Wakes run so far (the clients' activations).
   std::uint64_t wakes() const { return wakes_; }
 

@@ -44,7 +44,8 @@ struct BusAndBic {
   BusAndBic(const std::string& id_registers, bool adaptive,
             const std::vector<std::string>& overrides = {}, std::uint32_t stream_unit = 0)
       : registry(declared(id_registers, overrides, stream_unit > 0)),
-        bp("bp", rtsim::modules::ModuleParams(registry, "bp"), 64, sc_time(0, SC_NS), adaptive),
+        bp("bp", rtsim::modules::ModuleParams(registry, "bp"), 64, sc_time(0, SC_NS), adaptive,
+           /*on_queue=*/false),
         bic(rtsim::modules::ModuleParams(registry, "bic"), stream_unit) {
     bp.attach(bic);
   }

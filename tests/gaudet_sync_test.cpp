@@ -12,8 +12,8 @@
 // its port or queues.
 // Likewise the Broadcast Processors, which wake only at the strobes they plan
 // (broadcast.wakes = needed), give the answers of buses that wake at every change.
-// And the processors' programs on the machine's event queue (pert.process = queue) give the
-// answers of programs that SystemC runs in a method each.
+// And the programs of the processors and the buses on the machine's event queue (process =
+// queue) give the answers of programs that SystemC runs in a method each.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -143,11 +143,10 @@ TEST(GaudetSync, BusesThatPlanAheadGiveTheAnswersOfBusesThatWakeAtEveryChange) {
   same_answers("wakes", all, "-p broadcast.wakes=every_change", "-p broadcast.wakes=needed", 1.0);
 }
 
-// The PERT processors' programs on the machine's event queue (pert.process = queue, the
-// default), which runs them ahead of SystemC while nothing else is due, give the answers of
-// programs that SystemC runs as a method each (method), on the runs above (direct memory: a
-// processor's request changes its own port, which SystemC tells it a delta cycle later), one
-// PERT, a quantum, and waits after every computation.
+// The programs of the PERT processors and the Broadcast Processors on the machine's event queue
+// (process = queue, the default), which runs them ahead of SystemC while nothing else is due,
+// give the answers of programs that SystemC runs as a method each (method), on the runs above
+// (direct memory: no buses), one PERT, a quantum, and waits after every computation.
 TEST(GaudetSync, ProgramsOnTheQueueGiveTheAnswersOfProgramsInMethods) {
   std::vector<Case> all = cases();
   all.push_back({"npp-1", "--scene builtin:npp-412 --width 64 --height 64 -p pert_count=1"});
@@ -157,6 +156,5 @@ TEST(GaudetSync, ProgramsOnTheQueueGiveTheAnswersOfProgramsInMethods) {
   all.push_back({"teapot-computations",
                  "--scene " + rtsim::test::shared_path("scenes/teapot-s2.nff") +
                      " --width 64 --height 64 -p pert_count=8 -p pert.sync=computations"});
-  same_answers("process", all, "-p pert.process=method", "-p pert.process=queue", 0.8,
-               "delta_cycles");
+  same_answers("process", all, "-p process=method", "-p process=queue", 0.8, "delta_cycles");
 }

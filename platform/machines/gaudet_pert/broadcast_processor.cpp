@@ -58,7 +58,7 @@ void BroadcastProcessor::declare_params(const modules::ParamDecls& bus) {
 BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
                                        const modules::ModuleParams& params,
                                        std::size_t memory_words, sc_core::sc_time load_word_time,
-                                       bool adaptive)
+                                       bool adaptive, bool on_queue)
     : sc_core::sc_module(name),
       modules::StatGroup(sc_core::sc_module::name()),
       // The BP streams its memory (L875): the loop's timings already include the reads, so a
@@ -89,7 +89,32 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
                          kIdTime.spec().default_value + " and " + kLoopReset.spec().default_value +
                          ", seed 001 L959 and L962)");
   }
-  SC_THREAD(run);
+  host_.start(program());
+  if (!on_queue) SC_METHOD(run);
+}
+
+void BroadcastProcessor::join(modules::WakeQueue& queue) {
+  queue_ = &queue;
+  client_ = queue.add(*this);
+  // Counted under its method's name, as off the queue.
+  activations_ = &modules::activation_count(*this, "run");
+}
+
+void BroadcastProcessor::run() {
+  // A return from a wait counts as a thread's would; the first activation starts the loop.
+  if (host_.resume()) modules::count_activation();
+}
+
+void BroadcastProcessor::woken() {
+  if (host_.resume()) ++*activations_;
+}
+
+BroadcastProcessor::Suspend BroadcastProcessor::wait_until(const sc_core::sc_time& t) {
+  if (queue_ != nullptr)
+    queue_->wake_at(client_, t);
+  else  // a delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp)
+    next_trigger(t - modules::systemc_now());
+  return {*this};
 }
 
 void BroadcastProcessor::attach(BusInterface& bic) {
@@ -203,6 +228,12 @@ void BroadcastProcessor::requested(std::uint32_t id, const sc_core::sc_time& t) 
 
 void BroadcastProcessor::ring_at(const sc_core::sc_time& t) {
   planned_ = t;
+  if (queue_ != nullptr) {
+    // Moved, sooner or later, as an event notified again; a time passed is now, as below.
+    queue_->cancel(client_);
+    queue_->wake_at(client_, std::max(t, modules::sim_now()));
+    return;
+  }
   // A delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp).
   const sc_core::sc_time now = modules::systemc_now();
   alarm_.cancel();  // a pending notification stays if later than a new one's: cancel it first
@@ -225,15 +256,19 @@ sc_core::sc_time BroadcastProcessor::first_strobe_after(std::uint32_t key,
   return first;
 }
 
-void BroadcastProcessor::sleep(std::optional<sc_core::sc_time> until, Sleep why) {
+modules::Resumable BroadcastProcessor::sleep(std::optional<sc_core::sc_time> until, Sleep why) {
   sleep_ = why;
   if (until) {
     ring_at(*until);
   } else {
     planned_ = sc_core::sc_max_time();
-    alarm_.cancel();
+    if (queue_ != nullptr)
+      queue_->cancel(client_);
+    else
+      alarm_.cancel();
   }
-  modules::sim_wait(alarm_);
+  if (queue_ == nullptr) next_trigger(alarm_);
+  co_await Suspend{*this};
   sleep_ = Sleep::kBusy;
 }
 
@@ -411,14 +446,18 @@ void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
     }
 }
 
-void BroadcastProcessor::run() {
-  modules::sim_wait(start_);
-  if (slots_.empty()) return;
+modules::Resumable BroadcastProcessor::program() {
+  // On the queue it runs first at the frame's start.
+  if (queue_ == nullptr) {
+    next_trigger(start_);
+    co_await Suspend{*this};
+  }
+  if (slots_.empty()) co_return;
   for (;;) {
     // A request withdrawn now is still met by a strobe now (bus_interface.hpp).
     const bool withdrawals = withdrawals_pending();
     if (total_demand_ <= 0 && !withdrawals) {
-      sleep(std::nullopt, Sleep::kUntil);
+      co_await sleep(std::nullopt, Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
@@ -430,7 +469,7 @@ void BroadcastProcessor::run() {
     const sc_core::sc_time now = std::max(modules::sim_now(), packet_end_);
     if (n == slots_.size() && total_demand_ <= 0) {
       // Only withdrawn requests, which no strobe can meet any more: as with none.
-      sleep(std::nullopt, Sleep::kUntil);
+      co_await sleep(std::nullopt, Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
@@ -438,13 +477,13 @@ void BroadcastProcessor::run() {
       // Every request is valid only from beyond this cycle: sleep until the first of them (or
       // a new request), instead of strobing a cycle of slots no comparator can match yet.
       const auto first = first_request_time();
-      sleep(now + (first && *first > now ? *first - now : minimum_cycle()), Sleep::kUntil);
+      co_await sleep(now + (first && *first > now ? *first - now : minimum_cycle()), Sleep::kUntil);
       skip_to(modules::sim_now());
       continue;
     }
     const Cursor c = after(cursor_, n);
     if (c.t > modules::sim_now()) {
-      sleep(c.t, Sleep::kUntil);
+      co_await sleep(c.t, Sleep::kUntil);
       // Woken early, at the slot of a request made since: nothing was wanted before now, and
       // the plan from here finds that slot at once.
       if (modules::sim_now() < c.t) {
@@ -485,7 +524,7 @@ void BroadcastProcessor::run() {
     }
     // The loop is busy until the slot ends (a packet no one listens to, in the modes that send
     // them all; the ID alone; or, waking at every change, any packet).
-    if (cursor_.t > modules::sim_now()) modules::sim_wait(cursor_.t - modules::sim_now());
+    if (cursor_.t > modules::sim_now()) co_await wait_until(cursor_.t);
     // A wanted ID missed: every BIC that wants one may be full until its processor frees a
     // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
     // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a
@@ -497,7 +536,7 @@ void BroadcastProcessor::run() {
         const auto change = next_change(now);
         if (!change || *change > now) {
           plan_missed_strobes();
-          sleep(change, Sleep::kAnyChange);
+          co_await sleep(change, Sleep::kAnyChange);
           count_missed_strobes(modules::sim_now());
           skip_to(modules::sim_now());
         }

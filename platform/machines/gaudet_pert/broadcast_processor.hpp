@@ -18,7 +18,7 @@
 // out (breadth-first, depth-first or random, Fig. 6-11).
 //
 // Events only where order matters (DESIGN.md): the loop runs arithmetically through IDs that no
-// Bus Interface Controller holds, and the thread wakes only at the strobe of an ID some BIC
+// Bus Interface Controller holds, and the loop wakes only at the strobe of an ID some BIC
 // asked for. It plans that strobe as it strobes the one before (from the end of the packet it
 // sends), and a request whose slot comes sooner moves its alarm instead of waking it to plan
 // again; a freed buffer wakes it only while every strobe misses for want of one. The bus is
@@ -35,7 +35,9 @@
 
 #include "modules/memory.hpp"
 #include "modules/module_params.hpp"
+#include "modules/resumable.hpp"
 #include "modules/statistics.hpp"
+#include "modules/wake_queue.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
 
 namespace rtsim::platform::gaudet {
@@ -47,20 +49,28 @@ struct BroadcastTiming {
 
 /// The statistics group of its name: busy while the bus carries packet words (its utilisation),
 /// ids, cycles, packets, packet_words, hit_packets, captures.
-class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup {
+class BroadcastProcessor : public sc_core::sc_module,
+                           public modules::StatGroup,
+                           private modules::WakeQueue::Client {
  public:
   /// The data set's memory module; the control processor loads it through memory.socket.
   modules::Memory memory;
 
   /// Its parameters, under `bus` ("broadcast": every bus; "shell_bus": one): the timings of
-  /// the loop (L957-L962), and when its thread wakes (a simulator setting).
+  /// the loop (L957-L962), and when its loop wakes (a simulator setting).
   static void declare_params(const modules::ParamDecls& bus);
 
   SC_HAS_PROCESS(BroadcastProcessor);
   /// `params`: its own (ModuleParams under its name); `load_word_time` the control processor's
-  /// download rate into its memory.
+  /// download rate into its memory. Its loop is a program (modules/resumable.hpp) that an
+  /// SC_METHOD of its own runs, or, `on_queue`, the machine's event queue (join), with the PERT
+  /// processors' programs.
   BroadcastProcessor(sc_core::sc_module_name name, const modules::ModuleParams& params,
-                     std::size_t memory_words, sc_core::sc_time load_word_time, bool adaptive);
+                     std::size_t memory_words, sc_core::sc_time load_word_time, bool adaptive,
+                     bool on_queue);
+  /// Elaboration (made `on_queue`): its loop runs on `queue`, which starts it at the frame's
+  /// start.
+  void join(modules::WakeQueue& queue);
 
   /// Elaboration: a BIC listening on this bus.
   void attach(BusInterface& bic);
@@ -120,7 +130,21 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
     std::size_t pos = 0;
     sc_core::sc_time t = sc_core::SC_ZERO_TIME;  ///< when slot `pos` starts
   };
+  /// Its SC_METHOD (not on the queue): resumes the loop where it waits.
   void run();
+  /// The queue's activation (on the queue).
+  void woken() override;
+  /// The loop (what its thread did).
+  modules::Resumable program();
+  /// co_await: the loop is run again when set_wake() said (wake_at_time, sleep).
+  struct Suspend {
+    BroadcastProcessor& bp;
+    bool await_ready() const noexcept { return false; }
+    void await_suspend(std::coroutine_handle<> h) { bp.host_.suspended(h); }
+    void await_resume() const noexcept {}
+  };
+  /// The loop waits until `t` (now or later) for nothing else.
+  Suspend wait_until(const sc_core::sc_time& t);
   /// What the loop sleeps for, so that a BIC's change wakes it only when it could change the
   /// plan (each wake is a thread switch and a new plan; most requests are for slots after the
   /// one it sleeps for, and most freed buffers change nothing it planned).
@@ -131,7 +155,7 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   };
   /// Sleeps until `until` (none: for ever) or until the alarm is moved sooner, as `why`; then
   /// sleep_ is kBusy again.
-  void sleep(std::optional<sc_core::sc_time> until, Sleep why);
+  modules::Resumable sleep(std::optional<sc_core::sc_time> until, Sleep why);
   /// Sets the alarm the sleeping loop wakes at to `t` (now or later).
   void ring_at(const sc_core::sc_time& t);
   /// The first strobe of `key`'s slots after `t` (its register valid from t), the loop going on
@@ -207,7 +231,11 @@ class BroadcastProcessor : public sc_core::sc_module, public modules::StatGroup 
   std::uint64_t idle_cycle_packets_ = 0, idle_cycle_words_ = 0;
   Cursor cursor_;
   sc_core::sc_event start_;
-  sc_core::sc_event alarm_;  ///< what the loop sleeps on (sleep, ring_at)
+  sc_core::sc_event alarm_;  ///< what the loop sleeps on (sleep, ring_at; not on the queue)
+  modules::ResumableHost host_;
+  modules::WakeQueue* queue_ = nullptr;  ///< the queue it runs on (join), if any
+  std::size_t client_ = 0;
+  std::uint64_t* activations_ = nullptr;
   Sleep sleep_ = Sleep::kBusy;
   /// The end of the frame once the loop has run on to it (run_to): busy time is recorded up to
   /// it (a direct-mode packet that starts before it ends after it).

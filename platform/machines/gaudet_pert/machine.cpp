@@ -32,6 +32,16 @@ namespace {
 
 // The machine's own parameters, each named once: how many PERTs, how the data sets reach them,
 // the words of their records.
+const modules::ChoiceParam kProcess(
+    {.name = "process",
+     .default_value = "queue",
+     .allowed = {"queue", "method"},
+     .description =
+         "How the simulator runs the programs of the PERT processors and the Broadcast "
+         "Processors: on the machine's own event queue, which runs them ahead of SystemC while "
+         "nothing else is due (queue), or as an SC_METHOD each (method: the reference). The "
+         "statistics and the image are the same (tests/gaudet_sync_test.cpp)",
+     .source = "simulator setting, not of the machine"});
 const modules::CountParam kPertCount(
     {.name = "pert_count",
      .default_value = "1",
@@ -146,7 +156,7 @@ struct PertPlatform {
   BroadcastOrder order = BroadcastOrder::kBreadth;
   std::vector<std::unique_ptr<gaudet::BroadcastProcessor>> buses;  // shade, shell, prim
   std::vector<std::unique_ptr<gaudet::Pert>> perts;
-  std::unique_ptr<modules::WakeQueue> queue;  ///< the processors' programs (pert.process = queue)
+  std::unique_ptr<modules::WakeQueue> queue;  ///< the programs (process = queue)
   std::unique_ptr<gaudet::ControlProcessor> control;
 
   bool broadcasting() const { return mode != BroadcastMode::kDirect; }
@@ -300,6 +310,7 @@ void GaudetPert::declare_params(params::ParamRegistry& r) const {
   // records. Every module declares its own below (DESIGN.md "Configuration").
   const modules::ParamDecls machine(r, "", /*per_instance=*/false);
   machine.add(kPertCount);
+  machine.add(kProcess);
   machine.add(kMode);
   machine.add(kOrder);
   machine.add(kRandomSeed);
@@ -355,6 +366,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
   p.mode = gaudet::broadcast_mode(machine.get(kMode));
   p.order = gaudet::broadcast_order(machine.get(kOrder));
   const int pert_count = static_cast<int>(machine.get(kPertCount));
+  const bool on_queue = machine.get(kProcess) == "queue";
   const auto order_seed = static_cast<std::uint64_t>(machine.get(kRandomSeed));
   const auto* search = dynamic_cast<const functional::ShellSearch*>(twin.tracer.get());
   if (!search) throw std::logic_error("gaudet-pert: the twin's tracer is not a shell search");
@@ -387,7 +399,7 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
       const std::string bus_name = std::string(kKinds[b]) + "_bus";
       auto bp = std::make_unique<gaudet::BroadcastProcessor>(
           bus_name.c_str(), modules::ModuleParams(r, bus_name), set_of[b]->memory.size(),
-          load_word_time, p.mode == BroadcastMode::kAdaptive);
+          load_word_time, p.mode == BroadcastMode::kAdaptive, on_queue);
       bp->on_packet = [&trace, bus_name](std::uint32_t id, sc_core::sc_time start,
                                          sc_core::sc_time dur, std::size_t captures) {
         trace.slice(bus_name, "packet", start, dur, {{"id", id}, {"captures", captures}});
@@ -404,7 +416,8 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
                               .test_cost = test_cost,
                               .buses = {},
                               .progress = progress,
-                              .probe = probe};
+                              .probe = probe,
+                              .on_queue = on_queue};
   for (auto& bp : p.buses) context.buses.push_back(bp.get());
   for (int i = 0; i < pert_count; ++i)
     p.perts.push_back(
@@ -427,12 +440,13 @@ RunResult GaudetPert::run(scenes::Scene& scene, FunctionalTwin& twin,
     pert->shell->set_frame_start(p.control->frame_start());
     pert->prim->set_frame_start(p.control->frame_start());
   }
-  // pert.process = queue: the processors' programs on one event queue, started with the frame.
-  for (auto& pert : p.perts) {
-    if (!pert->on_queue()) continue;
-    if (!p.queue)
-      p.queue = std::make_unique<modules::WakeQueue>("pert_queue", p.control->frame_start());
-    pert->join(*p.queue);
+  // process = queue: the buses' and the processors' programs on one event queue, started with
+  // the frame, the buses first (SystemC started them first: their start events are notified
+  // first).
+  if (on_queue) {
+    p.queue = std::make_unique<modules::WakeQueue>("machine_queue", p.control->frame_start());
+    for (auto& bus : p.buses) bus->join(*p.queue);
+    for (auto& pert : p.perts) pert->join(*p.queue);
   }
 
   run.simulate();

@@ -42,16 +42,6 @@ const modules::ChoiceParam kSync(
          "statistics and the image are the same either way (tests/gaudet_sync_test.cpp); the "
          "first waits about a third less. Above quantum 0 the quantum decides",
      .source = "simulator setting, not of the machine"});
-const modules::ChoiceParam kProcess(
-    {.name = "process",
-     .default_value = "queue",
-     .allowed = {"queue", "method"},
-     .description =
-         "How the simulator runs the PERT processors' programs: on the machine's own event "
-         "queue, which runs them ahead of SystemC while nothing else is due (queue), or as an "
-         "SC_METHOD each (method: the reference). The statistics and the image are the same "
-         "(tests/gaudet_sync_test.cpp)",
-     .source = "simulator setting, not of the machine"});
 /// Its three processors (their names and their parameters' paths), in ring order, and its links.
 constexpr const char* kShade = "shade";
 constexpr const char* kShell = "shell";
@@ -66,7 +56,6 @@ void Pert::declare_params(const modules::ParamDecls& pert) {
   PrimProcessor::declare_params(pert.sub(kPrim));
   pert.add(kFirstAccess);
   pert.add(kSync);
-  pert.add(kProcess);
   for (const auto* q : {&kShadeToShell, &kShellToPrim, &kPrimToShade}) pert.add(*q);
   // The links the messages cross into those queues: FIFOs a 32-bit word wide, written a word
   // per cycle, so a message arrives as its sender writes its last word.
@@ -101,11 +90,9 @@ Pert::Pert(sc_core::sc_module_name name, int index, const PertContext& c)
                                                 set_of[k]->order.size(), c.words.id_list_entry);
     }
   }
-  PertContext own = c;
-  own.on_queue = on_queue_ = params.get(kProcess) == "queue";
-  shade = std::make_unique<ShadeProcessor>(kShade, own, index, *ports[0], params.get(kPrimToShade));
-  shell = std::make_unique<ShellProcessor>(kShell, own, *ports[1], params.get(kShadeToShell));
-  prim = std::make_unique<PrimProcessor>(kPrim, own, *ports[2], params.get(kShellToPrim));
+  shade = std::make_unique<ShadeProcessor>(kShade, c, index, *ports[0], params.get(kPrimToShade));
+  shell = std::make_unique<ShellProcessor>(kShell, c, *ports[1], params.get(kShadeToShell));
+  prim = std::make_unique<PrimProcessor>(kPrim, c, *ports[2], params.get(kShellToPrim));
   for (std::size_t k = 0; k < 3; ++k)
     links[k] = std::make_unique<modules::Link>(params.sub(kLink).sub(kLinks[k]));
   shade->set_output_link(*links[0]);

@@ -32,9 +32,7 @@ class Pert : public sc_core::sc_module {
   /// PERT number `index` (it renders scanlines index, index + N, ..., L938).
   Pert(sc_core::sc_module_name name, int index, const PertContext& context);
 
-  /// Whether its processors' programs run on the machine's event queue (pert.process = queue).
-  bool on_queue() const { return on_queue_; }
-  /// Elaboration (on_queue()): its processors join `queue`.
+  /// Elaboration (the context's on_queue): its processors join `queue`.
   void join(modules::WakeQueue& queue);
 
   /// The ring's links, in front of those queues: shade_to_shell, shell_to_prim, prim_to_shade
@@ -47,9 +45,6 @@ class Pert : public sc_core::sc_module {
   std::unique_ptr<ShadeProcessor> shade;
   std::unique_ptr<ShellProcessor> shell;
   std::unique_ptr<PrimProcessor> prim;
-
- private:
-  bool on_queue_ = false;
 };
 
 }  // namespace rtsim::platform::gaudet

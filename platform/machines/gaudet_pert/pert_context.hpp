@@ -30,7 +30,7 @@ struct PertContext {
   std::vector<BroadcastProcessor*> buses;
   FrameProgress& progress;
   RayProbe& probe;
-  /// pert.process = queue: the processors' programs run on the machine's event queue.
+  /// process = queue: the processors' programs run on the machine's event queue.
   bool on_queue = false;
 };
 

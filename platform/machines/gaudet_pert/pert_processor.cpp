@@ -50,7 +50,7 @@ void PertProcessor::join(modules::WakeQueue& queue) {
   queue_ = &queue;
   client_ = queue.add(*this);
   if (listen_) listen_();
-  // Counted under its method's name, as pert.process = method counts it.
+  // Counted under its method's name, as process = method counts it.
   activations_ = &modules::activation_count(*this, "run");
 }
 

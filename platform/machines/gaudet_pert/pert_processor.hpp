@@ -108,7 +108,7 @@ class PertProcessor : public modules::Processor,
       output.listen_takes(this);
     };
   }
-  /// Elaboration (pert.process = queue; made with `on_queue`): its program runs on `queue`,
+  /// Elaboration (process = queue; made with `on_queue`): its program runs on `queue`,
   /// which starts it at the frame's start.
   void join(modules::WakeQueue& queue);
   /// When its program waits for simulated time to reach its local time (pert.sync).
@@ -134,7 +134,7 @@ class PertProcessor : public modules::Processor,
   PertProcessor(const sc_core::sc_module_name& name, MachineRun& run, bool on_queue);
 
   // Its program (what a thread's loop was): a coroutine (modules/resumable.hpp) that goes on
-  // where it waits, run by an SC_METHOD of its own (pert.process = method) or by the machine's
+  // where it waits, run by an SC_METHOD of its own (process = method) or by the machine's
   // event queue (queue, modules/wake_queue.hpp). Every wait below is co_awaited: it asks to be
   // run again when a thread's wait() would have woken the thread -- of SystemC (next_trigger),
   // or of the queue (wake_at, and its listeners for what SystemC events would signal) -- and the
@@ -320,9 +320,9 @@ class PertProcessor : public modules::Processor,
   modules::Counter rays_{*this, "rays", "rays this processor finished its part of"};
 
  private:
-  /// Its SC_METHOD (pert.process = method): resumes the program where it waits.
+  /// Its SC_METHOD (process = method): resumes the program where it waits.
   void run();
-  /// The queue's activation (pert.process = queue).
+  /// The queue's activation (process = queue).
   void woken() override;
   void port_changed() override;
   void item_put(int port, const sc_core::sc_time& stamp) override;
@@ -331,7 +331,7 @@ class PertProcessor : public modules::Processor,
   void wake_at_local_time();
   /// A wait's end: run again at `until` (if given) or when one of `wakes` happens.
   void wake_on(std::optional<sc_core::sc_time> until, unsigned wakes);
-  /// The SystemC events of `wakes`, as a list made once (pert.process = method).
+  /// The SystemC events of `wakes`, as a list made once (process = method).
   const sc_core::sc_event_or_list& events_of(unsigned wakes);
   /// After local time moved on: the wait LocalClock::advance() makes for a thread that waits
   /// (waits_: a quantum ahead, or at every computation at quantum 0 with pert.sync =
