@@ -23,22 +23,41 @@
 #include <coroutine>
 #include <cstddef>
 #include <exception>
+#include <new>
 #include <utility>
-#include <vector>
 
 namespace rtsim::modules {
 
-/// Coroutine frames by size, reused: a frame freed is the next of its size made. Programs run in
-/// SystemC's thread only (one simulation a process).
+/// Coroutine frames by size, reused: a frame freed is the next of its size made (a list through
+/// the free frames themselves, by size class). Programs run in SystemC's thread only (one
+/// simulation a process).
 class FramePool {
  public:
-  static void* get(std::size_t n);
-  static void put(void* p, std::size_t n) noexcept;
+  static void* get(std::size_t n) {
+    const std::size_t c = (n + kGrain - 1) / kGrain;
+    if (c >= kClasses || free_[c] == nullptr) return fresh(c, n);
+    Free* f = free_[c];
+    free_[c] = f->next;
+    return f;
+  }
+  static void put(void* p, std::size_t n) noexcept {
+    const std::size_t c = (n + kGrain - 1) / kGrain;
+    if (c >= kClasses) {
+      ::operator delete(p);
+      return;
+    }
+    free_[c] = new (p) Free{free_[c]};
+  }
 
  private:
+  struct Free {
+    Free* next;
+  };
   static constexpr std::size_t kGrain = 64;
   static constexpr std::size_t kClasses = 64;  ///< frames up to 4 KiB are pooled
-  static std::vector<void*>& free_list(std::size_t size_class);
+  /// A frame of `n` bytes (size class `c`) from the heap.
+  static void* fresh(std::size_t c, std::size_t n);
+  inline static Free* free_[kClasses] = {};
 };
 
 class [[nodiscard]] Resumable {

@@ -40,7 +40,7 @@ const modules::ChoiceParam kWakes(
      .default_value = "needed",
      .allowed = {"needed", "every_change"},
      .description =
-         "When the Broadcast Processor's thread wakes to plan its next strobe: only at the strobe "
+         "When the Broadcast Processor's loop wakes to plan its next strobe: only at the strobe "
          "it planned, which a request for a sooner slot moves (needed), or at every request, "
          "every freed buffer and every packet's end as well (every_change: the reference). The "
          "statistics and the image are the same either way (tests/gaudet_sync_test.cpp); the "

@@ -294,11 +294,11 @@ class PertProcessor : public modules::Processor,
   Synced compute_for(RayTicket& t, Stage stage, const Cost& c, std::string_view what) {
     hop("ray", flow_base_ | t.id);
     if (t.journey == modules::LatencyProbe::kNoJourney) {
-      Processor::compute(c, what, {{"ray", t.id}, {"pert", pert_}});
+      compute_of(t, c, what);
       return advanced();
     }
     probe_->to(t, stage, RayProbe::Part::kQueueing, clock_.now());
-    Processor::compute(c, what, {{"ray", t.id}, {"pert", pert_}});
+    compute_of(t, c, what);
     probe_->to(t, stage, RayProbe::Part::kService, clock_.now());
     return advanced();
   }
@@ -320,6 +320,14 @@ class PertProcessor : public modules::Processor,
   modules::Counter rays_{*this, "rays", "rays this processor finished its part of"};
 
  private:
+  /// Processor::compute for ray `t`, its trace slice naming the ray and the PERT (the names are
+  /// made only when a trace is written: a ray's every step comes here).
+  void compute_of(const RayTicket& t, const Cost& c, std::string_view what) {
+    if (traced_)
+      Processor::compute(c, what, {{"ray", t.id}, {"pert", pert_}});
+    else
+      Processor::compute(c, what);
+  }
   /// Its SC_METHOD (process = method): resumes the program where it waits.
   void run();
   /// The queue's activation (process = queue).
