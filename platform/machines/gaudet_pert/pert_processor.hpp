@@ -13,10 +13,11 @@
 // waiting with nothing else to do (L1060-L1062): had a ray come, the processor would have worked
 // on it during the wait. In the processor's accounts (modules::Processor) it is waiting for work.
 //
-// Its firmware is a program (a C++20 coroutine, modules/resumable.hpp) that an SC_METHOD runs:
-// written as a thread's loop, it waits where a thread would (co_await), without a stack of its
-// own. Every wait is one a thread would make, at the same simulated time and on the same events,
-// so its answers are a thread's (the 27 gaudet-pert comparison setups, docs/benchmarks.md).
+// Its firmware is a program (a C++20 coroutine, modules/resumable.hpp) that the machine's event
+// queue runs (process = queue), or an SC_METHOD of its own (method): written as a thread's loop,
+// it waits where a thread would (co_await), without a stack of its own. Every wait is one a
+// thread would make, at the same simulated time and on the same changes, so its answers are a
+// thread's (the 27 gaudet-pert comparison setups, docs/benchmarks.md "stop 72").
 //
 // At quantum 0 it waits for simulated time to reach its local time only before it interacts
 // with another module: its BIC (a request, a take, a release, a withdrawal), its queues (a look,
