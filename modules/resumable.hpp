@@ -18,8 +18,8 @@
 // host.suspended(h) and then asks for the next activation (next_trigger in the method's
 // context, or the queue's wake_at). An exception in the program (simulated time running out)
 // leaves resume(), as a thread's would leave its thread.
-// Used by gaudet-pert's PERT processors and Broadcast Processors (pert_processor.hpp,
-// broadcast_processor.hpp).
+// Used through modules/resumable_process.hpp by gaudet-pert's PERT processors and Broadcast
+// Processors (pert_processor.hpp, broadcast_processor.hpp).
 #include <coroutine>
 #include <cstddef>
 #include <exception>

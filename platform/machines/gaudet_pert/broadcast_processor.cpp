@@ -89,33 +89,15 @@ BroadcastProcessor::BroadcastProcessor(sc_core::sc_module_name name,
                          kIdTime.spec().default_value + " and " + kLoopReset.spec().default_value +
                          ", seed 001 L959 and L962)");
   }
-  host_.start(program());
+  process_.start(program());
   if (!on_queue) SC_METHOD(run);
 }
 
-void BroadcastProcessor::join(modules::WakeQueue& queue) {
-  queue_ = &queue;
-  client_ = queue.add(*this);
-  // Counted under its method's name, as off the queue.
-  activations_ = &modules::activation_count(*this, "run");
-}
+void BroadcastProcessor::join(modules::WakeQueue& queue) { process_.join(queue, *this, *this); }
 
-void BroadcastProcessor::run() {
-  // A return from a wait counts as a thread's would; the first activation starts the loop.
-  if (host_.resume()) modules::count_activation();
-}
+void BroadcastProcessor::run() { process_.resume_in_method(); }
 
-void BroadcastProcessor::woken() {
-  if (host_.resume()) ++*activations_;
-}
-
-BroadcastProcessor::Suspend BroadcastProcessor::wait_until(const sc_core::sc_time& t) {
-  if (queue_ != nullptr)
-    queue_->wake_at(client_, t);
-  else  // a delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp)
-    next_trigger(t - modules::systemc_now());
-  return {*this};
-}
+void BroadcastProcessor::woken() { process_.resume_from_queue(); }
 
 void BroadcastProcessor::attach(BusInterface& bic) {
   modules::connect(name(), bic.name(), "broadcast");
@@ -228,10 +210,10 @@ void BroadcastProcessor::requested(std::uint32_t id, const sc_core::sc_time& t) 
 
 void BroadcastProcessor::ring_at(const sc_core::sc_time& t) {
   planned_ = t;
-  if (queue_ != nullptr) {
+  if (process_.on_queue()) {
     // Moved, sooner or later, as an event notified again; a time passed is now, as below.
-    queue_->cancel(client_);
-    queue_->wake_at(client_, std::max(t, modules::sim_now()));
+    process_.cancel();
+    process_.run_at(std::max(t, modules::sim_now()));
     return;
   }
   // A delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp).
@@ -262,13 +244,13 @@ modules::Resumable BroadcastProcessor::sleep(std::optional<sc_core::sc_time> unt
     ring_at(*until);
   } else {
     planned_ = sc_core::sc_max_time();
-    if (queue_ != nullptr)
-      queue_->cancel(client_);
+    if (process_.on_queue())
+      process_.cancel();
     else
       alarm_.cancel();
   }
-  if (queue_ == nullptr) next_trigger(alarm_);
-  co_await Suspend{*this};
+  if (!process_.on_queue()) process_.run_on(alarm_);
+  co_await process_.suspend();
   sleep_ = Sleep::kBusy;
 }
 
@@ -448,9 +430,9 @@ void BroadcastProcessor::count_missed_strobes(const sc_core::sc_time& end) {
 
 modules::Resumable BroadcastProcessor::program() {
   // On the queue it runs first at the frame's start.
-  if (queue_ == nullptr) {
-    next_trigger(start_);
-    co_await Suspend{*this};
+  if (!process_.on_queue()) {
+    process_.run_on(start_);
+    co_await process_.suspend();
   }
   if (slots_.empty()) co_return;
   for (;;) {
@@ -524,7 +506,10 @@ modules::Resumable BroadcastProcessor::program() {
     }
     // The loop is busy until the slot ends (a packet no one listens to, in the modes that send
     // them all; the ID alone; or, waking at every change, any packet).
-    if (cursor_.t > modules::sim_now()) co_await wait_until(cursor_.t);
+    if (cursor_.t > modules::sim_now()) {
+      process_.run_at(cursor_.t);
+      co_await process_.suspend();
+    }
     // A wanted ID missed: every BIC that wants one may be full until its processor frees a
     // buffer. While that holds, every strobe misses alike, and strobing slot by slot costs
     // events without end when a processor is slow (a 1 Hz shell clock: 2,400 strobes a

@@ -36,6 +36,7 @@
 #include "modules/memory.hpp"
 #include "modules/module_params.hpp"
 #include "modules/resumable.hpp"
+#include "modules/resumable_process.hpp"
 #include "modules/statistics.hpp"
 #include "modules/wake_queue.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
@@ -136,15 +137,6 @@ class BroadcastProcessor : public sc_core::sc_module,
   void woken() override;
   /// The loop (what its thread did).
   modules::Resumable program();
-  /// co_await: the loop is run again when set_wake() said (wake_at_time, sleep).
-  struct Suspend {
-    BroadcastProcessor& bp;
-    bool await_ready() const noexcept { return false; }
-    void await_suspend(std::coroutine_handle<> h) { bp.host_.suspended(h); }
-    void await_resume() const noexcept {}
-  };
-  /// The loop waits until `t` (now or later) for nothing else.
-  Suspend wait_until(const sc_core::sc_time& t);
   /// What the loop sleeps for, so that a BIC's change wakes it only when it could change the
   /// plan (each wake is a thread switch and a new plan; most requests are for slots after the
   /// one it sleeps for, and most freed buffers change nothing it planned).
@@ -232,10 +224,7 @@ class BroadcastProcessor : public sc_core::sc_module,
   Cursor cursor_;
   sc_core::sc_event start_;
   sc_core::sc_event alarm_;  ///< what the loop sleeps on (sleep, ring_at; not on the queue)
-  modules::ResumableHost host_;
-  modules::WakeQueue* queue_ = nullptr;  ///< the queue it runs on (join), if any
-  std::size_t client_ = 0;
-  std::uint64_t* activations_ = nullptr;
+  modules::ResumableProcess process_;  ///< its loop, and what runs it
   Sleep sleep_ = Sleep::kBusy;
   /// The end of the frame once the loop has run on to it (run_to): busy time is recorded up to
   /// it (a direct-mode packet that starts before it ends after it).

@@ -47,22 +47,15 @@ PertProcessor::PertProcessor(const sc_core::sc_module_name& name, MachineRun& ru
 }
 
 void PertProcessor::join(modules::WakeQueue& queue) {
-  queue_ = &queue;
-  client_ = queue.add(*this);
+  process_.join(queue, *this, *this);
   if (listen_) listen_();
-  // Counted under its method's name, as process = method counts it.
-  activations_ = &modules::activation_count(*this, "run");
 }
 
-void PertProcessor::run() {
-  // A return from a wait counts as a thread's would (modules/activations.hpp); the first
-  // activation starts the program.
-  if (host_.resume()) modules::count_activation();
-}
+void PertProcessor::run() { process_.resume_in_method(); }
 
 void PertProcessor::woken() {
   wanted_ = 0;
-  if (host_.resume()) ++*activations_;
+  process_.resume_from_queue();
 }
 
 // A change it makes itself (a direct-memory request) finds it running, not waiting: SystemC
@@ -70,28 +63,19 @@ void PertProcessor::woken() {
 // nothing new, since every program looks at its port before it idles (an arrival by now is
 // taken, a later one is the idle's `until`). So the queue need not wake it.
 void PertProcessor::port_changed() {
-  if (wanted_ & kPort) queue_->wake_at(client_, modules::sim_now());
+  if (wanted_ & kPort) process_.run_at(modules::sim_now());
 }
 
 void PertProcessor::item_put(int, const sc_core::sc_time&) {
-  if (wanted_ & kInput) queue_->wake_at(client_, modules::sim_now());
+  if (wanted_ & kInput) process_.run_at(modules::sim_now());
 }
 
 void PertProcessor::item_taken(int) {
-  if (wanted_ & kRoom) queue_->wake_at(client_, modules::sim_now());
-}
-
-void PertProcessor::wake_at_local_time() {
-  if (queue_ == nullptr) {
-    // A delay handed to SystemC counts from SystemC's own time (modules/sim_time.hpp).
-    sc_core::next_trigger(clock_.now() - modules::systemc_now());
-    return;
-  }
-  queue_->wake_at(client_, clock_.now());
+  if (wanted_ & kRoom) process_.run_at(modules::sim_now());
 }
 
 void PertProcessor::wake_on(std::optional<sc_core::sc_time> until, unsigned wakes) {
-  if (queue_ == nullptr) {
+  if (!process_.on_queue()) {
     if (until)
       sc_core::next_trigger(*until - modules::systemc_now(), events_of(wakes));
     else
@@ -99,7 +83,7 @@ void PertProcessor::wake_on(std::optional<sc_core::sc_time> until, unsigned wake
     return;
   }
   wanted_ = wakes;
-  if (until) queue_->wake_at(client_, *until);
+  if (until) process_.run_at(*until);
 }
 
 const sc_core::sc_event_or_list& PertProcessor::events_of(unsigned wakes) {
@@ -113,23 +97,12 @@ const sc_core::sc_event_or_list& PertProcessor::events_of(unsigned wakes) {
   return *list;
 }
 
-namespace {
-/// Until `e` fires (SystemC).
-struct OnEvent {
-  modules::ResumableHost& host;
-  const sc_core::sc_event& e;
-  bool await_ready() const noexcept { return false; }
-  void await_suspend(std::coroutine_handle<> h) {
-    host.suspended(h);
-    sc_core::next_trigger(e);
-  }
-  void await_resume() const noexcept {}
-};
-}  // namespace
-
 modules::Resumable PertProcessor::begin_frame() {
   // On the queue it runs first at the frame's start.
-  if (frame_start_ && queue_ == nullptr) co_await OnEvent{host_, *frame_start_};
+  if (frame_start_ && !process_.on_queue()) {
+    process_.run_on(*frame_start_);
+    co_await process_.suspend();
+  }
   clock_.resync();
   // At quantum 0 only: above it, the quantum says how far the program runs ahead.
   if (sync_ == Sync::kInteractions &&

@@ -42,6 +42,7 @@
 #include "modules/module_params.hpp"
 #include "modules/processor.hpp"
 #include "modules/resumable.hpp"
+#include "modules/resumable_process.hpp"
 #include "modules/timed_fifo.hpp"
 #include "modules/wake_queue.hpp"
 #include "platform/machines/gaudet_pert/bus_interface.hpp"
@@ -145,7 +146,7 @@ class PertProcessor : public modules::Processor,
   // [[nodiscard]], so a call that forgets its co_await does not compile.
 
   /// Elaboration (the kind's constructor): the program it runs.
-  void start_program(modules::Resumable program) { host_.start(std::move(program)); }
+  void start_program(modules::Resumable program) { process_.start(std::move(program)); }
 
   /// What a program waits for besides time (a mask).
   enum Wake : unsigned {
@@ -160,8 +161,8 @@ class PertProcessor : public modules::Processor,
     Synced(PertProcessor& p, bool due) : p_(p), due_(due) {}
     bool await_ready() const noexcept { return !due_; }
     void await_suspend(std::coroutine_handle<> h) {
-      p_.host_.suspended(h);
-      p_.wake_at_local_time();
+      p_.process_.suspended(h);
+      p_.process_.run_at(p_.clock_.now());
     }
     void await_resume() const noexcept {}
 
@@ -175,7 +176,7 @@ class PertProcessor : public modules::Processor,
     Until(PertProcessor& p, unsigned wakes) : p_(p), wakes_(wakes) {}
     bool await_ready() const noexcept { return false; }
     void await_suspend(std::coroutine_handle<> h) {
-      p_.host_.suspended(h);
+      p_.process_.suspended(h);
       p_.wake_on(std::nullopt, wakes_);
     }
     void await_resume() const noexcept {}
@@ -198,11 +199,11 @@ class PertProcessor : public modules::Processor,
       return false;
     }
     void await_suspend(std::coroutine_handle<> h) {
-      p_.host_.suspended(h);
+      p_.process_.suspended(h);
       const sc_core::sc_time g = modules::sim_now();
       if (before_ > g) {
         caught_up_only_ = true;
-        p_.wake_at_local_time();
+        p_.process_.run_at(p_.clock_.now());
         return;
       }
       // A time already reached is something the caller cannot act on yet: wait for a change.
@@ -336,8 +337,6 @@ class PertProcessor : public modules::Processor,
   void port_changed() override;
   void item_put(int port, const sc_core::sc_time& stamp) override;
   void item_taken(int port) override;
-  /// A wait's end: run again at its local time.
-  void wake_at_local_time();
   /// A wait's end: run again at `until` (if given) or when one of `wakes` happens.
   void wake_on(std::optional<sc_core::sc_time> until, unsigned wakes);
   /// The SystemC events of `wakes`, as a list made once (process = method).
@@ -350,7 +349,7 @@ class PertProcessor : public modules::Processor,
     const sc_core::sc_time local = clock_.now();
     return {*this, waits_ && local > g && local - g >= tlm::tlm_global_quantum::instance().get()};
   }
-  modules::ResumableHost host_;
+  modules::ResumableProcess process_;  ///< its program, and what runs it
   // What its waits end on: the SystemC events (method), or the queue and what tells it
   // (queue: each listener wakes it if the wait it is in wants that wake).
   const sc_core::sc_event* port_changed_ = nullptr;
@@ -358,10 +357,7 @@ class PertProcessor : public modules::Processor,
   const sc_core::sc_event* output_taken_ = nullptr;
   std::array<std::unique_ptr<sc_core::sc_event_or_list>, 8> lists_;
   std::function<void()> listen_;  ///< registers it with its port and queues (join)
-  modules::WakeQueue* queue_ = nullptr;
-  std::size_t client_ = 0;
-  std::uint64_t* activations_ = nullptr;
-  unsigned wanted_ = 0;  ///< the wakes the wait it is in ends on (queue)
+  unsigned wanted_ = 0;           ///< the wakes the wait it is in ends on (queue)
   /// Whether it waits as it computes (a thread's LocalClock::waits()); false at quantum 0 with
   /// pert.sync = interactions once the frame starts, and while WritingAhead.
   bool waits_ = true;
