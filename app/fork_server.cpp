@@ -44,7 +44,8 @@ bool receive_message(int socket, std::string& text) {
 
 /// The server's loop, in the forked server process; never returns.
 [[noreturn]] void serve(int socket, pid_t rank,
-                        const std::function<int(const std::vector<std::string>&)>& run) {
+                        const std::function<int(const std::vector<std::string>&)>& run,
+                        bool load_image_module) {
   end_with_parent(rank);
   // The rank blocks the interrupt signals for its signal thread, which is not here: the server
   // ends by them; its children block them again for their own (run_cli_in_forked_child).
@@ -52,6 +53,12 @@ bool receive_message(int socket, std::string& text) {
   sigemptyset(&none);
   pthread_sigmask(SIG_SETMASK, &none, &blocked);
   bool image_module = false;
+  if (load_image_module) {
+    // Before the first request, while the rank is in MPI_Init (about half a second here, which
+    // the first point waited for after MPI's start-up).
+    preload_image_module();
+    image_module = true;
+  }
   std::string request;
   while (receive_message(socket, request)) {
     std::vector<std::string> parts;
@@ -98,7 +105,8 @@ bool receive_message(int socket, std::string& text) {
 
 }  // namespace
 
-ForkServers::ForkServers(int count, std::function<int(const std::vector<std::string>&)> run) {
+ForkServers::ForkServers(int count, std::function<int(const std::vector<std::string>&)> run,
+                         bool load_image_module) {
   const pid_t rank = ::getpid();
   for (int i = 0; i < count; ++i) {
     int pair[2];
@@ -111,7 +119,7 @@ ForkServers::ForkServers(int count, std::function<int(const std::vector<std::str
     if (pid == 0) {
       ::close(pair[0]);
       for (const auto& s : servers_) ::close(s.socket);  // the other servers' ends
-      serve(pair[1], rank, run);
+      serve(pair[1], rank, run, load_image_module);
     }
     ::close(pair[1]);
     if (pid < 0) {

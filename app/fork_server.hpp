@@ -6,8 +6,9 @@
 // the fig2-18 sweep takes a tenth: MPI sweeps on one box were 5x slower than local jobs).
 //
 // So each slot of a rank gets a fork server: a process forked from the main thread before
-// MPI_Init, which loads the image module once and then, for each request, forks a child that runs
-// the command line in-process (run_cli_in_forked_child), with its output in the run's log. The
+// MPI_Init, which loads the image module once (at once, when its rank knows that runs will write
+// images: the load then overlaps MPI's start-up) and then, for each request, forks a child that
+// runs the command line in-process (run_cli_in_forked_child), with its output in the run's log. The
 // server tells the child's pid at once (so stop_runs can signal it) and its wait status when it
 // ends. A server ends when its rank closes its socket, or dies with its rank.
 #include <sys/types.h>
@@ -24,8 +25,11 @@ namespace rtsim::app {
 class ForkServers {
  public:
   /// Forks `count` servers now (call before MPI_Init, from the main thread); each runs its
-  /// requests one at a time with `run` in a forked child and returns its exit status.
-  ForkServers(int count, std::function<int(const std::vector<std::string>&)> run);
+  /// requests one at a time with `run` in a forked child and returns its exit status. With
+  /// `load_image_module`, each server loads the image library as soon as it starts, while its
+  /// rank is still in MPI_Init, rather than when the first run that writes an image comes.
+  ForkServers(int count, std::function<int(const std::vector<std::string>&)> run,
+              bool load_image_module = false);
   /// Closes the sockets (the servers end) and waits for them.
   ~ForkServers();
   ForkServers(const ForkServers&) = delete;

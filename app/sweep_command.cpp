@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
+#include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -391,12 +394,48 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session, Fork
   return end.failed > 0 ? kExitFailure : kExitOk;
 }
 
+/// This process's MPI rank as its launcher tells it before MPI_Init (OpenMPI's mpirun, PMIx,
+/// MPICH's PMI, Slurm's srun); -1 if none does.
+int launcher_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"}) {
+    const char* value = std::getenv(name);
+    if (!value || !*value) continue;
+    char* end = nullptr;
+    const long rank = std::strtol(value, &end, 10);
+    if (*end == '\0' && rank >= 0 && rank <= INT_MAX) return static_cast<int>(rank);
+  }
+  return -1;
+}
+
 int run_sweep_mpi(const SweepArgs& args) {
+  // Every rank reads the sweep before MPI starts (a few milliseconds): rank 0 for the run, the
+  // others only to know whether the points write images. A rank that cannot read it says
+  // nothing here: rank 0 reports the error once MPI is up, and the others wait for its word.
+  Plan plan;
+  std::exception_ptr plan_error;
+  try {
+    plan = make_plan(args);
+  } catch (const std::exception&) {
+    plan_error = std::current_exception();
+  }
+  const int jobs = args.jobs > 0 ? args.jobs : 1;
+  // If this rank's first points will likely write an image, its servers load the image library
+  // now, while MPI starts. Points are handed out in order, rank 0 taking the first `jobs` itself
+  // and rank r about the (r * jobs + 1)-th on: so rank r loads it at once when more than
+  // r * jobs points write images (with shared images, the default, a timing sweep has one such
+  // point per image). The rank comes from the launcher's environment before MPI_Init (where
+  // none says, it counts as 0). Otherwise a server loads it when its first point that writes an
+  // image comes.
+  const auto image_points =
+      plan_error ? 0
+                 : std::count_if(plan.points.begin(), plan.points.end(),
+                                 [](const sweep::Point& p) { return writes_image(p.args); });
+  const bool images = image_points > static_cast<long>(std::max(launcher_rank(), 0)) * jobs;
   // Each of this rank's slots gets a fork server before MPI starts (app/fork_server.hpp): a
   // point is then a fork, not a program start, unless another rtsim binary was asked for.
-  const int jobs = args.jobs > 0 ? args.jobs : 1;
   std::unique_ptr<ForkServers> servers;
-  if (args.rtsim.empty()) servers = std::make_unique<ForkServers>(jobs, run_cli_in_forked_child);
+  if (args.rtsim.empty())
+    servers = std::make_unique<ForkServers>(jobs, run_cli_in_forked_child, images);
   mpi::Session session;
   if (session.rank() != 0) {
     // Rank 0 reads and checks the sweep; the others wait for its word, then run points.
@@ -413,9 +452,8 @@ int run_sweep_mpi(const SweepArgs& args) {
     session.work(q);
     return kExitOk;
   }
-  Plan plan;
   try {
-    plan = make_plan(args);
+    if (plan_error) std::rethrow_exception(plan_error);
   } catch (const InputError& e) {
     session.share_status(kExitBadInput);
     std::cerr << "rtsim: error: " << e.what() << "\n";

@@ -20,13 +20,14 @@ using rtsim::test::scratch_dir;
 
 namespace {
 
-// Twelve points of a few tenths of a second each, one at a time.
+// Twelve points of a few tenths of a second each, one at a time: under MPI, mpirun takes about
+// half a second to pass an interrupt on, and the points left must outlast it.
 constexpr int kPoints = 12;
 fs::path write_slow_sweep(const fs::path& dir) {
   fs::create_directories(dir);
   const fs::path file = dir / "slow.toml";
   std::ofstream(file) << "machine = \"gaudet-pert\"\nscene = \"builtin:npp-412\"\n"
-                         "width = 96\nheight = 96\n[[axes]]\nparam = \"pert_count\"\n"
+                         "width = 192\nheight = 192\n[[axes]]\nparam = \"pert_count\"\n"
                          "range = { start = 1, stop = 12 }\n";
   return file;
 }
