@@ -1,17 +1,71 @@
 #include "modules/busy_timeline.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "modules/sim_time.hpp"
 
 namespace rtsim::modules {
 
+namespace {
+
+constexpr std::uint64_t kNarrowMax = std::numeric_limits<std::uint32_t>::max();
+
+/// Adds the ticks of [a, b) (relative to bin 0's start) to the bins they fall in.
+template <class Bins>
+void spread_into(Bins& busy, std::uint64_t a, std::uint64_t b, unsigned shift) {
+  using T = typename Bins::value_type;
+  const std::size_t first = static_cast<std::size_t>(a >> shift);
+  const std::size_t last = static_cast<std::size_t>((b - 1) >> shift);
+  if (first == last) {  // the common case: an interval within one bin
+    busy[first] += static_cast<T>(b - a);
+    return;
+  }
+  for (std::size_t i = first; i <= last; ++i) {
+    const std::uint64_t lo = std::max<std::uint64_t>(a, std::uint64_t{i} << shift);
+    const std::uint64_t hi = std::min<std::uint64_t>(b, std::uint64_t{i + 1} << shift);
+    busy[i] += static_cast<T>(hi - lo);
+  }
+}
+
+/// Whether 32-bit bins can take [a, b) without a bin passing 2^32 - 1.
+bool fits(const std::vector<std::uint32_t>& busy, std::uint64_t a, std::uint64_t b,
+          unsigned shift) {
+  const std::size_t first = static_cast<std::size_t>(a >> shift);
+  const std::size_t last = static_cast<std::size_t>((b - 1) >> shift);
+  for (std::size_t i = first; i <= last; ++i) {
+    const std::uint64_t lo = std::max<std::uint64_t>(a, std::uint64_t{i} << shift);
+    const std::uint64_t hi = std::min<std::uint64_t>(b, std::uint64_t{i + 1} << shift);
+    if (hi - lo > kNarrowMax - busy[i]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void BusyTimeline::widen() {
+  wide_bins_.reserve(kMaxBins);
+  wide_bins_.assign(bins_.begin(), bins_.end());
+  std::vector<std::uint32_t>().swap(bins_);
+  wide_ = true;
+}
+
 void BusyTimeline::merge_pairs() {
   // In place: bin i/2 takes bins i and i+1 (no allocation; this runs once per doubling of
-  // the recorded span, on up to kMaxBins bins).
-  const std::size_t n = busy_.size();
-  for (std::size_t i = 0; i < n; i += 2) busy_[i / 2] = busy_[i] + (i + 1 < n ? busy_[i + 1] : 0);
-  busy_.resize((n + 1) / 2);
+  // the recorded span, on up to kMaxBins bins). 32-bit bins whose pair would not fit widen
+  // first.
+  if (!wide_) {
+    for (std::size_t i = 0; i + 1 < bins_.size(); i += 2)
+      if (std::uint64_t{bins_[i]} + bins_[i + 1] > kNarrowMax) {
+        widen();
+        break;
+      }
+  }
+  with_bins([](auto& busy) {
+    const std::size_t n = busy.size();
+    for (std::size_t i = 0; i < n; i += 2) busy[i / 2] = busy[i] + (i + 1 < n ? busy[i + 1] : 0);
+    busy.resize((n + 1) / 2);
+  });
   ++shift_;
 }
 
@@ -62,8 +116,10 @@ void BusyTimeline::to_bins() {
   origin_ = first_;
   // Room for every bin it may have (128 KiB): the bins grow with the span, a few at a time, and
   // growing a vector by doubling copied them and left the blocks they outgrew behind.
-  busy_.reserve(kMaxBins);
-  busy_.assign(1, 0);
+  with_bins([](auto& busy) {
+    busy.reserve(kMaxBins);
+    busy.assign(1, 0);
+  });
   binned_ = true;
   for (const Interval& i : sparse_) add_to_bins(i.start, i.end);
   add_to_bins(open_.start, open_.end);
@@ -74,28 +130,23 @@ void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
   if (s < origin_) {
     // Earlier than anything so far: grow the bins to the left by whole bins.
     std::uint64_t k = bins_for(origin_ - s);
-    while (busy_.size() + k > kMaxBins) {
+    while (bin_count() + k > kMaxBins) {
       merge_pairs();
       k = bins_for(origin_ - s);
     }
-    busy_.insert(busy_.begin(), static_cast<std::size_t>(k), 0);
+    with_bins([k](auto& busy) { busy.insert(busy.begin(), static_cast<std::size_t>(k), 0); });
     origin_ -= k << shift_;
   }
   while (bins_for(e - origin_) > kMaxBins) merge_pairs();
   const std::uint64_t a = s - origin_;
   const std::uint64_t b = e - origin_;
-  const std::size_t first = static_cast<std::size_t>(a >> shift_);
   const std::size_t last = static_cast<std::size_t>((b - 1) >> shift_);
-  if (busy_.size() <= last) busy_.resize(last + 1, 0);
-  if (first == last) {  // the common case: an interval within one bin
-    busy_[first] += b - a;
-    return;
-  }
-  for (std::size_t i = first; i <= last; ++i) {
-    const std::uint64_t lo = std::max<std::uint64_t>(a, i << shift_);
-    const std::uint64_t hi = std::min<std::uint64_t>(b, (i + 1) << shift_);
-    busy_[i] += hi - lo;
-  }
+  if (bin_count() <= last) with_bins([last](auto& busy) { busy.resize(last + 1, 0); });
+  if (!wide_ && !fits(bins_, a, b, shift_)) widen();
+  if (wide_)
+    spread_into(wide_bins_, a, b, shift_);
+  else
+    spread_into(bins_, a, b, shift_);
 }
 
 void BusyTimeline::settle_pending() {
@@ -125,7 +176,9 @@ std::vector<LevelChange> BusyTimeline::level_changes() const {
 
 sc_core::sc_time BusyTimeline::total() const {
   std::uint64_t sum = 0;
-  for (std::uint64_t v : busy_) sum += v;
+  with_bins([&sum](const auto& busy) {
+    for (std::uint64_t v : busy) sum += v;
+  });
   sum += pending_.end - pending_.start;
   for (const Interval& i : sparse_) sum += i.end - i.start;
   if (recorded_ && !binned_) sum += open_.end - open_.start;
@@ -164,14 +217,17 @@ UtilizationWindows BusyTimeline::windows(const sc_core::sc_time& begin, const sc
   // Sparse: each interval exactly.
   for (const Interval& i : sparse_) spread(i.end - i.start, i.start, i.end);
   if (recorded_ && !binned_) spread(open_.end - open_.start, open_.start, open_.end);
-  for (std::size_t i = 0; i < busy_.size(); ++i) {
-    if (busy_[i] == 0) continue;
-    // The bin, less what lies outside everything recorded (exact edges for the first and last).
-    const std::uint64_t x0 = std::max(origin_ + (i << shift_), first_);
-    const std::uint64_t x1 = std::min(origin_ + ((i + 1) << shift_), last_);
-    if (x1 <= x0) continue;
-    spread(busy_[i], x0, x1);
-  }
+  with_bins([&](const auto& bins) {
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+      if (bins[i] == 0) continue;
+      // The bin, less what lies outside everything recorded (exact edges for the first and
+      // last).
+      const std::uint64_t x0 = std::max(origin_ + (std::uint64_t{i} << shift_), first_);
+      const std::uint64_t x1 = std::min(origin_ + (std::uint64_t{i + 1} << shift_), last_);
+      if (x1 <= x0) continue;
+      spread(bins[i], x0, x1);
+    }
+  });
   out.values.resize(n);
   for (std::size_t j = 0; j < n; ++j) out.values[j] = static_cast<double>(busy[j] / window);
   return out;

@@ -23,6 +23,12 @@
 // sized then for the span so far. Most of a large machine's modules (a link used now and then, a
 // processor of one of 64 PERTs) never need bins, and a timeline that does skips the doublings
 // from one tick up to its span (each a pass over the bins; they were a fifth of a 64-PERT run).
+// The bins are 32-bit counts of ticks while every bin fits (half the memory: a binned timeline
+// reserves 64 KiB, not 128 KiB, and a large machine has hundreds; on this virtual machine each
+// megabyte touched for the first time costs about a millisecond). A bin that would outgrow 32
+// bits (a bin wider than 2^32 ticks fully busy, or overlapping intervals) turns all of them to
+// 64 bits first, so the sums are the same integers either way (tests/systemc_busy_timeline_test.cpp
+// holds the two to each other on random intervals).
 // Used by every machine (each busy module: processors, pipelines, buses, links).
 #include <cstdint>
 #include <systemc>
@@ -41,7 +47,7 @@ struct UtilizationWindows {
 
 class BusyTimeline {
  public:
-  /// Bins kept at most; 16384 x 8 bytes = 128 KiB a module at most.
+  /// Bins kept at most; 16384 x 4 bytes = 64 KiB a module at most (128 KiB once widened).
   static constexpr std::size_t kMaxBins = 16384;
   /// Intervals kept exactly before the timeline turns to bins (16 KiB).
   static constexpr std::size_t kSparseIntervals = 1024;
@@ -56,7 +62,17 @@ class BusyTimeline {
     KeepIntervals& operator=(const KeepIntervals&) = delete;
   };
 
-  BusyTimeline() : keep_(keeping_ > 0) {}
+  /// While one is alive, timelines made keep 64-bit bins from the start (tests compare them
+  /// with the 32-bit bins that widen when they must).
+  class WideBins {
+   public:
+    WideBins() { ++wide_from_start_; }
+    ~WideBins() { --wide_from_start_; }
+    WideBins(const WideBins&) = delete;
+    WideBins& operator=(const WideBins&) = delete;
+  };
+
+  BusyTimeline() : keep_(keeping_ > 0), wide_(wide_from_start_ > 0) {}
 
   /// The module was busy over [start, start + duration). Intervals may come in any order;
   /// overlapping intervals add (a pipelined unit records its issue slots, which never overlap).
@@ -74,8 +90,10 @@ class BusyTimeline {
   }
   std::size_t bins() const {
     settle();
-    return busy_.size();
+    return bin_count();
   }
+  /// Whether the bins are 64-bit (one outgrew 32 bits, or made while a WideBins was alive).
+  bool wide_bins() const { return wide_; }
 
   /// Whether the intervals are kept (made while a KeepIntervals was alive).
   bool keeps_intervals() const { return keep_; }
@@ -89,6 +107,19 @@ class BusyTimeline {
     std::uint64_t end;
   };
   inline static int keeping_ = 0;
+  inline static int wide_from_start_ = 0;
+  std::size_t bin_count() const { return wide_ ? wide_bins_.size() : bins_.size(); }
+  /// Calls f with the bins in use (either vector).
+  template <class F>
+  decltype(auto) with_bins(F&& f) {
+    return wide_ ? f(wide_bins_) : f(bins_);
+  }
+  template <class F>
+  decltype(auto) with_bins(F&& f) const {
+    return wide_ ? f(wide_bins_) : f(bins_);
+  }
+  /// The bins to 64 bits, values kept.
+  void widen();
   void merge_pairs();
   /// The bins take the pending interval, if any.
   void settle_pending();
@@ -103,6 +134,7 @@ class BusyTimeline {
   bool keep_ = false;
   bool recorded_ = false;  ///< anything added yet
   bool binned_ = false;    ///< bins in use (else sparse_ and open_ hold everything)
+  bool wide_ = false;      ///< the bins are wide_bins_ (else bins_)
   /// Ticks per bin: 1 << shift_. A power of two (merge_pairs doubles it), so the hot path of
   /// every busy interval shifts instead of dividing.
   unsigned shift_ = 0;
@@ -116,8 +148,9 @@ class BusyTimeline {
   /// processor's intervals start where the one before ended; they extend it here instead of
   /// each visiting the bins.
   Interval pending_{0, 0};
-  std::vector<std::uint64_t> busy_;
-  std::vector<Interval> sparse_;  ///< the intervals before open_, until it turns to bins
+  std::vector<std::uint32_t> bins_;       ///< busy ticks a bin, while each fits in 32 bits
+  std::vector<std::uint64_t> wide_bins_;  ///< the same, once one has not
+  std::vector<Interval> sparse_;          ///< the intervals before open_, until it turns to bins
   std::vector<Interval> intervals_;
 };
 

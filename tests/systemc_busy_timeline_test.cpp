@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <systemc>
 #include <utility>
@@ -132,6 +133,79 @@ TEST(BusyTimeline, BackToBackPiecesGiveTheBinsOfEachPieceAddedAlone) {
     ASSERT_EQ(merged.bins(), each.bins()) << trial;
     EXPECT_EQ(merged.bin_width_ticks(), each.bin_width_ticks()) << trial;
   }
+}
+
+TEST(BusyTimeline, ThirtyTwoBitBinsWidenWhenTheyMustAndGiveTheSixtyFourBitBinsExactly) {
+  // The bins are 32-bit until a bin would pass 2^32 - 1 ticks, then all 64-bit. Against
+  // timelines that keep 64-bit bins from the start (WideBins), on random streams: back-to-back
+  // and overlapping intervals, in any order, over spans from microseconds to a minute (bins of
+  // up to 2^33 ticks, so full bins and merged pairs outgrow 32 bits), read or not between adds.
+  // The total, the bins' width and count and every window are the same, bit for bit.
+  std::mt19937_64 random(23);
+  int widened = 0, narrow = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    BusyTimeline t;
+    std::optional<BusyTimeline> wide;
+    {
+      const BusyTimeline::WideBins wide_bins;
+      wide.emplace();
+    }
+    EXPECT_TRUE(wide->wide_bins());
+    EXPECT_FALSE(t.wide_bins());
+    // 1 us to 67 s in ticks of 1 ps; every second trial 17 s to 134 s, where bins are 2^31
+    // ticks or wider.
+    const std::uint64_t span = std::uint64_t{1'000'000}
+                               << (trial % 2 ? random() % 27 : 24 + random() % 4);
+    const bool overlapping = trial % 3 == 0;
+    std::uint64_t lo = ~std::uint64_t{0}, hi = 0, at = random() % span;
+    const int n = 1500 + static_cast<int>(random() % 3000);
+    for (int k = 0; k < n; ++k) {
+      if (random() % 4 == 0) at = random() % span;  // anywhere, earlier or later
+      const std::uint64_t d = 1 + random() % std::max<std::uint64_t>(span / 200, 2);
+      t.add(ps(at), ps(d));
+      wide->add(ps(at), ps(d));
+      if (random() % 8 == 0) {
+        ASSERT_EQ(t.bins(), wide->bins()) << trial;  // read between adds
+      }
+      lo = std::min(lo, at);
+      hi = std::max(hi, at + d);
+      at += overlapping ? d / 2 : d;  // half of each interval under the next one
+    }
+    ASSERT_EQ(t.total(), wide->total()) << trial;
+    ASSERT_EQ(t.bins(), wide->bins()) << trial;
+    ASSERT_EQ(t.bin_width_ticks(), wide->bin_width_ticks()) << trial;
+    for (const auto& [begin, end] : {std::pair{lo, hi}, std::pair{lo + (hi - lo) / 3, hi - 7}}) {
+      const auto a = t.windows(ps(begin), ps(end), 100);
+      const auto b = wide->windows(ps(begin), ps(end), 100);
+      ASSERT_EQ(a.values.size(), b.values.size());
+      for (std::size_t j = 0; j < a.values.size(); ++j)
+        ASSERT_EQ(a.values[j], b.values[j]) << trial << " window " << j;  // bit for bit
+    }
+    (t.wide_bins() ? widened : narrow) += t.bins() > 0 ? 1 : 0;
+  }
+  // Both kinds of run happened: some stayed 32-bit, some had to widen.
+  EXPECT_GT(widened, 5);
+  EXPECT_GT(narrow, 5);
+}
+
+TEST(BusyTimeline, ABinOfMoreThanTwoToTheThirtyTwoTicksWidensAndKeepsItsTotal) {
+  // Three intervals of 20 s (2e13 ticks) over the same time, after enough short ones to turn
+  // the timeline to bins: bins of 2^32 ticks (the span of 40 s in at most 16384), each holding
+  // three times its width.
+  BusyTimeline t;
+  for (std::uint64_t k = 0; k <= BusyTimeline::kSparseIntervals; ++k) t.add(ps(2 * k), ps(1));
+  ASSERT_GT(t.bins(), 0u);
+  EXPECT_FALSE(t.wide_bins());
+  const std::uint64_t s = 20'000'000'000'000;
+  for (int k = 0; k < 3; ++k) t.add(ps(s), ps(s));
+  EXPECT_GE(t.bin_width_ticks(), std::uint64_t{1} << 31);
+  EXPECT_TRUE(t.wide_bins());
+  EXPECT_EQ(t.total(), ps(3 * s + BusyTimeline::kSparseIntervals + 1));
+  const auto w = t.windows(ps(s), ps(2 * s), 10);
+  // One bin width of error at each window edge (the edges need not fall on bins'), times 3.
+  const double tol = 3.0 * 2.0 * static_cast<double>(t.bin_width_ticks()) / (s / 10.0);
+  EXPECT_LT(tol, 0.02);
+  for (const double v : w.values) EXPECT_NEAR(v, 3.0, tol);
 }
 
 TEST(BusyTimeline, EmptyOrDegenerateFrameGivesNoWindows) {
