@@ -408,13 +408,22 @@ int launcher_rank() {
 }
 
 int run_sweep_mpi(const SweepArgs& args) {
-  // Every rank reads the sweep before MPI starts (a few milliseconds): rank 0 for the run, the
-  // others only to know whether the points write images. A rank that cannot read it says
-  // nothing here: rank 0 reports the error once MPI is up, and the others wait for its word.
+  // Every rank reads the sweep before MPI starts (milliseconds): rank 0 reads and checks it for
+  // the run (its scenes loaded, as a local sweep does), the others read only its points, to know
+  // whether they write images. A rank that cannot read it says nothing here: rank 0 reports the
+  // error once MPI is up, and the others wait for its word.
+  const int hinted_rank = launcher_rank();
   Plan plan;
+  const bool checked = hinted_rank <= 0;
   std::exception_ptr plan_error;
   try {
-    plan = make_plan(args);
+    if (checked) {
+      plan = make_plan(args);
+    } else {
+      plan.file = sweep::read_sweep_file(args.file);
+      plan.points = sweep::expand_points(plan.file);
+      sweep::share_images(plan.file, plan.points);
+    }
   } catch (const std::exception&) {
     plan_error = std::current_exception();
   }
@@ -430,7 +439,7 @@ int run_sweep_mpi(const SweepArgs& args) {
       plan_error ? 0
                  : std::count_if(plan.points.begin(), plan.points.end(),
                                  [](const sweep::Point& p) { return writes_image(p.args); });
-  const bool images = image_points > static_cast<long>(std::max(launcher_rank(), 0)) * jobs;
+  const bool images = image_points > static_cast<long>(std::max(hinted_rank, 0)) * jobs;
   // Each of this rank's slots gets a fork server before MPI starts (app/fork_server.hpp): a
   // point is then a fork, not a program start, unless another rtsim binary was asked for.
   std::unique_ptr<ForkServers> servers;
@@ -454,6 +463,8 @@ int run_sweep_mpi(const SweepArgs& args) {
   }
   try {
     if (plan_error) std::rethrow_exception(plan_error);
+    // The launcher named another rank than MPI did: rank 0 checks the sweep now.
+    if (!checked) plan = make_plan(args);
   } catch (const InputError& e) {
     session.share_status(kExitBadInput);
     std::cerr << "rtsim: error: " << e.what() << "\n";
