@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <type_traits>
 
 #include "modules/sim_time.hpp"
 
@@ -11,34 +12,31 @@ namespace {
 
 constexpr std::uint64_t kNarrowMax = std::numeric_limits<std::uint32_t>::max();
 
-/// Adds the ticks of [a, b) (relative to bin 0's start) to the bins they fall in.
-template <class Bins>
-void spread_into(Bins& busy, std::uint64_t a, std::uint64_t b, unsigned shift) {
-  using T = typename Bins::value_type;
+/// Calls f(i, ticks) for each bin i that [a, b) (relative to bin 0's start) falls in, with the
+/// ticks that fall in it.
+template <class F>
+void for_each_bin_of(std::uint64_t a, std::uint64_t b, unsigned shift, F&& f) {
   const std::size_t first = static_cast<std::size_t>(a >> shift);
   const std::size_t last = static_cast<std::size_t>((b - 1) >> shift);
   if (first == last) {  // the common case: an interval within one bin
-    busy[first] += static_cast<T>(b - a);
+    f(first, b - a);
     return;
   }
   for (std::size_t i = first; i <= last; ++i) {
     const std::uint64_t lo = std::max<std::uint64_t>(a, std::uint64_t{i} << shift);
     const std::uint64_t hi = std::min<std::uint64_t>(b, std::uint64_t{i + 1} << shift);
-    busy[i] += static_cast<T>(hi - lo);
+    f(i, hi - lo);
   }
 }
 
 /// Whether 32-bit bins can take [a, b) without a bin passing 2^32 - 1.
 bool fits(const std::vector<std::uint32_t>& busy, std::uint64_t a, std::uint64_t b,
           unsigned shift) {
-  const std::size_t first = static_cast<std::size_t>(a >> shift);
-  const std::size_t last = static_cast<std::size_t>((b - 1) >> shift);
-  for (std::size_t i = first; i <= last; ++i) {
-    const std::uint64_t lo = std::max<std::uint64_t>(a, std::uint64_t{i} << shift);
-    const std::uint64_t hi = std::min<std::uint64_t>(b, std::uint64_t{i + 1} << shift);
-    if (hi - lo > kNarrowMax - busy[i]) return false;
-  }
-  return true;
+  bool fit = true;
+  for_each_bin_of(a, b, shift, [&](std::size_t i, std::uint64_t ticks) {
+    fit = fit && ticks <= kNarrowMax - busy[i];
+  });
+  return fit;
 }
 
 }  // namespace
@@ -114,7 +112,7 @@ void BusyTimeline::to_bins() {
   shift_ = 0;
   while (bins_for(last_ - first_) > kMaxBins / 2) ++shift_;
   origin_ = first_;
-  // Room for every bin it may have (128 KiB): the bins grow with the span, a few at a time, and
+  // Room for every bin it may have (64 KiB): the bins grow with the span, a few at a time, and
   // growing a vector by doubling copied them and left the blocks they outgrew behind.
   with_bins([](auto& busy) {
     busy.reserve(kMaxBins);
@@ -143,10 +141,11 @@ void BusyTimeline::add_to_bins(std::uint64_t s, std::uint64_t e) {
   const std::size_t last = static_cast<std::size_t>((b - 1) >> shift_);
   if (bin_count() <= last) with_bins([last](auto& busy) { busy.resize(last + 1, 0); });
   if (!wide_ && !fits(bins_, a, b, shift_)) widen();
-  if (wide_)
-    spread_into(wide_bins_, a, b, shift_);
-  else
-    spread_into(bins_, a, b, shift_);
+  with_bins([&](auto& busy) {
+    using T = typename std::decay_t<decltype(busy)>::value_type;
+    for_each_bin_of(a, b, shift_,
+                    [&](std::size_t i, std::uint64_t ticks) { busy[i] += static_cast<T>(ticks); });
+  });
 }
 
 void BusyTimeline::settle_pending() {
