@@ -71,11 +71,12 @@ struct Plan {
   std::vector<sweep::Point> points;
 };
 
-Plan make_plan(const SweepArgs& args) {
+/// Without `load_scenes`, the scenes are not loaded to check them (sweep::CheckOptions).
+Plan make_plan(const SweepArgs& args, bool load_scenes = true) {
   Plan plan;
   plan.file = sweep::read_sweep_file(args.file);
   plan.points = sweep::expand_points(plan.file);
-  sweep::check_sweep(plan.file, plan.points);
+  sweep::check_sweep(plan.file, plan.points, sweep::CheckOptions{load_scenes});
   sweep::share_images(plan.file, plan.points);
   if (args.baseline >= 0 && !args.report)
     throw InputError("--baseline", 0, "marks a point in report.html: give --report too");
@@ -409,21 +410,15 @@ int launcher_rank() {
 
 int run_sweep_mpi(const SweepArgs& args) {
   // Every rank reads the sweep before MPI starts (milliseconds): rank 0 reads and checks it for
-  // the run (its scenes loaded, as a local sweep does), the others read only its points, to know
-  // whether they write images. A rank that cannot read it says nothing here: rank 0 reports the
-  // error once MPI is up, and the others wait for its word.
+  // the run (its scenes loaded, as a local sweep does), the others read it without loading the
+  // scenes, to know whether its points write images. A rank that cannot read it says nothing
+  // here: rank 0 reports the error once MPI is up, and the others wait for its word.
   const int hinted_rank = launcher_rank();
+  const bool scenes_loaded = hinted_rank <= 0;
   Plan plan;
-  const bool checked = hinted_rank <= 0;
   std::exception_ptr plan_error;
   try {
-    if (checked) {
-      plan = make_plan(args);
-    } else {
-      plan.file = sweep::read_sweep_file(args.file);
-      plan.points = sweep::expand_points(plan.file);
-      sweep::share_images(plan.file, plan.points);
-    }
+    plan = make_plan(args, scenes_loaded);
   } catch (const std::exception&) {
     plan_error = std::current_exception();
   }
@@ -463,8 +458,8 @@ int run_sweep_mpi(const SweepArgs& args) {
   }
   try {
     if (plan_error) std::rethrow_exception(plan_error);
-    // The launcher named another rank than MPI did: rank 0 checks the sweep now.
-    if (!checked) plan = make_plan(args);
+    // The launcher named another rank than MPI did: rank 0 loads the scenes to check them now.
+    if (!scenes_loaded) plan = make_plan(args);
   } catch (const InputError& e) {
     session.share_status(kExitBadInput);
     std::cerr << "rtsim: error: " << e.what() << "\n";

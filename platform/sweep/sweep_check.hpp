@@ -11,8 +11,9 @@
 namespace rtsim::sweep {
 
 struct CheckOptions {
-  /// Load each distinct scene once (a scene file's syntax, a builtin name). Off only in tests
-  /// that look at parameters alone.
+  /// Load each distinct scene once (a scene file's syntax, a builtin name). Off in tests that
+  /// look at parameters alone, and in `rtsim sweep --mpi`'s ranks other than 0, which read the
+  /// sweep only to know which points write images (rank 0 checks it whole).
   bool load_scenes = true;
 };
 
