@@ -1,6 +1,7 @@
 #include "modules/wake_queue.hpp"
 
 #include <stdexcept>
+#include <string>
 
 #include "modules/sim_time.hpp"
 
@@ -14,6 +15,9 @@ WakeQueue::WakeQueue(const sc_core::sc_module_name& name, const sc_core::sc_even
 }
 
 std::size_t WakeQueue::add(Client& client) {
+  if (clients_.size() >= WakeHeap::kMaxClients)
+    throw std::length_error(std::string(name()) + ": more than " +
+                            std::to_string(WakeHeap::kMaxClients) + " clients");
   clients_.push_back(&client);
   pending_.emplace_back();
   return clients_.size() - 1;
@@ -24,8 +28,11 @@ void WakeQueue::wake_at(std::size_t k, const sc_core::sc_time& t) {
   if (t.value() < now)
     throw std::logic_error(std::string(name()) + ": a wake asked for in the past");
   if (pending_[k].seq != kNone && pending_[k].t <= t.value()) return;  // the sooner one stands
+  if (seq_ >= WakeHeap::kMaxSeq)
+    throw std::length_error(std::string(name()) + ": more than " +
+                            std::to_string(WakeHeap::kMaxSeq) + " wakes");
   pending_[k] = {seq_, t.value()};
-  heap_.push({t.value(), seq_++, static_cast<std::uint32_t>(k)});
+  heap_.push(t.value(), seq_++, static_cast<std::uint32_t>(k));
   // From outside a dispatch (a SystemC process, at SystemC's time): SystemC must run the queue
   // by then.
   if (!dispatching_ && t.value() < scheduled_) {
@@ -58,10 +65,10 @@ void WakeQueue::dispatch() {
       }
       if (e.t > at) break;
       heap_.pop();
-      pending_[e.client] = {};
+      pending_[e.client()] = {};
       ++wakes_;
       prepare_next();
-      clients_[e.client]->woken();
+      clients_[e.client()]->woken();
     }
     // On to the next wake without SystemC when nothing else would happen before it: no other
     // process to run now and no event due until after it (events a client notified included:
@@ -93,7 +100,7 @@ void WakeQueue::dispatch() {
 void WakeQueue::prepare_next() {
   if (heap_.empty()) return;
   const Entry& next = heap_.top();
-  if (!stale(next)) clients_[next.client]->prepare();
+  if (!stale(next)) clients_[next.client()]->prepare();
 }
 
 }  // namespace rtsim::modules

@@ -3,9 +3,9 @@
 // (DESIGN.md "The three layers": a kit part). A thousand SC_METHODs each cost SystemC a timed
 // notification, a place in its priority queue and a process dispatch for every activation; here
 // one SC_METHOD (`dispatch`) runs them instead: it keeps when each of its clients must run next
-// in a binary heap and, at each simulated time, runs every client due then, in the order their
-// wakes were asked for (first asked, first run). SystemC sees one process and one timed
-// notification: the earliest wake.
+// in a 4-ary heap (modules/wake_heap.hpp) and, at each simulated time, runs every client due
+// then, in the order their wakes were asked for (first asked, first run). SystemC sees one
+// process and one timed notification: the earliest wake.
 //
 // It runs ahead of SystemC: when SystemC has nothing else to do before the queue's next wake (no
 // other process to run now, no event due until after it), the queue goes on to that wake itself,
@@ -31,9 +31,10 @@
 // and where it stops.
 #include <cstdint>
 #include <limits>
-#include <queue>
 #include <systemc>
 #include <vector>
+
+#include "modules/wake_heap.hpp"
 
 namespace rtsim::modules {
 
@@ -68,12 +69,7 @@ class WakeQueue : public sc_core::sc_module {
   std::uint64_t wakes() const { return wakes_; }
 
  private:
-  struct Entry {
-    std::uint64_t t;    ///< ticks (sc_time values)
-    std::uint64_t seq;  ///< asked for in this order: ties run first asked, first run
-    std::uint32_t client;
-    bool operator>(const Entry& o) const { return t != o.t ? t > o.t : seq > o.seq; }
-  };
+  using Entry = WakeHeap::Entry;
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
   void dispatch();
   /// The client of the earliest live wake prepares (Client::prepare).
@@ -84,11 +80,11 @@ class WakeQueue : public sc_core::sc_module {
     std::uint64_t t = kNone;
   };
   /// An entry is stale when its client has since been given a sooner wake (or has run).
-  bool stale(const Entry& e) const { return pending_[e.client].seq != e.seq; }
+  bool stale(const Entry& e) const { return pending_[e.client()].seq != e.seq(); }
 
   std::vector<Client*> clients_;
   std::vector<Pending> pending_;  ///< by client
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
+  WakeHeap heap_;
   std::uint64_t seq_ = 0;
   std::uint64_t wakes_ = 0;
   bool started_ = false;
