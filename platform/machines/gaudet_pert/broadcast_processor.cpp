@@ -102,6 +102,7 @@ void BroadcastProcessor::woken() { process_.resume_from_queue(); }
 void BroadcastProcessor::attach(BusInterface& bic) {
   modules::connect(name(), bic.name(), "broadcast");
   bic.bus_ = this;
+  bic.bus_place_ = static_cast<std::uint32_t>(bics_.size());
   bics_.push_back(&bic);
 }
 
@@ -147,6 +148,13 @@ void BroadcastProcessor::start(const sc_core::sc_time& t, std::size_t ids,
     positions_[key].push_back(static_cast<std::uint32_t>(i));
   }
   demand_.assign(id_of_key_.size(), 0);
+  // Registers that hold IDs already (none at a frame's start, as the BICs are made).
+  holders_.assign(id_of_key_.size(), {});
+  for (const BusInterface* b : bics_)
+    for (const auto& r : b->registers_) {
+      if (r.valid) held(r.id, b->bus_place_);
+      if (r.withdrawn) held(r.withdrawn_id, b->bus_place_);
+    }
   idle_cycle_packets_ = idle_cycle_words_ = 0;
   offset_.assign(1, sc_core::SC_ZERO_TIME);
   for (const Slot& s : slots_) {
@@ -189,6 +197,16 @@ void BroadcastProcessor::demand(std::uint32_t id, int delta) {
     *at = demanded_.back();
     demanded_.pop_back();
   }
+}
+
+void BroadcastProcessor::held(std::uint32_t id, std::uint32_t place) {
+  if (const std::uint32_t key = key_of(id); key != kUnlisted) add_holder(key, place);
+}
+
+void BroadcastProcessor::add_holder(std::uint32_t key, std::uint32_t place) {
+  std::vector<std::uint32_t>& h = holders_[key];
+  const auto at = std::lower_bound(h.begin(), h.end(), place);
+  if (at == h.end() || *at != place) h.insert(at, place);
 }
 
 void BroadcastProcessor::requested(std::uint32_t id, const sc_core::sc_time& t) {
@@ -363,8 +381,8 @@ bool BroadcastProcessor::wanted(std::uint32_t key, const sc_core::sc_time& t) co
       }))
     return false;
   const std::uint32_t id = id_of_key_[key];
-  return std::any_of(bics_.begin(), bics_.end(),
-                     [&](const BusInterface* b) { return b->requested(id, t); });
+  return std::any_of(holders_[key].begin(), holders_[key].end(),
+                     [&](std::uint32_t place) { return bics_[place]->requested(id, t); });
 }
 
 std::optional<sc_core::sc_time> BroadcastProcessor::first_request_time() const {
@@ -406,8 +424,8 @@ void BroadcastProcessor::plan_missed_strobes() {
   miss_plan_.clear();
   for (const std::uint32_t key : demanded_) {
     std::vector<BusInterface*> requesters;
-    for (BusInterface* b : bics_)
-      if (b->requested(id_of_key_[key], cursor_.t)) requesters.push_back(b);
+    for (const std::uint32_t place : holders_[key])
+      if (bics_[place]->requested(id_of_key_[key], cursor_.t)) requesters.push_back(bics_[place]);
     if (!requesters.empty()) miss_plan_.emplace_back(key, std::move(requesters));
   }
 }
@@ -478,8 +496,9 @@ modules::Resumable BroadcastProcessor::program() {
     const Slot& s = slots_[cursor_.pos];
     const sc_core::sc_time strobe = cursor_.t;
     hitters_.clear();
-    for (BusInterface* b : bics_)
-      if (b->hit(s.id, strobe)) hitters_.push_back(b);
+    std::vector<std::uint32_t>& holders = holders_[key_of(s.id)];
+    for (const std::uint32_t place : holders)
+      if (bics_[place]->hit(s.id, strobe)) hitters_.push_back(bics_[place]);
     const bool sent = !hitters_.empty() || !adaptive_;
     if (!hitters_.empty()) {
       const sc_core::sc_time start = strobe + timing_.id_slot;
@@ -496,6 +515,8 @@ modules::Resumable BroadcastProcessor::program() {
       hit_packet_time_ += packet_time(s);
       if (on_packet) on_packet(s.id, start, packet_time(s), hitters_.size());
     }
+    // The BICs that captured it, or whose withdrawn request it met, hold its ID no more.
+    std::erase_if(holders, [&](std::uint32_t place) { return !bics_[place]->holds(s.id); });
     pass(cursor_, sent, true);
     if (!hitters_.empty() && !wake_at_every_change_) {
       // A packet on the bus: the loop plans its next strobe now, from the packet's end (the

@@ -114,6 +114,8 @@ class BroadcastProcessor : public sc_core::sc_module,
   /// A BIC's register holds `id` from `t`: if its slot's strobe comes before the one the loop
   /// sleeps for, the loop's alarm moves to it (at once while every strobe misses).
   void requested(std::uint32_t id, const sc_core::sc_time& t);
+  /// The BIC at `place` (in the order attached) put `id` in a register (holders_).
+  void held(std::uint32_t id, std::uint32_t place);
   /// A BIC freed a buffer: the loop wakes only from a sleep through missed strobes, the one
   /// plan a free buffer can change (which slots are wanted depends on the registers alone).
   void buffer_freed() {
@@ -178,6 +180,8 @@ class BroadcastProcessor : public sc_core::sc_module,
   /// While every strobe misses: the demanded IDs some BIC requests at the cursor, with the BICs
   /// that request each (miss_plan_), as they are before the loop sleeps.
   void plan_missed_strobes();
+  /// `place` joins holders_[key] (kept ascending, once).
+  void add_holder(std::uint32_t key, std::uint32_t place);
   /// Counts, as misses in the BICs of miss_plan_, the strobes the loop would have made of their
   /// slots from the cursor until `end` (not at it).
   void count_missed_strobes(const sc_core::sc_time& end);
@@ -206,6 +210,12 @@ class BroadcastProcessor : public sc_core::sc_module,
   std::vector<int> demand_;  ///< by key: valid registers holding its ID, over all BICs
   /// By key: its slots in the ID list (one, unless a corrupted memory lists an ID twice).
   std::vector<std::vector<std::uint32_t>> positions_;
+  /// By key: the BICs (their places in bics_, ascending) that have put its ID in a register
+  /// since its last strobe, so a superset of those that hold it (valid or withdrawn): a strobe,
+  /// wanted() and the miss plan ask these alone, in bics_' order, and find what asking every BIC
+  /// finds, since a BIC that does not hold an ID neither requests nor hits it. Trimmed at a
+  /// strobe of the ID, to the BICs that still hold it.
+  std::vector<std::vector<std::uint32_t>> holders_;
   std::vector<std::uint32_t> demanded_;  ///< the keys whose demand_ is positive, in no order
   /// Requests withdrawn (key, when), kept until the loop is past them: at quantum 0 a strobe at
   /// the very time of the withdrawal is all they can still meet.

@@ -50,6 +50,7 @@ bool BusInterface::request(std::uint32_t id, const sc_core::sc_time& t) {
     peak_registers_.note(used);
     if (bus_) {
       bus_->demand(id, +1);
+      bus_->held(id, bus_place_);
       bus_->requested(id, t);
     }
     return true;
@@ -142,6 +143,12 @@ bool BusInterface::requested(std::uint32_t id, const sc_core::sc_time& t) const 
     // Valid before the strobe at t, not at it, and not withdrawn before it (bus_interface.hpp
     // says why).
     return (r.valid && r.id == id && r.from < t) || r.withdrawn_match(id, t);
+  });
+}
+
+bool BusInterface::holds(std::uint32_t id) const {
+  return std::any_of(registers_.begin(), registers_.end(), [id](const Register& r) {
+    return (r.valid && r.id == id) || (r.withdrawn && r.withdrawn_id == id);
   });
 }
 

@@ -88,6 +88,8 @@ class BusInterface final : public PacketPort, public modules::StatGroup {
   /// Some register holds `id`, valid at `t` (the comparator would match it then): valid
   /// before `t`, and not withdrawn before it.
   bool requested(std::uint32_t id, const sc_core::sc_time& t) const;
+  /// Some register holds `id`, valid or withdrawn: a strobe of it may still match here.
+  bool holds(std::uint32_t id) const;
   std::uint64_t missed_no_buffer() const { return missed_.value(); }
 
  private:
@@ -122,6 +124,7 @@ class BusInterface final : public PacketPort, public modules::StatGroup {
   std::vector<Buffer> buffers_;
   std::uint32_t stream_unit_words_ = 0;  ///< 0: packets are taken at full arrival
   BroadcastProcessor* bus_ = nullptr;
+  std::uint32_t bus_place_ = 0;  ///< its place among the bus's BICs
   sc_core::sc_event changed_;
   modules::Counter requests_{*this, "requests", "packet IDs its processor asked for"};
   modules::Counter received_{*this, "packets_received", "packets captured into a buffer"};
