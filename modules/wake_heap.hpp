@@ -52,15 +52,26 @@ class WakeHeap {
     heap_.pop_back();
     const std::size_t n = heap_.size();
     if (n == 0) return;
+    const Key last_key = key(last);
     std::size_t i = 0;
     for (;;) {
       const std::size_t first = 4 * i + 1;
-      if (first >= n) break;
-      std::size_t least = first;
-      const std::size_t end = first + 4 < n ? first + 4 : n;
-      for (std::size_t c = first + 1; c < end; ++c)
-        least = before(heap_[c], heap_[least]) ? c : least;
-      if (!before(heap_[least], last)) break;
+      std::size_t least;
+      if (first + 4 <= n) {
+        // Four children: a tournament of three comparisons, each turned into arithmetic or a
+        // conditional move, not a branch.
+        const Entry* c = &heap_[first];
+        const std::size_t a = static_cast<std::size_t>(key(c[1]) < key(c[0]));
+        const std::size_t b = 2 + static_cast<std::size_t>(key(c[3]) < key(c[2]));
+        least = first + (key(c[b]) < key(c[a]) ? b : a);
+      } else if (first < n) {
+        least = first;
+        for (std::size_t k = first + 1; k < n; ++k)
+          if (key(heap_[k]) < key(heap_[least])) least = k;
+      } else {
+        break;
+      }
+      if (!(key(heap_[least]) < last_key)) break;
       heap_[i] = heap_[least];
       i = least;
     }
@@ -68,10 +79,10 @@ class WakeHeap {
   }
 
  private:
-  static bool before(const Entry& a, const Entry& b) {
-    // Bitwise, not short-circuit: both halves are computed and no branch is taken.
-    return (a.t < b.t) | ((a.t == b.t) & (a.key < b.key));
-  }
+  // The order as one 128-bit number (time, then key), which compares without a branch.
+  __extension__ using Key = unsigned __int128;
+  static Key key(const Entry& e) { return static_cast<Key>(e.t) << 64 | e.key; }
+  static bool before(const Entry& a, const Entry& b) { return key(a) < key(b); }
 
   std::vector<Entry> heap_;
 };
