@@ -78,7 +78,7 @@ void WakeQueue::dispatch() {
     while (!heap_.empty() && stale(heap_.top())) heap_.pop();
     if (heap_.empty()) break;
     const std::uint64_t next = heap_.top().t;
-    if (sc_core::sc_pending_activity_at_current_time()) break;
+    // (Activity pending at the current time makes the time to it zero: one call asks both.)
     if (next - now >= sc_core::sc_time_to_pending_activity().value()) break;
     at = next;
     ahead.at = from_ticks(at);
