@@ -5,8 +5,8 @@
 // Why not std::priority_queue: a wake is popped and another pushed for nearly every activation
 // of a processor (half a million a frame on gaudet-pert, a million on a 32 x 32 array), and a
 // binary heap of 24-byte entries spends that in mispredicted comparisons a level. Here an entry
-// is 16 bytes, the sequence number and the client packed in one word, so that the four children
-// of a node share a cache line and two entries compare without a branch.
+// is 16 bytes, the sequence number and the client packed in one word, so that a node's four
+// children take 64 bytes, and two entries compare as one 128-bit number, without a branch.
 // Since every key is distinct (sequence numbers are), the order in which wakes leave is that of
 // any correct priority queue: the queue's answers do not depend on the heap's shape.
 #include <cstddef>
