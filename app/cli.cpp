@@ -290,9 +290,18 @@ CLI::App* add_sweep_command(CLI::App& app, SweepArgs& sw) {
                    "per rank; more than 1 per rank needs mpirun --bind-to none, or the points "
                    "share the rank's core)")
       ->check(CLI::Range(1, 1024));
-  sweep->add_flag("--mpi", sw.mpi,
-                  "Spread the points over MPI ranks (mpirun -np K rtsim sweep FILE --mpi): "
-                  "rank 0 hands them out one at a time and writes the table");
+  auto* mpi_flag = sweep->add_flag(
+      "--mpi", sw.mpi,
+      "Spread the points over MPI ranks (mpirun -np K rtsim sweep FILE --mpi): rank 0 hands "
+      "them out one at a time and writes the table");
+  sweep
+      ->add_option("--one-host", sw.one_host,
+                   "With --mpi, when the launcher says every rank is on this host: jobs (the "
+                   "default) runs the points in rank 0 as local jobs, one for each rank's "
+                   "--jobs, on all the ranks' CPUs, without starting MPI (its start-up is all "
+                   "it would add); mpi hands them out over MPI as on many hosts")
+      ->check(CLI::IsMember({"jobs", "mpi"}))
+      ->needs(mpi_flag);
   sweep->add_flag("--force", sw.force, "Run every point again, even those done before");
   sweep->add_flag("--list", sw.list,
                   "Print each point's command line (and whether it is done); run nothing");

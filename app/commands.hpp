@@ -94,6 +94,9 @@ struct SweepArgs {
   std::string out_dir;  ///< empty: out/sweeps/<file name without extension>
   int jobs = 0;         ///< points at once (per rank with --mpi); 0: the cores (1 with --mpi)
   bool mpi = false;     ///< spread the points over MPI ranks (under mpirun / srun)
+  /// With --mpi, when every rank is on this host: "jobs" (rank 0 runs them as local jobs, no
+  /// MPI) or "mpi" (hand them out over MPI as on many hosts).
+  std::string one_host = "jobs";
   bool force = false;   ///< run every point again, even those done before
   bool list = false;    ///< print the points' command lines, run nothing
   bool report = false;  ///< also write report.html (app/sweep_report.hpp)

@@ -25,6 +25,7 @@
 #include "app/fork_server.hpp"
 #include "app/image_files.hpp"
 #include "app/interrupt_cleanup.hpp"
+#include "app/mpi_launcher.hpp"
 #include "app/output_set.hpp"
 #include "app/progress_bar.hpp"
 #include "app/sweep_mpi.hpp"
@@ -395,20 +396,27 @@ int execute(const SweepArgs& args, const Plan& plan, mpi::Session* session, Fork
   return end.failed > 0 ? kExitFailure : kExitOk;
 }
 
-/// This process's MPI rank as its launcher tells it before MPI_Init (OpenMPI's mpirun, PMIx,
-/// MPICH's PMI, Slurm's srun); -1 if none does.
-int launcher_rank() {
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"}) {
-    const char* value = std::getenv(name);
-    if (!value || !*value) continue;
-    char* end = nullptr;
-    const long rank = std::strtol(value, &end, 10);
-    if (*end == '\0' && rank >= 0 && rank <= INT_MAX) return static_cast<int>(rank);
-  }
-  return -1;
+/// Every rank on this host (`--one-host jobs`): rank 0 runs the sweep as a local one with every
+/// rank's slots, on every CPU the ranks were given, and MPI never starts; the other ranks leave at
+/// once. The table, the points' folders and the exit status are the local sweep's.
+int run_sweep_one_host(const SweepArgs& args, const OneHostRanks& host) {
+  if (host.rank != 0) return kExitOk;
+  SweepArgs local = args;
+  local.mpi = false;
+  local.jobs = host.size * (args.jobs > 0 ? args.jobs : 1);
+  const int cpus = take_launcher_cpus();
+  if (!args.quiet)
+    std::cout << "rtsim sweep: all " << host.size << " MPI ranks are on this host: rank 0 runs "
+              << "the points as " << local.jobs << " local jobs on " << cpus
+              << (cpus == 1 ? " CPU" : " CPUs")
+              << " without starting MPI (--one-host mpi hands them out over MPI)\n";
+  const Plan plan = make_plan(local);
+  return execute(local, plan, nullptr, nullptr);
 }
 
 int run_sweep_mpi(const SweepArgs& args) {
+  if (args.one_host == "jobs")
+    if (const auto host = one_host_ranks()) return run_sweep_one_host(args, *host);
   // Every rank reads the sweep before MPI starts (milliseconds): rank 0 reads and checks it for
   // the run (its scenes loaded, as a local sweep does), the others read it without loading the
   // scenes, to know whether its points write images. A rank that cannot read it says nothing

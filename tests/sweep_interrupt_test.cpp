@@ -169,22 +169,26 @@ TEST(SweepInterrupt, AnMpiSweepInterruptedWritesThePartialTableToo) {
 #ifndef RTSIM_MPIEXEC
   GTEST_SKIP() << "built without MPI";
 #else
-  // mpirun passes the interrupt on to every rank: the workers stop their points and report them,
-  // rank 0 writes the table of what is done.
-  const fs::path dir = scratch_dir("sweep-interrupt-mpi");
-  const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "mpirun.log";
+  // mpirun passes the interrupt on to every rank: over MPI the workers stop their points and
+  // report them, rank 0 writes the table of what is done; on one host without MPI (the
+  // default) rank 0's local sweep does the same.
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);  // CI containers run as root
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-  std::string error;
-  const pid_t pid =
-      rtsim::spawn_logged({RTSIM_MPIEXEC, "-np", "2", "--oversubscribe", RTSIM_BINARY, "sweep",
-                           file.string(), "--mpi", "--jobs", "1", "--out", out.string()},
-                          log, false, error);
-  ASSERT_GT(pid, 0) << error;
-  ASSERT_TRUE(wait_for(out / "points" / "0001" / "done.json", 120)) << read_file(log);
-  ::kill(pid, SIGINT);
-  (void)rtsim::wait_for_child(pid, error);
-  expect_partial_table(log, out);
-  EXPECT_TRUE(all_gone(out));
+  for (const char* one_host : {"mpi", "jobs"}) {
+    SCOPED_TRACE(one_host);
+    const fs::path dir = scratch_dir(std::string("sweep-interrupt-mpi-") + one_host);
+    const fs::path file = write_slow_sweep(dir), out = dir / "out", log = dir / "mpirun.log";
+    std::string error;
+    const pid_t pid = rtsim::spawn_logged(
+        {RTSIM_MPIEXEC, "-np", "2", "--oversubscribe", RTSIM_BINARY, "sweep", file.string(),
+         "--mpi", "--one-host", one_host, "--jobs", "1", "--out", out.string()},
+        log, false, error);
+    ASSERT_GT(pid, 0) << error;
+    ASSERT_TRUE(wait_for(out / "points" / "0001" / "done.json", 120)) << read_file(log);
+    ::kill(pid, SIGINT);
+    (void)rtsim::wait_for_child(pid, error);
+    expect_partial_table(log, out);
+    EXPECT_TRUE(all_gone(out));
+  }
 #endif
 }

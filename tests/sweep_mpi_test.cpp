@@ -1,7 +1,9 @@
-// `rtsim sweep --mpi` under `mpirun -np 2 --oversubscribe` on loopback: the table equals the
-// local run's table except the wall-clock columns (failed points included), and a bad sweep file
-// stops every rank with status 2 before anything is written; `rtsim validate --mpi` likewise
-// gives the local validation. Skipped in a build without MPI.
+// `rtsim sweep --mpi` under `mpirun -np 2 --oversubscribe` on loopback, over MPI (`--one-host
+// mpi`): the table equals the local run's table except the wall-clock columns (failed points
+// included), and a bad sweep file stops every rank with status 2 before anything is written;
+// `rtsim validate --mpi` likewise gives the local validation. By default (`--one-host jobs`) the
+// ranks, all on this host, run the sweep as local jobs in rank 0: the same table, and status 2
+// for a bad file. Skipped in a build without MPI.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -57,7 +59,8 @@ TEST(SweepMpi, TwoRanksGiveTheLocalTable) {
   const auto local = rtsim::test::run_rtsim("sweep " + file.string() + " --jobs 2 --out " +
                                             (dir / "local").string());
   EXPECT_EQ(local.exit_code, 1) << local.output;  // adder_stages = 2 fails on three points
-  const auto mpi = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "mpi").string());
+  const auto mpi =
+      run_mpi("sweep " + file.string() + " --mpi --one-host mpi --out " + (dir / "mpi").string());
   EXPECT_EQ(mpi.exit_code, 1) << mpi.output;
   EXPECT_NE(mpi.output.find("6 points, 6 to run (0 done before), 2 MPI ranks"), std::string::npos)
       << mpi.output;
@@ -77,7 +80,8 @@ TEST(SweepMpi, TwoRanksGiveTheLocalTable) {
     EXPECT_TRUE(fs::exists(dir / "mpi" / "points" / key / "done.json")) << key;
 
   // Resuming works under MPI too: nothing left to run but the failed points.
-  const auto again = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "mpi").string());
+  const auto again =
+      run_mpi("sweep " + file.string() + " --mpi --one-host mpi --out " + (dir / "mpi").string());
   EXPECT_NE(again.output.find("6 points, 3 to run (3 done before)"), std::string::npos)
       << again.output;
   fs::remove_all(dir);
@@ -93,12 +97,52 @@ TEST(SweepMpi, BadSweepStopsEveryRankWithStatus2) {
   const fs::path file = dir / "bad.toml";
   std::ofstream(file) << "machine = \"ullner-peripheral\"\nscene = \"builtin:default\"\n"
                          "[params]\n\"peripheral.grid.divisons\" = 3\n";
-  const auto r = run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "out").string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(":4: on machine 'ullner-peripheral': unknown parameter"),
+  for (const char* one_host : {"mpi", "jobs"}) {
+    const auto r = run_mpi("sweep " + file.string() + " --mpi --one-host " + one_host + " --out " +
+                           (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << one_host << "\n" << r.output;
+    EXPECT_NE(r.output.find(":4: on machine 'ullner-peripheral': unknown parameter"),
+              std::string::npos)
+        << one_host << "\n"
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out")) << one_host;
+  }
+  fs::remove_all(dir);
+#endif
+}
+
+TEST(SweepMpi, RanksOnOneHostRunTheSweepAsLocalJobs) {
+#ifndef RTSIM_MPIEXEC
+  GTEST_SKIP() << "built without MPI";
+#else
+  const fs::path dir = scratch_dir("sweep-mpi-one-host");
+  fs::create_directories(dir);
+  const fs::path file = dir / "tiny.toml";
+  std::ofstream(file) << "machine = \"ullner-peripheral\"\n"
+                         "scene = \"builtin:ullner-sheets-1000\"\n"
+                         "width = 16\nheight = 12\n"
+                         "[[axes]]\nparam = \"peripheral.grid.divisions\"\nvalues = [0, 3, 6]\n";
+  const auto local = rtsim::test::run_rtsim("sweep " + file.string() + " --jobs 2 --out " +
+                                            (dir / "local").string());
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const auto one_host =
+      run_mpi("sweep " + file.string() + " --mpi --out " + (dir / "one-host").string());
+  ASSERT_EQ(one_host.exit_code, 0) << one_host.output;
+  // Said once (rank 1 leaves at once), with every rank's slots: 2 jobs.
+  const std::string said =
+      "all 2 MPI ranks are on this host: rank 0 runs the points as 2 local "
+      "jobs";
+  EXPECT_NE(one_host.output.find(said), std::string::npos) << one_host.output;
+  EXPECT_EQ(one_host.output.find(said), one_host.output.rfind(said)) << one_host.output;
+  EXPECT_NE(one_host.output.find("3 points, 3 to run (0 done before), 2 at a time"),
             std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(dir / "out"));
+      << one_host.output;
+  EXPECT_EQ(without_wall_clock(read_jsonl(dir / "one-host" / "results.jsonl")),
+            without_wall_clock(read_jsonl(dir / "local" / "results.jsonl")));
+  // --one-host is an option of --mpi.
+  const auto alone = rtsim::test::run_rtsim("sweep " + file.string() + " --one-host mpi");
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--one-host requires --mpi"), std::string::npos) << alone.output;
   fs::remove_all(dir);
 #endif
 }

@@ -151,8 +151,7 @@ TEST(SweepReportPlots, AClassOfInstancesIsDrawnAsItsMeanWithItsRangeShaded) {
                "module_classes.node*.utilization.min",
                "module_classes.node*.utilization.mean",
                "module_classes.node*.utilization.max"};
-  t.rows.push_back(
-      {0, "a-machine", "builtin:ullner-cubes", 2, "ok", 1.0, 0.2, 0.9, 0.1, 0.5, 0.9});
+  t.rows.push_back({0, "a-machine", "builtin:ullner-cubes", 2, "ok", 1.0, 0.2, 0.9, 0.1, 0.5, 0.9});
   t.rows.push_back(
       {1, "a-machine", "builtin:ullner-cubes", 4, "ok", 0.5, 0.3, 0.7, 0.05, 0.4, 0.95});
   const auto plots = rtsim::app::choose_sweep_plots(file, t);
@@ -281,8 +280,9 @@ TEST(SweepReportMpi, RankZeroWritesTheReportOverEveryPoint) {
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   const std::string cmd = "RTSIM_PYTHON=/nonexistent/python3 " + std::string(RTSIM_MPIEXEC) +
                           " -np 2 --oversubscribe " + RTSIM_BINARY + " sweep " +
-                          (dir / "fail.toml").string() + " --mpi --report -q --out " +
-                          (dir / "out").string() + " >" + (dir / "log").string() + " 2>&1";
+                          (dir / "fail.toml").string() +
+                          " --mpi --one-host mpi --report -q --out " + (dir / "out").string() +
+                          " >" + (dir / "log").string() + " 2>&1";
   EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1) << read_file(dir / "log");
   const std::string html = read_file(dir / "out" / "report.html");
   EXPECT_NE(html.find("2 MPI ranks"), std::string::npos);
