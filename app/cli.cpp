@@ -369,9 +369,17 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& va) {
             return {};
           },
           "FACTOR > 0"));
-  validate->add_flag("--mpi", va.mpi,
-                     "Spread the runs over MPI ranks as `rtsim sweep --mpi` does (mpirun -np K "
-                     "rtsim validate --mpi ...); --jobs runs at once on each rank");
+  auto* validate_mpi =
+      validate->add_flag("--mpi", va.mpi,
+                         "Spread the runs over MPI ranks as `rtsim sweep --mpi` does (mpirun -np "
+                         "K rtsim validate --mpi ...); --jobs runs at once on each rank");
+  validate
+      ->add_option("--one-host", va.one_host,
+                   "With --mpi, when the launcher says every rank is on this host: jobs (the "
+                   "default) validates in rank 0 with every rank's --jobs as local jobs, without "
+                   "starting MPI; mpi hands the runs out over MPI as on many hosts")
+      ->check(CLI::IsMember({"jobs", "mpi"}))
+      ->needs(validate_mpi);
   return validate;
 }
 

@@ -87,6 +87,9 @@ struct ValidateArgs {
   bool sensitivity = false;       ///< also move each figure's assumptions (--sensitivity)
   std::vector<double> factors = {0.5, 2.0};  ///< how numeric assumptions are moved
   bool mpi = false;                          ///< spread the runs over MPI ranks
+  /// With --mpi, when every rank is on this host: "jobs" (rank 0 runs them as local jobs, no
+  /// MPI) or "mpi" (hand them out over MPI as on many hosts).
+  std::string one_host = "jobs";
 };
 
 struct SweepArgs {

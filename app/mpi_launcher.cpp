@@ -73,4 +73,12 @@ int take_launcher_cpus() {
   return CPU_COUNT(&own);
 }
 
+std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus) {
+  return std::string("rtsim ") + command + ": all " + std::to_string(host.size) +
+         " MPI ranks are on this host: rank 0 runs the " +
+         (std::string(command) == "sweep" ? "points" : "runs") + " as " + std::to_string(jobs) +
+         " local jobs on " + std::to_string(cpus) + (cpus == 1 ? " CPU" : " CPUs") +
+         " without starting MPI (--one-host mpi hands them out over MPI)\n";
+}
+
 }  // namespace rtsim::app

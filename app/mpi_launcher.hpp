@@ -5,10 +5,12 @@
 // `rtsim sweep --mpi` uses it twice: to load the image library in the fork servers of the ranks
 // whose first points write images, and, when every rank is on this host, to run the sweep as
 // local jobs in rank 0 without starting MPI at all (`--one-host jobs`, the default; docs/sweeps.md
-// "MPI"). On one host MPI adds only its start-up and shutdown (about 0.2 s here, 10-20% of a
-// sweep of two seconds) and nothing the local run queue lacks.
+// "MPI"). `rtsim validate --mpi` does the latter too. On one host MPI adds only its start-up and
+// shutdown (about 0.2 s here, 10-20% of a sweep of two seconds) and nothing the local run queue
+// lacks.
 #include <functional>
 #include <optional>
+#include <string>
 
 namespace rtsim::app {
 
@@ -38,5 +40,9 @@ std::optional<OneHostRanks> one_host_ranks(const EnvLookup& env = process_env);
 /// every rank's points must not keep them all on its one core. Returns the CPUs it may run on
 /// after (0 if they cannot be read).
 int take_launcher_cpus();
+
+/// What rank 0 says when it runs a launch's work as local jobs (`command`: "sweep" or
+/// "validate"): the ranks, the jobs, the CPUs, and how to have MPI instead.
+std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus);
 
 }  // namespace rtsim::app

@@ -405,11 +405,7 @@ int run_sweep_one_host(const SweepArgs& args, const OneHostRanks& host) {
   local.mpi = false;
   local.jobs = host.size * (args.jobs > 0 ? args.jobs : 1);
   const int cpus = take_launcher_cpus();
-  if (!args.quiet)
-    std::cout << "rtsim sweep: all " << host.size << " MPI ranks are on this host: rank 0 runs "
-              << "the points as " << local.jobs << " local jobs on " << cpus
-              << (cpus == 1 ? " CPU" : " CPUs")
-              << " without starting MPI (--one-host mpi hands them out over MPI)\n";
+  if (!args.quiet) std::cout << one_host_note("sweep", host, local.jobs, cpus) << std::flush;
   const Plan plan = make_plan(local);
   return execute(local, plan, nullptr, nullptr);
 }

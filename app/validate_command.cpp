@@ -18,6 +18,7 @@
 #include "app/fork_server.hpp"
 #include "app/image_files.hpp"
 #include "app/interrupt_cleanup.hpp"
+#include "app/mpi_launcher.hpp"
 #include "app/progress_bar.hpp"
 #include "app/sweep_mpi.hpp"
 #include "common/seed_citation.hpp"
@@ -158,6 +159,18 @@ int validate(const ValidateArgs& args, const val::Plan& plan, mpi::Session* sess
              ForkServers* servers);
 
 int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
+  // Every rank on this host (--one-host jobs): rank 0 validates locally with every rank's
+  // slots, MPI never starts, the others leave at once (as `rtsim sweep --mpi`).
+  if (args.one_host == "jobs")
+    if (const auto host = one_host_ranks()) {
+      if (host->rank != 0) return kExitOk;
+      if (plan == nullptr) return kExitBadInput;  // said already
+      ValidateArgs local = args;
+      local.mpi = false;
+      local.jobs = host->size * args.jobs;
+      std::cout << one_host_note("validate", *host, local.jobs, take_launcher_cpus()) << std::flush;
+      return validate(local, *plan, nullptr, nullptr);
+    }
   // The runs are forks of fork servers started before MPI (app/fork_server.hpp), unless
   // another rtsim binary was asked for.
   std::unique_ptr<ForkServers> servers;

@@ -157,22 +157,33 @@ TEST(ValidateMpi, TwoRanksGiveTheLocalValidationAndSensitivity) {
   const std::string args = "validate --quick --sensitivity --only X4b,W1h --jobs 1 --out ";
   const auto local = rtsim::test::run_rtsim(args + (dir / "local").string());
   ASSERT_EQ(local.exit_code, 0) << local.output;
-  const auto mpi = run_mpi(args + (dir / "mpi").string() + " --mpi");
+  const auto mpi = run_mpi(args + (dir / "mpi").string() + " --mpi --one-host mpi");
   ASSERT_EQ(mpi.exit_code, 0) << mpi.output;
   EXPECT_NE(mpi.output.find("on each of 2 MPI ranks"), std::string::npos) << mpi.output;
-  for (const char* file : {"validation.json", "validation-sensitivity.json"}) {
-    auto a = Json::parse(read_file(dir / "local" / file));
-    auto b = Json::parse(read_file(dir / "mpi" / file));
-    EXPECT_EQ(a["rows"], b["rows"]) << file;
-    EXPECT_EQ(a["entries"], b["entries"]) << file;
-    EXPECT_EQ(a["verdict_depends"], b["verdict_depends"]) << file;
-  }
+  // By default the two ranks, on this host, validate as local jobs in rank 0.
+  const auto one_host = run_mpi(args + (dir / "one-host").string() + " --mpi");
+  ASSERT_EQ(one_host.exit_code, 0) << one_host.output;
+  EXPECT_NE(one_host.output.find("all 2 MPI ranks are on this host: rank 0 runs the runs as 2 "
+                                 "local jobs"),
+            std::string::npos)
+      << one_host.output;
+  for (const char* run : {"mpi", "one-host"})
+    for (const char* file : {"validation.json", "validation-sensitivity.json"}) {
+      auto a = Json::parse(read_file(dir / "local" / file));
+      auto b = Json::parse(read_file(dir / run / file));
+      EXPECT_EQ(a["rows"], b["rows"]) << run << " " << file;
+      EXPECT_EQ(a["entries"], b["entries"]) << run << " " << file;
+      EXPECT_EQ(a["verdict_depends"], b["verdict_depends"]) << run << " " << file;
+    }
   const auto s = Json::parse(read_file(dir / "mpi" / "validation-sensitivity.json"));
   ASSERT_EQ(s["verdict_depends"].size(), 1u);
   EXPECT_EQ(s["verdict_depends"][0]["figure"], "X4b");
-  // A bad --only stops every rank with status 2.
-  const auto bad = run_mpi("validate --quick --only NOPE --mpi --out " + (dir / "bad").string());
-  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  // A bad --only stops every rank with status 2, over MPI or not.
+  for (const char* one_host : {"mpi", "jobs"}) {
+    const auto bad = run_mpi("validate --quick --only NOPE --mpi --one-host " +
+                             std::string(one_host) + " --out " + (dir / "bad").string());
+    EXPECT_EQ(bad.exit_code, 2) << one_host << "\n" << bad.output;
+  }
   fs::remove_all(dir);
 #endif
 }
