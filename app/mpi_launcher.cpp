@@ -3,6 +3,7 @@
 #include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdlib>
@@ -71,6 +72,12 @@ int take_launcher_cpus() {
       own = both;
   }
   return CPU_COUNT(&own);
+}
+
+int one_host_jobs(const OneHostRanks& host, int jobs_per_rank) {
+  constexpr long long kMostJobs = 65536;
+  return static_cast<int>(std::min<long long>(
+      kMostJobs, static_cast<long long>(host.size) * std::max(jobs_per_rank, 1)));
 }
 
 std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus) {

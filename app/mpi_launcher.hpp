@@ -41,6 +41,10 @@ std::optional<OneHostRanks> one_host_ranks(const EnvLookup& env = process_env);
 /// after (0 if they cannot be read).
 int take_launcher_cpus();
 
+/// The local jobs that stand for `host`'s ranks with `jobs_per_rank` each (at most 65536, however
+/// many ranks a launcher claims).
+int one_host_jobs(const OneHostRanks& host, int jobs_per_rank);
+
 /// What rank 0 says when it runs a launch's work as local jobs (`command`: "sweep" or
 /// "validate"): the ranks, the jobs, the CPUs, and how to have MPI instead.
 std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus);

@@ -167,7 +167,7 @@ int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
       if (plan == nullptr) return kExitBadInput;  // said already
       ValidateArgs local = args;
       local.mpi = false;
-      local.jobs = host->size * args.jobs;
+      local.jobs = one_host_jobs(*host, args.jobs);
       std::cout << one_host_note("validate", *host, local.jobs, take_launcher_cpus()) << std::flush;
       return validate(local, *plan, nullptr, nullptr);
     }

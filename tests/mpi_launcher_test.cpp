@@ -70,6 +70,13 @@ TEST(MpiLauncher, AnythingUnclearStartsMpi) {
       one_host_ranks(env_of({{"OMPI_COMM_WORLD_RANK", "0"}, {"OMPI_COMM_WORLD_SIZE", "2"}})));
 }
 
+TEST(MpiLauncher, LocalJobsStandForEveryRanksSlotsWithinBounds) {
+  EXPECT_EQ(rtsim::app::one_host_jobs({0, 2}, 1), 2);
+  EXPECT_EQ(rtsim::app::one_host_jobs({0, 4}, 3), 12);
+  // A launcher that claims two billion ranks gets a bound, not an overflow.
+  EXPECT_EQ(rtsim::app::one_host_jobs({0, 2'000'000'000}, 1024), 65536);
+}
+
 TEST(MpiLauncher, RankFromTheFirstLauncherVariableSet) {
   EXPECT_EQ(launcher_rank(env_of({})), -1);
   EXPECT_EQ(launcher_rank(env_of({{"PMIX_RANK", "3"}})), 3);
