@@ -80,10 +80,10 @@ int one_host_jobs(const OneHostRanks& host, int jobs_per_rank) {
       kMostJobs, static_cast<long long>(host.size) * std::max(jobs_per_rank, 1)));
 }
 
-std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus) {
+std::string one_host_note(const char* command, const char* work, const OneHostRanks& host, int jobs,
+                          int cpus) {
   return std::string("rtsim ") + command + ": all " + std::to_string(host.size) +
-         " MPI ranks are on this host: rank 0 runs the " +
-         (std::string(command) == "sweep" ? "points" : "runs") + " as " + std::to_string(jobs) +
+         " MPI ranks are on this host: rank 0 runs the " + work + " as " + std::to_string(jobs) +
          " local jobs on " + std::to_string(cpus) + (cpus == 1 ? " CPU" : " CPUs") +
          " without starting MPI (--one-host mpi hands them out over MPI)\n";
 }

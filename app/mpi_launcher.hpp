@@ -45,8 +45,9 @@ int take_launcher_cpus();
 /// many ranks a launcher claims).
 int one_host_jobs(const OneHostRanks& host, int jobs_per_rank);
 
-/// What rank 0 says when it runs a launch's work as local jobs (`command`: "sweep" or
-/// "validate"): the ranks, the jobs, the CPUs, and how to have MPI instead.
-std::string one_host_note(const char* command, const OneHostRanks& host, int jobs, int cpus);
+/// What rank 0 says when it runs a launch's work as local jobs (`command`: "sweep", its `work`:
+/// "points"): the ranks, the jobs, the CPUs, and how to have MPI instead.
+std::string one_host_note(const char* command, const char* work, const OneHostRanks& host, int jobs,
+                          int cpus);
 
 }  // namespace rtsim::app

@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <climits>
-#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -405,7 +403,8 @@ int run_sweep_one_host(const SweepArgs& args, const OneHostRanks& host) {
   local.mpi = false;
   local.jobs = one_host_jobs(host, args.jobs > 0 ? args.jobs : 1);
   const int cpus = take_launcher_cpus();
-  if (!args.quiet) std::cout << one_host_note("sweep", host, local.jobs, cpus) << std::flush;
+  if (!args.quiet)
+    std::cout << one_host_note("sweep", "points", host, local.jobs, cpus) << std::flush;
   const Plan plan = make_plan(local);
   return execute(local, plan, nullptr, nullptr);
 }

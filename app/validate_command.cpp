@@ -168,7 +168,8 @@ int run_validate_mpi(const ValidateArgs& args, const val::Plan* plan) {
       ValidateArgs local = args;
       local.mpi = false;
       local.jobs = one_host_jobs(*host, args.jobs);
-      std::cout << one_host_note("validate", *host, local.jobs, take_launcher_cpus()) << std::flush;
+      std::cout << one_host_note("validate", "runs", *host, local.jobs, take_launcher_cpus())
+                << std::flush;
       return validate(local, *plan, nullptr, nullptr);
     }
   // The runs are forks of fork servers started before MPI (app/fork_server.hpp), unless
