@@ -401,7 +401,7 @@ int run_sweep_one_host(const SweepArgs& args, const OneHostRanks& host) {
   if (host.rank != 0) return kExitOk;
   SweepArgs local = args;
   local.mpi = false;
-  local.jobs = one_host_jobs(host, args.jobs > 0 ? args.jobs : 1);
+  local.jobs = one_host_jobs(host, args.jobs);
   const int cpus = take_launcher_cpus();
   if (!args.quiet)
     std::cout << one_host_note("sweep", "points", host, local.jobs, cpus) << std::flush;
